@@ -1,0 +1,168 @@
+"""Classical Bézier toolkit (lecture notes 002_b1311022d66a73a0.txt).
+
+Axioms:
+  * the Bernstein basis  B_{j,N}(t) = C(N, j) t^j (1 - t)^(N - j);
+  * Bézier's original form p(t) = Σ a_i f_i(t), where the a_i are *relative* vectors,
+    b_0 = a_0 and b_j = b_{j-1} + a_j (Forrest's change to absolute vertices).
+Derived here: power-basis matrices, the hodograph (derivative) and degree-elevation matrices,
+f_i in the power basis, and the k-th derivative at either end for every order, in closed form.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import sympy as sp
+
+from . import _emit
+from ._algebra import (
+    Matrix,
+    bernstein_power_matrix,
+    i,
+    k,
+    lam,
+    n,
+    power_matrices,
+    power_to_bernstein_matrix,
+    t,
+)
+
+X = sp.Poly(t, t, lam, domain="QQ")  # evaluating the axioms at X gives them as polynomials
+
+SCRIPT = "bernstein.py"
+OUTPUT = "bernstein.py"
+DEGREES = range(1, 15)  # up to 12 + 2: bernstein_like curves of degree 12 convert to degree 14
+
+
+def bernstein_basis(degree, index, x=t):
+    """The axiom: B_{index,degree}(x). Zero outside 0 <= index <= degree."""
+    if isinstance(degree, int) and isinstance(index, int) and not 0 <= index <= degree:
+        return sp.Integer(0)
+    return sp.binomial(degree, index) * x**index * (1 - x) ** (degree - index)
+
+
+def original_basis(degree: int, index: int, x=t):
+    """f_i from the axiom p = Σ a_i f_i = Σ b_j B_j with b_j = Σ_{i<=j} a_i:
+    collecting a_i gives f_i = Σ_{j>=i} B_j."""
+    return sum(
+        (bernstein_basis(degree, jj, x) for jj in range(index + 1, degree + 1)),
+        bernstein_basis(degree, index, x),
+    )
+
+
+def _to_bernstein(p: sp.Poly, degree: int) -> tuple[Fraction, ...]:
+    conv = power_to_bernstein_matrix(degree)
+    coeffs = power_matrices([p], degree)[0][0]
+    return tuple(
+        sum((coeffs[e] * conv[e][jj] for e in range(degree + 1)), Fraction(0))
+        for jj in range(degree + 1)
+    )
+
+
+def hodograph_matrix(degree: int) -> Matrix:
+    """H[j][i]: weight of control point P_i in control point j of the derivative curve
+    (degree - 1), from differentiating each B_i and re-expanding in degree - 1."""
+    cols = [
+        _to_bernstein(bernstein_basis(degree, ii, X).diff(t), degree - 1)
+        for ii in range(degree + 1)
+    ]
+    return tuple(tuple(cols[ii][jj] for ii in range(degree + 1)) for jj in range(degree))
+
+
+def elevation_matrix(degree: int) -> Matrix:
+    """E[j][i]: weight of P_i in control point j of the same curve written in degree + 1."""
+    cols = [_to_bernstein(bernstein_basis(degree, ii, X), degree + 1) for ii in range(degree + 1)]
+    return tuple(tuple(cols[ii][jj] for ii in range(degree + 1)) for jj in range(degree + 2))
+
+
+def original_power_matrix(degree: int) -> Matrix:
+    return power_matrices([original_basis(degree, ii, X) for ii in range(degree + 1)], degree)[0]
+
+
+def endpoint_weights() -> tuple[sp.Expr, sp.Expr]:
+    """Weights w_i with p^(k)(0) = Σ_{i=0}^k w_i P_i and p^(k)(1) = Σ_{i=0}^k w'_i P_{n-i}.
+
+    At t = 0 only B_i with i <= k survive k differentiations. Leibniz on t^i · g(t),
+    g = C(n,i)(1-t)^(n-i): the only term nonzero at 0 differentiates t^i exactly i times,
+    giving C(k,i) i! g^(k-i)(0), and g^(r)(0) = C(n,i) (-1)^r (n-i)(n-i-1)…(n-i-r+1).
+    At t = 1 the same computation in s = 1 - t (B_{n-i,n}(t) = C(n,i) s^i (1-s)^(n-i)) picks
+    up (-1)^k from d/dt = -d/ds.
+    """
+    leibniz = (
+        sp.binomial(k, i)
+        * sp.factorial(i)
+        * sp.binomial(n, i)
+        * (-1) ** (k - i)
+        * sp.ff(n - i, k - i)
+    )
+    start = sp.combsimp(leibniz)
+    end = sp.simplify(sp.combsimp((-1) ** k * leibniz))
+    return start, end
+
+
+def _check_endpoint_weights(start: sp.Expr, end: sp.Expr) -> None:
+    """The closed forms agree with differentiating every B_{i,N} for every N of the range."""
+    w_start = sp.lambdify((n, k, i), start, modules="sympy")
+    w_end = sp.lambdify((n, k, i), end, modules="sympy")
+    for deg in DEGREES:
+        for ii in range(deg + 1):
+            p0 = bernstein_basis(deg, ii, X)
+            p1 = bernstein_basis(deg, deg - ii, X)
+            for order in range(deg + 1):
+                got0, got1 = p0.eval(t, 0), p1.eval(t, 1)
+                want0 = (
+                    w_start(sp.Integer(deg), sp.Integer(order), sp.Integer(ii))
+                    if ii <= order
+                    else 0
+                )
+                want1 = (
+                    w_end(sp.Integer(deg), sp.Integer(order), sp.Integer(ii)) if ii <= order else 0
+                )
+                if got0.as_expr() != want0 or got1.as_expr() != want1:
+                    raise AssertionError(f"endpoint weights disagree at N={deg} k={order} i={ii}")
+                p0, p1 = p0.diff(t), p1.diff(t)
+
+
+def render() -> str:
+    start, end = endpoint_weights()
+    _check_endpoint_weights(start, end)
+    degrees = tuple(DEGREES)
+    parts = [
+        _emit.banner(
+            SCRIPT, "Classical Bézier data, derived from B_{j,N}(t) = C(N,j) t^j (1-t)^(N-j)."
+        ),
+        _emit.EXACT_HELPERS,
+        "",
+        f"DEGREES = {_emit.literal(degrees)}",
+        "",
+        "# POWER[N][j][e]: coefficient of t^e in B_{j,N}.",
+        "POWER = " + _emit.literal({d: bernstein_power_matrix(d) for d in degrees}),
+        "",
+        "# TO_BERNSTEIN[N][e][j]: coefficient of B_{j,N} in t^e.",
+        "TO_BERNSTEIN = " + _emit.literal({d: power_to_bernstein_matrix(d) for d in degrees}),
+        "",
+        "# HODOGRAPH[N][j][i]: weight of P_i in control point j of p'(t) (degree N - 1).",
+        "HODOGRAPH = " + _emit.literal({d: hodograph_matrix(d) for d in degrees}),
+        "",
+        "# ELEVATION[N][j][i]: weight of P_i in control point j of p(t) written in degree N + 1.",
+        "ELEVATION = " + _emit.literal({d: elevation_matrix(d) for d in degrees}),
+        "",
+        "# ORIGINAL_POWER[N][i][e]: coefficient of t^e in Bézier's f_i = sum_{j>=i} B_{j,N}.",
+        "ORIGINAL_POWER = " + _emit.literal({d: original_power_matrix(d) for d in degrees}),
+        "",
+        "",
+        _emit.function(
+            "endpoint_weight_start",
+            ["n", "k", "i"],
+            "Weight of P_i (0 <= i <= k) in p^(k)(0) of a degree-n Bézier curve.",
+            f"return {_emit.expression(start)}",
+        ),
+        "",
+        _emit.function(
+            "endpoint_weight_end",
+            ["n", "k", "i"],
+            "Weight of P_{n-i} (0 <= i <= k) in p^(k)(1) of a degree-n Bézier curve.",
+            f"return {_emit.expression(end)}",
+        ),
+    ]
+    return "\n".join(parts)

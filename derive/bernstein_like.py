@@ -1,0 +1,149 @@
+"""The Bernstein-like basis (001_33da2b0fa8491127.txt).
+
+Axioms: the quadratic seed, eq. (1),
+    b_{0,2} = (1 - 2λt + λt²)(1-t)²,  b_{1,2} = 2t(1-t)(1 + λ - λt + λt²),
+    b_{2,2} = (1 - λ + λt²)t²,
+and the recursion, eq. (2), b_{i,n} = (1-t) b_{i,n-1} + t b_{i-1,n-1} (b_{-1} = b_{n} = 0),
+for λ in [-1, 1]. A degree-n curve is a polynomial of degree n + 2.
+Derived here: per-degree expansions, the general-n explicit form b_{i,n} = q_i(t) B_{i,n}(t)
+(the shape of eq. 5), and the values, first and second derivatives at both ends.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+
+import sympy as sp
+
+from . import _emit
+from ._algebra import (
+    bernstein_matrices,
+    endpoint_table,
+    i,
+    lam,
+    n,
+    poly,
+    power_matrices,
+    t,
+)
+from .bernstein import bernstein_basis
+
+SCRIPT = "bernstein_like.py"
+OUTPUT = "bernstein_like.py"
+DEGREES = range(2, 13)
+ORDERS = 2
+
+SEED = (
+    (1 - 2 * lam * t + lam * t**2) * (1 - t) ** 2,
+    2 * t * (1 - t) * (1 + lam - lam * t + lam * t**2),
+    (1 - lam + lam * t**2) * t**2,
+)
+
+
+@cache
+def basis_polys(degree: int) -> tuple[sp.Poly, ...]:
+    """Eq. (2) applied degree - 2 times to the seed, exactly as stated."""
+    if degree == 2:
+        return tuple(poly(b) for b in SEED)
+    prev = basis_polys(degree - 1)
+    one_minus_t = sp.Poly(1 - t, t, lam, domain="QQ")
+    tt = sp.Poly(t, t, lam, domain="QQ")
+    zero = sp.Poly(0, t, lam, domain="QQ")
+
+    def b(idx):
+        return prev[idx] if 0 <= idx <= degree - 1 else zero
+
+    return tuple(one_minus_t * b(ii) + tt * b(ii - 1) for ii in range(degree + 1))
+
+
+def explicit_factor() -> sp.Expr:
+    """q_i(t) with b_{i,n} = q_i(t) B_{i,n}(t), for symbolic n and i.
+
+    Unrolling eq. (2) down to the seed gives b_{i,n} = Σ_s B_{i-s,n-2}(t) b_{s,2}(t): the
+    right side equals the seed at n = 2 and obeys eq. (2) because each B_{i-s,n-2} obeys the
+    Bernstein recursion (checked symbolically below). Dividing by B_{i,n} leaves, term by term,
+    C(n-2,i-s)/C(n,i) · b_{s,2}/(t^s (1-t)^(2-s)), a polynomial because b_{s,2} carries that
+    factor.
+    """
+    ratio_rec = sp.combsimp(
+        ((1 - t) * bernstein_basis(n - 1, i) + t * bernstein_basis(n - 1, i - 1))
+        / bernstein_basis(n, i)
+    )
+    if sp.simplify(ratio_rec - 1) != 0:
+        raise AssertionError("Bernstein recursion failed symbolically")
+    q = sp.Integer(0)
+    for s, seed in enumerate(SEED):
+        reduced = sp.cancel(seed / (t**s * (1 - t) ** (2 - s)))
+        q += sp.combsimp(sp.binomial(n - 2, i - s) / sp.binomial(n, i)) * reduced
+    return sp.collect(sp.expand(q), [t, lam])
+
+
+def endpoint_closed_forms(q: sp.Expr) -> dict[tuple[str, int, int], sp.Expr]:
+    """Derivatives of q_i(t) C(n,i) t^i (1-t)^(n-i) at t=0 (i = 0..r) and at t=1 (i = n-j)."""
+    out = {}
+    for r in range(ORDERS + 1):
+        for idx in range(r + 1):
+            at0 = q.subs(i, idx) * sp.binomial(n, idx) * t**idx * (1 - t) ** (n - idx)
+            # i = n - j: C(n, n-j) written as the polynomial C(n, j) in n
+            at1 = (
+                q.subs(i, n - idx)
+                * sp.expand_func(sp.binomial(n, idx))
+                * t ** (n - idx)
+                * (1 - t) ** idx
+            )
+            for end, expr, at in (("start", at0, 0), ("end", at1, 1)):
+                val = sp.factor(sp.cancel(sp.diff(expr, t, r).subs(t, at)))
+                if val != 0:
+                    out[(end, r, idx)] = val
+    return out
+
+
+def _check(q, closed) -> None:
+    for deg in DEGREES:
+        polys = basis_polys(deg)
+        for ii, p in enumerate(polys):
+            want = q.xreplace({n: deg, i: ii}) * bernstein_basis(deg, ii)
+            if (poly(want) - p).is_zero is False:
+                raise AssertionError(f"explicit form wrong at n={deg}, i={ii}")
+        table = endpoint_table(list(polys), ORDERS)
+        for (end, r, ii), val in table.items():
+            idx = ii if end == "start" else deg - ii
+            if sp.expand(closed.get((end, r, idx), 0).xreplace({n: deg}) - val) != 0:
+                raise AssertionError(f"endpoint closed form wrong: {end} r={r} i={ii} n={deg}")
+        for (end, r, idx), expr in closed.items():
+            ii = idx if end == "start" else deg - idx
+            if sp.expand(expr.xreplace({n: deg}) - table.get((end, r, ii), 0)) != 0:
+                raise AssertionError(f"spurious endpoint closed form: {end} r={r} idx={idx}")
+
+
+def render() -> str:
+    q = explicit_factor()
+    closed = endpoint_closed_forms(q)
+    _check(q, closed)
+    degrees = tuple(DEGREES)
+    coeffs = sp.Poly(q, t)
+    return _emit.family_module(
+        script=SCRIPT,
+        doc="Bernstein-like basis b_{i,n}(t; λ) of 001_33da2b0fa8491127.txt, eqs. (1)-(2).",
+        family="bernstein_like",
+        degrees=degrees,
+        lambda_range=((-1, True), (1, True)),
+        bernstein_lambda=0,
+        degree_offset=2,
+        power={d: power_matrices(list(basis_polys(d)), d + 2) for d in degrees},
+        bernstein={d: bernstein_matrices(list(basis_polys(d)), d + 2) for d in degrees},
+        general_forms=[
+            _emit.function(
+                "explicit_factor",
+                ["n", "i", "lam"],
+                "(c0, c1, c2) with b_{i,n}(t) = (c0 + c1 t + c2 t^2) B_{i,n}(t), for 0 <= i <= n.",
+                "return (\n"
+                + "".join(
+                    f"    {_emit.expression(sp.factor(coeffs.coeff_monomial(t**e)))},\n"
+                    for e in range(3)
+                )
+                + ")",
+            ),
+        ],
+        endpoint=closed,
+    )

@@ -1,0 +1,141 @@
+"""The same-degree λ-Bernstein basis (000_10ca634d356c575d.txt).
+
+Axiom: eq. (1),
+    b_i^n(t) = C(n,i)(1-t)^(n-i) t^i + (1-λ)(1-t)^(n-i-1) t^(i-1)
+               × [C(n-3,i-3)(1-t)^2 - C(n-2,i-1)(1-t)t + C(n-3,i)t^2],
+for n >= 3, λ in (-2, 1], with C(a, b) = 0 outside 0 <= b <= a.
+Derived here: per-degree expansions (power and Bernstein bases), the general-n three-term
+Bernstein form, and the values, first and second derivatives at both ends in closed form.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+
+import sympy as sp
+
+from . import _emit
+from ._algebra import (
+    bernstein_matrices,
+    bernstein_terms,
+    endpoint_table,
+    i,
+    k,
+    lam,
+    n,
+    poly,
+    power_matrices,
+    t,
+)
+from .bernstein import endpoint_weights
+
+SCRIPT = "same_degree.py"
+OUTPUT = "same_degree.py"
+DEGREES = range(3, 13)
+ORDERS = 2  # endpoint derivatives emitted in closed form: value, first, second
+
+
+def basis_definition(degree, index, x=t, shape=lam):
+    """Eq. (1) verbatim, as a (possibly rational-looking) SymPy expression."""
+    bracket = (
+        sp.binomial(degree - 3, index - 3) * (1 - x) ** 2
+        - sp.binomial(degree - 2, index - 1) * (1 - x) * x
+        + sp.binomial(degree - 3, index) * x**2
+    )
+    return (
+        sp.binomial(degree, index) * (1 - x) ** (degree - index) * x**index
+        + (1 - shape) * (1 - x) ** (degree - index - 1) * x ** (index - 1) * bracket
+    )
+
+
+@cache
+def basis_polys(degree: int) -> list[sp.Poly]:
+    return [poly(basis_definition(degree, ii)) for ii in range(degree + 1)]
+
+
+def three_term_form() -> tuple[sp.Expr, sp.Expr, sp.Expr]:
+    """Coefficients of B_{i-1}^n, B_i^n, B_{i+1}^n in b_i^n, for symbolic n and i."""
+    terms = bernstein_terms(basis_definition(n, i), n)
+    if set(terms) != {i - 1, i, i + 1}:
+        raise AssertionError(f"unexpected Bernstein support {sorted(terms, key=str)}")
+    return terms[i - 1], terms[i], terms[i + 1]
+
+
+def endpoint_closed_forms(form) -> dict[tuple[str, int, int], sp.Expr]:
+    """{("start", r, i) or ("end", r, j): d^r/dt^r b at t=0 (index i) or t=1 (index n-j)}.
+
+    b_i = α_i B_{i-1} + β_i B_i + γ_i B_{i+1}; the r-th derivative of B_l at 0 is the
+    Bernstein endpoint weight w_start(n, r, l) for l <= r and 0 otherwise (and mirrored at 1),
+    so only i <= r + 1 (resp. n - i <= r + 1) can be nonzero.
+    """
+    w_start, w_end = endpoint_weights()
+    out = {}
+    for r in range(ORDERS + 1):
+        for idx in range(r + 2):
+            # start: B_l, l = idx-1, idx, idx+1; end: B_{n-l}, l = idx+1, idx, idx-1
+            total_start = total_end = sp.Integer(0)
+            for coeff, shift in zip(form, (-1, 0, 1), strict=True):
+                l0 = idx + shift
+                if 0 <= l0 <= r:
+                    total_start += coeff.subs(i, idx) * w_start.subs({i: l0, k: r})
+                l1 = idx - shift
+                if 0 <= l1 <= r:
+                    total_end += coeff.subs(i, n - idx) * w_end.subs({i: l1, k: r})
+            for end, total in (("start", total_start), ("end", total_end)):
+                total = sp.factor(sp.cancel(total))
+                if total != 0:
+                    out[(end, r, idx)] = total
+    return out
+
+
+def _check(form, closed) -> None:
+    """Every general-n result against the per-degree expansion of the axiom, for every n."""
+    for deg in DEGREES:
+        polys = basis_polys(deg)
+        mats = bernstein_matrices(polys, deg)
+        for ii in range(deg + 1):
+            for jj in range(deg + 1):
+                want = sum(mats[p][ii][jj] * lam**p for p in range(len(mats)))
+                shift = jj - ii
+                got = form[shift + 1].xreplace({n: deg, i: ii}) if abs(shift) <= 1 else 0
+                if sp.expand(got - want) != 0:
+                    raise AssertionError(f"three-term form wrong at n={deg}, i={ii}, B_{jj}")
+        table = endpoint_table(polys, ORDERS)
+        for (end, r, ii), val in table.items():
+            idx = ii if end == "start" else deg - ii
+            if sp.expand(closed.get((end, r, idx), 0).xreplace({n: deg}) - val) != 0:
+                raise AssertionError(f"endpoint closed form wrong: {end} r={r} i={ii} n={deg}")
+        for (end, r, idx), expr in closed.items():
+            ii = idx if end == "start" else deg - idx
+            if sp.expand(expr.xreplace({n: deg}) - table.get((end, r, ii), 0)) != 0:
+                raise AssertionError(f"spurious endpoint closed form: {end} r={r} idx={idx}")
+
+
+def render() -> str:
+    form = three_term_form()
+    closed = endpoint_closed_forms(form)
+    _check(form, closed)
+    degrees = tuple(DEGREES)
+    power = {d: power_matrices(basis_polys(d), d) for d in degrees}
+    bern = {d: bernstein_matrices(basis_polys(d), d) for d in degrees}
+    return _emit.family_module(
+        script=SCRIPT,
+        doc="Same-degree λ-Bernstein basis b_i^n(t; λ) of 000_10ca634d356c575d.txt, eq. (1).",
+        family="same_degree",
+        degrees=degrees,
+        lambda_range=((-2, False), (1, True)),
+        bernstein_lambda=1,
+        degree_offset=0,
+        power=power,
+        bernstein=bern,
+        general_forms=[
+            _emit.function(
+                "three_term_bernstein",
+                ["n", "i", "lam"],
+                "(α, β, γ) with b_i^n = α B_{i-1}^n + β B_i^n + γ B_{i+1}^n, for 0 <= i <= n "
+                "(α unused at i = 0, γ at i = n).",
+                "return (\n" + "".join(f"    {_emit.expression(c)},\n" for c in form) + ")",
+            ),
+        ],
+        endpoint=closed,
+    )

@@ -1,0 +1,92 @@
+"""`lambda-bezier derive [--check]`: regenerate generated/ from derive/, or compare.
+
+SymPy is imported here only when the command runs, never by `import lambda_bezier`.
+"""
+
+from __future__ import annotations
+
+import importlib
+import importlib.util
+import sys
+from pathlib import Path
+from types import ModuleType
+
+HINT = "hint: run `lambda-bezier derive` in the checkout to refresh generated/"
+
+
+def find_checkout(start: Path) -> Path | None:
+    """The lambda-bezier source checkout containing `start`, if any."""
+    for d in (start, *start.parents):
+        pyproject = d / "pyproject.toml"
+        if (
+            (d / "derive" / "__init__.py").is_file()
+            and pyproject.is_file()
+            and 'name = "lambda-bezier"' in pyproject.read_text(encoding="utf-8")
+        ):
+            return d
+    return None
+
+
+def load_derive(root: Path | None) -> ModuleType:
+    """The checkout's derive/ package when there is a checkout (so edits to derive/ take effect
+    without reinstalling), else the copy installed with the wheel."""
+    try:
+        import sympy  # noqa: F401
+    except ImportError:
+        raise SystemExit(
+            "lambda-bezier derive needs SymPy: pip install 'lambda-bezier[derive]'"
+        ) from None
+    if root is None:
+        return importlib.import_module("lambda_bezier._derive")
+    name = "_lambda_bezier_checkout_derive"
+    if name in sys.modules:
+        return sys.modules[name]
+    init = root / "derive" / "__init__.py"
+    spec = importlib.util.spec_from_file_location(
+        name, init, submodule_search_locations=[str(init.parent)]
+    )
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+def installed_generated_dir() -> Path:
+    from . import _generated
+
+    return Path(_generated.__file__).parent
+
+
+def run(check: bool, root: Path | None, quiet: bool = False) -> int:
+    import sympy
+
+    checkout = root if root is not None else find_checkout(Path.cwd())
+    derive = load_derive(checkout)
+    emit = importlib.import_module(f"{derive.__name__}._emit")
+    target = checkout / "generated" if checkout else installed_generated_dir()
+    say = (lambda msg: None) if quiet else (lambda msg: print(msg, file=sys.stderr, flush=True))
+    if sympy.__version__ != derive.SYMPY_VERSION:
+        say(
+            f"warning: generated/ is printed with SymPy {derive.SYMPY_VERSION}, "
+            f"this is SymPy {sympy.__version__}; output may differ"
+        )
+    files = derive.render_all(progress=lambda name: say(f"deriving {name} ..."))
+    if check:
+        label = "generated" if checkout else str(target)
+        diffs = emit.diff_tree(files, target, label)
+        if diffs:
+            sys.stdout.write("".join(diffs))
+            print(f"{len(diffs)} generated file(s) differ from the derivation.", file=sys.stderr)
+            print(HINT, file=sys.stderr)
+            return 1
+        say(f"generated/ matches the derivation ({len(files)} files).")
+        return 0
+    if checkout is None:
+        raise SystemExit(
+            "lambda-bezier derive writes into a source checkout's generated/: run it inside "
+            "the checkout or pass --root PATH (use --check to compare an installed copy)"
+        )
+    emit.write_tree(files, target)
+    say(f"wrote {len(files)} files to {target}")
+    return 0

@@ -1,0 +1,324 @@
+"""Curve classes: one shared base, one thin subclass per basis family.
+
+Every family is a polynomial curve p(t) = Σ_i P_i b_i(t; λ) whose basis functions are given,
+per degree, as exact matrices in generated/ (power and Bernstein coefficients, split by powers
+of λ). The base class turns those matrices into the curve's power coefficients once, and all
+evaluation is Horner's rule vectorised over t.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from functools import cache
+from types import ModuleType
+from typing import ClassVar
+
+import numpy as np
+
+from . import _algorithms as alg
+from . import _validate as val
+from ._generated import bernstein as _bernstein
+from ._generated import bernstein_like as _bernstein_like
+from ._generated import same_degree as _same_degree
+
+Matrix = tuple[tuple[Fraction, ...], ...]
+
+
+@cache
+def _float_matrix(family: str, kind: str, degree: int, power: int) -> np.ndarray:
+    mats = _TABLES[family][kind][degree]
+    arr = np.array(mats[power], dtype=float)
+    arr.setflags(write=False)
+    return arr
+
+
+@cache
+def _binomials(degree: int) -> np.ndarray:
+    """C(N, j): the leading power coefficient of B_{j,N}, read off the generated table."""
+    if degree == 0:
+        return np.ones(1)
+    power = _bernstein.POWER[degree]
+    return np.array([float(power[j][j]) for j in range(degree + 1)])
+
+
+@cache
+def _float_hodograph(degree: int) -> np.ndarray:
+    if degree == 0:
+        return np.zeros((1, 1))  # derivative of a constant; only reached past the degree
+    return np.array(_bernstein.HODOGRAPH[degree], dtype=float)
+
+
+def _combine_exact(mats: tuple[Matrix, ...], lam: Fraction) -> Matrix:
+    """Σ_p λ^p M_p in Fractions."""
+    rows, cols = len(mats[0]), len(mats[0][0])
+    return tuple(
+        tuple(
+            sum((Fraction(m[r][c]) * lam**p for p, m in enumerate(mats)), Fraction(0))
+            for c in range(cols)
+        )
+        for r in range(rows)
+    )
+
+
+def _identity(size: int) -> Matrix:
+    return tuple(tuple(Fraction(int(r == c)) for c in range(size)) for r in range(size))
+
+
+# kind -> degree -> tuple of λ-power matrices; the Bernstein basis has no λ (one matrix).
+_TABLES: dict[str, dict[str, dict[int, tuple[Matrix, ...]]]] = {
+    "bezier": {
+        "power": {d: (m,) for d, m in _bernstein.POWER.items()},
+        "bernstein": {d: (_identity(d + 1),) for d in _bernstein.DEGREES},
+    },
+    "same_degree": {"power": _same_degree.POWER, "bernstein": _same_degree.BERNSTEIN},
+    "bernstein_like": {"power": _bernstein_like.POWER, "bernstein": _bernstein_like.BERNSTEIN},
+}
+
+
+class Curve:
+    """Behaviour shared by every family (the role numpy.polynomial's ABCPolyBase plays).
+
+    Subclasses set ``family`` (a name), ``_data`` (the generated module) and whether they
+    take a shape parameter.
+    """
+
+    family: ClassVar[str]
+    _data: ClassVar[ModuleType]
+    _has_lambda: ClassVar[bool] = True
+
+    def __init__(self, points, lam=None, *, check_range: bool = True) -> None:
+        degrees = tuple(self._data.DEGREES)
+        self.points = val.as_points(points, family=self.family, degrees=degrees)
+        self._exact_points = val.exact_rows(points)
+        if self._has_lambda:
+            if lam is None:
+                raise ValueError(f"a {self.family} curve needs a shape parameter lam")
+            self.lam: Fraction | float | None = val.as_lambda(
+                lam, self._data, check_range=check_range
+            )
+        else:
+            if lam is not None:
+                raise ValueError("a classical Bézier curve takes no shape parameter")
+            self.lam = None
+        ctrl = self.basis_bernstein_matrix().T @ self.points  # Bézier control points (N+1, d)
+        ctrl.setflags(write=False)
+        self._hodographs = [ctrl]  # control points of p, p', p'', … (filled on demand)
+
+    # ------------------------------------------------------------------ description
+    @property
+    def degree(self) -> int:
+        """n: the curve has n + 1 control points."""
+        return self.points.shape[0] - 1
+
+    @property
+    def polynomial_degree(self) -> int:
+        """The degree of p(t) as a polynomial: n, or n + 2 for bernstein_like."""
+        return self.degree + self._data_offset()
+
+    @property
+    def dimension(self) -> int:
+        return self.points.shape[1]
+
+    @property
+    def is_exact(self) -> bool:
+        """True when control points and λ are all ints/Fractions (exact conversions)."""
+        return self._exact_points is not None and not isinstance(self.lam, float)
+
+    def __repr__(self) -> str:
+        lam = "" if self.lam is None else f", lam={self.lam}"
+        return f"{type(self).__name__}(degree={self.degree}, dimension={self.dimension}{lam})"
+
+    @classmethod
+    def _data_offset(cls) -> int:
+        return int(getattr(cls._data, "DEGREE_OFFSET", 0))
+
+    # ------------------------------------------------------------------ basis matrices
+    def _matrices(self, kind: str) -> tuple[Matrix, ...]:
+        return _TABLES[self.family][kind][self.degree]
+
+    def _combined(self, kind: str) -> np.ndarray:
+        mats = self._matrices(kind)
+        out = np.array(_float_matrix(self.family, kind, self.degree, 0))
+        lam = 0.0 if self.lam is None else float(self.lam)
+        for p in range(1, len(mats)):
+            out += lam**p * _float_matrix(self.family, kind, self.degree, p)
+        return out
+
+    def basis_power_matrix(self) -> np.ndarray:
+        """(n+1, N+1): row i holds the power coefficients of basis function i at this λ."""
+        return self._combined("power")
+
+    def basis_bernstein_matrix(self, exact: bool = False):
+        """(n+1, N+1): row i holds basis function i in the Bernstein basis of degree N.
+        With exact=True (needs an exact λ) a tuple of tuples of Fractions."""
+        if not exact:
+            return self._combined("bernstein")
+        lam = Fraction(0) if self.lam is None else self.lam
+        if isinstance(lam, float):
+            raise ValueError("an exact basis matrix needs an exact lam (int or Fraction)")
+        return _combine_exact(self._matrices("bernstein"), lam)
+
+    # ------------------------------------------------------------------ evaluation
+    def evaluate(self, t, *, extrapolate: bool = False) -> np.ndarray:
+        """p(t): shape (d,) for a scalar t, (len(t), d) for an array."""
+        return self.derivative(t, 0, extrapolate=extrapolate)
+
+    def derivative(self, t, k: int = 1, *, extrapolate: bool = False) -> np.ndarray:
+        """The k-th derivative p^(k)(t) (zero beyond the polynomial degree)."""
+        k = val.as_order(k)
+        tt, scalar = val.as_parameters(t, extrapolate=extrapolate)
+        if k > self.polynomial_degree:
+            out = np.zeros((tt.size, self.dimension))
+        else:
+            ctrl = self._hodograph_points(k)
+            out = alg.bernstein_horner(ctrl, _binomials(ctrl.shape[0] - 1), tt)
+        return out[0] if scalar else out
+
+    def _hodograph_points(self, k: int) -> np.ndarray:
+        """Bézier control points of p^(k), from the generated hodograph matrices."""
+        while len(self._hodographs) <= k:
+            prev = self._hodographs[-1]
+            nxt = _float_hodograph(prev.shape[0] - 1) @ prev
+            nxt.setflags(write=False)
+            self._hodographs.append(nxt)
+        return self._hodographs[k]
+
+    def basis(self, t, *, extrapolate: bool = False) -> np.ndarray:
+        """Basis function values: (n+1,) for a scalar t, (len(t), n+1) for an array."""
+        tt, scalar = val.as_parameters(t, extrapolate=extrapolate)
+        big = self.polynomial_degree
+        out = alg.bernstein_horner(self.basis_bernstein_matrix().T, _binomials(big), tt)
+        return out[0] if scalar else out
+
+    def curvature(self, t, *, extrapolate: bool = False) -> np.ndarray:
+        """Signed curvature in 2D, unsigned in 3D; NaN where p'(t) = 0 (undefined there)."""
+        d1 = self.derivative(t, 1, extrapolate=extrapolate)
+        d2 = self.derivative(t, 2, extrapolate=extrapolate)
+        if self.dimension == 2:
+            cross = d1[..., 0] * d2[..., 1] - d1[..., 1] * d2[..., 0]
+        else:
+            cross = np.linalg.norm(np.cross(d1, d2), axis=-1)
+        speed = np.linalg.norm(d1, axis=-1)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            kappa = np.where(speed > 0, cross / speed**3, np.nan)
+        return kappa[()] if np.ndim(kappa) == 0 else kappa
+
+    # ------------------------------------------------------------------ conversion
+    def to_bezier(self) -> BezierCurve:
+        """The same curve as a classical Bézier curve of degree N (n, or n + 2).
+        Exact (Fraction control points) when the curve is exact."""
+        if self.is_exact:
+            assert self._exact_points is not None
+            weights = tuple(zip(*self.basis_bernstein_matrix(exact=True), strict=True))
+            return BezierCurve(alg.exact_matmul(weights, self._exact_points))
+        return BezierCurve(self.basis_bernstein_matrix().T @ self.points)
+
+    def control_points(self) -> tuple[tuple, ...]:
+        """The control points as given: Fractions if exact, floats otherwise."""
+        if self._exact_points is not None:
+            return self._exact_points
+        return tuple(tuple(float(v) for v in row) for row in self.points)
+
+
+class BezierCurve(Curve):
+    """A classical Bézier curve Σ P_i B_{i,n}(t) (lecture notes 002)."""
+
+    family = "bezier"
+    _data = _bernstein
+    _has_lambda = False
+
+    def __init__(self, points) -> None:
+        super().__init__(points)
+
+    def _rows(self) -> tuple[tuple, ...]:
+        return self.control_points()
+
+    def de_casteljau(self, t, *, extrapolate: bool = False) -> np.ndarray:
+        """p(t) by de Casteljau's algorithm (a second evaluator, vectorised over t)."""
+        tt, scalar = val.as_parameters(t, extrapolate=extrapolate)
+        out = alg.de_casteljau_steps(self.points, tt, self.degree)[:, 0]
+        return out[0] if scalar else out
+
+    def _exact_t(self, t, name: str = "t"):
+        if val.is_exact_scalar(t):
+            return Fraction(t)
+        tt, _ = val.as_parameters(t, extrapolate=False)
+        if tt.size != 1:
+            raise ValueError(f"{name} must be a single number")
+        return float(tt[0])
+
+    def split(self, t) -> tuple[BezierCurve, BezierCurve]:
+        """The pieces over [0, t] and [t, 1] (exact for exact points and t)."""
+        t = self._exact_t(t)
+        if not 0 < t < 1:
+            raise ValueError(f"split needs 0 < t < 1, got {t}")
+        rows = self._rows() if isinstance(t, Fraction) else self.points.tolist()
+        left, right = alg.split_rows(rows, t)
+        return BezierCurve(left), BezierCurve(right)
+
+    def segment(self, t1, t2) -> BezierCurve:
+        """The piece between p(t1) and p(t2), 0 <= t1 < t2 <= 1, reparametrised to [0, 1]
+        (the lecture notes' scheme 1: split at t2, then at t1/t2 of the left piece)."""
+        t1, t2 = self._exact_t(t1, "t1"), self._exact_t(t2, "t2")
+        if not 0 <= t1 < t2 <= 1:
+            raise ValueError(f"segment needs 0 <= t1 < t2 <= 1, got t1={t1}, t2={t2}")
+        exact = isinstance(t1, Fraction) and isinstance(t2, Fraction)
+        rows = self._rows() if exact else self.points.tolist()
+        if t2 != 1:
+            rows, _ = alg.split_rows(rows, t2)
+        if t1 != 0:
+            _, rows = alg.split_rows(rows, t1 / t2)
+        return BezierCurve(rows)
+
+    def elevate(self) -> BezierCurve:
+        """The same curve with one degree more (generated elevation matrix)."""
+        if self.degree + 1 > _bernstein.DEGREES[-1]:
+            raise ValueError(f"cannot elevate beyond degree {_bernstein.DEGREES[-1]}")
+        weights = _bernstein.ELEVATION[self.degree]
+        return self._apply(weights)
+
+    def hodograph(self) -> BezierCurve:
+        """The derivative curve p'(t) as a Bézier curve of degree n - 1."""
+        if self.degree < 2:
+            raise ValueError("the hodograph of a line segment is a single point; use derivative()")
+        return self._apply(_bernstein.HODOGRAPH[self.degree])
+
+    def _apply(self, weights: Matrix) -> BezierCurve:
+        if self._exact_points is not None:
+            return BezierCurve(alg.exact_matmul(weights, self._exact_points))
+        return BezierCurve(np.array(weights, dtype=float) @ self.points)
+
+
+class SameDegreeCurve(Curve):
+    """λ-Bézier curve of the same-degree family (000): Σ V_i b_i^n(t; λ), λ in (-2, 1]."""
+
+    family = "same_degree"
+    _data = _same_degree
+
+    def evaluate_geometric(self, t, *, extrapolate: bool = False) -> np.ndarray:
+        """Prop. 8 of 000: n-3 de Casteljau steps down to a cubic, the cubic λ-Bernstein
+        control points Q (eq. 16, from the generated cubic Bernstein matrix), then de
+        Casteljau on the cubic Bézier curve. An independent second evaluator."""
+        tt, scalar = val.as_parameters(t, extrapolate=extrapolate)
+        cubic = alg.de_casteljau_steps(self.points, tt, self.degree - 3)  # (len t, 4, d)
+        m3 = np.array(_float_matrix(self.family, "bernstein", 3, 0))
+        lam = float(self.lam)  # type: ignore[arg-type]
+        m3 = m3 + lam * _float_matrix(self.family, "bernstein", 3, 1)
+        q = np.einsum("ij,tid->tjd", m3, cubic)
+        out = alg.de_casteljau_steps(q, tt, 3)[:, 0]
+        return out[0] if scalar else out
+
+
+class BernsteinLikeCurve(Curve):
+    """λ-Bézier curve of the Bernstein-like family (001): Σ P_i b_{i,n}(t; λ), λ in [-1, 1];
+    a degree-n curve is a polynomial of degree n + 2."""
+
+    family = "bernstein_like"
+    _data = _bernstein_like
+
+
+FAMILIES: dict[str, type[Curve]] = {
+    "bezier": BezierCurve,
+    "same_degree": SameDegreeCurve,
+    "bernstein_like": BernsteinLikeCurve,
+}

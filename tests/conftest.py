@@ -1,0 +1,43 @@
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, settings
+from hypothesis import strategies as st
+
+sys.path.insert(0, str(Path(__file__).parent))
+
+from reference import FAMILIES, Family  # noqa: E402
+
+import lambda_bezier as lb  # noqa: E402
+
+settings.register_profile(
+    "default", max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow]
+)
+settings.load_profile("default")
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(params=list(FAMILIES), ids=list(FAMILIES))
+def family(request) -> Family:
+    return FAMILIES[request.param]
+
+
+def make_curve(fam: Family, points, lam):
+    cls = lb.FAMILIES[fam.name]
+    return cls(points) if fam.name == "bezier" else cls(points, lam)
+
+
+@st.composite
+def curves(draw, fam: Family, dims=(2, 3), max_degree: int | None = None):
+    """A random curve of family `fam`: (curve, points, lam)."""
+    hi = fam.degrees[-1] if max_degree is None else min(max_degree, fam.degrees[-1])
+    n = draw(st.integers(fam.degrees[0], hi))
+    d = draw(st.sampled_from(dims))
+    coord = st.floats(-10, 10, allow_nan=False, allow_infinity=False)
+    pts = draw(st.lists(st.lists(coord, min_size=d, max_size=d), min_size=n + 1, max_size=n + 1))
+    lam = None if fam.name == "bezier" else draw(st.floats(*fam.lam_range))
+    return make_curve(fam, pts, lam), pts, lam

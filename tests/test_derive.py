@@ -139,3 +139,9 @@ def test_interrupted_swap_is_recovered(tmp_path, emit):
     emit.write_tree({"a.py": "new\n"}, tmp_path / "generated")
     assert (tmp_path / "generated" / "a.py").read_text() == "new\n"
     assert not backup.exists()
+
+
+def test_missing_sympy_gives_install_hint(monkeypatch):
+    monkeypatch.setitem(sys.modules, "sympy", None)  # makes `import sympy` raise ImportError
+    with pytest.raises(SystemExit, match=r"pip install 'lambda-bezier\[derive\]'"):
+        _derive_runner.load_derive(None)

@@ -59,10 +59,15 @@ def installed_generated_dir() -> Path:
 
 
 def run(check: bool, root: Path | None, quiet: bool = False) -> int:
+    checkout = root if root is not None else find_checkout(Path.cwd())
+    if checkout is None and not check:
+        raise SystemExit(
+            "lambda-bezier derive writes into a source checkout's generated/: run it inside "
+            "the checkout or pass --root PATH (use --check to compare an installed copy)"
+        )
+    derive = load_derive(checkout)  # exits with an install hint when SymPy is missing
     import sympy
 
-    checkout = root if root is not None else find_checkout(Path.cwd())
-    derive = load_derive(checkout)
     emit = importlib.import_module(f"{derive.__name__}._emit")
     target = checkout / "generated" if checkout else installed_generated_dir()
     say = (lambda msg: None) if quiet else (lambda msg: print(msg, file=sys.stderr, flush=True))
@@ -82,11 +87,7 @@ def run(check: bool, root: Path | None, quiet: bool = False) -> int:
             return 1
         say(f"generated/ matches the derivation ({len(files)} files).")
         return 0
-    if checkout is None:
-        raise SystemExit(
-            "lambda-bezier derive writes into a source checkout's generated/: run it inside "
-            "the checkout or pass --root PATH (use --check to compare an installed copy)"
-        )
+    assert checkout is not None
     emit.write_tree(files, target)
     say(f"wrote {len(files)} files to {target}")
     return 0

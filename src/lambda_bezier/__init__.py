@@ -15,6 +15,17 @@ runtime and never imports SymPy.
 """
 
 from .curves import FAMILIES, BernsteinLikeCurve, BezierCurve, Curve, SameDegreeCurve
+from .energy import OptimalLambda, energy_coefficients, energy_matrices, optimal_lambda
 
 __version__ = "0.1.0"
-__all__ = ["FAMILIES", "BernsteinLikeCurve", "BezierCurve", "Curve", "SameDegreeCurve"]
+__all__ = [
+    "FAMILIES",
+    "BernsteinLikeCurve",
+    "BezierCurve",
+    "Curve",
+    "OptimalLambda",
+    "SameDegreeCurve",
+    "energy_coefficients",
+    "energy_matrices",
+    "optimal_lambda",
+]

@@ -19,6 +19,8 @@ def is_exact_scalar(x: object) -> bool:
 def exact_rows(points: object) -> ExactRows | None:
     """The control points as Fractions when every coordinate is an int or a Fraction."""
     if isinstance(points, np.ndarray):
+        if points.ndim != 2:
+            return None
         if points.dtype.kind in "iu":
             return tuple(tuple(Fraction(int(v)) for v in row) for row in points.tolist())
         if points.dtype.kind != "O":
@@ -29,7 +31,11 @@ def exact_rows(points: object) -> ExactRows | None:
             rows = [list(r) for r in points]  # type: ignore[union-attr]
         except TypeError:
             return None
-    if not all(is_exact_scalar(v) for row in rows for v in row):
+    try:
+        if not all(is_exact_scalar(v) for row in rows for v in row):
+            return None
+    except TypeError:  # a row that is not a sequence, or a deeper nesting (a batch)
+        return None
         return None
     return tuple(
         tuple(Fraction(int(v)) if isinstance(v, np.integer) else Fraction(v) for v in row)

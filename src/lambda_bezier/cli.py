@@ -30,6 +30,33 @@ def build_parser() -> argparse.ArgumentParser:
         help="the source checkout (default: the one containing the current directory)",
     )
     derive.add_argument("-q", "--quiet", action="store_true", help="no progress messages")
+
+    opt = sub.add_parser(
+        "optimal-lambda",
+        help="the λ minimising a curve energy for given control points",
+        description="The λ minimising E_k = ∫|p^(k)|² dt (k = 1 stretch, 2 strain, 3 jerk) for "
+        "the given control points, exactly. Points are x,y or x,y,z with integer, decimal or "
+        "p/q coordinates, e.g.: lambda-bezier optimal-lambda --energy 2 0,6 0,2 5,2 7,0 2,0 6,8",
+    )
+    opt.add_argument("points", nargs="+", metavar="POINT", help="control point x,y or x,y,z")
+    opt.add_argument(
+        "--family",
+        default="same_degree",
+        choices=["same_degree", "bernstein_like"],
+        help="curve family (default: same_degree)",
+    )
+    opt.add_argument(
+        "--energy",
+        "-k",
+        type=int,
+        default=2,
+        choices=[1, 2, 3],
+        help="energy order k (default: 2, strain)",
+    )
+    opt.add_argument(
+        "--clamp", action="store_true", help="also give the minimiser over the family's λ range"
+    )
+    opt.add_argument("--json", action="store_true", help="machine-readable output")
     return parser
 
 
@@ -40,7 +67,69 @@ def main(argv: list[str] | None = None) -> int:
 
         root = args.root.resolve() if args.root else None
         return run(check=args.check, root=root, quiet=args.quiet)
+    if args.command == "optimal-lambda":
+        return _optimal_lambda(args)
     raise AssertionError(args.command)  # argparse enforces the choices
+
+
+def _optimal_lambda(args) -> int:
+    import json
+    import sys
+
+    from ._numbers import parse_point
+    from .energy import ENERGY_NAMES, optimal_lambda
+
+    try:
+        points = [parse_point(p) for p in args.points]
+        if len({len(p) for p in points}) != 1:
+            raise ValueError("all points must have the same dimension (2 or 3 coordinates)")
+        result = optimal_lambda(points, args.energy, args.family, clamp=args.clamp)
+    except ValueError as exc:
+        print(f"lambda-bezier optimal-lambda: error: {exc}", file=sys.stderr)
+        return 2
+    k = args.energy
+    report = {
+        "family": args.family,
+        "range": result.range_text,
+        "energy_order": k,
+        "energy_name": ENERGY_NAMES[k],
+        "lambda": str(result.unconstrained),
+        "lambda_decimal": float(result.unconstrained),
+        "energy": str(result.unconstrained_energy),
+        "energy_decimal": float(result.unconstrained_energy),
+        "admissible": bool(result.unconstrained_admissible),
+    }
+    if args.clamp:
+        report |= {
+            "clamped_lambda": str(result.lam),
+            "clamped_lambda_decimal": float(result.lam),
+            "clamped_energy": str(result.energy),
+            "clamped_energy_decimal": float(result.energy),
+            "clamped_admissible": bool(result.admissible),
+        }
+    if args.json:
+        print(json.dumps(report, indent=2, ensure_ascii=False))
+        return 0
+
+    def both(key: str) -> str:
+        return f"{report[key]}  ≈ {report[key + '_decimal']:.12g}"
+
+    verdict = "yes" if report["admissible"] else f"no: outside {result.range_text}"
+    lines = [
+        f"family          {args.family}  (λ ∈ {result.range_text})",
+        f"energy          E_{k} ({ENERGY_NAMES[k]})",
+        f"optimal λ       {both('lambda')}",
+        f"E_{k} at λ        {both('energy')}",
+        f"admissible      {verdict}",
+    ]
+    if args.clamp:
+        note = "" if report["clamped_admissible"] else "  (an excluded end of the range)"
+        lines += [
+            f"clamped λ       {both('clamped_lambda')}{note}",
+            f"E_{k} at clamped  {both('clamped_energy')}",
+        ]
+    print("\n".join(lines))
+    return 0
 
 
 if __name__ == "__main__":

@@ -203,6 +203,35 @@ class Curve:
             kappa = np.where(speed > 0, cross / speed**3, np.nan)
         return kappa[()] if np.ndim(kappa) == 0 else kappa
 
+    def energy(self, k: int):
+        """E_k = ∫_0^1 |p^(k)(t)|² dt (k = 1, 2, 3: stretch, strain, jerk; any k >= 0 works),
+        from the Bézier form and the generated Bernstein Gram matrices. A Fraction when the
+        curve is exact."""
+        from ._generated.energy import GRAM
+
+        k = val.as_order(k)
+        big = self.polynomial_degree
+        if k > big:
+            return Fraction(0) if self.is_exact else 0.0
+        scale, upper = GRAM[big - k]
+        if self.is_exact:
+            h: tuple = self.to_bezier().control_points()
+            for d in range(big, big - k, -1):
+                h = alg.exact_matmul(_bernstein.HODOGRAPH[d], h)
+            size = len(h)
+            total = sum(
+                (
+                    upper[r][c] * sum((a * b for a, b in zip(h[r], h[c], strict=True)), Fraction(0))
+                    for r in range(size)
+                    for c in range(r, size)
+                ),
+                Fraction(0),
+            )
+            return Fraction(scale) * total
+        ctrl = self._hodograph_points(k)
+        g = np.array(upper, dtype=float) * float(scale)
+        return float(np.einsum("id,ij,jd->", ctrl, (g + g.T) / 2, ctrl))
+
     # ------------------------------------------------------------------ conversion
     def to_bezier(self) -> BezierCurve:
         """The same curve as a classical Bézier curve of degree N (n, or n + 2).

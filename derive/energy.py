@@ -1,0 +1,204 @@
+"""Energies E_k(λ) = ∫_0^1 |p^(k)(t)|² dt as quadratics in λ (000, section 3), for both families.
+
+From the basis only: a curve of either family is p = Σ_j (Q_j − λ W_j) B_j^N with
+Q = M_0ᵀ D and W = −M_1ᵀ D, where M(λ) = M_0 + λ M_1 is the family's Bernstein matrix
+(derived in same_degree.py / bernstein_like.py) and D = (P_0 … P_n)ᵀ. With f = Σ Q_j B_j,
+g = Σ W_j B_j (eq. 19), E_k = ∫f⁽ᵏ⁾·f⁽ᵏ⁾ − 2λ ∫f⁽ᵏ⁾·g⁽ᵏ⁾ + λ² ∫g⁽ᵏ⁾·g⁽ᵏ⁾, and each integral is a
+quadratic form Dᵀ S D with S = M K Mᵀ, K = Hᵀ G H: H the k-fold hodograph matrix and G the
+Gram matrix ∫B_a^m B_b^m of the Bernstein basis of degree m = N − k.
+
+The Gram matrix comes from exact Bernstein algebra, derived once symbolically here:
+B_a^m B_b^m = ρ(m, a, b) B_{a+b}^{2m} with ρ constant in t, and ∫_0^1 B_c^N = 1/(N + 1).
+No polynomial is ever integrated numerically or expanded for integration.
+
+Published normalisation (eq. 20 and the X_n^k, Y_n^k that follow it): λ* = c · DᵀXD / DᵀYD
+with X, Y upper-triangular primitive integer matrices (off-diagonal entries doubled from the
+symmetric form), the first nonzero diagonal entry positive, and c a rational scale.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from functools import cache, reduce
+from math import gcd, lcm
+
+import sympy as sp
+
+from . import _emit
+from . import bernstein_like as _bernstein_like
+from . import same_degree as _same_degree
+from ._algebra import Matrix, bernstein_matrices, t
+from .bernstein import bernstein_basis, hodograph_matrix
+
+SCRIPT = "energy.py"
+OUTPUT = "energy.py"
+ORDERS = (1, 2, 3)
+FAMILIES = {"same_degree": _same_degree, "bernstein_like": _bernstein_like}
+GRAM_DEGREES = range(0, 15)
+
+_m, _a, _b, _c, _N = sp.symbols("m a b c N", integer=True, nonnegative=True)
+
+
+@cache
+def bernstein_identities() -> tuple[sp.Expr, sp.Expr]:
+    """(ρ(m, a, b), ∫_0^1 B_c^N dt), derived symbolically from the Bernstein definition."""
+    rho = sp.combsimp(
+        sp.powsimp(
+            bernstein_basis(_m, _a) * bernstein_basis(_m, _b) / bernstein_basis(2 * _m, _a + _b)
+        )
+    )
+    if rho.has(t):
+        raise AssertionError("product of Bernstein polynomials is not a Bernstein multiple")
+    integral = sp.combsimp(
+        sp.hyperexpand(
+            sp.binomial(_N, _c)
+            * sp.integrate(t**_c * (1 - t) ** (_N - _c), (t, 0, 1), conds="none")
+        )
+    )
+    if integral.has(_c):
+        raise AssertionError(f"integral of B_c^N should not depend on c: {integral}")
+    return rho, integral
+
+
+def _exact_binomial(a, b):
+    a, b = int(a), int(b)
+    return Fraction(sp.binomial(a, b)) if 0 <= b <= a else Fraction(0)
+
+
+@cache
+def gram(m: int) -> Matrix:
+    """G[a][b] = ∫_0^1 B_a^m B_b^m dt, exact."""
+    rho, integral = bernstein_identities()
+    rho_f = sp.lambdify((_m, _a, _b), rho, modules=[{"binomial": _exact_binomial}])
+    scale = _emit.to_fraction(integral.subs(_N, 2 * m))
+    return tuple(
+        tuple(Fraction(rho_f(m, a, b)) * scale for b in range(m + 1)) for a in range(m + 1)
+    )
+
+
+def _matmul(a, b):
+    inner = range(len(b))
+    return tuple(
+        tuple(sum((row[q] * b[q][col] for q in inner), Fraction(0)) for col in range(len(b[0])))
+        for row in a
+    )
+
+
+def _transpose(a):
+    return tuple(zip(*a, strict=True))
+
+
+@cache
+def stiffness(degree: int, k: int) -> Matrix:
+    """K with ∫|p^(k)|² = Σ_coords cᵀ K c for Bézier control points c of degree `degree`."""
+    h: Matrix = tuple(
+        tuple(Fraction(int(r == c)) for c in range(degree + 1)) for r in range(degree + 1)
+    )
+    for d in range(degree, degree - k, -1):
+        h = _matmul(hodograph_matrix(d), h)
+    return _matmul(_matmul(_transpose(h), gram(degree - k)), h)
+
+
+def upper_form(sym: Matrix) -> tuple[Fraction, tuple[tuple[int, ...], ...]]:
+    """A symmetric quadratic form as scale · U, U upper-triangular primitive integers
+    (U_ii = S_ii, U_ij = 2 S_ij for i < j), first nonzero diagonal entry positive."""
+    size = len(sym)
+    upper = [
+        [sym[r][c] * (2 if c > r else 1) if c >= r else Fraction(0) for c in range(size)]
+        for r in range(size)
+    ]
+    entries = [v for row in upper for v in row if v != 0]
+    if not entries:
+        return Fraction(0), tuple(tuple(0 for _ in range(size)) for _ in range(size))
+    denom = reduce(lcm, (v.denominator for v in entries), 1)
+    numer = reduce(gcd, (int(v * denom) for v in entries), 0)
+    scale = Fraction(numer, denom)
+    lead = next((upper[r][r] for r in range(size) if upper[r][r] != 0), entries[0])
+    if lead < 0:
+        scale = -scale
+    ints = tuple(tuple(int(v / scale) for v in row) for row in upper)
+    return scale, ints
+
+
+@cache
+def energy_forms(family: str, n: int, k: int) -> dict[str, tuple[Fraction, tuple]]:
+    """{"ff", "fg", "gg"}: (scale, U) with ∫f⁽ᵏ⁾·f⁽ᵏ⁾ = scale·DᵀUD etc. (see module doc)."""
+    module = FAMILIES[family]
+    big = n + (2 if family == "bernstein_like" else 0)
+    m0, m1 = bernstein_matrices(list(module.basis_polys(n)), big)
+    kk = stiffness(big, k)
+    w = tuple(tuple(-v for v in row) for row in m1)  # W = −M_1ᵀ D
+    return {
+        "ff": upper_form(_matmul(_matmul(m0, kk), _transpose(m0))),
+        "fg": upper_form(_symmetrise(_matmul(_matmul(m0, kk), _transpose(w)))),
+        "gg": upper_form(_matmul(_matmul(w, kk), _transpose(w))),
+    }
+
+
+def _symmetrise(a: Matrix) -> Matrix:
+    return tuple(tuple((a[r][c] + a[c][r]) / 2 for c in range(len(a))) for r in range(len(a)))
+
+
+def published_form(family: str, n: int, k: int) -> tuple[Fraction, tuple, tuple]:
+    """(c, X, Y) with λ* = c · DᵀXD / DᵀYD (eq. 20 in the paper's normalisation)."""
+    forms = energy_forms(family, n, k)
+    (s_fg, x), (s_gg, y) = forms["fg"], forms["gg"]
+    if s_gg == 0:
+        raise ZeroDivisionError(f"λ has no effect on E_{k} for {family} of degree {n}")
+    return s_fg / s_gg, x, y
+
+
+def _quadratic(u, points) -> Fraction:
+    size = len(u)
+    return sum(
+        (
+            u[r][c]
+            * sum(
+                (Fraction(a) * Fraction(b) for a, b in zip(points[r], points[c], strict=True)),
+                Fraction(0),
+            )
+            for r in range(size)
+            for c in range(r, size)
+        ),
+        Fraction(0),
+    )
+
+
+def optimal_lambda_exact(points, k: int, family: str = "same_degree") -> Fraction:
+    """λ* for exact control points, from the derived forms (used by verify's worked example)."""
+    c, x, y = published_form(family, len(points) - 1, k)
+    return c * _quadratic(x, points) / _quadratic(y, points)
+
+
+def render() -> str:
+    degrees = {name: tuple(module.DEGREES) for name, module in FAMILIES.items()}
+    energy = {
+        name: {
+            (n, k): tuple(energy_forms(name, n, k)[key] for key in ("ff", "fg", "gg"))
+            for n in degrees[name]
+            for k in ORDERS
+        }
+        for name in FAMILIES
+    }
+    grams = {m: upper_form(gram(m)) for m in GRAM_DEGREES}
+    return "\n".join(
+        [
+            _emit.banner(
+                SCRIPT,
+                "Energy quadratic forms E_k(λ) (000, section 3) for both families, and Bernstein "
+                "Gram matrices.",
+            ),
+            "",
+            f"ORDERS = {_emit.literal(ORDERS)}",
+            "",
+            "# GRAM[m] = (s, U): ∫_0^1 B_a^m B_b^m dt = s·U[a][b] (a < b: s·U[a][b]/2), U upper-triangular.",
+            "GRAM = " + _emit.literal(grams),
+            "",
+            "# ENERGY[family][(n, k)] = ((s_ff, U_ff), (s_fg, X), (s_gg, Y)): with D = (P_0 … P_n)ᵀ and",
+            "# DᵀUD = Σ_coords Σ_{i<=j} U_ij P_i·P_j,",
+            "#     E_k(λ) = s_ff·DᵀU_ffD − 2λ·s_fg·DᵀXD + λ²·s_gg·DᵀYD,",
+            "#     λ* = (s_fg / s_gg) · DᵀXD / DᵀYD    (eq. 20; the paper prints c = s_fg / s_gg, X, Y).",
+            "ENERGY = " + _emit.literal(energy),
+            "",
+        ]
+    )

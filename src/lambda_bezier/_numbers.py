@@ -1,0 +1,35 @@
+"""Strict parsing of numbers typed by users: integers, decimals and p/q, nothing else.
+
+User text is never evaluated as code: no eval, no sympify. Every accepted form is exact.
+"""
+
+from __future__ import annotations
+
+import re
+from fractions import Fraction
+
+_NUMBER = re.compile(r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:/[+-]?\d+)?")
+_RATIO = re.compile(r"[+-]?\d+/[+-]?\d+")
+
+
+def parse_number(text: str) -> Fraction:
+    """'3', '-0.25', '.5', '690/319' -> Fraction. Anything else raises ValueError."""
+    s = text.strip()
+    if not _NUMBER.fullmatch(s) or ("/" in s and not _RATIO.fullmatch(s)):
+        raise ValueError(
+            f"not a number: {text!r} (use an integer, a decimal such as -0.25, or p/q such as 3/4)"
+        )
+    if "/" in s:
+        p, q = s.split("/")
+        if int(q) == 0:
+            raise ValueError(f"not a number: {text!r} (zero denominator)")
+        return Fraction(int(p), int(q))
+    return Fraction(s)
+
+
+def parse_point(text: str) -> tuple[Fraction, ...]:
+    """'x,y' or 'x,y,z' -> a tuple of Fractions."""
+    parts = text.split(",")
+    if len(parts) not in (2, 3):
+        raise ValueError(f"not a point: {text!r} (write x,y or x,y,z, e.g. 0,6 or 1/2,0.25,3)")
+    return tuple(parse_number(p) for p in parts)

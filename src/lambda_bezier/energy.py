@@ -1,0 +1,230 @@
+"""Energy-optimal shape parameter (000, section 3), exact or vectorised over many polygons.
+
+E_k(λ) = ∫_0^1 |p^(k)(t)|² dt is a convex quadratic in λ whose coefficients are quadratic
+forms in the control points; the forms are derived in derive/energy.py and read here from
+generated/energy.py.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+from functools import cache
+
+import numpy as np
+
+from . import _validate as val
+from ._generated import energy as _energy
+from .curves import FAMILIES
+
+ENERGY_NAMES = {1: "stretch", 2: "strain", 3: "jerk"}
+LAMBDA_FAMILIES = tuple(_energy.ENERGY)
+
+
+@dataclass(frozen=True)
+class OptimalLambda:
+    """The λ minimising E_k for one polygon (scalars) or a batch (arrays of length m).
+
+    lam: the answer: the unconstrained minimiser, or with clamp=True the minimiser over the
+        closed range (exact since E_k is a convex quadratic in λ).
+    unconstrained: the minimiser over all real λ.
+    admissible: whether `lam` lies in the family's range (False for an unconstrained optimum
+        outside it, and for a clamped one that sits on an excluded end such as λ = −2).
+    unconstrained_admissible: whether `unconstrained` lies in the family's range.
+    energy, unconstrained_energy: E_k at `lam` and at `unconstrained`.
+    """
+
+    lam: Fraction | float | np.ndarray
+    unconstrained: Fraction | float | np.ndarray
+    admissible: bool | np.ndarray
+    unconstrained_admissible: bool | np.ndarray
+    energy: Fraction | float | np.ndarray
+    unconstrained_energy: Fraction | float | np.ndarray
+    k: int
+    family: str
+    range_text: str
+    clamped: bool
+
+
+def _family_data(family: str):
+    if family not in LAMBDA_FAMILIES:
+        raise ValueError(
+            f"unknown family {family!r}: choose one of {', '.join(map(repr, LAMBDA_FAMILIES))}"
+        )
+    return FAMILIES[family]._data
+
+
+def _check_order(k: object) -> int:
+    if isinstance(k, bool) or k not in _energy.ORDERS:
+        raise ValueError(f"energy order k must be 1, 2 or 3 (stretch, strain, jerk), got {k!r}")
+    return int(k)  # type: ignore[call-overload]
+
+
+def energy_matrices(n: int, k: int, family: str = "same_degree"):
+    """(scale, X, Y) with λ* = scale · DᵀXD / DᵀYD, in the paper's normalisation (eq. 20):
+    scale a Fraction, X and Y upper-triangular tuples of tuples of ints.
+
+    >>> scale, X, Y = energy_matrices(3, 1)
+    >>> scale, X[0], Y[0]
+    (Fraction(-1, 2), (5, -13, -7, 10), (2, -4, -1, 1))
+    """
+    data = _family_data(family)
+    k = _check_order(k)
+    if (n, k) not in _energy.ENERGY[family]:
+        raise ValueError(
+            f"degree {n} is not supported for {family}: "
+            f"degrees {data.DEGREES[0]}..{data.DEGREES[-1]}"
+        )
+    _, (s_fg, x), (s_gg, y) = _energy.ENERGY[family][(n, k)]
+    return Fraction(s_fg) / Fraction(s_gg), x, y
+
+
+@cache
+def _float_forms(family: str, n: int, k: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(A0, A1, A2), symmetric, with E_k(λ) = Σ_coords Dᵀ(A0 + λA1 + λ²A2)D."""
+    (s_ff, u_ff), (s_fg, x), (s_gg, y) = _energy.ENERGY[family][(n, k)]
+
+    def sym(scale, u) -> np.ndarray:
+        a = np.array(u, dtype=float) * float(scale)
+        return (a + a.T) / 2
+
+    out = (sym(s_ff, u_ff), -2 * sym(s_fg, x), sym(s_gg, y))
+    for a in out:
+        a.setflags(write=False)
+    return out
+
+
+def _exact_coefficients(family: str, n: int, k: int, rows) -> tuple[Fraction, Fraction, Fraction]:
+    def form(scale, u) -> Fraction:
+        total = Fraction(0)
+        for r in range(n + 1):
+            for c in range(r, n + 1):
+                if u[r][c]:
+                    total += u[r][c] * sum(
+                        (a * b for a, b in zip(rows[r], rows[c], strict=True)), Fraction(0)
+                    )
+        return Fraction(scale) * total
+
+    (s_ff, u_ff), (s_fg, x), (s_gg, y) = _energy.ENERGY[family][(n, k)]
+    return form(s_ff, u_ff), -2 * form(s_fg, x), form(s_gg, y)
+
+
+def _as_polygons(points, family: str) -> tuple[np.ndarray, bool]:
+    """(m, n+1, d) float array and whether the input was a single polygon."""
+    data = _family_data(family)
+    arr = points if isinstance(points, np.ndarray) else None
+    if arr is None:
+        try:
+            arr = np.array(points, dtype=float)
+        except (TypeError, ValueError) as exc:
+            raise ValueError(f"control points must be an array of numbers: {exc}") from None
+    arr = np.asarray(arr, dtype=float)
+    if arr.ndim == 2:
+        single = True
+        arr = arr[None]
+    elif arr.ndim == 3:
+        single = False
+    else:
+        raise ValueError(
+            f"control points must have shape (n+1, d) or (m, n+1, d), got shape {arr.shape}"
+        )
+    val.as_points(arr[0], family=family, degrees=tuple(data.DEGREES))  # shape, degree checks
+    if not np.isfinite(arr).all():
+        bad = np.argwhere(~np.isfinite(arr))[0]
+        where = f"polygon {bad[0]}, " if not single else ""
+        raise ValueError(f"{where}control point {bad[-2]} has a non-finite coordinate")
+    return arr, single
+
+
+def energy_coefficients(points, k: int, family: str = "same_degree"):
+    """(a0, a1, a2) with E_k(λ) = a0 + a1 λ + a2 λ² for one polygon (n+1, d) or a batch
+    (m, n+1, d). A single polygon whose coordinates are all ints or Fractions gives exact
+    Fractions; a batch is computed in floating point, vectorised over m."""
+    k = _check_order(k)
+    data = _family_data(family)
+    rows = val.exact_rows(points)
+    if rows is not None:
+        val.as_points(rows, family=family, degrees=tuple(data.DEGREES))
+        return _exact_coefficients(family, len(rows) - 1, k, rows)
+    coeffs, _, single = _float_coefficients(points, k, family)
+    return tuple(c[0] for c in coeffs) if single else tuple(coeffs)
+
+
+def _float_coefficients(points, k: int, family: str):
+    """((a0, a1, a2) arrays over the batch, a bound on |a2|'s rounding, single?)."""
+    arr, single = _as_polygons(points, family)
+    n = arr.shape[1] - 1
+    forms = _float_forms(family, n, k)
+    coeffs = [np.einsum("mid,ij,mjd->m", arr, a, arr) for a in forms]
+    size = np.abs(arr).max(axis=(1, 2)) ** 2
+    rounding = 1e-12 * np.abs(forms[2]).sum() * size
+    return coeffs, rounding, single
+
+
+def optimal_lambda(points, k: int, family: str = "same_degree", clamp: bool = False):
+    """The λ minimising E_k(λ) = ∫|p^(k)|² for control points of shape (n+1, d), or for a
+    batch of shape (m, n+1, d) in one vectorised call. Exact (Fractions) when every coordinate
+    is an int or a Fraction.
+
+    >>> r = optimal_lambda([(0, 6), (0, 2), (5, 2), (7, 0), (2, 0), (6, 8)], k=2)
+    >>> r.lam, r.admissible
+    (Fraction(-690, 319), False)
+    >>> optimal_lambda([(0, 6), (0, 2), (5, 2), (7, 0), (2, 0), (6, 8)], k=2, clamp=True).lam
+    Fraction(-2, 1)
+    """
+    data = _family_data(family)
+    k = _check_order(k)
+    rows = val.exact_rows(points)
+    exact = rows is not None
+    if exact:
+        a0, a1, a2 = energy_coefficients(rows, k, family)
+    else:
+        (a0, a1, a2), rounding, single = _float_coefficients(points, k, family)
+    lo, hi = data.LAMBDA_RANGE
+    lo_closed, hi_closed = data.LAMBDA_CLOSED
+    if exact:
+        if a2 == 0:
+            raise ValueError(_no_effect_message(k))
+        best = -a1 / (2 * a2)
+        lam = min(max(best, Fraction(lo)), Fraction(hi)) if clamp else best
+    else:
+        degenerate = a2 <= rounding
+        if degenerate.any():
+            where = "" if single else f" (polygon {int(np.argmax(degenerate))})"
+            raise ValueError(_no_effect_message(k) + where)
+        if single:
+            a0, a1, a2 = a0[0], a1[0], a2[0]
+        best = -a1 / (2 * a2)
+        lam = np.clip(best, lo, hi) if clamp else best
+
+    def inside(x):
+        return ((x > lo) | ((x == lo) & lo_closed)) & ((x < hi) | ((x == hi) & hi_closed))
+
+    energy = a0 + a1 * lam + a2 * lam * lam
+    unconstrained_energy = a0 + a1 * best + a2 * best * best
+    ok, ok_best = inside(lam), inside(best)
+    if exact or np.ndim(best) == 0:
+        ok, ok_best = bool(ok), bool(ok_best)
+    if not exact and np.ndim(best) == 0:
+        best, lam, energy, unconstrained_energy = (
+            float(x) for x in (best, lam, energy, unconstrained_energy)
+        )
+    return OptimalLambda(
+        lam=lam,
+        unconstrained=best,
+        admissible=ok,
+        unconstrained_admissible=ok_best,
+        energy=energy,
+        unconstrained_energy=unconstrained_energy,
+        k=k,
+        family=family,
+        range_text=data.LAMBDA_RANGE_TEXT,
+        clamped=clamp,
+    )
+
+
+def _no_effect_message(k: int) -> str:
+    return (
+        f"λ has no effect on E_{k} for this control polygon (DᵀYD = 0: the λ-dependent part of "
+        f"the curve has a vanishing {ENERGY_NAMES[k]} term), so no optimal λ exists"
+    )

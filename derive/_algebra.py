@@ -135,3 +135,20 @@ def bernstein_terms(expr: sp.Expr, degree: sp.Expr) -> dict[sp.Expr, sp.Expr]:
             raise ArithmeticError(f"term {term} is not a multiple of a degree-{degree} Bernstein")
         out[a] = out.get(a, 0) + coeff / sp.binomial(degree, a)
     return {a: sp.factor(sp.combsimp(c)) for a, c in out.items()}
+
+
+CENTRE = Fraction(1, 2)
+
+
+def centred_row(row: tuple[Fraction, ...], centre: Fraction = CENTRE) -> tuple[Fraction, ...]:
+    """Taylor coefficients about `centre`: Σ a_q t^q = Σ c_e (t - centre)^e, exactly.
+    (Horner on these is as accurate as de Casteljau on [0, 1]; at 0 it is not.)"""
+    size = len(row)
+    return tuple(
+        sum((row[q] * sp.binomial(q, e) * centre ** (q - e) for q in range(e, size)), Fraction(0))
+        for e in range(size)
+    )
+
+
+def centred_matrices(mats: tuple[Matrix, ...]) -> tuple[Matrix, ...]:
+    return tuple(tuple(centred_row(row) for row in mat) for mat in mats)

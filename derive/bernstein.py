@@ -18,6 +18,7 @@ from . import _emit
 from ._algebra import (
     Matrix,
     bernstein_power_matrix,
+    centred_matrices,
     i,
     k,
     lam,
@@ -137,6 +138,10 @@ def render() -> str:
         "",
         "# POWER[N][j][e]: coefficient of t^e in B_{j,N}.",
         "POWER = " + _emit.literal({d: bernstein_power_matrix(d) for d in degrees}),
+        "",
+        "# CENTRED[N][j][e]: coefficient of (t - 1/2)^e in B_{j,N}.",
+        "CENTRED = "
+        + _emit.literal({d: centred_matrices((bernstein_power_matrix(d),))[0] for d in degrees}),
         "",
         "# TO_BERNSTEIN[N][e][j]: coefficient of B_{j,N} in t^e.",
         "TO_BERNSTEIN = " + _emit.literal({d: power_to_bernstein_matrix(d) for d in degrees}),

@@ -18,6 +18,7 @@ import sympy as sp
 from . import _emit
 from ._algebra import (
     bernstein_matrices,
+    centred_matrices,
     endpoint_table,
     i,
     lam,
@@ -122,6 +123,7 @@ def render() -> str:
     _check(q, closed)
     degrees = tuple(DEGREES)
     coeffs = sp.Poly(q, t)
+    power = {d: power_matrices(list(basis_polys(d)), d + 2) for d in degrees}
     return _emit.family_module(
         script=SCRIPT,
         doc="Bernstein-like basis b_{i,n}(t; λ) of 001_33da2b0fa8491127.txt, eqs. (1)-(2).",
@@ -130,7 +132,8 @@ def render() -> str:
         lambda_range=((-1, True), (1, True)),
         bernstein_lambda=0,
         degree_offset=2,
-        power={d: power_matrices(list(basis_polys(d)), d + 2) for d in degrees},
+        power=power,
+        centred={d: centred_matrices(m) for d, m in power.items()},
         bernstein={d: bernstein_matrices(list(basis_polys(d)), d + 2) for d in degrees},
         general_forms=[
             _emit.function(

@@ -18,6 +18,7 @@ from . import _emit
 from ._algebra import (
     bernstein_matrices,
     bernstein_terms,
+    centred_matrices,
     endpoint_table,
     i,
     k,
@@ -127,6 +128,7 @@ def render() -> str:
         bernstein_lambda=1,
         degree_offset=0,
         power=power,
+        centred={d: centred_matrices(m) for d, m in power.items()},
         bernstein=bern,
         general_forms=[
             _emit.function(

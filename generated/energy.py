@@ -7,7 +7,8 @@ from fractions import Fraction as F
 
 ORDERS = (1, 2, 3)
 
-# GRAM[m] = (s, U): ∫_0^1 B_a^m B_b^m dt = s·U[a][b] (a < b: s·U[a][b]/2), U upper-triangular.
+# GRAM[m] = (s, U), U upper-triangular: ∫_0^1 B_a^m B_b^m dt = s·U[a][b] for a = b,
+# s·U[a][b]/2 for a < b.
 GRAM = {
     0: (1, ((1,),)),
     1: (F(1, 3), ((1, 1), (0, 1))),
@@ -398,10 +399,11 @@ GRAM = {
     ),
 }
 
-# ENERGY[family][(n, k)] = ((s_ff, U_ff), (s_fg, X), (s_gg, Y)): with D = (P_0 … P_n)ᵀ and
-# DᵀUD = Σ_coords Σ_{i<=j} U_ij P_i·P_j,
+# ENERGY[family][(n, k)] = ((s_ff, U_ff), (s_fg, X), (s_gg, Y)): with
+# D = (P_0 … P_n)ᵀ and DᵀUD = Σ_coords Σ_{i<=j} U_ij P_i·P_j,
 #     E_k(λ) = s_ff·DᵀU_ffD − 2λ·s_fg·DᵀXD + λ²·s_gg·DᵀYD,
-#     λ* = (s_fg / s_gg) · DᵀXD / DᵀYD    (eq. 20; the paper prints c = s_fg / s_gg, X, Y).
+#     λ* = (s_fg / s_gg) · DᵀXD / DᵀYD
+# (eq. 20; the paper prints c = s_fg / s_gg with X and Y).
 ENERGY = {
     'bernstein_like': {
         (2, 1): (

@@ -14,6 +14,7 @@ The formulas behind them live in generated/ (emitted by derive/); this package i
 runtime and never imports SymPy.
 """
 
+from .batch import evaluate_many
 from .curves import FAMILIES, BernsteinLikeCurve, BezierCurve, Curve, SameDegreeCurve
 from .energy import OptimalLambda, energy_coefficients, energy_matrices, optimal_lambda
 
@@ -27,5 +28,6 @@ __all__ = [
     "SameDegreeCurve",
     "energy_coefficients",
     "energy_matrices",
+    "evaluate_many",
     "optimal_lambda",
 ]

@@ -1,4 +1,4 @@
-"""Low-level algorithms on control-point arrays: de Casteljau, subdivision, Bernstein Horner.
+"""Low-level algorithms on control-point arrays: de Casteljau, subdivision, Horner.
 
 Float paths are vectorised over parameter values; exact paths (Fractions) exist so that the
 lecture notes' worked examples and exact conversions stay exact.
@@ -47,32 +47,38 @@ def split_rows(points: Sequence[Sequence], t) -> tuple[list[tuple], list[tuple]]
     return [row[0] for row in tri], [row[-1] for row in reversed(tri)]
 
 
-def bernstein_horner(ctrl: np.ndarray, binom: np.ndarray, t: np.ndarray) -> np.ndarray:
-    """Σ_j ctrl[j] C(N,j) t^j (1-t)^(N-j) at every t, in O(N) vectorised passes.
+def centred_horner(coeffs: np.ndarray, t: np.ndarray, centre: float = 0.5) -> np.ndarray:
+    """Σ_e coeffs[:, e] (t - centre)^e at every t: coeffs (d, N+1) → (len(t), d).
 
-    Horner's rule in u = t/(1-t) for t <= 1/2, and on the reversed coefficients in
-    (1-t)/t for t > 1/2, so |u| <= 1 and nothing is divided by a small number: stable like
-    de Casteljau at the cost of power-basis Horner. ctrl has shape (N+1, ...), binom the
-    C(N, j); returns shape (len(t), ...).
+    Coordinate-major (each of the N in-place multiply-add passes runs over a contiguous
+    (d, len(t)) block); the transposed view is returned. About t = 1/2 the monomials are
+    as well conditioned on [0, 1] as the Bernstein basis, unlike the monomials about 0.
     """
-    size = ctrl.shape[0]
-    scaled = ctrl * binom.reshape(-1, *(1,) * (ctrl.ndim - 1))
-    out = np.empty((t.size, *ctrl.shape[1:]))
-    low = t <= 0.5
-    for mask, coeffs in ((low, scaled), (~low, scaled[::-1])):
-        if not mask.any():
-            continue
-        x = t[mask] if coeffs is scaled else 1.0 - t[mask]
-        s = 1.0 - x
-        u = (x / s).reshape(-1, *(1,) * (ctrl.ndim - 1))
-        acc = np.empty((x.size, *ctrl.shape[1:]))
-        acc[...] = coeffs[-1]
-        for c in coeffs[-2::-1]:
-            acc *= u
-            acc += c
-        acc *= (s ** (size - 1)).reshape(u.shape)
-        out[mask] = acc
-    return out
+    u = t - centre
+    size = coeffs.shape[1]
+    acc = np.empty((coeffs.shape[0], t.size))
+    if size == 1:
+        acc[...] = coeffs
+        return acc.T
+    np.multiply(coeffs[:, -1:], u, out=acc)  # the first Horner step, fused with the fill
+    acc += coeffs[:, -2:-1]
+    for e in range(size - 3, -1, -1):
+        acc *= u
+        acc += coeffs[:, e : e + 1]
+    return acc.T
+
+
+def differentiate_coefficients(coeffs: np.ndarray, k: int) -> np.ndarray:
+    """Coefficients (…, N+1) of the k-th derivative of Σ c_e u^e, in the same layout
+    (…, N+1-k); at least one zero coefficient when k exceeds the degree."""
+    size = coeffs.shape[-1]
+    if k >= size:
+        return np.zeros((*coeffs.shape[:-1], 1))
+    e = np.arange(size - k, dtype=float)
+    factor = np.ones(size - k)
+    for s in range(1, k + 1):
+        factor *= e + s
+    return coeffs[..., k:] * factor
 
 
 def exact_matmul(weights: Sequence[Sequence[Fraction]], rows: ExactRows) -> ExactRows:

@@ -107,11 +107,16 @@ def as_parameters(t: object, *, extrapolate: bool) -> tuple[np.ndarray, bool]:
         raise ValueError(f"t must be a number or a 1-D array, got shape {arr.shape}")
     scalar = arr.ndim == 0
     arr = np.atleast_1d(arr)
-    if not np.isfinite(arr).all():
-        raise ValueError("t contains NaN or infinity")
-    if not extrapolate and arr.size and (arr.min() < 0.0 or arr.max() > 1.0):
-        bad = arr[(arr < 0.0) | (arr > 1.0)][0]
-        raise ValueError(f"t = {bad} is outside [0, 1]; pass extrapolate=True to evaluate there")
+    if arr.size:
+        # min and max propagate NaN and expose ±inf: two reductions check everything
+        lo, hi = float(arr.min()), float(arr.max())
+        if not (math.isfinite(lo) and math.isfinite(hi)):
+            raise ValueError("t contains NaN or infinity")
+        if not extrapolate and (lo < 0.0 or hi > 1.0):
+            bad = lo if lo < 0.0 else hi
+            raise ValueError(
+                f"t = {bad} is outside [0, 1]; pass extrapolate=True to evaluate there"
+            )
     return arr, scalar
 
 

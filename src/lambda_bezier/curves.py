@@ -17,28 +17,21 @@ import numpy as np
 
 from . import _algorithms as alg
 from . import _validate as val
-from ._generated import bernstein as _bernstein
-from ._generated import bernstein_like as _bernstein_like
-from ._generated import same_degree as _same_degree
+from ._lazy import generated
+
+_bernstein = generated("bernstein")
+_same_degree = generated("same_degree")
+_bernstein_like = generated("bernstein_like")
 
 Matrix = tuple[tuple[Fraction, ...], ...]
 
 
 @cache
 def _float_matrix(family: str, kind: str, degree: int, power: int) -> np.ndarray:
-    mats = _TABLES[family][kind][degree]
+    mats = _tables(family, kind)[degree]
     arr = np.array(mats[power], dtype=float)
     arr.setflags(write=False)
     return arr
-
-
-@cache
-def _binomials(degree: int) -> np.ndarray:
-    """C(N, j): the leading power coefficient of B_{j,N}, read off the generated table."""
-    if degree == 0:
-        return np.ones(1)
-    power = _bernstein.POWER[degree]
-    return np.array([float(power[j][j]) for j in range(degree + 1)])
 
 
 @cache
@@ -64,15 +57,15 @@ def _identity(size: int) -> Matrix:
     return tuple(tuple(Fraction(int(r == c)) for c in range(size)) for r in range(size))
 
 
-# kind -> degree -> tuple of λ-power matrices; the Bernstein basis has no λ (one matrix).
-_TABLES: dict[str, dict[str, dict[int, tuple[Matrix, ...]]]] = {
-    "bezier": {
-        "power": {d: (m,) for d, m in _bernstein.POWER.items()},
-        "bernstein": {d: (_identity(d + 1),) for d in _bernstein.DEGREES},
-    },
-    "same_degree": {"power": _same_degree.POWER, "bernstein": _same_degree.BERNSTEIN},
-    "bernstein_like": {"power": _bernstein_like.POWER, "bernstein": _bernstein_like.BERNSTEIN},
-}
+@cache
+def _tables(family: str, kind: str) -> dict[int, tuple[Matrix, ...]]:
+    """kind ("power", "centred", "bernstein") -> degree -> tuple of λ-power matrices;
+    the Bernstein basis has no λ (one matrix each)."""
+    if family == "bezier":
+        if kind == "bernstein":
+            return {d: (_identity(d + 1),) for d in _bernstein.DEGREES}
+        return {d: (m,) for d, m in getattr(_bernstein, kind.upper()).items()}
+    return getattr(FAMILIES[family]._data, kind.upper())
 
 
 class Curve:
@@ -100,9 +93,11 @@ class Curve:
             if lam is not None:
                 raise ValueError("a classical Bézier curve takes no shape parameter")
             self.lam = None
-        ctrl = self.basis_bernstein_matrix().T @ self.points  # Bézier control points (N+1, d)
-        ctrl.setflags(write=False)
-        self._hodographs = [ctrl]  # control points of p, p', p'', … (filled on demand)
+        # Taylor coefficients about t = 1/2, coordinate-major (d, N+1): what evaluation uses
+        centred = np.ascontiguousarray((self._combined("centred").T @ self.points).T)
+        centred.setflags(write=False)
+        self._derivative_coeffs = {0: centred}  # k -> coefficients of p^(k), filled on demand
+        self._hodographs: list[np.ndarray] = []  # Bézier points of p, p', …, for energies
 
     # ------------------------------------------------------------------ description
     @property
@@ -134,7 +129,7 @@ class Curve:
 
     # ------------------------------------------------------------------ basis matrices
     def _matrices(self, kind: str) -> tuple[Matrix, ...]:
-        return _TABLES[self.family][kind][self.degree]
+        return _tables(self.family, kind)[self.degree]
 
     def _combined(self, kind: str) -> np.ndarray:
         mats = self._matrices(kind)
@@ -167,15 +162,20 @@ class Curve:
         """The k-th derivative p^(k)(t) (zero beyond the polynomial degree)."""
         k = val.as_order(k)
         tt, scalar = val.as_parameters(t, extrapolate=extrapolate)
-        if k > self.polynomial_degree:
-            out = np.zeros((tt.size, self.dimension))
-        else:
-            ctrl = self._hodograph_points(k)
-            out = alg.bernstein_horner(ctrl, _binomials(ctrl.shape[0] - 1), tt)
+        coeffs = self._derivative_coeffs.get(k)
+        if coeffs is None:
+            coeffs = alg.differentiate_coefficients(self._derivative_coeffs[0], k)
+            coeffs.setflags(write=False)
+            self._derivative_coeffs[k] = coeffs
+        out = alg.centred_horner(coeffs, tt)
         return out[0] if scalar else out
 
     def _hodograph_points(self, k: int) -> np.ndarray:
         """Bézier control points of p^(k), from the generated hodograph matrices."""
+        if not self._hodographs:
+            ctrl = self.basis_bernstein_matrix().T @ self.points
+            ctrl.setflags(write=False)
+            self._hodographs.append(ctrl)
         while len(self._hodographs) <= k:
             prev = self._hodographs[-1]
             nxt = _float_hodograph(prev.shape[0] - 1) @ prev
@@ -186,8 +186,7 @@ class Curve:
     def basis(self, t, *, extrapolate: bool = False) -> np.ndarray:
         """Basis function values: (n+1,) for a scalar t, (len(t), n+1) for an array."""
         tt, scalar = val.as_parameters(t, extrapolate=extrapolate)
-        big = self.polynomial_degree
-        out = alg.bernstein_horner(self.basis_bernstein_matrix().T, _binomials(big), tt)
+        out = alg.centred_horner(self._combined("centred"), tt)
         return out[0] if scalar else out
 
     def curvature(self, t, *, extrapolate: bool = False) -> np.ndarray:

@@ -14,11 +14,13 @@ from functools import cache
 import numpy as np
 
 from . import _validate as val
-from ._generated import energy as _energy
+from ._lazy import generated
 from .curves import FAMILIES
 
+_energy = generated("energy")
+
 ENERGY_NAMES = {1: "stretch", 2: "strain", 3: "jerk"}
-LAMBDA_FAMILIES = tuple(_energy.ENERGY)
+LAMBDA_FAMILIES = ("same_degree", "bernstein_like")  # the families with a shape parameter
 
 
 @dataclass(frozen=True)
@@ -128,12 +130,15 @@ def _as_polygons(points, family: str) -> tuple[np.ndarray, bool]:
         raise ValueError(
             f"control points must have shape (n+1, d) or (m, n+1, d), got shape {arr.shape}"
         )
-    val.as_points(arr[0], family=family, degrees=tuple(data.DEGREES))  # shape, degree checks
-    if not np.isfinite(arr).all():
-        bad = np.argwhere(~np.isfinite(arr))[0]
-        where = f"polygon {bad[0]}, " if not single else ""
-        raise ValueError(f"{where}control point {bad[-2]} has a non-finite coordinate")
-    return arr, single
+    # shape and degree checks on the first polygon; finiteness is read off the results
+    val.as_points(np.zeros(arr.shape[1:]), family=family, degrees=tuple(data.DEGREES))
+    return np.ascontiguousarray(arr), single
+
+
+def _non_finite_error(arr: np.ndarray, single: bool) -> ValueError:
+    bad = np.argwhere(~np.isfinite(arr))[0]
+    where = f"polygon {bad[0]}, " if not single else ""
+    return ValueError(f"{where}control point {bad[-2]} has a non-finite coordinate")
 
 
 def energy_coefficients(points, k: int, family: str = "same_degree"):
@@ -151,14 +156,28 @@ def energy_coefficients(points, k: int, family: str = "same_degree"):
 
 
 def _float_coefficients(points, k: int, family: str):
-    """((a0, a1, a2) arrays over the batch, a bound on |a2|'s rounding, single?)."""
+    """((a0, a1, a2) arrays over the batch, a bound on a2's rounding error, single?)."""
     arr, single = _as_polygons(points, family)
-    n = arr.shape[1] - 1
-    forms = _float_forms(family, n, k)
-    coeffs = [np.einsum("mid,ij,mjd->m", arr, a, arr) for a in forms]
-    size = np.abs(arr).max(axis=(1, 2)) ** 2
-    rounding = 1e-12 * np.abs(forms[2]).sum() * size
-    return coeffs, rounding, single
+    m, size, dim = arr.shape
+    stacked, a2_weight = _stacked_forms(family, size - 1, k, dim)
+    flat = arr.reshape(m, size * dim)  # a view: coordinates of one polygon side by side
+    q = np.einsum("mfx,mx->mf", (flat @ stacked).reshape(m, 4, size * dim), flat)
+    if not np.isfinite(q).all():  # NaN/inf in the input propagate into every form
+        raise _non_finite_error(arr, single)
+    a0, a1, a2, norm2 = q.T
+    return (a0, a1, a2), 1e-12 * a2_weight * norm2, single
+
+
+@cache
+def _stacked_forms(family: str, n: int, k: int, dim: int) -> tuple[np.ndarray, float]:
+    """[A0 ⊗ I | A1 ⊗ I | A2 ⊗ I | I] for the flattened (P_0x, P_0y, P_1x, …) layout, so one
+    matrix product gives the three energy forms and ‖D‖² (the scale of rounding errors)."""
+    eye = np.eye(dim)
+    blocks = [np.kron(a, eye) for a in _float_forms(family, n, k)]
+    blocks.append(np.eye((n + 1) * dim))
+    stacked = np.ascontiguousarray(np.hstack(blocks))
+    stacked.setflags(write=False)
+    return stacked, float(np.abs(_float_forms(family, n, k)[2]).sum())
 
 
 def optimal_lambda(points, k: int, family: str = "same_degree", clamp: bool = False):

@@ -1,0 +1,264 @@
+"""lambda-bezier benchmarks: every figure is a ratio against a reference timed in the same run.
+
+    python benchmarks/run.py            # full run (a few minutes), markdown table on stdout
+    python benchmarks/run.py --quick    # smaller sizes, for a smoke test
+
+Needs the benchmark extra: pip install ".[bench]" (the `bezier` package is the reference for
+evaluation; SymPy for the derivation benchmarks). Times are the best of several repeats.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import json
+import platform
+import subprocess
+import sys
+import textwrap
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def best_of(fn, repeat: int = 5) -> float:
+    times = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return min(times)
+
+
+def fresh_process(code: str, repeat: int = 1) -> float:
+    """Best wall time of `python -c code` in new processes."""
+    times = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        subprocess.run([sys.executable, "-c", code], check=True, cwd=ROOT)
+        times.append(time.perf_counter() - t0)
+    return min(times)
+
+
+def timed_in_fresh_process(code: str) -> float:
+    """`code` prints the seconds of its own timed section; run it in a new process."""
+    out = subprocess.run(
+        [sys.executable, "-c", code], check=True, cwd=ROOT, capture_output=True, text=True
+    )
+    return float(out.stdout.strip().splitlines()[-1])
+
+
+ROWS: list[dict] = []
+
+
+def record(name: str, ours: float, ref_name: str, ref: float, target: str, ok: bool) -> None:
+    ROWS.append(
+        {
+            "benchmark": name,
+            "ours_s": ours,
+            "reference": ref_name,
+            "reference_s": ref,
+            "ratio": ours / ref,
+            "target": target,
+            "met": ok,
+        }
+    )
+    print(
+        f"  {name}: {ours * 1e3:.1f} ms vs {ref_name} {ref * 1e3:.1f} ms "
+        f"-> {ours / ref:.2f}x (target {target}: {'met' if ok else 'NOT met'})",
+        file=sys.stderr,
+        flush=True,
+    )
+
+
+def bench_evaluation(size: int) -> None:
+    import bezier
+
+    import lambda_bezier as lb
+
+    t = np.random.default_rng(0).random(size)
+    for family, cls in lb.FAMILIES.items():
+        for n in (3, 5, 8):
+            pts = np.random.default_rng(n).normal(size=(n + 1, 2))
+            curve = cls(pts) if family == "bezier" else cls(pts, 0.5)
+            ctrl = curve.to_bezier().points  # the same curve as a Bézier curve of degree N
+            big = ctrl.shape[0] - 1
+            ref_curve = bezier.Curve(np.asfortranarray(ctrl.T), degree=big)
+            coeffs = np.random.default_rng(1).normal(size=(2, big + 1))
+
+            def bound(coeffs=coeffs, big=big):
+                # the floor: 2N in-place multiply-add passes over a (d, len(t)) block
+                acc = np.empty((2, size))
+                acc[...] = coeffs[:, -1:]
+                for e in range(big - 1, -1, -1):
+                    acc *= t
+                    acc += coeffs[:, e : e + 1]
+
+            ours = best_of(lambda curve=curve: curve.evaluate(t))
+            ref = best_of(lambda ref_curve=ref_curve: ref_curve.evaluate_multi(t))
+            floor = best_of(bound)
+            name = f"evaluate {family} n={n} (degree {big}), {size:,} t"
+            record(name, ours, "bezier.Curve.evaluate_multi", ref, "<= 0.4x", ours / ref <= 0.4)
+            record(name, ours, "bound: 2N in-place passes", floor, "<= 1.5x", ours / floor <= 1.5)
+
+
+def bench_batch_evaluation(m: int) -> None:
+    import bezier
+
+    import lambda_bezier as lb
+
+    rng = np.random.default_rng(2)
+    pts = rng.normal(size=(m, 6, 2))
+    t = np.linspace(0, 1, 64)
+    ours = best_of(lambda: lb.evaluate_many(pts, t, "bezier"), repeat=3)
+    nodes = [np.asfortranarray(p.T) for p in pts]
+
+    def loop():
+        for nd in nodes:
+            bezier.Curve(nd, degree=5).evaluate_multi(t)
+
+    ref = best_of(loop, repeat=1)
+    record(
+        f"evaluate_many: {m:,} degree-5 curves x 64 t",
+        ours,
+        "Python loop over bezier.Curve",
+        ref,
+        ">= 30x faster",
+        ref / ours >= 30,
+    )
+
+
+def bench_optimal_lambda(m: int) -> None:
+    import lambda_bezier as lb
+
+    pts = np.random.default_rng(3).normal(size=(m, 6, 2))
+    ours = best_of(lambda: lb.optimal_lambda(pts, 2))
+    read = best_of(lambda: pts.sum())
+    record(
+        f"optimal_lambda (k=2): {m:,} degree-5 polygons",
+        ours,
+        "one read pass (arr.sum())",
+        read,
+        "<= 10x",
+        ours / read <= 10,
+    )
+
+
+NAIVE = textwrap.dedent(
+    """
+    import time, sympy as sp
+    t, lam = sp.symbols("t lam")
+    def basis(n, i):  # eq. (1) of 000
+        C = lambda a, b: sp.binomial(a, b) if 0 <= b <= a else 0
+        return sp.cancel(C(n, i)*(1-t)**(n-i)*t**i + (1-lam)*(1-t)**(n-i-1)*t**(i-1)*(
+            C(n-3, i-3)*(1-t)**2 - C(n-2, i-1)*(1-t)*t + C(n-3, i)*t**2))
+    t0 = time.perf_counter()
+    for n in (3, 4, 5):
+        b = [basis(n, i) for i in range(n + 1)]
+        for k in (1, 2, 3):
+            d = [sp.expand(sp.diff(bi, t, k)) for bi in b]
+            gram = {(i, j): sp.integrate(sp.expand(d[i] * d[j]), (t, 0, 1))
+                    for i in range(n + 1) for j in range(i, n + 1)}
+    print(time.perf_counter() - t0)
+    """
+)
+
+OURS_ENERGY = textwrap.dedent(
+    """
+    import time, sys
+    sys.path.insert(0, ".")
+    import sympy  # imported before timing, as in the naive reference
+    t0 = time.perf_counter()
+    from derive.energy import energy_forms
+    for n in (3, 4, 5):
+        for k in (1, 2, 3):
+            energy_forms("same_degree", n, k)
+    print(time.perf_counter() - t0)
+    """
+)
+
+
+def bench_derive() -> None:
+    ours = timed_in_fresh_process(OURS_ENERGY)
+    naive = timed_in_fresh_process(NAIVE)
+    record(
+        "derive energy matrices n=3..5, k=1..3 (cold)",
+        ours,
+        "sympy.integrate on expanded polynomials",
+        naive,
+        ">= 20x faster",
+        naive / ours >= 20,
+    )
+    full = fresh_process(
+        "import sys; from lambda_bezier.cli import main; "
+        "sys.exit(main(['derive', '--check', '-q']))"
+    )
+    bare = fresh_process("import sympy")
+    record(
+        "lambda-bezier derive --check (full regeneration)",
+        full,
+        "python -c 'import sympy'",
+        bare,
+        "a few seconds",
+        full <= 5.0,
+    )
+
+
+def bench_import() -> None:
+    ours = fresh_process("import lambda_bezier", repeat=15)
+    ref = fresh_process("import numpy", repeat=15)
+    record(
+        "import lambda_bezier (fresh process)",
+        ours,
+        "import numpy",
+        ref,
+        "<= 1.3x",
+        ours / ref <= 1.3,
+    )
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="smaller sizes (smoke test)")
+    parser.add_argument("--json", type=Path, help="also write the rows as JSON here")
+    args = parser.parse_args()
+    import bezier
+    import sympy
+
+    size, m_batch, m_lambda = (10**5, 10**4, 10**4) if args.quick else (10**6, 10**5, 10**5)
+    print("evaluation ...", file=sys.stderr)
+    bench_evaluation(size)
+    print("batch evaluation ...", file=sys.stderr)
+    bench_batch_evaluation(m_batch)
+    print("optimal lambda ...", file=sys.stderr)
+    bench_optimal_lambda(m_lambda)
+    print("derive ...", file=sys.stderr)
+    bench_derive()
+    print("import ...", file=sys.stderr)
+    bench_import()
+
+    import os
+
+    machine = (
+        f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}, "
+        f"numpy {np.__version__}, bezier {bezier.__version__}, sympy {sympy.__version__}, "
+        f"{datetime.date.today().isoformat()}"
+    )
+    print(f"Machine: {machine}\n")
+    print("| benchmark | ours | reference | ratio | target | met |")
+    print("|---|---:|---|---:|---|---|")
+    for r in ROWS:
+        print(
+            f"| {r['benchmark']} | {r['ours_s'] * 1e3:.1f} ms | {r['reference']} "
+            f"({r['reference_s'] * 1e3:.1f} ms) | {r['ratio']:.2f}x | {r['target']} | "
+            f"{'yes' if r['met'] else 'no'} |"
+        )
+    if args.json:
+        args.json.write_text(json.dumps({"machine": machine, "rows": ROWS}, indent=2))
+
+
+if __name__ == "__main__":
+    main()

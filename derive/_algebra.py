@@ -9,8 +9,10 @@ Bernstein coefficients; both split by powers of λ so that the runtime can assem
 from __future__ import annotations
 
 from fractions import Fraction
-from functools import cache
+from functools import cache, reduce
+from math import comb, lcm
 
+import numpy as np
 import sympy as sp
 
 from ._emit import to_fraction
@@ -44,12 +46,9 @@ def poly(expr: sp.Expr) -> sp.Poly:
 def bernstein_power_matrix(degree: int) -> Matrix:
     """Row j: power coefficients of B_j^degree (imported lazily to keep the axiom in one
     place: derive/bernstein.py)."""
-    from .bernstein import bernstein_basis
+    from .bernstein import bernstein_poly
 
-    x = sp.Poly(t, t, lam, domain="QQ")  # the axiom evaluated in polynomial arithmetic
-    return tuple(
-        power_matrices([bernstein_basis(degree, jj, x)], degree)[0][0] for jj in range(degree + 1)
-    )
+    return power_matrices([bernstein_poly(degree, jj) for jj in range(degree + 1)], degree)[0]
 
 
 @cache
@@ -68,6 +67,29 @@ def power_to_bernstein_matrix(degree: int) -> Matrix:
             inv[row][col] = rhs / a[row][row]
     # inv = a^{-1}; a maps Bernstein→power (rows: B_j), so power→Bernstein is inv read by rows.
     return tuple(tuple(r) for r in inv)
+
+
+def matmul(a, b) -> Matrix:
+    """Exact product of Fraction matrices, done in integers: each factor is scaled to an
+    integer matrix by the lcm of its denominators (numpy object arrays of Python ints), so
+    the inner products never normalise a Fraction; each entry is reduced once at the end."""
+
+    def scaled(mat):
+        fr = [[v if isinstance(v, Fraction) else Fraction(v) for v in row] for row in mat]
+        den = reduce(lcm, (v.denominator for row in fr for v in row), 1)
+        ints = np.array(
+            [[v.numerator * (den // v.denominator) for v in row] for row in fr], dtype=object
+        )
+        return ints, den
+
+    ai, da = scaled(a)
+    bi, db = scaled(b)
+    prod = ai.dot(bi)
+    return tuple(tuple(Fraction(int(v), da * db) for v in row) for row in prod)
+
+
+def transpose(a) -> Matrix:
+    return tuple(zip(*a, strict=True))
 
 
 def lambda_degree(polys: list[sp.Poly]) -> int:
@@ -89,21 +111,32 @@ def power_matrices(polys: list[sp.Poly], degree: int) -> tuple[Matrix, ...]:
 def bernstein_matrices(polys: list[sp.Poly], degree: int) -> tuple[Matrix, ...]:
     """M_p[i][j] = coefficient of lam^p B_j^degree in basis function i."""
     conv = power_to_bernstein_matrix(degree)
-    return tuple(
-        tuple(
-            tuple(
-                sum((row[e] * conv[e][jj] for e in range(degree + 1)), Fraction(0))
-                for jj in range(degree + 1)
-            )
-            for row in mat
-        )
-        for mat in power_matrices(polys, degree)
-    )
+    return tuple(matmul(mat, conv) for mat in power_matrices(polys, degree))
 
 
-def endpoint_table(polys: list[sp.Poly], orders: int) -> dict[tuple[str, int, int], sp.Expr]:
-    """Per-degree derivatives d^r b_i/dt^r at t=0 and t=1 (nonzero ones), as polynomials in λ.
-    Used to check the general-n closed forms for every degree of the range."""
+LAMBDA_SAMPLES = (0, 1)  # two values of λ decide equality of expressions linear in λ
+
+
+def linear_in_lambda(expr: sp.Expr) -> bool:
+    num, den = sp.fraction(sp.together(expr))
+    return not den.has(lam) and sp.degree(num, lam) <= 1
+
+
+def exact_function(expr: sp.Expr, args):
+    """`expr` as a Python function that is exact for Fraction arguments."""
+    return sp.lambdify(args, expr, modules=[{"binomial": _binomial}, "math"])
+
+
+def _binomial(a, b):
+    a, b = int(a), int(b)
+    return comb(a, b) if 0 <= b <= a else 0
+
+
+def endpoint_values(polys, orders: int) -> dict[tuple[str, int, int], tuple[Fraction, ...]]:
+    """Per-degree derivatives d^r b_i/dt^r at t=0 and t=1 (nonzero ones), at each λ of
+    LAMBDA_SAMPLES. The basis functions are linear in λ, so these samples determine them."""
+    if any(p.degree(lam) > 1 for p in polys):
+        raise AssertionError("basis functions are expected to be linear in λ")
     out = {}
     for idx, p in enumerate(polys):
         d = p
@@ -111,9 +144,30 @@ def endpoint_table(polys: list[sp.Poly], orders: int) -> dict[tuple[str, int, in
             for end, at in (("start", 0), ("end", 1)):
                 val = d.eval(t, at)
                 if not val.is_zero:
-                    out[(end, r, idx)] = val.as_expr()
+                    out[(end, r, idx)] = tuple(to_fraction(val.eval(x)) for x in LAMBDA_SAMPLES)
             d = d.diff(t)
     return out
+
+
+def check_endpoint_closed_forms(closed: dict, polys_by_degree: dict, orders: int) -> None:
+    """Each closed form {("start"|"end", r, idx): expr in n, λ} equals the derivative of the
+    per-degree expansion for every degree given, and no nonzero entry is missing."""
+    for key, expr in closed.items():
+        if not linear_in_lambda(expr):
+            raise AssertionError(f"endpoint closed form {key} is not linear in λ")
+    fns = {key: exact_function(expr, (n, lam)) for key, expr in closed.items()}
+    zero = tuple(Fraction(0) for _ in LAMBDA_SAMPLES)
+    for deg, polys in polys_by_degree.items():
+        table = endpoint_values(polys, orders)
+        by_key = {(e, r, ii if e == "start" else deg - ii): v for (e, r, ii), v in table.items()}
+        for key in set(by_key) | set(fns):
+            got = (
+                tuple(Fraction(fns[key](Fraction(deg), Fraction(x))) for x in LAMBDA_SAMPLES)
+                if key in fns
+                else zero
+            )
+            if got != by_key.get(key, zero):
+                raise AssertionError(f"endpoint closed form {key} wrong at n={deg}")
 
 
 def bernstein_terms(expr: sp.Expr, degree: sp.Expr) -> dict[sp.Expr, sp.Expr]:
@@ -145,7 +199,7 @@ def centred_row(row: tuple[Fraction, ...], centre: Fraction = CENTRE) -> tuple[F
     (Horner on these is as accurate as de Casteljau on [0, 1]; at 0 it is not.)"""
     size = len(row)
     return tuple(
-        sum((row[q] * sp.binomial(q, e) * centre ** (q - e) for q in range(e, size)), Fraction(0))
+        sum((row[q] * comb(q, e) * centre ** (q - e) for q in range(e, size)), Fraction(0))
         for e in range(size)
     )
 

@@ -11,6 +11,7 @@ f_i in the power basis, and the k-th derivative at either end for every order, i
 from __future__ import annotations
 
 from fractions import Fraction
+from functools import cache
 
 import sympy as sp
 
@@ -22,6 +23,7 @@ from ._algebra import (
     i,
     k,
     lam,
+    matmul,
     n,
     power_matrices,
     power_to_bernstein_matrix,
@@ -42,24 +44,27 @@ def bernstein_basis(degree, index, x=t):
     return sp.binomial(degree, index) * x**index * (1 - x) ** (degree - index)
 
 
+@cache
+def bernstein_poly(degree: int, index: int) -> sp.Poly:
+    """The axiom evaluated in polynomial arithmetic (cached: every table below reuses it)."""
+    return bernstein_basis(degree, index, X)
+
+
 def original_basis(degree: int, index: int, x=t):
     """f_i from the axiom p = Σ a_i f_i = Σ b_j B_j with b_j = Σ_{i<=j} a_i:
     collecting a_i gives f_i = Σ_{j>=i} B_j."""
-    return sum(
-        (bernstein_basis(degree, jj, x) for jj in range(index + 1, degree + 1)),
-        bernstein_basis(degree, index, x),
-    )
+    if x is X:
+        terms = [bernstein_poly(degree, jj) for jj in range(index, degree + 1)]
+    else:
+        terms = [bernstein_basis(degree, jj, x) for jj in range(index, degree + 1)]
+    return sum(terms[1:], terms[0])
 
 
 def _to_bernstein(p: sp.Poly, degree: int) -> tuple[Fraction, ...]:
-    conv = power_to_bernstein_matrix(degree)
-    coeffs = power_matrices([p], degree)[0][0]
-    return tuple(
-        sum((coeffs[e] * conv[e][jj] for e in range(degree + 1)), Fraction(0))
-        for jj in range(degree + 1)
-    )
+    return matmul(power_matrices([p], degree)[0], power_to_bernstein_matrix(degree))[0]
 
 
+@cache
 def hodograph_matrix(degree: int) -> Matrix:
     """H[j][i]: weight of control point P_i in control point j of the derivative curve
     (degree - 1), from differentiating each B_i and re-expanding in degree - 1."""
@@ -70,9 +75,10 @@ def hodograph_matrix(degree: int) -> Matrix:
     return tuple(tuple(cols[ii][jj] for ii in range(degree + 1)) for jj in range(degree))
 
 
+@cache
 def elevation_matrix(degree: int) -> Matrix:
     """E[j][i]: weight of P_i in control point j of the same curve written in degree + 1."""
-    cols = [_to_bernstein(bernstein_basis(degree, ii, X), degree + 1) for ii in range(degree + 1)]
+    cols = [_to_bernstein(bernstein_poly(degree, ii), degree + 1) for ii in range(degree + 1)]
     return tuple(tuple(cols[ii][jj] for ii in range(degree + 1)) for jj in range(degree + 2))
 
 
@@ -107,8 +113,8 @@ def _check_endpoint_weights(start: sp.Expr, end: sp.Expr) -> None:
     w_end = sp.lambdify((n, k, i), end, modules="sympy")
     for deg in DEGREES:
         for ii in range(deg + 1):
-            p0 = bernstein_basis(deg, ii, X)
-            p1 = bernstein_basis(deg, deg - ii, X)
+            p0 = bernstein_poly(deg, ii)
+            p1 = bernstein_poly(deg, deg - ii)
             for order in range(deg + 1):
                 got0, got1 = p0.eval(t, 0), p1.eval(t, 1)
                 want0 = (

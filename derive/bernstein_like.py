@@ -11,23 +11,27 @@ Derived here: per-degree expansions, the general-n explicit form b_{i,n} = q_i(t
 
 from __future__ import annotations
 
+from fractions import Fraction
 from functools import cache
 
 import sympy as sp
 
 from . import _emit
 from ._algebra import (
+    LAMBDA_SAMPLES,
     bernstein_matrices,
     centred_matrices,
-    endpoint_table,
+    check_endpoint_closed_forms,
+    exact_function,
     i,
     lam,
+    linear_in_lambda,
     n,
     poly,
     power_matrices,
     t,
 )
-from .bernstein import bernstein_basis
+from .bernstein import bernstein_basis, bernstein_poly
 
 SCRIPT = "bernstein_like.py"
 OUTPUT = "bernstein_like.py"
@@ -100,21 +104,20 @@ def endpoint_closed_forms(q: sp.Expr) -> dict[tuple[str, int, int], sp.Expr]:
 
 
 def _check(q, closed) -> None:
+    """The explicit form and the endpoint closed forms against the recursion, for every n."""
+    coeffs = sp.Poly(q, t)
+    if coeffs.degree() != 2 or not all(linear_in_lambda(c) for c in coeffs.all_coeffs()):
+        raise AssertionError("explicit factor should be quadratic in t and linear in λ")
+    factor = exact_function([coeffs.coeff_monomial(t**e) for e in range(3)], (n, i, lam))
     for deg in DEGREES:
-        polys = basis_polys(deg)
-        for ii, p in enumerate(polys):
-            want = q.xreplace({n: deg, i: ii}) * bernstein_basis(deg, ii)
-            if (poly(want) - p).is_zero is False:
-                raise AssertionError(f"explicit form wrong at n={deg}, i={ii}")
-        table = endpoint_table(list(polys), ORDERS)
-        for (end, r, ii), val in table.items():
-            idx = ii if end == "start" else deg - ii
-            if sp.expand(closed.get((end, r, idx), 0).xreplace({n: deg}) - val) != 0:
-                raise AssertionError(f"endpoint closed form wrong: {end} r={r} i={ii} n={deg}")
-        for (end, r, idx), expr in closed.items():
-            ii = idx if end == "start" else deg - idx
-            if sp.expand(expr.xreplace({n: deg}) - table.get((end, r, ii), 0)) != 0:
-                raise AssertionError(f"spurious endpoint closed form: {end} r={r} idx={idx}")
+        for ii, p in enumerate(basis_polys(deg)):
+            for x in LAMBDA_SAMPLES:
+                c = [Fraction(v) for v in factor(Fraction(deg), Fraction(ii), Fraction(x))]
+                quad = sp.Poly(c[0] + c[1] * t + c[2] * t**2, t, lam, domain="QQ")
+                at_x = sp.Poly(p.as_expr().subs(lam, x), t, lam, domain="QQ")
+                if not (quad * bernstein_poly(deg, ii) - at_x).is_zero:
+                    raise AssertionError(f"explicit form wrong at n={deg}, i={ii}, λ={x}")
+    check_endpoint_closed_forms(closed, {d: basis_polys(d) for d in DEGREES}, ORDERS)
 
 
 def render() -> str:

@@ -27,7 +27,7 @@ import sympy as sp
 from . import _emit
 from . import bernstein_like as _bernstein_like
 from . import same_degree as _same_degree
-from ._algebra import Matrix, bernstein_matrices, t
+from ._algebra import Matrix, bernstein_matrices, matmul, t, transpose
 from .bernstein import bernstein_basis, hodograph_matrix
 
 SCRIPT = "energy.py"
@@ -49,12 +49,9 @@ def bernstein_identities() -> tuple[sp.Expr, sp.Expr]:
     )
     if rho.has(t):
         raise AssertionError("product of Bernstein polynomials is not a Bernstein multiple")
-    integral = sp.combsimp(
-        sp.hyperexpand(
-            sp.binomial(_N, _c)
-            * sp.integrate(t**_c * (1 - t) ** (_N - _c), (t, 0, 1), conds="none")
-        )
-    )
+    # ∫_0^1 t^c (1-t)^(N-c) dt is Euler's Beta function B(c+1, N-c+1) (SymPy's beta is
+    # defined by that integral); the rest is simplification.
+    integral = sp.combsimp(sp.binomial(_N, _c) * sp.beta(_c + 1, _N - _c + 1).rewrite(sp.gamma))
     if integral.has(_c):
         raise AssertionError(f"integral of B_c^N should not depend on c: {integral}")
     return rho, integral
@@ -76,18 +73,6 @@ def gram(m: int) -> Matrix:
     )
 
 
-def _matmul(a, b):
-    inner = range(len(b))
-    return tuple(
-        tuple(sum((row[q] * b[q][col] for q in inner), Fraction(0)) for col in range(len(b[0])))
-        for row in a
-    )
-
-
-def _transpose(a):
-    return tuple(zip(*a, strict=True))
-
-
 @cache
 def stiffness(degree: int, k: int) -> Matrix:
     """K with ∫|p^(k)|² = Σ_coords cᵀ K c for Bézier control points c of degree `degree`."""
@@ -95,8 +80,8 @@ def stiffness(degree: int, k: int) -> Matrix:
         tuple(Fraction(int(r == c)) for c in range(degree + 1)) for r in range(degree + 1)
     )
     for d in range(degree, degree - k, -1):
-        h = _matmul(hodograph_matrix(d), h)
-    return _matmul(_matmul(_transpose(h), gram(degree - k)), h)
+        h = matmul(hodograph_matrix(d), h)
+    return matmul(matmul(transpose(h), gram(degree - k)), h)
 
 
 def upper_form(sym: Matrix) -> tuple[Fraction, tuple[tuple[int, ...], ...]]:
@@ -129,9 +114,9 @@ def energy_forms(family: str, n: int, k: int) -> dict[str, tuple[Fraction, tuple
     kk = stiffness(big, k)
     w = tuple(tuple(-v for v in row) for row in m1)  # W = −M_1ᵀ D
     return {
-        "ff": upper_form(_matmul(_matmul(m0, kk), _transpose(m0))),
-        "fg": upper_form(_symmetrise(_matmul(_matmul(m0, kk), _transpose(w)))),
-        "gg": upper_form(_matmul(_matmul(w, kk), _transpose(w))),
+        "ff": upper_form(matmul(matmul(m0, kk), transpose(m0))),
+        "fg": upper_form(_symmetrise(matmul(matmul(m0, kk), transpose(w)))),
+        "gg": upper_form(matmul(matmul(w, kk), transpose(w))),
     }
 
 

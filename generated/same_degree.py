@@ -1663,12 +1663,12 @@ def endpoint_start(n, lam):
     n = F(n)
     return {
         (0, 0): 1,
-        (1, 0): -(lam + n - 1)*factorial(n)/(n*factorial(n - 1)),
-        (1, 1): (lam + n - 1)*factorial(n)/(n*factorial(n - 1)),
-        (2, 0): (2*lam + n - 2)*factorial(n)/(n*factorial(n - 2)),
-        (2, 1): -2*(2*lam*n - 4*lam + n**2 - 3*n + 4)*factorial(n)/(n*(n - 1)*factorial(n - 2)),
-        (2, 2): (2*lam*n - 4*lam + n**2 - 3*n + 4)*factorial(n)/(n*(n - 1)*factorial(n - 2)),
-        (2, 3): -2*(lam - 1)*factorial(n)/(n*(n - 1)*factorial(n - 2)),
+        (1, 0): -lam - n + 1,
+        (1, 1): lam + n - 1,
+        (2, 0): (n - 1)*(2*lam + n - 2),
+        (2, 1): -2*(2*lam*n - 4*lam + n**2 - 3*n + 4),
+        (2, 2): 2*lam*n - 4*lam + n**2 - 3*n + 4,
+        (2, 3): -2*(lam - 1),
     }
 
 
@@ -1677,10 +1677,10 @@ def endpoint_end(n, lam):
     n = F(n)
     return {
         (0, 0): 1,
-        (1, 0): (lam + n - 1)*factorial(n)/(n*factorial(n - 1)),
-        (1, 1): -(lam + n - 1)*factorial(n)/(n*factorial(n - 1)),
-        (2, 0): (2*lam + n - 2)*factorial(n)/(n*factorial(n - 2)),
-        (2, 1): -2*(2*lam*n - 4*lam + n**2 - 3*n + 4)*factorial(n)/(n*(n - 1)*factorial(n - 2)),
-        (2, 2): (2*lam*n - 4*lam + n**2 - 3*n + 4)*factorial(n)/(n*(n - 1)*factorial(n - 2)),
-        (2, 3): -2*(lam - 1)*factorial(n)/(n*(n - 1)*factorial(n - 2)),
+        (1, 0): lam + n - 1,
+        (1, 1): -lam - n + 1,
+        (2, 0): (n - 1)*(2*lam + n - 2),
+        (2, 1): -2*(2*lam*n - 4*lam + n**2 - 3*n + 4),
+        (2, 2): 2*lam*n - 4*lam + n**2 - 3*n + 4,
+        (2, 3): -2*(lam - 1),
     }

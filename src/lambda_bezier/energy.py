@@ -156,28 +156,51 @@ def energy_coefficients(points, k: int, family: str = "same_degree"):
 
 
 def _float_coefficients(points, k: int, family: str):
-    """((a0, a1, a2) arrays over the batch, a bound on a2's rounding error, single?)."""
+    """((a0, a1, a2) arrays over the batch, a bound on a2's rounding error, single?).
+
+    E_k(λ) = ‖Lᵀ H (Q − λW)‖² summed over coordinates (L the Cholesky factor of the Gram
+    matrix, H the k-fold hodograph), so one matrix product per batch gives Lᵀ H Q and Lᵀ H W
+    for every polygon, and three row-wise dot products give the coefficients.
+    """
     arr, single = _as_polygons(points, family)
     m, size, dim = arr.shape
-    stacked, a2_weight = _stacked_forms(family, size - 1, k, dim)
-    flat = arr.reshape(m, size * dim)  # a view: coordinates of one polygon side by side
-    q = np.einsum("mfx,mx->mf", (flat @ stacked).reshape(m, 4, size * dim), flat)
-    if not np.isfinite(q).all():  # NaN/inf in the input propagate into every form
+    factor, rows, a2_weight = _factored_forms(family, size - 1, k, dim)
+    flat = arr.reshape(m, size * dim)  # a view: (P_0x, P_0y, P_1x, …) per polygon
+    z = flat @ factor
+    zf, zg = z[:, :rows], z[:, rows:]
+    a0 = np.einsum("ij,ij->i", zf, zf)
+    a1 = 2 * np.einsum("ij,ij->i", zf, zg)
+    a2 = np.einsum("ij,ij->i", zg, zg)
+    if not (np.isfinite(a0).all() and np.isfinite(a2).all()):  # NaN/inf propagate into these
         raise _non_finite_error(arr, single)
-    a0, a1, a2, norm2 = q.T
+    norm2 = np.einsum("ij,ij->i", flat, flat)
     return (a0, a1, a2), 1e-12 * a2_weight * norm2, single
 
 
 @cache
-def _stacked_forms(family: str, n: int, k: int, dim: int) -> tuple[np.ndarray, float]:
-    """[A0 ⊗ I | A1 ⊗ I | A2 ⊗ I | I] for the flattened (P_0x, P_0y, P_1x, …) layout, so one
-    matrix product gives the three energy forms and ‖D‖² (the scale of rounding errors)."""
+def _factored_forms(family: str, n: int, k: int, dim: int) -> tuple[np.ndarray, int, float]:
+    """([kron((LᵀH M_0ᵀ)ᵀ, I) | kron((LᵀH M_1ᵀ)ᵀ, I)], rows, Σ|A2|) for the flattened layout,
+    from the generated Bernstein, hodograph and Gram tables (the same data the exact forms
+    were derived from). With Q = M_0ᵀD and W = −M_1ᵀD: Q − λW = (M_0ᵀ + λM_1ᵀ)D."""
+    from .curves import _bernstein, _float_matrix, _tables
+
+    big = n + FAMILIES[family]._data_offset()
+    h = np.eye(big + 1)
+    for d in range(big, big - k, -1):
+        h = np.array(_bernstein.HODOGRAPH[d], dtype=float) @ h
+    scale, upper = _energy.GRAM[big - k]
+    g = np.array(upper, dtype=float) * float(scale)
+    g = (g + g.T) / 2  # the off-diagonal entries were stored doubled
+    lower = np.linalg.cholesky(g)
+    m0 = _float_matrix(family, "bernstein", n, 0)
+    m1 = _float_matrix(family, "bernstein", n, 1)
+    assert len(_tables(family, "bernstein")[n]) == 2, "E_k is quadratic in λ for these bases"
     eye = np.eye(dim)
-    blocks = [np.kron(a, eye) for a in _float_forms(family, n, k)]
-    blocks.append(np.eye((n + 1) * dim))
-    stacked = np.ascontiguousarray(np.hstack(blocks))
-    stacked.setflags(write=False)
-    return stacked, float(np.abs(_float_forms(family, n, k)[2]).sum())
+    f_part = np.kron((lower.T @ h @ m0.T).T, eye)
+    g_part = np.kron((lower.T @ h @ m1.T).T, eye)
+    factor = np.ascontiguousarray(np.hstack([f_part, g_part]))
+    factor.setflags(write=False)
+    return factor, f_part.shape[1], float(np.abs(_float_forms(family, n, k)[2]).sum())
 
 
 def optimal_lambda(points, k: int, family: str = "same_degree", clamp: bool = False):

@@ -336,6 +336,37 @@ class SameDegreeCurve(Curve):
         out = alg.de_casteljau_steps(q, tt, 3)[:, 0]
         return out[0] if scalar else out
 
+    def geometric_levels(self, t) -> list[tuple[tuple, ...]]:
+        """Every point of Prop. 8's construction at one t, level by level: V^0 … V^(n-3)
+        (de Casteljau, eq. 14), then Q^(n-2) (eq. 16, from the generated cubic Bernstein
+        matrix), Q^(n-1), Q^n and Q^(n+1) = p(t) (eq. 15). Exact for exact points, λ and t."""
+        exact = self.is_exact and val.is_exact_scalar(t)
+        if exact:
+            t = Fraction(t)
+            rows = self.control_points()
+            m3 = _combine_exact(_tables(self.family, "bernstein")[3], Fraction(self.lam))
+        else:
+            tt, _ = val.as_parameters(t, extrapolate=False)
+            if tt.size != 1:
+                raise ValueError("geometric_levels takes a single t")
+            t = float(tt[0])
+            rows = tuple(tuple(float(v) for v in row) for row in self.points)
+            m3 = self.__class__(np.zeros((4, 2)), self.lam, check_range=False)
+            m3 = tuple(tuple(float(v) for v in row) for row in m3.basis_bernstein_matrix())
+        tri = alg.de_casteljau_triangle(rows, t)[: self.degree - 2]
+        cubic = tri[-1]
+        q = (
+            alg.exact_matmul(tuple(zip(*m3, strict=True)), cubic)
+            if exact
+            else tuple(
+                tuple(sum(m3[i][j] * cubic[i][c] for i in range(4)) for c in range(len(cubic[0])))
+                for j in range(4)
+            )
+        )
+        return [tuple(level) for level in tri] + [
+            tuple(level) for level in alg.de_casteljau_triangle(q, t)
+        ]
+
 
 class BernsteinLikeCurve(Curve):
     """λ-Bézier curve of the Bernstein-like family (001): Σ P_i b_{i,n}(t; λ), λ in [-1, 1];

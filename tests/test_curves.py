@@ -204,3 +204,20 @@ def test_extrapolate():
 def test_bad_order(k):
     with pytest.raises(ValueError, match="order"):
         lb.SameDegreeCurve(GOOD, 0.5).derivative(0.5, k)
+
+
+@given(data=st.data())
+def test_geometric_levels(data):
+    n = data.draw(st.integers(3, 8))
+    pts = data.draw(
+        st.lists(st.tuples(st.integers(-9, 9), st.integers(-9, 9)), min_size=n + 1, max_size=n + 1)
+    )
+    lam = Fraction(data.draw(st.integers(-7, 4)), 4)
+    t = Fraction(data.draw(st.integers(0, 12)), 12)
+    curve = lb.SameDegreeCurve(pts, lam)
+    levels = curve.geometric_levels(t)
+    assert [len(level) for level in levels] == [*range(n + 1, 3, -1), 4, 3, 2, 1]
+    assert all(isinstance(v, Fraction) for v in levels[-1][0])
+    np.testing.assert_allclose(np.array(levels[-1][0], float), curve.evaluate(float(t)), atol=1e-9)
+    floats = lb.SameDegreeCurve(np.array(pts, float), float(lam)).geometric_levels(float(t))
+    np.testing.assert_allclose(np.array(floats[-1][0]), curve.evaluate(float(t)), atol=1e-9)

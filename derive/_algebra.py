@@ -206,3 +206,14 @@ def centred_row(row: tuple[Fraction, ...], centre: Fraction = CENTRE) -> tuple[F
 
 def centred_matrices(mats: tuple[Matrix, ...]) -> tuple[Matrix, ...]:
     return tuple(tuple(centred_row(row) for row in mat) for mat in mats)
+
+
+def expansion_tables(basis_polys, degrees, offset: int) -> dict[str, dict[int, tuple]]:
+    """The per-degree tables every family emits: power, centred and Bernstein coefficients
+    (split by powers of λ) of the basis functions of each degree n, in degree n + offset."""
+    power = {d: power_matrices(list(basis_polys(d)), d + offset) for d in degrees}
+    return {
+        "power": power,
+        "centred": {d: centred_matrices(m) for d, m in power.items()},
+        "bernstein": {d: bernstein_matrices(list(basis_polys(d)), d + offset) for d in degrees},
+    }

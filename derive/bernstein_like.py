@@ -19,16 +19,14 @@ import sympy as sp
 from . import _emit
 from ._algebra import (
     LAMBDA_SAMPLES,
-    bernstein_matrices,
-    centred_matrices,
     check_endpoint_closed_forms,
     exact_function,
+    expansion_tables,
     i,
     lam,
     linear_in_lambda,
     n,
     poly,
-    power_matrices,
     t,
 )
 from .bernstein import bernstein_basis, bernstein_poly
@@ -126,7 +124,6 @@ def render() -> str:
     _check(q, closed)
     degrees = tuple(DEGREES)
     coeffs = sp.Poly(q, t)
-    power = {d: power_matrices(list(basis_polys(d)), d + 2) for d in degrees}
     return _emit.family_module(
         script=SCRIPT,
         doc="Bernstein-like basis b_{i,n}(t; λ) of 001_33da2b0fa8491127.txt, eqs. (1)-(2).",
@@ -135,9 +132,7 @@ def render() -> str:
         lambda_range=((-1, True), (1, True)),
         bernstein_lambda=0,
         degree_offset=2,
-        power=power,
-        centred={d: centred_matrices(m) for d, m in power.items()},
-        bernstein={d: bernstein_matrices(list(basis_polys(d)), d + 2) for d in degrees},
+        **expansion_tables(basis_polys, degrees, 2),
         general_forms=[
             _emit.function(
                 "explicit_factor",

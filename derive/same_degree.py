@@ -20,16 +20,15 @@ from ._algebra import (
     LAMBDA_SAMPLES,
     bernstein_matrices,
     bernstein_terms,
-    centred_matrices,
     check_endpoint_closed_forms,
     exact_function,
+    expansion_tables,
     i,
     k,
     lam,
     linear_in_lambda,
     n,
     poly,
-    power_matrices,
     t,
 )
 from .bernstein import endpoint_weights
@@ -127,8 +126,6 @@ def render() -> str:
     closed = endpoint_closed_forms(form)
     _check(form, closed)
     degrees = tuple(DEGREES)
-    power = {d: power_matrices(basis_polys(d), d) for d in degrees}
-    bern = {d: bernstein_matrices(basis_polys(d), d) for d in degrees}
     return _emit.family_module(
         script=SCRIPT,
         doc="Same-degree λ-Bernstein basis b_i^n(t; λ) of 000_10ca634d356c575d.txt, eq. (1).",
@@ -137,9 +134,7 @@ def render() -> str:
         lambda_range=((-2, False), (1, True)),
         bernstein_lambda=1,
         degree_offset=0,
-        power=power,
-        centred={d: centred_matrices(m) for d, m in power.items()},
-        bernstein=bern,
+        **expansion_tables(basis_polys, degrees, 0),
         general_forms=[
             _emit.function(
                 "three_term_bernstein",

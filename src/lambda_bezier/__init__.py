@@ -15,19 +15,25 @@ runtime and never imports SymPy.
 """
 
 from .batch import evaluate_many
+from .composite import CompositeCurve, JointReport
 from .curves import FAMILIES, BernsteinLikeCurve, BezierCurve, Curve, SameDegreeCurve
 from .energy import OptimalLambda, energy_coefficients, energy_matrices, optimal_lambda
+from .joins import Joint, join
 
 __version__ = "0.1.0"
 __all__ = [
     "FAMILIES",
     "BernsteinLikeCurve",
     "BezierCurve",
+    "CompositeCurve",
     "Curve",
+    "Joint",
+    "JointReport",
     "OptimalLambda",
     "SameDegreeCurve",
     "energy_coefficients",
     "energy_matrices",
     "evaluate_many",
+    "join",
     "optimal_lambda",
 ]

@@ -1,0 +1,573 @@
+"""Joining two curves: the leading control points of the second curve that make the joint
+C1, C2, G1 or G2 (001, Theorems 2-5; 000, Prop. 9), for every ordered pair of families.
+
+The first curve C1 has degree n, shape λ1 and points P_{i,1}; the second C2 has degree m,
+shape λ2 and points P_{j,2} (001's naming; 000's Prop. 9 swaps n and m). The conditions, in
+001's convention for the geometric ones:
+
+    C1:  C1(1) = C2(0),  C1'(1) = C2'(0)
+    C2:  C1 and C1''(1) = C2''(0)
+    G1:  C1(1) = C2(0),  C1'(1) = α C2'(0),  α > 0
+    G2:  G1 and C1''(1) = α² C2''(0) + d C2'(0),  d free
+
+(G2 as stated keeps the unit tangent, the curvature and the binormal direction: equal
+curvature forces the factor of C2''(0) to be α², see 001 eqs. 32-35.)
+
+Nothing here comes from the papers' printed joins. The only inputs are the endpoint closed
+forms derived in bernstein.py, same_degree.py and bernstein_like.py: with Q_j = P_{n-j,1},
+
+    C1^(r)(1) = Σ_j e_{r,j}(n, λ1) Q_j,    C2^(r)(0) = Σ_i s_{r,i}(m, λ2) P_{i,2}.
+
+The conditions are linear and triangular in P_{0,2}, P_{1,2}, P_{2,2} (the r-th derivative at
+0 involves P_{0,2} … P_{r,2}, and P_{3,2} too for a same_degree curve at r = 2, whose
+second derivative at an end involves four control points: there P_{2,2} is solved with
+P_{3,2} given). They are solved here symbolically in n, m, λ1, λ2, α, d, and each solved
+point is written as weights of the first curve's last points (and of P_{3,2}).
+
+Checked inside derive: (1) symbolically, for general n and m, every solution satisfies its
+conditions and the weights of every solved point sum to 1 (affine invariance); every
+denominator divides α³ s_{1,1}(m, λ2) s_{2,2}(m, λ2) (the pivots, emitted for the runtime's
+error messages); (2) exactly, the *emitted* functions (the printed module text, executed)
+against endpoint derivatives read off the per-degree basis polynomials themselves, at exact
+sample λ1, λ2, α, d, on a grid of degree pairs (every degree of each range against the
+lowest two, middle and highest of the other: about 1,500 pairs, kept small so that derive
+stays fast).
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from functools import cache
+from math import factorial, perm
+
+import sympy as sp
+from sympy.polys.fields import field
+from sympy.polys.rings import ring
+
+from . import _emit
+from . import bernstein as _bernstein
+from . import bernstein_like as _bernstein_like
+from . import same_degree as _same_degree
+from ._algebra import i, k, lam, m, n, t
+
+SCRIPT = "joins.py"
+OUTPUT = "joins.py"
+
+FAMILIES = ("bezier", "same_degree", "bernstein_like")
+CONTINUITIES = ("C1", "C2", "G1", "G2")
+ORDER = {"C1": 1, "C2": 2, "G1": 1, "G2": 2}  # derivatives matched; solved: P_{0..ORDER,2}
+DEGREES = {
+    "bezier": tuple(_bernstein.DEGREES),
+    "same_degree": tuple(_same_degree.DEGREES),
+    "bernstein_like": tuple(_bernstein_like.DEGREES),
+}
+HAS_LAMBDA = {"bezier": False, "same_degree": True, "bernstein_like": True}
+
+lam1, lam2, alpha, d = sp.symbols("lam1 lam2 alpha d")
+
+# Exact sample values for the per-degree check: inside both λ ranges, α ≠ 1, d ≠ 0.
+SAMPLES = (
+    (Fraction(1, 3), Fraction(-2, 5), Fraction(3, 2), Fraction(-7, 4)),
+    (Fraction(-5, 7), Fraction(4, 9), Fraction(2, 5), Fraction(5, 3)),
+)
+
+
+# --------------------------------------------------------------------------- inputs
+
+
+@cache
+def endpoint_forms(family: str) -> dict[tuple[str, int, int], sp.Expr]:
+    """{(end, r, idx): closed form in n, lam} from the family's own derivation, with the
+    factorials of n cancelled (they are ratios such as n!/(n-2)! = n(n-1))."""
+    if family == "bezier":
+        start, end = _bernstein.endpoint_weights()
+        raw = {}
+        for r in range(3):
+            for idx in range(r + 1):
+                raw[("start", r, idx)] = start.subs({k: r, i: idx})
+                raw[("end", r, idx)] = end.subs({k: r, i: idx})
+    elif family == "same_degree":
+        raw = _same_degree.endpoint_closed_forms(_same_degree.three_term_form())
+    else:
+        raw = _bernstein_like.endpoint_closed_forms(_bernstein_like.explicit_factor())
+    out = {}
+    for key, v in raw.items():
+        v = sp.factor(sp.combsimp(v))
+        if v.has(sp.factorial, sp.binomial, sp.FallingFactorial):
+            raise AssertionError(f"{family} {key}: combinatorial function left in {v}")
+        if v != 0:
+            out[key] = v
+    return out
+
+
+def end_coefficients(family: str) -> dict[tuple[int, int], sp.Expr]:
+    """e[(r, j)]: weight of Q_j = P_{n-j,1} in C1^(r)(1), in n and λ1."""
+    return {
+        (r, j): v.xreplace({lam: lam1})
+        for (e, r, j), v in endpoint_forms(family).items()
+        if e == "end"
+    }
+
+
+def start_coefficients(family: str) -> dict[tuple[int, int], sp.Expr]:
+    """s[(r, i)]: weight of P_{i,2} in C2^(r)(0), in m and λ2."""
+    return {
+        (r, j): v.xreplace({n: m, lam: lam2})
+        for (e, r, j), v in endpoint_forms(family).items()
+        if e == "start"
+    }
+
+
+def pivots(family: str) -> tuple[sp.Expr, sp.Expr]:
+    """(s_{1,1}, s_{2,2}): the coefficients the solve divides by (of P_{1,2} in C2'(0), of
+    P_{2,2} in C2''(0)); a join is impossible where one vanishes."""
+    s = start_coefficients(family)
+    return s[(1, 1)], s[(2, 2)]
+
+
+# --------------------------------------------------------------------------- the solve
+
+Combination = dict  # ("first", j) -> weight of Q_j = P_{n-j,1}; ("second", 3) -> of P_{3,2}
+
+
+@cache
+def _field():
+    """Q(n, m, λ1, λ2, α, d): exact rational-function arithmetic (much faster than Expr)."""
+    return field([n, m, lam1, lam2, alpha, d], sp.QQ)[0]
+
+
+def _combine(*terms) -> Combination:
+    out: Combination = {}
+    for c, comb in terms:
+        for key, v in comb.items():
+            out[key] = out.get(key, 0) + c * v
+    return out
+
+
+def solve(first: str, second: str) -> tuple[Combination, ...]:
+    """P_{0,2}, P_{1,2}, P_{2,2} from the G2 conditions, as elements of Q(n, m, λ1, λ2, α, d):
+    the triangular linear system solved row by row. G1 is its first two rows; C1 and C2 are
+    G1 and G2 at α = 1, d = 0."""
+    field_ = _field()
+    e = {key: field_(v) for key, v in end_coefficients(first).items()}
+    s = {key: field_(v) for key, v in start_coefficients(second).items()}
+    if any(r > 2 or (r == 0 and idx) or (r == 1 and idx > 1) or idx > 3 for r, idx in s):
+        raise AssertionError(f"{second}: unexpected start stencil {sorted(s)}")
+    a, dd = field_(alpha), field_(d)
+    c1 = [{("first", j): e[(r, j)] for j in range(4) if (r, j) in e} for r in range(3)]
+    # C2(0) = C1(1):  s00 P0 = C1(1)
+    p0 = {key: v / s[(0, 0)] for key, v in c1[0].items()}
+    # α C2'(0) = C1'(1):  s10 P0 + s11 P1 = C1'(1)/α
+    p1 = _combine((1 / (a * s[(1, 1)]), c1[1]), (-s[(1, 0)] / s[(1, 1)], p0))
+    # α² C2''(0) + d C2'(0) = C1''(1), with C2'(0) = C1'(1)/α:
+    #     s20 P0 + s21 P1 + s22 P2 (+ s23 P3) = (C1''(1) - d C1'(1)/α)/α²
+    rhs = _combine(
+        (1 / a**2, c1[2]),
+        (-dd / a**3, c1[1]),
+        (-s[(2, 0)], p0),
+        (-s[(2, 1)], p1),
+        (-s.get((2, 3), field_(0)), {("second", 3): field_(1)}),
+    )
+    p2 = {key: v / s[(2, 2)] for key, v in rhs.items()}
+    rows = tuple({key: v for key, v in p.items() if v != 0} for p in (p0, p1, p2))
+    _check_symbolic(first, second, rows, e, s, a, dd)
+    return rows
+
+
+def _check_symbolic(first, second, rows, e, s, a, dd) -> None:
+    """General n, m: the solution satisfies every condition; the weights of every solved point
+    sum to 1; every denominator divides α³ s11 s22; P_{1,2} does not involve d."""
+    field_ = _field()
+    zero = field_(0)
+    keys = [("first", j) for j in range(4)] + [("second", 3)]
+    for key in keys:  # everything is linear in the points: compare coefficients point by point
+        c1 = [e.get((r, key[1]), zero) if key[0] == "first" else zero for r in range(3)]
+        c2 = [
+            sum((s.get((r, ii), zero) * rows[ii].get(key, zero) for ii in range(3)), zero)
+            + (s.get((r, 3), zero) if key == ("second", 3) else zero)
+            for r in range(3)
+        ]
+        conditions = (c2[0] - c1[0], a * c2[1] - c1[1], a**2 * c2[2] + dd * c2[1] - c1[2])
+        for idx, cond in enumerate(conditions):
+            if cond != 0:
+                raise AssertionError(f"{first} -> {second}: condition {idx} fails at {key}")
+    bound = field_(alpha) ** 3 * s[(1, 1)] * s[(2, 2)]
+    for row, comb in enumerate(rows):
+        if sum(comb.values(), field_(0)) != 1:
+            raise AssertionError(f"{first} -> {second}: weights of P_{row},2 do not sum to 1")
+        for w in comb.values():
+            if not (bound / field_(w.denom)).denom.is_ground:
+                raise AssertionError(f"{first} -> {second}: unexpected denominator {w.denom}")
+    if any(w.numer.degree(5) > 0 or w.denom.degree(5) > 0 for w in rows[1].values()):  # d
+        raise AssertionError(f"{first} -> {second}: P_1,2 depends on d")
+
+
+@cache
+def _coefficient_ring():
+    return ring([n, m, lam1, lam2], sp.QQ)[0]
+
+
+def _printed(poly) -> sp.Expr:
+    """A polynomial in (n, m, λ1, λ2, α, d) as Σ α^a d^b · (factored coefficient)."""
+    ring_ = _coefficient_ring()
+    groups: dict = {}
+    for mon, c in poly.terms():
+        groups[mon[4:]] = groups.get(mon[4:], ring_(0)) + ring_({mon[:4]: c})
+    total = sp.Integer(0)
+    for (ea, ed), g in groups.items():
+        total += _factored(tuple(sorted(g.terms()))) * alpha**ea * d**ed
+    return total
+
+
+@cache
+def _factored(terms: tuple) -> sp.Expr:
+    """A polynomial in (n, m, λ1, λ2), given by its terms, factored (the same coefficients
+    recur across family pairs, hence the cache)."""
+    ring_ = _coefficient_ring()
+    const, factors = ring_(dict(terms)).factor_list()
+    return sp.Mul(ring_.domain.to_sympy(const), *(f.as_expr() ** p for f, p in factors))
+
+
+# Rational points at which the printed form of each weight is compared with the field element.
+_PROBES = (
+    (Fraction(7), Fraction(5), Fraction(1, 3), Fraction(-3, 7), Fraction(5, 2), Fraction(-2, 9)),
+    (Fraction(11), Fraction(4), Fraction(-5, 6), Fraction(2, 9), Fraction(3, 7), Fraction(8, 5)),
+)
+
+
+def printed(w) -> sp.Expr:
+    """One fraction per weight, numerator grouped by powers of α and d (the printing only
+    regroups and factors; compared with w at probe points, and the emitted text is checked
+    against the per-degree tables below)."""
+    expr = _printed(w.numer) / _printed(w.denom)
+    for probe in _PROBES:
+        got = expr.xreplace(
+            {
+                x: sp.Rational(v.numerator, v.denominator)
+                for x, v in zip((n, m, lam1, lam2, alpha, d), probe, strict=True)
+            }
+        )
+        qq = _field().domain
+        want = qq.to_sympy(w.numer(*probe)) / qq.to_sympy(w.denom(*probe))
+        if got != want:
+            raise AssertionError(f"printing changed a weight: {expr}")
+    return expr
+
+
+def joins() -> dict[tuple[str, str, str], dict[tuple[int, str, int], sp.Expr]]:
+    """{(first, second, continuity): {(row, source, j): weight}}: P_{row,2} = Σ weight · X with
+    X = P_{n-j,1} for source "first", X = P_{j,2} (j = 3) for "second". The C forms are the
+    printed G forms at α = 1, d = 0 (kept in that shape), checked against the C solve."""
+    out = {}
+    for first in FAMILIES:
+        for second in FAMILIES:
+            geo = [{key: printed(w) for key, w in row.items()} for row in solve(first, second)]
+            par = [_at_unit_alpha(row) for row in geo]
+            for cont in CONTINUITIES:
+                rows = geo if cont.startswith("G") else par
+                out[(first, second, cont)] = {
+                    (row, src, j): w
+                    for row in range(ORDER[cont] + 1)
+                    for (src, j), w in rows[row].items()
+                }
+    return out
+
+
+def _at_unit_alpha(row: dict) -> dict:
+    """A printed G weight at α = 1, d = 0, keeping its shape."""
+    out = {}
+    for key, w in row.items():
+        num, den = sp.fraction(w)
+        num = num.xreplace({alpha: 1, d: 0})
+        if num != 0:
+            out[key] = num / den.xreplace({alpha: 1, d: 0})
+    return out
+
+
+# --------------------------------------------------------------------------- checks
+
+
+@cache
+def _per_degree_table(family: str, degree: int) -> dict[tuple[str, int, int], tuple]:
+    """Per-degree endpoint derivatives of the basis polynomials, as coefficient lists in λ
+    (lowest power first), read off the polynomials' own terms: p^(r)(0) = r! [t^r] p and
+    p^(r)(1) = Σ_e e!/(e-r)! [t^e] p. Independent of the closed forms."""
+    if family == "bezier":
+        x = sp.Poly(t, t, lam, domain="QQ")
+        polys = [_bernstein.bernstein_basis(degree, ii, x) for ii in range(degree + 1)]
+    elif family == "same_degree":
+        polys = list(_same_degree.basis_polys(degree))
+    else:
+        polys = list(_bernstein_like.basis_polys(degree))
+    out: dict = {}
+    for idx, p in enumerate(polys):
+        for (e, power), c in p.terms():
+            c = _emit.to_fraction(c)
+            for r in range(3):
+                keys = [("end", r, idx, perm(e, r))]
+                if e == r:
+                    keys.append(("start", r, idx, factorial(r)))
+                for end, rr, ii, factor in keys:
+                    if factor:
+                        coeffs = out.setdefault((end, rr, ii), [Fraction(0)] * (power + 1))
+                        coeffs.extend([Fraction(0)] * (power + 1 - len(coeffs)))
+                        coeffs[power] += factor * c
+    return {key: tuple(v) for key, v in out.items() if any(v)}
+
+
+def _horner(coeffs: tuple, x) -> Fraction:
+    """Σ_p coeffs[p] x^p (x None: no shape parameter, only coeffs[0])."""
+    acc = Fraction(0)
+    for c in reversed(coeffs):
+        acc = acc * (0 if x is None else x) + c
+    return acc
+
+
+def second_degrees(family: str, continuity: str) -> tuple[int, ...]:
+    """Degrees of the second curve a join into `family` can have: enough control points for
+    the solved ones (a same_degree curve has n >= 3 anyway, so P_{3,2} always exists)."""
+    return tuple(deg for deg in DEGREES[family] if deg >= ORDER[continuity])
+
+
+def _first_points(degree: int) -> list[Fraction]:
+    """Generic exact coordinates (one coordinate suffices: everything is linear)."""
+    return [Fraction(3 * ii * ii - 7 * ii + 5, ii + 2) for ii in range(degree + 1)]
+
+
+def _second_points(degree: int) -> list[Fraction]:
+    return [Fraction(ii * ii + 2, 3 * ii + 1) for ii in range(degree + 1)]
+
+
+def _corner(degree: int, degrees: tuple[int, ...]) -> bool:
+    """The grid of the per-degree check: a pair is checked when either degree is one of the
+    two lowest, the middle or the highest of its range (so every degree of each range meets
+    the corner degrees of the other)."""
+    return degree in (degrees[0], degrees[1], degrees[len(degrees) // 2], degrees[-1])
+
+
+def _check_per_degree(namespace: dict, table: dict) -> int:
+    """The emitted functions against the per-degree tables, on a grid of degree pairs (every
+    degree of one range against the corner degrees of the other, see _corner), at one of
+    SAMPLES per pair (alternating): C1'(1) etc. are computed from the basis polynomials'
+    own coefficients and the points the emitted weights produce.
+
+    The C1 (G1) weights are, entry for entry, the first two rows of the C2 (G2) weights
+    (asserted), so checking C2 and G2 on every pair covers them; C1 and G1 are executed on
+    the pairs C2 cannot have (m = 1 for a Bézier second curve) and on the diagonal n = m."""
+    for (first, second, cont), weights in table.items():
+        if cont in ("C1", "G1"):
+            full = table[(first, second, cont.replace("1", "2"))]
+            if any(
+                _emit.expression(w) != _emit.expression(full[key]) for key, w in weights.items()
+            ):
+                raise AssertionError(f"{cont} {first} -> {second} differs from its order-2 form")
+
+    @cache
+    def first_end(family, degree, sample):
+        lam_ = SAMPLES[sample][0] if HAS_LAMBDA[family] else None
+        pts = _first_points(degree)
+        out = [Fraction(0)] * 3
+        for (e, r, ii), c in _per_degree_table(family, degree).items():
+            if e == "end":
+                out[r] += _horner(c, lam_) * pts[ii]
+        return out
+
+    @cache
+    def second_start(family, degree, sample):
+        lam_ = SAMPLES[sample][1] if HAS_LAMBDA[family] else None
+        return [
+            (r, ii, _horner(c, lam_))
+            for (e, r, ii), c in _per_degree_table(family, degree).items()
+            if e == "start"
+        ]
+
+    checks = 0
+    for (first, second, cont), (fn, args) in namespace["JOINS"].items():
+        order, geometric = ORDER[cont], cont.startswith("G")
+        pivot_fn, pivot_args = namespace["PIVOTS"][second]
+        for n_ in DEGREES[first]:
+            pts1 = _first_points(n_)
+            for m_ in second_degrees(second, cont):
+                if order == 1 and m_ >= 2 and m_ != n_:
+                    continue  # covered by the order-2 form (see above)
+                if not (_corner(n_, DEGREES[first]) or _corner(m_, second_degrees(second, cont))):
+                    continue
+                sample = (n_ + m_) % len(SAMPLES)
+                l1, l2, a, dd = SAMPLES[sample]
+                if not geometric:
+                    a, dd = Fraction(1), Fraction(0)
+                values = {"n": n_, "m": m_, "lam1": l1, "lam2": l2, "alpha": a, "d": dd}
+                piv = pivot_fn(*(values[x] for x in pivot_args))
+                if any(piv[f"P{r}"] == 0 for r in range(1, order + 1)):
+                    continue  # no join there; the runtime refuses it
+                weights = fn(*(values[x] for x in args))
+                pts2 = _second_points(m_)
+                for row in range(order + 1):
+                    total = Fraction(0)
+                    for (r, src, j), w in weights.items():
+                        if r != row or w == 0:
+                            continue
+                        if src == "first":
+                            if j > n_:
+                                raise AssertionError(f"{cont} {first}->{second}: P_(n-{j}), n={n_}")
+                            total += w * pts1[n_ - j]
+                        else:
+                            total += w * pts2[j]
+                    pts2[row] = total
+                d1 = first_end(first, n_, sample)
+                d2 = [Fraction(0)] * 3
+                for r, ii, c in second_start(second, m_, sample):
+                    d2[r] += c * pts2[ii]
+                ok = d2[0] == d1[0] and a * d2[1] == d1[1]
+                if order == 2:
+                    ok = ok and a * a * d2[2] + dd * d2[1] == d1[2]
+                if not ok:
+                    raise AssertionError(f"{cont} {first} (n={n_}) -> {second} (m={m_}) fails")
+                checks += 1
+    return checks
+
+
+# --------------------------------------------------------------------------- emission
+
+
+def _arguments(first: str, second: str, continuity: str) -> tuple[str, ...]:
+    args = ["n", "m"]
+    if HAS_LAMBDA[first]:
+        args.append("lam1")
+    if HAS_LAMBDA[second]:
+        args.append("lam2")
+    if continuity.startswith("G"):
+        args.append("alpha")
+    if continuity == "G2":
+        args.append("d")
+    return tuple(args)
+
+
+def function_name(first: str, second: str, continuity: str) -> str:
+    return f"{continuity.lower()}_{first}_to_{second}"
+
+
+CONDITION_TEXT = {
+    "C1": "C1(1) = C2(0), C1'(1) = C2'(0)",
+    "C2": "C1(1) = C2(0), C1'(1) = C2'(0), C1''(1) = C2''(0)",
+    "G1": "C1(1) = C2(0), C1'(1) = α C2'(0)",
+    "G2": "C1(1) = C2(0), C1'(1) = α C2'(0), C1''(1) = α² C2''(0) + d C2'(0)",
+}
+
+
+def _join_function(first: str, second: str, cont: str, weights) -> str:
+    given = (
+        " P_{2,2} is solved with P_{3,2} given." if ("second" in {s for _, s, _ in weights}) else ""
+    )
+    doc = (
+        f"{cont}: {first} curve C1 (degree n) then {second} curve C2 (degree m); "
+        f"{CONDITION_TEXT[cont]}.{given}"
+    )
+    body = (
+        "return {\n"
+        + "".join(
+            f"    {_emit.literal(key)}: {_emit.expression(weights[key])},\n"
+            for key in sorted(weights)
+        )
+        + "}"
+    )
+    return _emit.function(
+        function_name(first, second, cont), _arguments(first, second, cont), doc, body
+    )
+
+
+def _pivot_function(family: str) -> tuple[str, tuple[str, ...]]:
+    args = ("m", "lam2") if HAS_LAMBDA[family] else ("m",)
+    s11, s22 = pivots(family)
+    body = f"return {{\n    'P1': {_emit.expression(s11)},\n    'P2': {_emit.expression(s22)},\n}}"
+    doc = (
+        f"Pivots of a join into a {family} curve of degree m: 'P1' the coefficient of "
+        "P_{1,2} in C2'(0), 'P2' that of P_{2,2} in C2''(0). P_{1,2} (P_{2,2}) cannot be "
+        "solved for where 'P1' ('P2') vanishes."
+    )
+    return _emit.function(f"pivots_{family}", args, doc, body), args
+
+
+MODULE_DOC = """Joining two curves: leading control points of the second curve for C1, C2, G1, G2.
+
+First curve C1: degree n, shape lam1, points P_{i,1}; second curve C2: degree m, shape lam2,
+points P_{j,2}. G joins in 001's convention: C1'(1) = alpha C2'(0) (alpha > 0) and
+C1''(1) = alpha**2 C2''(0) + d C2'(0) (d free); C joins are alpha = 1, d = 0.
+
+JOINS[(first, second, continuity)] = (function, argument names). The function returns
+{(row, source, j): weight} with P_{row,2} = sum of weight * X over its entries, where
+X = P_{n-j,1} (source 'first') or X = P_{j,2} (source 'second', only j = 3). Rows 0..1 are
+solved for C1/G1, rows 0..2 for C2/G2. A same_degree curve's second derivative at an end
+involves four control points, so for a same_degree second curve P_{2,2} is solved with
+P_{3,2} given. Pass ints/Fractions for exact weights. Denominators: powers of alpha and
+PIVOTS[second] (a join is impossible where a needed pivot vanishes).
+"""
+
+
+def _checked_ranges() -> dict:
+    return {
+        (a, b, c): (
+            (DEGREES[a][0], DEGREES[a][-1]),
+            (second_degrees(b, c)[0], second_degrees(b, c)[-1]),
+        )
+        for a in FAMILIES
+        for b in FAMILIES
+        for c in CONTINUITIES
+    }
+
+
+def render() -> str:
+    table = joins()
+    parts = [
+        _emit.banner(SCRIPT, MODULE_DOC),
+        "",
+        f"FAMILIES = {_emit.literal(FAMILIES)}",
+        f"CONTINUITIES = {_emit.literal(CONTINUITIES)}",
+        "# Number of derivatives each continuity matches (rows 0..ORDER are solved).",
+        f"ORDER = {_emit.literal(ORDER)}",
+        "# CHECKED[(first, second, continuity)] = ((n_lo, n_hi), (m_lo, m_hi)): derive checked the",
+        "# emitted function exactly against the per-degree basis polynomials, every degree pair.",
+        "CHECKED = " + _emit.literal(_checked_ranges()),
+        "",
+    ]
+    pivot_args = {}
+    for fam in FAMILIES:
+        text, args = _pivot_function(fam)
+        pivot_args[fam] = args
+        parts += ["", text]
+    parts += [
+        "",
+        "# The pivots printed, for error messages.",
+        "PIVOT_TEXT = {\n"
+        + "".join(
+            f"    {fam!r}: {{'P1': {_emit.expression(pivots(fam)[0])!r}, "
+            f"'P2': {_emit.expression(pivots(fam)[1])!r}}},\n"
+            for fam in FAMILIES
+        )
+        + "}",
+        "PIVOTS = {\n"
+        + "".join(
+            f"    {fam!r}: (pivots_{fam}, {_emit.literal(pivot_args[fam])}),\n" for fam in FAMILIES
+        )
+        + "}",
+        "",
+    ]
+    keys = sorted(table)
+    for key in keys:
+        parts += ["", _join_function(*key, table[key])]
+    parts += [
+        "",
+        "JOINS = {\n"
+        + "".join(
+            f"    {_emit.literal(key)}: "
+            f"({function_name(*key)}, {_emit.literal(_arguments(*key))}),\n"
+            for key in keys
+        )
+        + "}",
+        "",
+    ]
+    text = "\n".join(parts)
+    namespace: dict = {}
+    exec(compile(text, f"generated/{OUTPUT}", "exec"), namespace)  # our own printed module
+    _check_per_degree(namespace, table)
+    return text

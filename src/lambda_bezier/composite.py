@@ -1,0 +1,319 @@
+"""Composite curves: segments joined end to end, evaluated on one global parameter, with the
+continuity actually achieved at every joint measured numerically, and the shape adjustment of
+001, section 3.3 (change one segment's λ, re-solve the joints so their continuity is kept).
+
+Parametrisation: a composite of N segments lives on u ∈ [0, N]; segment i covers [i, i + 1]
+with local parameter t = u − i (u = i itself belongs to segment i, u = N to the last).
+Derivatives are taken with respect to u, so they equal the segments' own t-derivatives, and
+a C_k joint makes the composite k times continuously differentiable in u there.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _validate as val
+from .curves import Curve
+from .joins import Joint, join
+
+NAMES = ("C0", "C1", "C2", "G1", "G2")
+
+
+@dataclass(frozen=True)
+class JointReport:
+    """The continuity measured at the joint between segment `index` and `index + 1`
+    (global parameter u = index + 1), from evaluate/derivative/curvature of the segments.
+
+    position_gap: |C1(1) − C2(0)|.
+    first_derivative_gap, second_derivative_gap: |C1^(k)(1) − C2^(k)(0)| (k = 1, 2).
+    speed_ratio: |C1'(1)| / |C2'(0)| (the α of a G joint; 1 for a C joint).
+    tangent_angle: angle between C1'(1) and C2'(0), in radians (NaN if one vanishes).
+    curvature: (κ1(1), κ2(0)), signed in 2D; curvature_gap = |κ1 − κ2|.
+    binormal_angle: 3D only (None in 2D, where the sign of κ carries the orientation): angle
+        between C1'×C1'' at 1 and C2'×C2'' at 0 (NaN where a curvature vanishes).
+    achieved: the names among C0, C1, C2, G1, G2 that hold within the tolerance.
+    built_with: the Joint the composite holds for this joint (None if it was not built by
+        join and is never re-solved).
+    """
+
+    index: int
+    u: int
+    position_gap: float
+    first_derivative_gap: float
+    second_derivative_gap: float
+    speed_ratio: float
+    tangent_angle: float
+    curvature: tuple[float, float]
+    curvature_gap: float
+    binormal_angle: float | None
+    achieved: frozenset[str]
+    built_with: Joint | None
+    tol: float
+
+    def holds(self, name: str) -> bool:
+        if name not in NAMES:
+            raise ValueError(f"continuity must be one of {', '.join(map(repr, NAMES))}")
+        return name in self.achieved
+
+    @property
+    def kept(self) -> bool | None:
+        """Whether the continuity the joint was built with holds (None if not built)."""
+        return None if self.built_with is None else self.holds(self.built_with.continuity)
+
+
+def _angle(a: np.ndarray, b: np.ndarray) -> float:
+    """Angle between two vectors, accurate near 0 (atan2 of |a×b| and a·b)."""
+    na, nb = np.linalg.norm(a), np.linalg.norm(b)
+    if na == 0 or nb == 0:
+        return math.nan
+    cross = np.cross(a, b) if a.size == 3 else a[0] * b[1] - a[1] * b[0]
+    return float(math.atan2(float(np.linalg.norm(cross)), float(np.dot(a, b))))
+
+
+def _relative_gap(a: np.ndarray, b: np.ndarray) -> float:
+    scale = max(float(np.linalg.norm(a)), float(np.linalg.norm(b)))
+    gap = float(np.linalg.norm(a - b))
+    return 0.0 if gap == 0 else gap / scale
+
+
+def measure(left: Curve, right: Curve, *, index: int = 0, joint=None, tol=1e-9) -> JointReport:
+    """The JointReport for `right` following `left` (see JointReport)."""
+    p1, p2 = left.evaluate(1.0), right.evaluate(0.0)
+    d1, e1 = left.derivative(1.0, 1), right.derivative(0.0, 1)
+    d2, e2 = left.derivative(1.0, 2), right.derivative(0.0, 2)
+    k1, k2 = float(left.curvature(1.0)), float(right.curvature(0.0))
+    size = max(1.0, float(np.abs(left.points).max()), float(np.abs(right.points).max()))
+    gap = float(np.linalg.norm(p1 - p2))
+    angle = _angle(d1, e1)
+    speed2 = float(np.linalg.norm(e1))
+    ratio = float(np.linalg.norm(d1)) / speed2 if speed2 else math.nan
+    binormal = None
+    if left.dimension == 3:
+        binormal = _angle(np.cross(d1, d2), np.cross(e1, e2))
+    achieved = set()
+    if gap <= tol * size:
+        achieved.add("C0")
+        if _relative_gap(d1, e1) <= tol and np.linalg.norm(d1) > 0:
+            achieved.add("C1")
+            if _relative_gap(d2, e2) <= tol:
+                achieved.add("C2")
+        if angle <= tol:  # NaN (a vanishing tangent) compares False
+            achieved.add("G1")
+            kscale = max(abs(k1), abs(k2), 1.0 / size)
+            same_kappa = abs(k1 - k2) <= tol * kscale
+            flat = max(abs(k1), abs(k2)) <= tol * kscale  # both (numerically) straight
+            same_binormal = binormal is None or flat or binormal <= tol
+            if same_kappa and same_binormal:
+                achieved.add("G2")
+    return JointReport(
+        index=index,
+        u=index + 1,
+        position_gap=gap,
+        first_derivative_gap=float(np.linalg.norm(d1 - e1)),
+        second_derivative_gap=float(np.linalg.norm(d2 - e2)),
+        speed_ratio=ratio,
+        tangent_angle=angle,
+        curvature=(k1, k2),
+        curvature_gap=abs(k1 - k2),
+        binormal_angle=binormal,
+        achieved=frozenset(achieved),
+        built_with=joint,
+        tol=tol,
+    )
+
+
+def _rejoin(left: Curve, right: Curve, joint: Joint, lam=None, *, check_range=False) -> Curve:
+    """`right` with its leading control points re-solved against `left` (same family,
+    degree, λ unless given, and the same trailing control points)."""
+    keep = right.control_points()[joint.order + 1 :]
+    return join(
+        left,
+        joint.continuity,
+        right.degree,
+        right.lam if lam is None else lam,
+        joint.alpha,
+        joint.d,
+        rest=keep if keep else np.zeros((0, right.dimension)),
+        family=right.family,
+        check_range=check_range,
+    )
+
+
+class CompositeCurve:
+    """Segments joined end to end on the global parameter u ∈ [0, N] (segment i on
+    [i, i + 1], local t = u − i; see the module docstring).
+
+    Build one with `CompositeCurve([first])` and `.join(...)` (which records how each joint
+    was built), or from existing segments with `joints` giving each joint's Joint (or its
+    continuity name, or None for a joint that is only measured, never re-solved).
+
+    >>> from lambda_bezier import CompositeCurve, SameDegreeCurve
+    >>> first = SameDegreeCurve([(0, 0), (1, 2), (3, 2), (4, 0)], lam=0)
+    >>> comp = CompositeCurve([first]).join("G2", 4, lam=0, alpha=2, rest=[(6, -3), (8, 0)])
+    >>> [r.achieved >= {"G2"} for r in comp.report()]
+    [True]
+    >>> comp.with_lambda(0, -1).report()[0].holds("G2")     # re-solves the joint
+    True
+    >>> comp.with_lambda(0, -1, resolve=False).report()[0].holds("G2")
+    False
+    """
+
+    def __init__(self, segments: Sequence[Curve], joints=None) -> None:
+        segs = tuple(segments) if not isinstance(segments, Curve) else (segments,)
+        if not segs:
+            raise ValueError("a composite curve needs at least one segment")
+        for idx, seg in enumerate(segs):
+            if not isinstance(seg, Curve):
+                raise ValueError(
+                    f"segment {idx} is not a lambda_bezier curve: {type(seg).__name__}"
+                )
+            if seg.dimension != segs[0].dimension:
+                raise ValueError(
+                    f"segment {idx} has dimension {seg.dimension}, segment 0 has dimension "
+                    f"{segs[0].dimension}"
+                )
+        if joints is None:
+            specs: tuple = (None,) * (len(segs) - 1)
+        else:
+            specs = tuple(joints)
+            if len(specs) != len(segs) - 1:
+                raise ValueError(
+                    f"joints must have one entry per joint ({len(segs) - 1}), got {len(specs)}"
+                )
+            specs = tuple(s if s is None or isinstance(s, Joint) else Joint(s) for s in specs)
+        self.segments: tuple[Curve, ...] = segs
+        self.joints: tuple[Joint | None, ...] = specs
+
+    def __len__(self) -> int:
+        return len(self.segments)
+
+    def __repr__(self) -> str:
+        kinds = ", ".join("-" if j is None else j.continuity for j in self.joints)
+        return f"CompositeCurve({len(self)} segments, joints=[{kinds}])"
+
+    @property
+    def dimension(self) -> int:
+        return self.segments[0].dimension
+
+    @property
+    def domain(self) -> tuple[int, int]:
+        return (0, len(self.segments))
+
+    # ------------------------------------------------------------------ building
+    def join(
+        self,
+        continuity: str,
+        degree: int,
+        lam=None,
+        alpha=1,
+        d=0,
+        rest=(),
+        family: str | None = None,
+        *,
+        check_range: bool = True,
+    ) -> CompositeCurve:
+        """A new composite with one more segment, built by lambda_bezier.join from the last
+        segment (same arguments); the joint is recorded so with_lambda can re-solve it."""
+        spec = Joint(continuity, alpha, d)
+        nxt = join(
+            self.segments[-1],
+            spec.continuity,
+            degree,
+            lam,
+            spec.alpha,
+            spec.d,
+            rest,
+            family,
+            check_range=check_range,
+        )
+        return CompositeCurve([*self.segments, nxt], [*self.joints, spec])
+
+    def with_lambda(
+        self, index: int, lam, *, resolve: bool = True, check_range: bool = True
+    ) -> CompositeCurve:
+        """A new composite with segment `index` given shape parameter `lam` (001, section
+        3.3). With resolve=True (default) the joint into that segment and every joint after
+        it are re-solved in order, each with the continuity, α and d it was built with, by
+        moving the re-solved segments' leading control points (the caller's trailing points
+        stay); joints without a recorded Joint are left as they are. With resolve=False only
+        λ changes: a G1 joint survives that (λ scales the end tangents, never turns them),
+        C1, C2 and G2 joints in general do not; report() shows which."""
+        if isinstance(index, bool) or not isinstance(index, int | np.integer):
+            raise ValueError(f"index must be an integer, got {index!r}")
+        if not 0 <= index < len(self.segments):
+            raise ValueError(
+                f"index {index} is out of range: the composite has {len(self.segments)} segments"
+            )
+        old = self.segments[index]
+        if not type(old)._has_lambda:
+            raise ValueError(f"segment {index} is a classical Bézier curve: it has no lam")
+        segs = list(self.segments)
+        val.as_lambda(lam, old._data, check_range=check_range)  # the message names the range
+        segs[index] = type(old)(old.control_points(), lam, check_range=check_range)
+        if resolve:
+            start = index - 1 if index > 0 else index
+            for j in range(start, len(segs) - 1):
+                spec = self.joints[j]
+                if spec is None:
+                    continue
+                try:
+                    segs[j + 1] = _rejoin(segs[j], segs[j + 1], spec)
+                except ValueError as exc:
+                    raise ValueError(
+                        f"cannot keep joint {j} ({spec.continuity}) after setting segment "
+                        f"{index}'s lam to {lam}: {exc}"
+                    ) from None
+        return CompositeCurve(segs, self.joints)
+
+    # ------------------------------------------------------------------ evaluation
+    def _locate(self, u, extrapolate: bool):
+        arr = np.asarray(u, dtype=float) if not isinstance(u, str) else None
+        if arr is None or arr.ndim > 1:
+            raise ValueError(f"u must be a number or a 1-D array of numbers, got {u!r}")
+        scalar = arr.ndim == 0
+        arr = np.atleast_1d(arr)
+        if not np.isfinite(arr).all():
+            raise ValueError("u contains NaN or infinity")
+        count = len(self.segments)
+        if not extrapolate and arr.size and (arr.min() < 0 or arr.max() > count):
+            bad = arr[(arr < 0) | (arr > count)][0]
+            raise ValueError(
+                f"u = {bad} is outside [0, {count}] (segment i covers [i, i + 1]); pass "
+                "extrapolate=True to evaluate there"
+            )
+        idx = np.clip(np.floor(arr).astype(int), 0, count - 1)
+        return arr, idx, arr - idx, scalar
+
+    def derivative(self, u, k: int = 1, *, extrapolate: bool = False) -> np.ndarray:
+        """d^k/du^k of the composite: shape (d,) for a scalar u, (len(u), d) for an array."""
+        k = val.as_order(k)
+        arr, idx, t, scalar = self._locate(u, extrapolate)
+        out = np.zeros((arr.size, self.dimension))
+        for s in np.unique(idx):
+            mask = idx == s
+            out[mask] = self.segments[s].derivative(t[mask], k, extrapolate=extrapolate)
+        return out[0] if scalar else out
+
+    def evaluate(self, u, *, extrapolate: bool = False) -> np.ndarray:
+        return self.derivative(u, 0, extrapolate=extrapolate)
+
+    def curvature(self, u, *, extrapolate: bool = False) -> np.ndarray:
+        """Signed in 2D, unsigned in 3D (as the segments' curvature)."""
+        arr, idx, t, scalar = self._locate(u, extrapolate)
+        out = np.zeros(arr.size)
+        for s in np.unique(idx):
+            mask = idx == s
+            out[mask] = self.segments[s].curvature(t[mask], extrapolate=extrapolate)
+        return out[0] if scalar else out
+
+    # ------------------------------------------------------------------ continuity
+    def report(self, tol: float = 1e-9) -> tuple[JointReport, ...]:
+        """One JointReport per joint (relative tolerance `tol`; see JointReport)."""
+        return tuple(
+            measure(self.segments[j], self.segments[j + 1], index=j, joint=self.joints[j], tol=tol)
+            for j in range(len(self.segments) - 1)
+        )

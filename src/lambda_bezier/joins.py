@@ -1,0 +1,291 @@
+"""Joining segments: the next curve whose leading control points make the joint C1, C2, G1
+or G2 (001, Theorems 2-5; 000, Prop. 9), for any ordered pair of families.
+
+The vertex formulas are derived in derive/joins.py from the endpoint derivatives of the
+bases and read here from generated/joins.py; nothing is typed in from the papers. With the
+first curve C1 of degree n (shape λ1) and the new curve C2 of degree m (shape λ2):
+
+    C1:  C2(0) = C1(1),  C2'(0) = C1'(1)
+    C2:  C1 and C2''(0) = C1''(1)
+    G1:  C2(0) = C1(1),  C1'(1) = α C2'(0)                      (α > 0)
+    G2:  G1 and C1''(1) = α² C2''(0) + d C2'(0)                 (d free)
+
+G1 keeps the unit tangent; G2 also the curvature and (in 3D) the binormal direction. The
+join solves P_{0,2}, P_{1,2} (and P_{2,2} for order 2); the caller gives the remaining
+control points. A same_degree curve's second derivative at t = 0 involves P_{0..3}, so for a
+same_degree C2/G2 target P_{2,2} is solved with P_{3,2} given: there `rest` starts at P_{3,2}
+and that point enters the solve.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from dataclasses import dataclass
+from fractions import Fraction
+
+import numpy as np
+
+from . import _validate as val
+from ._generated import bernstein as _bernstein
+from ._generated import joins as _joins
+from .curves import FAMILIES, Curve
+
+CONTINUITIES = tuple(_joins.CONTINUITIES)
+ORDER = dict(_joins.ORDER)  # derivatives matched: 1 or 2
+
+
+@dataclass(frozen=True)
+class Joint:
+    """How a joint was built: the continuity and, for G joints, α and d (001's convention
+    C1'(1) = α C2'(0), C1''(1) = α² C2''(0) + d C2'(0))."""
+
+    continuity: str
+    alpha: Fraction | float = Fraction(1)
+    d: Fraction | float = Fraction(0)
+
+    def __post_init__(self) -> None:
+        cont = continuity_name(self.continuity)
+        alpha, d = _check_alpha_d(cont, self.alpha, self.d)
+        object.__setattr__(self, "continuity", cont)
+        object.__setattr__(self, "alpha", alpha)
+        object.__setattr__(self, "d", d)
+
+    @property
+    def order(self) -> int:
+        """How many derivatives the joint matches (1 or 2): P_{0..order,2} are solved."""
+        return ORDER[self.continuity]
+
+
+def continuity_name(name: object) -> str:
+    if isinstance(name, str) and name.strip().upper() in CONTINUITIES:
+        return name.strip().upper()
+    raise ValueError(
+        f"continuity must be one of {', '.join(map(repr, CONTINUITIES))}, got {name!r}"
+    )
+
+
+def _real(x: object, name: str) -> Fraction | float:
+    """An exact input as a Fraction, anything else as a finite float."""
+    if isinstance(x, bool | np.bool_) or not isinstance(x, numbers.Real | np.floating):
+        raise ValueError(f"{name} must be a real number, got {x!r}")
+    if val.is_exact_scalar(x):
+        return Fraction(int(x)) if isinstance(x, np.integer) else Fraction(x)  # type: ignore[arg-type]
+    value = float(x)  # type: ignore[arg-type]
+    if not math.isfinite(value):
+        raise ValueError(f"{name} must be finite, got {value}")
+    return value
+
+
+def _check_alpha_d(cont: str, alpha: object, d: object) -> tuple[Fraction | float, ...]:
+    a, dd = _real(alpha, "alpha"), _real(d, "d")
+    if cont.startswith("C"):
+        if a != 1 or dd != 0:
+            raise ValueError(
+                f"alpha and d belong to G1/G2 joins; a {cont} joint has alpha = 1 and d = 0 "
+                f"(got alpha = {alpha}, d = {d})"
+            )
+    elif a <= 0:
+        raise ValueError(
+            f"alpha must be > 0 (C1'(1) = alpha C2'(0): the tangents point the same way), "
+            f"got alpha = {alpha}"
+        )
+    elif cont == "G1" and dd != 0:
+        raise ValueError(f"d only enters G2 joins (C1''(1) = α² C2''(0) + d C2'(0)), got d = {d}")
+    return a, dd
+
+
+def _family_name(family: object) -> str:
+    if isinstance(family, str) and family in FAMILIES:
+        return family
+    raise ValueError(f"unknown family {family!r}: choose one of {', '.join(map(repr, FAMILIES))}")
+
+
+def _end_factor(curve: Curve):
+    """The coefficient of P_n in C1'(1) (= −that of P_{n−1}), from the generated end data."""
+    if curve.family == "bezier":
+        return _bernstein.endpoint_weight_end(curve.degree, 1, 0)
+    lam = curve.lam
+    return curve._data.endpoint_end(curve.degree, lam)[(1, 0)]
+
+
+def _is_zero(x, scale: float = 1.0) -> bool:
+    if isinstance(x, Fraction):
+        return x == 0
+    return abs(float(x)) <= 1e-12 * scale
+
+
+def leading_weights(
+    curve: Curve, joint: Joint, family: str, degree: int, lam
+) -> dict[tuple[int, str, int], Fraction | float]:
+    """{(row, source, j): weight}: P_{row,2} = Σ weight · X, X = P_{n−j} of `curve` (source
+    "first") or P_{3,2} of the new curve (source "second"). Raises ValueError where the join
+    does not exist (degenerate end of `curve`, vanishing pivot for this m and λ2)."""
+    n, m = curve.degree, degree
+    order = joint.order
+    pts = curve.points
+    scale = max(1.0, float(np.abs(pts).max()))
+    tail = np.asarray(curve.control_points()[-1], dtype=object) - np.asarray(
+        curve.control_points()[-2], dtype=object
+    )
+    if all(_is_zero(v, scale) for v in tail):
+        raise ValueError(
+            f"the first curve's end is degenerate: P_{n} = P_{n - 1}, so C1'(1) = 0 and there "
+            "is no tangent to continue"
+        )
+    factor = _end_factor(curve)
+    if _is_zero(factor, n * n):
+        raise ValueError(
+            f"the first curve's end is degenerate: C1'(1) = {factor}·(P_{n} − P_{n - 1}) = 0 for "
+            f"a {curve.family} curve of degree {n} with lam = {curve.lam}"
+        )
+    pivot_fn, pivot_args = _joins.PIVOTS[family]
+    values = {"n": n, "m": m, "lam1": curve.lam, "lam2": lam, "alpha": joint.alpha, "d": joint.d}
+    pivots = pivot_fn(*(values[a] for a in pivot_args))
+    for r in range(1, order + 1):
+        if _is_zero(pivots[f"P{r}"], m * m):
+            text = _joins.PIVOT_TEXT[family][f"P{r}"]
+            lam_text = "" if lam is None else f" with lam = {lam}"
+            raise ValueError(
+                f"cannot solve {joint.continuity} for P_{{{r},2}}: its coefficient in "
+                f"C2{chr(39) * r}(0), {text}, vanishes for a {family} curve of degree m = {m}"
+                f"{lam_text} (C2{chr(39) * r}(0) does not depend on P_{{{r},2}} there); choose "
+                "another degree or lam"
+            )
+    fn, args = _joins.JOINS[(curve.family, family, joint.continuity)]
+    return fn(*(values[a] for a in args))
+
+
+def join(
+    curve: Curve,
+    continuity: str,
+    degree: int,
+    lam=None,
+    alpha=1,
+    d=0,
+    rest=(),
+    family: str | None = None,
+    *,
+    check_range: bool = True,
+) -> Curve:
+    """The next segment after `curve`: a curve of `family` (default: `curve`'s own) and
+    `degree` whose leading control points make the joint `continuity` ("C1", "C2", "G1",
+    "G2"), followed by the control points `rest`.
+
+    P_{0,2} and P_{1,2} are solved (and P_{2,2} for C2/G2); `rest` holds the others:
+    P_{2..m} for C1/G1, P_{3..m} for C2/G2. For a same_degree C2/G2 target the first point of
+    `rest`, P_{3,2}, enters the solve of P_{2,2} (a same_degree second derivative at an end
+    involves four control points). G joins use 001's convention C1'(1) = α C2'(0),
+    C1''(1) = α² C2''(0) + d C2'(0) with α > 0 and d free; C joins have α = 1, d = 0.
+    Exact inputs (ints/Fractions for the points, λs, α, d and `rest`) give exact points.
+
+    >>> from lambda_bezier import BernsteinLikeCurve, join
+    >>> c = BernsteinLikeCurve([(0, 0), (1, 2), (3, 2), (4, 0)], lam=1)
+    >>> nxt = join(c, "C2", 3, lam=0, rest=[(9, 1)])
+    >>> [tuple(map(str, p)) for p in nxt.control_points()[:3]]
+    [('4', '0'), ('17/3', '-10/3'), ('8', '-40/3')]
+    """
+    if not isinstance(curve, Curve):
+        raise ValueError(
+            "curve must be a lambda_bezier curve (BezierCurve, SameDegreeCurve or "
+            f"BernsteinLikeCurve), got {type(curve).__name__}"
+        )
+    spec = Joint(continuity, alpha, d)
+    fam = curve.family if family is None else _family_name(family)
+    cls = FAMILIES[fam]
+    data = cls._data
+    degrees = tuple(data.DEGREES)
+    if isinstance(degree, bool) or not isinstance(degree, numbers.Integral):
+        raise ValueError(f"degree must be an integer, got {degree!r}")
+    degree = int(degree)
+    if not degrees[0] <= degree <= degrees[-1]:
+        raise ValueError(
+            f"degree {degree} is not supported for {fam}: degrees {degrees[0]}..{degrees[-1]}"
+        )
+    if degree < spec.order:
+        raise ValueError(
+            f"a {spec.continuity} join solves P_{{0,2}}..P_{{{spec.order},2}}: the new curve "
+            f"needs degree >= {spec.order}, got {degree}"
+        )
+    if cls._has_lambda:
+        if lam is None:
+            raise ValueError(f"a {fam} segment needs a shape parameter lam")
+        lam = val.as_lambda(lam, data, check_range=check_range)
+    elif lam is not None:
+        raise ValueError("a classical Bézier segment takes no shape parameter lam")
+    rest_rows = _rest(rest, curve, spec, fam, degree)
+    weights = leading_weights(curve, spec, fam, degree, lam)
+    exact = (
+        curve.is_exact
+        and not isinstance(lam, float)
+        and not isinstance(spec.alpha, float)
+        and not isinstance(spec.d, float)
+        and rest_rows[1] is not None
+    )
+    if exact:
+        first = curve.control_points()
+        given = rest_rows[1]
+        lead = []
+        for row in range(spec.order + 1):
+            acc = [Fraction(0)] * curve.dimension
+            for (r, src, j), w in weights.items():
+                if r != row or w == 0:
+                    continue
+                p = first[curve.degree - j] if src == "first" else given[j - spec.order - 1]
+                acc = [a + w * v for a, v in zip(acc, p, strict=True)]
+            lead.append(tuple(acc))
+        points: object = [*lead, *given]
+    else:
+        first_f = curve.points
+        given_f = rest_rows[0]
+        lead_f = np.zeros((spec.order + 1, curve.dimension))
+        for (r, src, j), w in weights.items():
+            if r > spec.order or w == 0:
+                continue
+            p = first_f[curve.degree - j] if src == "first" else given_f[j - spec.order - 1]
+            lead_f[r] += float(w) * p
+        points = np.vstack([lead_f, given_f])
+    if cls._has_lambda:
+        return cls(points, lam, check_range=check_range)
+    return cls(points)
+
+
+def _rest(rest, curve: Curve, spec: Joint, family: str, degree: int):
+    """(float array (k, d), exact rows or None) for the caller's remaining control points."""
+    want = degree - spec.order
+    first_index = spec.order + 1
+    which = (
+        "no further points"
+        if want == 0
+        else f"P_{{{first_index},2}}..P_{{{degree},2}}"
+        if want > 1
+        else f"P_{{{degree},2}}"
+    )
+    note = (
+        "; P_{3,2} enters the solve of P_{2,2}"
+        if family == "same_degree" and spec.order == 2
+        else ""
+    )
+    try:
+        arr = np.array(rest, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"rest must be a (k, d) array of numbers, got {rest!r}") from None
+    if arr.size == 0:
+        arr = arr.reshape(0, curve.dimension)
+    if arr.ndim != 2:
+        raise ValueError(f"rest must be a (k, d) array of points, got shape {arr.shape}")
+    if arr.shape[1] != curve.dimension:
+        raise ValueError(
+            f"rest has points of dimension {arr.shape[1]} but the first curve has dimension "
+            f"{curve.dimension}"
+        )
+    if arr.shape[0] != want:
+        raise ValueError(
+            f"a {spec.continuity} join into a {family} curve of degree {degree} solves "
+            f"P_{{0,2}}..P_{{{spec.order},2}}; rest must hold the other {want} point(s) "
+            f"({which}{note}), got {arr.shape[0]}"
+        )
+    if not np.isfinite(arr).all():
+        raise ValueError("rest contains NaN or infinity")
+    exact = () if want == 0 else val.exact_rows(rest)
+    return arr, exact

@@ -86,6 +86,7 @@ def original_power_matrix(degree: int) -> Matrix:
     return power_matrices([original_basis(degree, ii, X) for ii in range(degree + 1)], degree)[0]
 
 
+@cache
 def endpoint_weights() -> tuple[sp.Expr, sp.Expr]:
     """Weights w_i with p^(k)(0) = Σ_{i=0}^k w_i P_i and p^(k)(1) = Σ_{i=0}^k w'_i P_{n-i}.
 

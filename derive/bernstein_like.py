@@ -59,6 +59,7 @@ def basis_polys(degree: int) -> tuple[sp.Poly, ...]:
     return tuple(one_minus_t * b(ii) + tt * b(ii - 1) for ii in range(degree + 1))
 
 
+@cache
 def explicit_factor() -> sp.Expr:
     """q_i(t) with b_{i,n} = q_i(t) B_{i,n}(t), for symbolic n and i.
 
@@ -81,6 +82,7 @@ def explicit_factor() -> sp.Expr:
     return sp.collect(sp.expand(q), [t, lam])
 
 
+@cache
 def endpoint_closed_forms(q: sp.Expr) -> dict[tuple[str, int, int], sp.Expr]:
     """Derivatives of q_i(t) C(n,i) t^i (1-t)^(n-i) at t=0 (i = 0..r) and at t=1 (i = n-j)."""
     out = {}

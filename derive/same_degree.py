@@ -68,6 +68,7 @@ def basis_polys(degree: int) -> list[sp.Poly]:
     ]
 
 
+@cache
 def three_term_form() -> tuple[sp.Expr, sp.Expr, sp.Expr]:
     """Coefficients of B_{i-1}^n, B_i^n, B_{i+1}^n in b_i^n, for symbolic n and i."""
     terms = bernstein_terms(basis_definition(n, i), n)
@@ -76,6 +77,7 @@ def three_term_form() -> tuple[sp.Expr, sp.Expr, sp.Expr]:
     return terms[i - 1], terms[i], terms[i + 1]
 
 
+@cache
 def endpoint_closed_forms(form) -> dict[tuple[str, int, int], sp.Expr]:
     """{("start", r, i) or ("end", r, j): d^r/dt^r b at t=0 (index i) or t=1 (index n-j)}.
 

@@ -27,12 +27,16 @@ from fractions import Fraction
 import numpy as np
 
 from . import _validate as val
-from ._generated import bernstein as _bernstein
-from ._generated import joins as _joins
+from ._lazy import generated
 from .curves import FAMILIES, Curve
 
-CONTINUITIES = tuple(_joins.CONTINUITIES)
-ORDER = dict(_joins.ORDER)  # derivatives matched: 1 or 2
+_bernstein = generated("bernstein")
+_joins = generated("joins")
+
+
+def _order(continuity: str) -> int:
+    """Derivatives matched at the joint (1 or 2), as emitted by derive/joins.py."""
+    return _joins.ORDER[continuity]
 
 
 @dataclass(frozen=True)
@@ -54,14 +58,14 @@ class Joint:
     @property
     def order(self) -> int:
         """How many derivatives the joint matches (1 or 2): P_{0..order,2} are solved."""
-        return ORDER[self.continuity]
+        return _order(self.continuity)
 
 
 def continuity_name(name: object) -> str:
-    if isinstance(name, str) and name.strip().upper() in CONTINUITIES:
+    if isinstance(name, str) and name.strip().upper() in _joins.CONTINUITIES:
         return name.strip().upper()
     raise ValueError(
-        f"continuity must be one of {', '.join(map(repr, CONTINUITIES))}, got {name!r}"
+        f"continuity must be one of {', '.join(map(repr, _joins.CONTINUITIES))}, got {name!r}"
     )
 
 

@@ -75,24 +75,22 @@ def evaluate_many(
         if lam is None:
             raise ValueError(f"a {family} curve needs a shape parameter lam")
         lams = _lambdas(lam, family, m, check_range)
-    # coefficients (m, d, N+1) = Σ_p λ^p M_pᵀ P, the λ-power matrices applied to every curve
-    coeffs = np.einsum("ie,mid->mde", _float_matrix(family, "centred", n, 0), arr)
+    # Coefficients of every curve in the centred monomials (t - 1/2)^e, laid out (N+1, m·d)
+    # so that both products below are wide matrix products (BLAS is slow on tall-skinny ones).
+    pt = np.ascontiguousarray(arr.transpose(1, 0, 2)).reshape(size, m * dim)
+    coeffs = _float_matrix(family, "centred", n, 0).T @ pt
     for p in range(1, len(mats)):
-        part = np.einsum("ie,mid->mde", _float_matrix(family, "centred", n, p), arr)
-        coeffs += (lams**p)[:, None, None] * part
+        part = _float_matrix(family, "centred", n, p).T @ pt
+        coeffs += part * np.repeat(lams**p, dim)
     if k:
         from ._algorithms import differentiate_coefficients
 
-        coeffs = differentiate_coefficients(coeffs, k)
+        coeffs = differentiate_coefficients(coeffs.T, k).T
+    # Every curve shares the parameter grid: one product with the monomials at the grid.
     u = tt - 0.5
-    acc = np.empty((m, dim, tt.size))
-    np.multiply(coeffs[..., -1:], u, out=acc)
-    if coeffs.shape[-1] > 1:
-        acc += coeffs[..., -2:-1]
-        for e in range(coeffs.shape[-1] - 3, -1, -1):
-            acc *= u
-            acc += coeffs[..., e : e + 1]
-    else:
-        acc[...] = coeffs
-    out = acc.transpose(0, 2, 1)
+    powers = np.empty((tt.size, coeffs.shape[0]))
+    powers[:, 0] = 1.0
+    for e in range(1, coeffs.shape[0]):
+        np.multiply(powers[:, e - 1], u, out=powers[:, e])
+    out = (powers @ coeffs).reshape(tt.size, m, dim).transpose(1, 0, 2)
     return out[:, 0] if scalar else out

@@ -165,15 +165,15 @@ def _float_coefficients(points, k: int, family: str):
     arr, single = _as_polygons(points, family)
     m, size, dim = arr.shape
     factor, rows, a2_weight = _factored_forms(family, size - 1, k, dim)
-    flat = arr.reshape(m, size * dim)  # a view: (P_0x, P_0y, P_1x, …) per polygon
-    z = flat @ factor
-    zf, zg = z[:, :rows], z[:, rows:]
-    a0 = np.einsum("ij,ij->i", zf, zf)
-    a1 = 2 * np.einsum("ij,ij->i", zf, zg)
-    a2 = np.einsum("ij,ij->i", zg, zg)
+    flat_t = arr.reshape(m, size * dim).T  # a view: column j is (P_0x, P_0y, P_1x, …) of j
+    z = factor.T @ flat_t  # wide product (rows × m): BLAS is slow on the tall-skinny one
+    zf, zg = z[:rows], z[rows:]
+    a0 = np.einsum("ij,ij->j", zf, zf)
+    a1 = 2 * np.einsum("ij,ij->j", zf, zg)
+    a2 = np.einsum("ij,ij->j", zg, zg)
     if not (np.isfinite(a0).all() and np.isfinite(a2).all()):  # NaN/inf propagate into these
         raise _non_finite_error(arr, single)
-    norm2 = np.einsum("ij,ij->i", flat, flat)
+    norm2 = np.einsum("ij,ij->j", flat_t, flat_t)
     return (a0, a1, a2), 1e-12 * a2_weight * norm2, single
 
 
@@ -198,7 +198,7 @@ def _factored_forms(family: str, n: int, k: int, dim: int) -> tuple[np.ndarray, 
     eye = np.eye(dim)
     f_part = np.kron((lower.T @ h @ m0.T).T, eye)
     g_part = np.kron((lower.T @ h @ m1.T).T, eye)
-    factor = np.ascontiguousarray(np.hstack([f_part, g_part]))
+    factor = np.asfortranarray(np.hstack([f_part, g_part]))  # factor.T is C-contiguous
     factor.setflags(write=False)
     return factor, f_part.shape[1], float(np.abs(_float_forms(family, n, k)[2]).sum())
 

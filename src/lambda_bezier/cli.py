@@ -57,6 +57,19 @@ def build_parser() -> argparse.ArgumentParser:
         "--clamp", action="store_true", help="also give the minimiser over the family's λ range"
     )
     opt.add_argument("--json", action="store_true", help="machine-readable output")
+
+    from ._verify_runner import add_arguments
+
+    add_arguments(
+        sub.add_parser(
+            "verify",
+            help="check every published formula and matrix against the derivation",
+            description="Compare every formula the papers print (derive/published/*.toml) "
+            "with our derivation; one line per record: id, source, verdict and, for a "
+            "mismatch, the smallest diff. Exit 1 when a verdict differs from its recorded "
+            "expectation (or, with --strict, on any mismatch).",
+        )
+    )
     return parser
 
 
@@ -69,6 +82,10 @@ def main(argv: list[str] | None = None) -> int:
         return run(check=args.check, root=root, quiet=args.quiet)
     if args.command == "optimal-lambda":
         return _optimal_lambda(args)
+    if args.command == "verify":
+        from ._verify_runner import run_from_args
+
+        return run_from_args(args)
     raise AssertionError(args.command)  # argparse enforces the choices
 
 

@@ -1,0 +1,378 @@
+"""`lambda-bezier verify`: every published record compared with the derivation.
+
+Records come from derive/published/*.toml (the printed formulas, misprints kept). Each record
+is checked by the checker registered for its `claim` (derive/verify_checks.py) and gets a
+verdict:
+
+* ``match``     — the printed form agrees with our derivation (symbolically where derive has a
+                  general-n closed form, and always for every degree of the family's range);
+* ``mismatch``  — it does not; the diff names the equation / case / entry / coefficient and the
+                  first degree and index where it fails, with printed and derived values;
+* ``pending``   — the derivation it needs does not exist yet (the reason says which).
+
+Expectations and errata live next to each record in the TOML files:
+
+* ``expect = "match" | "mismatch" | "pending"`` — the verdict a reviewer confirmed. A run
+  fails when any verdict differs from its expectation, so a new discrepancy, a misprint that
+  now matches, or a derivation that has landed is never silent. Setting ``expect`` is a
+  review step: run the verifier, read every mismatch, confirm it independently.
+* ``[record.erratum]`` — required for ``expect = "mismatch"``: ``explanation`` (one line),
+  ``origin`` ("paper" or "transcription") and corrected values for the record's fields
+  (``equations``, ``cases``, ``matrix``, ...). The corrected record is checked too and must
+  match: an erratum is itself verified. ERRATA.md (repository root) is generated from them.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .verify_checks import CHECKERS, Outcome, run_checker
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+PUBLISHED = Path(__file__).resolve().parent / "published"
+VERDICTS = ("match", "mismatch", "pending")
+ERRATUM_META = ("explanation", "origin")
+ERRATA_FILE = "ERRATA.md"
+ERRATA_COMMAND = "lambda-bezier verify --errata"
+
+
+# --------------------------------------------------------------------------- records
+
+
+def load_file(path: Path) -> list[dict]:
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    out = []
+    for rec in data.get("record", []):
+        rec = dict(rec)
+        rec.setdefault("family", data["family"])
+        rec.setdefault("file", path.name)
+        if "variable" not in rec and "variable" in data:
+            rec["variable"] = data["variable"]
+        out.append(rec)
+    return out
+
+
+def load_records(directory: Path = PUBLISHED) -> list[dict]:
+    records = []
+    for path in sorted(directory.glob("*.toml")):
+        records += load_file(path)
+    seen = set()
+    for rec in records:
+        if rec["id"] in seen:
+            raise ValueError(f"duplicate record id {rec['id']}")
+        seen.add(rec["id"])
+        if rec["claim"] not in CHECKERS:
+            raise ValueError(f"{rec['id']}: no checker for claim {rec['claim']!r}")
+    return records
+
+
+_INDEX: dict[str, dict] = {}  # all records of the current run, for cross-references
+
+
+def records_by_id() -> dict[str, dict]:
+    """Every record by id (a formula record names the matrix records it uses)."""
+    if not _INDEX:
+        _INDEX.update({r["id"]: r for r in load_records()})
+    return _INDEX
+
+
+def corrected(record: dict) -> dict:
+    """The record with its erratum's corrected fields in place of the printed ones."""
+    fix = record.get("erratum")
+    if not fix:
+        raise ValueError(f"{record['id']} has no erratum")
+    out = {k: v for k, v in record.items() if k != "erratum"}
+    for key, value in fix.items():
+        if key not in ERRATUM_META:
+            out[key] = value
+    return out
+
+
+# --------------------------------------------------------------------------- results
+
+
+@dataclass
+class Result:
+    record: dict
+    outcome: Outcome
+    erratum: Outcome | None = None
+    error: str | None = None
+    seconds: float = 0.0
+
+    @property
+    def id(self) -> str:
+        return self.record["id"]
+
+    @property
+    def source(self) -> str:
+        return self.record["source"]
+
+    @property
+    def verdict(self) -> str:
+        return "error" if self.error else self.outcome.verdict
+
+    @property
+    def expect(self) -> str | None:
+        return self.record.get("expect")
+
+    def problems(self) -> list[str]:
+        """Why this record fails the run (empty when it agrees with its expectation)."""
+        out = []
+        exp, got = self.expect, self.verdict
+        if self.error:
+            out.append(f"checker error: {self.error}")
+        elif exp not in VERDICTS:
+            out.append(f"no valid expectation recorded (expect = {exp!r}); verdict is {got}")
+        elif got != exp:
+            if exp == "match":
+                out.append("NEW DISCREPANCY: expected match, the derivation disagrees")
+            elif exp == "mismatch" and got == "match":
+                out.append("a recorded misprint now MATCHES: review and drop the erratum")
+            elif exp == "pending":
+                out.append(
+                    f"the derivation now exists and the verdict is {got}: review it and record "
+                    "the expectation"
+                )
+            else:
+                out.append(f"expected {exp}, got {got}")
+        fix = self.record.get("erratum")
+        if exp == "mismatch" and not fix:
+            out.append("a confirmed mismatch needs an erratum")
+        if fix and exp == "match":
+            out.append("an erratum on a record expected to match")
+        if fix and not fix.get("explanation"):
+            out.append("erratum without an explanation")
+        if self.erratum is not None and self.erratum.verdict not in ("match", "pending"):
+            out.append("the erratum's corrected form does NOT match the derivation")
+        if self.erratum is not None and self.erratum.verdict == "pending" and got != "pending":
+            out.append("the erratum could not be verified")
+        return out
+
+
+@dataclass
+class Report:
+    results: list[Result]
+    seconds: float
+    extra_problems: list[str] = field(default_factory=list)
+
+    def counts(self) -> dict[str, int]:
+        out = dict.fromkeys((*VERDICTS, "error"), 0)
+        for r in self.results:
+            out[r.verdict] += 1
+        return out
+
+    def problems(self) -> list[tuple[str, str]]:
+        out = [(r.id, p) for r in self.results for p in r.problems()]
+        return out + [("", p) for p in self.extra_problems]
+
+    def failed(self, strict: bool = False) -> bool:
+        if self.problems():
+            return True
+        return strict and any(r.verdict != "match" for r in self.results)
+
+
+def check_record(record: dict) -> Result:
+    start = time.perf_counter()
+    try:
+        outcome = run_checker(record)
+        fixed = run_checker(corrected(record)) if record.get("erratum") else None
+        res = Result(record, outcome, fixed)
+    except Exception as exc:  # noqa: BLE001 - a checker failure is reported, never a verdict
+        res = Result(record, Outcome("mismatch"), error=f"{type(exc).__name__}: {exc}")
+    res.seconds = time.perf_counter() - start
+    return res
+
+
+def verify(
+    records: list[dict] | None = None,
+    progress: Callable[[int, int, str], None] | None = None,
+    index: list[dict] | None = None,
+) -> Report:
+    """Check `records` (default: all published ones); `index` is the full set they may refer
+    to (default: `records`)."""
+    records = load_records() if records is None else records
+    _INDEX.clear()
+    _INDEX.update({r["id"]: r for r in (records if index is None else index)})
+    start = time.perf_counter()
+    results = []
+    for pos, rec in enumerate(records):
+        if progress:
+            progress(pos, len(records), rec["id"])
+        results.append(check_record(rec))
+    if progress:
+        progress(len(records), len(records), "")
+    return Report(results, time.perf_counter() - start)
+
+
+# --------------------------------------------------------------------------- rendering
+
+
+def _summary(report: Report) -> str:
+    c = report.counts()
+    parts = [f"{c[v]} {v}" for v in (*VERDICTS, "error") if c[v] or v != "error"]
+    return f"{len(report.results)} records: " + ", ".join(parts) + f" ({report.seconds:.1f} s)"
+
+
+def render_text(report: Report) -> str:
+    width = max((len(r.id) for r in report.results), default=10)
+    swidth = max((len(r.source) for r in report.results), default=10)
+    lines = []
+    for r in report.results:
+        lines.append(f"{r.id:<{width}}  {r.source:<{swidth}}  {r.verdict}")
+        if r.verdict != "match":
+            detail = [r.error] if r.error else r.outcome.diffs
+            lines += [f"    {d}" for d in detail]
+        if r.erratum is not None:
+            lines.append(
+                f"    erratum ({r.record['erratum'].get('origin', '?')}): corrected form "
+                f"{r.erratum.verdict}"
+                + (": " + "; ".join(r.erratum.diffs) if r.erratum.verdict != "match" else "")
+            )
+    lines.append(_summary(report))
+    for rid, p in report.problems():
+        lines.append(f"FAIL {rid}: {p}" if rid else f"FAIL: {p}")
+    return "\n".join(lines) + "\n"
+
+
+def render_json(report: Report) -> str:
+    data = {
+        "summary": {
+            "records": len(report.results),
+            **report.counts(),
+            "seconds": round(report.seconds, 3),
+            "ok": not report.problems(),
+        },
+        "records": [
+            {
+                "id": r.id,
+                "source": r.source,
+                "location": r.record.get("location"),
+                "claim": r.record["claim"],
+                "verdict": r.verdict,
+                "expect": r.expect,
+                "diff": [r.error] if r.error else r.outcome.diffs,
+                "checked": r.outcome.checked,
+                "erratum": None
+                if r.erratum is None
+                else {
+                    "verdict": r.erratum.verdict,
+                    "diff": r.erratum.diffs,
+                    "explanation": r.record["erratum"].get("explanation"),
+                    "origin": r.record["erratum"].get("origin"),
+                },
+                "problems": r.problems(),
+            }
+            for r in report.results
+        ],
+        "problems": [p for _, p in report.problems()],
+    }
+    return json.dumps(data, indent=2, ensure_ascii=False) + "\n"
+
+
+def _md(text: str) -> str:
+    return text.replace("|", "\\|").replace("\n", " ")
+
+
+def render_markdown(report: Report) -> str:
+    lines = ["| id | source | verdict | diff |", "|---|---|---|---|"]
+    for r in report.results:
+        diff = (
+            ""
+            if r.verdict == "match"
+            else "<br>".join(_md(d) for d in ([r.error] if r.error else r.outcome.diffs))
+        )
+        lines.append(f"| `{r.id}` | {r.source} | {r.verdict} | {diff} |")
+    lines += ["", _summary(report)]
+    for rid, p in report.problems():
+        lines.append(f"- **FAIL** `{rid}`: {p}" if rid else f"- **FAIL**: {p}")
+    return "\n".join(lines) + "\n"
+
+
+RENDERERS = {"text": render_text, "json": render_json, "markdown": render_markdown}
+
+
+# --------------------------------------------------------------------------- errata
+
+
+def _printed_fields(record: dict) -> list[tuple[str, object, object]]:
+    fix = record["erratum"]
+    return [(k, record.get(k), v) for k, v in fix.items() if k not in ERRATUM_META]
+
+
+def _show_field(value) -> list[str]:
+    if isinstance(value, list) and value and isinstance(value[0], dict):
+        out = []
+        for item in value:
+            if "lhs" in item:
+                extra = ""
+                if item.get("where"):
+                    extra += "  for " + ", ".join(f"{k} = {v}" for k, v in item["where"].items())
+                if item.get("given"):
+                    extra += "  with " + ", ".join(f"{k} = {v}" for k, v in item["given"].items())
+                out.append(f"{item['lhs']} = {item['rhs']}{extra}")
+            elif "index" in item:
+                out.append(f"index {item['index']}: {item['value']}")
+            else:
+                out.append(json.dumps(item, ensure_ascii=False))
+        return out
+    if isinstance(value, list) and value and isinstance(value[0], list):
+        return [json.dumps(row) for row in value]
+    return [json.dumps(value, ensure_ascii=False) if not isinstance(value, str) else value]
+
+
+def render_errata(report: Report) -> str:
+    """ERRATA.md: every confirmed misprint with the printed and the corrected form."""
+    fixed = [r for r in report.results if r.record.get("erratum")]
+    lines = [
+        "# Errata",
+        "",
+        f"<!-- Generated by `{ERRATA_COMMAND}` from derive/published/*.toml. DO NOT EDIT. -->",
+        "",
+        "Misprints found by `lambda-bezier verify` in the source documents (or in their text",
+        "transcriptions), each confirmed by an independent computation. For every entry the",
+        "printed form disagrees with the derivation, and the corrected form is re-checked by",
+        "the verifier on every run and matches it.",
+        "",
+        "Binomial convention: C_n^k = 0 unless 0 ≤ k ≤ n (the papers' convention).",
+        "",
+    ]
+    by_source: dict[str, list[Result]] = {}
+    for r in fixed:
+        by_source.setdefault(r.source, []).append(r)
+    for source, results in by_source.items():
+        lines += [f"## {source}", ""]
+        for r in results:
+            fix = r.record["erratum"]
+            lines += [
+                f"### `{r.id}` — {r.record.get('location', '')}",
+                "",
+                f"{fix.get('explanation', '')} ({fix.get('origin', 'paper')} misprint)",
+                "",
+            ]
+            for key, printed, corr in _printed_fields(r.record):
+                p_lines, c_lines = _show_field(printed), _show_field(corr)
+                lines += [f"`{key}`:", "", "```"]
+                if len(p_lines) == len(c_lines):
+                    for a, b in zip(p_lines, c_lines, strict=True):
+                        if a != b:
+                            lines += [f"printed:   {a}", f"corrected: {b}"]
+                else:
+                    lines += [f"printed:   {a}" for a in p_lines]
+                    lines += [f"corrected: {b}" for b in c_lines]
+                lines += ["```", ""]
+            lines.append("Verifier's diff of the printed form:")
+            lines.append("")
+            lines += [f"- {_md(d)}" for d in r.outcome.diffs]
+            lines.append("")
+    if not fixed:
+        lines += ["No misprints recorded.", ""]
+    return "\n".join(lines).rstrip("\n") + "\n"

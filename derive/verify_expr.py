@@ -1,0 +1,1340 @@
+"""Expressions of the published records: parsing with a fixed table, and exact evaluation.
+
+Parsing. Printed formulas (strings in derive/published/*.toml, our own files, never user input)
+are parsed with ``sympy.parsing.sympy_parser.parse_expr`` under the standard transformations and
+a FIXED table of symbols and undefined functions (derive/published/README.md, "Expression
+language"). Anything outside the table is rejected.
+
+Evaluation ("realising"). A parsed expression is evaluated for concrete degrees and indices by
+a recursive walk with an environment {symbol: int}: the undefined functions are replaced by
+*models* supplied by the checker (the derived basis functions, the curve, de Casteljau points,
+...), sums are expanded, derivatives, substitutions and integrals are carried out. Control points
+stay symbolic. Values are
+
+* a SymPy expression (a scalar, rational in the parameters t, u, lam, ...),
+* ``Form``: a polynomial in the control points (linear for a point, quadratic for a dot product)
+  with scalar coefficients, keyed by sorted tuples of points ``("V", 3)``,
+* ``Wedge``: an antisymmetric bilinear form (a cross product of two point combinations),
+* ``Rad``: a scalar times a product of powers of Euclidean lengths (``norm``),
+* ``Ratio``: a quotient of two Forms.
+
+Binomial convention. The papers use C_n^k = 0 unless 0 <= k <= n (including a negative n).
+SymPy's ``binomial`` does not (``binomial(-2, 1) == -2``), so a concrete binomial is always
+evaluated by ``paper_binomial``; the walk substitutes values itself (never ``subs`` on the
+whole expression) so that SymPy cannot evaluate a binomial with its own convention first.
+A product whose function factor is zero (e.g. ``B(-1, n, t)``) is zero without evaluating its
+other factors, so a coefficient 0/0 beside a vanishing basis function is never formed.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from fractions import Fraction
+from functools import cache, lru_cache
+from math import comb, factorial, gcd
+
+import numpy as np
+import sympy as sp
+from sympy.core.function import AppliedUndef
+from sympy.parsing.sympy_parser import parse_expr, standard_transformations
+
+SYMBOL_NAMES = [
+    "t",
+    "u",
+    "x",
+    "c",
+    "tstar",
+    "n",
+    "m",
+    "i",
+    "j",
+    "k",
+    "l",
+    "r",
+    "lam",
+    "lam1",
+    "lam2",
+    "alpha",
+    "beta",
+    "d",
+    "C",
+    "omega",
+]
+FUNCTION_NAMES = [
+    "b",
+    "B",
+    "A",
+    "f",
+    "a",
+    "p",
+    "p1",
+    "p2",
+    "P",
+    "P1",
+    "P2",
+    "V",
+    "V1",
+    "V2",
+    "Vl",
+    "Ql",
+    "Q",
+    "W",
+    "F",
+    "G",
+    "E",
+    "y",
+    "kappa",
+    "bk",
+    "Delta",
+    "dot",
+    "cross",
+    "norm",
+]
+SYMBOLS = {name: sp.Symbol(name) for name in SYMBOL_NAMES}
+FUNCTIONS = {name: sp.Function(name) for name in FUNCTION_NAMES}
+_GLOBALS: dict = {}
+exec(  # noqa: S102 - a fixed import line, no data involved
+    "from sympy import Integer, Rational, Float, Symbol, Function, Sum, Integral, "
+    "Derivative, Subs, binomial, factorial",
+    _GLOBALS,
+)
+INDEX_SYMBOLS = tuple(SYMBOLS[s] for s in ["i", "j", "k", "l", "r"])
+DEGREE_SYMBOLS = (SYMBOLS["n"], SYMBOLS["m"])
+# Functions whose first argument is a control-point index (shifted by the difference operator).
+POINT_LIKE = frozenset(["b", "bk", "a", "P", "P1", "P2", "V", "V1", "V2", "Vl", "Ql", "Q", "W"])
+_ALLOWED_FUNCS = {
+    sp.Sum,
+    sp.Integral,
+    sp.Derivative,
+    sp.Subs,
+    sp.binomial,
+    sp.factorial,
+    sp.Tuple,
+}
+
+
+class ParseError(ValueError):
+    pass
+
+
+@cache
+def parse(text: str) -> sp.Expr:
+    """A printed expression, parsed with the fixed table (and checked against it)."""
+    try:
+        expr = parse_expr(
+            text,
+            local_dict=dict(SYMBOLS) | dict(FUNCTIONS),
+            global_dict=dict(_GLOBALS),
+            transformations=standard_transformations,
+        )
+    except Exception as exc:  # noqa: BLE001 - report any parser failure with the text
+        raise ParseError(f"cannot parse {text!r}: {exc}") from exc
+    for sym in expr.free_symbols:
+        if sym.name not in SYMBOLS:
+            raise ParseError(f"unknown symbol {sym.name!r} in {text!r}")
+    for node in sp.preorder_traversal(expr):
+        if isinstance(node, AppliedUndef):
+            if node.func.__name__ not in FUNCTIONS:
+                raise ParseError(f"unknown function {node.func.__name__!r} in {text!r}")
+        elif isinstance(node, sp.Function) and type(node) not in _ALLOWED_FUNCS:
+            raise ParseError(f"unexpected function {type(node).__name__} in {text!r}")
+    return expr
+
+
+def parse_relation(text: str):
+    """A boolean condition (convexity conclusions): relations joined by & and |."""
+    return parse(text)
+
+
+def fn_name(expr) -> str | None:
+    return expr.func.__name__ if isinstance(expr, AppliedUndef) else None
+
+
+# --------------------------------------------------------------------------- binomials
+
+
+def paper_binomial(a: int, b: int) -> int:
+    """C_a^b with the papers' convention: 0 unless 0 <= b <= a."""
+    return comb(a, b) if 0 <= b <= a else 0
+
+
+def as_int(x) -> int:
+    """A concrete integer (index, degree, order) from an evaluated value."""
+    if isinstance(x, int):
+        return x
+    if isinstance(x, Sc):
+        g = x.ground()
+        if g is not None and g.denominator == 1:
+            return int(g)
+        raise TypeError(f"{x.to_expr()} is not a concrete integer")
+    x = sp.sympify(x)
+    if not x.is_Integer:
+        raise TypeError(f"{x} is not a concrete integer")
+    return int(x)
+
+
+# --------------------------------------------------------------------------- values
+
+
+class Undefined(Exception):
+    """The expression refers to something outside its definition (a negative degree, a degree
+    outside the family's range, ...): that instance is not checked."""
+
+
+# Scalars are exact rational functions of the parameters: num / (den · pden) with num, pden in
+# the integer polynomial ring ZZ[PARAMS] and den a positive integer (Python integers are much
+# faster than rational coefficients); a plain number is a Fraction (the fast path).
+PARAMS = tuple(
+    SYMBOLS[s]
+    for s in [
+        "t",
+        "u",
+        "x",
+        "c",
+        "tstar",
+        "lam",
+        "lam1",
+        "lam2",
+        "alpha",
+        "beta",
+        "d",
+        "C",
+        "omega",
+    ]
+)
+RING = sp.polys.rings.ring(PARAMS, sp.ZZ)[0]
+GEN = dict(zip(PARAMS, RING.gens, strict=True))
+_GPOS = {sym: pos for pos, sym in enumerate(PARAMS)}
+
+
+def _lcm(a: int, b: int) -> int:
+    return a // gcd(a, b) * b
+
+
+class Sc:
+    """An exact scalar: the Fraction `c` when it is a number, else num / (den · pden)."""
+
+    __slots__ = ("c", "num", "den", "pden")
+
+    def __init__(self, num=None, den: int = 1, pden=None, c: Fraction | None = None):
+        if c is not None:
+            self.c, self.num, self.den, self.pden = c, None, 1, None
+            return
+        if pden is not None:
+            if not pden:
+                raise Undefined("division by zero")
+            if pden.is_ground:
+                den, pden = den * int(pden.LC), None
+        if den < 0:
+            num, den = -num, -den
+        if pden is None and num.is_ground:
+            self.c, self.num, self.den, self.pden = (
+                Fraction(int(num.LC) if num else 0, den),
+                None,
+                1,
+                None,
+            )
+            return
+        if den > 1:
+            g = gcd(int(num.content()), den)
+            if g > 1:
+                num, den = num.quo_ground(g), den // g
+        self.c, self.num, self.den, self.pden = None, num, den, pden
+
+    # ---- construction and conversion
+
+    @staticmethod
+    def of(x) -> Sc:
+        if isinstance(x, Sc):
+            return x
+        if isinstance(x, Fraction):
+            return Sc(c=x)
+        if isinstance(x, int):
+            return Sc(c=Fraction(x))
+        x = sp.sympify(x)
+        if x.is_Rational:
+            return Sc(c=Fraction(int(x.p), int(x.q)))
+        if x.is_Symbol:
+            return Sc(GEN[x])
+        if x.is_Add:
+            out = Sc(c=Fraction(0))
+            for a in x.args:
+                out = out + Sc.of(a)
+            return out
+        if x.is_Mul:
+            out = Sc(c=Fraction(1))
+            for a in x.args:
+                out = out * Sc.of(a)
+            return out
+        if x.is_Pow and x.exp.is_Integer:
+            return Sc.of(x.base) ** int(x.exp)
+        raise TypeError(f"not a rational function of the parameters: {x}")
+
+    @staticmethod
+    def from_qq_poly(poly: sp.Poly) -> Sc:
+        """A SymPy Poly with rational coefficients, in (some of) the parameters."""
+        pos = [_GPOS[g] for g in poly.gens]
+        den = 1
+        for coeff in poly.coeffs():
+            den = _lcm(den, int(sp.Rational(coeff).q))
+        terms = {}
+        for monom, coeff in poly.terms():
+            e = [0] * RING.ngens
+            for p, x in zip(pos, monom, strict=True):
+                e[p] = x
+            q = sp.Rational(coeff)
+            terms[tuple(e)] = int(q.p) * (den // int(q.q))
+        return Sc(RING(terms), den)
+
+    def parts(self):
+        """(num, den, pden) with num a ring element."""
+        if self.c is not None:
+            return RING.ground_new(self.c.numerator), self.c.denominator, None
+        return self.num, self.den, self.pden
+
+    def to_expr(self) -> sp.Expr:
+        if self.c is not None:
+            return sp.Rational(self.c.numerator, self.c.denominator)
+        den = sp.Integer(self.den) * (self.pden.as_expr() if self.pden is not None else 1)
+        return self.num.as_expr() / den
+
+    def ground(self) -> Fraction | None:
+        return self.c
+
+    def is_zero(self) -> bool:
+        return self.c == 0 if self.c is not None else not self.num
+
+    # ---- arithmetic
+
+    def __add__(self, o):
+        o = o if isinstance(o, Sc) else Sc.of(o)
+        if self.c is not None and o.c is not None:
+            return Sc(c=self.c + o.c)
+        (a, da, pa), (b, db, pb) = self.parts(), o.parts()
+        if pa is None and pb is None:
+            L = _lcm(da, db)
+            return Sc(a.mul_ground(L // da) + b.mul_ground(L // db), L)
+        if pa is not None and pb is not None and pa == pb:
+            L = _lcm(da, db)
+            return Sc(a.mul_ground(L // da) + b.mul_ground(L // db), L, pa)
+        pa1 = pa if pa is not None else RING.one
+        pb1 = pb if pb is not None else RING.one
+        return Sc((a * pb1).mul_ground(db) + (b * pa1).mul_ground(da), da * db, pa1 * pb1)
+
+    __radd__ = __add__
+
+    def __neg__(self):
+        if self.c is not None:
+            return Sc(c=-self.c)
+        return Sc(-self.num, self.den, self.pden)
+
+    def __sub__(self, o):
+        return self + (-(o if isinstance(o, Sc) else Sc.of(o)))
+
+    def __rsub__(self, o):
+        return Sc.of(o) - self
+
+    def __mul__(self, o):
+        o = o if isinstance(o, Sc) else Sc.of(o)
+        if self.c is not None and o.c is not None:
+            return Sc(c=self.c * o.c)
+        if self.c is not None or o.c is not None:
+            k, p = (self.c, o) if self.c is not None else (o.c, self)
+            if k == 0:
+                return Sc(c=Fraction(0))
+            return Sc(p.num.mul_ground(k.numerator), p.den * k.denominator, p.pden)
+        if self.pden is None and o.pden is None:
+            pden = None
+        else:
+            pden = (self.pden or RING.one) * (o.pden or RING.one)
+        return Sc(self.num * o.num, self.den * o.den, pden)
+
+    __rmul__ = __mul__
+
+    def __truediv__(self, o):
+        o = o if isinstance(o, Sc) else Sc.of(o)
+        if o.is_zero():
+            raise Undefined("division by zero")
+        if o.c is not None:
+            return self * Sc(c=1 / o.c)
+        a, da, pa = self.parts()
+        b, db, pb = o.parts()
+        num = a.mul_ground(db) * (pb if pb is not None else RING.one)
+        return Sc(num, da, (pa if pa is not None else RING.one) * b)
+
+    def __rtruediv__(self, o):
+        return Sc.of(o) / self
+
+    def __pow__(self, k):
+        k = int(k)
+        if self.c is not None:
+            if k < 0 and self.c == 0:
+                raise Undefined("zero to a negative power")
+            return Sc(c=self.c**k)
+        if k >= 0:
+            return Sc(self.num**k, self.den**k, None if self.pden is None else self.pden**k)
+        return Sc(c=Fraction(1)) / self ** (-k)
+
+    def __eq__(self, o):
+        try:
+            return (self - Sc.of(o)).is_zero()
+        except (TypeError, sp.SympifyError):
+            return NotImplemented
+
+    __hash__ = None  # type: ignore[assignment]
+
+    # ---- calculus in one parameter
+
+    def diff(self, sym, count: int = 1) -> Sc:
+        if self.c is not None:
+            return self if count == 0 else Sc(c=Fraction(0))
+        g = GEN[sym]
+        out = self
+        for _ in range(count):
+            if out.c is not None:
+                return Sc(c=Fraction(0))
+            if out.pden is None or out.pden.degree(g) <= 0:
+                out = Sc(out.num.diff(g), out.den, out.pden)
+            else:
+                n_, p_ = out.num, out.pden
+                out = Sc(n_.diff(g) * p_ - n_ * p_.diff(g), out.den, p_**2)
+        return out
+
+    def subs(self, sym, value) -> Sc:
+        if self.c is not None:
+            return self
+        value = value if isinstance(value, Sc) else Sc.of(value)
+        num = _compose(self.num, _GPOS[sym], value)
+        out = num * Sc(c=Fraction(1, self.den))
+        if self.pden is not None:
+            out = out / _compose(self.pden, _GPOS[sym], value)
+        return out
+
+    def integrate(self, sym, lo, hi) -> Sc:
+        if self.c is not None:
+            return self * (Sc.of(hi) - Sc.of(lo))
+        pos = _GPOS[sym]
+        if self.pden is not None and self.pden.degree(GEN[sym]) > 0:
+            raise TypeError("cannot integrate a rational function")
+        top = max((m[pos] for m in self.num.monoms()), default=0)
+        scale = 1
+        for e in range(1, top + 2):
+            scale = _lcm(scale, e)
+        terms = {}
+        for monom, coeff in self.num.terms():
+            e = list(monom)
+            e[pos] += 1
+            terms[tuple(e)] = int(coeff) * (scale // e[pos])
+        anti = Sc(RING(terms), self.den * scale, self.pden)
+        return anti.subs(sym, hi) - anti.subs(sym, lo)
+
+
+ZERO = Sc(c=Fraction(0))
+
+
+def _compose(poly, pos: int, value: Sc) -> Sc:
+    """poly (a ring element) with generator `pos` replaced by value."""
+    top = max((m[pos] for m in poly.monoms()), default=0)
+    if top == 0:
+        return Sc(poly)
+    if value.c is not None:
+        p, q = value.c.numerator, value.c.denominator
+        terms: dict = {}
+        for monom, coeff in poly.terms():
+            e = list(monom)
+            k = e[pos]
+            e[pos] = 0
+            key = tuple(e)
+            terms[key] = terms.get(key, 0) + int(coeff) * p**k * q ** (top - k)
+        return Sc(RING(terms), q**top)
+    v, dv, pv = value.parts()
+    w = RING.ground_new(dv) * (pv if pv is not None else RING.one)  # value = v / w
+    vpow = [RING.one]
+    wpow = [RING.one]
+    for _ in range(top):
+        vpow.append(vpow[-1] * v)
+        wpow.append(wpow[-1] * w)
+    out = RING.zero
+    for monom, coeff in poly.terms():
+        e = list(monom)
+        k = e[pos]
+        e[pos] = 0
+        out += RING({tuple(e): coeff}) * vpow[k] * wpow[top - k]
+    return Sc(out, 1, wpow[top])
+
+
+def _is_zero(expr) -> bool:
+    """Exactly zero as a rational function of its symbols."""
+    if isinstance(expr, Sc):
+        return expr.is_zero()
+    if isinstance(expr, (int, Fraction)):
+        return expr == 0
+    expr = sp.sympify(expr)
+    if expr.is_Number:
+        return expr == 0
+    try:  # fast path: exact rational-function arithmetic in a polynomial ring
+        return not as_fraction(expr)[0]
+    except _NotRational:
+        return sp.cancel(expr) == 0
+
+
+def _nz(expr) -> bool:
+    return not _is_zero(expr)
+
+
+def trivially_zero(v) -> bool:
+    """Zero without a computation (models return an exact 0 for a vanishing function)."""
+    if isinstance(v, (Form, Wedge)):
+        return not v.terms
+    if isinstance(v, Rad):
+        return trivially_zero(v.coef)
+    if isinstance(v, Sc):
+        return v.is_zero()
+    return not isinstance(v, (Ratio, DotSum)) and v == 0
+
+
+class _NotRational(Exception):
+    pass
+
+
+@lru_cache(maxsize=256)
+def _ring(gens: tuple):
+    return sp.polys.rings.ring(gens, sp.QQ)[0]
+
+
+def as_fraction(expr):
+    """(numerator, denominator) PolyElements of a rational expression, computed bottom-up
+    with ring arithmetic (much faster than expanding the SymPy expression)."""
+    gens = tuple(sorted(expr.free_symbols, key=str))
+    R = _ring(gens) if gens else _ring((sp.Dummy("z"),))
+    index = {g: R.gens[pos] for pos, g in enumerate(gens)}
+    return _frac(expr, R, index)
+
+
+def _frac(e, R, index):
+    if e.is_Rational:
+        return R.ground_new(sp.QQ.convert(e)), R.one
+    if e.is_Symbol:
+        if e not in index:
+            raise _NotRational(e)
+        return index[e], R.one
+    if e.is_Add:
+        num, den = R.zero, R.one
+        for a in e.args:
+            n2, d2 = _frac(a, R, index)
+            if d2 == den:
+                num = num + n2
+            else:
+                num, den = num * d2 + n2 * den, den * d2
+        return num, den
+    if e.is_Mul:
+        num, den = R.one, R.one
+        for a in e.args:
+            n2, d2 = _frac(a, R, index)
+            num, den = num * n2, den * d2
+        return num, den
+    if e.is_Pow and e.exp.is_Integer:
+        num, den = _frac(e.base, R, index)
+        k = int(e.exp)
+        if k >= 0:
+            return num**k, den**k
+        if not num:
+            raise Undefined("zero to a negative power")
+        return den ** (-k), num ** (-k)
+    raise _NotRational(e)
+
+
+def simplify_scalar(expr):
+    if isinstance(expr, Sc):
+        g = expr.ground()
+        if g is not None:
+            return sp.Rational(g.numerator, g.denominator)
+        expr = expr.to_expr()
+    expr = sp.sympify(expr)
+    if expr.is_Number:
+        return expr
+    return sp.factor(sp.cancel(sp.together(expr)))
+
+
+Key = tuple  # sorted tuple of point keys ("V", 3)
+
+
+@dataclass
+class Form:
+    """Polynomial in control points: {sorted tuple of (name, index): scalar coefficient}."""
+
+    terms: dict = field(default_factory=dict)
+
+    @staticmethod
+    def point(name: str, index: int) -> Form:
+        return Form({((name, index),): Sc.of(1)})
+
+    def scaled(self, s) -> Form:
+        return Form({k: v * s for k, v in self.terms.items()})
+
+    def map(self, fn: Callable) -> Form:
+        return Form({k: fn(v) for k, v in self.terms.items()})
+
+    def degree(self) -> int:
+        return max((len(k) for k in self.terms), default=0)
+
+
+@dataclass
+class Wedge:
+    """Antisymmetric bilinear form a × b on point combinations: {(p, q) with p < q: coeff}."""
+
+    terms: dict = field(default_factory=dict)
+
+
+@dataclass
+class Rad:
+    """coef × Π |w|^e over canonical (primitive) point combinations w."""
+
+    coef: object
+    factors: tuple  # sorted ((canon, exponent), ...)
+
+
+@dataclass
+class Ratio:
+    num: object
+    den: object
+
+
+@dataclass
+class DotSum:
+    """Σ coef·(a·b): dot products of point combinations whose coefficients are polynomials
+    in the curve parameter, kept unexpanded. Integrals are exact quadratures and equalities
+    are checked at more nodes than the degree in the parameter (both exact for polynomials)."""
+
+    terms: list  # [(Sc coef, Form a, Form b)]
+
+
+def _merge(a: dict, b: dict, sign=1) -> dict:
+    out = dict(a)
+    for k, v in b.items():
+        out[k] = out[k] + sign * v if k in out else sign * v
+    return out
+
+
+def is_scalar(v) -> bool:
+    return not isinstance(v, (Form, Wedge, Rad, Ratio, DotSum))
+
+
+def v_add(a, b):
+    if is_scalar(a) and is_scalar(b):
+        return Sc.of(a) + Sc.of(b)
+    if trivially_zero(a):
+        return b
+    if trivially_zero(b):
+        return a
+    if isinstance(a, Form) and isinstance(b, Form):
+        return Form(_merge(a.terms, b.terms))
+    if isinstance(a, Wedge) and isinstance(b, Wedge):
+        return Wedge(_merge(a.terms, b.terms))
+    if isinstance(a, DotSum) and isinstance(b, DotSum):
+        return DotSum(a.terms + b.terms)
+    if isinstance(a, Rad) and isinstance(b, Rad) and a.factors == b.factors:
+        return Rad(a.coef + b.coef, a.factors)
+    if isinstance(a, Ratio) or isinstance(b, Ratio):
+        ra = a if isinstance(a, Ratio) else Ratio(a, Sc.of(1))
+        rb = b if isinstance(b, Ratio) else Ratio(b, Sc.of(1))
+        return Ratio(v_add(v_mul(ra.num, rb.den), v_mul(rb.num, ra.den)), v_mul(ra.den, rb.den))
+    raise TypeError(f"cannot add {type(a).__name__} and {type(b).__name__}")
+
+
+def v_neg(a):
+    return v_mul(Sc.of(-1), a)
+
+
+def v_mul(a, b):
+    if is_scalar(a) and is_scalar(b):
+        return Sc.of(a) * Sc.of(b)
+    if is_scalar(b) and not is_scalar(a):
+        a, b = b, a
+    if is_scalar(a):
+        a = Sc.of(a)
+        if isinstance(b, Form):
+            return b.scaled(a)
+        if isinstance(b, Wedge):
+            return Wedge({k: v * a for k, v in b.terms.items()})
+        if isinstance(b, Rad):
+            return Rad(a * b.coef, b.factors)
+        if isinstance(b, Ratio):
+            return Ratio(v_mul(a, b.num), b.den)
+        if isinstance(b, DotSum):
+            return DotSum([(a * c, x, y) for c, x, y in b.terms])
+    if isinstance(a, Form) and isinstance(b, Form):
+        out: dict = {}
+        for ka, va in a.terms.items():
+            for kb, vb in b.terms.items():
+                key = tuple(sorted(ka + kb))
+                out[key] = out[key] + va * vb if key in out else va * vb
+        return Form(out)
+    if isinstance(a, Rad) and isinstance(b, Rad):
+        exps = dict(a.factors)
+        for c, e in b.factors:
+            exps[c] = exps.get(c, 0) + e
+        return Rad(a.coef * b.coef, tuple(sorted((c, e) for c, e in exps.items() if e)))
+    if isinstance(a, Ratio) or isinstance(b, Ratio):
+        ra = a if isinstance(a, Ratio) else Ratio(a, Sc.of(1))
+        rb = b if isinstance(b, Ratio) else Ratio(b, Sc.of(1))
+        return Ratio(v_mul(ra.num, rb.num), v_mul(ra.den, rb.den))
+    raise TypeError(f"cannot multiply {type(a).__name__} and {type(b).__name__}")
+
+
+def v_pow(a, e):
+    e = as_int(e)
+    if is_scalar(a):
+        return Sc.of(a) ** e
+    if isinstance(a, Rad):
+        if e < 0 and not _nz(a.coef):
+            raise Undefined("division by a zero length")
+        return Rad(a.coef**e, tuple((c, x * e) for c, x in a.factors))
+    if e < 0:
+        return Ratio(Sc.of(1), v_pow(a, -e))
+    out = Sc.of(1)
+    for _ in range(e):
+        out = v_mul(out, a)
+    return out
+
+
+def v_div(a, b):
+    if is_scalar(b):
+        if _is_zero(b):
+            raise Undefined("division by zero")
+        return v_mul(Sc.of(1) / Sc.of(b), a) if not is_scalar(a) else Sc.of(a) / Sc.of(b)
+    if isinstance(b, Rad):
+        return v_mul(a, v_pow(b, -1))
+    return Ratio(a, b) if not isinstance(a, Ratio) else Ratio(a.num, v_mul(a.den, b))
+
+
+def v_apply(v, fn: Callable):
+    """Apply a scalar map (diff, subs, integrate) to every coefficient."""
+    if is_scalar(v):
+        return fn(v)
+    if isinstance(v, Form):
+        return v.map(fn)
+    if isinstance(v, Wedge):
+        return Wedge({k: fn(x) for k, x in v.terms.items()})
+    raise TypeError(f"cannot apply a parameter operation to {type(v).__name__}")
+
+
+def v_is_zero(v) -> bool:
+    if isinstance(v, DotSum):
+        return not compare(v, Sc.of(0))
+    if is_scalar(v):
+        return _is_zero(v)
+    if isinstance(v, (Form, Wedge)):
+        return all(_is_zero(x) for x in v.terms.values())
+    if isinstance(v, Rad):
+        return _is_zero(v.coef)
+    return v_is_zero(v.num)
+
+
+def dot(a, b):
+    if isinstance(a, Form) and isinstance(b, Form):
+        # commuting point symbols make a·b a faithful symmetric bilinear form; the product is
+        # formed lazily (see DotSum)
+        return DotSum([(Sc.of(1), a, b)])
+    if (is_scalar(a) and _is_zero(a)) or (is_scalar(b) and _is_zero(b)):
+        return Sc.of(0)
+    raise TypeError("dot needs two point combinations")
+
+
+def cross(a, b):
+    if (is_scalar(a) and _is_zero(a)) or (is_scalar(b) and _is_zero(b)):
+        return Wedge({})
+    if not (isinstance(a, Form) and isinstance(b, Form)):
+        raise TypeError("cross needs two point combinations")
+    out: dict = {}
+    for (ka,), va in a.terms.items():
+        for (kb,), vb in b.terms.items():
+            if ka == kb:
+                continue
+            key, sign = ((ka, kb), 1) if ka < kb else ((kb, ka), -1)
+            out[key] = out.get(key, Sc.of(0)) + va * vb * sign
+    return Wedge(out)
+
+
+def norm(v):
+    """|v| as a Rad: v = c·w with w primitive (first coefficient 1), |v| = |c|·|w|."""
+    items = v.terms.items() if isinstance(v, (Form, Wedge)) else None
+    if items is None:
+        if is_scalar(v) and _is_zero(v):
+            return Sc.of(0)
+        raise TypeError("norm needs a point combination")
+    items = sorted((k, Sc.of(x).ground()) for k, x in items if _nz(x))
+    if not items:
+        return Sc.of(0)
+    if any(x is None for _, x in items):
+        raise TypeError("norm of a combination with non-numeric coefficients")
+    lead = items[0][1]
+    canon = (type(v).__name__, tuple((k, x / lead) for k, x in items))
+    return Rad(Sc.of(abs(lead)), ((canon, 1),))
+
+
+# --------------------------------------------------------------------------- evaluation
+
+
+Model = Callable[..., object]
+
+
+@dataclass
+class Realiser:
+    """Evaluates parsed expressions with `models` for the undefined functions.
+
+    models[name](args, env) receives the evaluated arguments (SymPy objects; integers for
+    indices and degrees) and returns a value. `raw_models` receive the unevaluated arguments.
+    """
+
+    models: Mapping[str, Model]
+    raw_models: Mapping[str, Model] = field(default_factory=dict)
+
+    memo: dict = field(default_factory=dict)
+
+    def __call__(self, expr, env: Mapping) -> object:
+        return self.walk(expr, {k: int(v) for k, v in env.items()})
+
+    def walk(self, e, env):
+        if isinstance(e, (int, Fraction)):
+            return Sc.of(e)
+        if e.is_Number:
+            if not e.is_Rational:
+                raise TypeError(f"inexact number {e}")
+            return Sc(c=Fraction(int(e.p), int(e.q)))
+        if e.is_Symbol:
+            v = env.get(e)
+            if v is not None:
+                return Sc(c=Fraction(v))
+            if e in GEN:
+                return Sc(GEN[e])
+            raise TypeError(f"free symbol {e} has no value")
+        if isinstance(e, (AppliedUndef, sp.Derivative, sp.Subs, sp.Integral, sp.Sum)):
+            # models may depend on the degrees and k without printing them (p(t) on n)
+            key = (e, tuple(env.get(s) for s in _free(e)), tuple(env.get(s) for s in _IMPLICIT))
+            hit = self.memo.get(key)
+            if hit is None:
+                hit = self.memo[key] = self._walk(e, env)
+            return hit
+        return self._walk(e, env)
+
+    def _walk(self, e, env):  # noqa: C901 - a dispatch over node types
+        if isinstance(e, AppliedUndef):
+            name = e.func.__name__
+            if name in self.raw_models:
+                return self.raw_models[name](e.args, env, self)
+            if name not in self.models:
+                raise KeyError(f"no model for {name}")
+            args = [self.walk(a, env) for a in e.args]
+            return self.models[name](args, env)
+        if e.is_Add:
+            out = Sc.of(0)
+            for a in e.args:
+                out = v_add(out, self.walk(a, env))
+            return out
+        if e.is_Mul:
+            # functions first: a vanishing basis function makes the product zero before its
+            # coefficient (possibly 0/0 by the binomial convention) is looked at
+            first = [a for a in e.args if _has_function(a)]
+            rest = [a for a in e.args if not _has_function(a)]
+            out = Sc.of(1)
+            for a in first:
+                val = self.walk(a, env)
+                if trivially_zero(val):
+                    return Sc.of(0)
+                out = v_mul(out, val)
+            for a in rest:
+                out = v_mul(out, self.walk(a, env))
+            return out
+        if e.is_Pow:
+            base = self.walk(e.base, env)
+            ex = as_int(self.walk(e.exp, env))
+            if is_scalar(base) and trivially_zero(base) and ex < 0:
+                raise Undefined("division by zero")
+            return v_pow(base, ex)
+        if isinstance(e, sp.binomial):
+            a, b = (as_int(self.walk(x, env)) for x in e.args)
+            return Sc.of(paper_binomial(a, b))
+        if isinstance(e, sp.factorial):
+            a = as_int(self.walk(e.args[0], env))
+            if a < 0:
+                raise Undefined(f"factorial({a})")
+            return Sc.of(factorial(a))
+        if isinstance(e, sp.Sum):
+            return self._sum(e.function, list(e.limits), env)
+        if isinstance(e, sp.Derivative):
+            val = self.walk(e.expr, env)
+            for var, count in e.variable_count:
+                cnt = as_int(self.walk(count, env))
+                if cnt < 0:
+                    raise Undefined(f"derivative of order {cnt}")
+                val = v_apply(val, lambda s, var=var, cnt=cnt: s.diff(var, cnt))
+            return val
+        if isinstance(e, sp.Subs):
+            val = self.walk(e.expr, env)
+            for var, point in zip(e.variables, e.point, strict=True):
+                pt = self.walk(point, env)
+                val = v_apply(val, lambda s, var=var, pt=pt: s.subs(var, pt))
+            return val
+        if isinstance(e, sp.Integral):
+            val = self.walk(e.function, env)
+            if isinstance(val, DotSum) and len(e.limits) == 1:
+                var, lo, hi = e.limits[0]
+                return dotsum_integral(val, var, self.walk(lo, env), self.walk(hi, env))
+            for lim in e.limits:
+                var, lo, hi = lim[0], self.walk(lim[1], env), self.walk(lim[2], env)
+                val = v_apply(val, lambda s, var=var, lo=lo, hi=hi: s.integrate(var, lo, hi))
+            return val
+        raise TypeError(f"cannot evaluate {e!r}")
+
+    def _sum(self, body, limits, env):
+        if not limits:
+            return self.walk(body, env)
+        (var, lo, hi), rest = limits[0], limits[1:]
+        lo, hi = as_int(self.walk(lo, env)), as_int(self.walk(hi, env))
+        out = Sc.of(0)
+        for val in range(lo, hi + 1):  # empty when hi < lo
+            out = v_add(out, self._sum(body, rest, {**env, var: val}))
+        return out
+
+
+_IMPLICIT = (SYMBOLS["n"], SYMBOLS["m"], SYMBOLS["k"])
+
+
+@lru_cache(maxsize=8192)
+def _free(e) -> tuple:
+    return tuple(sorted(e.free_symbols, key=str))
+
+
+@lru_cache(maxsize=8192)
+def _has_function(e) -> bool:
+    return any(isinstance(a, AppliedUndef) for a in sp.preorder_traversal(e))
+
+
+def delta_model(args, env, realiser: Realiser):
+    """Δ^r X = Σ_q (-1)^(r-q) C(r,q) X[shift q]; the shift adds q to the first argument of every
+    control-point-like function in X (README: `Delta`)."""
+    r = as_int(realiser.walk(args[0], env))
+    if r < 0:
+        raise Undefined(f"difference of order {r}")
+    out = Sc.of(0)
+    for q in range(r + 1):
+        coeff = Sc.of((-1) ** (r - q) * comb(r, q))
+        out = v_add(out, v_mul(coeff, realiser.walk(shift_points(args[1], q), env)))
+    return out
+
+
+def shift_points(expr, q):
+    def is_point(e):
+        name = fn_name(e)
+        return name in POINT_LIKE and not (name == "b" and len(e.args) != 1)
+
+    return expr.replace(is_point, lambda e: e.func(e.args[0] + q, *e.args[1:]))
+
+
+def symbolic_delta(expr):
+    """Expand every Delta(r, X) with a symbolic order into an explicit Sum (for the general-n
+    checks)."""
+
+    def is_delta(e):
+        return fn_name(e) == "Delta"
+
+    def expand(e):
+        r, body = e.args
+        q = sp.Dummy("q", integer=True, nonnegative=True)
+        return sp.Sum(
+            (-1) ** (r - q) * sp.binomial(r, q) * shift_points(body, q), (q, sp.Integer(0), r)
+        )
+
+    return expr.replace(is_delta, expand)
+
+
+# --------------------------------------------------------------------------- comparison
+
+
+def _proportional_pairs(a: Ratio, b: Ratio) -> bool:
+    """a.num/a.den == b.num/b.den because a = μ·b termwise (numerator and denominator)."""
+    if not all(isinstance(v, Form) for v in (a.num, a.den, b.num, b.den)):
+        return False
+    keys = [k for k, v in b.den.terms.items() if not v.is_zero()]
+    if not keys:
+        return False
+    mu = a.den.terms.get(keys[0], Sc.of(0)) / b.den.terms[keys[0]]
+    for x, y in ((a.num, b.num), (a.den, b.den)):
+        for k in set(x.terms) | set(y.terms):
+            if not (x.terms.get(k, Sc.of(0)) - mu * y.terms.get(k, Sc.of(0))).is_zero():
+                return False
+    return True
+
+
+def show(x) -> str:
+    if is_scalar(x):
+        return str(simplify_scalar(x))
+    if isinstance(x, Form):
+        return " + ".join(f"({show(v)})*{key_str(k)}" for k, v in sorted(x.terms.items())) or "0"
+    return repr(x)
+
+
+def key_str(key) -> str:
+    return "*".join(f"{name}({idx})" for name, idx in key)
+
+
+def equal(a, b) -> bool:
+    """a == b exactly (no diff text)."""
+    if is_scalar(a) and is_scalar(b):
+        return (Sc.of(a) - Sc.of(b)).is_zero()
+    if isinstance(a, Form) and isinstance(b, Form):
+        return all(
+            (a.terms.get(k, ZERO) - b.terms.get(k, ZERO)).is_zero()
+            for k in set(a.terms) | set(b.terms)
+        )
+    return not compare(a, b)
+
+
+def compare(printed, derived) -> list[str]:
+    """Differences between two values, smallest first: [] when they are equal."""
+    if isinstance(printed, DotSum) or isinstance(derived, DotSum):
+        return _compare_dotsums(printed, derived)
+    if is_scalar(printed) and is_scalar(derived):
+        if _is_zero(printed - derived):
+            return []
+        return [f"printed {show(printed)}, derived {show(derived)}"]
+    if isinstance(printed, Ratio) or isinstance(derived, Ratio):
+        rp = printed if isinstance(printed, Ratio) else Ratio(printed, sp.Integer(1))
+        rd = derived if isinstance(derived, Ratio) else Ratio(derived, sp.Integer(1))
+        if _proportional_pairs(rp, rd) or v_is_zero(
+            v_add(v_mul(rp.num, rd.den), v_neg(v_mul(rd.num, rp.den)))
+        ):
+            return []
+        return ["the quotients differ (cross products unequal)"]
+    if isinstance(printed, Rad) or isinstance(derived, Rad):
+        if v_is_zero(printed) and v_is_zero(derived):
+            return []
+        if isinstance(printed, Rad) and isinstance(derived, Rad):
+            if printed.factors != derived.factors:
+                return ["printed and derived involve different lengths |...|"]
+            if _is_zero(printed.coef - derived.coef):
+                return []
+            return [
+                f"factor in front of the lengths: printed {show(printed.coef)}, "
+                f"derived {show(derived.coef)}"
+            ]
+        return ["one side is zero, the other is not"]
+    fp = printed if not is_scalar(printed) else Form({(): printed} if _nz(printed) else {})
+    fd = derived if not is_scalar(derived) else Form({(): derived} if _nz(derived) else {})
+    if type(fp) is not type(fd):
+        if v_is_zero(fp) and v_is_zero(fd):
+            return []
+        return [f"printed {type(fp).__name__}, derived {type(fd).__name__}"]
+    out = []
+    for key in sorted(set(fp.terms) | set(fd.terms)):
+        a, b = fp.terms.get(key, ZERO), fd.terms.get(key, ZERO)
+        if len(out) >= 3:
+            break
+        if not _is_zero(a - b):
+            name = key_str(key) if key and isinstance(key[0], tuple) else str(key)
+            out.append(f"coefficient of {name or '1'}: printed {show(a)}, derived {show(b)}")
+    return out
+
+
+# --------------------------------------------------------------------------- lazy dot products
+
+T_SYM = SYMBOLS["t"]
+
+
+def _t_degree(v, var) -> int:
+    g = GEN[var]
+    if isinstance(v, Sc):
+        if v.c is not None:
+            return 0
+        if v.pden is not None and v.pden.degree(g) > 0:
+            raise TypeError("a rational function of the integration variable")
+        return max(v.num.degree(g), 0)
+    if isinstance(v, Form):
+        return max((_t_degree(c, var) for c in v.terms.values()), default=0)
+    if isinstance(v, DotSum):
+        return max(
+            (_t_degree(c, var) + _t_degree(a, var) + _t_degree(b, var) for c, a, b in v.terms),
+            default=0,
+        )
+    return 0
+
+
+def _at(v, var, x):
+    """v with the parameter var set to the number x (a DotSum becomes a quadratic Form)."""
+    if isinstance(v, DotSum):
+        out = Sc.of(0)
+        for c, a, b in v.terms:
+            out = v_add(out, v_mul(c.subs(var, x), v_mul(_at(a, var, x), _at(b, var, x))))
+        return out
+    if isinstance(v, Form):
+        return Form({k: c.subs(var, x) for k, c in v.terms.items()})
+    return Sc.of(v).subs(var, x) if is_scalar(v) else v
+
+
+@cache
+def newton_cotes(npts: int) -> tuple[tuple[Fraction, Fraction], ...]:
+    """(node, weight) on [0, 1], npts equally spaced nodes: Σ w f(x) = ∫_0^1 f exactly for every
+    polynomial f of degree < npts (weights solve the moment equations exactly)."""
+    if npts == 1:
+        return ((Fraction(1, 2), Fraction(1)),)
+    nodes = [Fraction(r, npts - 1) for r in range(npts)]
+    # solve Σ_r w_r x_r^p = 1/(p+1), p = 0..npts-1 (Vandermonde, exact Gaussian elimination)
+    rows = [[x**p for x in nodes] + [Fraction(1, p + 1)] for p in range(npts)]
+    for col in range(npts):
+        piv = next(r for r in range(col, npts) if rows[r][col] != 0)
+        rows[col], rows[piv] = rows[piv], rows[col]
+        inv = 1 / rows[col][col]
+        rows[col] = [v * inv for v in rows[col]]
+        for r in range(npts):
+            if r != col and rows[r][col] != 0:
+                f = rows[r][col]
+                rows[r] = [a - f * b for a, b in zip(rows[r], rows[col], strict=True)]
+    return tuple((x, rows[r][npts]) for r, x in enumerate(nodes))
+
+
+class _Slow(Exception):
+    """The fast kernel does not apply (a parameter other than t and lam)."""
+
+
+_T_POS = PARAMS.index(SYMBOLS["t"])
+_L_POS = PARAMS.index(SYMBOLS["lam"])
+
+
+def _tl_terms(c: Sc) -> tuple:
+    """c as (((a, b, int), ...), den) meaning Σ coef·t^a·lam^b / den; _Slow otherwise."""
+    if c.c is not None:
+        return (((0, 0, c.c.numerator),), c.c.denominator)
+    if c.pden is not None:
+        raise _Slow
+    out = []
+    for monom, coeff in c.num.terms():
+        if any(e for pos, e in enumerate(monom) if pos not in (_T_POS, _L_POS)):
+            raise _Slow
+        out.append((monom[_T_POS], monom[_L_POS], int(coeff)))
+    return tuple(out), c.den
+
+
+class _Point:
+    """t = xn/xd, lam = y (an integer), with the powers used by the kernel as integers:
+    a polynomial of degree <= A in t is evaluated as an integer over xd^A."""
+
+    def __init__(self, x: Fraction, y: int, big_a: int, big_b: int):
+        xn, xd = x.numerator, x.denominator
+        self.tp = [xn**a * xd ** (big_a - a) for a in range(big_a + 1)]
+        self.lp = [y**b for b in range(big_b + 1)]
+        self.scale = xd**big_a
+
+    def value(self, poly) -> tuple[int, int]:
+        terms, den = poly
+        tp, lp = self.tp, self.lp
+        return sum(c * tp[a] * lp[b] for a, b, c in terms), den * self.scale
+
+
+def _lam_degree(poly) -> int:
+    return max((b for _, b, _ in poly[0]), default=0)
+
+
+def _t_deg(poly) -> int:
+    return max((a for a, _, _ in poly[0]), default=0)
+
+
+def _int_vector(values: list) -> tuple:
+    """[(num, den)] -> (ints, common denominator)."""
+    den = 1
+    for _, d in values:
+        den = den * d // gcd(den, d)
+    return [v * (den // d) for v, d in values], den
+
+
+_ZERO = ((), 1)
+
+
+class _Kernel:
+    """A DotSum (or a quadratic Form) evaluated at numbers for t and lam: integer matrices."""
+
+    def __init__(self, value, keys: list):
+        self.keys = keys
+        self.index = {k: pos for pos, k in enumerate(keys)}
+        self.parts = []  # ("dot", coef, a per key, b per key) or ("quad", {key: poly})
+        if isinstance(value, DotSum):
+            for c, a, b in value.terms:
+                self.parts.append(("dot", _tl_terms(c), self._vec(a), self._vec(b)))
+        elif isinstance(value, Form):
+            if any(len(k) != 2 for k in value.terms):
+                raise _Slow
+            self.parts.append(("quad", {k: _tl_terms(c) for k, c in value.terms.items()}))
+        elif not (is_scalar(value) and trivially_zero(value)):
+            raise _Slow
+
+    def _vec(self, form) -> list:
+        if not isinstance(form, Form) or any(len(k) != 1 for k in form.terms):
+            raise _Slow
+        out = [_ZERO] * len(self.keys)
+        for (key,), c in form.terms.items():
+            out[self.index[key]] = _tl_terms(c)
+        return out
+
+    def degrees(self) -> tuple[int, int]:
+        dt = dl = 0
+        for part in self.parts:
+            if part[0] == "dot":
+                _, c, a, b = part
+                dt = max(dt, _t_deg(c) + max(map(_t_deg, a)) + max(map(_t_deg, b)))
+                dl = max(dl, _lam_degree(c) + max(map(_lam_degree, a)) + max(map(_lam_degree, b)))
+            else:
+                for poly in part[1].values():
+                    dt, dl = max(dt, _t_deg(poly)), max(dl, _lam_degree(poly))
+        return dt, dl
+
+    def matrix(self, pt: _Point):
+        """(integer upper-triangular coefficient matrix, denominator) at the point."""
+        m = len(self.keys)
+        acc = np.zeros((m, m), dtype=object)
+        acc[:, :] = 0
+        den = 1
+        for part in self.parts:
+            if part[0] == "dot":
+                _, c, a, b = part
+                cn, cd = pt.value(c)
+                if cn == 0:
+                    continue
+                va, da = _int_vector([pt.value(p) for p in a])
+                vb, db = _int_vector([pt.value(p) for p in b])
+                outer = np.outer(np.array(va, dtype=object), np.array(vb, dtype=object))
+                outer = outer + outer.T - np.diag(np.diag(outer))  # P_i·P_j = P_j·P_i
+                term_den = da * db * cd
+                new_den = den * term_den // gcd(den, term_den)
+                acc = acc * (new_den // den) + outer * (cn * (new_den // term_den))
+                den = new_den
+            else:
+                ints, d = _int_vector([pt.value(p) for p in part[1].values()])
+                mat = np.zeros((m, m), dtype=object)
+                mat[:, :] = 0
+                for (k1, k2), v in zip(part[1], ints, strict=True):
+                    i, j = sorted((self.index[k1], self.index[k2]))
+                    mat[i, j] += v
+                new_den = den * d // gcd(den, d)
+                acc = acc * (new_den // den) + mat * (new_den // d)
+                den = new_den
+        return np.triu(acc), den
+
+
+def _keys_of(*values) -> list:
+    keys = set()
+    for v in values:
+        if isinstance(v, DotSum):
+            for _, a, b in v.terms:
+                keys |= {k[0] for k in a.terms} | {k[0] for k in b.terms}
+        elif isinstance(v, Form):
+            keys |= {p for k in v.terms for p in k}
+    return sorted(keys)
+
+
+def _lam_nodes(count: int) -> list[Fraction]:
+    return [Fraction(s) for s in range(count)]
+
+
+def _interpolate(ys: list[Fraction], values: list[Fraction]) -> list[Fraction]:
+    """Coefficients (lowest first) of the polynomial through (ys, values)."""
+    n = len(ys)
+    coeffs = [Fraction(0)] * n
+    for j in range(n):
+        basis = [Fraction(1)]
+        denom = Fraction(1)
+        for m_ in range(n):
+            if m_ == j:
+                continue
+            basis = [Fraction(0)] + basis  # multiply by (y - ys[m_])
+            for q in range(len(basis) - 1):
+                basis[q] -= ys[m_] * basis[q + 1]
+            denom *= ys[j] - ys[m_]
+        for q in range(n):
+            coeffs[q] += values[j] * basis[q] / denom
+    return coeffs
+
+
+def dotsum_integral(v: DotSum, var, lo, hi):
+    """∫_lo^hi of a DotSum: exact quadrature with more nodes than its degree in var."""
+    lo_f, hi_f = Sc.of(lo).ground(), Sc.of(hi).ground()
+    if lo_f is None or hi_f is None:
+        raise TypeError("integration bounds must be numbers")
+    if var == T_SYM:
+        try:
+            return _fast_integral(v, lo_f, hi_f)
+        except _Slow:
+            pass
+    out = Sc.of(0)
+    for x, w in newton_cotes(_t_degree(v, var) + 1):
+        point = lo_f + (hi_f - lo_f) * x
+        out = v_add(out, v_mul(Sc.of(w * (hi_f - lo_f)), _at(v, var, Sc.of(point))))
+    return out
+
+
+def _fast_integral(v: DotSum, lo: Fraction, hi: Fraction) -> Form:
+    keys = _keys_of(v)
+    kern = _Kernel(v, keys)
+    dt, dl = kern.degrees()
+    ys = _lam_nodes(dl + 1)
+    per_lam = []
+    for y in ys:
+        total, total_den = None, 1
+        for x, w in newton_cotes(dt + 1):
+            mat, den = kern.matrix(_Point(lo + (hi - lo) * x, int(y), dt, dl))
+            wq = w * (hi - lo)
+            term_den = den * wq.denominator
+            if total is None:
+                total, total_den = mat * wq.numerator, term_den
+                continue
+            new_den = total_den * term_den // gcd(total_den, term_den)
+            total = total * (new_den // total_den) + mat * (wq.numerator * (new_den // term_den))
+            total_den = new_den
+        per_lam.append((total, total_den))
+    terms = {}
+    m = len(keys)
+    for i in range(m):
+        for j in range(i, m):
+            vals = [Fraction(per_lam[s][0][i, j], per_lam[s][1]) for s in range(len(ys))]
+            coeffs = _interpolate(ys, vals)
+            c = Sc.of(0)
+            for p, cf in enumerate(coeffs):
+                if cf:
+                    c = c + Sc.of(cf) * Sc(GEN[SYMBOLS["lam"]]) ** p
+            if not c.is_zero():
+                terms[(keys[i], keys[j])] = c
+    return Form(terms)
+
+
+def _compare_dotsums(a, b) -> list[str]:
+    """Equal as polynomials in t (and lam): equal on a grid with more nodes than the degrees."""
+    if not all(isinstance(v, (DotSum, Form)) or is_scalar(v) for v in (a, b)):
+        return ["printed and derived are of different kinds"]
+    try:
+        keys = _keys_of(a, b)
+        ka, kb = _Kernel(a, keys), _Kernel(b, keys)
+        (ta, la), (tb, lb) = ka.degrees(), kb.degrees()
+        dt, dl = max(ta, tb), max(la, lb)
+        for x in range(dt + 1):
+            for y in range(dl + 1):
+                pt = _Point(Fraction(x), y, dt, dl)
+                ma, da = ka.matrix(pt)
+                mb, db = kb.matrix(pt)
+                if not np.array_equal(ma * db, mb * da):
+                    diff = [
+                        f"coefficient of {keys[i][0]}({keys[i][1]})*{keys[j][0]}({keys[j][1]}): "
+                        f"printed {Fraction(ma[i, j], da)}, derived {Fraction(mb[i, j], db)}"
+                        for i in range(len(keys))
+                        for j in range(i, len(keys))
+                        if ma[i, j] * db != mb[i, j] * da
+                    ]
+                    return [f"at t = {x}, lam = {y}: " + "; ".join(diff[:2])]
+        return []
+    except _Slow:
+        pass
+    deg = max(_t_degree(a, T_SYM), _t_degree(b, T_SYM))
+    for x, _ in newton_cotes(deg + 1):
+        diffs = compare(_at(a, T_SYM, Sc.of(x)), _at(b, T_SYM, Sc.of(x)))
+        if diffs:
+            return [f"at t = {x}: " + d for d in diffs]
+    return []

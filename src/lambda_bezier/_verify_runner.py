@@ -1,0 +1,148 @@
+"""`lambda-bezier verify`: every published formula and matrix checked against the derivation.
+
+The engine lives in derive/verify.py (it needs SymPy, imported only when the command runs);
+this module parses the options, shows progress on a terminal, renders the report and keeps
+ERRATA.md current in a checkout.
+"""
+
+from __future__ import annotations
+
+import argparse
+import copy
+import importlib
+import os
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from ._derive_runner import find_checkout, load_derive
+
+FORMATS = ("text", "json", "markdown")
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--format", choices=FORMATS, default="text", help="report format (default: text)"
+    )
+    parser.add_argument(
+        "--strict",
+        action="store_true",
+        help="also fail on any mismatch or pending record, expected or not",
+    )
+    parser.add_argument(
+        "--errata",
+        action="store_true",
+        help="(re)write ERRATA.md at the checkout root from the recorded errata",
+    )
+    parser.add_argument(
+        "--only",
+        action="append",
+        default=[],
+        metavar="TEXT",
+        help="check only records whose id contains TEXT (repeatable)",
+    )
+    parser.add_argument(
+        "--root",
+        type=Path,
+        default=None,
+        help="the source checkout (default: the one containing the current directory)",
+    )
+
+
+def run_from_args(args) -> int:
+    root = args.root.resolve() if args.root else None
+    return run(fmt=args.format, strict=args.strict, errata=args.errata, root=root, only=args.only)
+
+
+class Progress:
+    """A one-line counter on stderr, shown only on a terminal and only after a moment."""
+
+    def __init__(self, enabled: bool, delay: float = 0.5):
+        self.enabled = enabled
+        self.delay = delay
+        self.start = time.monotonic()
+        self.shown = False
+
+    def __call__(self, done: int, total: int, current: str) -> None:
+        if not self.enabled:
+            return
+        if done >= total:
+            if self.shown:
+                sys.stderr.write("\r\033[K")
+                sys.stderr.flush()
+            return
+        if time.monotonic() - self.start < self.delay:
+            return
+        self.shown = True
+        sys.stderr.write(f"\r\033[Kverifying {done + 1}/{total} {current}")
+        sys.stderr.flush()
+
+
+def _write_atomically(path: Path, text: str) -> None:
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as fh:
+            fh.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def run(
+    fmt: str = "text",
+    strict: bool = False,
+    errata: bool = False,
+    root: Path | None = None,
+    only: list[str] | None = None,
+    out=None,
+    progress: bool | None = None,
+) -> int:
+    out = out or sys.stdout
+    checkout = root if root is not None else find_checkout(Path.cwd())
+    if errata and checkout is None:
+        raise SystemExit(
+            "lambda-bezier verify --errata writes ERRATA.md into a source checkout: run it "
+            "inside the checkout or pass --root PATH"
+        )
+    derive = load_derive(checkout)  # exits with an install hint when SymPy is missing
+    verify = importlib.import_module(f"{derive.__name__}.verify")
+    published = checkout / "derive" / "published" if checkout is not None else verify.PUBLISHED
+    every = verify.load_records(published)
+    records = every
+    if only:
+        records = [r for r in every if any(text in r["id"] for text in only)]
+        if not records:
+            print(f"lambda-bezier verify: no record id contains {only}", file=sys.stderr)
+            return 2
+    if progress is None:
+        progress = out is sys.stdout and sys.stdout.isatty() and sys.stderr.isatty()
+    report = copy.copy(verify.verify(records, progress=Progress(progress), index=every))
+    report.extra_problems = list(report.extra_problems)
+    errata_path = checkout / verify.ERRATA_FILE if checkout is not None else None
+    if errata_path is not None and not only:
+        text = verify.render_errata(report)
+        if errata:
+            _write_atomically(errata_path, text)
+            print(f"wrote {errata_path}", file=sys.stderr)
+        elif not errata_path.is_file() or errata_path.read_text(encoding="utf-8") != text:
+            report.extra_problems.append(
+                f"{verify.ERRATA_FILE} is stale: run `{verify.ERRATA_COMMAND}` and commit it"
+            )
+    out.write(verify.RENDERERS[fmt](report))
+    problems = report.problems()
+    if problems:
+        print(
+            f"lambda-bezier verify: {len(problems)} problem(s): a verdict differs from its "
+            "recorded expectation (see the report)",
+            file=sys.stderr,
+        )
+        return 1
+    if report.failed(strict=strict):
+        print(
+            "lambda-bezier verify --strict: some records do not match (all expected)",
+            file=sys.stderr,
+        )
+        return 1
+    return 0

@@ -1,0 +1,303 @@
+"""`lambda-bezier verify`: verdicts are computed at run time from the derivation; altering one
+printed number flips a record's verdict; every erratum's corrected form matches; the exit code
+follows the recorded expectations; ERRATA.md is current."""
+
+from __future__ import annotations
+
+import copy
+import difflib
+import importlib
+import io
+import json
+import re
+import shutil
+
+import pytest
+from conftest import ROOT
+
+from lambda_bezier import _derive_runner, _verify_runner
+
+pytestmark = pytest.mark.skipif(
+    not (ROOT / "derive" / "verify.py").is_file(), reason="needs the source checkout (derive/)"
+)
+
+
+@pytest.fixture(scope="module")
+def verify():
+    derive = _derive_runner.load_derive(ROOT)
+    return importlib.import_module(f"{derive.__name__}.verify")
+
+
+@pytest.fixture(scope="module")
+def expr_mod(verify):
+    return importlib.import_module(verify.__name__.rsplit(".", 1)[0] + ".verify_expr")
+
+
+@pytest.fixture(scope="module")
+def records(verify):
+    return verify.load_records()
+
+
+@pytest.fixture(scope="module")
+def report(verify, records):
+    """The one full verification run of this module."""
+    return verify.verify(records)
+
+
+RECORD_IDS = [
+    r["id"]
+    for r in (
+        importlib.import_module(
+            _derive_runner.load_derive(ROOT).__name__ + ".verify"
+        ).load_records()
+        if (ROOT / "derive" / "verify.py").is_file()
+        else []
+    )
+]
+
+
+# --------------------------------------------------------------------------- the run
+
+
+def test_every_verdict_is_its_expectation(report):
+    problems = report.problems()
+    assert not problems, "\n".join(f"{rid}: {p}" for rid, p in problems)
+    assert report.counts()["error"] == 0
+
+
+def test_every_mismatch_has_a_verified_erratum(report):
+    for r in report.results:
+        if r.verdict == "mismatch":
+            assert r.record.get("erratum"), r.id
+            assert r.erratum is not None and r.erratum.verdict == "match", r.id
+            assert r.outcome.diffs, f"{r.id}: a mismatch without a diff"
+
+
+def test_pending_records_say_what_is_missing(report):
+    for r in report.results:
+        if r.verdict == "pending":
+            assert any("derive/" in d for d in r.outcome.diffs), r.id
+
+
+def test_errata_document_is_current(verify, report):
+    want = verify.render_errata(report)
+    path = ROOT / verify.ERRATA_FILE
+    have = path.read_text(encoding="utf-8") if path.is_file() else ""
+    if have != want:
+        diff = "".join(
+            difflib.unified_diff(
+                have.splitlines(True), want.splitlines(True), "ERRATA.md", "ERRATA.md (derived)"
+            )
+        )
+        pytest.fail(f"ERRATA.md is stale; run `{verify.ERRATA_COMMAND}`:\n{diff}")
+
+
+# --------------------------------------------------------------------------- flips
+
+_NUMBER = re.compile(r"(?<![A-Za-z_0-9.])\d+(?![0-9])")
+
+
+def _bump(text: str) -> str:
+    """The first integer literal of an expression (not part of a name like lam1) plus one;
+    without one, twice the expression."""
+    m = _NUMBER.search(text)
+    if m is None:
+        return f"2*({text})"
+    return text[: m.start()] + str(int(m.group()) + 1) + text[m.end() :]
+
+
+def _bump_point(rows):
+    rows = copy.deepcopy(rows)
+    rows[-1][0] = _bump(str(rows[-1][0]))
+    return rows
+
+
+def mutate(record: dict) -> tuple[dict, str]:
+    """The record with one printed number changed (and a description of the change)."""
+    rec = copy.deepcopy(record)
+    if "matrix" in rec:
+        rec["matrix"][0][0] = int(rec["matrix"][0][0]) + 1
+        return rec, "matrix[0][0] + 1"
+    if "equations" in rec:
+        eqs = rec["equations"]
+        pos = next((k for k, e in enumerate(eqs) if _NUMBER.search(e["rhs"])), 0)
+        eqs[pos]["rhs"] = _bump(eqs[pos]["rhs"])
+        return rec, f"equation {pos + 1} rhs -> {eqs[pos]['rhs']}"
+    if "cases" in rec:
+        rec["cases"][0]["value"] = _bump(rec["cases"][0]["value"])
+        return rec, f"case 1 value -> {rec['cases'][0]['value']}"
+    if "ratios" in rec:
+        rec["ratios"][0]["ratio"][0] = _bump(rec["ratios"][0]["ratio"][0])
+        return rec, "ratio"
+    if "numerator" in rec:  # energy formula: the printed scale
+        rec["scale"] = _bump(rec["scale"])
+        return rec, f"scale -> {rec['scale']}"
+    if "lambda" in rec:
+        rec["lambda"] = _bump(rec["lambda"])
+        return rec, f"lambda -> {rec['lambda']}"
+    if "left" in rec:
+        rec["left"] = _bump_point(rec["left"])
+        return rec, "last left point"
+    if "result" in rec:
+        rec["result"] = _bump_point(rec["result"])
+        return rec, "last result point"
+    if "argmax" in rec:
+        rec["argmax"] = _bump(rec["argmax"])
+        return rec, f"argmax -> {rec['argmax']}"
+    raise AssertionError(f"no mutation for {record['id']}")
+
+
+@pytest.mark.parametrize("rid", RECORD_IDS)
+def test_one_changed_number_flips_the_verdict(verify, report, rid):
+    result = next(r for r in report.results if r.id == rid)
+    record = result.record
+    if result.verdict == "pending":
+        assert record["expect"] == "pending"
+        pytest.skip(f"{rid} is pending: {result.outcome.diffs[0]}")
+    if result.verdict == "mismatch":
+        fixed = verify.corrected(record)
+        assert verify.check_record(fixed).verdict == "match", f"{rid}: erratum does not match"
+        record = fixed
+    else:
+        assert result.verdict == "match"
+    mutated, how = mutate(record)
+    res = verify.check_record(mutated)
+    assert res.error is None, f"{rid} ({how}): {res.error}"
+    assert res.verdict == "mismatch", f"{rid}: changing {how} did not flip the verdict"
+    assert res.outcome.diffs
+
+
+# --------------------------------------------------------------------------- engine details
+
+
+def test_paper_binomial_convention(expr_mod):
+    C = expr_mod.paper_binomial
+    assert C(5, 2) == 10 and C(3, 0) == 1 and C(3, 3) == 1
+    assert C(3, -1) == 0 and C(3, 4) == 0 and C(-1, -1) == 0 and C(-2, 1) == 0
+
+
+def test_parser_rejects_names_outside_the_table(expr_mod):
+    with pytest.raises(expr_mod.ParseError):
+        expr_mod.parse("b(i, n, t) + zeta")
+    with pytest.raises(expr_mod.ParseError):
+        expr_mod.parse("sin(t)")
+    with pytest.raises(expr_mod.ParseError):
+        expr_mod.parse("H(i)")
+    # the table shadows SymPy's own C, E, Q, S, beta
+    e = expr_mod.parse("C*E(2) + Q(1) + beta")
+    assert {s.name for s in e.free_symbols} == {"C", "beta"}
+
+
+def test_misprint_diff_names_what_differs(report):
+    by_id = {r.id: r for r in report.results}
+    eq7 = " ".join(by_id["000.eq7"].outcome.diffs)
+    assert "left side" in eq7 and "B(i, n, t)" in eq7 and "B(i + 1, n, t)" in eq7
+    assert "not covered" in " ".join(by_id["001.eq11"].outcome.diffs)
+    assert "n=1" in by_id["002.curve.endpoint_dk.t1"].outcome.diffs[-1]
+
+
+def test_energy_checks_are_pending_without_energy(verify, records, monkeypatch):
+    checks = importlib.import_module(verify.__name__.rsplit(".", 1)[0] + ".verify_checks")
+    monkeypatch.setitem(
+        checks.REQUIREMENTS, "energy", (("no_such_function",), "needs derive/energy.py (test)")
+    )
+    rec = next(r for r in records if r["id"] == "000.X_3^1")
+    res = verify.check_record(rec)
+    assert res.verdict == "pending" and "derive/energy.py" in res.outcome.diffs[0]
+
+
+# --------------------------------------------------------------------------- CLI
+
+
+def _run(**kw):
+    out = io.StringIO()
+    rc = _verify_runner.run(out=out, progress=False, root=ROOT, **kw)
+    return rc, out.getvalue()
+
+
+def test_cli_text_json_markdown():
+    rc, text = _run(only=["000.eq3", "001.eq11"])
+    assert rc == 0
+    lines = text.splitlines()
+    assert lines[0].split()[:3] == ["000.eq3", "000_10ca634d356c575d.txt", "match"]
+    assert any(line.split()[:3][-1] == "mismatch" for line in lines if "001.eq11" in line)
+    assert "not covered" in text and "erratum" in text
+    rc, js = _run(fmt="json", only=["001.eq11"])
+    data = json.loads(js)
+    assert rc == 0 and data["records"][0]["verdict"] == "mismatch"
+    assert data["records"][0]["erratum"]["verdict"] == "match"
+    rc, md = _run(fmt="markdown", only=["001.eq11"])
+    assert md.startswith("| id | source | verdict | diff |")
+
+
+def test_cli_strict_fails_on_expected_mismatch():
+    assert _run(only=["000.eq3"], strict=True)[0] == 0
+    assert _run(only=["001.eq11"], strict=True)[0] == 1
+
+
+@pytest.fixture
+def checkout_copy(tmp_path):
+    for item in ("pyproject.toml", "derive", "generated", "ERRATA.md"):
+        src = ROOT / item
+        if src.is_dir():
+            shutil.copytree(src, tmp_path / item, ignore=shutil.ignore_patterns("__pycache__"))
+        elif src.is_file():
+            shutil.copy(src, tmp_path / item)
+    return tmp_path
+
+
+def _edit(path, old, new):
+    text = path.read_text(encoding="utf-8")
+    assert old in text
+    path.write_text(text.replace(old, new, 1), encoding="utf-8")
+
+
+def test_cli_fails_on_a_new_discrepancy(checkout_copy, capsys):
+    """A changed printed coefficient (expected to match) fails the run with a clear message."""
+    toml = checkout_copy / "derive" / "published" / "000_same_degree.toml"
+    _edit(toml, '"(2 + lam)*t*(1 - t)**2"', '"(3 + lam)*t*(1 - t)**2"')
+    out = io.StringIO()
+    rc = _verify_runner.run(out=out, progress=False, root=checkout_copy, only=["000.eq3"])
+    assert rc == 1
+    assert "NEW DISCREPANCY" in out.getvalue()
+    assert "expectation" in capsys.readouterr().err
+
+
+def test_cli_fails_when_a_misprint_matches(checkout_copy):
+    toml = checkout_copy / "derive" / "published" / "002_bezier_notes.toml"
+    _edit(toml, "3*bk(1, n - 3) + bk(0, n - 3))", "3*bk(1, n - 3) - bk(0, n - 3))")
+    _edit(toml, "3*bk(1, 0) + bk(0, 0))", "3*bk(1, 0) - bk(0, 0))")
+    out = io.StringIO()
+    rc = _verify_runner.run(
+        out=out, progress=False, root=checkout_copy, only=["derivative_decasteljau.examples"]
+    )
+    assert rc == 1 and "now MATCHES" in out.getvalue()
+
+
+def test_cli_flags_a_stale_errata_file(checkout_copy, verify, report, monkeypatch, capsys):
+    """A stale ERRATA.md fails the run with the command to fix it; --errata rewrites it.
+    (The module's verification run is reused: the engine is not what is tested here.)"""
+    monkeypatch.setattr(verify, "verify", lambda *a, **k: report)
+    (checkout_copy / "ERRATA.md").write_text("stale\n", encoding="utf-8")
+    out = io.StringIO()
+    assert _verify_runner.run(out=out, progress=False, root=checkout_copy) == 1
+    assert "ERRATA.md is stale" in out.getvalue() and "--errata" in out.getvalue()
+    assert (
+        _verify_runner.run(out=io.StringIO(), progress=False, root=checkout_copy, errata=True) == 0
+    )
+    assert (checkout_copy / "ERRATA.md").read_text(encoding="utf-8") == (
+        ROOT / "ERRATA.md"
+    ).read_text(encoding="utf-8")
+    capsys.readouterr()
+
+
+def test_progress_only_on_a_terminal(capsys):
+    p = _verify_runner.Progress(enabled=False)
+    p(0, 10, "x")
+    p(10, 10, "")
+    assert capsys.readouterr().err == ""
+    p = _verify_runner.Progress(enabled=True, delay=0)
+    p(0, 2, "000.eq1")
+    p(2, 2, "")
+    err = capsys.readouterr().err
+    assert "verifying 1/2 000.eq1" in err

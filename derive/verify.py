@@ -25,6 +25,8 @@ Expectations and errata live next to each record in the TOML files:
 from __future__ import annotations
 
 import json
+import multiprocessing
+import os
 import sys
 import time
 from collections.abc import Callable
@@ -192,24 +194,60 @@ def check_record(record: dict) -> Result:
     return res
 
 
+def default_jobs() -> int:
+    """Worker processes: one per CPU where fork is available (the workers inherit the warmed
+    derive caches), else 1."""
+    if "fork" not in multiprocessing.get_all_start_methods():
+        return 1
+    return max(1, min(os.cpu_count() or 1, 8))
+
+
+def warm_caches() -> None:
+    """The derive results most records share, computed once before forking workers."""
+    from . import bernstein_like, same_degree
+    from .verify_checks import bezier_weights, closed_forms
+
+    for deg in same_degree.DEGREES:
+        same_degree.basis_polys(deg)
+    for deg in bernstein_like.DEGREES:
+        bernstein_like.basis_polys(deg)
+    closed_forms("same_degree")
+    closed_forms("bernstein_like")
+    bezier_weights()
+
+
 def verify(
     records: list[dict] | None = None,
     progress: Callable[[int, int, str], None] | None = None,
     index: list[dict] | None = None,
+    jobs: int | None = None,
 ) -> Report:
     """Check `records` (default: all published ones); `index` is the full set they may refer
-    to (default: `records`)."""
+    to (default: `records`); `jobs` worker processes (default: default_jobs())."""
     records = load_records() if records is None else records
     _INDEX.clear()
     _INDEX.update({r["id"]: r for r in (records if index is None else index)})
     start = time.perf_counter()
-    results = []
-    for pos, rec in enumerate(records):
-        if progress:
-            progress(pos, len(records), rec["id"])
-        results.append(check_record(rec))
+    jobs = default_jobs() if jobs is None else jobs
+    total = len(records)
     if progress:
-        progress(len(records), len(records), "")
+        progress(0, total, records[0]["id"] if records else "")
+    if jobs > 1 and total > 4:
+        warm_caches()
+        with multiprocessing.get_context("fork").Pool(jobs) as pool:
+            results = []
+            for res in pool.imap(check_record, records, chunksize=1):
+                results.append(res)
+                if progress and len(results) < total:
+                    progress(len(results), total, records[len(results)]["id"])
+    else:
+        results = []
+        for pos, rec in enumerate(records):
+            if progress:
+                progress(pos, total, rec["id"])
+            results.append(check_record(rec))
+    if progress:
+        progress(total, total, "")
     return Report(results, time.perf_counter() - start)
 
 

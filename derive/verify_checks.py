@@ -49,7 +49,9 @@ from .verify_expr import (
     compare,
     cross,
     delta_model,
+    _proportional_pairs,
     equal,
+    fast_factor,
     fn_name,
     norm,
     parse,
@@ -103,7 +105,7 @@ REQUIREMENTS = {
         "optimal_lambda_exact; issue 3)",
     ),
     "joins": (
-        (),
+        ("solve",),
         "needs the join derivation derive/joins.py (C1/C2/G1/G2 vertex formulas; issue 4)",
     ),
 }
@@ -352,8 +354,11 @@ class Context:
 
     def curve(self, env, x, points=None, deg_sym="n", shape=None) -> Form:
         n = self.degree(env, deg_sym)
-        c = _curve(self.family.name, n, points or self.family.points)
-        if shape is not None and not is_param(shape, LAM):
+        if shape is not None and shape.c is not None:  # a sample value of the shape
+            c = _curve_shape(self.family.name, n, points or self.family.points, shape.c)
+        else:
+            c = _curve(self.family.name, n, points or self.family.points)
+        if shape is not None and shape.c is None and not is_param(shape, LAM):
             c = v_apply(c, lambda s: s.subs(LAM, shape))
         if not is_param(x, T):
             c = v_apply(c, lambda s: s.subs(T, x))
@@ -368,14 +373,13 @@ class Context:
         second = self.record.get("second")
         if first and second:
             spec = first if which == 1 else second
-            deg_sym = str(parse(spec["degree"]))
-            shape = Sc.of(parse(spec["shape"]))
-            return self.curve(env, x, spec["points"], deg_sym, shape)
-        if self.family.name == "bernstein_like":  # eq. 12: C_1 degree n, C_2 degree m
+            spec = (spec["points"], str(parse(spec["degree"])), parse(spec["shape"]))
+        elif self.family.name == "bernstein_like":  # eq. 12: C_1 degree n, C_2 degree m
             spec = ("P1", "n", S["lam1"]) if which == 1 else ("P2", "m", S["lam2"])
         else:  # 000 eq. 17: p1 degree m, p2 degree n
             spec = ("V1", "m", S["lam1"]) if which == 1 else ("V2", "n", S["lam2"])
-        return self.curve(env, x, spec[0], spec[1], Sc.of(spec[2]))
+        shape = env[spec[2]] if spec[2] in env else spec[2]  # a sample value, or symbolic
+        return self.curve(env, x, spec[0], spec[1], Sc.of(shape))
 
     def casteljau_param(self):
         return parse(self.record["at"]) if self.record.get("at") else T
@@ -449,6 +453,11 @@ def _curve(family: str, n: int, points: str) -> Form:
     for i in range(n + 1):
         terms[((points, i),)] = family_basis(family, n, i)
     return Form(terms)
+
+
+@cache
+def _curve_shape(family: str, n: int, points: str, shape: Fraction) -> Form:
+    return v_apply(_curve(family, n, points), lambda s: s.subs(LAM, Sc.of(shape)))
 
 
 @cache
@@ -1454,7 +1463,11 @@ def check_energy_equations(record: dict, ctx: Context) -> Outcome:
                     val = real(lhs, env)
                     a = v_apply(val, lambda s: s.subs(LAM, 0))
                     b = v_apply(val, lambda s: s.diff(LAM))
-                    ok = v_is_zero(v_add(v_mul(a, star.den), v_mul(b, star.num)))
+                    # a + λ b = 0 at λ = num/den: b = μ·den and a = -μ·num suffices (cheap);
+                    # otherwise a·den + b·num = 0 as a quartic form decides
+                    ok = _proportional_pairs(
+                        Ratio(v_neg(a), b), Ratio(star.num, star.den)
+                    ) or v_is_zero(v_add(v_mul(a, star.den), v_mul(b, star.num)))
                     diffs = [] if ok else ["dE/dλ does not vanish at the derived minimiser"]
                 tally.add(env, diffs)
             tallies.append(tally)
@@ -1562,10 +1575,180 @@ def check_energy_example(record: dict, ctx: Context) -> Outcome:
 
 # --------------------------------------------------------------------------- joins (issue 4)
 
+JOIN_CONTINUITY = {
+    "same_degree.g1_join": "G1",
+    "bernstein_like.c1_join": "C1",
+    "bernstein_like.c2_join": "C2",
+    "bernstein_like.g1_join": "G1",
+    "bernstein_like.g2_join": "G2",
+}
+
+
+def _diff_text(a, b) -> str:
+    """printed vs derived; when both are long, their (factored) difference instead."""
+    fa, fb = fast_factor(a), fast_factor(b)
+    if len(str(fa)) + len(str(fb)) <= 240:
+        return f"printed {_orig(fa)}, derived {_orig(fb)}"
+    return f"printed - derived = {_orig(fast_factor(a - b))}"
+
+
+def _join_specs(record: dict, ctx: Context):
+    """(first, second) as (curve, degree symbol, shape symbol, points name); 000 names its
+    first curve's degree m and the second's n (eq. 17), 001 the other way round (eq. 12)."""
+    if record.get("first") and record.get("second"):
+        return tuple(
+            (sp_["curve"], parse(sp_["degree"]), parse(sp_["shape"]), sp_["points"])
+            for sp_ in (record["first"], record["second"])
+        )
+    if ctx.family.name == "same_degree":
+        return (("p1", S["m"], S["lam1"], "V1"), ("p2", S["n"], S["lam2"], "V2"))
+    return (("p1", S["n"], S["lam1"], "P1"), ("p2", S["m"], S["lam2"], "P2"))
+
+
+def _printed_rows(record: dict, second_points: str) -> dict[int, sp.Expr]:
+    """{r: printed right side of P_{r,2}}, with the rows of `uses` records and every reference
+    to an earlier row of the second curve resolved."""
+    rows: dict[int, sp.Expr] = {}
+    sources = [records_by_id_safe(u) for u in record.get("uses", [])] + [record]
+    for rec in sources:
+        for eq in rec.get("equations", []):
+            lhs = parse(eq["lhs"])
+            if fn_name(lhs) == second_points and lhs.args[0].is_Integer:
+                rows[int(lhs.args[0])] = parse(eq["rhs"])
+    fn = sp.Function(second_points)
+    for _ in range(3):
+        for r in list(rows):
+            rows[r] = rows[r].xreplace({fn(q): rows[q] for q in rows if q != r})
+    return rows
+
+
+def records_by_id_safe(rid: str) -> dict:
+    by_id = _records_by_id(None)
+    if rid not in by_id:
+        raise KeyError(f"record {rid} (named in `uses`) does not exist")
+    return by_id[rid]
+
+
+@cache
+def _join_rows(family: str):
+    return derive_module("joins").solve(family, family)
+
+
+def _join_derived(family: str, continuity: str) -> list[dict]:
+    """Derived weights of P_{r,2}: {("first", j) | ("second", 3): Expr in the derive symbols}."""
+    out = []
+    for row in _join_rows(family):
+        d = {}
+        for key, w in row.items():
+            e = w.as_expr()
+            if continuity in ("C1", "C2"):  # C = G at α = 1, d = 0
+                e = e.xreplace({S["alpha"]: 1, S["d"]: 0})
+            d[key] = e
+        out.append(d)
+    return out
+
+
+def _weights(rhs, first_pts: str, second_pts: str, n_first) -> tuple[dict, sp.Expr]:
+    """Printed weights keyed like derive/joins.py: ("first", j) for P_{n-j,1}."""
+    pts = {a for a in sp.preorder_traversal(rhs) if fn_name(a) in (first_pts, second_pts)}
+    out: dict = {}
+    for pt in pts:
+        c = sp.diff(rhs, pt)
+        if fn_name(pt) == first_pts:
+            key = ("first", sp.expand(n_first - pt.args[0]))
+        else:
+            key = ("second", pt.args[0])
+        out[key] = out.get(key, 0) + c
+    rest = rhs.xreplace({pt: 0 for pt in pts})
+    return out, rest
+
+
+def join_symbolic(record, ctx, rows, specs, continuity) -> tuple[list[str], dict]:
+    (_, n1, l1, pts1), (_, n2, l2, pts2) = specs
+    to_j = {n1: _algebra.n, n2: _algebra.m, l1: S["lam1"], l2: S["lam2"]}
+    derived = _join_derived(ctx.family.name, continuity)
+    diffs = []
+    for r, rhs in sorted(rows.items()):
+        printed, rest = _weights(rhs, pts1, pts2, n1)
+        if rest != 0:
+            diffs.append(f"symbolic: P_{r},2 has a term {rest} without a control point")
+        want = derived[r]
+        keys = {(s_, int(j)) for s_, j in printed if sp.sympify(j).is_Integer} | set(want)
+        for key in sorted(keys):
+            a = printed.get((key[0], sp.Integer(key[1])), 0)
+            a = sp.sympify(a).xreplace(to_j)
+            b = want.get(key, sp.Integer(0))
+            if not _is_zero(a - b):
+                name = f"{pts1}({n1} - {key[1]})" if key[0] == "first" else f"{pts2}({key[1]})"
+                diffs.append(f"symbolic: {pts2}({r}): weight of {name}: " + _diff_text(a, b))
+    return diffs, derived
+
+
+def _degree_pairs(ctx: Context):
+    """Every degree of the range for each curve, against the smallest and the largest of the
+    other (and the diagonal)."""
+    degs = list(ctx.family.degrees)
+    ends = (degs[0], degs[-1])
+    return sorted({(a, b) for a in degs for b in degs if a == b or a in ends or b in ends})
+
+
+def _substitute(value, sub: dict):
+    if not isinstance(value, Form):
+        return value
+    out = Sc.of(0)
+    for key, c in value.terms.items():
+        if len(key) == 1 and key[0] in sub:
+            out = v_add(out, v_mul(c, sub[key[0]]))
+        else:
+            out = v_add(out, Form({key: c}))
+    return out
+
+
+# Exact parameter values for the per-degree join checks (inside both λ ranges, α ≠ 1, d ≠ 0):
+# the weights are compared for general n, m, λ1, λ2, α, d symbolically; per degree pair the
+# printed conditions are evaluated exactly at these values, as derive/joins.py checks its own.
+JOIN_SAMPLES = (
+    {
+        "lam1": Fraction(1, 3),
+        "lam2": Fraction(-2, 5),
+        "alpha": Fraction(3, 2),
+        "d": Fraction(-7, 4),
+    },
+    {"lam1": Fraction(-5, 7), "lam2": Fraction(4, 9), "alpha": Fraction(2, 5), "d": Fraction(5, 3)},
+)
+
+
+def join_per_degree(record, ctx, rows, specs, conventions, label="convention") -> Tally:
+    """The printed conditions hold, per degree pair (and at JOIN_SAMPLES), for the curves
+    built from the derived basis polynomials with the printed vertex formulas substituted."""
+    (_, n1, l1, _), (_, n2, l2, pts2) = specs
+    tally = Tally(f"per-degree {label}")
+    for (a, b), sample in itertools.product(_degree_pairs(ctx), JOIN_SAMPLES):
+        real = ctx.realiser()
+        env = {n1: sp.Integer(a), n2: sp.Integer(b), l1: sample["lam1"], l2: sample["lam2"]}
+        env |= {S["alpha"]: sample["alpha"], S["d"]: sample["d"]}
+        try:
+            sub = {(pts2, r): real(rhs, env) for r, rhs in rows.items()}
+        except Undefined:
+            continue
+        row = []
+        for eq in conventions:
+            left = _substitute(real(parse(eq["lhs"]), env), sub)
+            right = _substitute(real(parse(eq["rhs"]), env), sub)
+            if not equal(left, right):
+                if tally.failures or row:  # details for the first failure only
+                    row.append("differs")
+                    continue
+                row += [
+                    f"`{eq['lhs']} = {eq['rhs']}`: "
+                    + d.replace("printed", "right side").replace("derived", "left side")
+                    for d in compare(right, left)[:1]
+                ]
+        tally.add(env, row)
+    return tally
+
 
 @checker(
-    "same_degree.g1_join",
-    "same_degree.g1_join_ratio",
     "bernstein_like.c1_join",
     "bernstein_like.c2_join",
     "bernstein_like.g1_join",
@@ -1573,5 +1756,120 @@ def check_energy_example(record: dict, ctx: Context) -> Outcome:
     requires=("joins",),
 )
 def check_join(record: dict, ctx: Context) -> Outcome:
-    """Vertex formulas of the join theorems, once the join derivation exists."""
-    raise Pending(REQUIREMENTS["joins"][1] + ": no join checker is written yet")
+    """Vertex formulas of 001's C1/C2/G1/G2 theorems: each weight against derive/joins.py's
+    solve() symbolically in n, m, λ1, λ2 (α, d), and, per degree pair, the printed continuity
+    conditions with the printed vertices substituted."""
+    continuity = JOIN_CONTINUITY[record["claim"]]
+    specs = _join_specs(record, ctx)
+    rows = _printed_rows(record, specs[1][3])
+    diffs, _ = join_symbolic(record, ctx, rows, specs, continuity)
+    tally = join_per_degree(record, ctx, rows, specs, record.get("convention", []))
+    diffs += tally.lines()
+    checked = ["symbolic: weights vs joins.solve()", f"per-degree conditions: {tally.total} pairs"]
+    return Outcome("mismatch" if diffs else "match", diffs, checked)
+
+
+def _corner_positive(expr, syms) -> bool:
+    """A rational function, multilinear in the λs, positive on λ ∈ (-2, 1]^k: numerator and
+    denominator keep one sign on the closed box (checked at its corners; a zero is allowed
+    only at λ = -2, which the range excludes)."""
+    num, den = sp.fraction(sp.factor(expr))
+    for part in (num, den):
+        if any(sp.degree(part, s) > 1 for s in syms if part.has(s)):
+            return False
+        values = [part.subs(dict(zip(syms, c, strict=True))) for c in _corners(len(syms))]
+        open_corner = [all(v == 1 for v in c) for c in _corners(len(syms))]
+        signs = {sp.sign(v) for v, top in zip(values, open_corner, strict=True) if v != 0 or top}
+        if len(signs - {0}) != 1 or 0 in {sp.sign(values[open_corner.index(True)])}:
+            return False
+    return True
+
+
+def _corners(k: int):
+    return list(itertools.product((-2, 1), repeat=k))
+
+
+@checker("same_degree.g1_join", requires=("joins",))
+def check_join_000(record: dict, ctx: Context) -> Outcome:
+    """Eq. (18) of 000: a sufficient G1 condition with a free C > 0. It is the derived G1
+    solution (derive/joins.py, α > 0) exactly when some α > 0 reproduces it for every C > 0:
+    α is solved from one weight, the others must then agree, and α must be positive on the
+    λ ranges for every degree pair; per degree, p2'(0) = β p1'(1) with β > 0 is checked too."""
+    specs = _join_specs(record, ctx)
+    (_, n1, l1, pts1), (_, n2, l2, pts2) = specs
+    rows = _printed_rows(record, pts2)
+    alpha, Csym = S["alpha"], S["C"]
+    to_j = {n1: _algebra.n, n2: _algebra.m}
+    derived = _join_derived("same_degree", "G1")
+    diffs = []
+    sol = None
+    for r, rhs in sorted(rows.items()):
+        printed, rest = _weights(rhs, pts1, pts2, n1)
+        printed = {(k[0], int(k[1])): sp.sympify(v).xreplace(to_j) for k, v in printed.items()}
+        want = derived[r]
+        for key in sorted(set(printed) | set(want)):
+            a, b = printed.get(key, sp.Integer(0)), want.get(key, sp.Integer(0))
+            if sol is None and b.has(alpha):
+                cand = sp.solve(sp.Eq(a, b), alpha)
+                sol = cand[0] if len(cand) == 1 else None
+            b = b.xreplace({alpha: sol}) if sol is not None else b
+            if not _is_zero(sp.sympify(a) - b):
+                diffs.append(
+                    f"symbolic: {pts2}({r}): weight of {pts1}({n1} - {key[1]}): printed "
+                    f"{sp.factor(a)}, derived {sp.factor(b)}"
+                )
+    if sol is None:
+        diffs.append("symbolic: no α reproduces the printed vertices")
+    tally = Tally("per-degree α > 0 and p2'(0) = β p1'(1), β > 0")
+    real = ctx.realiser()
+    lam_syms = [S["lam1"], S["lam2"]]
+    for a_, b_ in _degree_pairs(ctx):
+        env = {n1: sp.Integer(a_), n2: sp.Integer(b_)}
+        row = []
+        if sol is not None:
+            ac = sp.sympify(sol * Csym).xreplace({_algebra.n: a_, _algebra.m: b_})
+            if not _corner_positive(ac, lam_syms):
+                row.append(f"α·C = {sp.factor(ac)} is not positive on the λ ranges")
+        sub = {(pts2, r): real(rhs, env) for r, rhs in rows.items()}
+        d1 = _substitute(real(parse("Subs(Derivative(p2(t), t), t, 0)"), env), sub)
+        e1 = real(parse("Subs(Derivative(p1(t), t), t, 1)"), env)
+        p0 = _substitute(real(parse("p2(0)"), env), sub)
+        if not equal(p0, real(parse("p1(1)"), env)):
+            row.append("p2(0) != p1(1)")
+        key = next(k for k in sorted(e1.terms) if not e1.terms[k].is_zero())
+        beta = d1.terms.get(key, Sc.of(0)) / e1.terms[key]
+        if not equal(d1, v_mul(beta, e1)):
+            row.append("p2'(0) is not a multiple of p1'(1)")
+        elif not _corner_positive(sp.factor(beta.to_expr() / Csym), lam_syms):
+            row.append(f"β = {sp.factor(beta.to_expr())} is not positive for C > 0")
+        tally.add(env, row)
+    diffs += tally.lines()
+    checked = ["symbolic: weights vs joins.solve() at the α solved", f"per-degree: {tally.total}"]
+    return Outcome("mismatch" if diffs else "match", diffs, checked)
+
+
+@checker("same_degree.g1_join_ratio", requires=("joins",))
+def check_join_ratio(record: dict, ctx: Context) -> Outcome:
+    """Proof of Prop. 9: the end values and derivatives (per degree pair, with the curves of
+    eq. 17), and p2'(0) = β p1'(1) with the printed β once eq. (18) holds (its vertices, from
+    the same_degree.g1_join record, substituted)."""
+    specs = _join_specs(record, ctx)
+    pts2 = specs[1][3]
+    g1 = next(r for r in _records_by_id(None).values() if r["claim"] == "same_degree.g1_join")
+    rows = _printed_rows(g1, pts2)
+    beta = S["beta"]
+    defs = {parse(e["lhs"]): parse(e["rhs"]) for e in record["equations"]}
+    conditions = []
+    for eq in record["equations"]:
+        lhs, rhs = parse(eq["lhs"]), parse(eq["rhs"])
+        if lhs == beta:
+            continue  # the definition of β, used below
+        conditions.append(
+            {
+                "lhs": str(lhs.xreplace({beta: defs.get(beta, beta)})),
+                "rhs": str(rhs.xreplace({beta: defs.get(beta, beta)})),
+            }
+        )
+    tally = join_per_degree(record, ctx, rows, specs, conditions, "equations")
+    diffs = tally.lines()
+    return Outcome("mismatch" if diffs else "match", diffs, [f"per-degree: {tally.total} pairs"])

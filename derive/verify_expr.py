@@ -212,8 +212,20 @@ def _lcm(a: int, b: int) -> int:
     return a // gcd(a, b) * b
 
 
+def _q(p: int, q: int):
+    """p/q as an int when exact (ints are far cheaper than Fractions), else a Fraction."""
+    return p // q if p % q == 0 else Fraction(p, q)
+
+
+def _inv(c):
+    if isinstance(c, int):
+        return Fraction(1, c) if c not in (1, -1) else c
+    return 1 / c
+
+
 class Sc:
-    """An exact scalar: the Fraction `c` when it is a number, else num / (den · pden)."""
+    """An exact scalar: the number `c` (an int, or a Fraction) when it is constant, else
+    num / (den · pden)."""
 
     __slots__ = ("c", "num", "den", "pden")
 
@@ -230,7 +242,7 @@ class Sc:
             num, den = -num, -den
         if pden is None and num.is_ground:
             self.c, self.num, self.den, self.pden = (
-                Fraction(int(num.LC) if num else 0, den),
+                _q(int(num.LC) if num else 0, den),
                 None,
                 1,
                 None,
@@ -251,19 +263,19 @@ class Sc:
         if isinstance(x, Fraction):
             return Sc(c=x)
         if isinstance(x, int):
-            return Sc(c=Fraction(x))
+            return Sc(c=x)
         x = sp.sympify(x)
         if x.is_Rational:
-            return Sc(c=Fraction(int(x.p), int(x.q)))
+            return Sc(c=_q(int(x.p), int(x.q)))
         if x.is_Symbol:
             return Sc(GEN[x])
         if x.is_Add:
-            out = Sc(c=Fraction(0))
+            out = Sc(c=0)
             for a in x.args:
                 out = out + Sc.of(a)
             return out
         if x.is_Mul:
-            out = Sc(c=Fraction(1))
+            out = Sc(c=1)
             for a in x.args:
                 out = out * Sc.of(a)
             return out
@@ -300,7 +312,7 @@ class Sc:
         return self.num.as_expr() / den
 
     def ground(self) -> Fraction | None:
-        return self.c
+        return None if self.c is None else Fraction(self.c)
 
     def is_zero(self) -> bool:
         return self.c == 0 if self.c is not None else not self.num
@@ -342,7 +354,7 @@ class Sc:
         if self.c is not None or o.c is not None:
             k, p = (self.c, o) if self.c is not None else (o.c, self)
             if k == 0:
-                return Sc(c=Fraction(0))
+                return Sc(c=0)
             return Sc(p.num.mul_ground(k.numerator), p.den * k.denominator, p.pden)
         if self.pden is None and o.pden is None:
             pden = None
@@ -357,7 +369,7 @@ class Sc:
         if o.is_zero():
             raise Undefined("division by zero")
         if o.c is not None:
-            return self * Sc(c=1 / o.c)
+            return self * Sc(c=_inv(o.c))
         a, da, pa = self.parts()
         b, db, pb = o.parts()
         num = a.mul_ground(db) * (pb if pb is not None else RING.one)
@@ -369,12 +381,14 @@ class Sc:
     def __pow__(self, k):
         k = int(k)
         if self.c is not None:
-            if k < 0 and self.c == 0:
-                raise Undefined("zero to a negative power")
+            if k < 0:
+                if self.c == 0:
+                    raise Undefined("zero to a negative power")
+                return Sc(c=_inv(self.c ** (-k)))
             return Sc(c=self.c**k)
         if k >= 0:
             return Sc(self.num**k, self.den**k, None if self.pden is None else self.pden**k)
-        return Sc(c=Fraction(1)) / self ** (-k)
+        return Sc(c=1) / self ** (-k)
 
     def __eq__(self, o):
         try:
@@ -388,12 +402,12 @@ class Sc:
 
     def diff(self, sym, count: int = 1) -> Sc:
         if self.c is not None:
-            return self if count == 0 else Sc(c=Fraction(0))
+            return self if count == 0 else Sc(c=0)
         g = GEN[sym]
         out = self
         for _ in range(count):
             if out.c is not None:
-                return Sc(c=Fraction(0))
+                return Sc(c=0)
             if out.pden is None or out.pden.degree(g) <= 0:
                 out = Sc(out.num.diff(g), out.den, out.pden)
             else:
@@ -406,7 +420,7 @@ class Sc:
             return self
         value = value if isinstance(value, Sc) else Sc.of(value)
         num = _compose(self.num, _GPOS[sym], value)
-        out = num * Sc(c=Fraction(1, self.den))
+        out = num * Sc(c=_q(1, self.den))
         if self.pden is not None:
             out = out / _compose(self.pden, _GPOS[sym], value)
         return out
@@ -430,7 +444,7 @@ class Sc:
         return anti.subs(sym, hi) - anti.subs(sym, lo)
 
 
-ZERO = Sc(c=Fraction(0))
+ZERO = Sc(c=0)
 
 
 def _compose(poly, pos: int, value: Sc) -> Sc:
@@ -545,12 +559,37 @@ def _frac(e, R, index):
     raise _NotRational(e)
 
 
+def fast_factor(expr) -> sp.Expr:
+    """A rational expression cancelled and factored with ring arithmetic (sp.cancel on large
+    nested expressions is slow)."""
+    expr = sp.sympify(expr)
+    if expr.is_Number:
+        return expr
+    try:
+        num, den = as_fraction(expr)
+    except _NotRational:
+        return sp.factor(sp.cancel(expr))
+    num, den = num.cancel(den)
+    return _factored(num) / _factored(den)
+
+
+def _factored(poly) -> sp.Expr:
+    const, factors = poly.factor_list()
+    const = poly.ring.domain.to_sympy(const)
+    return const * sp.Mul(*(f.as_expr() ** k for f, k in factors))
+
+
 def simplify_scalar(expr):
     if isinstance(expr, Sc):
         g = expr.ground()
         if g is not None:
             return sp.Rational(g.numerator, g.denominator)
-        expr = expr.to_expr()
+        num, den = expr.num, expr.pden
+        if den is not None:
+            common = num.gcd(den)
+            num, den = num.exquo(common), den.exquo(common)
+        out = _factored(num) / sp.Integer(expr.den)
+        return out / _factored(den) if den is not None else out
     expr = sp.sympify(expr)
     if expr.is_Number:
         return expr
@@ -794,7 +833,8 @@ class Realiser:
     memo: dict = field(default_factory=dict)
 
     def __call__(self, expr, env: Mapping) -> object:
-        return self.walk(expr, {k: int(v) for k, v in env.items()})
+        """env: {symbol: integer} (degrees, indices), or an exact number for a parameter."""
+        return self.walk(expr, {k: _env_value(v) for k, v in env.items()})
 
     def walk(self, e, env):
         if isinstance(e, (int, Fraction)):
@@ -802,11 +842,11 @@ class Realiser:
         if e.is_Number:
             if not e.is_Rational:
                 raise TypeError(f"inexact number {e}")
-            return Sc(c=Fraction(int(e.p), int(e.q)))
+            return Sc(c=_q(int(e.p), int(e.q)))
         if e.is_Symbol:
             v = env.get(e)
             if v is not None:
-                return Sc(c=Fraction(v))
+                return Sc(c=v)
             if e in GEN:
                 return Sc(GEN[e])
             raise TypeError(f"free symbol {e} has no value")
@@ -900,6 +940,13 @@ class Realiser:
 
 
 _IMPLICIT = (SYMBOLS["n"], SYMBOLS["m"], SYMBOLS["k"])
+
+
+def _env_value(v):
+    if isinstance(v, (int, Fraction)):
+        return v
+    v = sp.Rational(v)
+    return int(v) if v.q == 1 else Fraction(int(v.p), int(v.q))
 
 
 @lru_cache(maxsize=8192)

@@ -131,11 +131,13 @@ def run(
                 f"{verify.ERRATA_FILE} is stale: run `{verify.ERRATA_COMMAND}` and commit it"
             )
     out.write(verify.RENDERERS[fmt](report))
+    out.flush()
     problems = report.problems()
     if problems:
         print(
-            f"lambda-bezier verify: {len(problems)} problem(s): a verdict differs from its "
-            "recorded expectation (see the report)",
+            f"lambda-bezier verify: {len(problems)} problem(s), listed at the end of the report "
+            "(a verdict that differs from its recorded expectation, an erratum that does not "
+            "verify, or a stale ERRATA.md)",
             file=sys.stderr,
         )
         return 1

@@ -13,9 +13,17 @@ equation ``lhs = rhs`` is then checked for every degree of the family's range an
 (``per-degree``), and, where derive has a general-n closed form, symbolically in n (and i, k).
 
 Registry: ``CHECKERS[claim] = Checker(function, requires)``. ``requires`` names derive modules a
-checker needs; while one is missing the record's verdict is ``pending`` with the reason. The
-energy checkers need ``derive/energy.py`` (issue 3); the join checkers need the join derivation
-(issue 4): each plugs in as one function registered for its claims.
+checker needs (REQUIREMENTS lists the functions each must provide); while one is missing the
+record's verdict is ``pending`` with the reason. The energy checkers use ``derive/energy.py``
+(issue 3), the join checkers ``derive/joins.py`` (issue 4); a new claim kind plugs in as one
+function registered with ``@checker(claim, requires=...)``.
+
+Per-degree ranges: the family's degrees (derive's DEGREES); indices 0..n unless
+``index_ranges`` or an equation's ``where`` says otherwise; an instance whose evaluation leaves
+the definitions (a degree outside the range, a negative order) is skipped, and an equation
+checked for no instance is an error. Join formulas, which involve two degrees, are checked
+symbolically in n, m and, per degree, for every degree of each curve against the smallest and
+the largest of the other (and equal degrees), at exact sample values of λ1, λ2, α, d.
 """
 
 from __future__ import annotations
@@ -45,11 +53,11 @@ from .verify_expr import (
     Sc,
     Undefined,
     _is_zero,
+    _proportional_pairs,
     as_int,
     compare,
     cross,
     delta_model,
-    _proportional_pairs,
     equal,
     fast_factor,
     fn_name,

@@ -229,6 +229,12 @@ class Sc:
 
     __slots__ = ("c", "num", "den", "pden")
 
+    @staticmethod
+    def const(c) -> Sc:
+        out = object.__new__(Sc)
+        out.c, out.num, out.den, out.pden = c, None, 1, None
+        return out
+
     def __init__(self, num=None, den: int = 1, pden=None, c: Fraction | None = None):
         if c is not None:
             self.c, self.num, self.den, self.pden = c, None, 1, None
@@ -322,7 +328,7 @@ class Sc:
     def __add__(self, o):
         o = o if isinstance(o, Sc) else Sc.of(o)
         if self.c is not None and o.c is not None:
-            return Sc(c=self.c + o.c)
+            return Sc.const(self.c + o.c)
         (a, da, pa), (b, db, pb) = self.parts(), o.parts()
         if pa is None and pb is None:
             L = _lcm(da, db)
@@ -338,7 +344,7 @@ class Sc:
 
     def __neg__(self):
         if self.c is not None:
-            return Sc(c=-self.c)
+            return Sc.const(-self.c)
         return Sc(-self.num, self.den, self.pden)
 
     def __sub__(self, o):
@@ -350,7 +356,7 @@ class Sc:
     def __mul__(self, o):
         o = o if isinstance(o, Sc) else Sc.of(o)
         if self.c is not None and o.c is not None:
-            return Sc(c=self.c * o.c)
+            return Sc.const(self.c * o.c)
         if self.c is not None or o.c is not None:
             k, p = (self.c, o) if self.c is not None else (o.c, self)
             if k == 0:
@@ -837,20 +843,26 @@ class Realiser:
         return self.walk(expr, {k: _env_value(v) for k, v in env.items()})
 
     def walk(self, e, env):
-        if isinstance(e, (int, Fraction)):
-            return Sc.of(e)
-        if e.is_Number:
-            if not e.is_Rational:
-                raise TypeError(f"inexact number {e}")
-            return Sc(c=_q(int(e.p), int(e.q)))
-        if e.is_Symbol:
+        kind = _kind(e)
+        if kind == "num":
+            hit = _NUMBERS.get(e)
+            if hit is None:
+                if isinstance(e, (int, Fraction)):
+                    hit = Sc.of(e)
+                elif not e.is_Rational:
+                    raise TypeError(f"inexact number {e}")
+                else:
+                    hit = Sc.const(_q(int(e.p), int(e.q)))
+                _NUMBERS[e] = hit
+            return hit
+        if kind == "sym":
             v = env.get(e)
             if v is not None:
-                return Sc(c=v)
+                return Sc.const(v)
             if e in GEN:
                 return Sc(GEN[e])
             raise TypeError(f"free symbol {e} has no value")
-        if isinstance(e, (AppliedUndef, sp.Derivative, sp.Subs, sp.Integral, sp.Sum)):
+        if kind == "memo":
             # models may depend on the degrees and k without printing them (p(t) on n)
             key = (e, tuple(env.get(s) for s in _free(e)), tuple(env.get(s) for s in _IMPLICIT))
             hit = self.memo.get(key)
@@ -876,8 +888,7 @@ class Realiser:
         if e.is_Mul:
             # functions first: a vanishing basis function makes the product zero before its
             # coefficient (possibly 0/0 by the binomial convention) is looked at
-            first = [a for a in e.args if _has_function(a)]
-            rest = [a for a in e.args if not _has_function(a)]
+            first, rest = _mul_split(e)
             out = Sc.of(1)
             for a in first:
                 val = self.walk(a, env)
@@ -940,6 +951,32 @@ class Realiser:
 
 
 _IMPLICIT = (SYMBOLS["n"], SYMBOLS["m"], SYMBOLS["k"])
+
+
+_NUMBERS: dict = {}
+_KINDS: dict = {}
+
+
+def _kind(e) -> str:
+    t = type(e)
+    k = _KINDS.get(t)
+    if k is None:
+        if issubclass(t, (int, Fraction)) or (issubclass(t, sp.Basic) and e.is_Number):
+            k = "num"
+        elif issubclass(t, sp.Symbol):
+            k = "sym"
+        elif issubclass(t, (AppliedUndef, sp.Derivative, sp.Subs, sp.Integral, sp.Sum)):
+            k = "memo"
+        else:
+            k = "other"
+        _KINDS[t] = k
+    return k
+
+
+@lru_cache(maxsize=8192)
+def _mul_split(e) -> tuple:
+    first = tuple(a for a in e.args if _has_function(a))
+    return first, tuple(a for a in e.args if not _has_function(a))
 
 
 def _env_value(v):

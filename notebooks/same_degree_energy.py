@@ -140,3 +140,46 @@ ax.legend(fontsize=7)
 ax.set_title("Geometric evaluation, n = 5, t = 2/3, λ = 1/2")
 fig.savefig(FIGURES / "same_degree_geometric_fig1.png", dpi=80)
 plt.close(fig)
+
+# %% [markdown]
+# ## Fig. 2: shape adjustment of a closed composite of cubic λ-curves
+#
+# Three cubic same-degree segments joined G¹ (Prop. 9: V₂₀ = V₁ₘ, V₂₁ = V₂₀ + C(V₁ₘ − V₁,ₘ₋₁)
+# with C > 0), the last ending where the first starts. G¹ only asks the end tangents to be
+# parallel, and λ scales end tangents without turning them, so changing λ with the control
+# points fixed keeps every joint G¹: segments 1 and 3 set to λ = 0 (local change), then all
+# segments to λ = −1.5 (global change), as in the paper. Control points of our own.
+
+# %%
+loop = lb.CompositeCurve(
+    [
+        lb.SameDegreeCurve([(0, -3), (3, -3), (5, 0), (3, 3)], 1),
+        lb.SameDegreeCurve([(3, 3), (1, 6), (-1, 6), (-3, 3)], 1),
+        lb.SameDegreeCurve([(-3, 3), (-5, 0), (-3, -3), (0, -3)], 1),
+    ],
+    ["G1", "G1"],
+)
+variants = {
+    "λ = 1 (Bézier)": loop,
+    "segments 1, 3: λ = 0": loop.with_lambda(0, 0, resolve=False).with_lambda(2, 0, resolve=False),
+    "all: λ = −1.5": loop.with_lambda(0, -1.5, resolve=False)
+    .with_lambda(1, -1.5, resolve=False)
+    .with_lambda(2, -1.5, resolve=False),
+}
+fig, ax = plt.subplots(figsize=(6, 6))
+for (name, comp), style in zip(variants.items(), ("-", ":", "-"), strict=True):
+    closing = lb.CompositeCurve([comp.segments[-1], comp.segments[0]]).report()[0]
+    kept = all(r.holds("G1") for r in comp.report()) and closing.holds("G1")
+    print(f"{name}: G1 at every joint (closing one included): {kept}")
+    assert kept
+    for seg in comp.segments:
+        plot_curve(
+            seg,
+            ax,
+            polygon=name.startswith("λ = 1"),
+            linestyle=style,
+            color={"-": "k", ":": "k"}[style] if "−1.5" not in name else "C3",
+        )
+ax.set_title("Fig. 2: closed G¹ composite, λ changed per segment")
+fig.savefig(FIGURES / "same_degree_composite_fig2.png", dpi=80)
+plt.close(fig)

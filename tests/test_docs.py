@@ -19,3 +19,17 @@ def test_readme_examples():
 def test_package_docstring():
     result = doctest.testmod(lambda_bezier)
     assert result.attempted > 0 and result.failed == 0
+
+
+@pytest.mark.skipif(not (ROOT / ".ci" / "run").is_file(), reason="needs the checkout")
+def test_ci_runs_exactly_the_readme_set_up_commands():
+    import re
+
+    setup = (ROOT / "README.md").read_text().split("## Set up", 1)[1].split("\n## ", 1)[0]
+    commands = re.findall(r"```bash\n(.*?)\n```", setup, re.S)
+    assert len(commands) == 2, "the README keeps exactly two set-up commands"
+    ci = (ROOT / ".ci" / "run").read_text()
+    for command in commands:
+        venv, activate, rest = command.split(" && ", 2)
+        assert venv.startswith("python3 -m venv") and activate.startswith(". ")
+        assert rest in ci, f"CI does not run the README's `{rest}`"

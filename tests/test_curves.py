@@ -221,3 +221,13 @@ def test_geometric_levels(data):
     np.testing.assert_allclose(np.array(levels[-1][0], float), curve.evaluate(float(t)), atol=1e-9)
     floats = lb.SameDegreeCurve(np.array(pts, float), float(lam)).geometric_levels(float(t))
     np.testing.assert_allclose(np.array(floats[-1][0]), curve.evaluate(float(t)), atol=1e-9)
+
+
+def test_evaluation_across_cache_blocks():
+    """More parameters than one evaluation block: every block agrees with de Casteljau."""
+    from lambda_bezier._algorithms import BLOCK
+
+    curve = lb.BezierCurve(np.random.default_rng(9).normal(size=(7, 3)))
+    t = np.random.default_rng(10).random(2 * BLOCK + 17)
+    np.testing.assert_allclose(curve.evaluate(t), curve.de_casteljau(t), atol=1e-12)
+    np.testing.assert_allclose(curve.derivative(t, 2)[-5:], curve.derivative(t[-5:], 2))

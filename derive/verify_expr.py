@@ -185,24 +185,7 @@ class Undefined(Exception):
 # Scalars are exact rational functions of the parameters: num / (den · pden) with num, pden in
 # the integer polynomial ring ZZ[PARAMS] and den a positive integer (Python integers are much
 # faster than rational coefficients); a plain number is a Fraction (the fast path).
-PARAMS = tuple(
-    SYMBOLS[s]
-    for s in [
-        "t",
-        "u",
-        "x",
-        "c",
-        "tstar",
-        "lam",
-        "lam1",
-        "lam2",
-        "alpha",
-        "beta",
-        "d",
-        "C",
-        "omega",
-    ]
-)
+PARAMS = tuple(s for s in SYMBOLS.values() if s not in (*INDEX_SYMBOLS, *DEGREE_SYMBOLS))
 RING = sp.polys.rings.ring(PARAMS, sp.ZZ)[0]
 GEN = dict(zip(PARAMS, RING.gens, strict=True))
 _GPOS = {sym: pos for pos, sym in enumerate(PARAMS)}

@@ -231,3 +231,17 @@ def test_evaluation_across_cache_blocks():
     t = np.random.default_rng(10).random(2 * BLOCK + 17)
     np.testing.assert_allclose(curve.evaluate(t), curve.de_casteljau(t), atol=1e-12)
     np.testing.assert_allclose(curve.derivative(t, 2)[-5:], curve.derivative(t[-5:], 2))
+
+
+def test_basis_power_matrix_is_the_power_form_of_the_basis(family):
+    n = family.degrees[0] + 2
+    curve = make_curve(
+        family,
+        np.arange(2 * (n + 1), dtype=float).reshape(n + 1, 2),
+        None if family.name == "bezier" else 0.375,
+    )
+    t = np.linspace(0, 1, 9)
+    power = curve.basis_power_matrix()
+    assert power.shape == (n + 1, curve.polynomial_degree + 1)
+    values = np.polynomial.polynomial.polyval(t, power.T).T
+    np.testing.assert_allclose(values, curve.basis(t), atol=1e-10)

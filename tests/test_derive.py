@@ -145,3 +145,11 @@ def test_missing_sympy_gives_install_hint(monkeypatch):
     monkeypatch.setitem(sys.modules, "sympy", None)  # makes `import sympy` raise ImportError
     with pytest.raises(SystemExit, match=r"pip install 'lambda-bezier\[derive\]'"):
         _derive_runner.load_derive(None)
+
+
+def test_each_checkout_loads_its_own_derive(checkout_copy):
+    ours = _derive_runner.load_derive(ROOT)
+    other = _derive_runner.load_derive(checkout_copy)
+    assert ours is not other
+    assert other.__file__.startswith(str(checkout_copy))
+    assert _derive_runner.load_derive(checkout_copy) is other

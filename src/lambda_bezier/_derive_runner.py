@@ -5,6 +5,7 @@ SymPy is imported here only when the command runs, never by `import lambda_bezie
 
 from __future__ import annotations
 
+import hashlib
 import importlib
 import importlib.util
 import sys
@@ -38,7 +39,9 @@ def load_derive(root: Path | None) -> ModuleType:
         ) from None
     if root is None:
         return importlib.import_module("lambda_bezier._derive")
-    name = "_lambda_bezier_checkout_derive"
+    # one module name per checkout, so two roots in one process never share a package
+    digest = hashlib.sha1(str(root.resolve()).encode()).hexdigest()[:12]
+    name = f"_lambda_bezier_checkout_derive_{digest}"
     if name in sys.modules:
         return sys.modules[name]
     init = root / "derive" / "__init__.py"

@@ -14,6 +14,7 @@ from math import comb, lcm
 
 import numpy as np
 import sympy as sp
+from sympy.printing.pycode import PythonCodePrinter
 
 from ._emit import to_fraction
 
@@ -122,9 +123,32 @@ def linear_in_lambda(expr: sp.Expr) -> bool:
     return not den.has(lam) and sp.degree(num, lam) <= 1
 
 
+class _ExactCodePrinter(PythonCodePrinter):
+    """Python code in which a rational constant is a Fraction (the default printer writes
+    1/3, a float)."""
+
+    def _print_Rational(self, expr):
+        return f"Fraction({expr.p}, {expr.q})"
+
+    def _print_Half(self, expr):
+        return self._print_Rational(expr)
+
+    def _print_binomial(self, expr):  # the papers' binomial: zero outside 0 <= k <= n
+        return f"binomial({self._print(expr.args[0])}, {self._print(expr.args[1])})"
+
+
 def exact_function(expr: sp.Expr, args):
-    """`expr` as a Python function that is exact for Fraction arguments."""
-    return sp.lambdify(args, expr, modules=[{"binomial": _binomial}, "math"])
+    """`expr` as a Python function of exact numbers, computed in Fractions (an int argument
+    would turn n**-1 into a float)."""
+    fn = sp.lambdify(
+        args,
+        expr,
+        modules=[{"binomial": _binomial, "Fraction": Fraction}, "math"],
+        printer=_ExactCodePrinter(
+            {"fully_qualified_modules": False, "inline": True, "allow_unknown_functions": True}
+        ),
+    )
+    return lambda *values: fn(*(Fraction(v) for v in values))
 
 
 def _binomial(a, b):

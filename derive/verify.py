@@ -195,25 +195,58 @@ def check_record(record: dict) -> Result:
 
 
 def default_jobs() -> int:
-    """Worker processes: one per CPU where fork is available (the workers inherit the warmed
-    derive caches), else 1."""
+    """Worker processes: one per CPU where fork is available, else 1."""
     if "fork" not in multiprocessing.get_all_start_methods():
         return 1
     return max(1, min(os.cpu_count() or 1, 8))
 
 
-def warm_caches() -> None:
-    """The derive results most records share, computed once before forking workers."""
-    from . import bernstein_like, same_degree
-    from .verify_checks import bezier_weights, closed_forms
+# The order in which records are laid out for the workers: the first worker takes records from
+# the front and the second from the back, so same_degree records go to one worker and
+# bernstein_like records to the other, each deriving (and caching) only its own family's bases
+# and closed forms; they meet in the Bézier records, which need neither.
+FAMILY_ORDER = {"same_degree": 0, "bezier": 1, "bernstein_like": 2}
 
-    for deg in same_degree.DEGREES:
-        same_degree.basis_polys(deg)
-    for deg in bernstein_like.DEGREES:
-        bernstein_like.basis_polys(deg)
-    closed_forms("same_degree")
-    closed_forms("bernstein_like")
-    bezier_weights()
+
+def _parallel(records: list[dict], jobs: int, done: Callable[[int, Result], None]) -> None:
+    """check_record for every record in `jobs` forked workers; done(index, result) in the
+    parent as each result arrives."""
+    ctx = multiprocessing.get_context("fork")
+    order = sorted(range(len(records)), key=lambda i: FAMILY_ORDER.get(records[i]["family"], 1))
+    lock = ctx.Lock()
+    front = ctx.Value("i", 0, lock=False)
+    back = ctx.Value("i", len(order), lock=False)
+    results = ctx.SimpleQueue()
+
+    def work(from_front: bool) -> None:
+        while True:
+            with lock:
+                if front.value >= back.value:
+                    break
+                if from_front:
+                    pos = front.value
+                    front.value += 1
+                else:
+                    back.value -= 1
+                    pos = back.value
+            results.put((order[pos], check_record(records[order[pos]])))
+
+    workers = [ctx.Process(target=work, args=(w % 2 == 0,), daemon=True) for w in range(jobs)]
+    for w in workers:
+        w.start()
+    try:
+        for _ in records:
+            while results.empty():
+                if not any(w.is_alive() for w in workers) and results.empty():
+                    codes = [w.exitcode for w in workers]
+                    raise RuntimeError(f"verify workers exited early (exit codes {codes})")
+                time.sleep(0.005)
+            done(*results.get())
+    finally:
+        for w in workers:
+            if w.is_alive():
+                w.terminate()
+            w.join()
 
 
 def verify(
@@ -223,7 +256,8 @@ def verify(
     jobs: int | None = None,
 ) -> Report:
     """Check `records` (default: all published ones); `index` is the full set they may refer
-    to (default: `records`); `jobs` worker processes (default: default_jobs())."""
+    to (default: `records`); `jobs` worker processes (default: default_jobs()); progress(done,
+    total, id of the last record checked) as results arrive."""
     records = load_records() if records is None else records
     _INDEX.clear()
     _INDEX.update({r["id"]: r for r in (records if index is None else index)})
@@ -231,21 +265,26 @@ def verify(
     jobs = default_jobs() if jobs is None else jobs
     total = len(records)
     if progress:
-        progress(0, total, records[0]["id"] if records else "")
+        progress(0, total, "")
     if jobs > 1 and total > 4:
-        warm_caches()
-        with multiprocessing.get_context("fork").Pool(jobs) as pool:
-            results = []
-            for res in pool.imap(check_record, records, chunksize=1):
-                results.append(res)
-                if progress and len(results) < total:
-                    progress(len(results), total, records[len(results)]["id"])
+        slots: list[Result | None] = [None] * total
+        count = 0
+
+        def done(idx: int, res: Result) -> None:
+            nonlocal count
+            slots[idx] = res
+            count += 1
+            if progress and count < total:
+                progress(count, total, res.id)
+
+        _parallel(records, jobs, done)
+        results = [r for r in slots if r is not None]
     else:
         results = []
-        for pos, rec in enumerate(records):
-            if progress:
-                progress(pos, total, rec["id"])
+        for rec in records:
             results.append(check_record(rec))
+            if progress and len(results) < total:
+                progress(len(results), total, rec["id"])
     if progress:
         progress(total, total, "")
     return Report(results, time.perf_counter() - start)

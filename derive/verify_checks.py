@@ -37,6 +37,7 @@ from functools import cache
 from math import comb
 
 import sympy as sp
+from sympy.core.function import AppliedUndef
 
 from . import _algebra
 from . import bernstein as bz
@@ -46,6 +47,7 @@ from .verify_expr import (
     DEGREE_SYMBOLS,
     GEN,
     INDEX_SYMBOLS,
+    POINT_LIKE,
     SYMBOLS,
     Form,
     Ratio,
@@ -312,8 +314,15 @@ class Context:
             models["b"] = lambda a, env: (
                 Form.point("b", _int(a[0])) if len(a) == 1 else self._b_model(a, env)
             )
+        base = dict(models)
         models.update(extra or {})
-        return Realiser(models, {"Delta": delta_model})
+        jets = {
+            "p": lambda order, x, env: self.curve_jet(env, order, x),
+            "p1": lambda order, x, env: self.piece_jet(1, order, x, env),
+            "p2": lambda order, x, env: self.piece_jet(2, order, x, env),
+        }
+        jets = {k: v for k, v in jets.items() if models.get(k) is base.get(k)}
+        return Realiser(models, {"Delta": delta_model}, jets)
 
     def _b_model(self, a, env):
         if len(a) == 1:
@@ -362,21 +371,29 @@ class Context:
 
     def curve(self, env, x, points=None, deg_sym="n", shape=None) -> Form:
         n = self.degree(env, deg_sym)
-        if shape is not None and shape.c is not None:  # a sample value of the shape
-            c = _curve_shape(self.family.name, n, points or self.family.points, shape.c)
+        points = points or self.family.points
+        skey = _shape_key(shape)
+        if skey is _UNSHARED:
+            c = v_apply(_curve(self.family.name, n, points), lambda s: s.subs(LAM, shape))
+        elif isinstance(x, Sc) and x.c is not None:
+            return _curve_jet(self.family.name, n, points, skey, 0, x.c)
         else:
-            c = _curve(self.family.name, n, points or self.family.points)
-        if shape is not None and shape.c is None and not is_param(shape, LAM):
-            c = v_apply(c, lambda s: s.subs(LAM, shape))
+            c = _curve_at_shape(self.family.name, n, points, skey)
         if not is_param(x, T):
             c = v_apply(c, lambda s: s.subs(T, x))
         return c
 
-    def piece(self, which: int, env, x) -> Form:
-        if self.family.name == "bezier":  # the two pieces of a subdivision at t*
-            ts = Sc(GEN[S["tstar"]])
-            arg = ts * x if which == 1 else 1 - (1 - ts) * (1 - x)
-            return self.curve(env, arg)
+    def curve_jet(self, env, order: int, x: Sc, points=None, deg_sym="n", shape=None):
+        """The order-th t-derivative of the curve at the number x (shared by every record of
+        the run), or None for a shape that is an expression."""
+        skey = _shape_key(shape)
+        if skey is _UNSHARED:
+            return None
+        n = self.degree(env, deg_sym)
+        return _curve_jet(self.family.name, n, points or self.family.points, skey, order, x.c)
+
+    def _piece_spec(self, which: int, env):
+        """(points, degree symbol, shape) of curve `which` of a join record."""
         first = self.record.get("first")
         second = self.record.get("second")
         if first and second:
@@ -387,7 +404,19 @@ class Context:
         else:  # 000 eq. 17: p1 degree m, p2 degree n
             spec = ("V1", "m", S["lam1"]) if which == 1 else ("V2", "n", S["lam2"])
         shape = env[spec[2]] if spec[2] in env else spec[2]  # a sample value, or symbolic
-        return self.curve(env, x, spec[0], spec[1], Sc.of(shape))
+        return spec[0], spec[1], Sc.of(shape)
+
+    def piece(self, which: int, env, x) -> Form:
+        if self.family.name == "bezier":  # the two pieces of a subdivision at t*
+            ts = Sc(GEN[S["tstar"]])
+            arg = ts * x if which == 1 else 1 - (1 - ts) * (1 - x)
+            return self.curve(env, arg)
+        return self.curve(env, x, *self._piece_spec(which, env))
+
+    def piece_jet(self, which: int, order: int, x: Sc, env):
+        if self.family.name == "bezier":
+            return None  # a piece of a subdivision is the curve at a composed parameter
+        return self.curve_jet(env, order, x, *self._piece_spec(which, env))
 
     def casteljau_param(self):
         return parse(self.record["at"]) if self.record.get("at") else T
@@ -463,9 +492,39 @@ def _curve(family: str, n: int, points: str) -> Form:
     return Form(terms)
 
 
+_UNSHARED = object()
+_GEN_SYMBOL = {g: sym for sym, g in GEN.items()}
+
+
+def _shape_key(shape):
+    """A hashable key for a curve's shape: None for λ itself, a number, another parameter's
+    symbol, or _UNSHARED for an expression."""
+    if shape is None or is_param(shape, LAM):
+        return None
+    if shape.c is not None:
+        return shape.c
+    if shape.den == 1 and shape.pden is None and shape.num in _GEN_SYMBOL:
+        return _GEN_SYMBOL[shape.num]
+    return _UNSHARED
+
+
 @cache
-def _curve_shape(family: str, n: int, points: str, shape: Fraction) -> Form:
-    return v_apply(_curve(family, n, points), lambda s: s.subs(LAM, Sc.of(shape)))
+def _curve_at_shape(family: str, n: int, points: str, shape) -> Form:
+    """The curve with λ replaced by `shape` (a key of _shape_key)."""
+    c = _curve(family, n, points)
+    if shape is None:
+        return c
+    value = Sc(GEN[shape]) if isinstance(shape, sp.Symbol) else Sc.of(shape)
+    return v_apply(c, lambda s: s.subs(LAM, value))
+
+
+@cache
+def _curve_jet(family: str, n: int, points: str, shape, order: int, x) -> Form:
+    """d^order/dt^order of the curve of degree n at t = x, λ replaced by `shape`."""
+    c = _curve_at_shape(family, n, points, shape)
+    if order:
+        c = v_apply(c, lambda s: s.diff(T, order))
+    return v_apply(c, lambda s: s.subs(T, Sc.of(x)))
 
 
 @cache
@@ -1656,6 +1715,37 @@ def _join_derived(family: str, continuity: str) -> list[dict]:
     return out
 
 
+def linear_in_points(rhs, syms: tuple):
+    """rhs = Σ w·P(idx) with weights and indices rational functions of `syms`, compiled to a
+    function of their values that returns what the realiser would (a Form), or None when rhs
+    is not of that shape. The printed vertex formulas are evaluated at ~100 degree pairs and
+    samples per record, and Fraction arithmetic is far cheaper than walking the expression."""
+    pts = sorted({a for a in sp.preorder_traversal(rhs) if isinstance(a, AppliedUndef)}, key=str)
+    if not pts or any(fn_name(p) not in POINT_LIKE or len(p.args) != 1 for p in pts):
+        return None
+    weights = [sp.diff(rhs, p) for p in pts]
+    exprs = [*weights, *(p.args[0] for p in pts)]
+    if rhs.xreplace(dict.fromkeys(pts, 0)) != 0 or any(
+        e.has(*pts) or not e.free_symbols <= set(syms) for e in exprs
+    ):
+        return None
+    fn = _algebra.exact_function(exprs, syms)
+    names = [fn_name(p) for p in pts]
+
+    def realise(values) -> Form:
+        try:
+            out = fn(*values)
+        except ZeroDivisionError:
+            raise Undefined("division by zero") from None
+        terms: dict = {}
+        for name, w, idx in zip(names, out[: len(pts)], out[len(pts) :], strict=True):
+            key = ((name, as_int(idx)),)
+            terms[key] = terms.get(key, Sc.of(0)) + Sc.of(w)
+        return Form(terms)
+
+    return realise
+
+
 def _weights(rhs, first_pts: str, second_pts: str, n_first) -> tuple[dict, sp.Expr]:
     """Printed weights keyed like derive/joins.py: ("first", j) for P_{n-j,1}."""
     pts = {a for a in sp.preorder_traversal(rhs) if fn_name(a) in (first_pts, second_pts)}
@@ -1731,12 +1821,17 @@ def join_per_degree(record, ctx, rows, specs, conventions, label="convention") -
     built from the derived basis polynomials with the printed vertex formulas substituted."""
     (_, n1, l1, _), (_, n2, l2, pts2) = specs
     tally = Tally(f"per-degree {label}")
+    env_syms = (n1, n2, l1, l2, S["alpha"], S["d"])
+    compiled = {r: linear_in_points(rhs, env_syms) for r, rhs in rows.items()}
     for (a, b), sample in itertools.product(_degree_pairs(ctx), JOIN_SAMPLES):
         real = ctx.realiser()
-        env = {n1: sp.Integer(a), n2: sp.Integer(b), l1: sample["lam1"], l2: sample["lam2"]}
-        env |= {S["alpha"]: sample["alpha"], S["d"]: sample["d"]}
+        values = (a, b, sample["lam1"], sample["lam2"], sample["alpha"], sample["d"])
+        env = dict(zip(env_syms, values, strict=True))
         try:
-            sub = {(pts2, r): real(rhs, env) for r, rhs in rows.items()}
+            sub = {
+                (pts2, r): real(rhs, env) if compiled[r] is None else compiled[r](values)
+                for r, rhs in rows.items()
+            }
         except Undefined:
             continue
         row = []

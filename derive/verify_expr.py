@@ -163,6 +163,8 @@ def as_int(x) -> int:
     """A concrete integer (index, degree, order) from an evaluated value."""
     if isinstance(x, int):
         return x
+    if isinstance(x, Fraction) and x.denominator == 1:
+        return int(x)
     if isinstance(x, Sc):
         g = x.ground()
         if g is not None and g.denominator == 1:
@@ -818,6 +820,9 @@ class Realiser:
 
     models: Mapping[str, Model]
     raw_models: Mapping[str, Model] = field(default_factory=dict)
+    # jets[name](order, x, env): the order-th t-derivative of the model name(t) at the
+    # constant x, or None; lets Subs(Derivative(p(t), (t, r)), t, x) skip the polynomial in t
+    jets: Mapping[str, Callable] = field(default_factory=dict)
 
     memo: dict = field(default_factory=dict)
 
@@ -906,6 +911,9 @@ class Realiser:
                 val = v_apply(val, lambda s, var=var, cnt=cnt: s.diff(var, cnt))
             return val
         if isinstance(e, sp.Subs):
+            val = self._jet(e, env) if self.jets else None
+            if val is not None:
+                return val
             val = self.walk(e.expr, env)
             for var, point in zip(e.variables, e.point, strict=True):
                 pt = self.walk(point, env)
@@ -921,6 +929,26 @@ class Realiser:
                 val = v_apply(val, lambda s, var=var, lo=lo, hi=hi: s.integrate(var, lo, hi))
             return val
         raise TypeError(f"cannot evaluate {e!r}")
+
+    def _jet(self, e, env):
+        """Subs(f(t), t, x) or Subs(Derivative(f(t), (t, r)), t, x) through jets[f], else None."""
+        if len(e.variables) != 1 or e.variables[0] in env:
+            return None
+        var, inner, order = e.variables[0], e.expr, 0
+        if isinstance(inner, sp.Derivative):
+            if len(inner.variable_count) != 1 or inner.variable_count[0][0] != var:
+                return None
+            order = as_int(self.walk(inner.variable_count[0][1], env))
+            if order < 0:
+                raise Undefined(f"derivative of order {order}")
+            inner = inner.expr
+        if not isinstance(inner, AppliedUndef) or inner.args != (var,):
+            return None
+        jet = self.jets.get(inner.func.__name__)
+        if jet is None:
+            return None
+        x = self.walk(e.point[0], env)
+        return jet(order, x, env) if isinstance(x, Sc) and x.c is not None else None
 
     def _sum(self, body, limits, env):
         if not limits:

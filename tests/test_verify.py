@@ -297,7 +297,28 @@ def test_progress_only_on_a_terminal(capsys):
     p(10, 10, "")
     assert capsys.readouterr().err == ""
     p = _verify_runner.Progress(enabled=True, delay=0)
-    p(0, 2, "000.eq1")
+    p(0, 2, "")
+    p(1, 2, "000.eq1")
     p(2, 2, "")
     err = capsys.readouterr().err
-    assert "verifying 1/2 000.eq1" in err
+    assert "verify: 1/2 records checked (last: 000.eq1)" in err
+
+
+def test_parallel_run_keeps_record_order_and_verdicts(verify, records):
+    """Two workers taking records from both ends give the serial run's results, in order."""
+    picked = [r for r in records if r["claim"].endswith(("endpoint_values", "endpoint_d1", "_list"))]
+    assert {r["family"] for r in picked} >= {"same_degree", "bernstein_like", "bezier"}
+    serial = verify.verify(picked, index=records, jobs=1)
+    parallel = verify.verify(picked, index=records, jobs=2)
+    assert [r.id for r in parallel.results] == [r["id"] for r in picked]
+    assert [(r.verdict, r.outcome.diffs) for r in parallel.results] == [
+        (r.verdict, r.outcome.diffs) for r in serial.results
+    ]
+
+
+def test_a_dead_worker_is_an_error_not_a_hang(verify, records, monkeypatch):
+    import os
+
+    monkeypatch.setattr(verify, "check_record", lambda record: os._exit(3))
+    with pytest.raises(RuntimeError, match="exited early"):
+        verify._parallel(records[:6], 2, lambda idx, res: None)

@@ -65,6 +65,7 @@ class Progress:
         self.shown = False
 
     def __call__(self, done: int, total: int, current: str) -> None:
+        """`done` of `total` records checked, `current` the last one finished."""
         if not self.enabled:
             return
         if done >= total:
@@ -75,7 +76,8 @@ class Progress:
         if time.monotonic() - self.start < self.delay:
             return
         self.shown = True
-        sys.stderr.write(f"\r\033[Kverifying {done + 1}/{total} {current}")
+        last = f" (last: {current})" if current else ""
+        sys.stderr.write(f"\r\033[Kverify: {done}/{total} records checked{last}")
         sys.stderr.flush()
 
 

@@ -306,7 +306,9 @@ def test_progress_only_on_a_terminal(capsys):
 
 def test_parallel_run_keeps_record_order_and_verdicts(verify, records):
     """Two workers taking records from both ends give the serial run's results, in order."""
-    picked = [r for r in records if r["claim"].endswith(("endpoint_values", "endpoint_d1", "_list"))]
+    picked = [
+        r for r in records if r["claim"].endswith(("endpoint_values", "endpoint_d1", "_list"))
+    ]
     assert {r["family"] for r in picked} >= {"same_degree", "bernstein_like", "bezier"}
     serial = verify.verify(picked, index=records, jobs=1)
     parallel = verify.verify(picked, index=records, jobs=2)

@@ -210,6 +210,23 @@ def bench_derive() -> None:
     )
 
 
+def bench_verify() -> None:
+    """The whole `lambda-bezier verify` run (every record, every degree), one worker per core."""
+    full = fresh_process(
+        "import io, sys; from lambda_bezier import _verify_runner as v; "
+        "sys.exit(v.run(out=io.StringIO(), progress=False))"
+    )
+    bare = fresh_process("import sympy")
+    record(
+        "lambda-bezier verify (118 records)",
+        full,
+        "python -c 'import sympy'",
+        bare,
+        "a few seconds",
+        full <= 5.0,
+    )
+
+
 def bench_import() -> None:
     ours = fresh_process("import lambda_bezier", repeat=15)
     ref = fresh_process("import numpy", repeat=15)
@@ -240,6 +257,8 @@ def main() -> None:
     bench_optimal_lambda(m_lambda)
     print("derive ...", file=sys.stderr)
     bench_derive()
+    print("verify ...", file=sys.stderr)
+    bench_verify()
     print("import ...", file=sys.stderr)
     bench_import()
 

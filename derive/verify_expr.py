@@ -1350,6 +1350,16 @@ def _interpolate(ys: list[Fraction], values: list[Fraction]) -> list[Fraction]:
     return coeffs
 
 
+@cache
+def _lagrange_basis(count: int) -> tuple[list[Fraction], ...]:
+    """Coefficients (lowest first) of the Lagrange basis polynomials on _lam_nodes(count): the
+    interpolant through values v_s is Σ_s v_s·basis[s]."""
+    ys = _lam_nodes(count)
+    return tuple(
+        _interpolate(ys, [Fraction(int(s == j)) for s in range(count)]) for j in range(count)
+    )
+
+
 def dotsum_integral(v: DotSum, var, lo, hi):
     """∫_lo^hi of a DotSum: exact quadrature with more nodes than its degree in var."""
     lo_f, hi_f = Sc.of(lo).ground(), Sc.of(hi).ground()
@@ -1388,10 +1398,13 @@ def _fast_integral(v: DotSum, lo: Fraction, hi: Fraction) -> Form:
         per_lam.append((total, total_den))
     terms = {}
     m = len(keys)
+    basis = _lagrange_basis(len(ys))
     for i in range(m):
         for j in range(i, m):
             vals = [Fraction(per_lam[s][0][i, j], per_lam[s][1]) for s in range(len(ys))]
-            coeffs = _interpolate(ys, vals)
+            coeffs = [
+                sum(b[p] * v for b, v in zip(basis, vals, strict=True)) for p in range(len(ys))
+            ]
             c = Sc.of(0)
             for p, cf in enumerate(coeffs):
                 if cf:

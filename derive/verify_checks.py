@@ -33,7 +33,7 @@ import itertools
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from fractions import Fraction
-from functools import cache
+from functools import cache, lru_cache
 from math import comb
 
 import sympy as sp
@@ -1715,6 +1715,13 @@ def _join_derived(family: str, continuity: str) -> list[dict]:
     return out
 
 
+@lru_cache(maxsize=1024)
+def _coefficient(rhs, point):
+    """∂rhs/∂point: the weight of a control point in a formula linear in the points (used by
+    the symbolic and the per-degree join checks of the same rows)."""
+    return sp.diff(rhs, point)
+
+
 def linear_in_points(rhs, syms: tuple):
     """rhs = Σ w·P(idx) with weights and indices rational functions of `syms`, compiled to a
     function of their values that returns what the realiser would (a Form), or None when rhs
@@ -1723,7 +1730,7 @@ def linear_in_points(rhs, syms: tuple):
     pts = sorted({a for a in sp.preorder_traversal(rhs) if isinstance(a, AppliedUndef)}, key=str)
     if not pts or any(fn_name(p) not in POINT_LIKE or len(p.args) != 1 for p in pts):
         return None
-    weights = [sp.diff(rhs, p) for p in pts]
+    weights = [_coefficient(rhs, p) for p in pts]
     exprs = [*weights, *(p.args[0] for p in pts)]
     if rhs.xreplace(dict.fromkeys(pts, 0)) != 0 or any(
         e.has(*pts) or not e.free_symbols <= set(syms) for e in exprs
@@ -1751,7 +1758,7 @@ def _weights(rhs, first_pts: str, second_pts: str, n_first) -> tuple[dict, sp.Ex
     pts = {a for a in sp.preorder_traversal(rhs) if fn_name(a) in (first_pts, second_pts)}
     out: dict = {}
     for pt in pts:
-        c = sp.diff(rhs, pt)
+        c = _coefficient(rhs, pt)
         if fn_name(pt) == first_pts:
             key = ("first", sp.expand(n_first - pt.args[0]))
         else:

@@ -314,14 +314,15 @@ class Context:
             models["b"] = lambda a, env: (
                 Form.point("b", _int(a[0])) if len(a) == 1 else self._b_model(a, env)
             )
-        base = dict(models)
-        models.update(extra or {})
+        extra = extra or {}
+        models.update(extra)
         jets = {
             "p": lambda order, x, env: self.curve_jet(env, order, x),
             "p1": lambda order, x, env: self.piece_jet(1, order, x, env),
             "p2": lambda order, x, env: self.piece_jet(2, order, x, env),
         }
-        jets = {k: v for k, v in jets.items() if models.get(k) is base.get(k)}
+        # a checker's own model for p, p1 or p2 is not the curve the jets know
+        jets = {k: v for k, v in jets.items() if k not in extra}
         return Realiser(models, {"Delta": delta_model}, jets)
 
     def _b_model(self, a, env):
@@ -370,13 +371,15 @@ class Context:
         return _int(n)
 
     def curve(self, env, x, points=None, deg_sym="n", shape=None) -> Form:
+        if isinstance(x, Sc) and x.c is not None:
+            hit = self.curve_jet(env, 0, x, points, deg_sym, shape)
+            if hit is not None:
+                return hit
         n = self.degree(env, deg_sym)
         points = points or self.family.points
         skey = _shape_key(shape)
         if skey is _UNSHARED:
             c = v_apply(_curve(self.family.name, n, points), lambda s: s.subs(LAM, shape))
-        elif isinstance(x, Sc) and x.c is not None:
-            return _curve_jet(self.family.name, n, points, skey, 0, x.c)
         else:
             c = _curve_at_shape(self.family.name, n, points, skey)
         if not is_param(x, T):

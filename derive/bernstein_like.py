@@ -23,13 +23,14 @@ from ._algebra import (
     exact_function,
     expansion_tables,
     i,
+    k,
     lam,
     linear_in_lambda,
     n,
     poly,
     t,
 )
-from .bernstein import bernstein_basis, bernstein_poly
+from .bernstein import bernstein_basis, bernstein_poly, endpoint_weights
 
 SCRIPT = "bernstein_like.py"
 OUTPUT = "bernstein_like.py"
@@ -84,20 +85,26 @@ def explicit_factor() -> sp.Expr:
 
 @cache
 def endpoint_closed_forms(q: sp.Expr) -> dict[tuple[str, int, int], sp.Expr]:
-    """Derivatives of q_i(t) C(n,i) t^i (1-t)^(n-i) at t=0 (i = 0..r) and at t=1 (i = n-j)."""
+    """Derivatives of b_{i,n} = q_i(t) B_{i,n}(t) at t=0 (i = 0..r) and at t=1 (i = n-j).
+
+    Leibniz: (q B)^(r) = Σ_s C(r,s) q^(r-s) B^(s), and the s-th derivative of B_{i,n} at an
+    end is the Bernstein endpoint weight (derived in bernstein.py), zero unless i <= s. q is a
+    quadratic in t, so only its own derivatives are taken here (differentiating the product
+    with the power n - i in it is far slower).
+    """
+    w_start, w_end = endpoint_weights()
     out = {}
     for r in range(ORDERS + 1):
         for idx in range(r + 1):
-            at0 = q.subs(i, idx) * sp.binomial(n, idx) * t**idx * (1 - t) ** (n - idx)
-            # i = n - j: C(n, n-j) written as the polynomial C(n, j) in n
-            at1 = (
-                q.subs(i, n - idx)
-                * sp.expand_func(sp.binomial(n, idx))
-                * t ** (n - idx)
-                * (1 - t) ** idx
-            )
-            for end, expr, at in (("start", at0, 0), ("end", at1, 1)):
-                val = sp.factor(sp.cancel(sp.diff(expr, t, r).subs(t, at)))
+            for end, q_end, at, w in (
+                ("start", q.subs(i, idx), 0, w_start),
+                ("end", q.subs(i, n - idx), 1, w_end),
+            ):
+                total = sp.Integer(0)
+                for s in range(idx, r + 1):
+                    q_r = sp.diff(q_end, t, r - s).subs(t, at)
+                    total += sp.binomial(r, s) * q_r * w.subs({i: idx, k: s})
+                val = sp.factor(sp.cancel(sp.combsimp(total)))
                 if val != 0:
                     out[(end, r, idx)] = val
     return out

@@ -357,7 +357,7 @@ class Context:
         diff = b - B
         if diff.is_zero():
             return Sc.of(0)
-        quo, rem = diff.num.div((1 - SLAM).num)
+        quo, rem = divmod(diff.num, (1 - SLAM).num)
         if rem or diff.pden is not None:
             raise AssertionError("b - B is not divisible by 1 - lam")
         return Sc(quo, diff.den).subs(T, a[2])
@@ -496,7 +496,6 @@ def _curve(family: str, n: int, points: str) -> Form:
 
 
 _UNSHARED = object()
-_GEN_SYMBOL = {g: sym for sym, g in GEN.items()}
 
 
 def _shape_key(shape):
@@ -506,9 +505,8 @@ def _shape_key(shape):
         return None
     if shape.c is not None:
         return shape.c
-    if shape.den == 1 and shape.pden is None and shape.num in _GEN_SYMBOL:
-        return _GEN_SYMBOL[shape.num]
-    return _UNSHARED
+    symbol = shape.generator()
+    return _UNSHARED if symbol is None else symbol
 
 
 @cache

@@ -2256,7 +2256,7 @@ def endpoint_start(n, lam):
         (1, 1): 2*lam + n,
         (2, 0): 4*lam*n + 2*lam + n**2 - n,
         (2, 1): -2*(4*lam + n)*(n - 1),
-        (2, 2): 2*(4*lam*n - 10*lam + n**2 - n)*binomial(n, 2)/(n*(n - 1)),
+        (2, 2): 4*lam*n - 10*lam + n**2 - n,
     }
 
 

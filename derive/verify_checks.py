@@ -1735,6 +1735,12 @@ def _coefficient(rhs, point):
     return sp.diff(rhs, point)
 
 
+@lru_cache(maxsize=1024)
+def _compiled(exprs: tuple, syms: tuple):
+    """exact_function, once per formula (a printed record and its erratum share most rows)."""
+    return _algebra.exact_function(list(exprs), syms)
+
+
 def linear_in_points(rhs, syms: tuple):
     """rhs = Σ w·P(idx) with weights and indices rational functions of `syms`, compiled to a
     function of their values that returns what the realiser would (a Form), or None when rhs
@@ -1749,7 +1755,7 @@ def linear_in_points(rhs, syms: tuple):
         e.has(*pts) or not e.free_symbols <= set(syms) for e in exprs
     ):
         return None
-    fn = _algebra.exact_function(exprs, syms)
+    fn = _compiled(tuple(exprs), tuple(syms))
     names = [fn_name(p) for p in pts]
 
     def realise(values) -> Form:

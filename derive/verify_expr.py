@@ -167,9 +167,11 @@ def as_int(x) -> int:
     if isinstance(x, Fraction) and x.denominator == 1:
         return int(x)
     if isinstance(x, Sc):
-        g = x.ground()
-        if g is not None and g.denominator == 1:
-            return int(g)
+        c = x.c
+        if type(c) is int:
+            return c
+        if c is not None and c.denominator == 1:
+            return int(c.numerator)
         raise TypeError(f"{x.to_expr()} is not a concrete integer")
     x = sp.sympify(x)
     if not x.is_Integer:
@@ -204,6 +206,11 @@ RING = sp.polys.rings.ring(PARAMS, sp.ZZ)[0]
 def _poly(terms: dict):
     """The ring element Σ coeff·x^monom of {monom tuple: int}."""
     return _CTX.from_dict(terms)
+
+
+def _is_constant(poly) -> bool:
+    # len() (the number of terms) first: fmpz_mpoly.is_constant() costs a microsecond
+    return len(poly) == 0 or (len(poly) == 1 and poly.is_constant())
 
 
 def _degree(poly, pos: int) -> int:
@@ -264,11 +271,11 @@ class Sc:
         if pden is not None:
             if not pden:
                 raise Undefined("division by zero")
-            if pden.is_constant():
+            if _is_constant(pden):
                 den, pden = den * int(pden.leading_coefficient()), None
         if den < 0:
             num, den = -num, -den
-        if pden is None and num.is_constant():
+        if pden is None and _is_constant(num):
             self.c, self.num, self.den, self.pden = (
                 _q(int(num.leading_coefficient()) if num else 0, den),
                 None,
@@ -289,23 +296,23 @@ class Sc:
         if isinstance(x, Sc):
             return x
         if isinstance(x, int):
-            return Sc(c=x)
+            return Sc.const(x)
         if isinstance(x, Fraction):
-            return Sc(c=_q(x.numerator, x.denominator))
+            return Sc.const(_q(x.numerator, x.denominator))
         if isinstance(x, _fmpq):
-            return Sc(c=x)
+            return Sc.const(x)
         x = sp.sympify(x)
         if x.is_Rational:
-            return Sc(c=_q(int(x.p), int(x.q)))
+            return Sc.const(_q(int(x.p), int(x.q)))
         if x.is_Symbol:
             return Sc(GEN[x])
         if x.is_Add:
-            out = Sc(c=0)
+            out = Sc.const(0)
             for a in x.args:
                 out = out + Sc.of(a)
             return out
         if x.is_Mul:
-            out = Sc(c=1)
+            out = Sc.const(1)
             for a in x.args:
                 out = out * Sc.of(a)
             return out
@@ -392,7 +399,7 @@ class Sc:
         if self.c is not None or o.c is not None:
             k, p = (self.c, o) if self.c is not None else (o.c, self)
             if k == 0:
-                return Sc(c=0)
+                return Sc.const(0)
             return Sc(p.num * k.numerator, p.den * int(k.denominator), p.pden)
         if self.pden is None and o.pden is None:
             pden = None
@@ -407,7 +414,7 @@ class Sc:
         if o.is_zero():
             raise Undefined("division by zero")
         if o.c is not None:
-            return self * Sc(c=_inv(o.c))
+            return self * Sc.const(_inv(o.c))
         a, da, pa = self.parts()
         b, db, pb = o.parts()
         num = a * db * (pb if pb is not None else _ONE)
@@ -422,11 +429,11 @@ class Sc:
             if k < 0:
                 if self.c == 0:
                     raise Undefined("zero to a negative power")
-                return Sc(c=_inv(self.c ** (-k)))
-            return Sc(c=self.c**k)
+                return Sc.const(_inv(self.c ** (-k)))
+            return Sc.const(self.c**k)
         if k >= 0:
             return Sc(self.num**k, self.den**k, None if self.pden is None else self.pden**k)
-        return Sc(c=1) / self ** (-k)
+        return Sc.const(1) / self ** (-k)
 
     def __eq__(self, o):
         try:
@@ -440,12 +447,12 @@ class Sc:
 
     def diff(self, sym, count: int = 1) -> Sc:
         if self.c is not None:
-            return self if count == 0 else Sc(c=0)
+            return self if count == 0 else Sc.const(0)
         g = _GPOS[sym]
         out = self
         for _ in range(count):
             if out.c is not None:
-                return Sc(c=0)
+                return Sc.const(0)
             if out.pden is None or _degree(out.pden, g) <= 0:
                 out = Sc(out.num.derivative(g), out.den, out.pden)
             else:
@@ -458,7 +465,7 @@ class Sc:
             return self
         value = value if isinstance(value, Sc) else Sc.of(value)
         num = _compose(self.num, _GPOS[sym], value)
-        out = num * Sc(c=_q(1, self.den))
+        out = num * Sc.const(_q(1, self.den))
         if self.pden is not None:
             out = out / _compose(self.pden, _GPOS[sym], value)
         return out
@@ -474,7 +481,7 @@ class Sc:
         return anti.subs(sym, hi) - anti.subs(sym, lo)
 
 
-ZERO = Sc(c=0)
+ZERO = Sc.const(0)
 
 
 def _compose(poly, pos: int, value: Sc) -> Sc:
@@ -610,9 +617,29 @@ def fast_factor(expr) -> sp.Expr:
 
 
 def _factored(poly) -> sp.Expr:
-    const, factors = poly.factor_list()
-    const = poly.ring.domain.to_sympy(const)
-    return const * sp.Mul(*(f.as_expr() ** k for f, k in factors))
+    """A SymPy ring element as const·Π f^k with SymPy's normalisation (each f primitive over
+    the integers, positive leading coefficient in the ring's lex order), factored by FLINT
+    (SymPy's multivariate factoring is what made the long mismatch messages slow)."""
+    ring, dom = poly.ring, poly.ring.domain
+    denom, integral = poly.clear_denoms() if dom.is_Field else (dom.one, poly)
+    ctx = flint.fmpz_mpoly_ctx.get(tuple(str(g) for g in ring.symbols), "lex")
+    content, factors = ctx.from_dict(
+        {m: int(dom.to_sympy(c)) for m, c in integral.terms()}
+    ).factor()
+    const = sp.Integer(int(content)) / dom.to_sympy(denom)
+    return const * sp.Mul(
+        *(
+            sp.Add(
+                *(
+                    sp.Integer(int(c))
+                    * sp.Mul(*(g ** int(e) for g, e in zip(ring.symbols, m, strict=True)))
+                    for m, c in f.terms()
+                )
+            )
+            ** int(k)
+            for f, k in factors
+        )
+    )
 
 
 def simplify_scalar(expr):

@@ -1408,13 +1408,19 @@ def check_convexity(record: dict, ctx: Context) -> Outcome:
     ):
         if key not in concl:
             continue
-        got = parse(concl[key]).as_set()
+        got = _condition_set(concl[key])
         ok = got == want if mode == "equal" else got.is_subset(want)
         if not ok:
             rel = "is" if mode == "equal" else "lies inside"
             diffs.append(f"conclusion {key}: printed omega in {got}, derived set {rel} {want}")
     checked = ["x, y, y'' vs the derived quartic", "conclusions vs derived ω-sets"]
     return Outcome("mismatch" if diffs else "match", diffs, checked)
+
+
+@lru_cache(maxsize=64)
+def _condition_set(text: str):
+    """A printed condition on ω as a set (the record and its erratum share conclusions)."""
+    return parse(text).as_set()
 
 
 def _turns(coords):

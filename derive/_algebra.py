@@ -209,7 +209,9 @@ def bernstein_terms(expr: sp.Expr, degree: sp.Expr) -> dict[sp.Expr, sp.Expr]:
         powers = dict(sp.powsimp(rest).as_powers_dict())
         a = powers.pop(t, sp.Integer(0))
         b = powers.pop(s, sp.Integer(0))
-        if any(e != 0 for e in powers.values()) or sp.simplify(a + b - degree) != 0:
+        # exponents are polynomials in n and i, so expanding decides (simplify would import
+        # sympy.physics on first use)
+        if any(e != 0 for e in powers.values()) or sp.expand(a + b - degree) != 0:
             raise ArithmeticError(f"term {term} is not a multiple of a degree-{degree} Bernstein")
         out[a] = out.get(a, 0) + coeff / sp.binomial(degree, a)
     return {a: sp.factor(sp.combsimp(c)) for a, c in out.items()}

@@ -104,7 +104,9 @@ def endpoint_weights() -> tuple[sp.Expr, sp.Expr]:
         * sp.ff(n - i, k - i)
     )
     start = sp.combsimp(leibniz)
-    end = sp.simplify(sp.combsimp((-1) ** k * leibniz))
+    # (-1)^(k-i) = (-1)^(-i-k) for integer k, so the signs combine to (-1)^(-i) (what simplify
+    # finds, without importing sympy.physics, which simplify does on first use: 0.45 s)
+    end = sp.combsimp(((-1) ** k * leibniz).subs((-1) ** (k - i), (-1) ** (-i - k)))
     return start, end
 
 

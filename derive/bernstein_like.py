@@ -74,7 +74,8 @@ def explicit_factor() -> sp.Expr:
         ((1 - t) * bernstein_basis(n - 1, i) + t * bernstein_basis(n - 1, i - 1))
         / bernstein_basis(n, i)
     )
-    if sp.simplify(ratio_rec - 1) != 0:
+    # the powers of t and 1 - t combine (same base), and what is left is rational
+    if sp.cancel(sp.expand(sp.powsimp(ratio_rec - 1, force=True), force=True)) != 0:
         raise AssertionError("Bernstein recursion failed symbolically")
     q = sp.Integer(0)
     for s, seed in enumerate(SEED):

@@ -212,11 +212,13 @@ def bench_derive() -> None:
 
 def bench_verify() -> None:
     """The whole `lambda-bezier verify` run (every record, every degree), one worker per core."""
+    # best of three: wall times on a shared 2-core VM vary by a third between runs
     full = fresh_process(
         "import io, sys; from lambda_bezier import _verify_runner as v; "
-        "sys.exit(v.run(out=io.StringIO(), progress=False))"
+        "sys.exit(v.run(out=io.StringIO(), progress=False))",
+        repeat=3,
     )
-    bare = fresh_process("import sympy")
+    bare = fresh_process("import sympy", repeat=3)
     record(
         "lambda-bezier verify (118 records)",
         full,
@@ -244,23 +246,32 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="smaller sizes (smoke test)")
     parser.add_argument("--json", type=Path, help="also write the rows as JSON here")
+    groups = ("evaluation", "batch", "lambda", "derive", "verify", "import")
+    parser.add_argument(
+        "--only",
+        help=f"comma-separated subset of {', '.join(groups)} (default: all)",
+        default=",".join(groups),
+    )
     args = parser.parse_args()
+    only = set(args.only.split(","))
+    if only - set(groups):
+        parser.error(f"unknown benchmark group(s): {', '.join(sorted(only - set(groups)))}")
     import bezier
     import sympy
 
     size, m_batch, m_lambda = (10**5, 10**4, 10**4) if args.quick else (10**6, 10**5, 10**5)
-    print("evaluation ...", file=sys.stderr)
-    bench_evaluation(size)
-    print("batch evaluation ...", file=sys.stderr)
-    bench_batch_evaluation(m_batch)
-    print("optimal lambda ...", file=sys.stderr)
-    bench_optimal_lambda(m_lambda)
-    print("derive ...", file=sys.stderr)
-    bench_derive()
-    print("verify ...", file=sys.stderr)
-    bench_verify()
-    print("import ...", file=sys.stderr)
-    bench_import()
+    runs = {
+        "evaluation": lambda: bench_evaluation(size),
+        "batch": lambda: bench_batch_evaluation(m_batch),
+        "lambda": lambda: bench_optimal_lambda(m_lambda),
+        "derive": bench_derive,
+        "verify": bench_verify,
+        "import": bench_import,
+    }
+    for name in groups:
+        if name in only:
+            print(f"{name} ...", file=sys.stderr)
+            runs[name]()
 
     import os
 

@@ -189,10 +189,9 @@ class Undefined(Exception):
 
 # Scalars are exact rational functions of the parameters: num / (den · pden) with num, pden in
 # the integer polynomial ring ZZ[PARAMS] and den a positive integer (integer coefficients are
-# much faster than rational ones); a plain number is a Fraction (the fast path). The ring is
-# FLINT's fmpz_mpoly (python-flint): the checks are millions of small polynomial operations, and
-# there it is 5-30x faster than SymPy's pure-Python PolyElement. SymPy's ring (RING) is kept
-# only for factoring the rare mismatch values, so that their printed form is SymPy's.
+# much faster than rational ones); a plain number is an int or an fmpq (the fast path). The
+# ring is FLINT's fmpz_mpoly (python-flint): the checks are millions of small polynomial
+# operations, and there it is 5-30x faster than SymPy's pure-Python PolyElement.
 PARAMS = tuple(s for s in SYMBOLS.values() if s not in (*INDEX_SYMBOLS, *DEGREE_SYMBOLS))
 _CTX = flint.fmpz_mpoly_ctx.get(tuple(str(s) for s in PARAMS), "lex")
 GEN = dict(zip(PARAMS, _CTX.gens(), strict=True))
@@ -200,7 +199,6 @@ _GPOS = {sym: pos for pos, sym in enumerate(PARAMS)}
 _GEN_SYMBOL = {str(g): sym for sym, g in GEN.items()}
 _ONE = _CTX.constant(1)
 _NVARS = len(PARAMS)
-RING = sp.polys.rings.ring(PARAMS, sp.ZZ)[0]
 
 
 def _poly(terms: dict):
@@ -218,19 +216,15 @@ def _degree(poly, pos: int) -> int:
     return int(poly.degrees()[pos])
 
 
-def poly_expr(poly) -> sp.Expr:
-    """A ring element as a SymPy expression."""
+def poly_expr(poly, symbols=PARAMS) -> sp.Expr:
+    """An fmpz_mpoly (generators `symbols`, default the parameters) as a SymPy expression."""
     return sp.Add(
         *(
-            sp.Integer(int(c)) * sp.Mul(*(g ** int(e) for g, e in zip(PARAMS, m, strict=True) if e))
+            sp.Integer(int(c))
+            * sp.Mul(*(g ** int(e) for g, e in zip(symbols, m, strict=True) if e))
             for m, c in poly.terms()
         )
     )
-
-
-def sympy_ring_element(poly):
-    """A ring element in SymPy's ring (for factoring)."""
-    return RING({tuple(map(int, m)): int(c) for m, c in poly.terms()})
 
 
 def _lcm(a: int, b: int) -> int:
@@ -616,30 +610,21 @@ def fast_factor(expr) -> sp.Expr:
     return _factored(num) / _factored(den)
 
 
+def _flint_factored(poly, symbols=PARAMS) -> sp.Expr:
+    """An fmpz_mpoly as content·Π f^k, factored by FLINT (SymPy's multivariate factoring is
+    what made the long mismatch messages slow). The form is SymPy's: each f primitive with a
+    positive leading coefficient in lex order of `symbols`."""
+    content, factors = poly.factor()
+    return sp.Integer(int(content)) * sp.Mul(*(poly_expr(f, symbols) ** int(k) for f, k in factors))
+
+
 def _factored(poly) -> sp.Expr:
-    """A SymPy ring element as const·Π f^k with SymPy's normalisation (each f primitive over
-    the integers, positive leading coefficient in the ring's lex order), factored by FLINT
-    (SymPy's multivariate factoring is what made the long mismatch messages slow)."""
+    """A SymPy ring element (of as_fraction), factored as in _flint_factored."""
     ring, dom = poly.ring, poly.ring.domain
     denom, integral = poly.clear_denoms() if dom.is_Field else (dom.one, poly)
     ctx = flint.fmpz_mpoly_ctx.get(tuple(str(g) for g in ring.symbols), "lex")
-    content, factors = ctx.from_dict(
-        {m: int(dom.to_sympy(c)) for m, c in integral.terms()}
-    ).factor()
-    const = sp.Integer(int(content)) / dom.to_sympy(denom)
-    return const * sp.Mul(
-        *(
-            sp.Add(
-                *(
-                    sp.Integer(int(c))
-                    * sp.Mul(*(g ** int(e) for g, e in zip(ring.symbols, m, strict=True)))
-                    for m, c in f.terms()
-                )
-            )
-            ** int(k)
-            for f, k in factors
-        )
-    )
+    fpoly = ctx.from_dict({m: int(dom.to_sympy(c)) for m, c in integral.terms()})
+    return _flint_factored(fpoly, ring.symbols) / dom.to_sympy(denom)
 
 
 def simplify_scalar(expr):
@@ -647,13 +632,12 @@ def simplify_scalar(expr):
         g = expr.ground()
         if g is not None:
             return sp.Rational(g.numerator, g.denominator)
-        num = sympy_ring_element(expr.num)
-        den = None if expr.pden is None else sympy_ring_element(expr.pden)
+        num, den = expr.num, expr.pden
         if den is not None:
             common = num.gcd(den)
-            num, den = num.exquo(common), den.exquo(common)
-        out = _factored(num) / sp.Integer(expr.den)
-        return out / _factored(den) if den is not None else out
+            num, den = num / common, den / common
+        out = _flint_factored(num) / sp.Integer(expr.den)
+        return out / _flint_factored(den) if den is not None else out
     expr = sp.sympify(expr)
     if expr.is_Number:
         return expr

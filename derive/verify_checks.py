@@ -261,6 +261,10 @@ def symbolic_zero(e) -> bool:
     e = to_derive(sp.sympify(e))
     if e == 0:
         return True
+    try:  # a rational function (the common case): exact ring arithmetic decides
+        return not as_fraction(e)[0]
+    except (_NotRational, Undefined):
+        pass
     e = sp.combsimp(sp.expand_func(e))
     if e == 0:
         return True
@@ -1855,8 +1859,9 @@ def join_per_degree(record, ctx, rows, specs, conventions, label="convention") -
     tally = Tally(f"per-degree {label}")
     env_syms = (n1, n2, l1, l2, S["alpha"], S["d"])
     compiled = {r: linear_in_points(rhs, env_syms) for r, rhs in rows.items()}
+    real = ctx.realiser()
     for (a, b), sample in itertools.product(_degree_pairs(ctx), JOIN_SAMPLES):
-        real = ctx.realiser()
+        real.reset()  # the pieces' models read the λ samples, which memo keys do not hold
         values = (a, b, sample["lam1"], sample["lam2"], sample["alpha"], sample["d"])
         env = dict(zip(env_syms, values, strict=True))
         try:

@@ -359,9 +359,16 @@ class Sc:
     # ---- arithmetic
 
     def __add__(self, o):
-        o = o if isinstance(o, Sc) else Sc.of(o)
-        if self.c is not None and o.c is not None:
-            return Sc.const(self.c + o.c)
+        if type(o) is not Sc:
+            o = Sc.of(o)
+        c, oc = self.c, o.c
+        if c is not None:
+            if oc is not None:
+                return Sc.const(c + oc)
+            if c == 0:
+                return o
+        elif oc == 0:
+            return self
         (a, da, pa), (b, db, pb) = self.parts(), o.parts()
         if pa is None and pb is None:
             L = _lcm(da, db)
@@ -387,13 +394,17 @@ class Sc:
         return Sc.of(o) - self
 
     def __mul__(self, o):
-        o = o if isinstance(o, Sc) else Sc.of(o)
-        if self.c is not None and o.c is not None:
-            return Sc.const(self.c * o.c)
-        if self.c is not None or o.c is not None:
-            k, p = (self.c, o) if self.c is not None else (o.c, self)
+        if type(o) is not Sc:
+            o = Sc.of(o)
+        c, oc = self.c, o.c
+        if c is not None and oc is not None:
+            return Sc.const(c * oc)
+        if c is not None or oc is not None:
+            k, p = (c, o) if c is not None else (oc, self)
             if k == 0:
-                return Sc.const(0)
+                return ZERO
+            if k == 1:
+                return p
             return Sc(p.num * k.numerator, p.den * int(k.denominator), p.pden)
         if self.pden is None and o.pden is None:
             pden = None
@@ -476,6 +487,7 @@ class Sc:
 
 
 ZERO = Sc.const(0)
+ONE = Sc.const(1)
 
 
 def _compose(poly, pos: int, value: Sc) -> Sc:
@@ -658,6 +670,8 @@ class Form:
         return Form({((name, index),): Sc.of(1)})
 
     def scaled(self, s) -> Form:
+        if type(s) is Sc and s.c == 1:  # values are never mutated, so sharing is safe
+            return self
         return Form({k: v * s for k, v in self.terms.items()})
 
     def map(self, fn: Callable) -> Form:
@@ -697,10 +711,10 @@ class DotSum:
     terms: list  # [(Sc coef, Form a, Form b)]
 
 
-def _merge(a: dict, b: dict, sign=1) -> dict:
+def _merge(a: dict, b: dict) -> dict:
     out = dict(a)
     for k, v in b.items():
-        out[k] = out[k] + sign * v if k in out else sign * v
+        out[k] = out[k] + v if k in out else v
     return out
 
 
@@ -709,6 +723,8 @@ def is_scalar(v) -> bool:
 
 
 def v_add(a, b):
+    if type(a) is Sc and type(b) is Sc:
+        return a + b
     if is_scalar(a) and is_scalar(b):
         return Sc.of(a) + Sc.of(b)
     if trivially_zero(a):
@@ -735,6 +751,11 @@ def v_neg(a):
 
 
 def v_mul(a, b):
+    if type(a) is Sc:
+        if type(b) is Sc:
+            return a * b
+        if a.c == 1 and not is_scalar(b):  # values are never mutated: share b
+            return b
     if is_scalar(a) and is_scalar(b):
         return Sc.of(a) * Sc.of(b)
     if is_scalar(b) and not is_scalar(a):
@@ -873,6 +894,11 @@ class Realiser:
 
     models[name](args, env) receives the evaluated arguments (SymPy objects; integers for
     indices and degrees) and returns a value. `raw_models` receive the unevaluated arguments.
+
+    Each (sub)expression is compiled once into a closure of the environment: an expression is
+    evaluated for hundreds of environments (degrees, indices, sample values), and dispatching
+    on SymPy node types and hashing SymPy nodes per node and environment cost more than the
+    arithmetic. Equal subexpressions share one closure, and with it one memo.
     """
 
     models: Mapping[str, Model]
@@ -881,147 +907,256 @@ class Realiser:
     # constant x, or None; lets Subs(Derivative(p(t), (t, r)), t, x) skip the polynomial in t
     jets: Mapping[str, Callable] = field(default_factory=dict)
 
-    memo: dict = field(default_factory=dict)
+    compiled: dict = field(default_factory=dict)
+    memos: list = field(default_factory=list)
+
+    def reset(self) -> None:
+        """Forget every memoised value (for models that read values the memo keys do not
+        contain, such as a shape sample) but keep the compiled closures."""
+        for memo in self.memos:
+            memo.clear()
 
     def __call__(self, expr, env: Mapping) -> object:
         """env: {symbol: integer} (degrees, indices), or an exact number for a parameter."""
         return self.walk(expr, {k: _env_value(v) for k, v in env.items()})
 
     def walk(self, e, env):
+        fn = self.compiled.get(e)
+        if fn is None:
+            fn = self.compiled[e] = self._compile(e)
+        return fn(env)
+
+    def _fn(self, e) -> Callable:
+        fn = self.compiled.get(e)
+        if fn is None:
+            fn = self.compiled[e] = self._compile(e)
+        return fn
+
+    def _compile(self, e) -> Callable:
         kind = _kind(e)
         if kind == "num":
-            hit = _NUMBERS.get(e)
-            if hit is None:
-                if isinstance(e, (int, Fraction)):
-                    hit = Sc.of(e)
-                elif not e.is_Rational:
-                    raise TypeError(f"inexact number {e}")
-                else:
-                    hit = Sc.const(_q(int(e.p), int(e.q)))
-                _NUMBERS[e] = hit
-            return hit
-        if kind == "sym":
-            v = env.get(e)
-            if v is not None:
-                return Sc.const(v) if type(v) is int else Sc.of(v)
-            if e in GEN:
-                return Sc(GEN[e])
-            raise TypeError(f"free symbol {e} has no value")
-        if kind == "memo":
-            # models may depend on the degrees and k without printing them (p(t) on n)
-            key = (e, tuple(env.get(s) for s in _free(e)), tuple(env.get(s) for s in _IMPLICIT))
-            hit = self.memo.get(key)
-            if hit is None:
-                hit = self.memo[key] = self._walk(e, env)
-            return hit
-        return self._walk(e, env)
+            if not isinstance(e, (int, Fraction)) and not e.is_Rational:
 
-    def _walk(self, e, env):  # noqa: C901 - a dispatch over node types
+                def inexact(env):
+                    raise TypeError(f"inexact number {e}")
+
+                return inexact
+            value = _number(e)
+            return lambda env: value
+        if kind == "sym":
+            gen = Sc(GEN[e]) if e in GEN else None
+
+            def symbol(env):
+                v = env.get(e)
+                if v is not None:
+                    return Sc.const(v) if type(v) is int else Sc.of(v)
+                if gen is None:
+                    raise TypeError(f"free symbol {e} has no value")
+                return gen
+
+            return symbol
+        inner = self._compile_node(e)
+        if kind != "memo":
+            return inner
+        # models may depend on the degrees and k without printing them (p(t) on n)
+        keys = _free(e) + _IMPLICIT
+        memo: dict = {}
+        self.memos.append(memo)
+
+        def memoised(env):
+            key = tuple([env.get(s) for s in keys])
+            hit = memo.get(key)
+            if hit is None:
+                hit = memo[key] = inner(env)
+            return hit
+
+        return memoised
+
+    def _compile_node(self, e) -> Callable:  # noqa: C901 - a dispatch over node types
         if isinstance(e, AppliedUndef):
-            name = e.func.__name__
-            if name in self.raw_models:
-                return self.raw_models[name](e.args, env, self)
-            if name not in self.models:
-                raise KeyError(f"no model for {name}")
-            args = [self.walk(a, env) for a in e.args]
-            return self.models[name](args, env)
+            return self._compile_function(e)
         if e.is_Add:
-            out = Sc.of(0)
-            for a in e.args:
-                out = v_add(out, self.walk(a, env))
-            return out
+            terms = [self._fn(a) for a in e.args]
+
+            def add(env):
+                out = ZERO
+                for f in terms:
+                    out = v_add(out, f(env))
+                return out
+
+            return add
         if e.is_Mul:
             # functions first: a vanishing basis function makes the product zero before its
             # coefficient (possibly 0/0 by the binomial convention) is looked at
-            first, rest = _mul_split(e)
-            out = Sc.of(1)
-            for a in first:
-                val = self.walk(a, env)
-                if trivially_zero(val):
-                    return Sc.of(0)
-                out = v_mul(out, val)
-            for a in rest:
-                out = v_mul(out, self.walk(a, env))
-            return out
+            first, rest = (tuple(self._fn(a) for a in part) for part in _mul_split(e))
+
+            def mul(env):
+                out = ONE
+                for f in first:
+                    val = f(env)
+                    if trivially_zero(val):
+                        return ZERO
+                    out = v_mul(out, val)
+                for f in rest:
+                    out = v_mul(out, f(env))
+                return out
+
+            return mul
         if e.is_Pow:
-            base = self.walk(e.base, env)
-            ex = as_int(self.walk(e.exp, env))
-            if is_scalar(base) and trivially_zero(base) and ex < 0:
-                raise Undefined("division by zero")
-            return v_pow(base, ex)
+            base_fn, exp_fn = self._fn(e.base), self._fn(e.exp)
+
+            def power(env):
+                base = base_fn(env)
+                ex = as_int(exp_fn(env))
+                if is_scalar(base) and trivially_zero(base) and ex < 0:
+                    raise Undefined("division by zero")
+                return v_pow(base, ex)
+
+            return power
         if isinstance(e, sp.binomial):
-            a, b = (as_int(self.walk(x, env)) for x in e.args)
-            return Sc.of(paper_binomial(a, b))
+            top_fn, bottom_fn = (self._fn(x) for x in e.args)
+            return lambda env: Sc.const(paper_binomial(as_int(top_fn(env)), as_int(bottom_fn(env))))
         if isinstance(e, sp.factorial):
-            a = as_int(self.walk(e.args[0], env))
-            if a < 0:
-                raise Undefined(f"factorial({a})")
-            return Sc.of(factorial(a))
+            arg_fn = self._fn(e.args[0])
+
+            def fact(env):
+                a = as_int(arg_fn(env))
+                if a < 0:
+                    raise Undefined(f"factorial({a})")
+                return Sc.const(factorial(a))
+
+            return fact
         if isinstance(e, sp.Sum):
-            return self._sum(e.function, list(e.limits), env)
+            return self._compile_sum(e.function, list(e.limits))
         if isinstance(e, sp.Derivative):
-            val = self.walk(e.expr, env)
-            for var, count in e.variable_count:
-                cnt = as_int(self.walk(count, env))
-                if cnt < 0:
-                    raise Undefined(f"derivative of order {cnt}")
-                val = v_apply(val, lambda s, var=var, cnt=cnt: s.diff(var, cnt))
-            return val
-        if isinstance(e, sp.Subs):
-            val = self._jet(e, env) if self.jets else None
-            if val is not None:
+            expr_fn = self._fn(e.expr)
+            counts = [(var, self._fn(count)) for var, count in e.variable_count]
+
+            def derivative(env):
+                val = expr_fn(env)
+                for var, count_fn in counts:
+                    cnt = as_int(count_fn(env))
+                    if cnt < 0:
+                        raise Undefined(f"derivative of order {cnt}")
+                    val = v_apply(val, lambda s, var=var, cnt=cnt: s.diff(var, cnt))
                 return val
-            val = self.walk(e.expr, env)
-            for var, point in zip(e.variables, e.point, strict=True):
-                pt = self.walk(point, env)
+
+            return derivative
+        if isinstance(e, sp.Subs):
+            return self._compile_subs(e)
+        if isinstance(e, sp.Integral):
+            return self._compile_integral(e)
+
+        def unknown(env):
+            raise TypeError(f"cannot evaluate {e!r}")
+
+        return unknown
+
+    def _compile_function(self, e) -> Callable:
+        name = e.func.__name__
+        if name in self.raw_models:
+            raw, args = self.raw_models[name], e.args
+            return lambda env: raw(args, env, self)
+        model = self.models.get(name)
+        if model is None:
+
+            def missing(env):
+                raise KeyError(f"no model for {name}")
+
+            return missing
+        arg_fns = [self._fn(a) for a in e.args]
+        return lambda env: model([f(env) for f in arg_fns], env)
+
+    def _compile_sum(self, body, limits) -> Callable:
+        if not limits:
+            return self._fn(body)
+        (var, lo, hi), rest = limits[0], limits[1:]
+        lo_fn, hi_fn, inner = self._fn(lo), self._fn(hi), self._compile_sum(body, rest)
+
+        def total(env):
+            lo, hi = as_int(lo_fn(env)), as_int(hi_fn(env))
+            out = ZERO
+            for val in range(lo, hi + 1):  # empty when hi < lo
+                out = v_add(out, inner({**env, var: val}))
+            return out
+
+        return total
+
+    def _compile_subs(self, e) -> Callable:
+        jet = self._compile_jet(e) if self.jets else None
+        expr_fn = self._fn(e.expr)
+        points = [(var, self._fn(point)) for var, point in zip(e.variables, e.point, strict=True)]
+
+        def substitute(env):
+            if jet is not None:
+                val = jet(env)
+                if val is not None:
+                    return val
+            val = expr_fn(env)
+            for var, point_fn in points:
+                pt = point_fn(env)
                 val = v_apply(val, lambda s, var=var, pt=pt: s.subs(var, pt))
             return val
-        if isinstance(e, sp.Integral):
-            val = self.walk(e.function, env)
-            if isinstance(val, DotSum) and len(e.limits) == 1:
-                var, lo, hi = e.limits[0]
-                return dotsum_integral(val, var, self.walk(lo, env), self.walk(hi, env))
-            for lim in e.limits:
-                var, lo, hi = lim[0], self.walk(lim[1], env), self.walk(lim[2], env)
-                val = v_apply(val, lambda s, var=var, lo=lo, hi=hi: s.integrate(var, lo, hi))
-            return val
-        raise TypeError(f"cannot evaluate {e!r}")
 
-    def _jet(self, e, env):
-        """Subs(f(t), t, x) or Subs(Derivative(f(t), (t, r)), t, x) through jets[f], else None."""
-        if len(e.variables) != 1 or e.variables[0] in env:
+        return substitute
+
+    def _compile_jet(self, e) -> Callable | None:
+        """Subs(f(t), t, x) or Subs(Derivative(f(t), (t, r)), t, x) through jets[f]: a closure
+        giving the value or None (when t has a value), or None when the form does not fit."""
+        if len(e.variables) != 1:
             return None
-        var, inner, order = e.variables[0], e.expr, 0
+        var, inner, order_fn = e.variables[0], e.expr, None
         if isinstance(inner, sp.Derivative):
             if len(inner.variable_count) != 1 or inner.variable_count[0][0] != var:
                 return None
-            order = as_int(self.walk(inner.variable_count[0][1], env))
-            if order < 0:
-                raise Undefined(f"derivative of order {order}")
+            order_fn = self._fn(inner.variable_count[0][1])
             inner = inner.expr
         if not isinstance(inner, AppliedUndef) or inner.args != (var,):
             return None
         jet = self.jets.get(inner.func.__name__)
         if jet is None:
             return None
-        x = self.walk(e.point[0], env)
-        return jet(order, x, env) if isinstance(x, Sc) and x.c is not None else None
+        point_fn = self._fn(e.point[0])
 
-    def _sum(self, body, limits, env):
-        if not limits:
-            return self.walk(body, env)
-        (var, lo, hi), rest = limits[0], limits[1:]
-        lo, hi = as_int(self.walk(lo, env)), as_int(self.walk(hi, env))
-        out = Sc.of(0)
-        for val in range(lo, hi + 1):  # empty when hi < lo
-            out = v_add(out, self._sum(body, rest, {**env, var: val}))
-        return out
+        def at_point(env):
+            if var in env:
+                return None
+            order = 0
+            if order_fn is not None:
+                order = as_int(order_fn(env))
+                if order < 0:
+                    raise Undefined(f"derivative of order {order}")
+            x = point_fn(env)
+            return jet(order, x, env) if isinstance(x, Sc) and x.c is not None else None
+
+        return at_point
+
+    def _compile_integral(self, e) -> Callable:
+        fn = self._fn(e.function)
+        limits = [(lim[0], self._fn(lim[1]), self._fn(lim[2])) for lim in e.limits]
+
+        def integral(env):
+            val = fn(env)
+            if isinstance(val, DotSum) and len(limits) == 1:
+                var, lo_fn, hi_fn = limits[0]
+                return dotsum_integral(val, var, lo_fn(env), hi_fn(env))
+            for var, lo_fn, hi_fn in limits:
+                lo, hi = lo_fn(env), hi_fn(env)
+                val = v_apply(val, lambda s, var=var, lo=lo, hi=hi: s.integrate(var, lo, hi))
+            return val
+
+        return integral
 
 
 _IMPLICIT = (SYMBOLS["n"], SYMBOLS["m"], SYMBOLS["k"])
 
 
-_NUMBERS: dict = {}
+def _number(e) -> Sc:
+    if isinstance(e, (int, Fraction)):
+        return Sc.of(e)
+    return Sc.const(_q(int(e.p), int(e.q)))
+
+
 _KINDS: dict = {}
 
 

@@ -36,6 +36,7 @@ from fractions import Fraction
 from functools import cache, lru_cache
 from math import comb
 
+import flint
 import sympy as sp
 from sympy.core.function import AppliedUndef
 
@@ -1214,14 +1215,21 @@ def check_maximum(record: dict, ctx: Context) -> Outcome:
     for deg in ctx.family.degrees:
         for ii in range(deg + 1):
             env = {S["n"]: sp.Integer(deg), S["i"]: sp.Integer(ii)}
-            f = sp.Poly(real(func, env).to_expr(), var)
+            value = real(func, env)
             a = sp.Rational(str(real(arg, env).ground()))
-            cands = {sp.Integer(0), sp.Integer(1)}
-            cands |= {r for r in f.diff(var).real_roots() if 0 <= r <= 1}
-            best = max(f.eval(c) for c in cands)
+            f = value.univariate(var)
+            if f is not None:  # exact in FLINT when every critical point is rational
+                f = flint.fmpq_poly([flint.fmpq(c.numerator, c.denominator) for c in f])
+                roots = _rational_roots(f.derivative())
+            if f is None or roots is None:
+                f = sp.Poly(value.to_expr(), var)
+                roots = f.diff(var).real_roots()
+            cands = {sp.Integer(0), sp.Integer(1)} | {r for r in roots if 0 <= r <= 1}
+            at_value = {c: _poly_at(f, c) for c in cands}
+            best = max(at_value.values())
             row = []
-            if not (0 <= a <= 1) or f.eval(a) != best:
-                at = sorted(c for c in cands if f.eval(c) == best)
+            if not (0 <= a <= 1) or _poly_at(f, a) != best:
+                at = sorted(c for c in cands if at_value[c] == best)
                 row.append(f"printed maximum at {a}, derived at {', '.join(map(str, at))}")
             tally.add(env, row)
     return Outcome(
@@ -1229,6 +1237,28 @@ def check_maximum(record: dict, ctx: Context) -> Outcome:
         tally.lines(),
         [f"per-degree: {tally.total} cases"],
     )
+
+
+def _rational_roots(poly) -> list[sp.Rational] | None:
+    """The real roots of an fmpq_poly when all of them are rational (FLINT factors it), else
+    None."""
+    if poly.degree() < 1:
+        return []
+    roots = []
+    for factor, _ in poly.factor()[1]:
+        if factor.degree() != 1:
+            return None
+        b, a = factor.coeffs()
+        root = -flint.fmpq(b) / a
+        roots.append(sp.Rational(int(root.p), int(root.q)))
+    return roots
+
+
+def _poly_at(f, x):
+    if isinstance(f, sp.Poly):
+        return f.eval(x)
+    y = f(flint.fmpq(int(x.p), int(x.q)))
+    return sp.Rational(int(y.p), int(y.q))
 
 
 # --------------------------------------------------------------------------- worked examples
@@ -1911,18 +1941,40 @@ def check_join(record: dict, ctx: Context) -> Outcome:
 
 def _corner_positive(expr, syms) -> bool:
     """A rational function, multilinear in the λs, positive on λ ∈ (-2, 1]^k: numerator and
-    denominator keep one sign on the closed box (checked at its corners; a zero is allowed
-    only at λ = -2, which the range excludes)."""
-    num, den = sp.fraction(sp.factor(expr))
+    denominator (in lowest terms) each keep one sign on the closed box, checked at its corners
+    (a zero is allowed only at a corner with some λ = -2, which the range excludes), and the
+    two signs agree."""
+    try:
+        num, den = as_fraction(sp.sympify(expr))
+    except _NotRational:
+        return False
+    num, den = num.cancel(den)
+    gens = num.ring.gens
+    if any(
+        part.degree(g) > (1 if sym in syms else 0)
+        for part in (num, den)
+        for g, sym in zip(gens, num.ring.symbols, strict=True)
+    ):
+        return False  # not multilinear in the λs, or it depends on something else
+    index = {sym: pos for pos, sym in enumerate(num.ring.symbols)}
+    top_signs = []
     for part in (num, den):
-        if any(sp.degree(part, s) > 1 for s in syms if part.has(s)):
+        signs, top = set(), None
+        for corner in _corners(len(syms)):
+            point = [0] * len(gens)
+            for sym, value in zip(syms, corner, strict=True):
+                if sym in index:
+                    point[index[sym]] = value
+            value = part(*point) if gens else part
+            sign = (value > 0) - (value < 0)
+            if all(c == 1 for c in corner):
+                top = sign
+            if sign:
+                signs.add(sign)
+        if len(signs) != 1 or not top:
             return False
-        values = [part.subs(dict(zip(syms, c, strict=True))) for c in _corners(len(syms))]
-        open_corner = [all(v == 1 for v in c) for c in _corners(len(syms))]
-        signs = {sp.sign(v) for v, top in zip(values, open_corner, strict=True) if v != 0 or top}
-        if len(signs - {0}) != 1 or 0 in {sp.sign(values[open_corner.index(True)])}:
-            return False
-    return True
+        top_signs.append(top)
+    return top_signs[0] == top_signs[1]
 
 
 def _corners(k: int):
@@ -1995,7 +2047,7 @@ def check_join_000(record: dict, ctx: Context) -> Outcome:
         beta = d1.terms.get(key, Sc.of(0)) / e1.terms[key]
         if not equal(d1, v_mul(beta, e1)):
             row.append("p2'(0) is not a multiple of p1'(1)")
-        elif not _corner_positive(sp.factor(beta.to_expr() / Csym), lam_syms):
+        elif not _corner_positive(beta.to_expr() / Csym, lam_syms):
             row.append(f"β = {sp.factor(beta.to_expr())} is not positive for C > 0")
         tally.add(env, row)
     diffs += tally.lines()

@@ -353,6 +353,21 @@ class Sc:
             return None
         return Fraction(int(self.c.numerator), int(self.c.denominator))
 
+    def univariate(self, sym) -> list[Fraction] | None:
+        """Coefficients (lowest power first) when this is a polynomial in `sym` alone, else
+        None."""
+        if self.c is not None:
+            return [self.ground()]
+        if self.pden is not None:
+            return None
+        pos = _GPOS[sym]
+        coeffs: dict = {}
+        for monom, c in self.num.terms():
+            if any(e for p, e in enumerate(monom) if p != pos):
+                return None
+            coeffs[int(monom[pos])] = Fraction(int(c), self.den)
+        return [coeffs.get(e, Fraction(0)) for e in range(max(coeffs) + 1)]
+
     def is_zero(self) -> bool:
         return self.c == 0 if self.c is not None else not self.num
 

@@ -110,6 +110,15 @@ def endpoint_weights() -> tuple[sp.Expr, sp.Expr]:
     return start, end
 
 
+@cache
+def endpoint_weight(end: str, order: int, index: int) -> sp.Expr:
+    """The weight of endpoint_weights() at a concrete order and index (0 <= index <= order):
+    a polynomial in n (the factorial ratio n!/(n - order)! cancelled)."""
+    w_start, w_end = endpoint_weights()
+    w = w_start if end == "start" else w_end
+    return sp.expand(sp.combsimp(w.subs({i: index, k: order})))
+
+
 def _check_endpoint_weights(start: sp.Expr, end: sp.Expr) -> None:
     """The closed forms agree with differentiating every B_{i,N} for every N of the range."""
     w_start = sp.lambdify((n, k, i), start, modules="sympy")

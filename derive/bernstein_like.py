@@ -23,14 +23,13 @@ from ._algebra import (
     exact_function,
     expansion_tables,
     i,
-    k,
     lam,
     linear_in_lambda,
     n,
     poly,
     t,
 )
-from .bernstein import bernstein_basis, bernstein_poly, endpoint_weights
+from .bernstein import bernstein_basis, bernstein_poly, endpoint_weight
 
 SCRIPT = "bernstein_like.py"
 OUTPUT = "bernstein_like.py"
@@ -93,19 +92,15 @@ def endpoint_closed_forms(q: sp.Expr) -> dict[tuple[str, int, int], sp.Expr]:
     quadratic in t, so only its own derivatives are taken here (differentiating the product
     with the power n - i in it is far slower).
     """
-    w_start, w_end = endpoint_weights()
     out = {}
     for r in range(ORDERS + 1):
         for idx in range(r + 1):
-            for end, q_end, at, w in (
-                ("start", q.subs(i, idx), 0, w_start),
-                ("end", q.subs(i, n - idx), 1, w_end),
-            ):
+            for end, q_end, at in (("start", q.subs(i, idx), 0), ("end", q.subs(i, n - idx), 1)):
                 total = sp.Integer(0)
                 for s in range(idx, r + 1):
                     q_r = sp.diff(q_end, t, r - s).subs(t, at)
-                    total += sp.binomial(r, s) * q_r * w.subs({i: idx, k: s})
-                val = sp.factor(sp.cancel(sp.combsimp(total)))
+                    total += sp.binomial(r, s) * q_r * endpoint_weight(end, s, idx)
+                val = sp.factor(total)
                 if val != 0:
                     out[(end, r, idx)] = val
     return out

@@ -24,14 +24,13 @@ from ._algebra import (
     exact_function,
     expansion_tables,
     i,
-    k,
     lam,
     linear_in_lambda,
     n,
     poly,
     t,
 )
-from .bernstein import endpoint_weights
+from .bernstein import endpoint_weight
 
 SCRIPT = "same_degree.py"
 OUTPUT = "same_degree.py"
@@ -85,7 +84,6 @@ def endpoint_closed_forms(form) -> dict[tuple[str, int, int], sp.Expr]:
     Bernstein endpoint weight w_start(n, r, l) for l <= r and 0 otherwise (and mirrored at 1),
     so only i <= r + 1 (resp. n - i <= r + 1) can be nonzero.
     """
-    w_start, w_end = endpoint_weights()
     out = {}
     for r in range(ORDERS + 1):
         for idx in range(r + 2):
@@ -94,12 +92,12 @@ def endpoint_closed_forms(form) -> dict[tuple[str, int, int], sp.Expr]:
             for coeff, shift in zip(form, (-1, 0, 1), strict=True):
                 l0 = idx + shift
                 if 0 <= l0 <= r:
-                    total_start += coeff.subs(i, idx) * w_start.subs({i: l0, k: r})
+                    total_start += coeff.subs(i, idx) * endpoint_weight("start", r, l0)
                 l1 = idx - shift
                 if 0 <= l1 <= r:
-                    total_end += coeff.subs(i, n - idx) * w_end.subs({i: l1, k: r})
+                    total_end += coeff.subs(i, n - idx) * endpoint_weight("end", r, l1)
             for end, total in (("start", total_start), ("end", total_end)):
-                total = sp.factor(sp.combsimp(total))
+                total = sp.factor(total)
                 if total != 0:
                     out[(end, r, idx)] = total
     return out

@@ -380,20 +380,36 @@ class Sc:
         if c is not None:
             if oc is not None:
                 return Sc.const(c + oc)
-            if c == 0:
-                return o
-        elif oc == 0:
-            return self
-        (a, da, pa), (b, db, pb) = self.parts(), o.parts()
+            return o if c == 0 else o._plus_number(c)
+        if oc is not None:
+            return self if oc == 0 else self._plus_number(oc)
+        a, da, pa = self.num, self.den, self.pden
+        b, db, pb = o.num, o.den, o.pden
+        # each FLINT operation costs about a microsecond however small the polynomial, so
+        # the common cases (equal denominators) take the fewest
         if pa is None and pb is None:
+            if da == db:
+                return Sc(a + b, da)
             L = _lcm(da, db)
             return Sc(a * (L // da) + b * (L // db), L)
         if pa is not None and pb is not None and pa == pb:
+            if da == db:
+                return Sc(a + b, da, pa)
             L = _lcm(da, db)
             return Sc(a * (L // da) + b * (L // db), L, pa)
         pa1 = pa if pa is not None else _ONE
         pb1 = pb if pb is not None else _ONE
         return Sc((a * pb1) * db + (b * pa1) * da, da * db, pa1 * pb1)
+
+    def _plus_number(self, c) -> Sc:
+        """self + c for a nonzero number c (self not constant):
+        num/(den·pden) + p/q = (num·q + p·den·pden) / (den·q·pden)."""
+        p, q = (c, 1) if type(c) is int else (int(c.numerator), int(c.denominator))
+        num, den, pden = self.num, self.den, self.pden
+        shift = p * den
+        if q != 1:
+            num, den = num * q, den * q
+        return Sc(num + shift if pden is None else num + pden * shift, den, pden)
 
     __radd__ = __add__
 
@@ -403,7 +419,13 @@ class Sc:
         return Sc(-self.num, self.den, self.pden)
 
     def __sub__(self, o):
-        return self + (-(o if isinstance(o, Sc) else Sc.of(o)))
+        if type(o) is not Sc:
+            o = Sc.of(o)
+        if o.c is not None:
+            return self + Sc.const(-o.c)
+        if self.c is None and self.pden is None and o.pden is None and self.den == o.den:
+            return Sc(self.num - o.num, self.den)
+        return self + (-o)
 
     def __rsub__(self, o):
         return Sc.of(o) - self

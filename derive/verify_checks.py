@@ -39,6 +39,7 @@ from math import comb
 import flint
 import sympy as sp
 from sympy.core.function import AppliedUndef
+from sympy.solvers.inequalities import reduce_rational_inequalities
 
 from . import _algebra
 from . import bernstein as bz
@@ -266,6 +267,8 @@ def symbolic_zero(e) -> bool:
         return not as_fraction(e)[0]
     except (_NotRational, Undefined):
         pass
+    if _nonzero_at_sample(e):  # a proof that it is not identically zero, without simplify
+        return False
     e = sp.combsimp(sp.expand_func(e))
     if e == 0:
         return True
@@ -273,6 +276,47 @@ def symbolic_zero(e) -> bool:
         return not as_fraction(e)[0]
     except _NotRational:
         return sp.simplify(e) == 0
+
+
+# A generic point (degrees above orders above indices, parameters at unrelated rationals) at
+# which symbolic_zero evaluates an expression exactly before trying to simplify it.
+_SAMPLE_POINT = {
+    **{sym: sp.Integer(v) for sym, v in zip(TO_DERIVE.values(), (17, 13, 3, 4, 7), strict=True)},
+    **{S[name]: sp.Integer(v) for name, v in (("l", 6), ("r", 5))},
+    **{
+        S[name]: sp.Rational(p, q)
+        for name, p, q in (
+            ("t", 2, 7),
+            ("u", 3, 11),
+            ("x", 5, 13),
+            ("c", 7, 17),
+            ("tstar", 4, 19),
+            ("lam", 3, 23),
+            ("lam1", 5, 29),
+            ("lam2", -7, 31),
+            ("alpha", 9, 37),
+            ("beta", 11, 41),
+            ("d", -13, 43),
+            ("C", 15, 47),
+            ("omega", 17, 53),
+        )
+    },
+}
+
+
+def _nonzero_at_sample(e) -> bool:
+    """True when e has a finite nonzero exact value at _SAMPLE_POINT (other integer symbols,
+    such as summation indices, at 2): then it is not identically zero. False says nothing."""
+    values = {}
+    for sym in e.free_symbols:
+        if sym in _SAMPLE_POINT:
+            values[sym] = _SAMPLE_POINT[sym]
+        elif sym.is_integer:
+            values[sym] = sp.Integer(2)
+        else:
+            return False
+    value = e.xreplace(values)
+    return bool(value.is_Rational) and value != 0
 
 
 # --------------------------------------------------------------------------- context, models
@@ -1108,15 +1152,14 @@ def symbolic_endpoint_sum(family, end, order, lhs, rhs, eq) -> list[str]:
     s = sp.Symbol("s", integer=True, nonnegative=True)
     index = pt.args[0]
     target = s if end == "start" else n - s
-    sol = sp.solve(sp.Eq(index, target), v)
-    if len(sol) != 1:
+    vs = _solve_linear(index, target, v)
+    if vs is None:
         return []
-    vs = sol[0]
     c_s = (outer * coeff).subs(v, vs)
-    bounds = sorted(
-        [sp.expand(sp.solve(sp.Eq(vs, lo), s)[0]), sp.expand(sp.solve(sp.Eq(vs, hi), s)[0])],
-        key=str,
-    )
+    ends = [_solve_linear(vs, lo, s), _solve_linear(vs, hi, s)]
+    if None in ends:
+        return []
+    bounds = sorted((sp.expand(e) for e in ends), key=str)
     w_start, w_end = bezier_weights()
     w = (w_start if end == "start" else w_end).subs(_algebra.i, s)
     w = _from_derive(w).subs(S["k"], order)
@@ -1454,7 +1497,24 @@ def check_convexity(record: dict, ctx: Context) -> Outcome:
 @lru_cache(maxsize=64)
 def _condition_set(text: str):
     """A printed condition on ω as a set (the record and its erratum share conclusions)."""
-    return parse(text).as_set()
+    return _as_set(parse(text))
+
+
+def _as_set(cond):
+    """cond.as_set(), with each polynomial inequality in one variable solved as a rational
+    inequality: Relational.as_set first asks whether the relation is periodic, which calls
+    simplify, whose first use imports sympy.physics (half a second of a worker)."""
+    if isinstance(cond, sp.And):
+        return sp.Intersection(*(_as_set(a) for a in cond.args))
+    if isinstance(cond, sp.Or):
+        return sp.Union(*(_as_set(a) for a in cond.args))
+    if isinstance(cond, sp.Not):
+        return sp.Complement(sp.S.Reals, _as_set(cond.args[0]))
+    if isinstance(cond, sp.core.relational.Relational) and len(cond.free_symbols) == 1:
+        (var,) = cond.free_symbols
+        if all(side.is_polynomial(var) for side in cond.args):
+            return reduce_rational_inequalities([[cond]], var, relational=False)
+    return cond.as_set()
 
 
 def _turns(coords):
@@ -1979,6 +2039,16 @@ def _corner_positive(expr, syms) -> bool:
 
 def _corners(k: int):
     return list(itertools.product((-2, 1), repeat=k))
+
+
+def _solve_linear(lhs, rhs, x):
+    """The x with lhs = rhs when lhs - rhs is linear in x, else None. (By hand: sp.solve
+    imports sympy.physics on first use, half a second of a verify worker.)"""
+    diff = sp.expand(lhs - rhs)
+    slope = diff.coeff(x, 1)
+    if slope == 0 or sp.expand(diff - slope * x).has(x):
+        return None
+    return sp.cancel(-(diff - slope * x) / slope)
 
 
 def _solve_moebius(a, b, x):

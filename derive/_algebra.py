@@ -12,6 +12,7 @@ from fractions import Fraction
 from functools import cache, reduce
 from math import comb, lcm
 
+import flint
 import numpy as np
 import sympy as sp
 from sympy.printing.pycode import PythonCodePrinter
@@ -54,20 +55,15 @@ def bernstein_power_matrix(degree: int) -> Matrix:
 
 @cache
 def power_to_bernstein_matrix(degree: int) -> Matrix:
-    """Inverse of bernstein_power_matrix: row e gives t^e in the Bernstein basis.
-    Computed by exact back substitution (the matrix is triangular with nonzero diagonal)."""
+    """Inverse of bernstein_power_matrix: row e gives t^e in the Bernstein basis (exact;
+    a maps Bernstein to power coefficients row by row, so power to Bernstein is a^{-1})."""
     a = bernstein_power_matrix(degree)
+    inv = flint.fmpq_mat([[flint.fmpq(v.numerator, v.denominator) for v in row] for row in a]).inv()
     size = degree + 1
-    # B_j has lowest power t^j, so a is upper triangular: t^e = (B_e - Σ_{j<e} ...)/a[e][e]
-    # solved from the top: t^e = Σ_j x[e][j] B_j with x = a^{-1}.
-    inv = [[Fraction(0)] * size for _ in range(size)]
-    for row in range(size - 1, -1, -1):
-        for col in range(size):
-            rhs = Fraction(int(row == col))
-            rhs -= sum((a[row][q] * inv[q][col] for q in range(row + 1, size)), Fraction(0))
-            inv[row][col] = rhs / a[row][row]
-    # inv = a^{-1}; a maps Bernstein→power (rows: B_j), so power→Bernstein is inv read by rows.
-    return tuple(tuple(r) for r in inv)
+    return tuple(
+        tuple(Fraction(int(inv[r, c].p), int(inv[r, c].q)) for c in range(size))
+        for r in range(size)
+    )
 
 
 def matmul(a, b) -> Matrix:

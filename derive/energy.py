@@ -63,10 +63,16 @@ def _exact_binomial(a, b):
 
 
 @cache
+def _rho_function():
+    rho, _ = bernstein_identities()
+    return sp.lambdify((_m, _a, _b), rho, modules=[{"binomial": _exact_binomial}])
+
+
+@cache
 def gram(m: int) -> Matrix:
     """G[a][b] = ∫_0^1 B_a^m B_b^m dt, exact."""
-    rho, integral = bernstein_identities()
-    rho_f = sp.lambdify((_m, _a, _b), rho, modules=[{"binomial": _exact_binomial}])
+    _, integral = bernstein_identities()
+    rho_f = _rho_function()
     scale = _emit.to_fraction(integral.subs(_N, 2 * m))
     return tuple(
         tuple(Fraction(rho_f(m, a, b)) * scale for b in range(m + 1)) for a in range(m + 1)

@@ -27,7 +27,6 @@ from ._algebra import (
     lam,
     linear_in_lambda,
     n,
-    poly,
     t,
 )
 from .bernstein import endpoint_weight
@@ -51,20 +50,27 @@ def basis_definition(degree, index, x=t, shape=lam):
     )
 
 
-X = sp.Poly(t, t, lam, domain="QQ")
-LAM = sp.Poly(lam, t, lam, domain="QQ")
+# Exact arithmetic for evaluating the axiom per degree: the polynomial ring Q[t, λ] where every
+# power is non-negative (0 < i < n), the field Q(t, λ) where the axiom has powers t^(-1) or
+# (1-t)^(-1) that must cancel (i = 0 and i = n). Both are much faster than Poly or Expr.
+_RING, _T_RING, _LAM_RING = sp.polys.rings.ring([t, lam], sp.QQ)
+_FIELD, _T_FIELD, _LAM_FIELD = sp.polys.fields.field([t, lam], sp.QQ)
 
 
 @cache
 def basis_polys(degree: int) -> list[sp.Poly]:
-    """Eq. (1) per index; evaluated in polynomial arithmetic where every power is
-    non-negative (0 < i < n), and as an expression that must cancel at i = 0 and i = n."""
-    return [
-        basis_definition(degree, ii, X, LAM)
-        if 0 < ii < degree
-        else poly(basis_definition(degree, ii))
-        for ii in range(degree + 1)
-    ]
+    """Eq. (1) per index, evaluated exactly (see _RING, _FIELD)."""
+    out = []
+    for ii in range(degree + 1):
+        if 0 < ii < degree:
+            value = basis_definition(degree, ii, _T_RING, _LAM_RING)
+        else:
+            quotient = basis_definition(degree, ii, _T_FIELD, _LAM_FIELD)
+            if quotient.denom != 1:
+                raise ArithmeticError(f"b_{ii}^{degree} is not a polynomial: {quotient}")
+            value = quotient.numer
+        out.append(sp.Poly.from_dict(dict(value), t, lam, domain="QQ"))
+    return out
 
 
 @cache

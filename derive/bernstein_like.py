@@ -92,13 +92,15 @@ def endpoint_closed_forms(q: sp.Expr) -> dict[tuple[str, int, int], sp.Expr]:
     quadratic in t, so only its own derivatives are taken here (differentiating the product
     with the power n - i in it is far slower).
     """
+    coeffs = sp.Poly(q, t).all_coeffs()  # q as a polynomial in t, coefficients in n, i, λ
     out = {}
     for r in range(ORDERS + 1):
         for idx in range(r + 1):
-            for end, q_end, at in (("start", q.subs(i, idx), 0), ("end", q.subs(i, n - idx), 1)):
+            for end, at, index in (("start", 0, idx), ("end", 1, n - idx)):
+                q_end = sp.Poly([c.subs(i, index) for c in coeffs], t)
                 total = sp.Integer(0)
                 for s in range(idx, r + 1):
-                    q_r = sp.diff(q_end, t, r - s).subs(t, at)
+                    q_r = q_end.diff((t, r - s)).eval(at)
                     total += sp.binomial(r, s) * q_r * endpoint_weight(end, s, idx)
                 val = sp.factor(total)
                 if val != 0:

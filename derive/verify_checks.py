@@ -1831,8 +1831,10 @@ def _join_derived(family: str, continuity: str) -> list[dict]:
 @lru_cache(maxsize=1024)
 def _coefficient(rhs, point):
     """∂rhs/∂point: the weight of a control point in a formula linear in the points (used by
-    the symbolic and the per-degree join checks of the same rows)."""
-    return sp.diff(rhs, point)
+    the symbolic and the per-degree join checks of the same rows). Taken with respect to a
+    Dummy in the point's place, which is what SymPy does for a function argument, directly."""
+    d = sp.Dummy()
+    return sp.diff(rhs.xreplace({point: d}), d).xreplace({d: point})
 
 
 @lru_cache(maxsize=1024)

@@ -55,6 +55,7 @@ def basis_definition(degree, index, x=t, shape=lam):
 # (1-t)^(-1) that must cancel (i = 0 and i = n). Both are much faster than Poly or Expr.
 _RING, _T_RING, _LAM_RING = sp.polys.rings.ring([t, lam], sp.QQ)
 _FIELD, _T_FIELD, _LAM_FIELD = sp.polys.fields.field([t, lam], sp.QQ)
+_CLOSED_FIELD = sp.polys.fields.field([n, lam], sp.QQ)[0]
 
 
 @cache
@@ -90,20 +91,23 @@ def endpoint_closed_forms(form) -> dict[tuple[str, int, int], sp.Expr]:
     Bernstein endpoint weight w_start(n, r, l) for l <= r and 0 otherwise (and mirrored at 1),
     so only i <= r + 1 (resp. n - i <= r + 1) can be nonzero.
     """
+    field = _CLOSED_FIELD  # the sums are added in Q(n, λ), then factored once
     out = {}
     for r in range(ORDERS + 1):
         for idx in range(r + 2):
             # start: B_l, l = idx-1, idx, idx+1; end: B_{n-l}, l = idx+1, idx, idx-1
-            total_start = total_end = sp.Integer(0)
+            total_start = total_end = field(0)
             for coeff, shift in zip(form, (-1, 0, 1), strict=True):
                 l0 = idx + shift
                 if 0 <= l0 <= r:
-                    total_start += coeff.subs(i, idx) * endpoint_weight("start", r, l0)
+                    weight = endpoint_weight("start", r, l0)
+                    total_start += field(coeff.subs(i, idx)) * field(weight)
                 l1 = idx - shift
                 if 0 <= l1 <= r:
-                    total_end += coeff.subs(i, n - idx) * endpoint_weight("end", r, l1)
+                    weight = endpoint_weight("end", r, l1)
+                    total_end += field(coeff.subs(i, n - idx)) * field(weight)
             for end, total in (("start", total_start), ("end", total_end)):
-                total = sp.factor(total)
+                total = sp.factor(total.as_expr())
                 if total != 0:
                     out[(end, r, idx)] = total
     return out

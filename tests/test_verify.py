@@ -176,6 +176,52 @@ def test_paper_binomial_convention(expr_mod):
     assert C(3, -1) == 0 and C(3, 4) == 0 and C(-1, -1) == 0 and C(-2, 1) == 0
 
 
+@pytest.fixture(scope="module")
+def checks_mod(verify):
+    return importlib.import_module(verify.__name__.rsplit(".", 1)[0] + ".verify_checks")
+
+
+def test_corner_positive_needs_one_sign_and_the_same_sign(checks_mod, expr_mod):
+    S, sp = expr_mod.SYMBOLS, expr_mod.sp
+    l1, l2, C = S["lam1"], S["lam2"], S["C"]
+    positive = checks_mod._corner_positive
+    assert positive((l2 + 2) / (l1 + 2), [l1, l2])  # zeros only at λ = -2, excluded
+    assert positive(C * (l1 + 3) / (C * l2 + 3 * C), [l1, l2])  # C cancels
+    assert not positive(-(l2 + 2) / (l1 + 2), [l1, l2])  # one sign, but negative
+    assert not positive((l2 + 2) / (-l1 - 2), [l1, l2])
+    assert not positive((l2 - sp.Rational(1, 2)) / (l1 + 3), [l1, l2])  # changes sign
+    assert not positive(l1**2 + 1, [l1, l2])  # not multilinear: not decided by corners
+    assert not positive(C * (l1 + 3), [l1, l2])  # depends on C
+
+
+def test_symbolic_zero_without_simplify(checks_mod, expr_mod):
+    S = expr_mod.SYMBOLS
+    n, k = S["n"], S["k"]
+    sp = expr_mod.sp
+    same = sp.factorial(n) / sp.factorial(n - k) - sp.ff(n, k)
+    assert checks_mod.symbolic_zero(same)
+    # the generic-point value proves a difference nonzero (a printed sign misprint)
+    sign = (-1) ** k * sp.binomial(n, k) - sp.binomial(n, k)
+    assert checks_mod._nonzero_at_sample(checks_mod.to_derive(sign))
+    assert not checks_mod.symbolic_zero(sign)
+    assert not checks_mod._nonzero_at_sample(checks_mod.to_derive(same))
+
+
+def test_linear_solve_and_condition_sets(checks_mod, expr_mod):
+    S = expr_mod.SYMBOLS
+    sp = expr_mod.sp
+    x, n = S["x"], S["n"]
+    assert checks_mod._solve_linear(n - 2 * x, 4, x) == n / 2 - 2
+    assert checks_mod._solve_linear(x**2, 1, x) is None
+    assert checks_mod._solve_linear(n, 1, x) is None
+    got = checks_mod._condition_set("(omega < 0) | (omega > 1/2)")
+    want = sp.Union(sp.Interval.open(-sp.oo, 0), sp.Interval.open(sp.Rational(1, 2), sp.oo))
+    assert got == want
+    assert checks_mod._condition_set("(omega > 0) & (omega**2 < 1/4)") == sp.Interval.open(
+        0, sp.Rational(1, 2)
+    )
+
+
 def test_parser_rejects_names_outside_the_table(expr_mod):
     with pytest.raises(expr_mod.ParseError):
         expr_mod.parse("b(i, n, t) + zeta")

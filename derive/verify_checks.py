@@ -281,8 +281,15 @@ def symbolic_zero(e) -> bool:
 # A generic point (degrees above orders above indices, parameters at unrelated rationals) at
 # which symbolic_zero evaluates an expression exactly before trying to simplify it.
 _SAMPLE_POINT = {
-    **{sym: sp.Integer(v) for sym, v in zip(TO_DERIVE.values(), (17, 13, 3, 4, 7), strict=True)},
-    **{S[name]: sp.Integer(v) for name, v in (("l", 6), ("r", 5))},
+    **{
+        _algebra.n: sp.Integer(17),
+        _algebra.m: sp.Integer(13),
+        _algebra.k: sp.Integer(7),
+        _algebra.j: sp.Integer(4),
+        _algebra.i: sp.Integer(3),
+        S["l"]: sp.Integer(6),
+        S["r"]: sp.Integer(5),
+    },
     **{
         S[name]: sp.Rational(p, q)
         for name, p, q in (

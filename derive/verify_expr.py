@@ -958,12 +958,10 @@ class Realiser:
         return self.walk(expr, {k: _env_value(v) for k, v in env.items()})
 
     def walk(self, e, env):
-        fn = self.compiled.get(e)
-        if fn is None:
-            fn = self.compiled[e] = self._compile(e)
-        return fn(env)
+        return self._fn(e)(env)
 
     def _fn(self, e) -> Callable:
+        """The closure of e, compiled on first use."""
         fn = self.compiled.get(e)
         if fn is None:
             fn = self.compiled[e] = self._compile(e)

@@ -9,11 +9,10 @@ Bernstein coefficients; both split by powers of λ so that the runtime can assem
 from __future__ import annotations
 
 from fractions import Fraction
-from functools import cache, reduce
-from math import comb, lcm
+from functools import cache
+from math import comb
 
 import flint
-import numpy as np
 import sympy as sp
 from sympy.printing.pycode import PythonCodePrinter
 
@@ -57,32 +56,30 @@ def bernstein_power_matrix(degree: int) -> Matrix:
 def power_to_bernstein_matrix(degree: int) -> Matrix:
     """Inverse of bernstein_power_matrix: row e gives t^e in the Bernstein basis (exact;
     a maps Bernstein to power coefficients row by row, so power to Bernstein is a^{-1})."""
-    a = bernstein_power_matrix(degree)
-    inv = flint.fmpq_mat([[flint.fmpq(v.numerator, v.denominator) for v in row] for row in a]).inv()
-    size = degree + 1
-    return tuple(
-        tuple(Fraction(int(inv[r, c].p), int(inv[r, c].q)) for c in range(size))
-        for r in range(size)
-    )
+    return from_flint(to_flint(bernstein_power_matrix(degree)).inv())
+
+
+def to_flint(mat) -> flint.fmpq_mat:
+    """A matrix of exact rationals (int, Fraction or SymPy Rational entries) as FLINT's
+    fmpq_mat, for products in C."""
+    return flint.fmpq_mat([[_fmpq(v) for v in row] for row in mat])
+
+
+def from_flint(mat: flint.fmpq_mat) -> Matrix:
+    return tuple(tuple(Fraction(int(v.p), int(v.q)) for v in row) for row in mat.table())
+
+
+def _fmpq(v) -> flint.fmpq:
+    if isinstance(v, int):
+        return flint.fmpq(v)
+    v = v if isinstance(v, Fraction) else Fraction(v)
+    return flint.fmpq(v.numerator, v.denominator)
 
 
 def matmul(a, b) -> Matrix:
-    """Exact product of Fraction matrices, done in integers: each factor is scaled to an
-    integer matrix by the lcm of its denominators (numpy object arrays of Python ints), so
-    the inner products never normalise a Fraction; each entry is reduced once at the end."""
-
-    def scaled(mat):
-        fr = [[v if isinstance(v, Fraction) else Fraction(v) for v in row] for row in mat]
-        den = reduce(lcm, (v.denominator for row in fr for v in row), 1)
-        ints = np.array(
-            [[v.numerator * (den // v.denominator) for v in row] for row in fr], dtype=object
-        )
-        return ints, den
-
-    ai, da = scaled(a)
-    bi, db = scaled(b)
-    prod = ai.dot(bi)
-    return tuple(tuple(Fraction(int(v), da * db) for v in row) for row in prod)
+    """Exact product of rational matrices (FLINT's fmpq_mat: the product never normalises a
+    Fraction; each entry is converted back once)."""
+    return from_flint(to_flint(a) * to_flint(b))
 
 
 def transpose(a) -> Matrix:

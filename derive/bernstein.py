@@ -10,7 +10,6 @@ f_i in the power basis, and the k-th derivative at either end for every order, i
 
 from __future__ import annotations
 
-from fractions import Fraction
 from functools import cache
 
 import sympy as sp
@@ -28,6 +27,7 @@ from ._algebra import (
     power_matrices,
     power_to_bernstein_matrix,
     t,
+    transpose,
 )
 
 X = sp.Poly(t, t, lam, domain="QQ")  # evaluating the axioms at X gives them as polynomials
@@ -60,26 +60,24 @@ def original_basis(degree: int, index: int, x=t):
     return sum(terms[1:], terms[0])
 
 
-def _to_bernstein(p: sp.Poly, degree: int) -> tuple[Fraction, ...]:
-    return matmul(power_matrices([p], degree)[0], power_to_bernstein_matrix(degree))[0]
+def _in_bernstein(polys: list[sp.Poly], degree: int) -> Matrix:
+    """Row r: the Bernstein coefficients (degree `degree`) of polys[r]."""
+    return matmul(power_matrices(polys, degree)[0], power_to_bernstein_matrix(degree))
 
 
 @cache
 def hodograph_matrix(degree: int) -> Matrix:
     """H[j][i]: weight of control point P_i in control point j of the derivative curve
     (degree - 1), from differentiating each B_i and re-expanding in degree - 1."""
-    cols = [
-        _to_bernstein(bernstein_basis(degree, ii, X).diff(t), degree - 1)
-        for ii in range(degree + 1)
-    ]
-    return tuple(tuple(cols[ii][jj] for ii in range(degree + 1)) for jj in range(degree))
+    derivatives = [bernstein_poly(degree, ii).diff(t) for ii in range(degree + 1)]
+    return transpose(_in_bernstein(derivatives, degree - 1))
 
 
 @cache
 def elevation_matrix(degree: int) -> Matrix:
     """E[j][i]: weight of P_i in control point j of the same curve written in degree + 1."""
-    cols = [_to_bernstein(bernstein_poly(degree, ii), degree + 1) for ii in range(degree + 1)]
-    return tuple(tuple(cols[ii][jj] for ii in range(degree + 1)) for jj in range(degree + 2))
+    polys = [bernstein_poly(degree, ii) for ii in range(degree + 1)]
+    return transpose(_in_bernstein(polys, degree + 1))
 
 
 def original_power_matrix(degree: int) -> Matrix:

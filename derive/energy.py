@@ -22,12 +22,13 @@ from fractions import Fraction
 from functools import cache, reduce
 from math import gcd, lcm
 
+import flint
 import sympy as sp
 
 from . import _emit
 from . import bernstein_like as _bernstein_like
 from . import same_degree as _same_degree
-from ._algebra import Matrix, bernstein_matrices, matmul, t, transpose
+from ._algebra import Matrix, bernstein_matrices, from_flint, t, to_flint
 from .bernstein import bernstein_basis, hodograph_matrix
 
 SCRIPT = "energy.py"
@@ -80,35 +81,39 @@ def gram(m: int) -> Matrix:
 
 
 @cache
+def _stiffness(degree: int, k: int) -> flint.fmpq_mat:
+    h = flint.fmpq_mat(degree + 1, degree + 1)
+    for r in range(degree + 1):
+        h[r, r] = 1
+    for d in range(degree, degree - k, -1):
+        h = to_flint(hodograph_matrix(d)) * h
+    return h.transpose() * to_flint(gram(degree - k)) * h
+
+
 def stiffness(degree: int, k: int) -> Matrix:
     """K with ∫|p^(k)|² = Σ_coords cᵀ K c for Bézier control points c of degree `degree`."""
-    h: Matrix = tuple(
-        tuple(Fraction(int(r == c)) for c in range(degree + 1)) for r in range(degree + 1)
-    )
-    for d in range(degree, degree - k, -1):
-        h = matmul(hodograph_matrix(d), h)
-    return matmul(matmul(transpose(h), gram(degree - k)), h)
+    return from_flint(_stiffness(degree, k))
 
 
-def upper_form(sym: Matrix) -> tuple[Fraction, tuple[tuple[int, ...], ...]]:
-    """A symmetric quadratic form as scale · U, U upper-triangular primitive integers
-    (U_ii = S_ii, U_ij = 2 S_ij for i < j), first nonzero diagonal entry positive."""
+def upper_form(sym) -> tuple[Fraction, tuple[tuple[int, ...], ...]]:
+    """A symmetric quadratic form (rows of exact rationals: Fraction or FLINT fmpq) as
+    scale · U, U upper-triangular primitive integers (U_ii = S_ii, U_ij = 2 S_ij for i < j),
+    first nonzero diagonal entry positive."""
     size = len(sym)
     upper = [
-        [sym[r][c] * (2 if c > r else 1) if c >= r else Fraction(0) for c in range(size)]
-        for r in range(size)
+        [sym[r][c] * (2 if c > r else 1) if c >= r else 0 for c in range(size)] for r in range(size)
     ]
-    entries = [v for row in upper for v in row if v != 0]
-    if not entries:
+    denom = reduce(lcm, (int(v.denominator) for row in upper for v in row), 1)
+    ints = [[int(v.numerator) * (denom // int(v.denominator)) for v in row] for row in upper]
+    numer = reduce(gcd, (x for row in ints for x in row), 0)
+    if numer == 0:
         return Fraction(0), tuple(tuple(0 for _ in range(size)) for _ in range(size))
-    denom = reduce(lcm, (v.denominator for v in entries), 1)
-    numer = reduce(gcd, (int(v * denom) for v in entries), 0)
-    scale = Fraction(numer, denom)
-    lead = next((upper[r][r] for r in range(size) if upper[r][r] != 0), entries[0])
-    if lead < 0:
-        scale = -scale
-    ints = tuple(tuple(int(v / scale) for v in row) for row in upper)
-    return scale, ints
+    entries = [x for row in ints for x in row if x != 0]
+    lead = next((ints[r][r] for r in range(size) if ints[r][r] != 0), entries[0])
+    sign = -1 if lead < 0 else 1
+    return Fraction(sign * numer, denom), tuple(
+        tuple(sign * x // numer for x in row) for row in ints
+    )
 
 
 @cache
@@ -116,18 +121,15 @@ def energy_forms(family: str, n: int, k: int) -> dict[str, tuple[Fraction, tuple
     """{"ff", "fg", "gg"}: (scale, U) with ∫f⁽ᵏ⁾·f⁽ᵏ⁾ = scale·DᵀUD etc. (see module doc)."""
     module = FAMILIES[family]
     big = n + (2 if family == "bernstein_like" else 0)
-    m0, m1 = bernstein_matrices(list(module.basis_polys(n)), big)
-    kk = stiffness(big, k)
-    w = tuple(tuple(-v for v in row) for row in m1)  # W = −M_1ᵀ D
+    m0, m1 = (to_flint(mat) for mat in bernstein_matrices(list(module.basis_polys(n)), big))
+    kk = _stiffness(big, k)
+    w = -m1  # W = −M_1ᵀ D
+    fg = m0 * kk * w.transpose()
     return {
-        "ff": upper_form(matmul(matmul(m0, kk), transpose(m0))),
-        "fg": upper_form(_symmetrise(matmul(matmul(m0, kk), transpose(w)))),
-        "gg": upper_form(matmul(matmul(w, kk), transpose(w))),
+        "ff": upper_form((m0 * kk * m0.transpose()).table()),
+        "fg": upper_form(((fg + fg.transpose()) / 2).table()),
+        "gg": upper_form((w * kk * w.transpose()).table()),
     }
-
-
-def _symmetrise(a: Matrix) -> Matrix:
-    return tuple(tuple((a[r][c] + a[c][r]) / 2 for c in range(len(a))) for r in range(len(a)))
 
 
 def published_form(family: str, n: int, k: int) -> tuple[Fraction, tuple, tuple]:

@@ -332,6 +332,13 @@ def _nonzero_at_sample(e) -> bool:
 _int = as_int
 
 
+@lru_cache(maxsize=64)
+def _piece_text(points: str, degree: str, shape: str) -> tuple:
+    """(points, degree symbol name, shape) of one curve of a join record, parsed once (the
+    per-degree join check asks for it hundreds of times)."""
+    return points, str(parse(degree)), parse(shape)
+
+
 @dataclass
 class Context:
     record: dict
@@ -462,7 +469,7 @@ class Context:
         second = self.record.get("second")
         if first and second:
             spec = first if which == 1 else second
-            spec = (spec["points"], str(parse(spec["degree"])), parse(spec["shape"]))
+            spec = _piece_text(spec["points"], spec["degree"], spec["shape"])
         elif self.family.name == "bernstein_like":  # eq. 12: C_1 degree n, C_2 degree m
             spec = ("P1", "n", S["lam1"]) if which == 1 else ("P2", "m", S["lam2"])
         else:  # 000 eq. 17: p1 degree m, p2 degree n

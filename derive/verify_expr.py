@@ -518,8 +518,14 @@ class Sc:
         pos = _GPOS[sym]
         if self.pden is not None and _degree(self.pden, pos) > 0:
             raise TypeError("cannot integrate a rational function")
-        scale, anti = self.num.integral(pos)  # anti' = scale·num
-        anti = Sc(anti, self.den * int(scale), self.pden)
+        scale, anti = self.num.integral(pos)  # anti' = scale·num, anti = 0 where sym = 0
+        den = self.den * int(scale)
+        lo_c, hi_c = Sc.of(lo).c, Sc.of(hi).c
+        if type(lo_c) is int and type(hi_c) is int:  # the common case: one FLINT call per end
+            name = PARAMS[pos].name
+            top = anti.subs({name: hi_c})
+            return Sc(top - anti.subs({name: lo_c}) if lo_c else top, den, self.pden)
+        anti = Sc(anti, den, self.pden)
         return anti.subs(sym, hi) - anti.subs(sym, lo)
 
 
@@ -1581,11 +1587,105 @@ def quadratic_terms(v) -> dict:
     return out
 
 
+# A quadratic form in the points as one FLINT polynomial: each point key gets a generator next
+# to the parameters (P_i·P_j = P_j·P_i, so commuting generators are faithful). Products,
+# integrals and equality are then one call each instead of one per pair of points.
+
+
+class _NotPolynomial(Exception):
+    """A coefficient is a rational function of the parameters, or a term is not quadratic."""
+
+
+@lru_cache(maxsize=64)
+def _point_ctx(count: int):
+    """(context, parameter generators, point generators) for `count` point keys."""
+    names = (*(str(s) for s in PARAMS), *(f"_x{q}" for q in range(count)))
+    ctx = flint.fmpz_mpoly_ctx.get(names, "lex")
+    gens = ctx.gens()
+    return ctx, gens[:_NVARS], gens[_NVARS:]
+
+
+def _embedded(c: Sc, ctx, params) -> tuple:
+    """c as (integer polynomial in ctx, positive integer denominator)."""
+    if c.c is not None:
+        return ctx.constant(int(c.c.numerator)), int(c.c.denominator)
+    if c.pden is not None:
+        raise _NotPolynomial
+    return c.num.compose(*params, ctx=ctx), c.den
+
+
+def _over_common_denominator(parts: list, ctx) -> tuple:
+    den = 1
+    for _, d in parts:
+        den = _lcm(den, d)
+    out = ctx.constant(0)
+    for p, d in parts:
+        out += p * (den // d)
+    return out, den
+
+
+def _quadratic_poly(v, keys: list) -> tuple:
+    """A DotSum, a quadratic Form or zero as (integer polynomial, denominator) in
+    _point_ctx(len(keys)); _NotPolynomial when it is not a polynomial in the parameters."""
+    ctx, params, xs = _point_ctx(len(keys))
+    index = {key: q for q, key in enumerate(keys)}
+
+    def linear(form):
+        parts = []
+        for key, c in form.terms.items():
+            if len(key) != 1:
+                raise _NotPolynomial
+            p, d = _embedded(c, ctx, params)
+            parts.append((p * xs[index[key[0]]], d))
+        return _over_common_denominator(parts, ctx)
+
+    parts = []
+    if isinstance(v, DotSum):
+        for c, a, b in v.terms:
+            if not (isinstance(a, Form) and isinstance(b, Form)):
+                raise _NotPolynomial
+            (pc, dc), (pa, da), (pb, db) = _embedded(c, ctx, params), linear(a), linear(b)
+            parts.append((pc * pa * pb, dc * da * db))
+    elif isinstance(v, Form):
+        for key, c in v.terms.items():
+            if len(key) != 2:
+                raise _NotPolynomial
+            p, d = _embedded(c, ctx, params)
+            parts.append((p * xs[index[key[0]]] * xs[index[key[1]]], d))
+    elif not (is_scalar(v) and trivially_zero(v)):
+        raise _NotPolynomial
+    return _over_common_denominator(parts, ctx)
+
+
+def _quadratic_form(poly, den: int, keys: list) -> Form:
+    """The Form {(p, q), p <= q: coefficient of p·q} of a polynomial of _quadratic_poly."""
+    by_key: dict = {}
+    for monom, coeff in poly.terms():
+        pos = [q for q, e in enumerate(monom[_NVARS:]) for _ in range(int(e))]
+        if len(pos) != 2:
+            raise AssertionError("not a quadratic form in the points")
+        key = (keys[pos[0]], keys[pos[1]])  # keys are sorted, so p <= q
+        by_key.setdefault(key, {})[tuple(int(e) for e in monom[:_NVARS])] = int(coeff)
+    return Form({key: Sc(_poly(by_key[key]), den) for key in sorted(by_key)})
+
+
 def dotsum_integral(v: DotSum, var, lo, hi) -> Form:
     """∫_lo^hi of a DotSum, coefficient by coefficient (exact polynomial integration)."""
     lo_f, hi_f = Sc.of(lo).ground(), Sc.of(hi).ground()
     if lo_f is None or hi_f is None:
         raise TypeError("integration bounds must be numbers")
+    if lo_f.denominator == 1 and hi_f.denominator == 1:
+        keys = _keys_of(v)
+        try:
+            poly, den = _quadratic_poly(v, keys)
+        except _NotPolynomial:
+            pass
+        else:
+            pos = _GPOS[var]
+            scale, anti = poly.integral(pos)  # anti' = scale·poly
+            name = str(PARAMS[pos])
+            value = anti.subs({name: int(hi_f)}) - anti.subs({name: int(lo_f)})
+            return _quadratic_form(value, den * int(scale), keys)
     out = {}
     for key, c in sorted(quadratic_terms(v).items()):
         val = c.integrate(var, lo_f, hi_f)
@@ -1600,15 +1700,21 @@ def _compare_dotsums(a, b) -> list[str]:
     than the degrees), for a diff a reader can check by hand."""
     if not all(isinstance(v, (DotSum, Form)) or is_scalar(v) for v in (a, b)):
         return ["printed and derived are of different kinds"]
+    keys = _keys_of(a, b)
     try:
-        qa, qb = quadratic_terms(a), quadratic_terms(b)
-    except TypeError:
-        pass
+        (pa, da), (pb, db) = _quadratic_poly(a, keys), _quadratic_poly(b, keys)
+    except _NotPolynomial:
+        try:
+            qa, qb = quadratic_terms(a), quadratic_terms(b)
+        except TypeError:
+            pass
+        else:
+            if all((qa.get(k, ZERO) - qb.get(k, ZERO)).is_zero() for k in qa.keys() | qb.keys()):
+                return []
     else:
-        if all((qa.get(k, ZERO) - qb.get(k, ZERO)).is_zero() for k in qa.keys() | qb.keys()):
+        if pa * db == pb * da:
             return []
     try:
-        keys = _keys_of(a, b)
         ka, kb = _Kernel(a, keys), _Kernel(b, keys)
         (ta, la), (tb, lb) = ka.degrees(), kb.degrees()
         dt, dl = max(ta, tb), max(la, lb)

@@ -14,6 +14,8 @@ import shutil
 
 import pytest
 from conftest import ROOT
+from hypothesis import given
+from hypothesis import strategies as st
 
 from lambda_bezier import _derive_runner, _verify_runner
 
@@ -220,6 +222,57 @@ def test_linear_solve_and_condition_sets(checks_mod, expr_mod):
     assert checks_mod._condition_set("(omega > 0) & (omega**2 < 1/4)") == sp.Interval.open(
         0, sp.Rational(1, 2)
     )
+
+
+def _form(expr_mod, rows):
+    """A Form Σ c·P(j) from rows [(j, {(t power, lam power): integer})], over a denominator."""
+    E, S = expr_mod, expr_mod.SYMBOLS
+    t, lam = E.GEN[S["t"]], E.GEN[S["lam"]]
+    out = {}
+    for j, coeffs, den in rows:
+        poly = sum((c * t**a * lam**b for (a, b), c in coeffs.items()), E._CTX.constant(0))
+        out[(("P", j),)] = E.Sc(poly, den)
+    return E.Form(out)
+
+
+_POLY = st.dictionaries(
+    st.tuples(st.integers(0, 4), st.integers(0, 2)), st.integers(-9, 9), min_size=1, max_size=4
+)
+_ROWS = st.lists(
+    st.tuples(st.integers(0, 5), _POLY, st.integers(1, 6)),
+    min_size=1,
+    max_size=4,
+    unique_by=lambda row: row[0],
+)
+
+
+@given(a=_ROWS, b=_ROWS, c=_POLY)
+def test_quadratic_form_as_one_polynomial_matches_pair_by_pair(expr_mod, a, b, c):
+    """The one-polynomial path (point keys as commuting generators) gives the coefficients of
+    the pair-by-pair expansion, and its integral over [0, 1] is the exact Newton-Cotes
+    quadrature of the form evaluated at nodes."""
+    E, t = expr_mod, expr_mod.SYMBOLS["t"]
+    [coef] = _form(E, [(0, c, 1)]).terms.values()
+    v = E.DotSum([(coef, _form(E, a), _form(E, b)), (E.Sc.of(-3), _form(E, b), _form(E, b))])
+    keys = E._keys_of(v)
+    one_poly = E._quadratic_form(*E._quadratic_poly(v, keys), keys)
+    assert E.equal(one_poly, E.Form(E.quadratic_terms(v)))
+    integral = E.dotsum_integral(v, t, 0, 1)
+    degree = E._t_degree(v, t)
+    quadrature = E.Sc.of(0)
+    for x, w in E.newton_cotes(degree + 1):
+        quadrature = E.v_add(quadrature, E.v_mul(E.Sc.of(w), E._at(v, t, E.Sc.of(x))))
+    assert E.equal(integral, quadrature)
+    # the whole-interval integral of one coefficient, by the two routes of Sc.integrate
+    half = expr_mod.Fraction(1, 2)
+    for value in one_poly.terms.values():
+        split = value.integrate(t, 0, half) + value.integrate(t, half, 1)
+        assert (value.integrate(t, 0, 1) - split).is_zero()
+    # one changed coefficient is seen
+    seven = _form(E, [(7, {(1, 0): 1}, 1)])  # t·P(7), no P(7) in v
+    changed = E.DotSum([*v.terms, (E.Sc.of(1), seven, seven)])
+    assert E._compare_dotsums(v, v) == []
+    assert E._compare_dotsums(v, changed) != []
 
 
 def test_parser_rejects_names_outside_the_table(expr_mod):

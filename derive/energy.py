@@ -28,7 +28,7 @@ import sympy as sp
 from . import _emit
 from . import bernstein_like as _bernstein_like
 from . import same_degree as _same_degree
-from ._algebra import Matrix, bernstein_matrices, from_flint, t, to_flint
+from ._algebra import Matrix, bernstein_matrices, t, to_flint
 from .bernstein import bernstein_basis, hodograph_matrix
 
 SCRIPT = "energy.py"
@@ -81,18 +81,15 @@ def gram(m: int) -> Matrix:
 
 
 @cache
-def _stiffness(degree: int, k: int) -> flint.fmpq_mat:
+def stiffness(degree: int, k: int) -> flint.fmpq_mat:
+    """K with ∫|p^(k)|² = Σ_coords cᵀ K c for Bézier control points c of degree `degree`
+    (a FLINT matrix: energy_forms multiplies it on both sides)."""
     h = flint.fmpq_mat(degree + 1, degree + 1)
     for r in range(degree + 1):
         h[r, r] = 1
     for d in range(degree, degree - k, -1):
         h = to_flint(hodograph_matrix(d)) * h
     return h.transpose() * to_flint(gram(degree - k)) * h
-
-
-def stiffness(degree: int, k: int) -> Matrix:
-    """K with ∫|p^(k)|² = Σ_coords cᵀ K c for Bézier control points c of degree `degree`."""
-    return from_flint(_stiffness(degree, k))
 
 
 def upper_form(sym) -> tuple[Fraction, tuple[tuple[int, ...], ...]]:
@@ -122,7 +119,7 @@ def energy_forms(family: str, n: int, k: int) -> dict[str, tuple[Fraction, tuple
     module = FAMILIES[family]
     big = n + (2 if family == "bernstein_like" else 0)
     m0, m1 = (to_flint(mat) for mat in bernstein_matrices(list(module.basis_polys(n)), big))
-    kk = _stiffness(big, k)
+    kk = stiffness(big, k)
     w = -m1  # W = −M_1ᵀ D
     fg = m0 * kk * w.transpose()
     return {

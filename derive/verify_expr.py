@@ -522,7 +522,7 @@ class Sc:
         den = self.den * int(scale)
         lo_c, hi_c = Sc.of(lo).c, Sc.of(hi).c
         if type(lo_c) is int and type(hi_c) is int:  # the common case: one FLINT call per end
-            name = PARAMS[pos].name
+            name = str(PARAMS[pos])
             top = anti.subs({name: hi_c})
             return Sc(top - anti.subs({name: lo_c}) if lo_c else top, den, self.pden)
         anti = Sc(anti, den, self.pden)
@@ -1670,7 +1670,8 @@ def _quadratic_form(poly, den: int, keys: list) -> Form:
 
 
 def dotsum_integral(v: DotSum, var, lo, hi) -> Form:
-    """∫_lo^hi of a DotSum, coefficient by coefficient (exact polynomial integration)."""
+    """∫_lo^hi of a DotSum, exact: as one polynomial (see _quadratic_poly) between integer
+    bounds, else coefficient by coefficient."""
     lo_f, hi_f = Sc.of(lo).ground(), Sc.of(hi).ground()
     if lo_f is None or hi_f is None:
         raise TypeError("integration bounds must be numbers")

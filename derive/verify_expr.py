@@ -518,15 +518,22 @@ class Sc:
         pos = _GPOS[sym]
         if self.pden is not None and _degree(self.pden, pos) > 0:
             raise TypeError("cannot integrate a rational function")
-        scale, anti = self.num.integral(pos)  # anti' = scale·num, anti = 0 where sym = 0
-        den = self.den * int(scale)
         lo_c, hi_c = Sc.of(lo).c, Sc.of(hi).c
         if type(lo_c) is int and type(hi_c) is int:  # the common case: one FLINT call per end
-            name = str(PARAMS[pos])
-            top = anti.subs({name: hi_c})
-            return Sc(top - anti.subs({name: lo_c}) if lo_c else top, den, self.pden)
-        anti = Sc(anti, den, self.pden)
+            value, scale = _integral_between(self.num, pos, lo_c, hi_c)
+            return Sc(value, self.den * scale, self.pden)
+        scale, anti = self.num.integral(pos)  # anti' = scale·num
+        anti = Sc(anti, self.den * int(scale), self.pden)
         return anti.subs(sym, hi) - anti.subs(sym, lo)
+
+
+def _integral_between(poly, pos: int, lo: int, hi: int) -> tuple:
+    """(value, scale) with ∫_lo^hi poly d(generator pos) = value / scale, for an integer
+    polynomial of any FLINT context whose generators start with PARAMS."""
+    scale, anti = poly.integral(pos)  # anti' = scale·poly, anti = 0 where the generator is 0
+    name = str(PARAMS[pos])
+    top = anti.subs({name: hi})
+    return (top - anti.subs({name: lo}) if lo else top), int(scale)
 
 
 ZERO = Sc.const(0)
@@ -1682,11 +1689,8 @@ def dotsum_integral(v: DotSum, var, lo, hi) -> Form:
         except _NotPolynomial:
             pass
         else:
-            pos = _GPOS[var]
-            scale, anti = poly.integral(pos)  # anti' = scale·poly
-            name = str(PARAMS[pos])
-            value = anti.subs({name: int(hi_f)}) - anti.subs({name: int(lo_f)})
-            return _quadratic_form(value, den * int(scale), keys)
+            value, scale = _integral_between(poly, _GPOS[var], int(lo_f), int(hi_f))
+            return _quadratic_form(value, den * scale, keys)
     out = {}
     for key, c in sorted(quadratic_terms(v).items()):
         val = c.integrate(var, lo_f, hi_f)

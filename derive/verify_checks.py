@@ -61,6 +61,7 @@ from .verify_expr import (
     _proportional_pairs,
     as_fraction,
     as_int,
+    cancelled,
     compare,
     cross,
     delta_model,
@@ -1851,10 +1852,17 @@ def _coefficient(rhs, point):
     return sp.diff(rhs.xreplace({point: d}), d).xreplace({d: point})
 
 
+def _fmpq(*args) -> flint.fmpq:
+    """An fmpq from p, q or from one int, fmpq or Fraction (fmpq() refuses a Fraction)."""
+    if len(args) == 1 and isinstance(args[0], Fraction):
+        return flint.fmpq(args[0].numerator, args[0].denominator)
+    return flint.fmpq(*args)
+
+
 @lru_cache(maxsize=1024)
 def _compiled(exprs: tuple, syms: tuple):
     """exact_function, once per formula (a printed record and its erratum share most rows)."""
-    return _algebra.exact_function(list(exprs), syms)
+    return _algebra.exact_function(list(exprs), syms, number=_fmpq)
 
 
 def linear_in_points(rhs, syms: tuple):
@@ -2021,27 +2029,26 @@ def _corner_positive(expr, syms) -> bool:
     (a zero is allowed only at a corner with some λ = -2, which the range excludes), and the
     two signs agree."""
     try:
-        num, den = as_fraction(sp.sympify(expr))
+        num, den, symbols = as_fraction(sp.sympify(expr))
     except _NotRational:
         return False
-    num, den = num.cancel(den)
-    gens = num.ring.gens
+    num, den = cancelled(num, den)
     if any(
-        part.degree(g) > (1 if sym in syms else 0)
+        part.degrees()[pos] > (1 if sym in syms else 0)
         for part in (num, den)
-        for g, sym in zip(gens, num.ring.symbols, strict=True)
+        for pos, sym in enumerate(symbols)
     ):
         return False  # not multilinear in the λs, or it depends on something else
-    index = {sym: pos for pos, sym in enumerate(num.ring.symbols)}
+    index = {sym: pos for pos, sym in enumerate(symbols)}
     top_signs = []
     for part in (num, den):
         signs, top = set(), None
         for corner in _corners(len(syms)):
-            point = [0] * len(gens)
+            point = [0] * len(symbols)
             for sym, value in zip(syms, corner, strict=True):
                 if sym in index:
                     point[index[sym]] = value
-            value = part(*point) if gens else part
+            value = part(*point)
             sign = (value > 0) - (value < 0)
             if all(c == 1 for c in corner):
                 top = sign

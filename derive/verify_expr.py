@@ -35,7 +35,6 @@ from functools import cache, lru_cache
 from math import comb, factorial, gcd
 
 import flint
-import numpy as np
 import sympy as sp
 from sympy.core.function import AppliedUndef
 from sympy.parsing.sympy_parser import parse_expr, standard_transformations
@@ -164,7 +163,7 @@ def as_int(x) -> int:
     """A concrete integer (index, degree, order) from an evaluated value."""
     if isinstance(x, int):
         return x
-    if isinstance(x, Fraction) and x.denominator == 1:
+    if isinstance(x, (Fraction, flint.fmpq)) and x.denominator == 1:
         return int(x)
     if isinstance(x, Sc):
         c = x.c
@@ -611,44 +610,48 @@ class _NotRational(Exception):
     pass
 
 
-@lru_cache(maxsize=256)
-def _ring(gens: tuple):
-    return sp.polys.rings.ring(gens, sp.QQ)[0]
+@lru_cache(maxsize=64)
+def _int_ctx(nvars: int):
+    """FLINT's Z[x0, ..., x(nvars-1)] in lex order."""
+    return flint.fmpz_mpoly_ctx.get(tuple(f"x{k}" for k in range(nvars)), "lex")
 
 
-def as_fraction(expr):
-    """(numerator, denominator) PolyElements of a rational expression, computed bottom-up
-    with ring arithmetic (much faster than expanding the SymPy expression)."""
-    gens = tuple(sorted(expr.free_symbols, key=str))
-    R = _ring(gens) if gens else _ring((sp.Dummy("z"),))
-    index = {g: R.gens[pos] for pos, g in enumerate(gens)}
-    return _frac(expr, R, index)
+def as_fraction(expr) -> tuple:
+    """(numerator, denominator, symbols) of a rational expression: integer polynomials
+    (FLINT fmpz_mpoly, not cancelled) in `symbols`, its free symbols sorted by name (a Dummy
+    when it has none), computed bottom-up with ring arithmetic, which is much faster than
+    expanding the SymPy expression."""
+    symbols = tuple(sorted(expr.free_symbols, key=str)) or (sp.Dummy("z"),)
+    ctx = _int_ctx(len(symbols))
+    index = dict(zip(symbols, ctx.gens(), strict=True))
+    num, den = _frac(expr, ctx, index)
+    return num, den, symbols
 
 
-def _frac(e, R, index):
+def _frac(e, ctx, index):
     if e.is_Rational:
-        return R.ground_new(sp.QQ.convert(e)), R.one
+        return ctx.constant(int(e.p)), ctx.constant(int(e.q))
     if e.is_Symbol:
         if e not in index:
             raise _NotRational(e)
-        return index[e], R.one
+        return index[e], ctx.constant(1)
     if e.is_Add:
-        num, den = R.zero, R.one
+        num, den = ctx.constant(0), ctx.constant(1)
         for a in e.args:
-            n2, d2 = _frac(a, R, index)
+            n2, d2 = _frac(a, ctx, index)
             if d2 == den:
                 num = num + n2
             else:
                 num, den = num * d2 + n2 * den, den * d2
         return num, den
     if e.is_Mul:
-        num, den = R.one, R.one
+        num, den = ctx.constant(1), ctx.constant(1)
         for a in e.args:
-            n2, d2 = _frac(a, R, index)
+            n2, d2 = _frac(a, ctx, index)
             num, den = num * n2, den * d2
         return num, den
     if e.is_Pow and e.exp.is_Integer:
-        num, den = _frac(e.base, R, index)
+        num, den = _frac(e.base, ctx, index)
         k = int(e.exp)
         if k >= 0:
             return num**k, den**k
@@ -658,6 +661,12 @@ def _frac(e, R, index):
     raise _NotRational(e)
 
 
+def cancelled(num, den) -> tuple:
+    """num / den in lowest terms (integer polynomials)."""
+    common = num.gcd(den)
+    return num / common, den / common
+
+
 def fast_factor(expr) -> sp.Expr:
     """A rational expression cancelled and factored with ring arithmetic (sp.cancel on large
     nested expressions is slow)."""
@@ -665,11 +674,11 @@ def fast_factor(expr) -> sp.Expr:
     if expr.is_Number:
         return expr
     try:
-        num, den = as_fraction(expr)
+        num, den, symbols = as_fraction(expr)
     except _NotRational:
         return sp.factor(sp.cancel(expr))
-    num, den = num.cancel(den)
-    return _factored(num) / _factored(den)
+    num, den = cancelled(num, den)
+    return _flint_factored(num, symbols) / _flint_factored(den, symbols)
 
 
 def _flint_factored(poly, symbols=PARAMS) -> sp.Expr:
@@ -680,15 +689,6 @@ def _flint_factored(poly, symbols=PARAMS) -> sp.Expr:
     return sp.Integer(int(content)) * sp.Mul(*(poly_expr(f, symbols) ** int(k) for f, k in factors))
 
 
-def _factored(poly) -> sp.Expr:
-    """A SymPy ring element (of as_fraction), factored as in _flint_factored."""
-    ring, dom = poly.ring, poly.ring.domain
-    denom, integral = poly.clear_denoms() if dom.is_Field else (dom.one, poly)
-    ctx = flint.fmpz_mpoly_ctx.get(tuple(str(g) for g in ring.symbols), "lex")
-    fpoly = ctx.from_dict({m: int(dom.to_sympy(c)) for m, c in integral.terms()})
-    return _flint_factored(fpoly, ring.symbols) / dom.to_sympy(denom)
-
-
 def simplify_scalar(expr):
     if isinstance(expr, Sc):
         g = expr.ground()
@@ -696,8 +696,7 @@ def simplify_scalar(expr):
             return sp.Rational(g.numerator, g.denominator)
         num, den = expr.num, expr.pden
         if den is not None:
-            common = num.gcd(den)
-            num, den = num / common, den / common
+            num, den = cancelled(num, den)
         out = _flint_factored(num) / sp.Integer(expr.den)
         return out / _flint_factored(den) if den is not None else out
     expr = sp.sympify(expr)
@@ -1524,13 +1523,24 @@ class _Kernel:
                     dt, dl = max(dt, _t_deg(poly)), max(dl, _lam_degree(poly))
         return dt, dl
 
-    def matrix(self, pt: _Point):
-        """(integer upper-triangular coefficient matrix, denominator) at the point."""
-        m = len(self.keys)
-        acc = np.zeros((m, m), dtype=object)
-        acc[:, :] = 0
+    def matrix(self, pt: _Point) -> tuple[dict, int]:
+        """(integer upper-triangular coefficient matrix {(i, j): entry, i <= j}, denominator)
+        at the point."""
+        acc: dict = {}
         den = 1
+
+        def add(entries: dict, entries_den: int) -> None:
+            nonlocal acc, den
+            new_den = den * entries_den // gcd(den, entries_den)
+            scale, escale = new_den // den, new_den // entries_den
+            if scale != 1:
+                acc = {ij: v * scale for ij, v in acc.items()}
+            for ij, v in entries.items():
+                acc[ij] = acc.get(ij, 0) + v * escale
+            den = new_den
+
         for part in self.parts:
+            entries: dict = {}
             if part[0] == "dot":
                 _, c, a, b = part
                 cn, cd = pt.value(c)
@@ -1538,23 +1548,19 @@ class _Kernel:
                     continue
                 va, da = _int_vector([pt.value(p) for p in a])
                 vb, db = _int_vector([pt.value(p) for p in b])
-                outer = np.outer(np.array(va, dtype=object), np.array(vb, dtype=object))
-                outer = outer + outer.T - np.diag(np.diag(outer))  # P_i·P_j = P_j·P_i
-                term_den = da * db * cd
-                new_den = den * term_den // gcd(den, term_den)
-                acc = acc * (new_den // den) + outer * (cn * (new_den // term_den))
-                den = new_den
+                for i, x in enumerate(va):
+                    for j, y in enumerate(vb):
+                        if x and y:  # P_i·P_j = P_j·P_i: both land on the upper triangle
+                            ij = (i, j) if i <= j else (j, i)
+                            entries[ij] = entries.get(ij, 0) + cn * x * y
+                add(entries, da * db * cd)
             else:
                 ints, d = _int_vector([pt.value(p) for p in part[1].values()])
-                mat = np.zeros((m, m), dtype=object)
-                mat[:, :] = 0
                 for (k1, k2), v in zip(part[1], ints, strict=True):
-                    i, j = sorted((self.index[k1], self.index[k2]))
-                    mat[i, j] += v
-                new_den = den * d // gcd(den, d)
-                acc = acc * (new_den // den) + mat * (new_den // d)
-                den = new_den
-        return np.triu(acc), den
+                    ij = tuple(sorted((self.index[k1], self.index[k2])))
+                    entries[ij] = entries.get(ij, 0) + v
+                add(entries, d)
+        return acc, den
 
 
 def _keys_of(*values) -> list:
@@ -1728,13 +1734,15 @@ def _compare_dotsums(a, b) -> list[str]:
                 pt = _Point(Fraction(x), y, dt, dl)
                 ma, da = ka.matrix(pt)
                 mb, db = kb.matrix(pt)
-                if not np.array_equal(ma * db, mb * da):
+                differing = sorted(
+                    ij for ij in ma.keys() | mb.keys() if ma.get(ij, 0) * db != mb.get(ij, 0) * da
+                )
+                if differing:
                     diff = [
                         f"coefficient of {keys[i][0]}({keys[i][1]})*{keys[j][0]}({keys[j][1]}): "
-                        f"printed {Fraction(ma[i, j], da)}, derived {Fraction(mb[i, j], db)}"
-                        for i in range(len(keys))
-                        for j in range(i, len(keys))
-                        if ma[i, j] * db != mb[i, j] * da
+                        f"printed {Fraction(ma.get((i, j), 0), da)}, "
+                        f"derived {Fraction(mb.get((i, j), 0), db)}"
+                        for i, j in differing
                     ]
                     return [f"at t = {x}, lam = {y}: " + "; ".join(diff[:2])]
         return []

@@ -33,3 +33,26 @@ def test_ci_runs_exactly_the_readme_set_up_commands():
         venv, activate, rest = command.split(" && ", 2)
         assert venv.startswith("python3 -m venv") and activate.startswith(". ")
         assert rest in ci, f"CI does not run the README's `{rest}`"
+
+
+def test_public_names_resolve_lazily():
+    """`import lambda_bezier` imports neither numpy nor SymPy (the command line starts without
+    them); each public name imports its module on first access, and the runtime never needs
+    SymPy."""
+    import subprocess
+    import sys
+
+    script = (
+        "import sys, lambda_bezier as lb\n"
+        "print(sorted(m for m in ('numpy', 'sympy') if m in sys.modules))\n"
+        "values = [getattr(lb, name) for name in lb.__all__]\n"
+        "print(sorted(m for m in ('numpy', 'sympy') if m in sys.modules))\n"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, check=True
+    ).stdout.split("\n")
+    assert out[:2] == ["[]", "['numpy']"]
+    assert set(lambda_bezier.__all__) == set(lambda_bezier._EXPORTS)
+    assert set(lambda_bezier.__all__) <= set(dir(lambda_bezier))
+    with pytest.raises(AttributeError, match="no attribute 'nothing'"):
+        lambda_bezier.nothing  # noqa: B018

@@ -14,13 +14,39 @@ The formulas behind them live in generated/ (emitted by derive/); this package i
 runtime and never imports SymPy.
 """
 
-from .batch import evaluate_many
-from .composite import CompositeCurve, JointReport
-from .curves import FAMILIES, BernsteinLikeCurve, BezierCurve, Curve, SameDegreeCurve
-from .energy import OptimalLambda, energy_coefficients, energy_matrices, optimal_lambda
-from .joins import Joint, join
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .batch import evaluate_many
+    from .composite import CompositeCurve, JointReport
+    from .curves import FAMILIES, BernsteinLikeCurve, BezierCurve, Curve, SameDegreeCurve
+    from .energy import OptimalLambda, energy_coefficients, energy_matrices, optimal_lambda
+    from .joins import Joint, join
 
 __version__ = "0.1.0"
+
+# The public names, each imported from its module on first access (PEP 562): the command line
+# (`lambda-bezier verify`, `derive`) runs without numpy, and importing it costs a tenth of a
+# second, about as long as everything else before the first record.
+_EXPORTS = {
+    "evaluate_many": "batch",
+    "CompositeCurve": "composite",
+    "JointReport": "composite",
+    "FAMILIES": "curves",
+    "BernsteinLikeCurve": "curves",
+    "BezierCurve": "curves",
+    "Curve": "curves",
+    "SameDegreeCurve": "curves",
+    "OptimalLambda": "energy",
+    "energy_coefficients": "energy",
+    "energy_matrices": "energy",
+    "optimal_lambda": "energy",
+    "Joint": "joins",
+    "join": "joins",
+}
 __all__ = [
     "FAMILIES",
     "BernsteinLikeCurve",
@@ -37,3 +63,16 @@ __all__ = [
     "join",
     "optimal_lambda",
 ]
+
+
+def __getattr__(name: str):
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f".{module}", __name__), name)
+    globals()[name] = value  # later accesses skip this function
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted([*globals(), *_EXPORTS])

@@ -1642,8 +1642,16 @@ def _quadratic_poly(v, keys: list) -> tuple:
     _point_ctx(len(keys)); _NotPolynomial when it is not a polynomial in the parameters."""
     ctx, params, xs = _point_ctx(len(keys))
     index = {key: q for q, key in enumerate(keys)}
+    seen: dict = {}  # id -> (form, polynomial): F·F, F·G, G·G embed each form once
 
     def linear(form):
+        hit = seen.get(id(form))
+        if hit is not None and hit[0] is form:
+            return hit[1]
+        seen[id(form)] = (form, out := _linear(form))
+        return out
+
+    def _linear(form):
         parts = []
         for key, c in form.terms.items():
             if len(key) != 1:

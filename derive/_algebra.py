@@ -146,6 +146,8 @@ def exact_function(expr: sp.Expr, args, number: type = Fraction):
 
 
 def _binomial(a, b):
+    if a.denominator != 1 or b.denominator != 1:  # int() would truncate silently
+        raise ValueError(f"binomial({a}, {b}) of a non-integer")
     a, b = int(a), int(b)
     return comb(a, b) if 0 <= b <= a else 0
 

@@ -423,3 +423,33 @@ def test_a_dead_worker_is_an_error_not_a_hang(verify, records, monkeypatch):
     monkeypatch.setattr(verify, "check_record", lambda record: os._exit(3))
     with pytest.raises(RuntimeError, match="exited early"):
         verify._parallel(records[:6], 2, lambda idx, res: None)
+
+
+def test_exact_functions_in_fmpq_and_fraction_agree(verify):
+    """The join weights are evaluated in FLINT's fmpq (verify) and in Fraction (derive): the
+    same values, the papers' binomial convention in both, and a binomial of a non-integer is
+    an error rather than a truncation."""
+    from fractions import Fraction
+
+    import sympy as sp
+
+    package = verify.__name__.rsplit(".", 1)[0]
+    algebra = importlib.import_module(package + "._algebra")
+    checks = importlib.import_module(package + ".verify_checks")
+    n, lam = sp.symbols("n lam")
+    expr = sp.binomial(n, 2) * (1 - lam) / (n + 1) - sp.Rational(1, 3)
+    slow = algebra.exact_function(expr, (n, lam))
+    fast = algebra.exact_function(expr, (n, lam), number=checks._fmpq)
+    for deg in range(-2, 9):
+        for x in (Fraction(-2, 5), 0, Fraction(7, 3)):
+            if deg == -1:
+                with pytest.raises(ZeroDivisionError):
+                    fast(deg, x)
+                continue
+            want = Fraction(slow(deg, x))
+            got = fast(deg, x)
+            assert Fraction(int(got.p), int(got.q)) == want
+    assert slow(1, 0) == Fraction(-1, 3)  # C(1, 2) = 0
+    for fn in (slow, fast):
+        with pytest.raises(ValueError, match="non-integer"):
+            fn(Fraction(5, 2), 0)

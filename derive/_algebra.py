@@ -132,8 +132,9 @@ class _ExactCodePrinter(PythonCodePrinter):
 
 def exact_function(expr: sp.Expr, args, number: type = Fraction):
     """`expr` as a Python function of exact numbers, computed in `number`s (an int argument
-    would turn n**-1 into a float): Fraction, or FLINT's fmpq, which is several times faster
+    would turn n**-1 into a float): Fraction, or flint.fmpq, which is several times faster
     where the function is evaluated thousands of times."""
+    convert = _fmpq if number is flint.fmpq else number  # fmpq() refuses a Fraction
     fn = sp.lambdify(
         args,
         expr,
@@ -142,7 +143,7 @@ def exact_function(expr: sp.Expr, args, number: type = Fraction):
             {"fully_qualified_modules": False, "inline": True, "allow_unknown_functions": True}
         ),
     )
-    return lambda *values: fn(*(number(v) for v in values))
+    return lambda *values: fn(*(convert(v) for v in values))
 
 
 def _binomial(a, b):

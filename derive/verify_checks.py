@@ -1852,17 +1852,10 @@ def _coefficient(rhs, point):
     return sp.diff(rhs.xreplace({point: d}), d).xreplace({d: point})
 
 
-def _fmpq(*args) -> flint.fmpq:
-    """An fmpq from p, q or from one int, fmpq or Fraction (fmpq() refuses a Fraction)."""
-    if len(args) == 1 and isinstance(args[0], Fraction):
-        return flint.fmpq(args[0].numerator, args[0].denominator)
-    return flint.fmpq(*args)
-
-
 @lru_cache(maxsize=1024)
 def _compiled(exprs: tuple, syms: tuple):
     """exact_function, once per formula (a printed record and its erratum share most rows)."""
-    return _algebra.exact_function(list(exprs), syms, number=_fmpq)
+    return _algebra.exact_function(list(exprs), syms, number=flint.fmpq)
 
 
 def linear_in_points(rhs, syms: tuple):

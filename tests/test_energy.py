@@ -2,7 +2,11 @@
 
 from __future__ import annotations
 
+import importlib.metadata
 import json
+import os
+import subprocess
+import sys
 from fractions import Fraction
 
 import numpy as np
@@ -202,6 +206,22 @@ def test_cli_json(capsys):
     assert report["lambda"] == "-690/319" and report["admissible"] is False
     assert report["clamped_lambda"] == "-2"
     assert Fraction(report["energy"]) == lb.optimal_lambda(EXAMPLE, 2).energy
+
+
+def test_console_script_flushes_its_output_and_keeps_the_exit_code():
+    """The console script ends with os._exit (no interpreter teardown): what it printed into
+    a pipe, which is block-buffered, must still arrive, with main()'s exit code."""
+    points = ["0,6", "0,2", "5,2", "7,0", "2,0", "6,8"]
+    run = [sys.executable, "-m", "lambda_bezier", "optimal-lambda"]
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONUNBUFFERED"}  # buffer the pipe
+    kw = {"capture_output": True, "text": True, "timeout": 120, "env": env}
+    ok = subprocess.run([*run, "--json", *points], **kw)
+    assert ok.returncode == 0, ok.stderr
+    assert json.loads(ok.stdout)["lambda"] == "-690/319"
+    bad = subprocess.run([*run, *points[:3], "1e5,0"], **kw)
+    assert bad.returncode == 2 and "not a number: '1e5'" in bad.stderr
+    script = importlib.metadata.entry_points(group="console_scripts", name="lambda-bezier")
+    assert [ep.value for ep in script] == ["lambda_bezier.cli:console_main"]
 
 
 @pytest.mark.parametrize(

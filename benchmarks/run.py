@@ -35,10 +35,20 @@ def best_of(fn, repeat: int = 5) -> float:
 
 def fresh_process(code: str, repeat: int = 1) -> float:
     """Best wall time of `python -c code` in new processes."""
+    return _best_wall([sys.executable, "-c", code], repeat)
+
+
+def command(*args: str, repeat: int = 1) -> float:
+    """Best wall time of `lambda-bezier args` as a user runs it (the console script's entry
+    point, output to /dev/null)."""
+    return _best_wall([sys.executable, "-m", "lambda_bezier", *args], repeat)
+
+
+def _best_wall(argv: list[str], repeat: int) -> float:
     times = []
     for _ in range(repeat):
         t0 = time.perf_counter()
-        subprocess.run([sys.executable, "-c", code], check=True, cwd=ROOT)
+        subprocess.run(argv, check=True, cwd=ROOT, stdout=subprocess.DEVNULL)
         times.append(time.perf_counter() - t0)
     return min(times)
 
@@ -195,10 +205,7 @@ def bench_derive() -> None:
         ">= 20x faster",
         naive / ours >= 20,
     )
-    full = fresh_process(
-        "import sys; from lambda_bezier.cli import main; "
-        "sys.exit(main(['derive', '--check', '-q']))"
-    )
+    full = command("derive", "--check", "-q")
     bare = fresh_process("import sympy")
     record(
         "lambda-bezier derive --check (full regeneration)",
@@ -213,11 +220,7 @@ def bench_derive() -> None:
 def bench_verify() -> None:
     """The whole `lambda-bezier verify` run (every record, every degree), one worker per core."""
     # best of three: wall times on a shared 2-core VM vary by a third between runs
-    full = fresh_process(
-        "import io, sys; from lambda_bezier import _verify_runner as v; "
-        "sys.exit(v.run(out=io.StringIO(), progress=False))",
-        repeat=3,
-    )
+    full = command("verify", repeat=3)
     bare = fresh_process("import sympy", repeat=3)
     record(
         "lambda-bezier verify (118 records)",

@@ -45,12 +45,9 @@ def command(*args: str, repeat: int = 1) -> float:
 
 
 def _best_wall(argv: list[str], repeat: int) -> float:
-    times = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        subprocess.run(argv, check=True, cwd=ROOT, stdout=subprocess.DEVNULL)
-        times.append(time.perf_counter() - t0)
-    return min(times)
+    return best_of(
+        lambda: subprocess.run(argv, check=True, cwd=ROOT, stdout=subprocess.DEVNULL), repeat
+    )
 
 
 def timed_in_fresh_process(code: str) -> float:

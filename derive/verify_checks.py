@@ -45,6 +45,7 @@ from . import _algebra
 from . import bernstein as bz
 from . import bernstein_like as bl
 from . import same_degree as sd
+from .grammar import as_sympy
 from .verify_expr import (
     DEGREE_SYMBOLS,
     GEN,
@@ -261,7 +262,7 @@ def to_derive(e):
 
 
 def symbolic_zero(e) -> bool:
-    e = to_derive(sp.sympify(e))
+    e = to_derive(as_sympy(e))
     if e == 0:
         return True
     try:  # a rational function (the common case): exact ring arithmetic decides
@@ -686,8 +687,8 @@ def instances(record: dict, ctx: Context, exprs, eq: dict | None = None):
                 lists.append([int(given[s])])
                 continue
             lo, hi = ranges.get(s, (0, S["n"]))
-            lo = int(sp.sympify(lo).subs(S["n"], n_val))
-            hi = int(sp.sympify(hi).subs(S["n"], n_val))
+            lo = int(as_sympy(lo).subs(S["n"], n_val))
+            hi = int(as_sympy(hi).subs(S["n"], n_val))
             lists.append(range(lo, hi + 1))
         for idx in itertools.product(*lists):
             yield {**env, **{s: sp.Integer(v) for s, v in zip(idx_syms, idx, strict=True)}}
@@ -1135,7 +1136,10 @@ def symbolic_endpoint(family: str, eq: dict) -> list[str]:
             derived[idx] = _from_derive(v)
     diffs = []
     for idx in sorted(set(printed) | set(derived)):
-        a, b = sp.sympify(printed.get(idx, 0)), sp.sympify(derived.get(idx, 0))
+        a, b = (
+            as_sympy(printed.get(idx, 0)),
+            as_sympy(derived.get(idx, 0)),
+        )
         if not symbolic_zero(a - b):
             name = f"{idx}" if end == "start" else f"n - {idx}" if idx else "n"
             diffs.append(
@@ -1914,10 +1918,10 @@ def join_symbolic(record, ctx, rows, specs, continuity) -> tuple[list[str], dict
         if rest != 0:
             diffs.append(f"symbolic: P_{r},2 has a term {rest} without a control point")
         want = derived[r]
-        keys = {(s_, int(j)) for s_, j in printed if sp.sympify(j).is_Integer} | set(want)
+        keys = {(s_, int(j)) for s_, j in printed if as_sympy(j).is_Integer} | set(want)
         for key in sorted(keys):
             a = printed.get((key[0], sp.Integer(key[1])), 0)
-            a = sp.sympify(a).xreplace(to_j)
+            a = as_sympy(a).xreplace(to_j)
             b = want.get(key, sp.Integer(0))
             if not _is_zero(a - b):
                 name = f"{pts1}({n1} - {key[1]})" if key[0] == "first" else f"{pts2}({key[1]})"
@@ -2022,7 +2026,7 @@ def _corner_positive(expr, syms) -> bool:
     (a zero is allowed only at a corner with some λ = -2, which the range excludes), and the
     two signs agree."""
     try:
-        num, den, symbols = as_fraction(sp.sympify(expr))
+        num, den, symbols = as_fraction(as_sympy(expr))
     except _NotRational:
         return False
     num, den = cancelled(num, den)
@@ -2099,14 +2103,14 @@ def check_join_000(record: dict, ctx: Context) -> Outcome:
     sol = None
     for r, rhs in sorted(rows.items()):
         printed, rest = _weights(rhs, pts1, pts2, n1)
-        printed = {(k[0], int(k[1])): sp.sympify(v).xreplace(to_j) for k, v in printed.items()}
+        printed = {(k[0], int(k[1])): as_sympy(v).xreplace(to_j) for k, v in printed.items()}
         want = derived[r]
         for key in sorted(set(printed) | set(want)):
             a, b = printed.get(key, sp.Integer(0)), want.get(key, sp.Integer(0))
             if sol is None and b.has(alpha):
                 sol = _solve_moebius(a, b, alpha)
             b = b.xreplace({alpha: sol}) if sol is not None else b
-            if not _is_zero(sp.sympify(a) - b):
+            if not _is_zero(as_sympy(a) - b):
                 diffs.append(
                     f"symbolic: {pts2}({r}): weight of {pts1}({n1} - {key[1]}): printed "
                     f"{sp.factor(a)}, derived {sp.factor(b)}"
@@ -2120,7 +2124,7 @@ def check_join_000(record: dict, ctx: Context) -> Outcome:
         env = {n1: sp.Integer(a_), n2: sp.Integer(b_)}
         row = []
         if sol is not None:
-            ac = sp.sympify(sol * Csym).xreplace({_algebra.n: a_, _algebra.m: b_})
+            ac = as_sympy(sol * Csym).xreplace({_algebra.n: a_, _algebra.m: b_})
             if not _corner_positive(ac, lam_syms):
                 row.append(f"α·C = {sp.factor(ac)} is not positive on the λ ranges")
         sub = {(pts2, r): real(rhs, env) for r, rhs in rows.items()}

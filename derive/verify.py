@@ -27,18 +27,15 @@ from __future__ import annotations
 import json
 import multiprocessing
 import os
-import sys
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .verify_checks import CHECKERS, Outcome, run_checker
+from .records import RecordsError, load_paths
+from .verify_checks import Outcome, run_checker
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
+__all__ = ["RecordsError", "load_records", "verify"]
 
 PUBLISHED = Path(__file__).resolve().parent / "published"
 VERDICTS = ("match", "mismatch", "pending")
@@ -50,31 +47,11 @@ ERRATA_COMMAND = "lambda-bezier verify --errata"
 # --------------------------------------------------------------------------- records
 
 
-def load_file(path: Path) -> list[dict]:
-    data = tomllib.loads(path.read_text(encoding="utf-8"))
-    out = []
-    for rec in data.get("record", []):
-        rec = dict(rec)
-        rec.setdefault("family", data["family"])
-        rec.setdefault("file", path.name)
-        if "variable" not in rec and "variable" in data:
-            rec["variable"] = data["variable"]
-        out.append(rec)
-    return out
-
-
-def load_records(directory: Path = PUBLISHED) -> list[dict]:
-    records = []
-    for path in sorted(directory.glob("*.toml")):
-        records += load_file(path)
-    seen = set()
-    for rec in records:
-        if rec["id"] in seen:
-            raise ValueError(f"duplicate record id {rec['id']}")
-        seen.add(rec["id"])
-        if rec["claim"] not in CHECKERS:
-            raise ValueError(f"{rec['id']}: no checker for claim {rec['claim']!r}")
-    return records
+def load_records(paths: Iterable[Path] | None = None) -> list[dict]:
+    """The records of `paths` (default: every built-in file), validated (derive/records.py)."""
+    if paths is None:
+        paths = sorted(PUBLISHED.glob("*.toml"))
+    return load_paths(paths)
 
 
 _INDEX: dict[str, dict] = {}  # all records of the current run, for cross-references

@@ -31,7 +31,7 @@ from __future__ import annotations
 import importlib
 import itertools
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from fractions import Fraction
 from functools import cache, lru_cache
 from math import comb
@@ -157,10 +157,100 @@ def missing_requirement(requires: tuple[str, ...]) -> str | None:
     return None
 
 
+def claim_kind(claim: str) -> str:
+    """`same_degree.endpoint_d1` -> `endpoint_d1` (a kind is family-independent)."""
+    return claim.split(".", 1)[1] if "." in claim else claim
+
+
+# Kinds whose derivation exists for some families only, with the reason a user is told.
+_LAMBDA_FAMILIES = ("same_degree", "bernstein_like")
+KIND_FAMILIES: dict[str, tuple[tuple[str, ...], str]] = {
+    **{
+        kind: (_LAMBDA_FAMILIES, "it is about the λ-basis b(i, n, t), which bezier does not have")
+        for kind in ("basis_general", "basis_explicit", "basis_list", "basis_in_bernstein")
+    },
+    **{
+        kind: (_LAMBDA_FAMILIES, "the classical Bézier curve has no shape parameter to optimise")
+        for kind in (
+            "energy_definition",
+            "energy_functional",
+            "energy_lambda",
+            "energy_lambda_nk",
+            "energy_matrix",
+            "energy_example",
+            "energy_split",
+            "energy_qw",
+            "energy_derivative",
+        )
+    },
+    "basis_split": (("same_degree",), "A = (b - B)/(1 - λ) needs λ = 1 to give Bernstein"),
+    "three_term_bernstein": (("same_degree",), "it is 000's closed form of its own basis"),
+    "geometric_step": (("same_degree",), "it is 000's evaluation algorithm (Prop. 8)"),
+    "geometric_ratio": (("same_degree",), "it is 000's evaluation algorithm (Prop. 8)"),
+    "g1_join_ratio": (("same_degree",), "it is 000's proof of Prop. 9"),
+    "seed_basis": (("bernstein_like",), "it is 001's quadratic seed of the recursion"),
+}
+
+
+def kinds() -> dict[str, tuple[str, ...]]:
+    """Every claim kind with the families it is defined for."""
+    out = {}
+    for claim in CHECKERS:
+        kind = claim_kind(claim)
+        out[kind] = KIND_FAMILIES.get(kind, (tuple(FAMILIES), ""))[0]
+    return dict(sorted(out.items()))
+
+
+def kind_problem(family: str, kind: str) -> str | None:
+    """Why `family.kind` cannot be checked (None when it can)."""
+    if family not in FAMILIES:
+        return f"unknown family {family!r} (known: {', '.join(FAMILIES)})"
+    if kind not in kinds():
+        return f"unknown claim kind {kind!r} (see the records format for the list)"
+    allowed, reason = KIND_FAMILIES.get(kind, ((), ""))
+    if allowed and family not in allowed:
+        return f"claim kind {kind!r} is defined for {', '.join(allowed)} only: {reason}"
+    return None
+
+
+def resolve_checker(record: dict) -> Checker:
+    """The checker of a record's claim: its own family's where one is registered, else the one
+    every family shares for that kind (an endpoint kind by its payload: cases or equations)."""
+    claim, family = record["claim"], record["family"]
+    kind = claim_kind(claim)
+    problem = kind_problem(family, kind)
+    if problem:
+        raise KeyError(problem)
+    entry = CHECKERS.get(f"{family}.{kind}")
+    if entry is not None and _fits(entry, record):
+        return entry
+    shared = [
+        c
+        for name, c in CHECKERS.items()
+        if claim_kind(name) == kind and _fits(c, record) and c.fn.__name__ not in _OWN_FAMILY
+    ]
+    if shared:
+        return shared[0]
+    # an explicit form of another family's basis: every degree and index, per degree
+    return CHECKERS["same_degree.basis_general"]
+
+
+# Checkers that compare with one family's own closed form (000's three-term form, 001's
+# explicit factor, 000's G1 proof); another family's record of that kind is checked per degree.
+_OWN_FAMILY = frozenset({"check_explicit", "check_three_term", "check_join_000"})
+
+
+def _fits(entry: Checker, record: dict) -> bool:
+    """Endpoint kinds come as `cases` (per index) or as `equations` (of the curve)."""
+    if entry.fn.__name__ == "check_cases":
+        return "cases" in record
+    if entry.fn.__name__ == "check_endpoint_equations":
+        return "equations" in record
+    return True
+
+
 def run_checker(record: dict) -> Outcome:
-    entry = CHECKERS.get(record["claim"])
-    if entry is None:
-        raise KeyError(f"no checker for claim {record['claim']!r}")
+    entry = resolve_checker(record)
     reason = missing_requirement(entry.requires)
     if reason is not None:
         return Outcome("pending", [reason])
@@ -348,7 +438,10 @@ class Context:
 
     @staticmethod
     def of(record: dict) -> Context:
-        return Context(record, FAMILIES[record["family"]])
+        family = FAMILIES[record["family"]]
+        if record.get("point_function"):  # a records file may name its control points
+            family = replace(family, points=record["point_function"])
+        return Context(record, family)
 
     # ---- models
 
@@ -635,12 +728,12 @@ def _qw(family: str, n: int, points: str) -> tuple[tuple[Form, Form], ...]:
 def index_ranges(record: dict) -> dict:
     """Quantifier ranges of the free index symbols, as (lo, hi) expressions in n (README: the
     printed domains; the default is 0..n)."""
-    claim = record["claim"]
-    if claim.startswith("same_degree.energy"):
+    kind = claim_kind(record["claim"])
+    if kind.startswith("energy"):
         return {S["k"]: (1, 3)}
-    if claim == "same_degree.geometric_step":
+    if kind == "geometric_step":
         return {S["l"]: (0, S["n"] + 1), S["i"]: (0, S["n"] + 1)}
-    if claim == "bezier.original_to_bernstein":  # printed: j = 1, 2, ..., n
+    if kind == "original_to_bernstein":  # printed: j = 1, 2, ..., n
         return {S["j"]: (1, S["n"])}
     return {}
 
@@ -1599,21 +1692,27 @@ def quad_form(matrix, points="P") -> Form:
     return Form(terms)
 
 
+def _energy_degree(family: str, n: int) -> int:
+    if n not in FAMILIES[family].degrees:
+        raise Undefined(f"{family} degree {n} outside {FAMILIES[family].degrees}")
+    return n
+
+
 @cache
-def _published(n: int, k: int):
-    c, X, Y = _energy().published_form("same_degree", n, k)
+def _published(family: str, n: int, k: int):
+    c, X, Y = _energy().published_form(family, _energy_degree(family, n), k)
     return Fraction(c), X, Y
 
 
 @cache
-def _energy_forms(n: int, k: int):
-    return _energy().energy_forms("same_degree", n, k)
+def _energy_forms(family: str, n: int, k: int):
+    return _energy().energy_forms(family, _energy_degree(family, n), k)
 
 
 @cache
-def _energy_quad(n: int, k: int, points: str) -> Form:
+def _energy_quad(family: str, n: int, k: int, points: str) -> Form:
     """E_k(λ) = ∫f·f - 2λ∫f·g + λ²∫g·g from energy_forms(), as a quadratic form in the points."""
-    forms = _energy_forms(n, k)
+    forms = _energy_forms(family, n, k)
     out = Sc.of(0)
     for key, weight in (("ff", Sc.of(1)), ("fg", SLAM * -2), ("gg", SLAM**2)):
         scale, U = forms[key]
@@ -1623,7 +1722,7 @@ def _energy_quad(n: int, k: int, points: str) -> Form:
 
 def energy_model(ctx: Context):
     def E(a, env):
-        e = _energy_quad(ctx.degree(env), _int(a[0]), ctx.family.points)
+        e = _energy_quad(ctx.family.name, ctx.degree(env), _int(a[0]), ctx.family.points)
         if len(a) > 1 and not is_param(a[1], LAM):
             e = v_apply(e, lambda s: s.subs(LAM, a[1]))
         return e
@@ -1631,8 +1730,8 @@ def energy_model(ctx: Context):
     return E
 
 
-def lambda_star(n: int, k: int, points: str) -> Ratio:
-    c, X, Y = _published(n, k)
+def lambda_star(family: str, n: int, k: int, points: str) -> Ratio:
+    c, X, Y = _published(family, n, k)
     return Ratio(v_mul(Sc.of(Fraction(c)), quad_form(X, points)), quad_form(Y, points))
 
 
@@ -1655,7 +1754,7 @@ def check_energy_equations(record: dict, ctx: Context) -> Outcome:
             tally = Tally(label)
             for env in instances(record, ctx, (lhs, rhs, parse("p(t)")), eq):
                 n, k = int(env[S["n"]]), int(env[S["k"]])
-                star = lambda_star(n, k, ctx.family.points)
+                star = lambda_star(ctx.family.name, n, k, ctx.family.points)
                 if lhs == LAM:
                     diffs = compare(real(rhs, env), star)
                 else:  # a + λ b = 0 at λ = num/den  <=>  a·den + b·num = 0
@@ -1701,8 +1800,8 @@ def _normalised(matrix):
 @checker("same_degree.energy_matrix", requires=("energy",))
 def check_energy_matrix(record: dict, ctx: Context) -> Outcome:
     """A printed X_n^k or Y_n^k, entry by entry, against published_form()."""
-    n, k = int(record["n"]), int(record["k"])
-    c, X, Y = _published(n, k)
+    n, k, family = int(record["n"]), int(record["k"]), ctx.family.name
+    c, X, Y = _published(family, n, k)
     derived = X if record["name"] == "X" else Y
     printed = record["matrix"]
     diffs = []
@@ -1717,7 +1816,7 @@ def check_energy_matrix(record: dict, ctx: Context) -> Outcome:
         if prim == tuple(tuple(int(v) for v in row) for row in derived):
             diffs = [f"printed matrix = {q} × derived (entries otherwise proportional)"]
     scale = _frac(record["scale"])
-    checked = [f"entries vs published_form('same_degree', {n}, {k})"]
+    checked = [f"entries vs published_form({family!r}, {n}, {k})"]
     return Outcome("mismatch" if diffs else "match", diffs, checked + [f"scale {scale}"])
 
 
@@ -1734,8 +1833,8 @@ def check_energy_formula(record: dict, ctx: Context) -> Outcome:
     if pts != [sp.Function("P")(a) for a in range(n + 1)]:
         return Outcome("mismatch", [f"vector {record['vector']} is not P(0)..P({n})"])
     printed = Ratio(v_mul(Sc.of(Fraction(scale)), quad_form(Xp)), quad_form(Yp))
-    c, X, Y = _published(n, k)
-    diffs = compare(printed, lambda_star(n, k, "P"))
+    c, X, Y = _published(ctx.family.name, n, k)
+    diffs = compare(printed, lambda_star(ctx.family.name, n, k, "P"))
     if diffs:
         qx, px = _normalised(Xp)
         qy, py = _normalised(Yp)
@@ -1763,7 +1862,7 @@ def check_energy_example(record: dict, ctx: Context) -> Outcome:
     diffs = []
     if len(pts) != n + 1:
         diffs.append(f"{len(pts)} control points for degree {n}")
-    derived = Fraction(_energy().optimal_lambda_exact(pts, k, family="same_degree"))
+    derived = Fraction(_energy().optimal_lambda_exact(pts, k, family=ctx.family.name))
     printed = _frac(record["lambda"])
     if printed != derived:
         diffs.append(f"λ: printed {printed}, derived {derived}")
@@ -1774,13 +1873,7 @@ def check_energy_example(record: dict, ctx: Context) -> Outcome:
 
 # --------------------------------------------------------------------------- joins (issue 4)
 
-JOIN_CONTINUITY = {
-    "same_degree.g1_join": "G1",
-    "bernstein_like.c1_join": "C1",
-    "bernstein_like.c2_join": "C2",
-    "bernstein_like.g1_join": "G1",
-    "bernstein_like.g2_join": "G2",
-}
+JOIN_CONTINUITY = {"g1_join": "G1", "c1_join": "C1", "c2_join": "C2", "g2_join": "G2"}
 
 
 def _diff_text(a, b) -> str:
@@ -2010,7 +2103,7 @@ def check_join(record: dict, ctx: Context) -> Outcome:
     """Vertex formulas of 001's C1/C2/G1/G2 theorems: each weight against derive/joins.py's
     solve() symbolically in n, m, λ1, λ2 (α, d), and, per degree pair, the printed continuity
     conditions with the printed vertices substituted."""
-    continuity = JOIN_CONTINUITY[record["claim"]]
+    continuity = JOIN_CONTINUITY[claim_kind(record["claim"])]
     specs = _join_specs(record, ctx)
     rows = _printed_rows(record, specs[1][3])
     diffs, _ = join_symbolic(record, ctx, rows, specs, continuity)

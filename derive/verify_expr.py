@@ -39,6 +39,7 @@ import sympy as sp
 from sympy.core.function import AppliedUndef
 
 from .grammar import MAX_EXPONENT, MAX_FACTORIAL, SYMBOLS, as_sympy, parse_formula
+from .grammar import ParseError as ParseError  # re-exported: callers catch it from here
 
 INDEX_SYMBOLS = tuple(SYMBOLS[s] for s in ["i", "j", "k", "l", "r"])
 DEGREE_SYMBOLS = (SYMBOLS["n"], SYMBOLS["m"])

@@ -426,13 +426,6 @@ class _Parser:
         return e
 
 
-def as_sympy(x: object) -> sp.Basic:
-    """A number or a SymPy object as SymPy; a string is refused (sympify would evaluate it)."""
-    if isinstance(x, str):
-        raise TypeError("a string reaches SymPy only through parse_formula")
-    return sp.sympify(x, strict=True)
-
-
 def parse_formula(
     text: object,
     symbols: Mapping[str, sp.Symbol] | None = None,

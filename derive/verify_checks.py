@@ -45,7 +45,6 @@ from . import _algebra
 from . import bernstein as bz
 from . import bernstein_like as bl
 from . import same_degree as sd
-from .grammar import as_sympy
 from .verify_expr import (
     DEGREE_SYMBOLS,
     GEN,
@@ -62,6 +61,7 @@ from .verify_expr import (
     _proportional_pairs,
     as_fraction,
     as_int,
+    as_sympy,
     cancelled,
     compare,
     cross,

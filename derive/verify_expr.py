@@ -38,7 +38,7 @@ import flint
 import sympy as sp
 from sympy.core.function import AppliedUndef
 
-from .grammar import MAX_EXPONENT, MAX_FACTORIAL, SYMBOLS, as_sympy, parse_formula
+from .grammar import MAX_EXPONENT, MAX_FACTORIAL, SYMBOLS, parse_formula
 from .grammar import ParseError as ParseError  # re-exported: callers catch it from here
 
 INDEX_SYMBOLS = tuple(SYMBOLS[s] for s in ["i", "j", "k", "l", "r"])
@@ -47,6 +47,13 @@ DEGREE_SYMBOLS = (SYMBOLS["n"], SYMBOLS["m"])
 POINT_LIKE = frozenset(["b", "bk", "a", "P", "P1", "P2", "V", "V1", "V2", "Vl", "Ql", "Q", "W"])
 # Summation ranges a formula may ask for (a hostile Sum(..., (i, 0, 10**9)) is refused).
 MAX_SUM_TERMS = 10_000
+
+
+def as_sympy(x: object) -> sp.Basic:
+    """A number or a SymPy object as SymPy; a string is refused (sympify would evaluate it)."""
+    if isinstance(x, str):
+        raise TypeError("a string reaches SymPy only through parse_formula")
+    return sp.sympify(x, strict=True)
 
 
 @cache

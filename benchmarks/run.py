@@ -212,6 +212,17 @@ def bench_derive() -> None:
         "a few seconds",
         full <= 5.0,
     )
+    # a user's records file (tests/data/records/user_paper.toml: records about all three
+    # families, joins and energies among them); the target is 20 records in under 5 s
+    user = command("verify", "tests/data/records/user_paper.toml", repeat=3)
+    record(
+        "lambda-bezier verify FILE (a user's records file)",
+        user,
+        "python -c 'import sympy'",
+        bare,
+        "under 5 s",
+        user <= 5.0,
+    )
 
 
 def bench_verify() -> None:

@@ -206,19 +206,31 @@ def _parallel(records: list[dict], jobs: int, done: Callable[[int, Result], None
                 else:
                     back.value -= 1
                     pos = back.value
+            results.put((order[pos], None))  # started: named if this worker dies
             results.put((order[pos], check_record(records[order[pos]])))
 
     workers = [ctx.Process(target=work, args=(w % 2 == 0,), daemon=True) for w in range(jobs)]
     for w in workers:
         w.start()
+    started: set[int] = set()
     try:
-        for _ in records:
+        finished = 0
+        while finished < len(records):
             while results.empty():
                 if not any(w.is_alive() for w in workers) and results.empty():
                     codes = [w.exitcode for w in workers]
-                    raise RuntimeError(f"verify workers exited early (exit codes {codes})")
+                    busy = ", ".join(records[i]["id"] for i in sorted(started)) or "none"
+                    raise RuntimeError(
+                        f"verify workers exited early (exit codes {codes}) while checking: {busy}"
+                    )
                 time.sleep(0.005)
-            done(*results.get())
+            idx, res = results.get()
+            if res is None:
+                started.add(idx)
+                continue
+            started.discard(idx)
+            finished += 1
+            done(idx, res)
     finally:
         for w in workers:
             if w.is_alive():

@@ -572,15 +572,20 @@ class Context:
         shape = env[spec[2]] if spec[2] in env else spec[2]  # a sample value, or symbolic
         return spec[0], spec[1], Sc.of(shape)
 
+    def _subdivision(self) -> bool:
+        """p1, p2 of 002 are the two pieces of a subdivision at t*, unless the record is a join
+        (which names its two curves in `first` and `second`)."""
+        return self.family.name == "bezier" and not self.record.get("first")
+
     def piece(self, which: int, env, x) -> Form:
-        if self.family.name == "bezier":  # the two pieces of a subdivision at t*
+        if self._subdivision():  # the two pieces of a subdivision at t*
             ts = Sc(GEN[S["tstar"]])
             arg = ts * x if which == 1 else 1 - (1 - ts) * (1 - x)
             return self.curve(env, arg)
         return self.curve(env, x, *self._piece_spec(which, env))
 
     def piece_jet(self, which: int, order: int, x: Sc, env):
-        if self.family.name == "bezier":
+        if self._subdivision():
             return None  # a piece of a subdivision is the curve at a composed parameter
         return self.curve_jet(env, order, x, *self._piece_spec(which, env))
 

@@ -90,6 +90,14 @@ EXPECTED = {
     "survey.sd.recursion": "match",
     "survey.bl.explicit_general": "mismatch",
     "survey.sd.list3": "match",
+    "survey.bl.recursion": "match",
+    "survey.bz.symmetry": "match",
+    "survey.sd.X_4^2": "match",
+    "survey.sd.Y_4^2": "match",
+    "survey.sd.lambda_4^2": "match",
+    "survey.sd.example": "match",
+    "survey.bl.g1": "match",
+    "survey.bz.c1": "match",
 }
 
 
@@ -151,6 +159,29 @@ def test_user_file_true_values_by_independent_numerics():
 
     best = minimize_scalar(energy, bounds=(-3, 3), method="bounded", options={"xatol": 1e-10})
     assert abs(best.x - (-84 / 163)) < 1e-6
+    # survey.sd.example: the same for a quartic same_degree curve
+    pts = np.array([(0, 0), (1, 2), (2, 3), (4, 2), (5, 0)], dtype=float)
+
+    def energy_sd(lam):
+        c = lb.SameDegreeCurve(pts, lam=lam, check_range=False)
+        return quad(lambda t: float(np.sum(c.derivative(t, k=2) ** 2)), 0, 1, epsabs=1e-12)[0]
+
+    best = minimize_scalar(energy_sd, bounds=(-3, 3), method="bounded", options={"xatol": 1e-10})
+    assert abs(best.x - (-3 / 5)) < 1e-6
+    # survey.bl.g1 and survey.bz.c1: the runtime's joins (solved from derive/joins.py, compared
+    # here with the user's formulas at a few parameter values)
+    for alpha in (0.5, 2.0):
+        first = lb.BernsteinLikeCurve(rng.normal(size=(4, 2)), lam=0.4)
+        second = lb.join(first, "G1", 5, lam=-0.3, alpha=alpha, rest=[(0, 1)] * 4)
+        p1 = np.array(first.control_points(), dtype=float)
+        want = p1[3] + (3 + 0.8) / (alpha * (5 - 0.6)) * (p1[3] - p1[2])
+        assert np.allclose(np.array(second.control_points(), dtype=float)[1], want)
+    first = lb.BezierCurve(rng.normal(size=(4, 2)))
+    second = lb.join(first, "C1", 2, rest=[(1, 1)], family="bezier")
+    p1 = np.array(first.control_points(), dtype=float)
+    assert np.allclose(
+        np.array(second.control_points(), dtype=float)[1], p1[3] + 3 / 2 * (p1[3] - p1[2])
+    )
     # survey.sd.c1: the C1 vertex of the runtime's join is the user's formula
     first = lb.SameDegreeCurve(rng.normal(size=(5, 2)), lam=0.3)
     second = lb.join(first, "C1", 3, lam=-0.5, rest=[(1, 1), (2, 0)], family="same_degree")
@@ -161,7 +192,7 @@ def test_user_file_true_values_by_independent_numerics():
 
 
 def test_command_line_user_file_and_json():
-    code, out, err = run_verify(str(USER_FILE), "--format", "json", "--only", "survey.bz")
+    code, out, err = run_verify(str(USER_FILE), "--format", "json", "--only", "survey.bz.d1")
     assert code == 0, err
     data = json.loads(out)
     assert [(r["id"], r["verdict"]) for r in data["records"]] == [("survey.bz.d1_cases", "match")]
@@ -478,3 +509,22 @@ def test_grammar_module_never_calls_an_evaluator():
 def test_exact_numbers_stay_exact(grammar):
     assert grammar.parse_formula("-690/319") == sp.Rational(-690, 319)
     assert Fraction(str(grammar.parse_formula("0.125"))) == Fraction(1, 8)
+
+
+def test_a_dying_worker_names_its_record(monkeypatch):
+    """A worker that dies (as FLINT aborting on a huge exponent once made it) is reported with
+    the record it was checking, not as an anonymous failure."""
+    import os
+
+    verify = importlib.import_module(_derive_runner.load_derive(ROOT).__name__ + ".verify")
+    records = verify.load_records([USER_FILE])
+    real = verify.check_record
+
+    def dying(record):
+        if record["id"] == "survey.bz.d1_cases":
+            os._exit(7)
+        return real(record)
+
+    monkeypatch.setattr(verify, "check_record", dying)
+    with pytest.raises(RuntimeError, match="survey.bz.d1_cases"):
+        verify.verify(records, jobs=2)

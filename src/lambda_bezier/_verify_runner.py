@@ -172,7 +172,11 @@ def run(
             return 2
     if progress is None:
         progress = out is sys.stdout and sys.stdout.isatty() and sys.stderr.isatty()
-    report = copy.copy(verify.verify(records, progress=Progress(progress), index=every))
+    try:
+        report = copy.copy(verify.verify(records, progress=Progress(progress), index=every))
+    except RuntimeError as exc:  # a worker process died (the message names its record)
+        print(f"lambda-bezier verify: {exc}", file=sys.stderr)
+        return 1
     report.extra_problems = list(report.extra_problems)
     errata_path = checkout / verify.ERRATA_FILE if checkout is not None and builtin else None
     if errata_path is not None and not only:

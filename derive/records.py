@@ -163,7 +163,11 @@ SCHEMA = {
         "schema_version": {"enum": list(SCHEMA_VERSIONS)},
         "source": _STR,
         "title": _STR,
-        "family": {"type": "string", "pattern": r"^[a-z][a-z0-9_]*$"},
+        # the default family of the records: a name, or the definition of a family of the
+        # user's own (a [family] table, validated by derive/family_engine.py)
+        "family": {
+            "oneOf": [{"type": "string", "pattern": r"^[a-z][a-z0-9_]*$"}, {"type": "object"}]
+        },
         "variable": _STR,
         "point_function": _STR,
         "record": {"type": "array", "items": _RECORD, "maxItems": MAX_RECORDS},
@@ -261,6 +265,8 @@ def read_file(path: Path) -> dict:
 def load_file(path: Path) -> list[dict]:
     """The records of one file, each with its family, file, source and variable filled in."""
     data = read_file(path)
+    if isinstance(data.get("family"), dict):
+        data["family"] = _define_family(path, data["family"], data.get("point_function", "P"))
     out = []
     for rec in data["record"]:
         rec = dict(rec)
@@ -298,6 +304,20 @@ def load_file(path: Path) -> list[dict]:
         _parse_formulas(path, rec)
         out.append(rec)
     return out
+
+
+def _define_family(path: Path, table: dict, points: str) -> str:
+    """Derive the family a records file defines and make it known to this run's checkers."""
+    from . import family_engine
+
+    try:
+        defn = family_engine.definition_from_table(table, str(path))
+        family_engine.register(defn, points)
+    except family_engine.DefinitionError as exc:
+        raise RecordsError(
+            str(exc) if str(exc).startswith(str(path)) else f"{path}: {exc}"
+        ) from None
+    return defn.name
 
 
 def _strings(value, key: str) -> Iterator[tuple[str, str]]:

@@ -162,8 +162,10 @@ def claim_kind(claim: str) -> str:
     return claim.split(".", 1)[1] if "." in claim else claim
 
 
-# Kinds whose derivation exists for some families only, with the reason a user is told.
-_LAMBDA_FAMILIES = ("same_degree", "bernstein_like")
+# Kinds whose derivation exists for some families only, with the reason a user is told;
+# LAMBDA stands for every family with a shape parameter (every family but bezier).
+LAMBDA = "*"
+_LAMBDA_FAMILIES = (LAMBDA,)
 KIND_FAMILIES: dict[str, tuple[tuple[str, ...], str]] = {
     **{
         kind: (_LAMBDA_FAMILIES, "it is about the λ-basis b(i, n, t), which bezier does not have")
@@ -197,8 +199,17 @@ def kinds() -> dict[str, tuple[str, ...]]:
     out = {}
     for claim in CHECKERS:
         kind = claim_kind(claim)
-        out[kind] = KIND_FAMILIES.get(kind, (tuple(FAMILIES), ""))[0]
+        out[kind] = _allowed(kind)
     return dict(sorted(out.items()))
+
+
+def _allowed(kind: str) -> tuple[str, ...]:
+    allowed = KIND_FAMILIES.get(kind, ((), ""))[0]
+    if not allowed:
+        return tuple(FAMILIES)
+    if LAMBDA in allowed:
+        return tuple(f for f in FAMILIES if f != "bezier")
+    return allowed
 
 
 def kind_problem(family: str, kind: str) -> str | None:
@@ -207,8 +218,9 @@ def kind_problem(family: str, kind: str) -> str | None:
         return f"unknown family {family!r} (known: {', '.join(FAMILIES)})"
     if kind not in kinds():
         return f"unknown claim kind {kind!r} (see the records format for the list)"
-    allowed, reason = KIND_FAMILIES.get(kind, ((), ""))
-    if allowed and family not in allowed:
+    reason = KIND_FAMILIES.get(kind, ((), ""))[1]
+    allowed = _allowed(kind)
+    if family not in allowed:
         return f"claim kind {kind!r} is defined for {', '.join(allowed)} only: {reason}"
     return None
 
@@ -268,13 +280,39 @@ class Family:
     name: str
     degrees: range
     points: str  # name of the control-point function in this paper's records
+    basis_polys: Callable[[int], list] | None = None  # per degree, Polys in t, lam
+    offset: int = 0  # the basis polynomials have degree n + offset
+    closed: Callable[[], dict] | None = None  # closed end forms {(end, r, idx): expr in n, lam}
 
 
 FAMILIES = {
-    "same_degree": Family("same_degree", sd.DEGREES, "V"),
-    "bernstein_like": Family("bernstein_like", bl.DEGREES, "P"),
+    "same_degree": Family(
+        "same_degree",
+        sd.DEGREES,
+        "V",
+        sd.basis_polys,
+        0,
+        lambda: sd.endpoint_closed_forms(sd.three_term_form()),
+    ),
+    "bernstein_like": Family(
+        "bernstein_like",
+        bl.DEGREES,
+        "P",
+        lambda n: list(bl.basis_polys(n)),
+        2,
+        lambda: bl.endpoint_closed_forms(bl.explicit_factor()),
+    ),
     "bezier": Family("bezier", bz.DEGREES, "b"),
 }
+
+
+def register_family(family: Family) -> None:
+    """A family defined by data (derive/family_engine.py) joins the built-in ones for this run:
+    its records are checked with the same checkers (the derivations it has: no closed form of
+    its own where the engine found none)."""
+    FAMILIES[family.name] = family
+    for fn in (_basis_sc, closed_forms, _bernstein_mats):
+        fn.cache_clear()
 
 
 @cache
@@ -285,7 +323,7 @@ def _bernstein_sc(degree: int, index: int) -> Sc:
 @cache
 def _basis_sc(family: str, degree: int, index: int) -> Sc:
     """The derived basis polynomial (a Poly in t, lam) as a scalar of the evaluator."""
-    polys = sd.basis_polys(degree) if family == "same_degree" else bl.basis_polys(degree)
+    polys = FAMILIES[family].basis_polys(degree)  # type: ignore[misc]
     return Sc.from_qq_poly(polys[index])
 
 
@@ -317,11 +355,19 @@ def family_basis(family: str, degree: int, index: int, x=None, shape=None) -> Sc
 def closed_forms(family: str) -> dict:
     """{(end, r, idx): value} in the derive symbols: derivative of order r of basis function idx
     (start) or n - idx (end) at t = 0 / t = 1; absent keys are zero."""
-    if family == "same_degree":
-        return sd.endpoint_closed_forms(sd.three_term_form())
-    if family == "bernstein_like":
-        return bl.endpoint_closed_forms(bl.explicit_factor())
-    raise KeyError(family)
+    closed = FAMILIES[family].closed
+    forms = None if closed is None else closed()
+    if forms is None:
+        raise KeyError(f"{family} has no closed end forms")
+    return forms
+
+
+def has_closed_forms(family: str) -> bool:
+    try:
+        closed_forms(family)
+    except KeyError:
+        return False
+    return True
 
 
 @cache
@@ -707,9 +753,8 @@ def _casteljau(name, s, j, k) -> Form:
 
 @cache
 def _bernstein_mats(family: str, n: int):
-    polys = sd.basis_polys(n) if family == "same_degree" else list(bl.basis_polys(n))
-    deg = n if family == "same_degree" else n + 2
-    return _algebra.bernstein_matrices(list(polys), deg)
+    fam = FAMILIES[family]
+    return _algebra.bernstein_matrices(list(fam.basis_polys(n)), n + fam.offset)  # type: ignore[misc]
 
 
 @cache
@@ -1144,6 +1189,8 @@ def symbolic_cases(family: str, end: str, order: int, cases) -> list[str]:
     n = S["n"]
     if family == "bezier":
         keys = {(end, order, idx): bezier_closed(end, order, idx) for idx in range(order + 1)}
+    elif not has_closed_forms(family):
+        return []  # a family without general-n end forms: checked per degree only
     else:
         keys = {key: v for key, v in closed_forms(family).items() if key[:2] == (end, order)}
     keys = {k: v for k, v in keys.items() if v != 0}
@@ -1206,8 +1253,8 @@ def symbolic_endpoint(family: str, eq: dict) -> list[str]:
     """p^(r)(0) / p^(r)(1) printed as a combination of control points vs the closed forms."""
     lhs, rhs = parse(eq["lhs"]), parse(eq["rhs"])
     which = _endpoint_lhs(lhs)
-    if which is None:
-        return []
+    if which is None or (family != "bezier" and not has_closed_forms(family)):
+        return []  # not an end value, or a family checked per degree only
     end, order = which
     n = S["n"]
     rhs = symbolic_delta(rhs)

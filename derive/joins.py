@@ -118,8 +118,10 @@ def _builtin_endpoint_forms(family: str) -> dict[tuple[str, int, int], sp.Expr]:
                 raw[("end", r, idx)] = end.subs({k: r, i: idx})
     elif family == "same_degree":
         raw = _same_degree.endpoint_closed_forms(_same_degree.three_term_form())
-    else:
+    elif family == "bernstein_like":
         raw = _bernstein_like.endpoint_closed_forms(_bernstein_like.explicit_factor())
+    else:
+        raise KeyError(f"no closed end forms for the family {family!r}")
     out = {}
     for key, v in raw.items():
         if v.has(sp.factorial, sp.binomial, sp.FallingFactorial):

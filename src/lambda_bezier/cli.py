@@ -32,6 +32,15 @@ def build_parser() -> argparse.ArgumentParser:
         help="the source checkout (default: the one containing the current directory)",
     )
     derive.add_argument("-q", "--quiet", action="store_true", help="no progress messages")
+    derive.add_argument(
+        "--family",
+        type=Path,
+        metavar="FILE",
+        help="derive the family a [family] table in FILE defines (into FILE's directory)",
+    )
+    derive.add_argument(
+        "--out", type=Path, metavar="DIR", help="with --family: write the derived file into DIR"
+    )
 
     opt = sub.add_parser(
         "optimal-lambda",
@@ -93,6 +102,10 @@ def console_main() -> None:
 
 def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
+    if args.command == "derive" and args.family is not None:
+        from ._family_runner import run as run_family
+
+        return run_family(args.family, args.out, check=args.check, quiet=args.quiet)
     if args.command == "derive":
         from ._derive_runner import run
 

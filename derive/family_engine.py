@@ -143,8 +143,9 @@ _RANGE = re.compile(r"^\s*([\[(])([^,\[\]()]+),([^,\[\]()]+)([\])])\s*$")
 _DEGREES = re.compile(r"^\s*([0-9]{1,3})\s*\.\.\s*([0-9]{1,3})\s*$")
 
 
-def definition_from_table(table: object, where: str = "") -> Definition:
-    """Validate a [family] table (JSON Schema, then the meaning of each key)."""
+def definition_from_table(table: object, where: str = "", *, builtin: bool = False) -> Definition:
+    """Validate a [family] table (JSON Schema, then the meaning of each key). `builtin`: one
+    of derive/families/*.toml, the built-in families as data, may use a built-in name."""
     import jsonschema
 
     prefix = f"{where}: [family]" if where else "[family]"
@@ -158,7 +159,7 @@ def definition_from_table(table: object, where: str = "") -> Definition:
     def fail(key: str, message: str) -> DefinitionError:
         return DefinitionError(f"{prefix}, key {key}: {message}")
 
-    if table["name"] in BUILTIN:
+    if table["name"] in BUILTIN and not builtin:
         raise fail("name", f"{table['name']!r} is a built-in family; choose another name")
     if table["parameter"] in SYMBOLS and table["parameter"] != "lam":
         raise fail("parameter", f"{table['parameter']!r} is taken by the formula language")
@@ -181,7 +182,8 @@ def definition_from_table(table: object, where: str = "") -> Definition:
     try:
         basis = _parse_basis(table["basis"], table["parameter"])
     except ParseError as exc:
-        raise fail("basis", str(exc)) from None
+        hint = f" (a basis is a formula in i, n, t and {table['parameter']})"
+        raise fail("basis", str(exc) + (hint if "unknown name" in str(exc) else "")) from None
     extra = sorted(s.name for s in basis.free_symbols if s not in (_I, _N, _T, _LAM))
     if extra:
         raise fail(
@@ -208,7 +210,7 @@ def definition_from_table(table: object, where: str = "") -> Definition:
     )
 
 
-def read_definition(path: Path) -> Definition:
+def read_definition(path: Path, *, builtin: bool = False) -> Definition:
     """The [family] table of a file (a family file, or a records file that defines one)."""
     try:
         data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
@@ -221,7 +223,7 @@ def read_definition(path: Path) -> Definition:
     table = data.get("family")
     if not isinstance(table, dict):
         raise DefinitionError(f"{path}: no [family] table (a family definition starts with one)")
-    return definition_from_table(table, str(path))
+    return definition_from_table(table, str(path), builtin=builtin)
 
 
 # --------------------------------------------------------------------------- the basis
@@ -429,6 +431,8 @@ def energy_artifacts(defn: Definition) -> dict:
     out: dict = {}
     for deg in defn.degrees:
         polys = basis_polys(defn, deg)
+        if lambda_degree(polys) == 0:
+            return {"reason": f"the basis does not depend on {defn.parameter}: nothing to optimise"}
         if lambda_degree(polys) > 1:
             return {
                 "reason": f"the basis is of degree {lambda_degree(polys)} in "
@@ -567,6 +571,14 @@ def register(defn: Definition, points: str = "P") -> None:
     energy.EXTRA[defn.name] = _EnergyBasis(defn)
     if closed is not None:
         joins.register(defn.name, closed, tuple(defn.degrees), has_lambda=True)
+
+
+FAMILY_DEFINITIONS = Path(__file__).resolve().parent / "families"
+
+
+def builtin_definition(name: str) -> Definition:
+    """A built-in family's definition as data (derive/families/<name>.toml)."""
+    return read_definition(FAMILY_DEFINITIONS / f"{name}.toml", builtin=True)
 
 
 def derived_path(definition_file: Path, name: str, out_dir: Path | None = None) -> Path:

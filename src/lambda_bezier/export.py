@@ -204,14 +204,14 @@ def _solve(matrix: list[list], rhs: list[list], exact: bool) -> list[list]:
             for c in cols:
                 a[r][c] -= f * a[i][c]
             b[r] = [x - f * y for x, y in zip(b[r], b[i], strict=True)]
-    x = [None] * n
+    x: list[list] = [[] for _ in range(n)]
     for i in range(n - 1, -1, -1):
         acc = list(b[i])
         for c in range(i + 1, n):
             if a[i][c] != 0:
-                acc = [v - a[i][c] * w for v, w in zip(acc, x[c], strict=True)]  # type: ignore[arg-type]
-        x[i] = [v / a[i][i] for v in acc]  # type: ignore[assignment]
-    return x  # type: ignore[return-value]
+                acc = [v - a[i][c] * w for v, w in zip(acc, x[c], strict=True)]
+        x[i] = [v / a[i][i] for v in acc]
+    return x
 
 
 def _piece_value(rows, t):
@@ -562,7 +562,7 @@ def from_json(text: str, *, check_range: bool = True):
     joints_in = doc.get("joints", [None] * (len(curves) - 1))
     if not isinstance(joints_in, list):
         raise ValueError("composite.joints must be a list (null for a joint not built by join)")
-    joints = []
+    joints: list[Joint | None] = []
     for i, j in enumerate(joints_in):
         if j is None:
             joints.append(None)

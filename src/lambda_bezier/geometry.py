@@ -33,40 +33,45 @@ from ._lazy import generated
 _bernstein = generated("bernstein")
 
 RTOL = 1e-12  # the relative accuracy arc_length and parameter_at_length aim for
-_GL_ORDER = 12  # Gauss–Legendre points per interval
+_GL_ORDER = 20  # Gauss–Legendre points per interval
+_FIRST_PIECES = 24  # equal intervals the adaptive rule starts from (most curves end there)
+_SPLIT = 4  # a rejected interval is cut in this many (fewer levels near a near-cusp)
 _MAX_LEVELS = 60  # bisection depth: widths down to 2^-60 of the range
 _IMAG_TOL = 1e-4  # eigenvalues with a larger imaginary part (in u = t - 1/2) are not roots
 _EDGE_TOL = 1e-6  # eigenvalues this far outside [0, 1] are still tried (then clipped)
 
 
 # ---------------------------------------------------------------------- polynomial data
-@dataclass(frozen=True)
 class _Poly:
-    """p and its first three derivatives, as Taylor coefficients about 1/2, (d, N+1) each."""
+    """p and its derivatives as Taylor coefficients about 1/2, (d, N+1) each (on demand)."""
 
-    coeffs: tuple[np.ndarray, ...]
+    def __init__(self, base: np.ndarray) -> None:
+        self._coeffs = {0: base}
+
+    def __getitem__(self, k: int) -> np.ndarray:
+        out = self._coeffs.get(k)
+        if out is None:
+            out = self._coeffs[k] = alg.differentiate_coefficients(self._coeffs[0], k)
+        return out
 
 
 def _centred_coefficients(curve) -> np.ndarray:
-    """(d, N+1) Taylor coefficients about t = 1/2 of the curve's Bézier form; computed in
-    Fractions and rounded once when the curve is exact."""
+    """(d, N+1) Taylor coefficients about t = 1/2 of the curve's Bézier form, computed in
+    Fractions and rounded once when the curve is exact. A float curve already holds them
+    (Curve._derivative_coeffs[0], from the same generated centred matrices)."""
+    if not curve.is_exact:
+        return np.ascontiguousarray(curve._derivative_coeffs[0], dtype=float)
     bez = curve.to_bezier()
-    matrix = _bernstein.CENTRED[bez.degree]  # row i: B_i about 1/2
-    if bez.is_exact:
-        rows = bez.control_points()
-        cols = tuple(zip(*matrix, strict=True))
-        exact = alg.exact_matmul(cols, rows)  # (N+1, d)
-        return np.array([[float(v) for v in row] for row in exact]).T.copy()
-    return (np.array(matrix, dtype=float).T @ bez.points).T.copy()
+    rows = bez.control_points()
+    cols = tuple(zip(*_bernstein.CENTRED[bez.degree], strict=True))  # row i: B_i about 1/2
+    exact = alg.exact_matmul(cols, rows)  # (N+1, d)
+    return np.array([[float(v) for v in row] for row in exact]).T.copy()
 
 
 def _poly(curve) -> _Poly:
     cached = curve.__dict__.get("_geometry_poly")
     if cached is None:
-        base = _centred_coefficients(curve)
-        derivs = [base] + [alg.differentiate_coefficients(base, k) for k in (1, 2, 3)]
-        cached = _Poly(tuple(derivs))
-        curve.__dict__["_geometry_poly"] = cached
+        cached = curve.__dict__["_geometry_poly"] = _Poly(_centred_coefficients(curve))
     return cached
 
 
@@ -96,6 +101,32 @@ def _gauss_legendre(order: int) -> tuple[np.ndarray, np.ndarray]:
     return (nodes + 1) / 2, weights / 2  # on [0, 1]
 
 
+@cache
+def _pattern() -> np.ndarray:
+    """(3, order) nodes on [0, 1]: the rule on the interval, on its left and right half."""
+    x, _ = _gauss_legendre(_GL_ORDER)
+    return np.stack([x, x / 2, 0.5 + x / 2])
+
+
+@cache
+def _unit_powers(pieces: int, size: int) -> np.ndarray:
+    """(size, nodes): (t − 1/2)^e at the level-0 nodes of [0, 1] cut into `pieces`, so the
+    derivative there is one matrix product (the common case: the whole curve)."""
+    left = np.arange(pieces)[:, None, None] / pieces
+    t = (left + _pattern() / pieces).ravel()
+    out = np.ascontiguousarray(((t[:, None] - 0.5) ** np.arange(size)).T)
+    out.setflags(write=False)
+    return out
+
+
+def _unit_speeds(d1: np.ndarray, pieces: int) -> np.ndarray:
+    """(pieces, 3) Gauss–Legendre sums (unscaled) of the speed over the level-0 intervals of
+    [0, 1] and their halves; few array operations, since this is most calls' whole work."""
+    values = d1 @ _unit_powers(pieces, d1.shape[1])  # (d, nodes)
+    speed = np.sqrt(np.einsum("ij,ij->j", values, values))
+    return (speed.reshape(3 * pieces, _GL_ORDER) @ _gauss_legendre(_GL_ORDER)[1]).reshape(pieces, 3)
+
+
 def _rule(d1: np.ndarray, left: np.ndarray, right: np.ndarray) -> np.ndarray:
     """Gauss–Legendre of the speed over each [left_i, right_i] (vectorised)."""
     x, w = _gauss_legendre(_GL_ORDER)
@@ -105,46 +136,67 @@ def _rule(d1: np.ndarray, left: np.ndarray, right: np.ndarray) -> np.ndarray:
     return (speed @ w) * width
 
 
-def _adaptive(d1: np.ndarray, a: float, b: float, rtol: float):
-    """Accepted sub-intervals of [a, b] (sorted edges, (K+1,)) and the speed's integral over
-    each (K,), to a relative accuracy rtol of the total."""
-    left = a + (b - a) * np.arange(4) / 4
+def _level(d1: np.ndarray, left: np.ndarray, right: np.ndarray, unit: bool):
+    """The rule on each interval and on each of its halves, in one evaluation."""
+    width = right - left
+    if unit:  # left, right = k/K, (k+1)/K
+        sums = _unit_speeds(d1, left.size) * width[:, None]
+    else:
+        values = _eval(d1, left[:, None, None] + width[:, None, None] * _pattern())
+        speed = np.sqrt(np.square(values).sum(axis=1)).reshape(left.size, 3, _GL_ORDER)
+        sums = (speed @ _gauss_legendre(_GL_ORDER)[1]) * width[:, None]
+    return sums[:, 0], sums[:, 1] / 2, sums[:, 2] / 2
+
+
+def _adaptive(d1: np.ndarray, a: float, b: float, rtol: float, *, table: bool = False):
+    """∫_a^b |p'| to a relative accuracy rtol: an interval is accepted when the rule on it
+    and the sum over its halves agree to its share (by width) of rtol · total (the halves'
+    sum is kept, far more accurate than that test asks); a rejected one is cut in _SPLIT.
+    With table=True: the accepted half-intervals' sorted edges (K+1,) and integrals (K,)."""
+    pieces = _FIRST_PIECES
+    left = a + (b - a) * np.arange(pieces) / pieces
     right = np.append(left[1:], b)
-    done_edges: list[np.ndarray] = []
+    unit = a == 0.0 and b == 1.0
+    done_left: list[np.ndarray] = []
     done_values: list[np.ndarray] = []
     accepted_total = 0.0
     for level in range(_MAX_LEVELS):
-        mid = (left + right) / 2
-        whole = _rule(d1, left, right)
-        halves = _rule(d1, np.concatenate([left, mid]), np.concatenate([mid, right]))
-        first, second = halves[: left.size], halves[left.size :]
+        whole, first, second = _level(d1, left, right, unit and level == 0)
         both = first + second
         total = accepted_total + float(both.sum())
-        share = rtol * max(total, 0.0) * (right - left) / (b - a)
-        ok = np.abs(whole - both) <= share
+        ok = np.abs(whole - both) <= (rtol * max(total, 0.0) / (b - a)) * (right - left)
         if level == _MAX_LEVELS - 1 or total == 0.0:
             ok[:] = True
-        if ok.any():
+        every = bool(ok.all())
+        if not table and every and not done_values:  # the common case: accepted at once
+            return math.fsum(both)
+        if every or ok.any():
             accepted_total += float(both[ok].sum())
-            done_edges.append(np.stack([left[ok], mid[ok]], axis=1).ravel())
+            done_left.append(left[ok])
             done_values.append(np.stack([first[ok], second[ok]], axis=1).ravel())
-        if ok.all():
+        if every:
             break
         keep = ~ok
-        left = np.concatenate([left[keep], mid[keep]])
-        right = np.concatenate([mid[keep], right[keep]])
-    starts = np.concatenate(done_edges)
+        width = (right[keep] - left[keep])[:, None] / _SPLIT
+        left = (left[keep][:, None] + width * np.arange(_SPLIT)).ravel()
+        right = np.append(left[1:], 0.0)
+        right[_SPLIT - 1 :: _SPLIT] = left[_SPLIT - 1 :: _SPLIT] + width[:, 0]
     values = np.concatenate(done_values)
+    if not table:
+        return math.fsum(values)
+    starts = np.concatenate(done_left)
     order = np.argsort(starts, kind="stable")
-    edges = np.append(starts[order], b)
-    return edges, values[order]
+    lo = starts[order]
+    pairs = values.reshape(-1, 2)[order]
+    mids = (lo + np.append(lo[1:], b)) / 2  # the accepted intervals tile [a, b]
+    edges = np.append(np.stack([lo, mids], axis=1).ravel(), b)
+    return edges, pairs.ravel()
 
 
 def _curve_arc_length(curve, t0: float, t1: float) -> float:
     if t0 == t1:
         return 0.0
-    _, values = _adaptive(_poly(curve).coeffs[1], t0, t1, RTOL)
-    return math.fsum(values)
+    return _adaptive(_poly(curve)[1], t0, t1, RTOL)
 
 
 def arc_length(obj, start=0, end=None) -> float:
@@ -168,7 +220,7 @@ def _length_table(curve):
     """The accepted partition of [0, 1] with cumulative lengths (cached on the curve)."""
     cached = curve.__dict__.get("_geometry_lengths")
     if cached is None:
-        edges, values = _adaptive(_poly(curve).coeffs[1], 0.0, 1.0, RTOL)
+        edges, values = _adaptive(_poly(curve)[1], 0.0, 1.0, RTOL, table=True)
         cum = np.concatenate([[0.0], np.cumsum(values)])
         cum[-1] = math.fsum(values)
         cached = (edges, cum)
@@ -179,7 +231,7 @@ def _length_table(curve):
 def _curve_parameter_at_length(curve, s: np.ndarray) -> np.ndarray:
     """t with L(0, t) = s for lengths 0 <= s <= L (vectorised safeguarded Newton inside the
     accepted interval holding s, where L(t) = cumulative + Gauss–Legendre up to t)."""
-    d1 = _poly(curve).coeffs[1]
+    d1 = _poly(curve)[1]
     edges, cum = _length_table(curve)
     k = np.clip(np.searchsorted(cum, s, side="right") - 1, 0, edges.size - 2)
     base, lo, hi = cum[k], edges[k].copy(), edges[k + 1].copy()
@@ -286,20 +338,20 @@ def _curve_box(curve) -> tuple[np.ndarray, np.ndarray]:
     poly = _poly(curve)
     candidates = [np.array([0.0, 1.0])]
     for axis in range(curve.dimension):
-        c1 = _significant(poly.coeffs[1][axis])
-        c2 = poly.coeffs[2][axis : axis + 1]
+        c1 = _significant(poly[1][axis])
+        c2 = poly[2][axis : axis + 1]
         if c1.shape[-1] < 2 or not c1.any():
             continue
         roots = _candidate_roots(c1)[0]
         roots = roots[np.isfinite(roots)]
         polished = _newton(
             roots.copy(),
-            lambda t, a=axis: _eval(poly.coeffs[1][a : a + 1], t)[:, 0],
+            lambda t, a=axis: _eval(poly[1][a : a + 1], t)[:, 0],
             lambda t, c=c2: _eval(c, t)[:, 0],
         )
         candidates += [roots, polished]
     t = np.concatenate(candidates)
-    values = _eval(poly.coeffs[0], t)
+    values = _eval(poly[0], t)
     return values.min(axis=0), values.max(axis=0)
 
 
@@ -342,7 +394,7 @@ def _queries(q, dimension: int) -> tuple[np.ndarray, bool]:
 def _curve_closest(curve, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Parameters, points and squared distances of the nearest points to each row of q."""
     poly = _poly(curve)
-    p = _significant(poly.coeffs[0])  # (d, N'+1) with the true leading term
+    p = _significant(poly[0])  # (d, N'+1) with the true leading term
     m, dim = q.shape
     size = p.shape[1]
     cands = [np.zeros((m, 1)), np.ones((m, 1))]
@@ -371,7 +423,7 @@ def _curve_closest(curve, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.nda
         polished = _newton(roots.copy(), gval, gprime)
         cands += [np.nan_to_num(roots, nan=0.0), np.nan_to_num(polished, nan=0.0)]
     t = np.concatenate(cands, axis=1)
-    pts = _eval(poly.coeffs[0], t).reshape(*t.shape, dim)
+    pts = _eval(poly[0], t).reshape(*t.shape, dim)
     dist2 = np.square(pts - q[:, None, :]).sum(-1)
     best = np.argmin(dist2, axis=1)
     rows = np.arange(m)
@@ -384,17 +436,13 @@ def closest_point(obj, q) -> ClosestPoint:
     (d,) or a batch (m, d)."""
     segs = _segments(obj)
     queries, single = _queries(q, segs[0].dimension)
-    best_t = best_d2 = best_pt = None
-    for i, seg in enumerate(segs):
+    best_t, best_pt, best_d2 = _curve_closest(segs[0], queries)
+    for i, seg in enumerate(segs[1:], start=1):
         t, pt, d2 = _curve_closest(seg, queries)
-        if best_t is None:
-            best_t, best_pt, best_d2 = t + i, pt, d2
-            continue
-        better = d2 < best_d2
+        better = d2 < best_d2  # a tie (a joint) keeps the earlier segment
         best_t = np.where(better, t + i, best_t)
         best_pt = np.where(better[:, None], pt, best_pt)
         best_d2 = np.where(better, d2, best_d2)
-    assert best_t is not None and best_pt is not None and best_d2 is not None
     dist = np.sqrt(best_d2)
     if single:
         return ClosestPoint(float(best_t[0]), best_pt[0], float(dist[0]))

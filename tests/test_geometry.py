@@ -22,14 +22,14 @@ FAMS = list(FAMILIES.values())
 FEW = settings(max_examples=12, deadline=None)
 
 
-def speed_integral(curve, a, b):
+def speed_integral(curve, a, b, epsrel=2e-14):
     """scipy's QUADPACK on |p'|, far tighter than the 1e-12 we claim."""
     value, _ = quad(
         lambda t: float(np.linalg.norm(curve.derivative(t))),
         a,
         b,
         epsabs=0,
-        epsrel=2e-14,
+        epsrel=epsrel,
         limit=500,
     )
     return value
@@ -85,15 +85,15 @@ def test_arc_length_random_curves(fam, data):
 def test_arc_length_of_a_cusp_and_of_a_line():
     # p'(1/2) = 0: the speed has a kink there, which the adaptive rule must resolve
     cusp = lb.BezierCurve([(0, 0), (2, 1), (0, 1), (2, 0)])
-    assert cusp.arc_length() == pytest.approx(speed_integral(cusp, 0, 0.5) * 2, rel=1e-12)
+    assert cusp.arc_length() == pytest.approx(speed_integral(cusp, 0, 0.5, epsrel=1e-13) * 2, rel=1e-12)
     line = lb.BezierCurve([(0, 0), (1, 1), (3, 3)])
     assert line.arc_length() == pytest.approx(3 * math.sqrt(2), rel=1e-14)
 
 
-@pytest.mark.parametrize("curve", CURVES[:6], ids=IDS[:6])
+@pytest.mark.parametrize("curve", CURVES, ids=IDS)
 def test_parameter_at_length_inverts_arc_length(curve):
     total = curve.arc_length()
-    s = np.linspace(0, total, 9)
+    s = np.linspace(0, total, 6)
     t = curve.parameter_at_length(s)
     assert t[0] == 0 and t[-1] == pytest.approx(1, abs=1e-12)
     assert np.all(np.diff(t) > 0)
@@ -188,6 +188,20 @@ def test_closest_point_random(fam, data):
     pts = curve.evaluate(np.linspace(0, 1, 20001))
     sampled = np.linalg.norm(pts - q, axis=1).min()
     assert res.distance <= sampled + 1e-12 * max(1.0, sampled)
+
+
+def test_degree_elevated_float_curve_keeps_its_geometry():
+    """Elevated to degree 14 in floats, a cubic's top Taylor coefficients are rounding
+    noise: the root finders must see through them to the cubic's answers."""
+    cubic = lb.BezierCurve([(0.0, 0.0), (1.0, 3.0), (2.0, -1.0), (3.0, 3.0)])
+    high = cubic
+    while high.degree < 14:
+        high = high.elevate()
+    np.testing.assert_allclose(high.bounding_box(), cubic.bounding_box(), atol=1e-12)
+    queries = np.random.default_rng(3).uniform(-2, 5, size=(20, 2))
+    a, b = high.closest_point(queries), cubic.closest_point(queries)
+    np.testing.assert_allclose(a.distance, b.distance, atol=1e-12)
+    assert high.arc_length() == pytest.approx(cubic.arc_length(), rel=1e-12)
 
 
 def test_closest_point_input_errors():

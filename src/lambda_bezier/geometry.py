@@ -295,13 +295,17 @@ def parameter_at_length(obj, s):
 
 # ---------------------------------------------------------------------- real roots
 def _significant(coeffs: np.ndarray) -> np.ndarray:
-    """Drop leading (highest-power) coefficients whose term is below rounding on |u| <= 1/2."""
+    """Drop leading (highest-power) coefficients whose term is below 1e-13 of the largest on
+    |u| <= 1/2: rounding noise (a degree-elevated float curve's top coefficient is zero up
+    to it) would make the companion matrix's other entries huge. The candidates found
+    without such a term are polished and judged on the full polynomial, so what it can move
+    is a flat spot's value by about 1e-13 of the curve's size."""
     c = np.atleast_2d(coeffs)
     size = np.abs(c) * 0.5 ** np.arange(c.shape[-1])
     scale = size.max()
     if scale == 0:
         return c[..., :1]
-    keep = np.nonzero((size > 1e-15 * scale).any(axis=0))[0]
+    keep = np.nonzero((size > 1e-13 * scale).any(axis=0))[0]
     return c[..., : keep[-1] + 1]
 
 

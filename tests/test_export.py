@@ -226,7 +226,8 @@ def test_svg_errors():
 # ---------------------------------------------------------------------- DXF
 @pytest.mark.parametrize("name", OBJECTS)
 def test_dxf_read_back_by_ezdxf(name, tmp_path):
-    ezdxf = pytest.importorskip("ezdxf")
+    import ezdxf
+
     obj = OBJECTS[name]
     file = export.to_dxf(obj, tmp_path / "curve.dxf")
     doc = ezdxf.readfile(file)
@@ -337,3 +338,5 @@ def test_cli_export_errors(tmp_path, capsys):
     assert "pass tolerance=" in capsys.readouterr().err
     assert main(["export", "--format", "json", str(tmp_path / "nope.json"), "o"]) == 2
     assert "nope.json" in capsys.readouterr().err
+    assert main(["export", "--format", "dxf", "--tolerance", "1", str(source), "o"]) == 2
+    assert "--format svg only" in capsys.readouterr().err

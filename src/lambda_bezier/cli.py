@@ -130,6 +130,8 @@ def _export(args) -> int:
     from . import export
 
     try:
+        if args.tolerance is not None and args.format != "svg":
+            raise ValueError("--tolerance applies to --format svg only")
         obj = export.from_json(args.input.read_text(encoding="utf-8"))
         if args.format == "json":
             args.output.write_text(export.to_json(obj) + "\n", encoding="utf-8")

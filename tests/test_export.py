@@ -11,6 +11,8 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 import lambda_bezier as lb
 from lambda_bezier import export
@@ -102,6 +104,51 @@ def test_a_split_curve_is_one_polynomial_piece():
     spline = export.to_bspline(lb.CompositeCurve([left, right]))
     assert spline.breakpoints() == ([0, 2], [6, 6])
     assert spline.control_points == b.control_points()
+
+
+def random_joined_composite(data):
+    """An exact composite of three segments of random families, joined C1/C2/G1/G2."""
+    coord = st.integers(-9, 9)
+    families = st.sampled_from(["bezier", "same_degree", "bernstein_like"])
+
+    def curve_args(fam, count):
+        pts = data.draw(st.lists(st.tuples(coord, coord), min_size=count, max_size=count))
+        lam = None if fam == "bezier" else Fraction(data.draw(st.integers(-2, 2)), 4)
+        return pts, lam
+
+    fam = data.draw(families)
+    pts, lam = curve_args(fam, data.draw(st.integers(4, 6)))
+    first = lb.FAMILIES[fam](pts) if lam is None else lb.FAMILIES[fam](pts, lam)
+    comp, built = lb.CompositeCurve([first]), []
+    for _ in range(2):
+        cont = data.draw(st.sampled_from(["C1", "C2", "G1", "G2"]))
+        fam2, m = data.draw(families), data.draw(st.integers(4, 5))
+        rest, lam2 = curve_args(fam2, m - (1 if cont[1] == "1" else 2))
+        alpha = Fraction(data.draw(st.integers(1, 3))) if cont[0] == "G" else 1
+        comp = comp.join(cont, m, lam2, alpha=alpha, rest=rest, family=fam2)
+        built.append(cont)
+    return comp, built
+
+
+@settings(max_examples=20, deadline=None)
+@given(data=st.data())
+def test_bspline_of_random_joined_composites(data):
+    """The B-spline equals every piece exactly, and each joint's knot multiplicity is at
+    most p − k for the k its construction guarantees (C1, C2; a G joint may happen to be
+    C1 in u, when α = 1)."""
+    try:
+        comp, built = random_joined_composite(data)
+    except ValueError:  # a degenerate end or a vanishing pivot: join says which
+        assume(False)
+    spline = export.to_bspline(comp)
+    p = spline.degree
+    for j, seg in enumerate(comp.segments):
+        rows = seg.to_bezier().control_points()
+        for t in (Fraction(1, 5), Fraction(2, 3)):
+            assert spline.point(j + t) == bernstein_value(rows, t)
+    _, mults = spline.breakpoints()
+    for cont, mult in zip(built, mults[1:-1], strict=True):
+        assert mult <= p - {"C1": 1, "C2": 2}.get(cont, 0)
 
 
 def test_bspline_refuses_a_gap():

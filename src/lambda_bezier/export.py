@@ -110,6 +110,8 @@ class BSpline:
         """Float values at a number or an array of u: (d,) or (len(u), d)."""
         arr = np.atleast_1d(np.asarray(u, dtype=float))
         knots = [float(k) for k in self.knots]
+        if arr.size and not (knots[0] <= arr.min() and arr.max() <= knots[-1]):
+            raise ValueError(f"u must lie in [{knots[0]}, {knots[-1]}] (the knot range)")
         pts = [tuple(float(v) for v in row) for row in self.control_points]
         flt = BSpline(self.degree, tuple(knots), tuple(pts), False)
         out = np.array([flt.point(float(x)) for x in arr])

@@ -419,7 +419,8 @@ def to_svg(obj, *, tolerance: float | None = None, stroke_width: float | None = 
         elif tolerance is None:
             raise ValueError(
                 f"segment {i} is a polynomial of degree {degree}; SVG paths hold cubics at "
-                "most: pass tolerance= (a distance in the curve's units) to approximate it"
+                "most: pass tolerance= (a distance in the curve's units; --tolerance on the "
+                "command line) to approximate it"
             )
         else:
             pieces = _cubics(rows, tolerance)

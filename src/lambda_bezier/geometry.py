@@ -348,7 +348,7 @@ def _newton(t: np.ndarray, f, fprime, steps: int = 4) -> np.ndarray:
 # ---------------------------------------------------------------------- bounding box
 def _curve_box(curve) -> tuple[np.ndarray, np.ndarray]:
     poly = _poly(curve)
-    candidates = [np.array([0.0, 1.0])]
+    candidates = []
     for axis in range(curve.dimension):
         c1 = _significant(poly[1][axis])
         c2 = poly[2][axis : axis + 1]
@@ -362,8 +362,12 @@ def _curve_box(curve) -> tuple[np.ndarray, np.ndarray]:
             lambda t, c=c2: _eval(c, t)[:, 0],
         )
         candidates += [roots, polished]
-    t = np.concatenate(candidates)
-    values = _eval(poly[0], t)
+    t = np.concatenate([np.empty(0), *candidates])
+    # a root within 1e-12 of an end adds nothing to the end itself (the coordinate is flat
+    # there), and the ends are the Bézier form's first and last control points, exactly
+    t = t[(t > 1e-12) & (t < 1 - 1e-12)]
+    bez = curve.to_bezier().points
+    values = np.vstack([bez[[0, -1]], _eval(poly[0], t)])
     return values.min(axis=0), values.max(axis=0)
 
 

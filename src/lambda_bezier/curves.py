@@ -17,6 +17,7 @@ import numpy as np
 
 from . import _algorithms as alg
 from . import _validate as val
+from . import geometry as _geometry
 from ._lazy import generated
 
 _bernstein = generated("bernstein")
@@ -231,6 +232,27 @@ class Curve:
         ctrl = self._hodograph_points(k)
         g = np.array(upper, dtype=float) * float(scale)
         return float(np.einsum("id,ij,jd->", ctrl, (g + g.T) / 2, ctrl))
+
+    # ------------------------------------------------------------------ geometry (geometry.py)
+    def arc_length(self, t0=0, t1=1) -> float:
+        """∫ |p'(t)| dt from t0 to t1 (0 <= t0 <= t1 <= 1), to a relative accuracy of 1e-12."""
+        return _geometry.arc_length(self, t0, t1)
+
+    def parameter_at_length(self, s):
+        """The t at which the arc length from 0 equals s (a number or an array)."""
+        return _geometry.parameter_at_length(self, s)
+
+    def bounding_box(self) -> tuple[np.ndarray, np.ndarray]:
+        """(lo, hi): the tight axis-aligned box, from the exact extremes of each coordinate."""
+        return _geometry.bounding_box(self)
+
+    def closest_point(self, q) -> _geometry.ClosestPoint:
+        """The global nearest point to q, (d,) or a batch (m, d): `t`, `point`, `distance`."""
+        return _geometry.closest_point(self, q)
+
+    def torsion(self, t, *, extrapolate: bool = False):
+        """Signed torsion of a 3D curve; ValueError where undefined (2D, or p' x p'' = 0)."""
+        return _geometry.torsion(self, t, extrapolate=extrapolate)
 
     # ------------------------------------------------------------------ conversion
     def to_bezier(self) -> BezierCurve:

@@ -10,7 +10,7 @@ from .curves import FAMILIES, _float_matrix, _tables
 
 def _lambdas(lam, family: str, m: int, check_range: bool) -> np.ndarray:
     data = FAMILIES[family]._data
-    arr = np.asarray(lam, dtype=float)
+    arr = val.real_array(lam, "lam")
     if arr.ndim > 1 or (arr.ndim == 1 and arr.size != m):
         raise ValueError(f"lam must be a number or an array of {m} numbers, got shape {arr.shape}")
     arr = np.broadcast_to(arr, (m,))
@@ -48,19 +48,16 @@ def evaluate_many(
     array([[2.  , 1.5 ],
            [2.  , 1.25]])
     """
-    if family not in FAMILIES:
-        raise ValueError(f"unknown family {family!r}: choose one of {', '.join(FAMILIES)}")
-    cls = FAMILIES[family]
-    try:
-        arr = np.asarray(points, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"control points must be an (m, n+1, d) array of numbers: {exc}") from None
+    cls = FAMILIES[val.choice(family, "family", tuple(FAMILIES))]
+    check_range = val.flag(check_range, "check_range")
+    arr = val.real_array(points, "control points")
     if arr.ndim != 3:
         raise ValueError(f"control points must have shape (m, n+1, d), got shape {arr.shape}")
     m, size, dim = arr.shape
     degrees = tuple(cls._data.DEGREES)
-    val.as_points(np.zeros((size, dim)), family=family, degrees=degrees)  # shape/degree checks
-    if not np.isfinite(arr).all():
+    val.check_point_shape((size, dim), family=family, degrees=degrees)
+    big = float(np.abs(arr).max()) if arr.size else 0.0  # NaN and inf propagate into this
+    if not np.isfinite(big):
         idx = np.argwhere(~np.isfinite(arr))[0]
         raise ValueError(f"curve {idx[0]}, control point {idx[1]} has a non-finite coordinate")
     k = val.as_order(k)
@@ -93,4 +90,6 @@ def evaluate_many(
     for e in range(1, coeffs.shape[0]):
         np.multiply(powers[:, e - 1], u, out=powers[:, e])
     out = (powers @ coeffs).reshape(tt.size, m, dim).transpose(1, 0, 2)
+    if big > 2.0**900 or extrapolate or not check_range:  # otherwise nothing can overflow
+        val.finite_result(out, "p(t)" if k == 0 else f"the derivative of order {k}")
     return out[:, 0] if scalar else out

@@ -49,17 +49,19 @@ class OptimalLambda:
 
 
 def _family_data(family: str):
-    if family not in LAMBDA_FAMILIES:
-        raise ValueError(
-            f"unknown family {family!r}: choose one of {', '.join(map(repr, LAMBDA_FAMILIES))}"
-        )
-    return FAMILIES[family]._data
+    return FAMILIES[val.choice(family, "family", LAMBDA_FAMILIES)]._data
 
 
 def _check_order(k: object) -> int:
-    if isinstance(k, bool) or k not in _energy.ORDERS:
-        raise ValueError(f"energy order k must be 1, 2 or 3 (stretch, strain, jerk), got {k!r}")
-    return int(k)  # type: ignore[call-overload]
+    if (
+        isinstance(k, bool | np.bool_)
+        or not isinstance(k, int | np.integer)
+        or k not in _energy.ORDERS
+    ):
+        raise ValueError(
+            f"energy order k must be 1, 2 or 3 (stretch, strain, jerk), got {val.describe(k)}"
+        )
+    return int(k)
 
 
 def energy_matrices(n: int, k: int, family: str = "same_degree"):
@@ -72,6 +74,7 @@ def energy_matrices(n: int, k: int, family: str = "same_degree"):
     """
     data = _family_data(family)
     k = _check_order(k)
+    n = val.integer(n, "degree n")
     if (n, k) not in _energy.ENERGY[family]:
         raise ValueError(
             f"degree {n} is not supported for {family}: "
@@ -114,13 +117,7 @@ def _exact_coefficients(family: str, n: int, k: int, rows) -> tuple[Fraction, Fr
 def _as_polygons(points, family: str) -> tuple[np.ndarray, bool]:
     """(m, n+1, d) float array and whether the input was a single polygon."""
     data = _family_data(family)
-    arr = points if isinstance(points, np.ndarray) else None
-    if arr is None:
-        try:
-            arr = np.array(points, dtype=float)
-        except (TypeError, ValueError) as exc:
-            raise ValueError(f"control points must be an array of numbers: {exc}") from None
-    arr = np.asarray(arr, dtype=float)
+    arr = val.real_array(points, "control points")
     if arr.ndim == 2:
         single = True
         arr = arr[None]
@@ -131,7 +128,7 @@ def _as_polygons(points, family: str) -> tuple[np.ndarray, bool]:
             f"control points must have shape (n+1, d) or (m, n+1, d), got shape {arr.shape}"
         )
     # shape and degree checks on the first polygon; finiteness is read off the results
-    val.as_points(np.zeros(arr.shape[1:]), family=family, degrees=tuple(data.DEGREES))
+    val.check_point_shape(arr.shape[1:], family=family, degrees=tuple(data.DEGREES))
     return np.ascontiguousarray(arr), single
 
 
@@ -148,11 +145,27 @@ def energy_coefficients(points, k: int, family: str = "same_degree"):
     k = _check_order(k)
     data = _family_data(family)
     rows = val.exact_rows(points)
-    if rows is not None:
-        val.as_points(rows, family=family, degrees=tuple(data.DEGREES))
+    if rows is not None:  # exact: any magnitude, nothing is made a float
+        val.exact_shape(rows, family=family, degrees=tuple(data.DEGREES))
         return _exact_coefficients(family, len(rows) - 1, k, rows)
-    coeffs, _, single = _float_coefficients(points, k, family)
-    return tuple(c[0] for c in coeffs) if single else tuple(coeffs)
+    coeffs, _, exponents, single = _float_coefficients(points, k, family)
+    coeffs = tuple(_unscale(c, exponents, single, "the energy coefficients") for c in coeffs)
+    return tuple(c[0] for c in coeffs) if single else coeffs
+
+
+def _unscale(values, exponents, single: bool, what: str):
+    """values · 2^exponents (the polygons' scaling undone), refused where that overflows."""
+    if exponents is None:
+        return values
+    with np.errstate(over="ignore"):
+        out = np.ldexp(values, exponents)
+    if not np.isfinite(out).all():
+        where = "" if single else f" (polygon {int(np.argmin(np.isfinite(out)))})"
+        raise ValueError(
+            f"{what} overflow the float range for these control points{where}; pass exact "
+            "ints/Fractions (computed exactly) or scale the points down (λ* does not change)"
+        )
+    return out
 
 
 def _float_coefficients(points, k: int, family: str):
@@ -163,6 +176,25 @@ def _float_coefficients(points, k: int, family: str):
     for every polygon, and three row-wise dot products give the coefficients.
     """
     arr, single = _as_polygons(points, family)
+    (a0, a1, a2), rounding = _coefficients_of(arr, k, family)
+    exponents = None
+    # coordinates near the float limits overflow (or underflow) in the quadratic forms: those
+    # polygons are redone scaled by a power of two, E_k(λ) scaling by its square (exactly)
+    redo = ~(np.isfinite(a0) & np.isfinite(a2)) | (a2 <= rounding)
+    if redo.any():
+        sub = arr[redo]
+        if not np.isfinite(sub).all():  # NaN/inf in the input propagate into these
+            raise _non_finite_error(arr, single)
+        big = np.abs(sub).reshape(len(sub), -1).max(axis=1)
+        shift = np.where(big > 0, np.frexp(big)[1] - 1, 0)
+        (b0, b1, b2), r2 = _coefficients_of(np.ldexp(sub, -shift[:, None, None]), k, family)
+        a0[redo], a1[redo], a2[redo], rounding[redo] = b0, b1, b2, r2
+        exponents = np.zeros(arr.shape[0], dtype=int)
+        exponents[redo] = 2 * shift
+    return (a0, a1, a2), rounding, exponents, single
+
+
+def _coefficients_of(arr: np.ndarray, k: int, family: str):
     m, size, dim = arr.shape
     factor, rows, a2_weight = _factored_forms(family, size - 1, k, dim)
     flat_t = arr.reshape(m, size * dim).T  # a view: column j is (P_0x, P_0y, P_1x, …) of j
@@ -171,10 +203,8 @@ def _float_coefficients(points, k: int, family: str):
     a0 = np.einsum("ij,ij->j", zf, zf)
     a1 = 2 * np.einsum("ij,ij->j", zf, zg)
     a2 = np.einsum("ij,ij->j", zg, zg)
-    if not (np.isfinite(a0).all() and np.isfinite(a2).all()):  # NaN/inf propagate into these
-        raise _non_finite_error(arr, single)
     norm2 = np.einsum("ij,ij->j", flat_t, flat_t)
-    return (a0, a1, a2), 1e-12 * a2_weight * norm2, single
+    return (a0, a1, a2), 1e-12 * a2_weight * norm2
 
 
 @cache
@@ -216,12 +246,14 @@ def optimal_lambda(points, k: int, family: str = "same_degree", clamp: bool = Fa
     """
     data = _family_data(family)
     k = _check_order(k)
+    clamp = val.flag(clamp, "clamp")
     rows = val.exact_rows(points)
     exact = rows is not None
+    exponents = None
     if exact:
         a0, a1, a2 = energy_coefficients(rows, k, family)
     else:
-        (a0, a1, a2), rounding, single = _float_coefficients(points, k, family)
+        (a0, a1, a2), rounding, exponents, single = _float_coefficients(points, k, family)
     lo, hi = data.LAMBDA_RANGE
     lo_closed, hi_closed = data.LAMBDA_CLOSED
     if exact:
@@ -244,6 +276,11 @@ def optimal_lambda(points, k: int, family: str = "same_degree", clamp: bool = Fa
 
     energy = a0 + a1 * lam + a2 * lam * lam
     unconstrained_energy = a0 + a1 * best + a2 * best * best
+    if exponents is not None:  # the polygons that were computed scaled (see above)
+        energy, unconstrained_energy = (
+            _unscale(e, exponents if not single else exponents[0], single, f"E_{k}")
+            for e in (energy, unconstrained_energy)
+        )
     ok, ok_best = inside(lam), inside(best)
     if exact or np.ndim(best) == 0:
         ok, ok_best = bool(ok), bool(ok_best)

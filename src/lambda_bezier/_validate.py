@@ -92,6 +92,8 @@ def real_array(x: object, name: str) -> np.ndarray:
                 f"{name} must be a regular array of numbers (equal-length rows): {exc}"
             ) from None
     kind = arr.dtype.kind
+    if kind in "iuf" and _bools_inside(x):  # numpy casts [True, 2] to [1, 2] silently
+        raise ValueError(f"{name} must be numbers, got booleans")
     if kind == "f":
         return arr.astype(float, copy=False)
     if kind in "iu":
@@ -111,6 +113,18 @@ def real_array(x: object, name: str) -> np.ndarray:
             flat[i] = real_number(v, where, keep_exact=False)
         return out
     raise ValueError(f"{name} must be numbers, got an array of dtype {arr.dtype}")
+
+
+def _bools_inside(x: object, depth: int = 0) -> bool:
+    """Whether a (nested) list or tuple holds a boolean, at C speed per level."""
+    if not isinstance(x, list | tuple) or depth > 4:
+        return False
+    types = set(map(type, x))
+    if bool in types or np.bool_ in types:
+        return True
+    if list in types or tuple in types:
+        return any(_bools_inside(v, depth + 1) for v in x)
+    return False
 
 
 def flag(x: object, name: str) -> bool:
@@ -270,8 +284,18 @@ def power_of_two_scale(points: np.ndarray) -> float:
     """1.0 for ordinary coordinates; for magnitudes beyond 2^±900 the power of two that brings
     them near 1, so products with basis coefficients (up to ~1e20) neither overflow nor
     underflow. Dividing by a power of two is exact."""
-    big = float(np.abs(points).max()) if points.size else 0.0
-    if big == 0.0:
+    return scale_for_magnitude(float(np.abs(points).max()) if points.size else 0.0)
+
+
+def scale_for_magnitude(big: float) -> float:
+    """power_of_two_scale for a known largest magnitude."""
+    if big == 0.0 or not math.isfinite(big):
         return 1.0
     exponent = math.frexp(big)[1]
     return 1.0 if -900 <= exponent <= 900 else math.ldexp(1.0, exponent - 1)
+
+
+def overflow_allowed():
+    """numpy's overflow warnings off for a computation whose result `finite_result` checks:
+    the ValueError is the report, not a RuntimeWarning beside an inf."""
+    return np.errstate(over="ignore", invalid="ignore")

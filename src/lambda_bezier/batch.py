@@ -74,22 +74,30 @@ def evaluate_many(
         lams = _lambdas(lam, family, m, check_range)
     # Coefficients of every curve in the centred monomials (t - 1/2)^e, laid out (N+1, m·d)
     # so that both products below are wide matrix products (BLAS is slow on tall-skinny ones).
-    pt = np.ascontiguousarray(arr.transpose(1, 0, 2)).reshape(size, m * dim)
-    coeffs = _float_matrix(family, "centred", n, 0).T @ pt
-    for p in range(1, len(mats)):
-        part = _float_matrix(family, "centred", n, p).T @ pt
-        coeffs += part * np.repeat(lams**p, dim)
-    if k:
-        from ._algorithms import differentiate_coefficients
+    # coordinates beyond 2^±900: computed on points scaled by a power of two (exact), then
+    # scaled back, so a representable p(t) is not lost to an overflow in the coefficients
+    scale = val.scale_for_magnitude(big)
+    with val.overflow_allowed():
+        pt = np.ascontiguousarray(arr.transpose(1, 0, 2)).reshape(size, m * dim)
+        if scale != 1.0:
+            pt = pt / scale
+        coeffs = _float_matrix(family, "centred", n, 0).T @ pt
+        for p in range(1, len(mats)):
+            part = _float_matrix(family, "centred", n, p).T @ pt
+            coeffs += part * np.repeat(lams**p, dim)
+        if k:
+            from ._algorithms import differentiate_coefficients
 
-        coeffs = differentiate_coefficients(coeffs.T, k).T
-    # Every curve shares the parameter grid: one product with the monomials at the grid.
-    u = tt - 0.5
-    powers = np.empty((tt.size, coeffs.shape[0]))
-    powers[:, 0] = 1.0
-    for e in range(1, coeffs.shape[0]):
-        np.multiply(powers[:, e - 1], u, out=powers[:, e])
-    out = (powers @ coeffs).reshape(tt.size, m, dim).transpose(1, 0, 2)
-    if big > 2.0**900 or extrapolate or not check_range:  # otherwise nothing can overflow
+            coeffs = differentiate_coefficients(coeffs.T, k).T
+        # Every curve shares the parameter grid: one product with the monomials at the grid.
+        u = tt - 0.5
+        powers = np.empty((tt.size, coeffs.shape[0]))
+        powers[:, 0] = 1.0
+        for e in range(1, coeffs.shape[0]):
+            np.multiply(powers[:, e - 1], u, out=powers[:, e])
+        out = (powers @ coeffs).reshape(tt.size, m, dim).transpose(1, 0, 2)
+        if scale != 1.0:
+            out = out * scale
+    if scale != 1.0 or extrapolate or not check_range:  # otherwise nothing can overflow
         val.finite_result(out, "p(t)" if k == 0 else f"the derivative of order {k}")
     return out[:, 0] if scalar else out

@@ -162,7 +162,7 @@ def _unscale(values, exponents, single: bool, what: str):
     if not np.isfinite(out).all():
         where = "" if single else f" (polygon {int(np.argmin(np.isfinite(out)))})"
         raise ValueError(
-            f"{what} overflow the float range for these control points{where}; pass exact "
+            f"{what}: beyond the float range for these control points{where}; pass exact "
             "ints/Fractions (computed exactly) or scale the points down (λ* does not change)"
         )
     return out

@@ -19,8 +19,6 @@ and that point enters the solve.
 
 from __future__ import annotations
 
-import math
-import numbers
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -70,15 +68,8 @@ def continuity_name(name: object) -> str:
 
 
 def _real(x: object, name: str) -> Fraction | float:
-    """An exact input as a Fraction, anything else as a finite float."""
-    if isinstance(x, bool | np.bool_) or not isinstance(x, numbers.Real | np.floating):
-        raise ValueError(f"{name} must be a real number, got {x!r}")
-    if val.is_exact_scalar(x):
-        return Fraction(int(x)) if isinstance(x, np.integer) else Fraction(x)  # type: ignore[arg-type]
-    value = float(x)  # type: ignore[arg-type]
-    if not math.isfinite(value):
-        raise ValueError(f"{name} must be finite, got {value}")
-    return value
+    """An exact input as a Fraction (any magnitude), anything else as a finite float."""
+    return val.real_number(x, name, float_range=False)
 
 
 def _check_alpha_d(cont: str, alpha: object, d: object) -> tuple[Fraction | float, ...]:
@@ -100,9 +91,7 @@ def _check_alpha_d(cont: str, alpha: object, d: object) -> tuple[Fraction | floa
 
 
 def _family_name(family: object) -> str:
-    if isinstance(family, str) and family in FAMILIES:
-        return family
-    raise ValueError(f"unknown family {family!r}: choose one of {', '.join(map(repr, FAMILIES))}")
+    return val.choice(family, "family", tuple(FAMILIES))
 
 
 def _end_factor(curve: Curve):
@@ -145,7 +134,7 @@ def leading_weights(
         )
     pivot_fn, pivot_args = _joins.PIVOTS[family]
     values = {"n": n, "m": m, "lam1": curve.lam, "lam2": lam, "alpha": joint.alpha, "d": joint.d}
-    pivots = pivot_fn(*(values[a] for a in pivot_args))
+    pivots = _solve_step(pivot_fn, pivot_args, values, joint)
     for r in range(1, order + 1):
         if _is_zero(pivots[f"P{r}"], m * m):
             text = _joins.PIVOT_TEXT[family][f"P{r}"]
@@ -157,7 +146,25 @@ def leading_weights(
                 "another degree or lam"
             )
     fn, args = _joins.JOINS[(curve.family, family, joint.continuity)]
-    return fn(*(values[a] for a in args))
+    return _solve_step(fn, args, values, joint)
+
+
+def _solve_step(fn, args, values, joint: Joint):
+    """fn(*args) from generated/joins.py; in floating point an extreme α or d (the formulas
+    divide by α and α²) overflows or divides by an underflowed zero: named here."""
+    try:
+        return fn(*(values[a] for a in args))
+    except (ZeroDivisionError, OverflowError):
+        raise ValueError(_too_extreme(joint)) from None
+
+
+def _too_extreme(joint: Joint) -> str:
+    return (
+        f"alpha = {val.describe(joint.alpha)}, d = {val.describe(joint.d)} are too extreme for "
+        "floating point: the solved points grow like 1/alpha and 1/alpha² (and d/alpha²) and "
+        "overflow the float range, or alpha² underflows to zero; use moderate values, or exact "
+        "ints/Fractions for every input"
+    )
 
 
 def join(
@@ -199,9 +206,7 @@ def join(
     cls = FAMILIES[fam]
     data = cls._data
     degrees = tuple(data.DEGREES)
-    if isinstance(degree, bool) or not isinstance(degree, numbers.Integral):
-        raise ValueError(f"degree must be an integer, got {degree!r}")
-    degree = int(degree)
+    degree = val.integer(degree, "degree")
     if not degrees[0] <= degree <= degrees[-1]:
         raise ValueError(
             f"degree {degree} is not supported for {fam}: degrees {degrees[0]}..{degrees[-1]}"
@@ -247,7 +252,12 @@ def join(
             if r > spec.order or w == 0:
                 continue
             p = first_f[curve.degree - j] if src == "first" else given_f[j - spec.order - 1]
-            lead_f[r] += float(w) * p
+            try:
+                lead_f[r] += float(w) * p
+            except OverflowError:  # an exact weight beyond the float range
+                lead_f[r] = np.inf
+        if not np.isfinite(lead_f).all():
+            raise ValueError(_too_extreme(spec))
         points = np.vstack([lead_f, given_f])
     if cls._has_lambda:
         return cls(points, lam, check_range=check_range)
@@ -270,10 +280,7 @@ def _rest(rest, curve: Curve, spec: Joint, family: str, degree: int):
         if family == "same_degree" and spec.order == 2
         else ""
     )
-    try:
-        arr = np.array(rest, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError(f"rest must be a (k, d) array of numbers, got {rest!r}") from None
+    arr = np.array(val.real_array(rest, "rest"), dtype=float)
     if arr.size == 0:
         arr = arr.reshape(0, curve.dimension)
     if arr.ndim != 2:

@@ -140,7 +140,7 @@ def _rejoin(left: Curve, right: Curve, joint: Joint, lam=None, *, check_range=Fa
         joint.alpha,
         joint.d,
         rest=keep if keep else np.zeros((0, right.dimension)),
-        family=right.family,
+        family=type(right),  # its class: a built-in family or one from load_family
         check_range=check_range,
     )
 
@@ -214,7 +214,7 @@ class CompositeCurve:
         alpha=1,
         d=0,
         rest=(),
-        family: str | None = None,
+        family: object = None,
         *,
         check_range: bool = True,
     ) -> CompositeCurve:

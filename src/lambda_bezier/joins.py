@@ -24,9 +24,10 @@ from fractions import Fraction
 
 import numpy as np
 
+from . import _join_engine
 from . import _validate as val
 from ._lazy import generated
-from .curves import FAMILIES, Curve
+from .curves import FAMILIES, Curve, family_class
 
 _bernstein = generated("bernstein")
 _joins = generated("joins")
@@ -90,8 +91,15 @@ def _check_alpha_d(cont: str, alpha: object, d: object) -> tuple[Fraction | floa
     return a, dd
 
 
-def _family_name(family: object) -> str:
-    return val.choice(family, "family", tuple(FAMILIES))
+def _family_class(family: object) -> type[Curve]:
+    """A built-in family's name, a family from lambda_bezier.load_family, or a curve class."""
+    if isinstance(family, str):
+        return FAMILIES[val.choice(family, "family", tuple(FAMILIES))]
+    return family_class(family)
+
+
+def _builtin(cls: type[Curve]) -> bool:
+    return FAMILIES.get(cls.family) is cls
 
 
 def _end_factor(curve: Curve):
@@ -109,11 +117,18 @@ def _is_zero(x, scale: float = 1.0) -> bool:
 
 
 def leading_weights(
-    curve: Curve, joint: Joint, family: str, degree: int, lam
+    curve: Curve, joint: Joint, family: object, degree: int, lam
 ) -> dict[tuple[int, str, int], Fraction | float]:
     """{(row, source, j): weight}: P_{row,2} = Σ weight · X, X = P_{n−j} of `curve` (source
-    "first") or P_{3,2} of the new curve (source "second"). Raises ValueError where the join
-    does not exist (degenerate end of `curve`, vanishing pivot for this m and λ2)."""
+    "first") or a given P_{j,2} of the new curve (source "second"). Raises ValueError where
+    the join does not exist (degenerate end of `curve`, vanishing pivot for this m and λ2).
+
+    Built-in families use the closed forms derived in derive/joins.py; a family from
+    load_family (on either side) is solved per degree from the power tables."""
+    cls = _family_class(family)
+    if not (_builtin(cls) and _builtin(type(curve))):
+        return _generic_weights(curve, joint, cls, degree, lam)
+    family = cls.family
     n, m = curve.degree, degree
     order = joint.order
     pts = curve.points
@@ -149,6 +164,27 @@ def leading_weights(
     return _solve_step(fn, args, values, joint)
 
 
+def _generic_weights(curve: Curve, joint: Joint, cls: type[Curve], degree: int, lam):
+    e1 = _join_engine.end_coefficients(curve, 1)[1]  # weights of P_{n-j} in C1'(1)
+    pts = curve.control_points()
+    tangent = [
+        sum(e1[j] * pts[curve.degree - j][c] for j in range(len(e1)))
+        for c in range(curve.dimension)
+    ]
+    scale = max(1.0, float(np.abs(curve.points).max()))
+    if all(_is_zero(v, scale * curve.degree**2) for v in tangent):
+        raise ValueError(
+            f"the first curve's end is degenerate: C1'(1) = 0 for this {curve.family} curve "
+            f"of degree {curve.degree} with lam = {curve.lam}, so there is no tangent to continue"
+        )
+    try:
+        return _join_engine.weights(
+            curve, joint.order, joint.alpha, joint.d, cls, degree, lam, joint.continuity
+        )
+    except (ZeroDivisionError, OverflowError):
+        raise ValueError(_too_extreme(joint)) from None
+
+
 def _solve_step(fn, args, values, joint: Joint):
     """fn(*args) from generated/joins.py; in floating point an extreme α or d (the formulas
     divide by α and α²) overflows or divides by an underflowed zero: named here."""
@@ -175,7 +211,7 @@ def join(
     alpha=1,
     d=0,
     rest=(),
-    family: str | None = None,
+    family: object = None,
     *,
     check_range: bool = True,
 ) -> Curve:
@@ -202,8 +238,8 @@ def join(
             f"BernsteinLikeCurve), got {type(curve).__name__}"
         )
     spec = Joint(continuity, alpha, d)
-    fam = curve.family if family is None else _family_name(family)
-    cls = FAMILIES[fam]
+    cls = type(curve) if family is None else _family_class(family)
+    fam = cls.family
     data = cls._data
     degrees = tuple(data.DEGREES)
     degree = val.integer(degree, "degree")
@@ -223,7 +259,7 @@ def join(
     elif lam is not None:
         raise ValueError("a classical Bézier segment takes no shape parameter lam")
     rest_rows = _rest(rest, curve, spec, fam, degree)
-    weights = leading_weights(curve, spec, fam, degree, lam)
+    weights = leading_weights(curve, spec, cls, degree, lam)
     exact = (
         curve.is_exact
         and not isinstance(lam, float)

@@ -151,7 +151,7 @@ class Curve:
     def basis_bernstein_matrix(self, exact: bool = False):
         """(n+1, N+1): row i holds basis function i in the Bernstein basis of degree N.
         With exact=True (needs an exact λ) a tuple of tuples of Fractions."""
-        if not exact:
+        if not val.flag(exact, "exact"):
             return self._combined("bernstein")
         lam = Fraction(0) if self.lam is None else self.lam
         if isinstance(lam, float):

@@ -413,6 +413,25 @@ def test_fuzz_join_and_composite(data):
     check(lambda: grown.with_lambda(index, lam), r"index|\blam\b|cannot keep|classical")
 
 
+@settings(max_examples=100)
+@given(
+    continuity=st.one_of(st.sampled_from(["C1", "g2", " G1 "]), BAD_SCALARS),
+    alpha=st.one_of(st.just(1), ANY_SCALAR),
+    d=st.one_of(st.just(0), ANY_SCALAR),
+    joints=st.one_of(st.none(), st.lists(st.one_of(st.none(), BAD_SCALARS), max_size=2)),
+    name=st.one_of(st.sampled_from(["C0", "G1"]), BAD_SCALARS),
+)
+def test_fuzz_joint_and_composite_construction(continuity, alpha, d, joints, name):
+    joint = check(lambda: lb.Joint(continuity, alpha, d), r"continuity|alpha|\bd\b")
+    if joint is not None:
+        assert joint.continuity in ("C1", "C2", "G1", "G2")
+    segs = [lb.BezierCurve(P), lb.BezierCurve(np.array(P) + [4, 0])]
+    comp = check(lambda: lb.CompositeCurve(segs, joints), r"joint|continuity")
+    if comp is not None:
+        report = comp.report()[0]
+        check(lambda: report.holds(name), "continuity")
+
+
 # ------------------------------------------------------------------ the command line
 
 WORDS = st.one_of(

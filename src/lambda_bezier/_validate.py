@@ -61,7 +61,7 @@ def real_number(
     if isinstance(x, complex | np.complexfloating):
         raise ValueError(f"{name} must be a real number, got the complex number {x!r}")
     if is_exact_scalar(x):
-        q = Fraction(int(x)) if isinstance(x, np.integer) else Fraction(x)  # type: ignore[arg-type]
+        q = Fraction(int(x)) if isinstance(x, np.integer) else Fraction(x)  # type: ignore[call-overload]
         if float_range or not keep_exact:
             value = to_float(q, name)
         return q if keep_exact else value
@@ -168,7 +168,7 @@ def exact_rows(points: object) -> ExactRows | None:
         return None
     else:
         try:
-            rows = [list(r) for r in points]  # type: ignore[union-attr]
+            rows = [list(r) for r in points]  # type: ignore[attr-defined]
         except TypeError:
             return None
     try:

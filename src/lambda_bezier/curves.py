@@ -153,7 +153,7 @@ class Curve:
     def basis_bernstein_matrix(self, exact: bool = False):
         """(n+1, N+1): row i holds basis function i in the Bernstein basis of degree N.
         With exact=True (needs an exact λ) a tuple of tuples of Fractions."""
-        if not exact:
+        if not val.flag(exact, "exact"):
             return self._combined("bernstein")
         lam = Fraction(0) if self.lam is None else self.lam
         if isinstance(lam, float):
@@ -210,7 +210,8 @@ class Curve:
             d1 = self._unit_derivative(t, 1, extrapolate)
             d2 = self._unit_derivative(t, 2, extrapolate)
         if extrapolate:
-            val.finite_result(d1 + d2, "the curvature")
+            val.finite_result(d1, "the curvature")
+            val.finite_result(d2, "the curvature")
         # per point, d1 and d2 divided by a power of two c near their size: κ = κ_c / c
         # without |p'|³ or p'×p'' overflowing (or underflowing) on the way
         size = np.maximum(np.abs(d1).max(axis=-1), np.abs(d2).max(axis=-1))

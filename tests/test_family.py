@@ -67,16 +67,39 @@ def test_builtin_families_as_data_match_their_hand_derivations(engine):
         name: importlib.import_module(f"{derive.__name__}.{name}")
         for name in ("same_degree", "bernstein_like", "energy")
     }
+    import reference
+    import sympy as sp
     from lambda_bezier._generated import bernstein_like as g_bl
     from lambda_bezier._generated import same_degree as g_sd
+
+    t_sym, lam_sym = sp.Symbol("t"), sp.Symbol("lam")
 
     for name, generated in (("same_degree", g_sd), ("bernstein_like", g_bl)):
         defn = engine.builtin_definition(name)
         engine.check(defn)
         hand = modules[name]
         doc = engine.derive(defn, with_joins=False)
+        ts = np.linspace(0, 1, 7)
         for deg in defn.degrees:
-            assert engine.basis_polys(defn, deg) == list(hand.basis_polys(deg)), (name, deg)
+            # the engine's polynomials against tests/reference.py's independent evaluation of
+            # the papers' definitions (000's eq. (1); 001's seed and recursion)
+            for lam_ in (-0.75, 0.5):
+                got = np.array(
+                    [
+                        [float(p.eval({t_sym: x, lam_sym: lam_})) for x in ts]
+                        for p in engine.basis_polys(defn, deg)
+                    ]
+                )
+                if name == "same_degree":
+                    want = np.array(
+                        [
+                            [reference.same_degree_definition(deg, i, x, lam_) for x in ts]
+                            for i in range(deg + 1)
+                        ]
+                    )
+                else:
+                    want = np.array(reference.bernstein_like_recursion(deg, ts, lam_))
+                assert np.allclose(got, want, atol=1e-12), (name, deg)
             for kind, table in (("power", generated.POWER), ("bernstein", generated.BERNSTEIN)):
                 got = tuple(
                     tuple(tuple(Fraction(v) for v in row) for row in mat)
@@ -93,15 +116,14 @@ def test_builtin_families_as_data_match_their_hand_derivations(engine):
                     scale, u = forms[part]
                     assert Fraction(entry[part][0]) == scale
                     assert tuple(tuple(r) for r in entry[part][1]) == u
-        # closed forms in n, interpolated by the engine, equal the hand-derived ones
+        # closed forms in n, interpolated by the engine, equal the ones derived symbolically
+        # from 000's three-term form and 001's explicit form
         closed = engine.closed_endpoint_forms(defn)
         form = (
             hand.endpoint_closed_forms(hand.three_term_form())
             if name == "same_degree"
             else hand.endpoint_closed_forms(hand.explicit_factor())
         )
-        import sympy as sp
-
         for key, value in form.items():
             assert sp.expand(closed[key] - value) == 0, (name, key)
 
@@ -208,10 +230,27 @@ ILL_DEFINED = {
     "wrong offset": ({"degree_offset": 1}, "not n + degree_offset"),
     "built-in name": ({"name": "same_degree"}, "is a built-in family"),
     "bad degrees": ({"degrees": "0..40"}, "degrees must satisfy"),
-    "missing key": ({"basis": None}, "'basis' is a required property"),
+    "missing key": ({"basis": None}, "defined by `basis`"),
     "unknown key": ({"colour": "red"}, "Additional properties"),
     "parameter taken": ({"parameter": "t"}, "is taken by the formula language"),
     "hostile basis": ({"basis": "__import__('os').system('true')"}, "not allowed"),
+    "seed of the wrong size": (
+        {"basis": None, "seed": ["1 - t", "t"], "recursion": "(1 - t)*b(i, n - 1, t)"},
+        "the seed is the basis of the lowest degree 2: 3 functions",
+    ),
+    "recursion two degrees down": (
+        {
+            "basis": None,
+            "seed": ["(1 - t)**2", "2*t*(1 - t)", "t**2"],
+            "recursion": "(1 - t)*b(i, n - 2, t) + t*b(i - 1, n - 1, t)",
+        },
+        "a recursion reads the degree below",
+    ),
+    "basis and recursion": (
+        {"seed": ["(1 - t)**2", "2*t*(1 - t)", "t**2"], "recursion": "b(i, n - 1, t)"},
+        "one of the two",
+    ),
+    "function in a closed formula": ({"basis": "b(i, n, t)"}, "unknown name 'b'"),
 }
 
 GOOD = {

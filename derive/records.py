@@ -123,6 +123,19 @@ PAYLOAD = {
     "vector": _STRS,
     "printed_form": _STR,
     "lambda": _STR,
+    # property claims (derive/verify_properties.py) and worked examples checked against a range
+    "parameter_range": {
+        "type": "string",
+        "pattern": r"^\s*[\(\[]\s*[-+]?\d+(/\d+)?\s*,\s*[-+]?\d+(/\d+)?\s*[\)\]]\s*$",
+    },
+    "min_degree": {"type": "integer", "minimum": 0, "maximum": 64},
+    "shape": _STR,
+    "claimed_degree": _STR,
+    "count": _STR,
+    "counted": _STR,
+    "continuity": {"enum": ["C0", "C1", "C2", "G1", "G2"]},
+    "expression": _STR,
+    "sign": {"enum": ["positive", "nonnegative", "nonzero"]},
 }
 
 _RECORD = _table(
@@ -137,7 +150,7 @@ _RECORD = _table(
         "point_function": _STR,
         "domain": _STR,
         "ambiguous": _STR,
-        "expect": {"enum": ["match", "mismatch", "pending"]},
+        "expect": {"enum": ["match", "mismatch", "caveat", "pending"]},
         "n": {"type": "integer", "minimum": 0, "maximum": 64},
         "k": {"type": "integer", "minimum": 0, "maximum": 20},
         "erratum": {
@@ -200,6 +213,9 @@ TEXT_KEYS = frozenset(
         "parameter_printed",
         "origin",
         "explanation",
+        "parameter_range",
+        "continuity",
+        "sign",
     }
 )
 
@@ -321,7 +337,7 @@ def _parse_formulas(path: Path, rec: dict) -> None:
             continue
         for key, text in _strings(value, name):
             parts = [text]
-            if key.endswith(".index") or ".where." in key:
+            if key.endswith(".index") or ".where." in key or key == "counted":
                 if text == "otherwise":
                     continue
                 if ".." in text:

@@ -8,11 +8,15 @@ verdict:
                   general-n closed form, and always for every degree of the family's range);
 * ``mismatch``  — it does not; the diff names the equation / case / entry / coefficient and the
                   first degree and index where it fails, with printed and derived values;
+* ``caveat``    — the printed result agrees with the derivation, but not with the range the
+                  paper states for it (a value outside the stated parameter range, an optimum
+                  that does not exist on it, a formula whose denominator vanishes inside it);
+                  the reason is printed and ERRATA.md lists it;
 * ``pending``   — the derivation it needs does not exist yet (the reason says which).
 
 Expectations and errata live next to each record in the TOML files:
 
-* ``expect = "match" | "mismatch" | "pending"`` — the verdict a reviewer confirmed. A run
+* ``expect = "match" | "mismatch" | "caveat" | "pending"`` — the verdict a reviewer confirmed. A run
   fails when any verdict differs from its expectation, so a new discrepancy, a misprint that
   now matches, or a derivation that has landed is never silent. Setting ``expect`` is a
   review step: run the verifier, read every mismatch, confirm it independently.
@@ -38,7 +42,7 @@ from .verify_checks import Outcome, run_checker
 __all__ = ["RecordsError", "load_records", "verify"]
 
 PUBLISHED = Path(__file__).resolve().parent / "published"
-VERDICTS = ("match", "mismatch", "pending")
+VERDICTS = ("match", "mismatch", "caveat", "pending")
 ERRATUM_META = ("explanation", "origin")
 ERRATA_FILE = "ERRATA.md"
 ERRATA_COMMAND = "lambda-bezier verify --errata"
@@ -112,7 +116,9 @@ class Result:
         elif exp not in VERDICTS:
             out.append(f"no valid expectation recorded (expect = {exp!r}); verdict is {got}")
         elif got != exp:
-            if exp == "match":
+            if exp == "match" and got == "caveat":
+                out.append("NEW CAVEAT: expected match, the claim holds only as qualified above")
+            elif exp == "match":
                 out.append("NEW DISCREPANCY: expected match, the derivation disagrees")
             elif exp == "mismatch" and got == "match":
                 out.append("a recorded misprint now MATCHES: review and drop the erratum")
@@ -441,4 +447,27 @@ def render_errata(report: Report) -> str:
             lines.append("")
     if not fixed:
         lines += ["No misprints recorded.", ""]
+    lines += _render_caveats(report)
     return "\n".join(lines).rstrip("\n") + "\n"
+
+
+def _render_caveats(report: Report) -> list[str]:
+    """Claims that are right as computed but do not hold on the whole range the paper states
+    (a value outside it, an optimum that does not exist there, a formula undefined there)."""
+    caveats = [r for r in report.results if r.verdict == "caveat"]
+    if not caveats:
+        return []
+    lines = [
+        "## Caveats",
+        "",
+        "Printed results that agree with the derivation but not with the range the paper",
+        "states for them; the verifier re-derives each reason on every run.",
+        "",
+    ]
+    for r in caveats:
+        lines += [f"### `{r.id}` — {r.source}, {r.record.get('location', '')}", ""]
+        if r.record.get("note"):
+            lines += [f"Printed: {r.record['note']}", ""]
+        lines += [f"- {_md(d)}" for d in r.outcome.diffs]
+        lines.append("")
+    return lines

@@ -433,11 +433,17 @@ def linear_independence(family: str, n: int, iv: Interval | None) -> Finding | N
 
 
 def singular_table() -> dict[str, dict[int, tuple]]:
+    """{family: {n: (root, ...)}}: an exact root as a Fraction, an irrational one as
+    ((lo, hi), (c_0, ..., c_k)): the isolating interval and the integer coefficients (lowest
+    degree first) of the irreducible factor it is the only root of in (lo, hi)."""
     out: dict[str, dict[int, tuple]] = {}
     for family, iv in FAMILY_RANGES.items():
         out[family] = {}
         for deg in FAMILY_DEGREES[family]:
-            out[family][deg] = tuple(r.as_data() for r in singular_roots(family, deg, iv))
+            out[family][deg] = tuple(
+                r.exact if r.exact is not None else ((r.lo, r.hi), r.factor)
+                for r in singular_roots(family, deg, iv)
+            )
     return out
 
 
@@ -445,11 +451,10 @@ def render() -> str:
     table = singular_table()
     parts = [
         _emit.banner(SCRIPT, "Exact basis properties derived from the definitions."),
-        "from fractions import Fraction as F",
-        "",
         "# SINGULAR[family][n]: the λ inside the family's range where its degree-n basis is",
-        "# linearly dependent: an exact F, or (lo, hi) with rational ends isolating an",
-        "# irrational root (the only zero of the determinant in the open interval).",
+        "# linearly dependent (the determinant of its Bernstein coefficients, or their Gram",
+        "# determinant, vanishes there): an exact F, or ((lo, hi), (c_0, ..., c_k)) for an",
+        "# irrational root, the only root in (lo, hi) of the integer polynomial Σ c_j λ^j.",
         "SINGULAR = " + _emit.literal(table),
         "",
     ]

@@ -25,6 +25,7 @@ if TYPE_CHECKING:
     from .curves import FAMILIES, BernsteinLikeCurve, BezierCurve, Curve, SameDegreeCurve
     from .energy import OptimalLambda, energy_coefficients, energy_matrices, optimal_lambda
     from .joins import Joint, join
+    from .properties import IsolatedRoot, singular_parameters
 
 __version__ = "0.1.0"
 
@@ -46,6 +47,8 @@ _EXPORTS = {
     "optimal_lambda": "energy",
     "Joint": "joins",
     "join": "joins",
+    "IsolatedRoot": "properties",
+    "singular_parameters": "properties",
 }
 __all__ = [
     "FAMILIES",
@@ -53,6 +56,7 @@ __all__ = [
     "BezierCurve",
     "CompositeCurve",
     "Curve",
+    "IsolatedRoot",
     "Joint",
     "JointReport",
     "OptimalLambda",
@@ -62,6 +66,7 @@ __all__ = [
     "evaluate_many",
     "join",
     "optimal_lambda",
+    "singular_parameters",
 ]
 
 

@@ -119,10 +119,11 @@ def _at(p: flint.fmpq_poly, x: Fraction) -> Fraction:
 
 def _basis_in_t(family: str, n: int, i: int, lam: Fraction | None) -> flint.fmpq_poly:
     """b_i(t, lam) as a polynomial in t (power basis), exactly."""
-    N = n + OFFSETS[family]
+    row = coefficients(family, n)[i]
+    N = len(row) - 1
     out = flint.fmpq_poly([])
     t = flint.fmpq_poly([0, 1])
-    for j, c in enumerate(coefficients(family, n)[i]):
+    for j, c in enumerate(row):
         cj = _q(_at(c, lam)) if lam is not None else c(0)
         if cj != 0:
             out += cj * comb(N, j) * t**j * (1 - t) ** (N - j)
@@ -391,6 +392,8 @@ def independence_polynomial(family: str, n: int) -> flint.fmpq_poly:
 @cache
 def singular_roots(family: str, n: int, iv: Interval | None) -> tuple[Root, ...]:
     poly = independence_polynomial(family, n)
+    if poly.is_zero():
+        raise ArithmeticError(f"the degree-{n} {family} basis is dependent for every λ")
     if poly.degree() <= 0:
         return ()
     return tuple(real_roots(poly, iv))
@@ -411,6 +414,18 @@ def null_combination(family: str, n: int, lam: Fraction) -> list[Fraction]:
 
 
 def linear_independence(family: str, n: int, iv: Interval | None) -> Finding | None:
+    if independence_polynomial(family, n).is_zero():
+        lam = iv.hi if iv is not None and not iv.hi_open else Fraction(0)
+        if iv is not None and not iv.contains(lam):
+            lam = (iv.lo + iv.hi) / 2
+        k = null_combination(family, n, lam)
+        combo = " + ".join(f"({v})·b_{i}" for i, v in enumerate(k) if v)
+        return Finding(
+            n,
+            f"degree {n}: the basis is linearly dependent for EVERY λ (e.g. λ = {lam}: "
+            f"{combo} = 0)",
+            {"roots": "all"},
+        )
     roots = singular_roots(family, n, iv)
     if not roots:
         return None

@@ -487,3 +487,28 @@ def test_exact_functions_in_fmpq_and_fraction_agree(verify):
     for fn in (slow, fast):
         with pytest.raises(ValueError, match="non-integer"):
             fn(Fraction(5, 2), 0)
+
+
+def test_coverage_names_every_record_and_the_readme_table_is_current(verify, report):
+    """The coverage inventory names only existing records and every built-in record; the
+    README's table is exactly `lambda-bezier verify --coverage --format markdown`."""
+    coverage = importlib.import_module(verify.__name__.rsplit(".", 1)[0] + ".coverage")
+    items = coverage.load()
+    verdicts = {r.id: r.verdict for r in report.results}
+    assert coverage.problems(items, verdicts) == []
+    assert all(it.records or it.reason for it in items)
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    start = readme.index("<!-- coverage:start -->\n") + len("<!-- coverage:start -->\n")
+    table = readme[start : readme.index("<!-- coverage:end -->")]
+    assert table == coverage.render(items, verdicts, markdown=True), (
+        "README coverage table is stale: paste `lambda-bezier verify --coverage --format "
+        "markdown` between its markers"
+    )
+
+
+def test_coverage_run_exits_cleanly(capsys):
+    code = _verify_runner.run(coverage=True, root=ROOT, progress=False, fmt="text")
+    out = capsys.readouterr().out
+    assert code == 0
+    assert "items in 3 documents" in out and "000.prop5 (mismatch)" in out
+    assert _verify_runner.run(coverage=True, root=ROOT, only=["000"], progress=False) == 2

@@ -355,3 +355,67 @@ def test_from_bezier_refuses_bad_input():
     with pytest.raises(ValueError, match="lam"):
         lb.BezierCurve.from_bezier(bez, 1)
     assert lb.BezierCurve.from_bezier(bez).control_points() == bez.control_points()
+
+
+# --------------------------------------------------------------------------- with_lambda (eq. 17)
+
+
+def _ref_velocity(seg, end: int) -> np.ndarray:
+    """p'(end) of a segment from the definition (reference basis, finite differences)."""
+    fam, pts = seg.family, np.array(seg.control_points(), dtype=float)
+    lam = float(seg.lam)
+    return np.array(
+        [
+            derivative(lambda t, c=c: (ref_basis(fam, seg.degree, [t], lam) @ pts[:, c])[0], end)
+            for c in range(pts.shape[1])
+        ]
+    )
+
+
+def _chain():
+    first = lb.BernsteinLikeCurve([(0, 0), (1, 2), (3, 3), (4, 1)], Fraction(1, 2))
+    return (
+        lb.CompositeCurve([first])
+        .join("C1", 4, Fraction(0), rest=[(7, -2), (8, 0), (9, 3)])
+        .join("C1", 3, Fraction(1, 4), rest=[(12, 5), (13, 1)])
+        .join("G1", 3, Fraction(0), alpha=2, rest=[(16, 2), (18, 0)])
+    )
+
+
+def test_with_lambda_keep_points_follows_every_c1_joint():
+    comp = _chain()
+    new = comp.with_lambda(1, Fraction(1, 2), keep_points=True)
+    # (3 + 2λ0)·e = (4 + 2·1/2)·e and (4 + 1)·e = (3 + 2λ2)·(8/7)e: λ0 = 1, λ2 = 11/16
+    assert [s.lam for s in new.segments] == [1, Fraction(1, 2), Fraction(11, 16), 0]
+    for old, seg in zip(comp.segments, new.segments, strict=True):
+        assert seg.control_points() == old.control_points()
+    for j in (0, 1):  # C1 by the definition, independently of the runtime's derivative
+        left, right = new.segments[j], new.segments[j + 1]
+        assert np.allclose(_ref_velocity(left, 1), _ref_velocity(right, 0), atol=1e-5)
+    assert new.report()[2].holds("G1")  # the G1 joint needed no change and ends the chain
+
+
+def test_with_lambda_keep_points_same_degree():
+    first = lb.SameDegreeCurve([(0, 0), (1, 2), (3, 3), (4, 1)], Fraction(0))
+    comp = lb.CompositeCurve([first]).join("C1", 3, Fraction(1, 2), rest=[(8, 0), (9, 2)])
+    new = comp.with_lambda(0, Fraction(-1, 2), keep_points=True)
+    # (2 + λ0)·e = (2 + λ1)·f: 2·e = 5/2·f, then 3/2·e = (2 + λ1)·(4/5)e gives λ1 = -1/8
+    assert new.segments[1].lam == Fraction(-1, 8)
+    assert np.allclose(
+        _ref_velocity(new.segments[0], 1), _ref_velocity(new.segments[1], 0), atol=1e-5
+    )
+
+
+def test_with_lambda_keep_points_refusals():
+    comp = _chain()
+    first = lb.SameDegreeCurve([(0, 0), (1, 2), (3, 3), (4, 1)], Fraction(0))
+    sd = lb.CompositeCurve([first]).join("C1", 3, Fraction(1, 2), rest=[(8, 0), (9, 2)])
+    with pytest.raises(ValueError, match=r"needs λ = 9/8 for segment 1, outside the same_degree"):
+        sd.with_lambda(0, Fraction(1, 2), keep_points=True)
+    with pytest.raises(ValueError, match=r"joint 0: keeping it C1 needs λ = -3/2 for segment 1"):
+        comp.with_lambda(0, Fraction(-1), keep_points=True)
+    c2 = lb.CompositeCurve([comp.segments[0]]).join("C2", 4, Fraction(0), rest=[(8, 2), (9, 0)])
+    with pytest.raises(ValueError, match="joint 0 is C2"):
+        c2.with_lambda(1, Fraction(1, 2), keep_points=True)
+    with pytest.raises(ValueError, match="index 9 is out of range"):
+        comp.with_lambda(9, 0, keep_points=True)

@@ -22,6 +22,7 @@ from collections.abc import Iterable, Iterator
 from pathlib import Path
 
 from .grammar import ParseError
+from .properties import Interval
 from .verify_checks import FAMILIES, claim_kind, kind_problem
 from .verify_expr import parse as parse_formula  # cached: the checkers reuse each parse
 
@@ -311,6 +312,11 @@ def load_file(path: Path) -> list[dict]:
                 f"{_where(path, rec, 'n')}: degree {rec['n']} is outside the {family} range "
                 f"{FAMILIES[family].degrees.start}..{FAMILIES[family].degrees.stop - 1}"
             )
+        if "parameter_range" in rec:
+            try:
+                Interval.parse(rec["parameter_range"])
+            except ValueError as exc:
+                raise RecordsError(f"{_where(path, rec, 'parameter_range')}: {exc}") from None
         _parse_formulas(path, rec)
         out.append(rec)
     return out

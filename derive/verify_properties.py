@@ -118,7 +118,10 @@ def check_convex_hull(record: dict, ctx: Context) -> Outcome:
 
 @checker(*_claims("basis_reduces_to_bernstein"))
 def check_reduces_to_bernstein(record: dict, ctx: Context) -> Outcome:
-    shape = Fraction(str(parse(record.get("shape", "0"))))
+    value = parse(record.get("shape", "0"))
+    if not value.is_Rational:
+        raise ValueError(f"shape {record.get('shape')!r} must be an exact number")
+    shape = Fraction(int(value.p), int(value.q))
     iv = _interval(record)
     lines = []
     if iv is not None and not iv.contains(shape):
@@ -140,10 +143,11 @@ def check_degree(record: dict, ctx: Context) -> Outcome:
     """Every basis function is a polynomial in t of degree at most the claimed one (for every
     λ), and some function reaches it (for all but finitely many λ)."""
     claimed = parse(record["claimed_degree"])
-    n_sym = claimed.free_symbols
+    if not claimed.free_symbols <= {S["n"]}:
+        raise ValueError(f"claimed_degree {record['claimed_degree']!r} may use n only")
     findings = []
     for n in _degrees(record, ctx):
-        want = int(claimed.subs({s: n for s in n_sym}))
+        want = int(claimed.subs(S["n"], n))
         got = pr.degree_in_t(record["family"], n)
         if got != want:
             findings.append(
@@ -205,6 +209,10 @@ def _sign_findings(record: dict, ctx: Context, want: str) -> tuple[list[pr.Findi
     """Where `expression` (in the degree symbol n or m and lam) is not `want` (positive or
     nonzero) for a degree of the range and a λ of the interval: decided exactly per degree."""
     expr = parse(record["expression"])
+    extra = expr.free_symbols - {S["n"], S["m"], LAM}
+    if extra:
+        names = ", ".join(sorted(map(str, extra)))
+        raise ValueError(f"expression may use n or m and lam only, not {names}")
     iv = _interval(record)
     deg_syms = [s for s in (S["n"], S["m"]) if s in expr.free_symbols]
 

@@ -419,3 +419,48 @@ def test_with_lambda_keep_points_refusals():
         c2.with_lambda(1, Fraction(1, 2), keep_points=True)
     with pytest.raises(ValueError, match="index 9 is out of range"):
         comp.with_lambda(9, 0, keep_points=True)
+
+
+def test_nonnegativity_and_hull_fail_on_a_negative_basis(pr, monkeypatch):
+    """A basis with b_1 = -B_1 (and b_0 = B_0 + 2B_1 so that it still sums to one): the
+    exact procedure finds b_1 < 0, and the convex-hull claim fails with it."""
+    fmpq_poly = pr.flint.fmpq_poly
+
+    def negative(family, n):
+        rows = [[fmpq_poly([int(i == j)]) for j in range(n + 1)] for i in range(n + 1)]
+        rows[1][1] = fmpq_poly([-1])
+        rows[0][1] = fmpq_poly([2])
+        return tuple(tuple(r) for r in rows)
+
+    monkeypatch.setattr(pr, "coefficients", negative)
+    found = pr.nonnegative("x", 3, None)
+    assert found is not None and found.data["index"] == 1
+    t = float(found.data["t"])
+    assert 0 <= t <= 1 and -3 * t * (1 - t) ** 2 < 0
+    assert pr.partition_of_unity("x", 3) is None
+
+
+def test_property_records_refuse_malformed_values(tmp_path):
+    from lambda_bezier import _verify_runner
+
+    bad = tmp_path / "bad.toml"
+    bad.write_text(
+        'schema_version = 2\nfamily = "same_degree"\n'
+        '[[record]]\nid = "x.deg"\nclaim = "basis_degree"\nclaimed_degree = "m + 1"\n'
+        '[[record]]\nid = "x.shape"\nclaim = "basis_reduces_to_bernstein"\nshape = "lam"\n'
+        '[[record]]\nid = "x.sign"\nclaim = "sign_on_range"\nexpression = "alpha + lam"\n',
+        encoding="utf-8",
+    )
+    import io
+
+    out = io.StringIO()
+    assert _verify_runner.run(paths=[bad], root=ROOT, out=out, progress=False) == 1
+    text = out.getvalue()
+    assert "may use n only" in text and "must be an exact number" in text
+    assert "n or m and lam only, not alpha" in text
+    bad.write_text(
+        'schema_version = 2\nfamily = "same_degree"\n[[record]]\nid = "x.r"\n'
+        'claim = "basis_nonnegative"\nparameter_range = "(1, -2]"\n',
+        encoding="utf-8",
+    )
+    assert _verify_runner.run(paths=[bad], root=ROOT, out=io.StringIO(), progress=False) == 2

@@ -1,8 +1,9 @@
 """`lambda-bezier verify`: every published formula and matrix checked against the derivation.
 
 The engine lives in derive/verify.py (it needs SymPy, imported only when the command runs);
-this module parses the options, shows progress on a terminal, renders the report and keeps
-ERRATA.md current in a checkout.
+this module parses the options, shows progress on a terminal, renders the report (or, with
+--coverage, the papers' inventory from derive/coverage.py) and keeps ERRATA.md current in a
+checkout.
 """
 
 from __future__ import annotations
@@ -24,7 +25,8 @@ FORMATS = ("text", "json", "markdown")
 EXIT_CODES = """exit codes:
   0  every verdict is as its record expects (a record without `expect` expects match)
   1  some verdict differs from its expectation (or, with --strict, is not match), an
-     erratum does not verify, a checker failed, or ERRATA.md is stale
+     erratum does not verify, a checker failed, or ERRATA.md is stale (with --coverage:
+     also an item naming a missing record, or a built-in record in no item)
   2  a records file cannot be read or validated, or the options are wrong
 
 Records files are read by a grammar of our own (nothing in them is run as code) and

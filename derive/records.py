@@ -127,7 +127,7 @@ PAYLOAD = {
     # property claims (derive/verify_properties.py) and worked examples checked against a range
     "parameter_range": {
         "type": "string",
-        "pattern": r"^\s*[\(\[]\s*[-+]?\d+(/\d+)?\s*,\s*[-+]?\d+(/\d+)?\s*[\)\]]\s*$",
+        "pattern": r"^\s*[\(\[]\s*[-+]?\d{1,30}(/\d{1,30})?\s*,\s*[-+]?\d{1,30}(/\d{1,30})?\s*[\)\]]\s*$",
     },
     "min_degree": {"type": "integer", "minimum": 0, "maximum": 64},
     "shape": _STR,

@@ -84,6 +84,8 @@ _STEP = _table(
     }
 )
 
+_BOUND = r"\s*[-+]?\d{1,30}(/\d{1,30})?\s*"  # an end of a parameter_range: an exact number
+
 # The payload keys a record (and an erratum, which replaces them) may carry.
 PAYLOAD = {
     "equations": {"type": "array", "items": _EQUATION},
@@ -127,7 +129,7 @@ PAYLOAD = {
     # property claims (derive/verify_properties.py) and worked examples checked against a range
     "parameter_range": {
         "type": "string",
-        "pattern": r"^\s*[\(\[]\s*[-+]?\d{1,30}(/\d{1,30})?\s*,\s*[-+]?\d{1,30}(/\d{1,30})?\s*[\)\]]\s*$",
+        "pattern": rf"^\s*[\(\[]{_BOUND},{_BOUND}[\)\]]\s*$",
     },
     "min_degree": {"type": "integer", "minimum": 0, "maximum": 64},
     "shape": _STR,

@@ -156,9 +156,10 @@ plt.close(fig)
 # ## Figs. 6–9: shape adjustment
 #
 # * **C¹ (Fig. 6).** With the control points fixed, changing one segment's λ breaks C¹ unless
-#   the neighbour's λ changes too (the paper's eq. 17): only global adjustment. We change the
-#   top's λ and solve each neighbour's λ so that the end derivatives agree again; the end
-#   derivative is affine in λ, so two evaluations determine it.
+#   the neighbours' λ change too (the paper's eq. 17): only global adjustment.
+#   `with_lambda(0, λ, keep_points=True)` changes the top's λ and lets the right, bottom and
+#   left λ follow through the C¹ joints (exactly: the end derivative is affine in λ); the
+#   closing joint (left to top) is then measured.
 # * **G¹ (Fig. 7).** λ scales end tangents but never turns them, so changing one λ with the
 #   points fixed keeps G¹: local adjustment (`with_lambda(..., resolve=False)`).
 # * **C², G² (Figs. 8, 9).** λ alone breaks them; changing λ *and* re-solving the joint's
@@ -166,36 +167,21 @@ plt.close(fig)
 
 
 # %%
-def neighbour_lambda(fixed, moving, at_start: bool):
-    """λ for `moving` (points fixed) making its end derivative equal fixed's at the joint."""
-    t_fixed, t_moving = (1.0, 0.0) if at_start else (0.0, 1.0)
-    target = fixed.derivative(t_fixed)
-
-    def deriv(lam):
-        return type(moving)(moving.control_points(), lam, check_range=False).derivative(t_moving)
-
-    d0, d1 = deriv(0.0), deriv(1.0)  # affine in λ
-    slope = d1 - d0
-    return float(np.dot(target - d0, slope) / np.dot(slope, slope))
-
-
 fig, axes = plt.subplots(1, 4, figsize=(20, 5))
 ax = axes[0]
 for seg in apple.segments:
     plot_curve(seg, ax, polygon=False, color="k")
 for new_top, style in ((F(1), "--"), (F(-1, 2), "-.")):
-    t2 = lb.BernsteinLikeCurve(top.control_points(), new_top)
-    lam_right = neighbour_lambda(t2, right, at_start=True)
-    lam_left = neighbour_lambda(t2, left, at_start=False)
-    r2 = lb.BernsteinLikeCurve(right.control_points(), lam_right, check_range=False)
-    l2 = lb.BernsteinLikeCurve(left.control_points(), lam_left, check_range=False)
-    lam_bottom = neighbour_lambda(r2, bottom, at_start=True)
-    b2 = lb.BernsteinLikeCurve(bottom.control_points(), lam_bottom, check_range=False)
-    adjusted = lb.CompositeCurve([t2, r2, b2, l2])
+    adjusted = apple.with_lambda(0, new_top, keep_points=True)
+    t2, r2, b2, l2 = adjusted.segments
     ok = all(r.holds("C1") for r in adjusted.report()) and measure(l2, t2).holds("C1")
     print(
-        f"Fig. 6: top λ = {new_top}: right λ = {lam_right:.4f}, left λ = {lam_left:.4f}, "
-        f"bottom λ = {lam_bottom:.4f}, C1 everywhere: {ok}"
+        f"Fig. 6: top λ = {new_top}: right λ = {r2.lam}, bottom λ = {b2.lam}, "
+        f"left λ = {l2.lam}, C1 everywhere (closing joint too): {ok}"
+    )
+    assert ok and all(
+        s.control_points() == o.control_points()
+        for s, o in zip(adjusted.segments, apple.segments, strict=True)
     )
     for seg in adjusted.segments:
         plot_curve(seg, ax, polygon=False, color="C3", linestyle=style)

@@ -281,6 +281,15 @@ class Curve:
         return _geometry.torsion(self, t, extrapolate=extrapolate)
 
     # ------------------------------------------------------------------ conversion
+    @classmethod
+    def from_bezier(cls, bezier: BezierCurve, lam=None) -> Curve:
+        """The curve of this family, at shape `lam`, that traces `bezier` exactly (Fractions
+        for exact input), in the smallest degree whose basis spans it; refused at a singular
+        parameter. See lambda_bezier.conversion for which degree that is."""
+        from .conversion import from_bezier
+
+        return from_bezier(cls, bezier, lam)
+
     def to_bezier(self) -> BezierCurve:
         """The same curve as a classical Bézier curve of degree N (n, or n + 2).
         Exact (Fraction control points) when the curve is exact."""

@@ -82,7 +82,18 @@ FAMILY_RANGES = {
     "same_degree": Interval(Fraction(-2), Fraction(1), lo_open=True),
     "bernstein_like": Interval(Fraction(-1), Fraction(1)),
 }
+BUILTIN_RANGES = dict(FAMILY_RANGES)  # what generated/properties.py holds
 FAMILY_DEGREES = {"same_degree": sd.DEGREES, "bernstein_like": bl.DEGREES, "bezier": range(1, 13)}
+_BASES = {"same_degree": sd.basis_polys, "bernstein_like": bl.basis_polys}
+
+
+def register(name: str, basis_polys, offset: int, degrees: range, interval: Interval) -> None:
+    """A family defined by data (derive/family_engine.py) gets the same property procedures."""
+    _BASES[name] = basis_polys
+    OFFSETS[name] = offset
+    FAMILY_DEGREES[name] = degrees
+    FAMILY_RANGES[name] = interval
+    coefficients.cache_clear()
 
 
 # --------------------------------------------------------------------------- coefficients
@@ -104,7 +115,7 @@ def coefficients(family: str, n: int) -> tuple[tuple[flint.fmpq_poly, ...], ...]
         return tuple(
             tuple(flint.fmpq_poly([1 if i == j else 0]) for j in range(n + 1)) for i in range(n + 1)
         )
-    polys = sd.basis_polys(n) if family == "same_degree" else bl.basis_polys(n)
+    polys = _BASES[family](n)
     mats = bernstein_matrices(list(polys), n + OFFSETS[family])
     rows, cols = len(mats[0]), len(mats[0][0])
     return tuple(
@@ -452,7 +463,7 @@ def singular_table() -> dict[str, dict[int, tuple]]:
     ((lo, hi), (c_0, ..., c_k)): the isolating interval and the integer coefficients (lowest
     degree first) of the irreducible factor it is the only root of in (lo, hi)."""
     out: dict[str, dict[int, tuple]] = {}
-    for family, iv in FAMILY_RANGES.items():
+    for family, iv in BUILTIN_RANGES.items():
         out[family] = {}
         for deg in FAMILY_DEGREES[family]:
             out[family][deg] = tuple(

@@ -113,7 +113,7 @@ def test_isolated_roots_are_roots():
 def test_singular_parameters_refuse_bad_input():
     with pytest.raises(ValueError, match="family"):
         lb.singular_parameters("cubic", 3)
-    with pytest.raises(TypeError, match="family"):
+    with pytest.raises(ValueError, match="unknown family 3"):  # not a name nor a family
         lb.singular_parameters(3, 3)
     with pytest.raises(ValueError, match="n: degree 2"):
         lb.singular_parameters("same_degree", 2)

@@ -56,7 +56,7 @@ def _solve_exact(a: list[list[Fraction]], b: list[list[Fraction]]):
 
 
 def from_bezier(cls, bezier, lam=None):
-    from .curves import BezierCurve, _combine_exact, _tables
+    from .curves import FAMILIES, BezierCurve, _combine_exact, _tables
 
     if not isinstance(bezier, BezierCurve):
         raise TypeError(f"bezier must be a BezierCurve, not {type(bezier).__name__}")
@@ -73,10 +73,10 @@ def from_bezier(cls, bezier, lam=None):
     degrees = tuple(cls._data.DEGREES)
     start = max(n_bez - offset, degrees[0])
     for m in range(start, degrees[-1] + 1):
-        if is_singular(cls.family, m, lam):
+        key = cls.family if FAMILIES.get(cls.family) is cls else cls  # a name, or the class
+        if is_singular(key, m, lam):
             roots = [
-                str(r) if isinstance(r, Fraction) else float(r)
-                for r in singular_parameters(cls.family, m)
+                str(r) if isinstance(r, Fraction) else float(r) for r in singular_parameters(key, m)
             ]
             raise ValueError(
                 f"lam: the degree-{m} {cls.family} basis is linearly dependent at λ = {lam} "
@@ -87,7 +87,7 @@ def from_bezier(cls, bezier, lam=None):
         while target.degree < m + offset:
             target = target.elevate()
         if exact:
-            mats = _tables(cls.family, "bernstein")[m]
+            mats = _tables(cls._data, "bernstein")[m]
             basis = _combine_exact(mats, Fraction(lam))  # (m+1) × (m+offset+1)
             a = [list(col) for col in zip(*basis, strict=True)]  # Mᵀ
             b = [list(row) for row in target.control_points()]

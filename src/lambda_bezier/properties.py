@@ -45,15 +45,28 @@ class IsolatedRoot:
         return self.lo < Fraction(x) < self.hi
 
 
-def singular_parameters(family: str, n: int) -> tuple[Fraction | IsolatedRoot, ...]:
+def singular_parameters(family: object, n: int) -> tuple[Fraction | IsolatedRoot, ...]:
     """The λ inside the family's range at which its degree-n basis is linearly dependent:
     exact Fractions, or IsolatedRoot intervals with rational ends around irrational roots.
 
     A curve of that degree and λ has no unique control points for a given shape (and
     ``from_bezier`` refuses it). The classical Bézier basis has no parameter: ``()``.
+    `family` is a built-in family's name or a family from ``load_family`` (whose derived
+    document carries the same table, from the same exact procedure).
     """
-    if not isinstance(family, str):
-        raise TypeError(f"family must be a family name (str), not {type(family).__name__}")
+    if not isinstance(family, str):  # a family from load_family (or a curve class)
+        from .curves import family_class
+
+        cls = family_class(family)
+        table = getattr(cls._data, "SINGULAR", None)
+        if table is None:  # a built-in class
+            return singular_parameters(cls.family, n)
+        if isinstance(n, bool) or not isinstance(n, int) or n not in table:
+            degrees = cls._data.DEGREES
+            raise ValueError(
+                f"n: degree {n!r} is outside the {cls.family} range {degrees[0]}..{degrees[-1]}"
+            )
+        return table[n]
     if family == "bezier":
         return ()
     if family not in _FAMILY_MODULES:
@@ -74,7 +87,7 @@ def singular_parameters(family: str, n: int) -> tuple[Fraction | IsolatedRoot, .
     return tuple(out)
 
 
-def is_singular(family: str, n: int, lam) -> bool:
+def is_singular(family: object, n: int, lam) -> bool:
     """True when the degree-n basis of `family` is linearly dependent at this λ: exact for an
     exact λ; a float λ counts as singular within 1e-12 of a singular parameter."""
     for root in singular_parameters(family, n):

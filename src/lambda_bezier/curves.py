@@ -203,9 +203,12 @@ class Curve:
         return kappa[()] if np.ndim(kappa) == 0 else kappa
 
     def energy(self, k: int):
-        """E_k = ∫_0^1 |p^(k)(t)|² dt (k = 1, 2, 3: stretch, strain, jerk; any k >= 0 works),
-        from the Bézier form and the generated Bernstein Gram matrices. A Fraction when the
-        curve is exact."""
+        r"""The energy :math:`E_k = \int_0^1 \lVert p^{(k)}(t) \rVert^2 \, dt`.
+
+        k = 1, 2, 3 are the stretch, strain and jerk energies (any k >= 0 works). Computed from
+        the Bézier form and the generated Bernstein Gram matrices: a Fraction when the curve is
+        exact, a float otherwise.
+        """
         from ._generated.energy import GRAM
 
         k = val.as_order(k)

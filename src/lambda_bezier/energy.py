@@ -25,15 +25,31 @@ LAMBDA_FAMILIES = ("same_degree", "bernstein_like")  # the families with a shape
 
 @dataclass(frozen=True)
 class OptimalLambda:
-    """The λ minimising E_k for one polygon (scalars) or a batch (arrays of length m).
+    """The λ minimising E_k for one polygon (scalars) or a batch (arrays of length m),
+    as returned by `optimal_lambda`.
 
-    lam: the answer: the unconstrained minimiser, or with clamp=True the minimiser over the
+    Attributes
+    ----------
+    lam : Fraction, float or numpy.ndarray
+        The answer: the unconstrained minimiser, or with clamp=True the minimiser over the
         closed range (exact since E_k is a convex quadratic in λ).
-    unconstrained: the minimiser over all real λ.
-    admissible: whether `lam` lies in the family's range (False for an unconstrained optimum
-        outside it, and for a clamped one that sits on an excluded end such as λ = −2).
-    unconstrained_admissible: whether `unconstrained` lies in the family's range.
-    energy, unconstrained_energy: E_k at `lam` and at `unconstrained`.
+    unconstrained : Fraction, float or numpy.ndarray
+        The minimiser over all real λ.
+    admissible : bool or numpy.ndarray
+        Whether `lam` lies in the family's range (False for an unconstrained optimum outside
+        it, and for a clamped one that sits on an excluded end such as λ = −2).
+    unconstrained_admissible : bool or numpy.ndarray
+        Whether `unconstrained` lies in the family's range.
+    energy, unconstrained_energy : Fraction, float or numpy.ndarray
+        E_k at `lam` and at `unconstrained`.
+    k : int
+        The energy order.
+    family : str
+        The family name.
+    range_text : str
+        The family's λ-range as text, e.g. ``"(-2, 1]"``.
+    clamped : bool
+        Whether the answer was clamped to the range (``clamp=True``).
     """
 
     lam: Fraction | float | np.ndarray

@@ -58,9 +58,16 @@ nb_merge_streams = True
 # autodoc: numpydoc-style sections through Napoleon, members of every public class
 autosummary_generate = True
 autosummary_imported_members = True
-autodoc_default_options = {"members": True, "inherited-members": True, "show-inheritance": True}
+# the class template (_templates/autosummary/class.rst) is one autoclass; these fill it in
+autodoc_default_options = {
+    "members": True,
+    "inherited-members": True,
+    "show-inheritance": True,
+    "exclude-members": "__init__",
+}
 autodoc_member_order = "bysource"
 autodoc_typehints = "description"
+autodoc_typehints_description_target = "documented"  # types only where a docstring says more
 autodoc_typehints_format = "short"
 autodoc_preserve_defaults = True
 napoleon_google_docstring = False

@@ -102,7 +102,7 @@ class Curve:
     # ------------------------------------------------------------------ description
     @property
     def degree(self) -> int:
-        """n: the curve has n + 1 control points."""
+        """The degree n (the curve has n + 1 control points)."""
         return self.points.shape[0] - 1
 
     @property
@@ -252,7 +252,8 @@ class Curve:
 
 
 class BezierCurve(Curve):
-    """A classical Bézier curve Σ P_i B_{i,n}(t) (lecture notes 002)."""
+    r"""A classical Bézier curve :math:`p(t) = \sum_{i=0}^n P_i B_{i,n}(t)` with the
+    Bernstein basis :math:`B_{i,n}(t) = \binom{n}{i} t^i (1-t)^{n-i}` (lecture notes 002)."""
 
     family = "bezier"
     _data = _bernstein
@@ -321,7 +322,9 @@ class BezierCurve(Curve):
 
 
 class SameDegreeCurve(Curve):
-    """λ-Bézier curve of the same-degree family (000): Σ V_i b_i^n(t; λ), λ in (-2, 1]."""
+    r"""λ-Bézier curve of the same-degree family (000):
+    :math:`p(t) = \sum_{i=0}^n V_i \, b_i^n(t; \lambda)`, :math:`\lambda \in (-2, 1]`,
+    degree n ≥ 3; λ = 1 is the Bézier curve."""
 
     family = "same_degree"
     _data = _same_degree
@@ -372,8 +375,9 @@ class SameDegreeCurve(Curve):
 
 
 class BernsteinLikeCurve(Curve):
-    """λ-Bézier curve of the Bernstein-like family (001): Σ P_i b_{i,n}(t; λ), λ in [-1, 1];
-    a degree-n curve is a polynomial of degree n + 2."""
+    r"""λ-Bézier curve of the Bernstein-like family (001):
+    :math:`p(t) = \sum_{i=0}^n P_i \, b_{i,n}(t; \lambda)`, :math:`\lambda \in [-1, 1]`;
+    a degree-n curve is a polynomial of degree n + 2, and λ = 0 is the Bézier curve."""
 
     family = "bernstein_like"
     _data = _bernstein_like

@@ -57,3 +57,16 @@ def test_api_reference_lists_every_public_name():
         re.findall(r"^\.\. data:: (\w+)$", api, re.M)
     )
     assert set(lambda_bezier.__all__) <= listed, set(lambda_bezier.__all__) - listed
+
+
+@pytest.mark.skipif(not (DOCS / "tutorials").is_dir(), reason="needs the checkout's docs/")
+def test_every_notebook_is_a_tutorial():
+    """docs/tutorials/ links every notebook (so the site executes and shows it) and its index
+    lists each one."""
+    notebooks = {p.name for p in (ROOT / "notebooks").glob("*.py")}
+    linked = {p.name for p in (DOCS / "tutorials").glob("*.py")}
+    assert linked == notebooks
+    for name in linked:
+        assert (DOCS / "tutorials" / name).resolve() == (ROOT / "notebooks" / name).resolve()
+    index = (DOCS / "tutorials" / "index.md").read_text()
+    assert {f"{name[:-3]}" for name in notebooks} <= set(index.split())

@@ -4,7 +4,6 @@
 from __future__ import annotations
 
 import os
-import sys
 from pathlib import Path
 
 import lambda_bezier
@@ -15,13 +14,6 @@ ROOT = Path(__file__).resolve().parent.parent
 # matplotlib draws inline in the kernel.
 os.environ.setdefault("LAMBDA_BEZIER_FIGURES", str(ROOT / "docs" / "_build" / "notebook_figures"))
 os.environ.pop("MPLBACKEND", None)
-# verify_errata imports derive/ from the checkout; it finds the checkout itself, but the
-# kernel's path is set here too so the docs never depend on the working directory.
-os.environ["PYTHONPATH"] = os.pathsep.join(
-    p for p in (str(ROOT), os.environ.get("PYTHONPATH", "")) if p
-)
-sys.path.insert(0, str(ROOT))
-
 project = "lambda-bezier"
 author = "the lambda-bezier authors"
 copyright = "the lambda-bezier authors"
@@ -50,7 +42,13 @@ myst_heading_anchors = 3
 # myst-nb reads the jupytext percent scripts directly and runs them at build time
 nb_custom_formats = {".py": ["jupytext.reads", {"fmt": "py:percent"}]}
 nb_execution_mode = "force"
-nb_execution_timeout = 300
+# A cell's timeout also bounds a known nbclient stall (jupyter/nbclient#312): when a cell
+# exchanges widget messages, the execute reply is sometimes picked up only when the wait for it
+# times out, and the build then goes on as if nothing happened. Seen here on about one build in
+# three, always in interactive_lambda.py, which therefore sets its own 30 s timeout in its
+# header (its cells take about 2 s); the others get 120 s (their longest cell takes about 10 s
+# on a loaded 2-core machine).
+nb_execution_timeout = 120
 nb_execution_raise_on_error = True
 nb_execution_show_tb = True
 nb_merge_streams = True

@@ -1,5 +1,7 @@
 # ---
 # jupyter:
+#   execution:
+#     timeout: 30
 #   jupytext:
 #     formats: py:percent
 #     text_representation:

@@ -25,9 +25,6 @@ import os
 from fractions import Fraction as F
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use(os.environ.get("MPLBACKEND", "Agg"))
 import matplotlib.pyplot as plt
 import numpy as np
 
@@ -80,7 +77,7 @@ for ax, petal in zip(axes, (petal3, petal4), strict=True):
             )
     ax.set_title(f"degree {len(petal) - 1}: λ = 1 (solid), 0 (dashed), −1 (dash-dot)")
 fig.savefig(FIGURES / "bernstein_like_petals_fig1.png", dpi=80)
-plt.close(fig)
+plt.show()
 
 # %% [markdown]
 # ## Fig. 2: a closed C¹ "apple" of two quartic and two cubic segments
@@ -122,7 +119,7 @@ for seg, color in zip(apple.segments, ("C3", "C0", "C3", "C0"), strict=True):
     plot_curve(seg, ax, color=color)
 ax.set_title("C¹ apple: quartics red, cubics blue")
 fig.savefig(FIGURES / "bernstein_like_apple_fig2.png", dpi=80)
-plt.close(fig)
+plt.show()
 
 # %% [markdown]
 # ## Figs. 3–5: C², G¹ and G² composites
@@ -150,7 +147,7 @@ for ax, (name, comp) in zip(axes, (("C²", c2), ("G¹", g1), ("G²", g2)), stric
     plot_composite(comp, ax)
     ax.set_title(f"{name} joins (Fig. {3 + ['C²', 'G¹', 'G²'].index(name)})")
 fig.savefig(FIGURES / "bernstein_like_joins_fig3_5.png", dpi=80)
-plt.close(fig)
+plt.show()
 
 # %% [markdown]
 # ## Figs. 6–9: shape adjustment
@@ -211,4 +208,4 @@ for ax, comp, name, idx in ((axes[2], c2, "C²", 1), (axes[3], g2, "G²", 1)):
     ax.set_title(f"Fig. {8 if name == 'C²' else 9}: {name}, λ and starred points changed")
 fig.tight_layout()
 fig.savefig(FIGURES / "bernstein_like_adjustment_fig6_9.png", dpi=80)
-plt.close(fig)
+plt.show()

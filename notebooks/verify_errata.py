@@ -24,14 +24,15 @@ import os
 import sys
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use(os.environ.get("MPLBACKEND", "Agg"))
 import matplotlib.pyplot as plt
 import numpy as np
 import sympy as sp
 
-ROOT = Path.cwd().resolve().parent if Path.cwd().name == "notebooks" else Path.cwd().resolve()
+# the checkout: the first of the working directory and its parents that holds derive/ (the
+# notebook runs from notebooks/, and from docs/tutorials/ when the docs are built)
+ROOT = next(
+    p for p in (Path.cwd().resolve(), *Path.cwd().resolve().parents) if (p / "derive").is_dir()
+)
 sys.path.insert(0, str(ROOT))
 import derive.verify as verify  # noqa: E402
 import lambda_bezier as lb  # noqa: E402
@@ -96,7 +97,7 @@ for ax, (label, text) in zip(
     ax.set_title(f"eq. (7) {label} (dotted: b_i^5 from eq. (1)), λ = 1/2")
     ax.legend(fontsize=7)
 fig.savefig(FIGURES / "verify_000_eq7.png", dpi=80)
-plt.close(fig)
+plt.show()
 
 # %% [markdown]
 # ## 002, the convexity example: y(x) printed with (1 − x²) instead of (1 − x)²
@@ -114,7 +115,7 @@ ax.plot(tt, printed_y(tt), "C3--", label="y(x) as printed")
 ax.set_title("002 convexity example, ω = 1/8")
 ax.legend(fontsize=8)
 fig.savefig(FIGURES / "verify_002_convexity.png", dpi=80)
-plt.close(fig)
+plt.show()
 print("largest gap:", float(np.max(np.abs(printed_y(tt) - xy[:, 1]))))
 
 # %% [markdown]

@@ -26,19 +26,39 @@ NAMES = ("C0", "C1", "C2", "G1", "G2")
 
 @dataclass(frozen=True)
 class JointReport:
-    """The continuity measured at the joint between segment `index` and `index + 1`
-    (global parameter u = index + 1), from evaluate/derivative/curvature of the segments.
+    r"""The continuity measured at the joint between segment `index` and `index + 1`
+    (global parameter u = index + 1), from evaluate/derivative/curvature of the segments
+    :math:`C_1` (the left one) and :math:`C_2` (the right one).
 
-    position_gap: |C1(1) − C2(0)|.
-    first_derivative_gap, second_derivative_gap: |C1^(k)(1) − C2^(k)(0)| (k = 1, 2).
-    speed_ratio: |C1'(1)| / |C2'(0)| (the α of a G joint; 1 for a C joint).
-    tangent_angle: angle between C1'(1) and C2'(0), in radians (NaN if one vanishes).
-    curvature: (κ1(1), κ2(0)), signed in 2D; curvature_gap = |κ1 − κ2|.
-    binormal_angle: 3D only (None in 2D, where the sign of κ carries the orientation): angle
-        between C1'×C1'' at 1 and C2'×C2'' at 0 (NaN where a curvature vanishes).
-    achieved: the names among C0, C1, C2, G1, G2 that hold within the tolerance.
-    built_with: the Joint the composite holds for this joint (None if it was not built by
-        join and is never re-solved).
+    Attributes
+    ----------
+    index, u : int
+        The left segment's index and the joint's global parameter u = index + 1.
+    position_gap : float
+        :math:`\lVert C_1(1) - C_2(0) \rVert`.
+    first_derivative_gap, second_derivative_gap : float
+        :math:`\lVert C_1^{(k)}(1) - C_2^{(k)}(0) \rVert` for k = 1, 2.
+    speed_ratio : float
+        :math:`\lVert C_1'(1) \rVert / \lVert C_2'(0) \rVert` (the α of a G joint; 1 for a
+        C joint).
+    tangent_angle : float
+        Angle between :math:`C_1'(1)` and :math:`C_2'(0)`, in radians (NaN if one vanishes).
+    curvature : tuple of float
+        :math:`(\kappa_1(1), \kappa_2(0))`, signed in 2D.
+    curvature_gap : float
+        :math:`\lvert \kappa_1(1) - \kappa_2(0) \rvert`.
+    binormal_angle : float or None
+        3D only (None in 2D, where the sign of κ carries the orientation): angle between
+        :math:`C_1' \times C_1''` at 1 and :math:`C_2' \times C_2''` at 0 (NaN where a
+        curvature vanishes).
+    achieved : frozenset of str
+        The names among C0, C1, C2, G1, G2 that hold within the tolerance.
+    built_with : Joint or None
+        The Joint the composite holds for this joint (None if it was not built by join and
+        is never re-solved).
+    tol : float
+        The tolerance the names in `achieved` were decided with (relative to the size of the
+        control points and of the derivatives compared).
     """
 
     index: int

@@ -223,7 +223,9 @@ class Curve:
             cross = np.linalg.norm(np.cross(d1, d2), axis=-1)
         speed = np.linalg.norm(d1, axis=-1)
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            kappa = np.where(speed > 0, cross / speed**3, np.nan) / c / self._scale
+            # divided one speed at a time: speed**3 underflows where |p'| << |p''| (near a
+            # cusp) although κ itself is finite
+            kappa = np.where(speed > 0, cross / speed / speed / speed, np.nan) / c / self._scale
         if np.isinf(kappa).any():  # a curve of size ~1e-310
             raise ValueError("the curvature overflows the float range for these control points")
         return kappa[()] if np.ndim(kappa) == 0 else kappa

@@ -331,8 +331,9 @@ def optimal_lambda(points, k: int, family: object = "same_degree", clamp: bool =
         one vectorised call. Exact (Fractions) when every coordinate is an int or a Fraction.
     k : int
         The energy order: 1 stretch, 2 strain, 3 jerk.
-    family : str
-        ``"same_degree"`` (range (−2, 1]) or ``"bernstein_like"`` (range [−1, 1]).
+    family : str or Family
+        ``"same_degree"`` (range (−2, 1]), ``"bernstein_like"`` (range [−1, 1]), or a family
+        from `load_family`.
     clamp : bool
         Return the minimiser over the family's closed range instead of over all real λ
         (the unconstrained one is still reported).

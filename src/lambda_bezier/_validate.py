@@ -44,14 +44,14 @@ def exact_rows(points: object) -> ExactRows | None:
 
 
 def as_points(points: object, *, family: str, degrees: tuple[int, ...]) -> np.ndarray:
-    """(n+1, d) float array, d in (2, 3), n in `degrees`, all finite."""
+    """(n+1, d) float array, d >= 1, n in `degrees`, all finite."""
     try:
         arr = np.array(points, dtype=float)
     except (TypeError, ValueError) as exc:
         raise ValueError(f"control points must be an (n+1, d) array of numbers: {exc}") from None
-    if arr.ndim != 2 or arr.shape[1] not in (2, 3):
+    if arr.ndim != 2 or arr.shape[1] < 1:
         raise ValueError(
-            f"control points must have shape (n+1, d) with d = 2 or 3, got shape {arr.shape}"
+            f"control points must have shape (n+1, d) with d >= 1, got shape {arr.shape}"
         )
     degree = arr.shape[0] - 1
     lo, hi = degrees[0], degrees[-1]
@@ -124,3 +124,18 @@ def as_order(k: object) -> int:
     if isinstance(k, bool) or not isinstance(k, numbers.Integral) or int(k) < 0:  # type: ignore[call-overload]
         raise ValueError(f"derivative order k must be a non-negative integer, got {k!r}")
     return int(k)  # type: ignore[call-overload]
+
+
+def as_point(point: object, dimension: int) -> np.ndarray:
+    """One point as a (d,) float array matching the curve's dimension, all finite."""
+    try:
+        arr = np.array(point, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(
+            f"point must be a sequence of {dimension} numbers, got {point!r}"
+        ) from None
+    if arr.shape != (dimension,):
+        raise ValueError(f"point must have shape ({dimension},), got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"point has a non-finite coordinate: {arr.tolist()}")
+    return arr

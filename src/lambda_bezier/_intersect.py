@@ -24,7 +24,10 @@ exact polynomials:
 
 from __future__ import annotations
 
+import functools
+import math
 from fractions import Fraction
+from functools import cached_property
 from typing import NamedTuple
 
 import numpy as np
@@ -72,9 +75,49 @@ class Prepared:
             work = work[:-1] + s * (work[1:] - work[:-1])
         return work[0]
 
-    def exact_at(self, s: Fraction, which: int = 0) -> tuple:
-        rows = (self.rows, self.rows_h1, self.rows_h2)[which]
-        return forms.blossom(rows, [s] * (len(rows) - 1))
+    def at_with_tangent(self, s: float) -> tuple[np.ndarray, np.ndarray]:
+        """p(s) and p'(s) from one de Casteljau pass (p' = n (b_1 - b_0) of its last level)."""
+        work = self.pts
+        if work.shape[0] == 1:
+            return work[0], np.zeros(self.dim)
+        while work.shape[0] > 2:
+            work = work[:-1] + s * (work[1:] - work[:-1])
+        a, b = work[0], work[1]
+        return a + s * (b - a), self.degree * (b - a)
+
+    def exact_at(self, s: float, which: int = 0) -> tuple[list[int], int]:
+        """p(s) (which = 0), p'(s) or p''(s) exactly, for a float s: integer numerators and
+        one denominator. de Casteljau on integers (control points over their common
+        denominator, s = m / 2^e): Python's int arithmetic is exact and much faster than
+        Fractions, and int / int rounds correctly when a float is finally wanted."""
+        ints, den = self._integer_rows[which]
+        m, e = s.as_integer_ratio()
+        work = ints
+        for _ in range(len(ints) - 1):
+            work = [
+                [(e - m) * a + m * b for a, b in zip(p, q, strict=True)]
+                for p, q in zip(work[:-1], work[1:], strict=True)
+            ]
+        return work[0], den * e ** (len(ints) - 1)
+
+    @cached_property
+    def _integer_rows(self) -> list[tuple[list[list[int]], int]]:
+        out = []
+        for rows in (self.rows, self.rows_h1, self.rows_h2):
+            den = math.lcm(*(Fraction(v).denominator for row in rows for v in row))
+            out.append(([[int(Fraction(v) * den) for v in row] for row in rows], den))
+        return out
+
+
+def _exact_difference(a: tuple[list[int], int], b: tuple[list[int], int]) -> np.ndarray:
+    """a - b for exact values (numerators, denominator), correctly rounded to floats."""
+    (na, da), (nb, db) = a, b
+    return np.array([(x * db - y * da) / (da * db) for x, y in zip(na, nb, strict=True)])
+
+
+def _integer_point(point: tuple) -> tuple[list[int], int]:
+    den = math.lcm(*(Fraction(v).denominator for v in point))
+    return [int(Fraction(v) * den) for v in point], den
 
 
 def _exact_hodograph(rows: tuple[tuple, ...]) -> tuple[tuple, ...]:
@@ -198,38 +241,64 @@ def _starts(ia: np.ndarray, ib: np.ndarray, per_cluster: int = 6) -> list[tuple[
 # ---------------------------------------------------------------------------- Newton
 def _residual(p: Prepared, q: Prepared, s: float, t: float, exact: bool) -> np.ndarray:
     if exact:
-        fs, ft = Fraction(s), Fraction(t)
-        return np.array([float(a - b) for a, b in zip(p.exact_at(fs), q.exact_at(ft), strict=True)])
+        return _exact_difference(p.exact_at(s), q.exact_at(t))
     return p.at(s) - q.at(t)
 
 
-def _newton(p: Prepared, q: Prepared, s: float, t: float) -> tuple[float, float, bool]:
-    """Newton (Gauss-Newton for d > 2) on p(s) - q(t); False when it leaves the domain."""
-    for _ in range(40):
-        jac = np.column_stack([p.at(s, 1), -q.at(t, 1)])
-        step = np.linalg.lstsq(jac, -_residual(p, q, s, t, False), rcond=None)[0]
-        s, t = s + float(step[0]), t + float(step[1])
-        if not (-0.5 < s < 1.5 and -0.5 < t < 1.5):
-            return s, t, False
-        if abs(step[0]) + abs(step[1]) < 1e-15:
+def _gauss_newton_step(u: np.ndarray, v: np.ndarray, f: np.ndarray) -> tuple[float, float]:
+    """The least-squares (ds, dt) of u ds + v dt = -f, from the 2x2 normal equations
+    (lstsq when they are singular)."""
+    a, b, c = float(u @ u), float(u @ v), float(v @ v)
+    det = a * c - b * b
+    if det > 1e-24 * a * c:
+        g, h = -float(u @ f), -float(v @ f)
+        return (c * g - b * h) / det, (a * h - b * g) / det
+    step = np.linalg.lstsq(np.column_stack([u, v]), -f, rcond=None)[0]
+    return float(step[0]), float(step[1])
+
+
+def _newton(p: Prepared, q: Prepared, s: float, t: float) -> tuple[float, float, str]:
+    """Newton (Gauss-Newton for d > 2) on p(s) - q(t). Status "out" when it leaves the
+    domain, "converged", or "slow" when convergence is only linear (a tangency, refined by
+    _tangent_refine) or the iterations ran out."""
+    prev = np.inf
+    for it in range(40):
+        ps, dps = p.at_with_tangent(s)
+        qt, dqt = q.at_with_tangent(t)
+        ds, dt = _gauss_newton_step(dps, -dqt, ps - qt)
+        s, t = s + ds, t + dt
+        if not (-0.5 < s < 1.5 and -0.5 < t < 1.5) or not (np.isfinite(s) and np.isfinite(t)):
+            return s, t, "out"
+        size = abs(ds) + abs(dt)
+        if size < 1e-15:
+            return s, t, "converged"
+        if it >= 8 and size > 0.25 * prev:
             break
-    return s, t, True
+        prev = size
+    return s, t, "slow"
 
 
-def _polish(p: Prepared, q: Prepared, s: float, t: float, steps: int = 3) -> tuple[float, float]:
-    """Newton steps with the residual evaluated exactly."""
+def _polish(
+    p: Prepared, q: Prepared, s: float, t: float, steps: int = 4
+) -> tuple[float, float, bool]:
+    """Newton steps with the residual evaluated exactly; True when they converged (the
+    last step below 1e-15: quadratic convergence, a regular root)."""
     for _ in range(steps):
-        jac = np.column_stack([p.at(s, 1), -q.at(t, 1)])
-        step = np.linalg.lstsq(jac, -_residual(p, q, s, t, True), rcond=None)[0]
-        s, t = s + float(step[0]), t + float(step[1])
-        if abs(step[0]) + abs(step[1]) < 1e-17:
+        ds, dt = _gauss_newton_step(p.at(s, 1), -q.at(t, 1), _residual(p, q, s, t, True))
+        s, t = s + ds, t + dt
+        if abs(ds) + abs(dt) < 1e-17:
             break
-    return s, t
+    return s, t, abs(ds) + abs(dt) < 1e-15
+
+
+@functools.cache
+def _pairs(dim: int) -> tuple[np.ndarray, np.ndarray]:
+    return np.triu_indices(dim, 1)
 
 
 def _cross_terms(u: np.ndarray, v: np.ndarray) -> np.ndarray:
     """u_i v_j - u_j v_i for i < j: zero exactly when u and v are parallel."""
-    i, j = np.triu_indices(u.shape[-1], 1)
+    i, j = _pairs(u.shape[-1])
     return u[..., i] * v[..., j] - u[..., j] * v[..., i]
 
 
@@ -237,38 +306,34 @@ def _tangent_residual(
     p: Prepared, q: Prepared, s: float, t: float, weight: float, exact: bool
 ) -> np.ndarray:
     if exact:
-        fs, ft = Fraction(s), Fraction(t)
-        diff = [float(a - b) for a, b in zip(p.exact_at(fs), q.exact_at(ft), strict=True)]
-        dps, dqt = p.exact_at(fs, 1), q.exact_at(ft, 1)
-        dim = len(dps)
+        diff = _exact_difference(p.exact_at(s), q.exact_at(t))
+        (a, da), (b, db) = p.exact_at(s, 1), q.exact_at(t, 1)
+        dim = len(a)
         cross = [
-            float(dps[i] * dqt[j] - dps[j] * dqt[i]) * weight
+            (a[i] * b[j] - a[j] * b[i]) / (da * db) * weight
             for i in range(dim)
             for j in range(i + 1, dim)
         ]
-        return np.array(diff + cross)
+        return np.concatenate([diff, cross])
     return np.concatenate([p.at(s) - q.at(t), _cross_terms(p.at(s, 1), q.at(t, 1)) * weight])
 
 
-def _tangent_refine(p: Prepared, q: Prepared, s: float, t: float) -> tuple[float, float]:
-    """Gauss-Newton on [p(s) - q(t); w (p'(s) x q'(t))]: with float residuals until they
-    stop improving, then with exact ones (which keep improving where floats are all
-    rounding, and let the linear convergence at a root of higher contact run on)."""
+def _tangent_refine(
+    p: Prepared, q: Prepared, s: float, t: float, phases: tuple[bool, ...] = (False, True)
+) -> tuple[float, float]:
+    """Gauss-Newton on [p(s) - q(t); w (p'(s) x q'(t))], first with float residuals, then
+    with exact ones (which stay meaningful where floats are all rounding, so the linear
+    convergence at a root of higher contact runs on). Each phase ends when its steps stop
+    shrinking; the point after the smallest step is kept."""
     d1p, d1q = p.at(s, 1), q.at(t, 1)
     weight = max(p.scale, q.scale) / max(float(np.linalg.norm(d1p) * np.linalg.norm(d1q)), 1e-300)
-    best: tuple[float, float, float] = (np.inf, s, t)
-    for exact in (False, True):
-        s, t = best[1], best[2]
+    for exact in phases:
         best = (np.inf, s, t)
         stalled = 0
         for _ in range(100):
             res = _tangent_residual(p, q, s, t, weight, exact)
-            size = float(np.linalg.norm(res))
-            if size < best[0]:
-                best, stalled = (size, s, t), 0
-            else:
-                stalled += 1
-            if size == 0.0 or stalled >= (8 if exact else 3):
+            if not res.any():
+                best = (0.0, s, t)
                 break
             d1p, d1q = p.at(s, 1), q.at(t, 1)
             d2p, d2q = p.at(s, 2), q.at(t, 2)
@@ -282,9 +347,15 @@ def _tangent_refine(p: Prepared, q: Prepared, s: float, t: float) -> tuple[float
             if not np.all(np.isfinite(step)):
                 break
             s, t = s + float(step[0]), t + float(step[1])
-            if abs(step[0]) + abs(step[1]) < 1e-17 * (1 + abs(s) + abs(t)):
+            size = abs(float(step[0])) + abs(float(step[1]))
+            if size < best[0]:
+                best, stalled = (size, s, t), 0
+            else:
+                stalled += 1
+            if size < 1e-17 * (1 + abs(s) + abs(t)) or stalled >= 3:
                 break
-    return best[1], best[2]
+        s, t = best[1], best[2]
+    return s, t
 
 
 def _sine(p: Prepared, q: Prepared, s: float, t: float) -> float:
@@ -295,24 +366,33 @@ def _sine(p: Prepared, q: Prepared, s: float, t: float) -> float:
     return float(np.linalg.norm(_cross_terms(u, v))) / (nu * nv)
 
 
+def _near_found(s: float, t: float, found: list[Intersection]) -> bool:
+    return any(abs(s - f.s) < NEAR_FOUND and abs(t - f.t) < NEAR_FOUND for f in found)
+
+
 def _solve_from(
     p: Prepared, q: Prepared, s: float, t: float, found: list[Intersection]
 ) -> Intersection | None:
-    s, t, inside = _newton(p, q, s, t)
-    if not inside or not (np.isfinite(s) and np.isfinite(t)):
+    s, t, status = _newton(p, q, s, t)
+    if status == "out":
         return None
     # Newton in floats stalls within ~1e-8 of a tangent root: a start that lands that close
     # to a root already refined is that root (skips the costly exact refinement)
-    if any(abs(s - f.s) < NEAR_FOUND and abs(t - f.t) < NEAR_FOUND for f in found):
+    if _near_found(s, t, found):
         return None
     scale = max(p.scale, q.scale)
     if np.linalg.norm(_residual(p, q, s, t, False)) > 1e-6 * scale:
         return None  # Newton wandered off; a real root near a start converges closer
-    if _sine(p, q, s, t) > TANGENT_SINE:
-        s, t = _polish(p, q, s, t)
-        kind = "transversal"
+    polished = False
+    if _sine(p, q, s, t) > TANGENT_SINE:  # looks transversal: Newton must then converge fast
+        ps, pt, polished = _polish(p, q, s, t)
+    if polished:
+        s, t, kind = ps, pt, "transversal"
     else:
-        s, t = _tangent_refine(p, q, s, t)
+        s, t = _tangent_refine(p, q, s, t, (False,))
+        if _near_found(s, t, found):  # before the costly exact phase
+            return None
+        s, t = _tangent_refine(p, q, s, t, (True,))
         kind = "tangent" if _sine(p, q, s, t) <= TANGENT_SINE else "transversal"
     if np.linalg.norm(_residual(p, q, s, t, True)) > ON_CURVE * scale:
         return None
@@ -350,9 +430,10 @@ def locate_all(p: Prepared, point: np.ndarray, exact_point: tuple | None = None)
         pieces = np.concatenate([left, right])
         index = np.concatenate([2 * index, 2 * index + 1])
     width = 0.5**LEVELS
+    exact_target = _integer_point(target)
     for members in _clusters(index, np.zeros_like(index)):
         for k in {members[0], members[members.size // 2], members[-1]}:
-            t = _locate_newton(p, point, target, (index[k] + 0.5) * width)
+            t = _locate_newton(p, point, exact_target, (index[k] + 0.5) * width)
             if t is None or any(abs(t - u) < SAME_ROOT for u in found):
                 continue
             if np.linalg.norm(p.at(t) - point) <= tol:
@@ -360,15 +441,13 @@ def locate_all(p: Prepared, point: np.ndarray, exact_point: tuple | None = None)
     return sorted(found)
 
 
-def _locate_newton(p: Prepared, point: np.ndarray, target: tuple, t: float) -> float | None:
+def _locate_newton(
+    p: Prepared, point: np.ndarray, target: tuple[list[int], int], t: float
+) -> float | None:
     """Newton on (p(t) - point)·p'(t) = 0 (the foot point), then exact-residual steps."""
     for it in range(50):
         exact = it >= 30
-        if exact:
-            ft = Fraction(t)
-            diff = np.array([float(a - b) for a, b in zip(p.exact_at(ft), target, strict=True)])
-        else:
-            diff = p.at(t) - point
+        diff = _exact_difference(p.exact_at(t), target) if exact else p.at(t) - point
         d1, d2 = p.at(t, 1), p.at(t, 2)
         slope = float(d1 @ d1 + diff @ d2)
         if slope == 0.0:
@@ -380,8 +459,7 @@ def _locate_newton(p: Prepared, point: np.ndarray, target: tuple, t: float) -> f
         if abs(step) < 1e-16 and not exact:
             # converged in floats; three exact-residual steps follow
             for _ in range(3):
-                ft = Fraction(t)
-                diff = np.array([float(a - b) for a, b in zip(p.exact_at(ft), target, strict=True)])
+                diff = _exact_difference(p.exact_at(t), target)
                 d1 = p.at(t, 1)
                 slope = float(d1 @ d1 + diff @ p.at(t, 2))
                 if slope == 0.0:

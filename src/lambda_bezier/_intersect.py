@@ -34,7 +34,7 @@ import numpy as np
 
 from . import _bezier_forms as forms
 
-LEVELS = 10  # subdivision depth: pieces of width 2^-10 seed Newton
+LEVELS = 8  # subdivision depth: pieces of width 2^-8 seed Newton
 MAX_PAIRS = 50_000  # a guard against runaway subdivision (degenerate input)
 BOX_SLACK = 1e-12  # relative: boxes that touch within rounding still overlap
 ON_CURVE = 1e-10  # relative distance below which a point counts as on a curve
@@ -225,16 +225,17 @@ def _clusters(ia: np.ndarray, ib: np.ndarray) -> list[np.ndarray]:
 
 
 def _starts(ia: np.ndarray, ib: np.ndarray, per_cluster: int = 6) -> list[tuple[float, float]]:
+    """Newton starting points: the middle pair of each cluster, and for a cluster longer
+    than a few pieces (a tangency, or crossings close together) pairs spread along it."""
     width = 0.5**LEVELS
     out = []
     for members in _clusters(ia, ib):
         order = members[np.argsort(ia[members] + ib[members], kind="stable")]
-        pick = order[
-            np.unique(np.linspace(0, order.size - 1, min(per_cluster, order.size)).astype(int))
-        ]
-        mid = order[order.size // 2]
-        for k in [mid, *pick]:
-            out.append(((ia[k] + 0.5) * width, (ib[k] + 0.5) * width))
+        picks = [order[order.size // 2]]
+        if np.ptp(ia[members]) > 2 or np.ptp(ib[members]) > 2:
+            spread = np.linspace(0, order.size - 1, min(per_cluster, order.size)).astype(int)
+            picks += [k for k in order[np.unique(spread)] if k != picks[0]]
+        out += [((ia[k] + 0.5) * width, (ib[k] + 0.5) * width) for k in picks]
     return out
 
 

@@ -15,7 +15,10 @@ from fractions import Fraction
 
 def implicitize(rows: tuple[tuple[Fraction, ...], ...]):
     """The implicit polynomial of a planar curve as a sympy.Poly in x, y over the integers."""
-    import sympy
+    try:
+        import sympy
+    except ImportError:  # SymPy comes with the derive extra, not with the runtime
+        raise ImportError("implicitize needs SymPy: pip install 'lambda-bezier[derive]'") from None
 
     t, x, y = sympy.symbols("t x y")
     n = len(rows) - 1

@@ -142,6 +142,38 @@ def test_coincident_stretch_is_reported_by_its_ends():
     ]
 
 
+def test_coincident_variants():
+    """A curve with itself, reversed, with a piece of itself (in 3-D too), and with a reversed
+    piece that runs past its end: each reported by the two ends of the shared stretch."""
+    c = lb.BezierCurve([(0, 0), (1, 2), (3, 2), (4, 0)])
+
+    def ends(a, b):
+        hits = a.intersect(b)
+        assert {h.kind for h in hits} == {"coincident"}
+        return [(h.s, h.t) for h in hits]
+
+    assert ends(c, c) == [(0.0, 0.0), (1.0, 1.0)]
+    assert ends(c, lb.BezierCurve(c.control_points()[::-1])) == [(0.0, 1.0), (1.0, 0.0)]
+    assert ends(c, c.segment(Fraction(1, 4), Fraction(1, 2))) == [(0.25, 0.0), (0.5, 1.0)]
+    longer = c.segment(Fraction(1, 5), Fraction(3, 2), extrapolate=True)
+    got = ends(c, lb.BezierCurve(longer.control_points()[::-1]))
+    assert got[0] == (0.2, 1.0)
+    assert got[1] == pytest.approx((1.0, 5 / 13), abs=1e-15)  # s = 1 is t = (3/2 - 1)/(13/10)
+    c3 = lb.BezierCurve([(0, 0, 0), (1, 2, 1), (3, 2, -1), (4, 0, 2)])
+    assert ends(c3, c3.segment(0.25, 0.5)) == [(0.25, 0.0), (0.5, 1.0)]
+
+
+def test_to_bezier_keeps_the_parameter():
+    """Parameters reported through to_bezier() are the family's own: both evaluate alike."""
+    rng = np.random.default_rng(7)
+    t = np.linspace(0, 1, 41)
+    for curve in (
+        lb.SameDegreeCurve(rng.integers(-9, 10, (6, 2)).tolist(), Fraction(-3, 4)),
+        lb.BernsteinLikeCurve(rng.integers(-9, 10, (5, 3)).tolist(), Fraction(2, 3)),
+    ):
+        np.testing.assert_allclose(curve.evaluate(t), curve.to_bezier().evaluate(t), atol=1e-12)
+
+
 def test_self_intersections_against_sympy():
     """A cubic loop: the parameters of its crossing solved exactly by SymPy."""
     import sympy

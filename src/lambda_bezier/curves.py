@@ -249,7 +249,7 @@ class Curve:
         if self.is_exact:
             h: tuple = self.to_bezier().control_points()
             for d in range(big, big - k, -1):
-                h = alg.exact_matmul(_bernstein.HODOGRAPH[d], h)
+                h = alg.exact_matmul(forms.hodograph_matrix(d), h)
             size = len(h)
             total = sum(
                 (

@@ -32,6 +32,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from . import _algorithms as alg
 from . import _bezier_forms as forms
 
 LEVELS = 8  # subdivision depth: pieces of width 2^-8 seed Newton
@@ -91,14 +92,14 @@ class Prepared:
         denominator, s = m / 2^e): Python's int arithmetic is exact and much faster than
         Fractions, and int / int rounds correctly when a float is finally wanted."""
         ints, den = self._integer_rows[which]
-        m, e = s.as_integer_ratio()
+        m, power_of_two = float(s).as_integer_ratio()
         work = ints
-        for _ in range(len(ints) - 1):
+        for _ in range(len(ints) - 1):  # (1 - s) a + s b, scaled by 2^e
             work = [
-                [(e - m) * a + m * b for a, b in zip(p, q, strict=True)]
+                [(power_of_two - m) * a + m * b for a, b in zip(p, q, strict=True)]
                 for p, q in zip(work[:-1], work[1:], strict=True)
             ]
-        return work[0], den * e ** (len(ints) - 1)
+        return work[0], den * power_of_two ** (len(ints) - 1)
 
     @cached_property
     def _integer_rows(self) -> list[tuple[list[list[int]], int]]:
@@ -121,13 +122,7 @@ def _integer_point(point: tuple) -> tuple[list[int], int]:
 
 
 def _exact_hodograph(rows: tuple[tuple, ...]) -> tuple[tuple, ...]:
-    n = len(rows) - 1
-    if n == 0:
-        return (tuple(Fraction(0) for _ in rows[0]),)
-    return tuple(
-        tuple(n * (b - a) for a, b in zip(p, q, strict=True))
-        for p, q in zip(rows[:-1], rows[1:], strict=True)
-    )
+    return alg.exact_matmul(forms.hodograph_matrix(len(rows) - 1), rows)
 
 
 # ---------------------------------------------------------------------------- subdivision
@@ -445,28 +440,23 @@ def locate_all(p: Prepared, point: np.ndarray, exact_point: tuple | None = None)
 def _locate_newton(
     p: Prepared, point: np.ndarray, target: tuple[list[int], int], t: float
 ) -> float | None:
-    """Newton on (p(t) - point)·p'(t) = 0 (the foot point), then exact-residual steps."""
-    for it in range(50):
-        exact = it >= 30
-        diff = _exact_difference(p.exact_at(t), target) if exact else p.at(t) - point
-        d1, d2 = p.at(t, 1), p.at(t, 2)
-        slope = float(d1 @ d1 + diff @ d2)
-        if slope == 0.0:
-            break
-        step = float(diff @ d1) / slope
-        t -= step
-        if not -0.5 < t < 1.5:
-            return None
-        if abs(step) < 1e-16 and not exact:
-            # converged in floats; three exact-residual steps follow
-            for _ in range(3):
-                diff = _exact_difference(p.exact_at(t), target)
-                d1 = p.at(t, 1)
-                slope = float(d1 @ d1 + diff @ p.at(t, 2))
-                if slope == 0.0:
-                    break
-                t -= float(diff @ d1) / slope
-            break
+    """Newton on (p(t) - point)·p'(t) = 0 (the foot point): in floats until the steps stop
+    shrinking, then up to three steps with the residual p(t) - point evaluated exactly."""
+    for exact, iterations in ((False, 40), (True, 3)):
+        prev = np.inf
+        for it in range(iterations):
+            diff = _exact_difference(p.exact_at(t), target) if exact else p.at(t) - point
+            d1 = p.at(t, 1)
+            slope = float(d1 @ d1 + diff @ p.at(t, 2))
+            if slope == 0.0:
+                break
+            step = float(diff @ d1) / slope
+            t -= step
+            if not -0.5 < t < 1.5:
+                return None
+            if abs(step) < 1e-16 or (it > 5 and abs(step) > 0.5 * prev):
+                break
+            prev = abs(step)
     if -1e-12 <= t <= 1 + 1e-12:
         return min(max(t, 0.0), 1.0)
     return None

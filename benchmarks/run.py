@@ -290,11 +290,12 @@ def bench_intersection() -> None:
         pairs += len(case["curve1_params"])
     per_ours, per_ref = ours_total / pairs, ref_total / pairs
     record(
-        f"intersect: {len(cases) - len(skipped)} fixture cases, {pairs} pairs, per pair "
-        f"(bezier fails on cases {', '.join(map(str, skipped))})",
-        per_ours,
+        f"intersect: {len(cases) - len(skipped)} bezier fixture cases, {pairs} pairs, all "
+        f"(per pair {per_ours * 1e6:.0f} µs vs {per_ref * 1e6:.0f} µs; bezier fails on cases "
+        f"{', '.join(map(str, skipped))})",
+        ours_total,
         "bezier.Curve.intersect",
-        per_ref,
+        ref_total,
         "<= 100x",  # pure Python + numpy with exact-residual Newton, against Fortran
         per_ours / per_ref <= 100,
     )

@@ -214,6 +214,13 @@ def test_intersect_bad_input():
         lb.BezierCurve([[0], [1]]).intersect(lb.BezierCurve([[0], [2]]))
     with pytest.raises(ValueError, match="single point"):
         c.intersect(lb.BezierCurve([(1, 1), (1, 1)]))
+    # a cubic folding back along y = -7, against a segment of that line: a continuum
+    folded = lb.BezierCurve([(-4, -7), (-4, -7), (1, -7), (-8, -7)])
+    with pytest.raises(ValueError, match="not a set of points"):
+        folded.intersect(lb.BezierCurve([(1, -7), (-13, -7)]))
+    assert folded.intersect(lb.BezierCurve([(5, -7), (9, -7)])) == []  # same line, apart
+    on_line = folded.intersect(lb.BezierCurve([(-3, -7), (-3, -6)]))  # across it: x = -3 twice
+    assert [h.t for h in on_line] == [0.0, 0.0] and len({h.s for h in on_line}) == 2
 
 
 # ---------------------------------------------------------------------------- λ families

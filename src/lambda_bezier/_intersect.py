@@ -516,6 +516,8 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
     for e in ends:
         if not _dedupe(found, e):
             found.append(e)
+    if not coincident:
+        _refuse_collinear_overlap(p, q)
     ia, ib = _surviving_pairs(p, q, skip)
     for s, t in _starts(ia, ib):
         if any(s0 <= s <= s1 and t0 <= t <= t1 for s0, s1, t0, t1 in skip):
@@ -544,6 +546,33 @@ def _add(found: list[Intersection], hit: Intersection, p: Prepared, q: Prepared)
 
 def _quality(p: Prepared, q: Prepared, hit: Intersection) -> float:
     return float(np.linalg.norm(_tangent_residual(p, q, hit.s, hit.t, 1.0, True)))
+
+
+def _refuse_collinear_overlap(p: Prepared, q: Prepared) -> None:
+    """Two curves on one line whose images overlap along an interval meet in a continuum of
+    parameter pairs; unless they are one curve up to an affine change of parameter
+    (reported as coincident above) there are no end pairs to report, so say so."""
+    pts = np.vstack([p.pts, q.pts])
+    base = pts[0]
+    far = pts[np.argmax(np.linalg.norm(pts - base, axis=1))]
+    direction = far - base
+    length = float(np.linalg.norm(direction))
+    if length == 0.0:
+        return
+    unit = direction / length
+    rel = pts - base
+    off_line = np.linalg.norm(rel - np.outer(rel @ unit, unit), axis=1).max()
+    if off_line > ON_CURVE * max(p.scale, q.scale):
+        return
+    u = np.linspace(0.0, 1.0, 1025)
+    image_p = np.array([p.at(x) for x in u]) @ unit
+    image_q = np.array([q.at(x) for x in u]) @ unit
+    overlap = min(image_p.max(), image_q.max()) - max(image_p.min(), image_q.min())
+    if overlap > 1e-9 * length:
+        raise ValueError(
+            "the curves lie on one line and overlap along an interval, with parametrisations "
+            "that are not affinely related: their intersection is not a set of points"
+        )
 
 
 def self_intersections(p: Prepared) -> list[Intersection]:

@@ -33,7 +33,7 @@ def poly(expr: sp.Expr) -> sp.Poly:
         sp.PolynomialError
     ):  # negative powers that only cancel after putting over one denominator
         pass
-    expr = sp.cancel(sp.sympify(expr))
+    expr = sp.cancel(sp.sympify(expr, strict=True))
     num, den = sp.fraction(expr)
     p = sp.Poly(num, t, lam, domain="QQ")
     d = sp.Poly(den, t, lam, domain="QQ")

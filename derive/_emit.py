@@ -120,7 +120,7 @@ class _ExactPrinter(StrPrinter):
 def expression(expr: sp.Expr) -> str:
     """Deterministic Python source for a SymPy expression (no hash-order dependence:
     StrPrinter orders terms by SymPy's canonical sort key)."""
-    return _ExactPrinter({"order": "lex"}).doprint(sp.sympify(expr))
+    return _ExactPrinter({"order": "lex"}).doprint(sp.sympify(expr, strict=True))
 
 
 def function(name: str, args: Iterable[str], doc: str, body: str) -> str:

@@ -34,6 +34,7 @@ from .bernstein import bernstein_basis, bernstein_poly, endpoint_weight
 SCRIPT = "bernstein_like.py"
 OUTPUT = "bernstein_like.py"
 DEGREES = range(2, 13)
+DEGREE_OFFSET = 2  # the basis polynomials have degree n + 2
 ORDERS = 2
 
 SEED = (

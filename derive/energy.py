@@ -35,6 +35,8 @@ SCRIPT = "energy.py"
 OUTPUT = "energy.py"
 ORDERS = (1, 2, 3)
 FAMILIES = {"same_degree": _same_degree, "bernstein_like": _bernstein_like}
+# Families defined by data (derive/family_engine.py), for verify's energy checks: not emitted.
+EXTRA: dict = {}
 GRAM_DEGREES = range(0, 15)
 
 _m, _a, _b, _c, _N = sp.symbols("m a b c N", integer=True, nonnegative=True)
@@ -116,9 +118,13 @@ def upper_form(sym) -> tuple[Fraction, tuple[tuple[int, ...], ...]]:
 @cache
 def energy_forms(family: str, n: int, k: int) -> dict[str, tuple[Fraction, tuple]]:
     """{"ff", "fg", "gg"}: (scale, U) with ∫f⁽ᵏ⁾·f⁽ᵏ⁾ = scale·DᵀUD etc. (see module doc)."""
-    module = FAMILIES[family]
-    big = n + (2 if family == "bernstein_like" else 0)
-    m0, m1 = (to_flint(mat) for mat in bernstein_matrices(list(module.basis_polys(n)), big))
+    module = FAMILIES[family] if family in FAMILIES else EXTRA[family]
+    return forms_from_polys(list(module.basis_polys(n)), n + module.DEGREE_OFFSET, k)
+
+
+def forms_from_polys(polys, big: int, k: int) -> dict[str, tuple[Fraction, tuple]]:
+    """energy_forms of any basis linear in λ (polynomials of degree `big` in t)."""
+    m0, m1 = (to_flint(mat) for mat in bernstein_matrices(polys, big))
     kk = stiffness(big, k)
     w = -m1  # W = −M_1ᵀ D
     fg = m0 * kk * w.transpose()

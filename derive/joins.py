@@ -36,6 +36,7 @@ stays fast).
 
 from __future__ import annotations
 
+from contextlib import contextmanager
 from fractions import Fraction
 from functools import cache
 from math import factorial, perm
@@ -75,10 +76,39 @@ SAMPLES = (
 # --------------------------------------------------------------------------- inputs
 
 
-@cache
+# Families defined by data (derive/family_engine.py) while their joins are derived: name ->
+# closed endpoint forms {(end, r, idx): expr in n, lam}; see extra_family().
+_EXTRA: dict[str, dict[tuple[str, int, int], sp.Expr]] = {}
+
+
+def register(name: str, forms: dict, degrees: tuple[int, ...], has_lambda: bool) -> None:
+    """`name` becomes a family of the solve, with the given closed end forms (the orders the
+    solve uses, 0..2); it is never emitted."""
+    _EXTRA[name] = {key: v for key, v in forms.items() if key[1] <= 2 and v != 0}
+    DEGREES[name] = degrees
+    HAS_LAMBDA[name] = has_lambda
+
+
+@contextmanager
+def extra_family(name: str, forms: dict, degrees: tuple[int, ...], has_lambda: bool):
+    """register() for the duration of the block."""
+    register(name, forms, degrees, has_lambda)
+    try:
+        yield
+    finally:
+        del _EXTRA[name], DEGREES[name], HAS_LAMBDA[name]
+
+
 def endpoint_forms(family: str) -> dict[tuple[str, int, int], sp.Expr]:
     """{(end, r, idx): closed form in n, lam} from the family's own derivation, with the
     factorials of n cancelled (they are ratios such as n!/(n-2)! = n(n-1))."""
+    if family in _EXTRA:
+        return _EXTRA[family]
+    return _builtin_endpoint_forms(family)
+
+
+@cache
+def _builtin_endpoint_forms(family: str) -> dict[tuple[str, int, int], sp.Expr]:
     if family == "bezier":
         start, end = _bernstein.endpoint_weights()
         raw = {}
@@ -88,8 +118,10 @@ def endpoint_forms(family: str) -> dict[tuple[str, int, int], sp.Expr]:
                 raw[("end", r, idx)] = end.subs({k: r, i: idx})
     elif family == "same_degree":
         raw = _same_degree.endpoint_closed_forms(_same_degree.three_term_form())
-    else:
+    elif family == "bernstein_like":
         raw = _bernstein_like.endpoint_closed_forms(_bernstein_like.explicit_factor())
+    else:
+        raise KeyError(f"no closed end forms for the family {family!r}")
     out = {}
     for key, v in raw.items():
         if v.has(sp.factorial, sp.binomial, sp.FallingFactorial):

@@ -34,6 +34,7 @@ from .bernstein import endpoint_weight
 SCRIPT = "same_degree.py"
 OUTPUT = "same_degree.py"
 DEGREES = range(3, 13)
+DEGREE_OFFSET = 0  # the basis polynomials have degree n
 ORDERS = 2  # endpoint derivatives emitted in closed form: value, first, second
 
 

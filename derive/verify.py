@@ -27,18 +27,15 @@ from __future__ import annotations
 import json
 import multiprocessing
 import os
-import sys
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .verify_checks import CHECKERS, Outcome, run_checker
+from .records import RecordsError, load_paths
+from .verify_checks import Outcome, run_checker
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
+__all__ = ["RecordsError", "load_records", "verify"]
 
 PUBLISHED = Path(__file__).resolve().parent / "published"
 VERDICTS = ("match", "mismatch", "pending")
@@ -50,31 +47,11 @@ ERRATA_COMMAND = "lambda-bezier verify --errata"
 # --------------------------------------------------------------------------- records
 
 
-def load_file(path: Path) -> list[dict]:
-    data = tomllib.loads(path.read_text(encoding="utf-8"))
-    out = []
-    for rec in data.get("record", []):
-        rec = dict(rec)
-        rec.setdefault("family", data["family"])
-        rec.setdefault("file", path.name)
-        if "variable" not in rec and "variable" in data:
-            rec["variable"] = data["variable"]
-        out.append(rec)
-    return out
-
-
-def load_records(directory: Path = PUBLISHED) -> list[dict]:
-    records = []
-    for path in sorted(directory.glob("*.toml")):
-        records += load_file(path)
-    seen = set()
-    for rec in records:
-        if rec["id"] in seen:
-            raise ValueError(f"duplicate record id {rec['id']}")
-        seen.add(rec["id"])
-        if rec["claim"] not in CHECKERS:
-            raise ValueError(f"{rec['id']}: no checker for claim {rec['claim']!r}")
-    return records
+def load_records(paths: Iterable[Path] | None = None) -> list[dict]:
+    """The records of `paths` (default: every built-in file), validated (derive/records.py)."""
+    if paths is None:
+        paths = sorted(PUBLISHED.glob("*.toml"))
+    return load_paths(paths)
 
 
 _INDEX: dict[str, dict] = {}  # all records of the current run, for cross-references
@@ -229,19 +206,31 @@ def _parallel(records: list[dict], jobs: int, done: Callable[[int, Result], None
                 else:
                     back.value -= 1
                     pos = back.value
+            results.put((order[pos], None))  # started: named if this worker dies
             results.put((order[pos], check_record(records[order[pos]])))
 
     workers = [ctx.Process(target=work, args=(w % 2 == 0,), daemon=True) for w in range(jobs)]
     for w in workers:
         w.start()
+    started: set[int] = set()
     try:
-        for _ in records:
+        finished = 0
+        while finished < len(records):
             while results.empty():
                 if not any(w.is_alive() for w in workers) and results.empty():
                     codes = [w.exitcode for w in workers]
-                    raise RuntimeError(f"verify workers exited early (exit codes {codes})")
+                    busy = ", ".join(records[i]["id"] for i in sorted(started)) or "none"
+                    raise RuntimeError(
+                        f"verify workers exited early (exit codes {codes}) while checking: {busy}"
+                    )
                 time.sleep(0.005)
-            done(*results.get())
+            idx, res = results.get()
+            if res is None:
+                started.add(idx)
+                continue
+            started.discard(idx)
+            finished += 1
+            done(idx, res)
     finally:
         for w in workers:
             if w.is_alive():

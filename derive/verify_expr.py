@@ -1,9 +1,9 @@
 """Expressions of the published records: parsing with a fixed table, and exact evaluation.
 
-Parsing. Printed formulas (strings in derive/published/*.toml, our own files, never user input)
-are parsed with ``sympy.parsing.sympy_parser.parse_expr`` under the standard transformations and
-a FIXED table of symbols and undefined functions (derive/published/README.md, "Expression
-language"). Anything outside the table is rejected.
+Parsing. Formulas of records files (the built-in ones and a user's, which are untrusted) are read
+by the records grammar of derive/grammar.py: our own tokenizer and parser over a FIXED table of
+symbols and undefined functions, with limits on length, depth and exponents; nothing in a file is
+ever evaluated as code.
 
 Evaluation ("realising"). A parsed expression is evaluated for concrete degrees and indices by
 a recursive walk with an environment {symbol: int}: the undefined functions are replaced by
@@ -37,109 +37,30 @@ from math import comb, factorial, gcd
 import flint
 import sympy as sp
 from sympy.core.function import AppliedUndef
-from sympy.parsing.sympy_parser import parse_expr, standard_transformations
 
-SYMBOL_NAMES = [
-    "t",
-    "u",
-    "x",
-    "c",
-    "tstar",
-    "n",
-    "m",
-    "i",
-    "j",
-    "k",
-    "l",
-    "r",
-    "lam",
-    "lam1",
-    "lam2",
-    "alpha",
-    "beta",
-    "d",
-    "C",
-    "omega",
-]
-FUNCTION_NAMES = [
-    "b",
-    "B",
-    "A",
-    "f",
-    "a",
-    "p",
-    "p1",
-    "p2",
-    "P",
-    "P1",
-    "P2",
-    "V",
-    "V1",
-    "V2",
-    "Vl",
-    "Ql",
-    "Q",
-    "W",
-    "F",
-    "G",
-    "E",
-    "y",
-    "kappa",
-    "bk",
-    "Delta",
-    "dot",
-    "cross",
-    "norm",
-]
-SYMBOLS = {name: sp.Symbol(name) for name in SYMBOL_NAMES}
-FUNCTIONS = {name: sp.Function(name) for name in FUNCTION_NAMES}
-_GLOBALS: dict = {}
-exec(  # noqa: S102 - a fixed import line, no data involved
-    "from sympy import Integer, Rational, Float, Symbol, Function, Sum, Integral, "
-    "Derivative, Subs, binomial, factorial",
-    _GLOBALS,
-)
+from .grammar import MAX_EXPONENT, MAX_FACTORIAL, SYMBOLS, parse_formula
+from .grammar import ParseError as ParseError  # re-exported: callers catch it from here
+
 INDEX_SYMBOLS = tuple(SYMBOLS[s] for s in ["i", "j", "k", "l", "r"])
 DEGREE_SYMBOLS = (SYMBOLS["n"], SYMBOLS["m"])
 # Functions whose first argument is a control-point index (shifted by the difference operator).
 POINT_LIKE = frozenset(["b", "bk", "a", "P", "P1", "P2", "V", "V1", "V2", "Vl", "Ql", "Q", "W"])
-_ALLOWED_FUNCS = {
-    sp.Sum,
-    sp.Integral,
-    sp.Derivative,
-    sp.Subs,
-    sp.binomial,
-    sp.factorial,
-    sp.Tuple,
-}
+# Summation ranges a formula may ask for (a hostile Sum(..., (i, 0, 10**9)) is refused).
+MAX_SUM_TERMS = 10_000
 
 
-class ParseError(ValueError):
-    pass
+def as_sympy(x: object) -> sp.Basic:
+    """A number or a SymPy object as SymPy; a string is refused (sympify would evaluate it)."""
+    if isinstance(x, str):
+        raise TypeError("a string reaches SymPy only through parse_formula")
+    return sp.sympify(x, strict=True)
 
 
 @cache
 def parse(text: str) -> sp.Expr:
-    """A printed expression, parsed with the fixed table (and checked against it)."""
-    try:
-        expr = parse_expr(
-            text,
-            local_dict=dict(SYMBOLS) | dict(FUNCTIONS),
-            global_dict=dict(_GLOBALS),
-            transformations=standard_transformations,
-        )
-    except Exception as exc:  # noqa: BLE001 - report any parser failure with the text
-        raise ParseError(f"cannot parse {text!r}: {exc}") from exc
-    for sym in expr.free_symbols:
-        if sym.name not in SYMBOLS:
-            raise ParseError(f"unknown symbol {sym.name!r} in {text!r}")
-    for node in sp.preorder_traversal(expr):
-        if isinstance(node, AppliedUndef):
-            if node.func.__name__ not in FUNCTIONS:
-                raise ParseError(f"unknown function {node.func.__name__!r} in {text!r}")
-        elif isinstance(node, sp.Function) and type(node) not in _ALLOWED_FUNCS:
-            raise ParseError(f"unexpected function {type(node).__name__} in {text!r}")
-    return expr
+    """A printed expression, read by the records grammar (derive/grammar.py): our own parser
+    over a fixed table of symbols and functions, nothing evaluated."""
+    return parse_formula(text)
 
 
 def parse_relation(text: str):
@@ -172,13 +93,17 @@ def as_int(x) -> int:
         if c is not None and c.denominator == 1:
             return int(c.numerator)
         raise TypeError(f"{x.to_expr()} is not a concrete integer")
-    x = sp.sympify(x)
+    x = as_sympy(x)
     if not x.is_Integer:
         raise TypeError(f"{x} is not a concrete integer")
     return int(x)
 
 
 # --------------------------------------------------------------------------- values
+
+
+class LimitError(ValueError):
+    """A formula asks for more than the evaluator allows (an exponent, a sum, an order)."""
 
 
 class Undefined(Exception):
@@ -294,7 +219,7 @@ class Sc:
             return Sc.const(_q(x.numerator, x.denominator))
         if isinstance(x, _fmpq):
             return Sc.const(x)
-        x = sp.sympify(x)
+        x = as_sympy(x)
         if x.is_Rational:
             return Sc.const(_q(int(x.p), int(x.q)))
         if x.is_Symbol:
@@ -582,7 +507,7 @@ def _is_zero(expr) -> bool:
         return expr.is_zero()
     if isinstance(expr, (int, Fraction)):
         return expr == 0
-    expr = sp.sympify(expr)
+    expr = as_sympy(expr)
     if expr.is_Number:
         return expr == 0
     try:  # fast path: exact rational-function arithmetic in a polynomial ring
@@ -670,7 +595,7 @@ def cancelled(num, den) -> tuple:
 def fast_factor(expr) -> sp.Expr:
     """A rational expression cancelled and factored with ring arithmetic (sp.cancel on large
     nested expressions is slow)."""
-    expr = sp.sympify(expr)
+    expr = as_sympy(expr)
     if expr.is_Number:
         return expr
     try:
@@ -699,7 +624,7 @@ def simplify_scalar(expr):
             num, den = cancelled(num, den)
         out = _flint_factored(num) / sp.Integer(expr.den)
         return out / _flint_factored(den) if den is not None else out
-    expr = sp.sympify(expr)
+    expr = as_sympy(expr)
     if expr.is_Number:
         return expr
     return sp.factor(sp.cancel(sp.together(expr)))
@@ -1055,6 +980,8 @@ class Realiser:
             def power(env):
                 base = base_fn(env)
                 ex = as_int(exp_fn(env))
+                if abs(ex) > MAX_EXPONENT:
+                    raise LimitError(f"an exponent {ex} larger than {MAX_EXPONENT}")
                 if is_scalar(base) and trivially_zero(base) and ex < 0:
                     raise Undefined("division by zero")
                 return v_pow(base, ex)
@@ -1062,7 +989,14 @@ class Realiser:
             return power
         if isinstance(e, sp.binomial):
             top_fn, bottom_fn = (self._fn(x) for x in e.args)
-            return lambda env: Sc.const(paper_binomial(as_int(top_fn(env)), as_int(bottom_fn(env))))
+
+            def binom(env):
+                top, bottom = as_int(top_fn(env)), as_int(bottom_fn(env))
+                if max(abs(top), abs(bottom)) > MAX_FACTORIAL:
+                    raise LimitError(f"binomial({top}, {bottom}) (at most {MAX_FACTORIAL})")
+                return Sc.const(paper_binomial(top, bottom))
+
+            return binom
         if isinstance(e, sp.factorial):
             arg_fn = self._fn(e.args[0])
 
@@ -1070,6 +1004,8 @@ class Realiser:
                 a = as_int(arg_fn(env))
                 if a < 0:
                     raise Undefined(f"factorial({a})")
+                if a > MAX_FACTORIAL:
+                    raise LimitError(f"factorial({a}) (at most {MAX_FACTORIAL})")
                 return Sc.const(factorial(a))
 
             return fact
@@ -1085,6 +1021,8 @@ class Realiser:
                     cnt = as_int(count_fn(env))
                     if cnt < 0:
                         raise Undefined(f"derivative of order {cnt}")
+                    if cnt > MAX_EXPONENT:
+                        raise LimitError(f"a derivative of order {cnt} (at most {MAX_EXPONENT})")
                     val = v_apply(val, lambda s, var=var, cnt=cnt: s.diff(var, cnt))
                 return val
 
@@ -1122,6 +1060,8 @@ class Realiser:
 
         def total(env):
             lo, hi = as_int(lo_fn(env)), as_int(hi_fn(env))
+            if hi - lo >= MAX_SUM_TERMS:
+                raise LimitError(f"a sum over {var} = {lo}..{hi} (at most {MAX_SUM_TERMS} terms)")
             out = ZERO
             for val in range(lo, hi + 1):  # empty when hi < lo
                 out = v_add(out, inner({**env, var: val}))

@@ -394,6 +394,8 @@ def test_high_degree_evaluation(degree):
     # what needs a generated table says so past the tables
     with pytest.raises(ValueError, match="no generated basis matrices"):
         c.basis_power_matrix()
+    with pytest.raises(ValueError, match="Taylor tables"):
+        c.arc_length()
     if degree - 1 > 14:  # the Gram matrices go to degree 14 (E_1 of a degree-15 curve works)
         with pytest.raises(ValueError, match="no generated Gram matrix"):
             c.energy(1)

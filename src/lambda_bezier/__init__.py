@@ -24,6 +24,7 @@ if TYPE_CHECKING:
     from .composite import CompositeCurve, JointReport
     from .curves import FAMILIES, BernsteinLikeCurve, BezierCurve, Curve, SameDegreeCurve
     from .energy import OptimalLambda, energy_coefficients, energy_matrices, optimal_lambda
+    from .family import Family, load_family
     from .joins import Joint, join
 
 __version__ = "0.1.0"
@@ -44,6 +45,8 @@ _EXPORTS = {
     "energy_coefficients": "energy",
     "energy_matrices": "energy",
     "optimal_lambda": "energy",
+    "Family": "family",
+    "load_family": "family",
     "Joint": "joins",
     "join": "joins",
 }
@@ -53,6 +56,7 @@ __all__ = [
     "BezierCurve",
     "CompositeCurve",
     "Curve",
+    "Family",
     "Joint",
     "JointReport",
     "OptimalLambda",
@@ -61,6 +65,7 @@ __all__ = [
     "energy_matrices",
     "evaluate_many",
     "join",
+    "load_family",
     "optimal_lambda",
 ]
 

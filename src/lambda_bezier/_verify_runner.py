@@ -21,7 +21,28 @@ from ._derive_runner import find_checkout, load_derive
 FORMATS = ("text", "json", "markdown")
 
 
+EXIT_CODES = """exit codes:
+  0  every verdict is as its record expects (a record without `expect` expects match)
+  1  some verdict differs from its expectation (or, with --strict, is not match), an
+     erratum does not verify, a checker failed, or ERRATA.md is stale
+  2  a records file cannot be read or validated, or the options are wrong
+
+Records files are read by a grammar of our own (nothing in them is run as code) and
+checked with the derivation installed with lambda-bezier, or the checkout's derive/ when
+run inside a checkout of this project (or --root), never code found beside PATH.
+The records format: derive/published/README.md."""
+
+
 def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.formatter_class = argparse.RawDescriptionHelpFormatter
+    parser.epilog = EXIT_CODES
+    parser.add_argument(
+        "paths",
+        nargs="*",
+        type=Path,
+        metavar="PATH",
+        help="records files (TOML) to check; default: the built-in records of the three papers",
+    )
     parser.add_argument(
         "--format", choices=FORMATS, default="text", help="report format (default: text)"
     )
@@ -52,7 +73,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run_from_args(args) -> int:
     root = args.root.resolve() if args.root else None
-    return run(fmt=args.format, strict=args.strict, errata=args.errata, root=root, only=args.only)
+    return run(
+        fmt=args.format,
+        strict=args.strict,
+        errata=args.errata,
+        root=root,
+        only=args.only,
+        paths=args.paths,
+    )
 
 
 class Progress:
@@ -100,8 +128,23 @@ def run(
     only: list[str] | None = None,
     out=None,
     progress: bool | None = None,
+    paths: list[Path] | None = None,
 ) -> int:
     out = out or sys.stdout
+    if root is not None and find_checkout(root) != root:
+        print(
+            f"lambda-bezier verify: --root {root} is not a lambda-bezier source checkout "
+            "(a directory with derive/ and this project's pyproject.toml)",
+            file=sys.stderr,
+        )
+        return 2
+    if errata and paths:
+        print(
+            "lambda-bezier verify: --errata rewrites ERRATA.md from the built-in records; "
+            "it takes no PATH",
+            file=sys.stderr,
+        )
+        return 2
     checkout = root if root is not None else find_checkout(Path.cwd())
     if errata and checkout is None:
         raise SystemExit(
@@ -110,8 +153,17 @@ def run(
         )
     derive = load_derive(checkout)  # exits with an install hint when SymPy is missing
     verify = importlib.import_module(f"{derive.__name__}.verify")
-    published = checkout / "derive" / "published" if checkout is not None else verify.PUBLISHED
-    every = verify.load_records(published)
+    if not paths:
+        published = checkout / "derive" / "published" if checkout else verify.PUBLISHED
+        paths = sorted(published.glob("*.toml"))
+        builtin = True
+    else:
+        builtin = False
+    try:
+        every = verify.load_records(paths)
+    except verify.RecordsError as exc:
+        print(f"lambda-bezier verify: {exc}", file=sys.stderr)
+        return 2
     records = every
     if only:
         records = [r for r in every if any(text in r["id"] for text in only)]
@@ -120,9 +172,13 @@ def run(
             return 2
     if progress is None:
         progress = out is sys.stdout and sys.stdout.isatty() and sys.stderr.isatty()
-    report = copy.copy(verify.verify(records, progress=Progress(progress), index=every))
+    try:
+        report = copy.copy(verify.verify(records, progress=Progress(progress), index=every))
+    except RuntimeError as exc:  # a worker process died (the message names its record)
+        print(f"lambda-bezier verify: {exc}", file=sys.stderr)
+        return 1
     report.extra_problems = list(report.extra_problems)
-    errata_path = checkout / verify.ERRATA_FILE if checkout is not None else None
+    errata_path = checkout / verify.ERRATA_FILE if checkout is not None and builtin else None
     if errata_path is not None and not only:
         text = verify.render_errata(report)
         if errata:

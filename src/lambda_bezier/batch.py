@@ -66,7 +66,8 @@ def evaluate_many(
     k = val.as_order(k)
     tt, scalar = val.as_parameters(t, extrapolate=extrapolate)
     n = size - 1
-    mats = _tables(family, "centred")[n]
+    data = cls._data  # the tables are keyed by the family's data (curves._tables)
+    mats = _tables(data, "centred")[n]
     if family == "bezier":
         if lam is not None:
             raise ValueError("a classical Bézier curve takes no shape parameter")
@@ -78,9 +79,9 @@ def evaluate_many(
     # Coefficients of every curve in the centred monomials (t - 1/2)^e, laid out (N+1, m·d)
     # so that both products below are wide matrix products (BLAS is slow on tall-skinny ones).
     pt = np.ascontiguousarray(arr.transpose(1, 0, 2)).reshape(size, m * dim)
-    coeffs = _float_matrix(family, "centred", n, 0).T @ pt
+    coeffs = _float_matrix(data, "centred", n, 0).T @ pt
     for p in range(1, len(mats)):
-        part = _float_matrix(family, "centred", n, p).T @ pt
+        part = _float_matrix(data, "centred", n, p).T @ pt
         coeffs += part * np.repeat(lams**p, dim)
     if k:
         from ._algorithms import differentiate_coefficients

@@ -32,6 +32,15 @@ def build_parser() -> argparse.ArgumentParser:
         help="the source checkout (default: the one containing the current directory)",
     )
     derive.add_argument("-q", "--quiet", action="store_true", help="no progress messages")
+    derive.add_argument(
+        "--family",
+        type=Path,
+        metavar="FILE",
+        help="derive the family a [family] table in FILE defines (into FILE's directory)",
+    )
+    derive.add_argument(
+        "--out", type=Path, metavar="DIR", help="with --family: write the derived file into DIR"
+    )
 
     opt = sub.add_parser(
         "optimal-lambda",
@@ -59,6 +68,23 @@ def build_parser() -> argparse.ArgumentParser:
         "--clamp", action="store_true", help="also give the minimiser over the family's λ range"
     )
     opt.add_argument("--json", action="store_true", help="machine-readable output")
+
+    exp = sub.add_parser(
+        "export",
+        help="write a curve or composite (lambda-bezier JSON) as STEP, DXF, SVG or JSON",
+        description="Read a curve or composite in the JSON form of lambda_bezier.export and "
+        "write it as one exact B-spline (STEP through OCCT, DXF SPLINE through ezdxf; both "
+        'need pip install "lambda-bezier[cad]"), an SVG path, or normalised JSON.',
+    )
+    exp.add_argument("--format", required=True, choices=["step", "dxf", "svg", "json"])
+    exp.add_argument(
+        "--tolerance",
+        type=float,
+        default=None,
+        help="SVG only: approximate pieces of degree > 3 by cubics within this distance",
+    )
+    exp.add_argument("input", type=Path, metavar="INPUT.json")
+    exp.add_argument("output", type=Path, metavar="OUTPUT")
 
     from ._verify_runner import add_arguments
 
@@ -93,6 +119,10 @@ def console_main() -> None:
 
 def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
+    if args.command == "derive" and args.family is not None:
+        from ._family_runner import run as run_family
+
+        return run_family(args.family, args.out, check=args.check, quiet=args.quiet)
     if args.command == "derive":
         from ._derive_runner import run
 
@@ -100,11 +130,32 @@ def main(argv: list[str] | None = None) -> int:
         return run(check=args.check, root=root, quiet=args.quiet)
     if args.command == "optimal-lambda":
         return _optimal_lambda(args)
+    if args.command == "export":
+        return _export(args)
     if args.command == "verify":
         from ._verify_runner import run_from_args
 
         return run_from_args(args)
     raise AssertionError(args.command)  # argparse enforces the choices
+
+
+def _export(args) -> int:
+    from . import export
+
+    try:
+        if args.tolerance is not None and args.format != "svg":
+            raise ValueError("--tolerance applies to --format svg only")
+        obj = export.from_json(args.input.read_text(encoding="utf-8"))
+        if args.format == "json":
+            args.output.write_text(export.to_json(obj) + "\n", encoding="utf-8")
+        elif args.format == "svg":
+            args.output.write_text(export.to_svg(obj, tolerance=args.tolerance), encoding="utf-8")
+        else:
+            getattr(export, f"to_{args.format}")(obj, args.output)
+    except (OSError, ValueError, ImportError) as exc:
+        print(f"lambda-bezier export: error: {exc}", file=sys.stderr)
+        return 2
+    return 0
 
 
 def _optimal_lambda(args) -> int:

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _validate as val
+from . import geometry as _geometry
 from .curves import Curve
 from .joins import Joint, join
 
@@ -309,6 +310,28 @@ class CompositeCurve:
             mask = idx == s
             out[mask] = self.segments[s].curvature(t[mask], extrapolate=extrapolate)
         return out[0] if scalar else out
+
+    # ------------------------------------------------------------------ geometry (geometry.py)
+    def arc_length(self, u0=0, u1=None) -> float:
+        """∫ |C'(u)| du from u0 to u1 (0 <= u0 <= u1 <= N, default the whole composite)."""
+        return _geometry.arc_length(self, u0, u1)
+
+    def parameter_at_length(self, s):
+        """The u at which the arc length from u = 0 equals s (a number or an array)."""
+        return _geometry.parameter_at_length(self, s)
+
+    def bounding_box(self) -> tuple[np.ndarray, np.ndarray]:
+        """(lo, hi): the tight axis-aligned box of all segments."""
+        return _geometry.bounding_box(self)
+
+    def closest_point(self, q) -> _geometry.ClosestPoint:
+        """The global nearest point to q, (d,) or a batch (m, d): `t` (the u), `point`,
+        `distance`."""
+        return _geometry.closest_point(self, q)
+
+    def torsion(self, u, *, extrapolate: bool = False):
+        """Signed torsion in u of a 3D composite (see Curve.torsion)."""
+        return _geometry.torsion(self, u, extrapolate=extrapolate)
 
     # ------------------------------------------------------------------ continuity
     def report(self, tol: float = 1e-9) -> tuple[JointReport, ...]:

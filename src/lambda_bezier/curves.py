@@ -20,6 +20,7 @@ from . import _algorithms as alg
 from . import _bezier_forms as forms
 from . import _intersect, _reduce
 from . import _validate as val
+from . import geometry as _geometry
 from ._lazy import generated
 
 _bernstein = generated("bernstein")
@@ -30,8 +31,8 @@ Matrix = tuple[tuple[Fraction, ...], ...]
 
 
 @cache
-def _float_matrix(family: str, kind: str, degree: int, power: int) -> np.ndarray:
-    mats = _tables(family, kind)[degree]
+def _float_matrix(data: object, kind: str, degree: int, power: int) -> np.ndarray:
+    mats = _tables(data, kind)[degree]
     arr = np.array(mats[power], dtype=float)
     arr.setflags(write=False)
     return arr
@@ -60,14 +61,15 @@ def _identity(size: int) -> Matrix:
 
 
 @cache
-def _tables(family: str, kind: str) -> dict[int, tuple[Matrix, ...]]:
-    """kind ("power", "centred", "bernstein") -> degree -> tuple of λ-power matrices;
+def _tables(data: object, kind: str) -> dict[int, tuple[Matrix, ...]]:
+    """kind ("power", "centred", "bernstein") -> degree -> tuple of λ-power matrices of the
+    family whose tables `data` holds (a generated module, or a user family's FamilyData);
     the Bernstein basis has no λ (one matrix each)."""
-    if family == "bezier":
+    if data is _bernstein:
         if kind == "bernstein":
             return {d: (_identity(d + 1),) for d in _bernstein.DEGREES}
         return {d: (m,) for d, m in getattr(_bernstein, kind.upper()).items()}
-    return getattr(FAMILIES[family]._data, kind.upper())
+    return getattr(data, kind.upper())
 
 
 class Curve:
@@ -145,14 +147,14 @@ class Curve:
                 f"no generated basis matrices for degree {self.degree} (they cover degrees "
                 f"{self._data.DEGREES[0]}..{self._data.DEGREES[-1]})"
             )
-        return _tables(self.family, kind)[self.degree]
+        return _tables(self._data, kind)[self.degree]
 
     def _combined(self, kind: str) -> np.ndarray:
         mats = self._matrices(kind)
-        out = np.array(_float_matrix(self.family, kind, self.degree, 0))
+        out = np.array(_float_matrix(self._data, kind, self.degree, 0))
         lam = 0.0 if self.lam is None else float(self.lam)
         for p in range(1, len(mats)):
-            out += lam**p * _float_matrix(self.family, kind, self.degree, p)
+            out += lam**p * _float_matrix(self._data, kind, self.degree, p)
         return out
 
     def basis_power_matrix(self) -> np.ndarray:
@@ -263,6 +265,27 @@ class Curve:
         ctrl = self._hodograph_points(k)
         g = np.array(upper, dtype=float) * float(scale)
         return float(np.einsum("id,ij,jd->", ctrl, (g + g.T) / 2, ctrl))
+
+    # ------------------------------------------------------------------ geometry (geometry.py)
+    def arc_length(self, t0=0, t1=1) -> float:
+        """∫ |p'(t)| dt from t0 to t1 (0 <= t0 <= t1 <= 1), to a relative accuracy of 1e-12."""
+        return _geometry.arc_length(self, t0, t1)
+
+    def parameter_at_length(self, s):
+        """The t at which the arc length from 0 equals s (a number or an array)."""
+        return _geometry.parameter_at_length(self, s)
+
+    def bounding_box(self) -> tuple[np.ndarray, np.ndarray]:
+        """(lo, hi): the tight axis-aligned box, from the exact extremes of each coordinate."""
+        return _geometry.bounding_box(self)
+
+    def closest_point(self, q) -> _geometry.ClosestPoint:
+        """The global nearest point to q, (d,) or a batch (m, d): `t`, `point`, `distance`."""
+        return _geometry.closest_point(self, q)
+
+    def torsion(self, t, *, extrapolate: bool = False):
+        """Signed torsion of a 3D curve; ValueError where undefined (2D, or p' x p'' = 0)."""
+        return _geometry.torsion(self, t, extrapolate=extrapolate)
 
     # ------------------------------------------------------------------ conversion
     def to_bezier(self) -> BezierCurve:
@@ -436,9 +459,9 @@ class SameDegreeCurve(Curve):
         Casteljau on the cubic Bézier curve. An independent second evaluator."""
         tt, scalar = val.as_parameters(t, extrapolate=extrapolate)
         cubic = alg.de_casteljau_steps(self.points, tt, self.degree - 3)  # (len t, 4, d)
-        m3 = np.array(_float_matrix(self.family, "bernstein", 3, 0))
+        m3 = np.array(_float_matrix(self._data, "bernstein", 3, 0))
         lam = float(self.lam)  # type: ignore[arg-type]
-        m3 = m3 + lam * _float_matrix(self.family, "bernstein", 3, 1)
+        m3 = m3 + lam * _float_matrix(self._data, "bernstein", 3, 1)
         q = np.einsum("ij,tid->tjd", m3, cubic)
         out = alg.de_casteljau_steps(q, tt, 3)[:, 0]
         return out[0] if scalar else out
@@ -451,7 +474,7 @@ class SameDegreeCurve(Curve):
         if exact:
             t = Fraction(t)
             rows = self.control_points()
-            m3 = _combine_exact(_tables(self.family, "bernstein")[3], Fraction(self.lam))
+            m3 = _combine_exact(_tables(self._data, "bernstein")[3], Fraction(self.lam))
         else:
             tt, _ = val.as_parameters(t, extrapolate=False)
             if tt.size != 1:

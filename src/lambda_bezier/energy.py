@@ -192,9 +192,10 @@ def _factored_forms(family: str, n: int, k: int, dim: int) -> tuple[np.ndarray, 
     g = np.array(upper, dtype=float) * float(scale)
     g = (g + g.T) / 2  # the off-diagonal entries were stored doubled
     lower = np.linalg.cholesky(g)
-    m0 = _float_matrix(family, "bernstein", n, 0)
-    m1 = _float_matrix(family, "bernstein", n, 1)
-    assert len(_tables(family, "bernstein")[n]) == 2, "E_k is quadratic in λ for these bases"
+    data = FAMILIES[family]._data  # the tables are keyed by the family's data
+    m0 = _float_matrix(data, "bernstein", n, 0)
+    m1 = _float_matrix(data, "bernstein", n, 1)
+    assert len(_tables(data, "bernstein")[n]) == 2, "E_k is quadratic in λ for these bases"
     eye = np.eye(dim)
     f_part = np.kron((lower.T @ h @ m0.T).T, eye)
     g_part = np.kron((lower.T @ h @ m1.T).T, eye)

@@ -1,0 +1,585 @@
+"""A shape-parameter family from its definition: one engine for any basis.
+
+A family is data: a ``[family]`` table (in a file of its own or at the top of a records file)
+whose ``basis`` is a formula of the records grammar in i, n, t and the shape parameter. From
+that definition alone this module derives what a built-in family gets:
+
+* per degree n: the basis polynomials (negative powers that cancel are allowed; anything that
+  is not a polynomial of degree <= n + degree_offset in t after cancellation is an error), the
+  checks (partition of unity, reduction to Bernstein at ``bernstein_at``), the power, Bernstein
+  and centred (Taylor about 1/2) tables split by powers of the parameter;
+* the values and derivatives (orders 0..3) of every basis function at both ends, per degree,
+  and in closed form in n where one polynomial in n reproduces every degree of the range;
+* the energy quadratic forms and the paper-style integer matrices X_n^k, Y_n^k with their
+  scale (k = 1, 2, 3), where the basis is linear in the parameter (else E_k is not quadratic);
+* the C1, C2, G1, G2 join weights after and before itself and every built-in family, in
+  closed form in n, m where the end stencils allow derive/joins.py's solve; the runtime joins
+  any two families by a per-degree solve from the power tables (lambda_bezier/joins.py).
+
+Everything is exact (SymPy/FLINT rationals); the result is one JSON document (data, never
+code: a derived file is read by ``lambda_bezier.load_family`` without running anything).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import re
+import sys
+from dataclasses import dataclass
+from fractions import Fraction
+from functools import cache
+from math import comb
+from pathlib import Path
+
+import sympy as sp
+
+from ._algebra import expansion_tables, lam, lambda_degree, t
+from .grammar import MAX_EXPONENT, SYMBOLS, ParseError, parse_formula, tokenize
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+FORMAT = 1  # version of the derived JSON document
+MAX_DEGREE = 20
+MAX_OFFSET = 6
+BUILTIN = ("bezier", "same_degree", "bernstein_like")
+ENDPOINT_ORDERS = 3  # derivatives 0..3 at each end
+ENERGY_ORDERS = (1, 2, 3)
+CONTINUITIES = ("C1", "C2", "G1", "G2")
+
+
+class DefinitionError(ValueError):
+    """A family definition that cannot be read or does not define a basis (names the key)."""
+
+
+# --------------------------------------------------------------------------- the definition
+
+_NAME = r"^[a-z][a-z0-9_]{0,39}$"
+SCHEMA = {
+    "type": "object",
+    "properties": {
+        "name": {"type": "string", "pattern": _NAME},
+        "title": {"type": "string", "maxLength": 500},
+        "parameter": {"type": "string", "pattern": r"^[A-Za-z][A-Za-z0-9_]{0,19}$"},
+        "range": {"type": "string", "maxLength": 200},
+        "degrees": {"type": "string", "maxLength": 20},
+        "bernstein_at": {"type": "string", "maxLength": 200},
+        "degree_offset": {"type": "integer", "minimum": 0, "maximum": MAX_OFFSET},
+        "basis": {"type": "string", "maxLength": 10_000},
+        "source": {"type": "string"},
+        "note": {"type": "string"},
+    },
+    "required": ["name", "parameter", "range", "degrees", "degree_offset", "basis"],
+    "additionalProperties": False,
+}
+
+# basis formulas are in i, n, t and the parameter (renamed to `lam` while reading)
+_BASIS_SYMBOLS = {name: SYMBOLS[name] for name in ("i", "n", "t", "lam")}
+_I, _N = SYMBOLS["i"], SYMBOLS["n"]
+_T, _LAM = SYMBOLS["t"], SYMBOLS["lam"]
+
+
+@dataclass(frozen=True)
+class Definition:
+    name: str
+    title: str
+    parameter: str
+    range_text: str
+    lo: Fraction
+    hi: Fraction
+    lo_closed: bool
+    hi_closed: bool
+    degrees: range
+    bernstein_at: Fraction | None
+    offset: int
+    basis_text: str
+    digest: str  # of the [family] table: a derived file names the definition it came from
+
+    @property
+    def basis(self) -> sp.Expr:
+        return _parse_basis(self.basis_text, self.parameter)
+
+
+def digest(table: dict) -> str:
+    """A stable fingerprint of a [family] table (lambda_bezier.family computes the same)."""
+    text = json.dumps(table, sort_keys=True, ensure_ascii=True, separators=(",", ":"))
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def rename_parameter(text: str, parameter: str) -> str:
+    """The formula with the parameter's name replaced by `lam`, token by token (a name is
+    a whole token, so `mu` in `mu2` is left alone)."""
+    if parameter == "lam":
+        return text
+    out, last = [], 0
+    for tok in tokenize(text):
+        if tok.kind == "name" and tok.text == parameter:
+            out += [text[last : tok.pos], "lam"]
+            last = tok.pos + len(tok.text)
+        elif tok.kind == "name" and tok.text == "lam":
+            raise ParseError(f"`lam` is not this family's parameter ({parameter!r}): {text!r}")
+    return "".join(out) + text[last:]
+
+
+@cache
+def _parse_basis(text: str, parameter: str) -> sp.Expr:
+    return parse_formula(rename_parameter(text, parameter), _BASIS_SYMBOLS, {})
+
+
+def _number(text: str, key: str) -> Fraction:
+    try:
+        e = parse_formula(text, {}, {})
+    except ParseError as exc:
+        raise DefinitionError(f"key {key}: {exc}") from None
+    if not e.is_Rational:
+        raise DefinitionError(f"key {key}: {text!r} is not an exact number")
+    return Fraction(int(e.p), int(e.q))
+
+
+_RANGE = re.compile(r"^\s*([\[(])([^,\[\]()]+),([^,\[\]()]+)([\])])\s*$")
+_DEGREES = re.compile(r"^\s*([0-9]{1,3})\s*\.\.\s*([0-9]{1,3})\s*$")
+
+
+def definition_from_table(table: object, where: str = "", *, builtin: bool = False) -> Definition:
+    """Validate a [family] table (JSON Schema, then the meaning of each key). `builtin`: one
+    of derive/families/*.toml, the built-in families as data, may use a built-in name."""
+    import jsonschema
+
+    prefix = f"{where}: [family]" if where else "[family]"
+    errors = list(jsonschema.Draft202012Validator(SCHEMA).iter_errors(table))
+    if errors:
+        err = errors[0]
+        key = ".".join(map(str, err.absolute_path)) or "(table)"
+        raise DefinitionError(f"{prefix}, key {key}: {err.message}")
+    assert isinstance(table, dict)
+
+    def fail(key: str, message: str) -> DefinitionError:
+        return DefinitionError(f"{prefix}, key {key}: {message}")
+
+    if table["name"] in BUILTIN and not builtin:
+        raise fail("name", f"{table['name']!r} is a built-in family; choose another name")
+    if table["parameter"] in SYMBOLS and table["parameter"] != "lam":
+        raise fail("parameter", f"{table['parameter']!r} is taken by the formula language")
+    m = _RANGE.match(table["range"])
+    if not m:
+        raise fail("range", f'{table["range"]!r} is not an interval such as "(-2, 1]"')
+    lo, hi = (_number(x.strip(), "range") for x in (m.group(2), m.group(3)))
+    lo_closed, hi_closed = m.group(1) == "[", m.group(4) == "]"
+    if lo > hi or (lo == hi and not (lo_closed and hi_closed)):
+        raise fail("range", f"the interval {table['range']} is empty")
+    d = _DEGREES.match(table["degrees"])
+    if not d:
+        raise fail("degrees", f'{table["degrees"]!r} is not a degree range such as "3..12"')
+    dlo, dhi = int(d.group(1)), int(d.group(2))
+    if not 1 <= dlo <= dhi <= MAX_DEGREE:
+        raise fail("degrees", f"degrees must satisfy 1 <= lo <= hi <= {MAX_DEGREE}")
+    at = None
+    if "bernstein_at" in table:
+        at = _number(table["bernstein_at"], "bernstein_at")
+    try:
+        basis = _parse_basis(table["basis"], table["parameter"])
+    except ParseError as exc:
+        hint = f" (a basis is a formula in i, n, t and {table['parameter']})"
+        raise fail("basis", str(exc) + (hint if "unknown name" in str(exc) else "")) from None
+    extra = sorted(s.name for s in basis.free_symbols if s not in (_I, _N, _T, _LAM))
+    if extra:
+        raise fail(
+            "basis",
+            f"unknown symbol {extra[0]!r} (the basis is a formula in i, n, t "
+            f"and {table['parameter']})",
+        )
+    if basis.atoms(sp.core.function.AppliedUndef) or basis.has(sp.Sum, sp.Integral, sp.Subs):
+        raise fail("basis", "a basis is a closed formula: no functions, sums or integrals")
+    return Definition(
+        name=table["name"],
+        title=table.get("title", ""),
+        parameter=table["parameter"],
+        range_text=table["range"].strip(),
+        lo=lo,
+        hi=hi,
+        lo_closed=lo_closed,
+        hi_closed=hi_closed,
+        degrees=range(dlo, dhi + 1),
+        bernstein_at=at,
+        offset=int(table["degree_offset"]),
+        basis_text=table["basis"],
+        digest=digest(table),
+    )
+
+
+def read_definition(path: Path, *, builtin: bool = False) -> Definition:
+    """The [family] table of a file (a family file, or a records file that defines one)."""
+    try:
+        data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise DefinitionError(f"{path}: no such file") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise DefinitionError(f"{path}: cannot be read ({exc})") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise DefinitionError(f"{path}: not valid TOML: {exc}") from None
+    table = data.get("family")
+    if not isinstance(table, dict):
+        raise DefinitionError(f"{path}: no [family] table (a family definition starts with one)")
+    return definition_from_table(table, str(path), builtin=builtin)
+
+
+# --------------------------------------------------------------------------- the basis
+
+
+def _instantiate(e: sp.Basic, env: dict, ring) -> object:
+    """e with n and i replaced by integers, evaluated in the field Q(t, lam): binomials with
+    the papers' convention, powers bounded."""
+    if e.is_Symbol:
+        if e in env:
+            return ring(env[e])
+        return ring(e)
+    if e.is_Rational:
+        return ring(e)
+    if isinstance(e, sp.binomial):
+        a, b = (_integer(_instantiate(x, env, ring), "binomial") for x in e.args)
+        return ring(comb(a, b) if 0 <= b <= a else 0)
+    if isinstance(e, sp.factorial):
+        a = _integer(_instantiate(e.args[0], env, ring), "factorial")
+        if not 0 <= a <= 1000:
+            raise DefinitionError(f"factorial({a}) in the basis")
+        return ring(sp.factorial(a))
+    if e.is_Add:
+        out = ring(0)
+        for a in e.args:
+            out += _instantiate(a, env, ring)
+        return out
+    if e.is_Mul:
+        out = ring(1)
+        for a in e.args:
+            out *= _instantiate(a, env, ring)
+        return out
+    if e.is_Pow:
+        base = _instantiate(e.base, env, ring)
+        ex = _integer(_instantiate(e.exp, env, ring), "exponent")
+        if abs(ex) > MAX_EXPONENT:
+            raise DefinitionError(f"an exponent {ex} in the basis")
+        if ex < 0:
+            if base == 0:
+                raise DefinitionError("the basis divides by zero")
+            return 1 / base**-ex
+        return base**ex
+    raise DefinitionError(f"cannot evaluate {e} in a basis definition")
+
+
+def _integer(x, what: str) -> int:
+    if x.denom != 1 or not x.numer.is_ground:
+        raise DefinitionError(f"the {what} {x.as_expr()} is not an integer once n and i are set")
+    value = sp.Rational(x.numer.LC if x.numer else 0)
+    if not value.is_Integer:
+        raise DefinitionError(f"the {what} {value} is not an integer")
+    return int(value)
+
+
+@cache
+def _field():
+    return sp.polys.fields.field([_T, _LAM], sp.QQ)[0]
+
+
+def basis_polys(defn: Definition, degree: int) -> list[sp.Poly]:
+    return list(_basis_polys(defn, degree))
+
+
+@cache
+def _basis_polys(defn: Definition, degree: int) -> tuple[sp.Poly, ...]:
+    field = _field()
+    big = degree + defn.offset
+    out = []
+    for idx in range(degree + 1):
+        value = _instantiate(defn.basis, {_N: degree, _I: idx}, field)
+        if not value.denom.is_ground:
+            raise DefinitionError(
+                f"[family] basis: b({idx}, {degree}, t) is not a polynomial: "
+                f"{sp.factor(value.as_expr())} (a negative power that does not cancel)"
+            )
+        numer = value.numer.quo_ground(value.denom.LC)  # the denominator is a number
+        p = sp.Poly.from_dict(dict(numer), t, lam, domain="QQ")  # same t, lam symbols
+        if p.degree(t) > big:
+            raise DefinitionError(
+                f"[family] basis: b({idx}, {degree}, t) has degree {p.degree(t)} in t, more "
+                f"than n + degree_offset = {big}"
+            )
+        out.append(p)
+    return tuple(out)
+
+
+def check(defn: Definition) -> list[str]:
+    """The definition's own claims, for every degree: what was checked (raises on failure)."""
+    done = []
+    one = sp.Poly(1, t, lam, domain="QQ")
+    for deg in defn.degrees:
+        polys = basis_polys(defn, deg)
+        big = deg + defn.offset
+        total = sum(polys[1:], polys[0])
+        if total != one:
+            raise DefinitionError(
+                f"[family] basis: no partition of unity at n = {deg}: the functions sum to "
+                f"{sp.factor(total.as_expr())}"
+            )
+        if defn.bernstein_at is not None:
+            x = sp.Rational(defn.bernstein_at.numerator, defn.bernstein_at.denominator)
+            for idx, p in enumerate(polys):
+                want = sp.Poly(comb(deg, idx) * t**idx * (1 - t) ** (deg - idx), t, domain="QQ")
+                got = sp.Poly(p.eval(lam, x).as_expr(), t, domain="QQ")
+                if got != want:
+                    raise DefinitionError(
+                        f"[family] bernstein_at: at {defn.parameter} = {x}, b({idx}, {deg}, t) "
+                        f"= {sp.factor(got.as_expr())}, not the Bernstein function "
+                        f"{sp.factor(want.as_expr())}"
+                    )
+        generic = max(p.degree(t) for p in polys)
+        if generic != big:
+            raise DefinitionError(
+                f"[family] degree_offset: at n = {deg} the basis functions have degree "
+                f"{generic} in t, not n + degree_offset = {big}"
+            )
+    done.append(
+        f"polynomials of degree n + {defn.offset}, n = {defn.degrees.start}.."
+        f"{defn.degrees.stop - 1}"
+    )
+    done.append("partition of unity, every degree")
+    if defn.bernstein_at is not None:
+        done.append(f"Bernstein basis at {defn.parameter} = {defn.bernstein_at}, every degree")
+    return done
+
+
+# --------------------------------------------------------------------------- artifacts
+
+
+def _lam_coeffs(p: sp.Poly) -> list[str]:
+    """A polynomial in lam as its coefficients, constant first, exact strings."""
+    return [str(c) for c in reversed(p.all_coeffs())]
+
+
+def endpoint_table(defn: Definition) -> dict[str, dict[str, list[str]]]:
+    """{n: {"start,r,j" | "end,r,j": lam-coefficients}}: d^r/dt^r of b_j (start, at t = 0)
+    and of b_{n-j} (end, at t = 1)."""
+    return _endpoint_table(defn)
+
+
+@cache
+def _endpoint_table(defn: Definition) -> dict[str, dict[str, list[str]]]:
+    out = {}
+    for deg in defn.degrees:
+        row = {}
+        for idx, p in enumerate(basis_polys(defn, deg)):
+            d = p
+            for r in range(ENDPOINT_ORDERS + 1):
+                for end, at, j in (("start", 0, idx), ("end", 1, deg - idx)):
+                    value = d.eval(t, at)  # a Poly in lam
+                    if not value.is_zero:
+                        row[f"{end},{r},{j}"] = _lam_coeffs(value)
+                d = d.diff(t)
+        out[str(deg)] = dict(sorted(row.items()))
+    return out
+
+
+def closed_endpoint_forms(defn: Definition) -> dict[tuple[str, int, int], sp.Expr] | None:
+    """Closed forms in n of the end values/derivatives: for each entry, the polynomial in n
+    (of degree at most #degrees - 3) through the values at all degrees but the last two that
+    also gives those two. None when an entry has no such polynomial (or the range has fewer
+    than five degrees): then the family is checked per degree only."""
+    return _closed_endpoint_forms(defn)
+
+
+@cache
+def _closed_endpoint_forms(defn: Definition) -> dict[tuple[str, int, int], sp.Expr] | None:
+    table = endpoint_table(defn)
+    keys = sorted({k for row in table.values() for k in row})
+    nn = _algebra_n()
+    out = {}
+    degrees = list(defn.degrees)
+    if len(degrees) < 5:
+        return None
+    for key in keys:
+        end, r, j = key.split(",")
+        pts = [(deg, table[str(deg)].get(key, ["0"])) for deg in degrees if int(j) <= deg]
+        if len(pts) < 5:
+            return None
+        width = max(len(c) for _, c in pts)
+        form = sp.Integer(0)
+        for p in range(width):
+            xs = [sp.Integer(deg) for deg, _ in pts]
+            ys = [sp.Rational(c[p]) if p < len(c) else sp.Integer(0) for _, c in pts]
+            poly = sp.interpolate(list(zip(xs[:-2], ys[:-2], strict=True)), nn)
+            if any(poly.subs(nn, x) != y for x, y in zip(xs[-2:], ys[-2:], strict=True)):
+                return None
+            form += sp.expand(poly) * lam**p
+        if form != 0:
+            out[(end, int(r), int(j))] = sp.factor(form)
+    return out
+
+
+def _algebra_n():
+    from ._algebra import n
+
+    return n
+
+
+def energy_artifacts(defn: Definition) -> dict:
+    """{"n,k": {"ff": [scale, U], "fg": [...], "gg": [...]}} and the published (c, X, Y), or a
+    reason when the basis is not linear in the parameter."""
+    from . import energy
+
+    out: dict = {}
+    for deg in defn.degrees:
+        polys = basis_polys(defn, deg)
+        if lambda_degree(polys) == 0:
+            return {"reason": f"the basis does not depend on {defn.parameter}: nothing to optimise"}
+        if lambda_degree(polys) > 1:
+            return {
+                "reason": f"the basis is of degree {lambda_degree(polys)} in "
+                f"{defn.parameter} at n = {deg}: E_k is not a quadratic in it"
+            }
+        for k in ENERGY_ORDERS:
+            forms = energy.forms_from_polys(polys, deg + defn.offset, k)
+            entry = {key: [str(s), [list(r) for r in u]] for key, (s, u) in forms.items()}
+            (s_fg, x), (s_gg, y) = forms["fg"], forms["gg"]
+            if s_gg != 0:
+                entry["published"] = [str(s_fg / s_gg), [list(r) for r in x], [list(r) for r in y]]
+            out[f"{deg},{k}"] = entry
+    return out
+
+
+def join_artifacts(defn: Definition, closed: dict) -> dict:
+    """Closed-form join weights (derive/joins.py's solve) of the family after and before
+    itself and every built-in family, each checked per degree pair; a pair whose stencil the
+    closed-form solve does not cover is named with the reason (the runtime still joins it,
+    per degree)."""
+    from . import joins
+
+    out: dict = {}
+    with joins.extra_family(defn.name, closed, tuple(defn.degrees), has_lambda=True):
+        for other in (*BUILTIN, defn.name):
+            for first, second in ((defn.name, other), (other, defn.name)):
+                if (first, second) == (defn.name, defn.name) and f"{first}>{second}" in out:
+                    continue
+                try:
+                    rows = joins.solve(first, second)
+                except (AssertionError, KeyError, ZeroDivisionError) as exc:
+                    out[f"{first}>{second}"] = {"reason": f"no closed form: {exc}"}
+                    continue
+                weights = {}
+                for cont in CONTINUITIES:
+                    for r, combo in enumerate(rows[: joins.ORDER[cont] + 1]):
+                        for (src, j), w in sorted(combo.items()):
+                            e = w.as_expr()
+                            if cont in ("C1", "C2"):
+                                e = e.xreplace({joins.alpha: 1, joins.d: 0})
+                            e = sp.factor(e)
+                            if e != 0:
+                                weights[f"{cont},{r},{src},{j}"] = str(e)
+                out[f"{first}>{second}"] = {"weights": weights}
+    return out
+
+
+# --------------------------------------------------------------------------- the document
+
+
+def _matrices(mats) -> list:
+    return [[[str(Fraction(v)) for v in row] for row in mat] for mat in mats]
+
+
+def derive(defn: Definition, *, with_joins: bool = True) -> dict:
+    """Every artifact of the family, as one JSON-able document (exact numbers as strings)."""
+    checked = check(defn)
+    tables = expansion_tables(lambda deg: basis_polys(defn, deg), tuple(defn.degrees), defn.offset)
+    closed = closed_endpoint_forms(defn)
+    doc = {
+        "generated_by": "lambda-bezier derive --family -- DO NOT EDIT; regenerate with "
+        "`lambda-bezier derive --family FILE`",
+        "format": FORMAT,
+        "definition_sha256": defn.digest,
+        "family": defn.name,
+        "title": defn.title,
+        "parameter": defn.parameter,
+        "range": {
+            "text": defn.range_text,
+            "lo": str(defn.lo),
+            "hi": str(defn.hi),
+            "closed": [defn.lo_closed, defn.hi_closed],
+        },
+        "degrees": [defn.degrees.start, defn.degrees.stop - 1],
+        "degree_offset": defn.offset,
+        "bernstein_at": None if defn.bernstein_at is None else str(defn.bernstein_at),
+        "checked": checked,
+        "basis": {
+            str(deg): [str(p.as_expr()) for p in basis_polys(defn, deg)] for deg in defn.degrees
+        },
+        "power": {str(k): _matrices(v) for k, v in tables["power"].items()},
+        "bernstein": {str(k): _matrices(v) for k, v in tables["bernstein"].items()},
+        "centred": {str(k): _matrices(v) for k, v in tables["centred"].items()},
+        "endpoints": endpoint_table(defn),
+        "endpoint_closed_forms": None
+        if closed is None
+        else {f"{e},{r},{j}": str(v) for (e, r, j), v in sorted(closed.items())},
+        "energy": energy_artifacts(defn),
+    }
+    if with_joins:
+        doc["joins"] = (
+            {"reason": "no closed end forms in n: the runtime joins per degree"}
+            if closed is None
+            else join_artifacts(defn, closed)
+        )
+    return doc
+
+
+def render(defn: Definition) -> str:
+    """The derived document as deterministic text (sorted keys, fixed separators)."""
+    # keys in the order derive() builds them (every loop there runs over sorted keys), so the
+    # banner comes first; the text does not depend on PYTHONHASHSEED
+    return json.dumps(derive(defn), indent=1, ensure_ascii=False) + "\n"
+
+
+class _EnergyBasis:
+    """What derive/energy.py reads of a family module, for a family defined by data."""
+
+    def __init__(self, defn: Definition):
+        self.defn = defn
+        self.DEGREE_OFFSET = defn.offset
+        self.DEGREES = defn.degrees
+
+    def basis_polys(self, degree: int) -> list[sp.Poly]:
+        return basis_polys(self.defn, degree)
+
+
+def register(defn: Definition, points: str = "P") -> None:
+    """Make the family known to verify for this process: its records are checked by the same
+    checkers as a built-in family's (per degree always; symbolically in n where the engine
+    found closed end forms; energies where the basis is linear in the parameter)."""
+    from . import energy, joins, verify_checks
+
+    check(defn)
+    closed = closed_endpoint_forms(defn)
+    verify_checks.register_family(
+        verify_checks.Family(
+            defn.name,
+            defn.degrees,
+            points,
+            lambda degree: basis_polys(defn, degree),
+            defn.offset,
+            lambda: closed,
+        )
+    )
+    energy.EXTRA[defn.name] = _EnergyBasis(defn)
+    if closed is not None:
+        joins.register(defn.name, closed, tuple(defn.degrees), has_lambda=True)
+
+
+FAMILY_DEFINITIONS = Path(__file__).resolve().parent / "families"
+
+
+def builtin_definition(name: str) -> Definition:
+    """A built-in family's definition as data (derive/families/<name>.toml)."""
+    return read_definition(FAMILY_DEFINITIONS / f"{name}.toml", builtin=True)
+
+
+def derived_path(definition_file: Path, name: str, out_dir: Path | None = None) -> Path:
+    return (out_dir or Path(definition_file).resolve().parent) / f"{name}.derived.json"

@@ -1,0 +1,450 @@
+"""The formula grammar of records files and family definitions: text in, SymPy out, nothing run.
+
+A records file or a family definition is untrusted input, so its formulas are read by this
+module's own tokenizer and recursive-descent parser, never by ``eval``, ``exec``, ``sympify``
+or ``parse_expr``. The language is a small subset of Python's expression syntax, with Python's
+precedence so that a formula reads the way it looks:
+
+    relation := bitor [("<" | "<=" | ">" | ">=") bitor]      (no chains)
+    bitor    := bitand ("|" bitand)*                           (relations only)
+    bitand   := arith ("&" arith)*                             (relations only)
+    arith    := term (("+" | "-") term)*
+    term     := factor (("*" | "/") factor)*
+    factor   := ("+" | "-") factor | power
+    power    := atom ["**" factor]                             (right-associative)
+    atom     := NUMBER | SYMBOL | FUNCTION "(" args ")" | "(" relation ")" | "(" tuple ")"
+
+Numbers are ASCII decimal literals, exact: ``3``, ``1/2`` (a quotient of integers is a
+rational), ``0.25`` (read as 1/4, never a float). Names are looked up in fixed tables:
+symbols (``t``, ``n``, ``lam``, ...), undefined functions (``b``, ``B``, ``P``, ``p``, ...) and
+the built-in forms ``Sum(expr, (i, lo, hi))``, ``Integral(expr, (t, lo, hi))``,
+``Derivative(expr, t)``, ``Derivative(expr, t, 2)``, ``Derivative(expr, (t, k))``,
+``Subs(expr, t, value)``, ``binomial(a, b)`` and ``factorial(a)``. Anything else (another
+name, an attribute, a subscript, a string, a keyword argument, a lambda, a comprehension, a
+character outside the language) is refused with a ``ParseError`` naming the text and the
+column.
+
+Limits keep a hostile formula from hanging or crashing the checker: the text's length, the
+nesting depth, the size of integer literals, and constant exponents (``t**10**10`` and
+``2**2**40`` are refused while they are parsed, before anything is computed). The evaluator
+applies the same exponent limit to exponents that become concrete only later (``t**n``), and
+bounds summation ranges and derivative orders (derive/verify_expr.py).
+
+Binomials follow the papers: ``binomial(a, b)`` with integer literals is C_a^b, zero unless
+0 <= b <= a (SymPy's own ``binomial`` differs for negative arguments).
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from fractions import Fraction
+from math import comb
+
+import sympy as sp
+
+# --------------------------------------------------------------------------- limits
+
+MAX_TEXT = 10_000  # characters in one formula
+MAX_DEPTH = 60  # nesting of parentheses, calls and unary signs
+MAX_DIGITS = 400  # digits in one number literal
+MAX_EXPONENT = 1_000  # |e| of a constant integer exponent, here and in the evaluator
+MAX_CONSTANT_BITS = 100_000  # size of a number computed while parsing (a power of literals)
+MAX_FACTORIAL = 1_000  # factorial(a) of a literal a
+MAX_ARGS = 16  # arguments of one call
+
+
+class ParseError(ValueError):
+    """A formula outside the grammar or its limits (the message names the text and where)."""
+
+
+# --------------------------------------------------------------------------- the tables
+
+SYMBOL_NAMES = (
+    "t u x c tstar n m i j k l r lam lam1 lam2 alpha beta d C omega".split()  # noqa: SIM905
+)
+FUNCTION_NAMES = (
+    "b B A f a p p1 p2 P P1 P2 V V1 V2 Vl Ql Q W F G E y kappa bk Delta dot cross norm".split()  # noqa: SIM905
+)
+SYMBOLS: dict[str, sp.Symbol] = {name: sp.Symbol(name) for name in SYMBOL_NAMES}
+FUNCTIONS: dict[str, sp.FunctionClass] = {name: sp.Function(name) for name in FUNCTION_NAMES}
+BUILTINS = ("Sum", "Integral", "Derivative", "Subs", "binomial", "factorial")
+
+
+# --------------------------------------------------------------------------- tokens
+
+_TOKEN = re.compile(
+    r"(?P<space>[ \t\r\n]+)"
+    r"|(?P<number>[0-9]+(?:\.[0-9]*)?|\.[0-9]+)"
+    r"|(?P<name>[A-Za-z_][A-Za-z0-9_]*)"
+    r"|(?P<op>\*\*|<=|>=|[-+*/()<>,&|])",
+    re.ASCII,
+)
+
+
+@dataclass(frozen=True)
+class Token:
+    kind: str  # "number" | "name" | "op" | "end"
+    text: str
+    pos: int
+
+
+def tokenize(text: str) -> list[Token]:
+    out: list[Token] = []
+    pos = 0
+    while pos < len(text):
+        m = _TOKEN.match(text, pos)
+        if m is None:
+            ch = text[pos]
+            what = {
+                "'": "a string",
+                '"': "a string",
+                ".": "an attribute access",
+                "[": "a subscript",
+                "=": "'=' (a keyword argument or an assignment)",
+                "^": "'^' (write powers as **)",
+                "!": "'!' (write factorial(n))",
+            }.get(ch, f"the character {ch!r}")
+            raise ParseError(f"{what} is not allowed in a formula: {_at(text, pos)}")
+        kind = m.lastgroup or ""
+        if kind != "space":
+            out.append(Token(kind, m.group(), pos))
+        pos = m.end()
+    out.append(Token("end", "", len(text)))
+    return out
+
+
+def _at(text: str, pos: int) -> str:
+    return f"{text!r} at column {pos + 1}"
+
+
+# --------------------------------------------------------------------------- values
+
+
+def _is_bool(e: object) -> bool:
+    return isinstance(e, sp.logic.boolalg.Boolean) and not isinstance(e, sp.Expr)
+
+
+class _Tuple:
+    """A parenthesised tuple: legal only as an argument of Sum, Integral, Derivative."""
+
+    def __init__(self, items: list):
+        self.items = items
+
+
+def paper_binomial_expr(a: sp.Expr, b: sp.Expr) -> sp.Expr:
+    """binomial(a, b) with the papers' convention where both are integers, else symbolic."""
+    if a.is_Integer and b.is_Integer:
+        return sp.Integer(comb(int(a), int(b)) if 0 <= int(b) <= int(a) else 0)
+    return sp.binomial(a, b)
+
+
+# --------------------------------------------------------------------------- the parser
+
+
+class _Parser:
+    def __init__(self, text: str, symbols: Mapping[str, sp.Symbol], functions: Mapping):
+        self.text = text
+        self.tokens = tokenize(text)
+        self.pos = 0
+        self.depth = 0
+        self.symbols = symbols
+        self.functions = functions
+
+    # ---- helpers
+    @property
+    def tok(self) -> Token:
+        return self.tokens[self.pos]
+
+    def error(self, message: str, tok: Token | None = None) -> ParseError:
+        tok = tok or self.tok
+        return ParseError(f"{message}: {_at(self.text, tok.pos)}")
+
+    def accept(self, *ops: str) -> Token | None:
+        tok = self.tok
+        if tok.kind == "op" and tok.text in ops:
+            self.pos += 1
+            return tok
+        return None
+
+    def expect(self, op: str) -> Token:
+        tok = self.accept(op)
+        if tok is None:
+            found = "the end of the text" if self.tok.kind == "end" else repr(self.tok.text)
+            raise self.error(f"expected {op!r}, found {found}")
+        return tok
+
+    def enter(self) -> None:
+        self.depth += 1
+        if self.depth > MAX_DEPTH:
+            raise self.error(f"nesting deeper than {MAX_DEPTH} levels")
+
+    # ---- grammar
+    def parse(self) -> sp.Basic:
+        e = self.relation()
+        if self.tok.kind != "end":
+            raise self.error(f"unexpected {self.tok.text!r}")
+        if isinstance(e, _Tuple):
+            raise self.error(
+                "a tuple is allowed only as an argument of Sum, Integral or Derivative"
+            )
+        return e
+
+    def relation(self):
+        left = self.bitor()
+        tok = self.accept("<", "<=", ">", ">=")
+        if tok is None:
+            return left
+        right = self.bitor()
+        if self.tok.kind == "op" and self.tok.text in ("<", "<=", ">", ">="):
+            raise self.error("chained comparisons are not allowed; join them with &")
+        for side in (left, right):
+            self._arith_operand(side, tok)
+        ops = {"<": sp.Lt, "<=": sp.Le, ">": sp.Gt, ">=": sp.Ge}
+        return ops[tok.text](left, right)
+
+    def bitor(self):
+        left = self.bitand()
+        while tok := self.accept("|"):
+            right = self.bitand()
+            left = sp.Or(self._bool_operand(left, tok), self._bool_operand(right, tok))
+        return left
+
+    def bitand(self):
+        left = self.arith()
+        while tok := self.accept("&"):
+            right = self.arith()
+            left = sp.And(self._bool_operand(left, tok), self._bool_operand(right, tok))
+        return left
+
+    def arith(self):
+        left = self.term()
+        while tok := self.accept("+", "-"):
+            right = self.term()
+            a, b = self._arith_operand(left, tok), self._arith_operand(right, tok)
+            left = a + b if tok.text == "+" else a - b
+        return left
+
+    def term(self):
+        left = self.factor()
+        while tok := self.accept("*", "/"):
+            right = self.factor()
+            a, b = self._arith_operand(left, tok), self._arith_operand(right, tok)
+            if tok.text == "/":
+                if b == 0:
+                    raise self.error("division by zero", tok)
+                left = a / b
+            else:
+                left = a * b
+        return left
+
+    def factor(self):
+        tok = self.accept("+", "-")
+        if tok is None:
+            return self.power()
+        self.enter()
+        operand = self._arith_operand(self.factor(), tok)
+        self.depth -= 1
+        return -operand if tok.text == "-" else operand
+
+    def power(self):
+        base = self.atom()
+        tok = self.accept("**")
+        if tok is None:
+            return base
+        self.enter()
+        exponent = self.factor()
+        self.depth -= 1
+        base, exponent = self._arith_operand(base, tok), self._arith_operand(exponent, tok)
+        if exponent.is_number:
+            if not exponent.is_Integer:
+                raise self.error(f"the exponent {exponent} is not an integer", tok)
+            if abs(int(exponent)) > MAX_EXPONENT:
+                raise self.error(f"the exponent {exponent} is larger than {MAX_EXPONENT}", tok)
+            if base.is_number:
+                if base == 0 and exponent < 0:
+                    raise self.error("division by zero", tok)
+                size = max(int(sp.numer(base)).bit_length(), int(sp.denom(base)).bit_length())
+                if size * abs(int(exponent)) > MAX_CONSTANT_BITS:
+                    raise self.error(f"the power {base}**{exponent} is too large to compute", tok)
+        return base**exponent
+
+    def atom(self):
+        tok = self.tok
+        if tok.kind == "number":
+            self.pos += 1
+            return self.number(tok)
+        if tok.kind == "name":
+            self.pos += 1
+            return self.name(tok)
+        if self.accept("("):
+            self.enter()
+            items = [self.relation()]
+            while self.accept(","):
+                items.append(self.relation())
+            self.expect(")")
+            self.depth -= 1
+            if len(items) == 1:
+                if isinstance(items[0], _Tuple):
+                    raise self.error("nested tuples are not allowed", tok)
+                return items[0]
+            return _Tuple(items)
+        if tok.kind == "end":
+            raise self.error("the formula ends too early")
+        raise self.error(f"unexpected {tok.text!r}")
+
+    def number(self, tok: Token) -> sp.Rational:
+        digits = tok.text.replace(".", "")
+        if len(digits) > MAX_DIGITS:
+            raise self.error(f"a number with more than {MAX_DIGITS} digits", tok)
+        value = Fraction(tok.text)
+        return sp.Rational(value.numerator, value.denominator)
+
+    def name(self, tok: Token):
+        name = tok.text
+        called = self.tok.kind == "op" and self.tok.text == "("
+        if name in self.symbols:
+            if called:
+                raise self.error(f"{name!r} is a symbol, not a function", tok)
+            return self.symbols[name]
+        if name in self.functions or name in BUILTINS:
+            if not called:
+                raise self.error(f"{name!r} is a function and must be called", tok)
+            self.pos += 1
+            self.enter()
+            args = self.arguments()
+            self.depth -= 1
+            if name in BUILTINS:
+                return self.builtin(name, args, tok)
+            for a in args:
+                if isinstance(a, _Tuple) or _is_bool(a):
+                    raise self.error(f"an argument of {name} must be an expression", tok)
+            return self.functions[name](*args)
+        raise self.error(f"unknown name {name!r} (see the symbol and function table)", tok)
+
+    def arguments(self) -> list:
+        args: list = []
+        if self.accept(")"):
+            return args
+        while True:
+            args.append(self.relation())
+            if len(args) > MAX_ARGS:
+                raise self.error(f"more than {MAX_ARGS} arguments")
+            if self.accept(")"):
+                return args
+            self.expect(",")
+
+    # ---- the built-in forms
+    def builtin(self, name: str, args: list, tok: Token):
+        handler: Callable = getattr(self, f"_b_{name}")
+        return handler(args, tok)
+
+    def _plain(self, args: list, tok: Token, name: str, count: int | tuple[int, ...]) -> list:
+        counts = (count,) if isinstance(count, int) else count
+        if len(args) not in counts:
+            want = " or ".join(str(c) for c in counts)
+            raise self.error(f"{name} takes {want} arguments, got {len(args)}", tok)
+        return args
+
+    def _limit(self, item, tok: Token, name: str, size: int) -> tuple:
+        if not isinstance(item, _Tuple) or len(item.items) != size:
+            raise self.error(f"{name} needs a limit tuple of {size} entries", tok)
+        var, *rest = item.items
+        if not isinstance(var, sp.Symbol):
+            raise self.error(f"{name}'s variable must be a symbol", tok)
+        for r in rest:
+            self._arith_operand(r, tok)
+        return (var, *rest)
+
+    def _b_Sum(self, args: list, tok: Token):
+        if len(args) < 2:
+            raise self.error("Sum takes an expression and at least one (i, lo, hi)", tok)
+        body = self._arith_operand(args[0], tok)
+        limits = [self._limit(a, tok, "Sum", 3) for a in args[1:]]
+        return sp.Sum(body, *limits)
+
+    def _b_Integral(self, args: list, tok: Token):
+        if len(args) < 2:
+            raise self.error("Integral takes an expression and at least one (t, lo, hi)", tok)
+        body = self._arith_operand(args[0], tok)
+        limits = [self._limit(a, tok, "Integral", 3) for a in args[1:]]
+        return sp.Integral(body, *limits)
+
+    def _b_Derivative(self, args: list, tok: Token):
+        if len(args) < 2:
+            raise self.error("Derivative takes an expression and a variable", tok)
+        body = self._arith_operand(args[0], tok)
+        rest: list = []
+        for a in args[1:]:
+            if isinstance(a, _Tuple):
+                var, order = self._limit(a, tok, "Derivative", 2)
+                rest.append((var, self._order(order, tok)))
+            elif isinstance(a, sp.Symbol):
+                rest.append(a)
+            elif a.is_Integer and rest:
+                rest.append(self._order(a, tok))
+            else:
+                raise self.error("Derivative's variables must be symbols or (t, order)", tok)
+        return sp.Derivative(body, *rest)
+
+    def _order(self, order, tok: Token):
+        if order.is_number and (not order.is_Integer or not 0 <= order <= MAX_EXPONENT):
+            raise self.error(f"a derivative order must be an integer in 0..{MAX_EXPONENT}", tok)
+        return order
+
+    def _b_Subs(self, args: list, tok: Token):
+        body, var, value = self._plain(args, tok, "Subs", 3)
+        if not isinstance(var, sp.Symbol):
+            raise self.error("Subs's second argument must be a symbol", tok)
+        return sp.Subs(self._arith_operand(body, tok), var, self._arith_operand(value, tok))
+
+    def _b_binomial(self, args: list, tok: Token):
+        a, b = (self._arith_operand(x, tok) for x in self._plain(args, tok, "binomial", 2))
+        for x in (a, b):
+            if x.is_number and (not x.is_Integer or abs(int(x)) > MAX_EXPONENT * 10):
+                raise self.error(f"binomial's arguments must be integers (got {x})", tok)
+        return paper_binomial_expr(a, b)
+
+    def _b_factorial(self, args: list, tok: Token):
+        (a,) = (self._arith_operand(x, tok) for x in self._plain(args, tok, "factorial", 1))
+        if a.is_number and (not a.is_Integer or not 0 <= a <= MAX_FACTORIAL):
+            raise self.error(f"factorial needs an integer in 0..{MAX_FACTORIAL} (got {a})", tok)
+        return sp.factorial(a)
+
+    # ---- operand checks
+    def _arith_operand(self, e, tok: Token):
+        if isinstance(e, _Tuple):
+            raise self.error(f"a tuple cannot be an operand of {tok.text!r}", tok)
+        if _is_bool(e):
+            raise self.error(f"a condition cannot be an operand of {tok.text!r}", tok)
+        return e
+
+    def _bool_operand(self, e, tok: Token):
+        if not _is_bool(e):
+            raise self.error(f"{tok.text!r} joins conditions (such as (x >= 0)), not values", tok)
+        return e
+
+
+def parse_formula(
+    text: object,
+    symbols: Mapping[str, sp.Symbol] | None = None,
+    functions: Mapping | None = None,
+) -> sp.Basic:
+    """A formula of the records grammar as a SymPy object; ParseError for anything else.
+
+    `symbols` and `functions` replace the default tables (a family definition adds its own
+    parameter symbol, for instance)."""
+    if not isinstance(text, str):
+        raise ParseError(f"a formula must be a string, got {type(text).__name__}")
+    if len(text) > MAX_TEXT:
+        raise ParseError(f"a formula longer than {MAX_TEXT} characters ({len(text)})")
+    if not text.strip():
+        raise ParseError("an empty formula")
+    parser = _Parser(
+        text, SYMBOLS if symbols is None else symbols, FUNCTIONS if functions is None else functions
+    )
+    try:
+        return parser.parse()
+    except RecursionError:  # pragma: no cover - MAX_DEPTH keeps the recursion far from this
+        raise ParseError(f"a formula nested too deeply: {text[:60]!r}...") from None

@@ -1,0 +1,380 @@
+"""Records files: read, validate and resolve before anything in them is evaluated.
+
+A records file (derive/published/*.toml, or a user's own) is untrusted input. Loading it is a
+pipeline of checks, each failing with a ``RecordsError`` that names the file, the record and
+the key:
+
+1. size, then TOML syntax (``tomllib``; the error names the line);
+2. the JSON Schema of the records format (``jsonschema``): every key known, every value of its
+   type, the schema version supported;
+3. ids unique, every ``claim`` a known kind for its family, every cross-reference (``uses``,
+   ``numerator``, ``denominator``, ``formula``) to a record of the same run;
+4. every formula read by the records grammar (derive/grammar.py), so a syntax error, an
+   unknown name or a limit is reported here and not halfway through a run.
+
+The format itself is documented in derive/published/README.md ("The records format").
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Iterable, Iterator
+from pathlib import Path
+
+from .grammar import ParseError
+from .verify_checks import FAMILIES, claim_kind, kind_problem
+from .verify_expr import parse as parse_formula  # cached: the checkers reuse each parse
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+SCHEMA_VERSIONS = (1, 2)
+MAX_FILE_BYTES = 2_000_000
+MAX_RECORDS = 5_000
+
+
+class RecordsError(ValueError):
+    """A records file that cannot be read or validated (the message names file, record, key)."""
+
+
+# --------------------------------------------------------------------------- the schema
+
+_STR = {"type": "string"}
+_INT = {"type": "integer"}
+_STRS = {"type": "array", "items": _STR}
+_POINTS = {"type": "array", "items": _STRS}  # [["x", "y"], ...] exact numbers as strings
+_LEVELS = {"type": "array", "items": _POINTS}
+_MATRIX = {"type": "array", "items": {"type": "array", "items": _INT}}
+_NAMED_STRS = {"type": "object", "additionalProperties": _STR}
+
+
+def _table(properties: dict, required: Iterable[str] = ()) -> dict:
+    return {
+        "type": "object",
+        "properties": properties,
+        "required": list(required),
+        "additionalProperties": False,
+    }
+
+
+_EQUATION = _table(
+    {"lhs": _STR, "rhs": _STR, "given": _NAMED_STRS, "where": _NAMED_STRS}, ["lhs", "rhs"]
+)
+_CASE = _table({"index": _STR, "value": _STR, "condition": _STR}, ["index", "value"])
+_CURVE_SPEC = _table(
+    {"curve": _STR, "degree": _STR, "shape": _STR, "points": _STR},
+    ["curve", "degree", "shape", "points"],
+)
+_RATIO = _table(
+    {"point": _STR, "start": _STR, "end": _STR, "ratio": {**_STRS, "minItems": 2, "maxItems": 2}},
+    ["point", "start", "end", "ratio"],
+)
+_STEP = _table(
+    {
+        "parameter": _STR,
+        "parameter_printed": _STR,
+        "keep": {"enum": ["left", "right"]},
+        "control_points": _POINTS,
+        "levels": _LEVELS,
+        "printed_sequence": _POINTS,
+        "result": _POINTS,
+    }
+)
+
+# The payload keys a record (and an erratum, which replaces them) may carry.
+PAYLOAD = {
+    "equations": {"type": "array", "items": _EQUATION},
+    "conventions": {"type": "array", "items": _EQUATION},
+    "convention": {"type": "array", "items": _EQUATION},
+    "conventions_text": _STR,
+    "cases": {"type": "array", "items": _CASE},
+    "function": _STR,
+    "index": _STR,
+    "at": _STR,
+    "order": {"type": "integer", "minimum": 0, "maximum": 20},
+    "first": _CURVE_SPEC,
+    "second": _CURVE_SPEC,
+    "constants": _STR,
+    "uses": _STRS,
+    "ratios": {"type": "array", "items": _RATIO},
+    "row": _STRS,
+    "matrix": _MATRIX,
+    "points": _STRS,
+    "argmax": _STR,
+    "degree": {"type": "integer", "minimum": 0, "maximum": 64},
+    "parameter": _STR,
+    "control_points": _POINTS,
+    "levels": _LEVELS,
+    "left": _POINTS,
+    "right": _POINTS,
+    "t1": _STR,
+    "t2": _STR,
+    "result": _POINTS,
+    "step1": _STEP,
+    "step2": _STEP,
+    "conclusions": _NAMED_STRS,
+    "name": {"enum": ["X", "Y"]},
+    "scale": _STR,
+    "formula": _STR,
+    "numerator": _STR,
+    "denominator": _STR,
+    "vector": _STRS,
+    "printed_form": _STR,
+    "lambda": _STR,
+}
+
+_RECORD = _table(
+    {
+        "id": {"type": "string", "minLength": 1, "maxLength": 200},
+        "claim": {"type": "string", "pattern": r"^([a-z][a-z0-9_]*\.)?[a-z][a-z0-9_]*$"},
+        "source": _STR,
+        "location": _STR,
+        "note": _STR,
+        "variable": _STR,
+        "family": {"type": "string", "pattern": r"^[a-z][a-z0-9_]*$"},
+        "point_function": _STR,
+        "domain": _STR,
+        "ambiguous": _STR,
+        "expect": {"enum": ["match", "mismatch", "pending"]},
+        "n": {"type": "integer", "minimum": 0, "maximum": 64},
+        "k": {"type": "integer", "minimum": 0, "maximum": 20},
+        "erratum": {
+            "type": "object",
+            "properties": {
+                "origin": _STR,
+                "explanation": {"type": "string", "minLength": 1},
+                **PAYLOAD,
+            },
+            "required": ["explanation"],
+            "additionalProperties": False,
+        },
+        **PAYLOAD,
+    },
+    ["id", "claim"],
+)
+
+SCHEMA = {
+    "$schema": "https://json-schema.org/draft/2020-12/schema",
+    "title": "lambda-bezier records file",
+    "type": "object",
+    "properties": {
+        "schema_version": {"enum": list(SCHEMA_VERSIONS)},
+        "source": _STR,
+        "title": _STR,
+        # the default family of the records: a name, or the definition of a family of the
+        # user's own (a [family] table, validated by derive/family_engine.py)
+        "family": {
+            "oneOf": [{"type": "string", "pattern": r"^[a-z][a-z0-9_]*$"}, {"type": "object"}]
+        },
+        "variable": _STR,
+        "point_function": _STR,
+        "record": {"type": "array", "items": _RECORD, "maxItems": MAX_RECORDS},
+    },
+    "required": ["schema_version", "record"],
+    "additionalProperties": False,
+}
+
+# String values that are free text or names, never formulas.
+TEXT_KEYS = frozenset(
+    {
+        "id",
+        "claim",
+        "source",
+        "location",
+        "note",
+        "variable",
+        "family",
+        "point_function",
+        "domain",
+        "ambiguous",
+        "expect",
+        "conventions_text",
+        "condition",
+        "constants",
+        "uses",
+        "formula",
+        "numerator",
+        "denominator",
+        "name",
+        "keep",
+        "curve",
+        "printed_form",
+        "parameter_printed",
+        "origin",
+        "explanation",
+    }
+)
+
+
+# --------------------------------------------------------------------------- loading
+
+
+def _where(path: Path, rec: dict | None, key: str = "") -> str:
+    out = str(path)
+    if rec is not None:
+        out += f": record {rec.get('id', '?')!r}"
+    if key:
+        out += f", key {key}"
+    return out
+
+
+def _key_path(parts: Iterable) -> str:
+    out = ""
+    for p in parts:
+        out += f"[{p}]" if isinstance(p, int) else (f".{p}" if out else str(p))
+    return out
+
+
+def read_file(path: Path) -> dict:
+    """The TOML of one records file, validated against SCHEMA."""
+    import jsonschema
+
+    try:
+        size = path.stat().st_size
+        if size > MAX_FILE_BYTES:
+            raise RecordsError(f"{path}: {size} bytes, more than the {MAX_FILE_BYTES} allowed")
+        text = path.read_bytes().decode("utf-8")
+    except FileNotFoundError:
+        raise RecordsError(f"{path}: no such file") from None
+    except IsADirectoryError:
+        raise RecordsError(f"{path}: is a directory, not a records file") from None
+    except UnicodeDecodeError as exc:
+        raise RecordsError(f"{path}: not UTF-8 text ({exc.reason} at byte {exc.start})") from None
+    except OSError as exc:
+        raise RecordsError(f"{path}: cannot be read ({exc.strerror})") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise RecordsError(f"{path}: not valid TOML: {exc}") from None
+    validator = jsonschema.Draft202012Validator(SCHEMA)
+    errors = sorted(validator.iter_errors(data), key=lambda e: list(map(str, e.absolute_path)))
+    if errors:
+        err = min(errors, key=lambda e: len(e.absolute_path) * -1)  # the deepest is the clearest
+        parts = list(err.absolute_path)
+        rec = None
+        if len(parts) >= 2 and parts[0] == "record" and isinstance(parts[1], int):
+            rec = data["record"][parts[1]] if isinstance(data["record"][parts[1]], dict) else {}
+            parts = parts[2:]
+        more = f" (and {len(errors) - 1} more problems)" if len(errors) > 1 else ""
+        raise RecordsError(f"{_where(path, rec, _key_path(parts))}: {err.message}{more}")
+    return data
+
+
+def load_file(path: Path) -> list[dict]:
+    """The records of one file, each with its family, file, source and variable filled in."""
+    data = read_file(path)
+    if isinstance(data.get("family"), dict):
+        data["family"] = _define_family(path, data["family"], data.get("point_function", "P"))
+    out = []
+    for rec in data["record"]:
+        rec = dict(rec)
+        claim = rec["claim"]
+        if "." in claim:
+            family = claim.split(".", 1)[0]
+            if rec.get("family", family) != family:
+                raise RecordsError(
+                    f"{_where(path, rec, 'claim')}: claim {claim!r} names family {family!r} but "
+                    f"the record's family is {rec['family']!r}"
+                )
+        else:
+            family = rec.get("family") or data.get("family")
+            if not family:
+                raise RecordsError(
+                    f"{_where(path, rec, 'claim')}: claim {claim!r} names no family; write "
+                    "<family>.<kind> or set `family` in the file"
+                )
+        problem = kind_problem(family, claim_kind(claim))
+        if problem:
+            raise RecordsError(f"{_where(path, rec, 'claim')}: {problem}")
+        rec["family"] = family
+        rec["claim"] = f"{family}.{claim_kind(claim)}"
+        rec.setdefault("source", data.get("source", path.name))
+        rec.setdefault("file", str(path))
+        rec.setdefault("expect", "match")
+        for key in ("variable", "point_function"):
+            if key not in rec and key in data:
+                rec[key] = data[key]
+        if "n" in rec and rec["n"] not in FAMILIES[family].degrees and family != "bezier":
+            raise RecordsError(
+                f"{_where(path, rec, 'n')}: degree {rec['n']} is outside the {family} range "
+                f"{FAMILIES[family].degrees.start}..{FAMILIES[family].degrees.stop - 1}"
+            )
+        _parse_formulas(path, rec)
+        out.append(rec)
+    return out
+
+
+def _define_family(path: Path, table: dict, points: str) -> str:
+    """Derive the family a records file defines and make it known to this run's checkers."""
+    from . import family_engine
+
+    try:
+        defn = family_engine.definition_from_table(table, str(path))
+        family_engine.register(defn, points)
+    except family_engine.DefinitionError as exc:
+        raise RecordsError(
+            str(exc) if str(exc).startswith(str(path)) else f"{path}: {exc}"
+        ) from None
+    return defn.name
+
+
+def _strings(value, key: str) -> Iterator[tuple[str, str]]:
+    """(key path, string) for every formula string inside a record value."""
+    if isinstance(value, str):
+        yield key, value
+    elif isinstance(value, list):
+        for pos, item in enumerate(value):
+            yield from _strings(item, f"{key}[{pos}]")
+    elif isinstance(value, dict):
+        for name, item in value.items():
+            if name not in TEXT_KEYS:
+                yield from _strings(item, f"{key}.{name}")
+
+
+def _parse_formulas(path: Path, rec: dict) -> None:
+    for name, value in rec.items():
+        if name in TEXT_KEYS or name == "file":
+            continue
+        if name == "points" and isinstance(value, str):
+            continue
+        for key, text in _strings(value, name):
+            parts = [text]
+            if key.endswith(".index") or ".where." in key:
+                if text == "otherwise":
+                    continue
+                if ".." in text:
+                    parts = text.split("..", 1)
+            elif key.endswith(".points") or key.endswith(".curve"):
+                continue  # names of the functions of a join's curves
+            for part in parts:
+                try:
+                    parse_formula(part)
+                except ParseError as exc:
+                    raise RecordsError(f"{_where(path, rec, key)}: {exc}") from None
+
+
+def load_paths(paths: Iterable[Path]) -> list[dict]:
+    """The records of several files, ids unique across them and cross-references resolved."""
+    records: list[dict] = []
+    for path in paths:
+        records += load_file(Path(path))
+    seen: dict[str, str] = {}
+    for rec in records:
+        if rec["id"] in seen:
+            raise RecordsError(
+                f"{rec['file']}: record {rec['id']!r}, key id: duplicate id "
+                f"(also in {seen[rec['id']]})"
+            )
+        seen[rec["id"]] = rec["file"]
+    for rec in records:
+        refs = [("uses", u) for u in rec.get("uses", [])] + [
+            (key, rec[key]) for key in ("numerator", "denominator", "formula") if key in rec
+        ]
+        for key, rid in refs:
+            if rid not in seen:
+                raise RecordsError(
+                    f"{rec['file']}: record {rec['id']!r}, key {key}: no record {rid!r} in this run"
+                )
+    return records

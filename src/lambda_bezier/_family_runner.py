@@ -1,0 +1,75 @@
+"""`lambda-bezier derive --family FILE [--out DIR] [--check]`: a user's family, derived.
+
+The derivation (derive/family_engine.py) needs SymPy, imported only when the command runs.
+The result is one JSON document written beside FILE (or into DIR) as `<name>.derived.json`,
+atomically; `--check` compares instead and prints a unified diff when it drifted.
+"""
+
+from __future__ import annotations
+
+import difflib
+import importlib
+import os
+import sys
+import tempfile
+from pathlib import Path
+
+from ._derive_runner import find_checkout, load_derive
+
+
+def _say(quiet: bool, message: str) -> None:
+    if not quiet:
+        print(message, file=sys.stderr, flush=True)
+
+
+def _write_atomically(path: Path, text: str) -> None:
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as fh:
+            fh.write(text)
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def run(path: Path, out_dir: Path | None, check: bool, quiet: bool = False) -> int:
+    derive = load_derive(find_checkout(Path.cwd()))  # exits with a hint without SymPy
+    engine = importlib.import_module(f"{derive.__name__}.family_engine")
+    if out_dir is not None and not out_dir.is_dir():
+        print(f"lambda-bezier derive: --out {out_dir} is not a directory", file=sys.stderr)
+        return 2
+    try:
+        defn = engine.read_definition(path)
+        _say(quiet, f"deriving family {defn.name!r} from {path} ...")
+        text = engine.render(defn)
+    except engine.DefinitionError as exc:
+        print(f"lambda-bezier derive: {exc}", file=sys.stderr)
+        return 2
+    target = engine.derived_path(path, defn.name, out_dir)
+    if check:
+        old = target.read_text(encoding="utf-8") if target.is_file() else ""
+        if old == text:
+            _say(quiet, f"{target} matches the derivation.")
+            return 0
+        diff = difflib.unified_diff(
+            old.splitlines(keepends=True),
+            text.splitlines(keepends=True),
+            f"{target} (on disk)",
+            f"{target} (derived)",
+        )
+        sys.stdout.writelines(diff)
+        print(
+            f"{target} differs from the derivation of {path}; run "
+            f"`lambda-bezier derive --family {path}` to refresh it",
+            file=sys.stderr,
+        )
+        return 1
+    try:
+        _write_atomically(target, text)
+    except OSError as exc:
+        print(f"lambda-bezier derive: cannot write {target}: {exc.strerror}", file=sys.stderr)
+        return 2
+    _say(quiet, f"wrote {target}")
+    return 0

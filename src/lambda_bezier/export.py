@@ -1,0 +1,582 @@
+"""Exact export of curves and composites: one B-spline, STEP, DXF, SVG and a JSON form.
+
+Every λ-curve is exactly a polynomial curve (`to_bezier()`), so a curve or a composite is
+exactly one clamped B-spline on the composite's own parameter u ∈ [0, N]: the Bernstein
+pieces, elevated to a common degree p, with the knot at joint u = j repeated p − k times
+where the joint is C^k in u, k the continuity that actually holds there (in Fractions when the
+curve is exact, otherwise within `tol`). `to_bspline` then checks that the B-spline it built
+reproduces every piece (p + 1 values per piece: exact equality for exact input) and falls
+back to full multiplicity, which is always exact, if not. G1/G2 joints with α ≠ 1 are not C1
+in u, so their knots stay at multiplicity p.
+
+STEP (through OCCT's Python binding, OCP) and DXF (through ezdxf) need the optional extra
+`cad`: pip install "lambda-bezier[cad]". They store the B-spline in floats (the exact
+Fractions rounded once).
+
+JSON form (`to_json` / `from_json`), version 1; every exact number (int or Fraction) is a
+string "p/q" or "n", a float is a JSON number (shortest repr, so it round-trips exactly)::
+
+    {"lambda_bezier": 1, "kind": "curve",
+     "family": "same_degree" | "bernstein_like" | "bezier",
+     "lambda": "1/2" | 0.5 | null,                 (null for "bezier")
+     "points": [["0", "0"], ["1", "2"], ...]}      (2 or 3 coordinates each)
+
+    {"lambda_bezier": 1, "kind": "composite",
+     "segments": [{"family": ..., "lambda": ..., "points": ...}, ...],
+     "joints": [null | {"continuity": "C1" | "C2" | "G1" | "G2",
+                        "alpha": "2", "d": "1"}, ...]}   (one per joint, as built)
+"""
+
+from __future__ import annotations
+
+import importlib
+import json
+import math
+import re
+from bisect import bisect_right
+from dataclasses import dataclass
+from fractions import Fraction
+from pathlib import Path
+
+import numpy as np
+
+from . import _algorithms as alg
+
+FORMAT_VERSION = 1
+CAD_HINT = 'pip install "lambda-bezier[cad]"'
+DXF_MAX_DEGREE = 11  # AutoCAD's limit for SPLINE entities (ezdxf's documentation)
+
+
+def _optional(module: str, package: str, feature: str):
+    """Import an optional dependency, or say which extra provides it."""
+    try:
+        return importlib.import_module(module)
+    except ImportError:
+        raise ImportError(f"{feature} needs the optional package {package}: {CAD_HINT}") from None
+
+
+def _segments(obj) -> tuple:
+    from .composite import CompositeCurve
+    from .curves import Curve
+
+    if isinstance(obj, CompositeCurve):
+        return obj.segments
+    if isinstance(obj, Curve):
+        return (obj,)
+    raise TypeError(f"expected a lambda_bezier curve or CompositeCurve, got {type(obj).__name__}")
+
+
+# ---------------------------------------------------------------------- B-spline
+@dataclass(frozen=True)
+class BSpline:
+    """A clamped B-spline: `degree` p, the full knot vector `knots` (first and last values
+    repeated p + 1 times) and `control_points` (len(knots) − p − 1 rows), in Fractions when
+    `exact`. Its parameter is the composite's u ∈ [0, N] (a curve: t ∈ [0, 1])."""
+
+    degree: int
+    knots: tuple
+    control_points: tuple[tuple, ...]
+    exact: bool
+
+    @property
+    def dimension(self) -> int:
+        return len(self.control_points[0])
+
+    def breakpoints(self) -> tuple[list, list[int]]:
+        """The distinct knot values and their multiplicities."""
+        values: list = []
+        mults: list[int] = []
+        for k in self.knots:
+            if values and k == values[-1]:
+                mults[-1] += 1
+            else:
+                values.append(k)
+                mults.append(1)
+        return values, mults
+
+    def point(self, u):
+        """C(u) by the B-spline basis (de Boor / Cox): exact for a Fraction u and an exact
+        spline, floats otherwise."""
+        p, knots = self.degree, self.knots
+        span = _span(knots, p, len(self.control_points) - 1, u)
+        basis = _basis(knots, p, span, u)
+        rows = self.control_points[span - p : span + 1]
+        return tuple(
+            sum((b * row[c] for b, row in zip(basis, rows, strict=True)), 0 * basis[0])
+            for c in range(self.dimension)
+        )
+
+    def evaluate(self, u) -> np.ndarray:
+        """Float values at a number or an array of u: (d,) or (len(u), d)."""
+        arr = np.atleast_1d(np.asarray(u, dtype=float))
+        knots = [float(k) for k in self.knots]
+        if arr.size and not (knots[0] <= arr.min() and arr.max() <= knots[-1]):
+            raise ValueError(f"u must lie in [{knots[0]}, {knots[-1]}] (the knot range)")
+        pts = [tuple(float(v) for v in row) for row in self.control_points]
+        flt = BSpline(self.degree, tuple(knots), tuple(pts), False)
+        out = np.array([flt.point(float(x)) for x in arr])
+        return out[0] if np.ndim(u) == 0 else out
+
+
+def _span(knots, p: int, n: int, u) -> int:
+    """The knot span index i with knots[i] <= u < knots[i+1] (the last one at the end)."""
+    return min(max(bisect_right(knots, u) - 1, p), n)
+
+
+def _basis(knots, p: int, i: int, u) -> list:
+    """The p + 1 nonzero B-spline basis functions on span i at u (Cox–de Boor, in the
+    arithmetic of the inputs)."""
+    values = [u * 0 + 1]
+    left = [0] * (p + 1)
+    right = [0] * (p + 1)
+    for j in range(1, p + 1):
+        left[j] = u - knots[i + 1 - j]
+        right[j] = knots[i + j] - u
+        saved = 0 * values[0]
+        for r in range(j):
+            temp = values[r] / (right[r + 1] + left[j - r])
+            values[r] = saved + right[r + 1] * temp
+            saved = left[j - r] * temp
+        values.append(saved)
+    return values
+
+
+def _pieces(segs) -> tuple[int, list[tuple[tuple, ...]], bool]:
+    """The segments' Bézier control points at one common degree, exact when all are."""
+    beziers = [seg.to_bezier() for seg in segs]
+    degree = max(b.degree for b in beziers)
+    exact = all(b.is_exact for b in beziers)
+    rows = []
+    for b in beziers:
+        if not exact and b.is_exact:
+            from .curves import BezierCurve
+
+            b = BezierCurve(b.points)  # one arithmetic for the whole spline
+        while b.degree < degree:
+            b = b.elevate()
+        rows.append(b.control_points())
+    return degree, rows, exact
+
+
+def _differences(rows, order: int, at_end: bool) -> tuple:
+    """Δ^order of the last (at_end) or first order + 1 control points."""
+    pts = [list(r) for r in (rows[len(rows) - order - 1 :] if at_end else rows[: order + 1])]
+    for _ in range(order):
+        pairs = zip(pts[:-1], pts[1:], strict=True)
+        pts = [[b - a for a, b in zip(p, q, strict=True)] for p, q in pairs]
+    return tuple(pts[0])
+
+
+def _joint_order(left, right, degree: int, exact: bool, tol: float, size: float) -> int:
+    """The largest k <= degree with C^k at the joint (−1 if not even C0): the m-th
+    derivatives there are p!/(p−m)! Δ^m of the end points, so compare Δ^m."""
+    k = -1
+    for m in range(degree + 1):
+        a = _differences(left, m, True)
+        b = _differences(right, m, False)
+        if exact:
+            same = a == b
+        else:
+            gap = math.dist(a, b)
+            scale = size if m == 0 else max(math.hypot(*a), math.hypot(*b))
+            same = gap <= tol * scale
+        if not same:
+            break
+        k = m
+    return k
+
+
+def _solve(matrix: list[list], rhs: list[list], exact: bool) -> list[list]:
+    """matrix @ X = rhs. The collocation matrix at the Greville sites is totally positive
+    and banded, so Gaussian elimination needs no pivoting and stays inside the band."""
+    if not exact:
+        sol = np.linalg.solve(np.array(matrix, dtype=float), np.array(rhs, dtype=float))
+        return sol.tolist()
+    n = len(matrix)
+    a = [row[:] for row in matrix]
+    b = [row[:] for row in rhs]
+    for i in range(n):
+        if a[i][i] == 0:
+            raise ZeroDivisionError("zero pivot")
+        cols = [c for c in range(i, n) if a[i][c] != 0]
+        for r in range(i + 1, n):
+            if a[r][i] == 0:
+                continue
+            f = a[r][i] / a[i][i]
+            for c in cols:
+                a[r][c] -= f * a[i][c]
+            b[r] = [x - f * y for x, y in zip(b[r], b[i], strict=True)]
+    x: list[list] = [[] for _ in range(n)]
+    for i in range(n - 1, -1, -1):
+        acc = list(b[i])
+        for c in range(i + 1, n):
+            if a[i][c] != 0:
+                acc = [v - a[i][c] * w for v, w in zip(acc, x[c], strict=True)]
+        x[i] = [v / a[i][i] for v in acc]
+    return x
+
+
+def _piece_value(rows, t):
+    return alg.de_casteljau_triangle(rows, t)[-1][0]
+
+
+def _assemble(degree, rows, mults, exact: bool, tol: float, size: float) -> BSpline | None:
+    """The B-spline with these interior multiplicities reproducing the pieces, or None."""
+    p, count = degree, len(rows)
+    one = Fraction(1) if exact else 1.0
+    knots: list = [0 * one] * (p + 1)
+    for j, m in enumerate(mults):
+        knots += [(j + 1) * one] * m
+    knots += [count * one] * (p + 1)
+    n = len(knots) - p - 1
+    if all(m == p for m in mults):  # the Bézier points themselves, joints shared
+        ctrl = list(rows[0])
+        for piece in rows[1:]:
+            ctrl += list(piece[1:])
+        return BSpline(p, tuple(knots), tuple(map(tuple, ctrl)), exact)
+    greville = [sum(knots[i + 1 : i + p + 1], 0 * one) / p for i in range(n)]
+    matrix = []
+    rhs = []
+    for xi in greville:
+        span = _span(knots, p, n - 1, xi)
+        row = [0 * one] * n
+        row[span - p : span + 1] = _basis(knots, p, span, xi)
+        matrix.append(row)
+        piece = min(int(math.floor(xi)), count - 1)
+        rhs.append(list(_piece_value(rows[piece], xi - piece)))
+    try:
+        ctrl = _solve(matrix, rhs, exact)
+    except (ZeroDivisionError, np.linalg.LinAlgError):
+        return None
+    spline = BSpline(p, tuple(knots), tuple(tuple(r) for r in ctrl), exact)
+    # a degree-p polynomial is fixed by p + 1 values: compare them on every piece
+    for j, piece in enumerate(rows):
+        for s in range(p + 1):
+            t = Fraction(s + 1, p + 2) if exact else (s + 1) / (p + 2)
+            ours = spline.point(j + t)
+            want = _piece_value(piece, t)
+            if exact and tuple(ours) != tuple(want):
+                return None
+            if not exact and math.dist(ours, want) > tol * size:
+                return None
+    return spline
+
+
+def to_bspline(obj, *, tol: float = 1e-9) -> BSpline:
+    """One clamped B-spline equal to the curve or composite (on t ∈ [0, 1] or u ∈ [0, N]):
+    the Bernstein pieces at a common degree p, the knot at each joint repeated p − k times
+    where the joint is C^k in u (exactly, for exact input; within the relative tolerance
+    `tol` otherwise). Exact (Fractions) when every segment is exact. A composite with a
+    gap at a joint raises ValueError."""
+    segs = _segments(obj)
+    degree, rows, exact = _pieces(segs)
+    size = max(1.0, max(abs(float(v)) for piece in rows for row in piece for v in row))
+    mults = []
+    for j in range(len(rows) - 1):
+        k = _joint_order(rows[j], rows[j + 1], degree, exact, tol, size)
+        if k < 0:
+            gap = math.dist(map(float, rows[j][-1]), map(float, rows[j + 1][0]))
+            raise ValueError(
+                f"the composite is not continuous at joint {j} (u = {j + 1}): the segments "
+                f"are {gap:.3g} apart; one B-spline needs connected segments"
+            )
+        mults.append(max(degree - k, 0))
+    spline = _assemble(degree, rows, mults, exact, tol, size)
+    if spline is None:  # never expected: full multiplicity is the pieces themselves
+        spline = _assemble(degree, rows, [degree] * len(mults), exact, tol, size)
+    assert spline is not None
+    return spline
+
+
+# ---------------------------------------------------------------------- STEP (OCCT)
+def _quiet_occt(message_module) -> None:
+    """OCCT's default messenger prints every transfer to stdout; keep only failures."""
+    gravity = message_module.Message_Gravity.Message_Fail
+    for printer in message_module.Message.DefaultMessenger_s().Printers():
+        printer.SetTraceLevel(gravity)
+
+
+def to_step(obj, path) -> Path:
+    """Write the curve or composite as one B-spline edge (B_SPLINE_CURVE_WITH_KNOTS) to a
+    STEP file through OCCT (OCP); 2D curves lie in the plane z = 0."""
+    feature = "to_step"
+    _optional("OCP", "cadquery-ocp-novtk (OCP)", feature)
+    from OCP import Message
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
+    from OCP.collections import Array1_double, Array1_gp_Pnt, Array1_int
+    from OCP.Geom import Geom_BSplineCurve
+    from OCP.gp import gp_Pnt
+    from OCP.IFSelect import IFSelect_ReturnStatus
+    from OCP.STEPControl import STEPControl_StepModelType, STEPControl_Writer
+
+    spline = to_bspline(obj)
+    _quiet_occt(Message)
+    values, mults = spline.breakpoints()
+    poles = Array1_gp_Pnt(1, len(spline.control_points))
+    for i, row in enumerate(spline.control_points, start=1):
+        x, y, *z = (float(v) for v in row)
+        poles.SetValue(i, gp_Pnt(x, y, z[0] if z else 0.0))
+    knots = Array1_double(1, len(values))
+    multiplicities = Array1_int(1, len(values))
+    for i, (v, m) in enumerate(zip(values, mults, strict=True), start=1):
+        knots.SetValue(i, float(v))
+        multiplicities.SetValue(i, m)
+    curve = Geom_BSplineCurve(poles, knots, multiplicities, spline.degree)
+    edge = BRepBuilderAPI_MakeEdge(curve).Edge()
+    writer = STEPControl_Writer()
+    done = IFSelect_ReturnStatus.IFSelect_RetDone
+    if writer.Transfer(edge, STEPControl_StepModelType.STEPControl_AsIs) != done:
+        raise RuntimeError("OCCT could not transfer the B-spline edge to STEP")
+    target = Path(path)
+    if writer.Write(str(target)) != done:
+        raise OSError(f"OCCT could not write the STEP file {target}")
+    return target
+
+
+# ---------------------------------------------------------------------- DXF (ezdxf)
+def to_dxf(obj, path) -> Path:
+    """Write the curve or composite as one DXF SPLINE entity (DXF R2010) through ezdxf;
+    2D curves lie in the plane z = 0. AutoCAD takes SPLINE degrees up to 11."""
+    ezdxf = _optional("ezdxf", "ezdxf", "to_dxf")
+    spline = to_bspline(obj)
+    if spline.degree > DXF_MAX_DEGREE:
+        raise ValueError(
+            f"a DXF SPLINE holds degrees up to {DXF_MAX_DEGREE} (AutoCAD's limit); this curve "
+            f"is a polynomial of degree {spline.degree}: export it with to_step instead"
+        )
+    doc = ezdxf.new("R2010")
+    points = [tuple(float(v) for v in row) for row in spline.control_points]
+    doc.modelspace().add_open_spline(
+        points, degree=spline.degree, knots=[float(k) for k in spline.knots]
+    )
+    target = Path(path)
+    doc.saveas(target)
+    return target
+
+
+# ---------------------------------------------------------------------- SVG
+def _hermite_cubic(rows: np.ndarray) -> np.ndarray:
+    """The cubic with the piece's end points and end derivatives."""
+    p = rows.shape[0] - 1
+    q1 = rows[0] + p / 3 * (rows[1] - rows[0])
+    q2 = rows[-1] - p / 3 * (rows[-1] - rows[-2])
+    return np.array([rows[0], q1, q2, rows[-1]])
+
+
+def _elevated(rows: np.ndarray, degree: int) -> np.ndarray:
+    """Bézier points elevated to `degree` (P*_i = i/(n+1) P_{i-1} + (1 − i/(n+1)) P_i)."""
+    while rows.shape[0] - 1 < degree:
+        n = rows.shape[0] - 1
+        i = np.arange(1, n + 1)[:, None] / (n + 1)
+        mid = i * rows[:-1] + (1 - i) * rows[1:]
+        rows = np.vstack([rows[:1], mid, rows[-1:]])
+    return rows
+
+
+def _cubics(rows: np.ndarray, tolerance: float, depth: int = 0) -> list[np.ndarray]:
+    """Cubics within `tolerance` of the Bézier piece `rows` (degree > 3): the Hermite cubic
+    when the Bernstein coefficients of the difference (a bound on the distance at every t,
+    by the convex hull property) are small enough, else both halves."""
+    cubic = _hermite_cubic(rows)
+    bound = np.linalg.norm(rows - _elevated(cubic, rows.shape[0] - 1), axis=1).max()
+    scale = np.abs(rows).max()
+    if bound + 64 * np.finfo(float).eps * scale <= tolerance:
+        return [cubic]
+    if depth >= 40:
+        raise ValueError(f"cannot approximate within tolerance={tolerance} (too small)")
+    left, right = alg.split_rows(rows.tolist(), 0.5)
+    return _cubics(np.array(left), tolerance, depth + 1) + _cubics(
+        np.array(right), tolerance, depth + 1
+    )
+
+
+def _num(x: float) -> str:
+    return repr(float(x)) if x != 0 else "0"
+
+
+def to_svg(obj, *, tolerance: float | None = None, stroke_width: float | None = None) -> str:
+    """An SVG document with one path for a 2D curve or composite, in the curve's own
+    coordinates (the group flips y so that y points up on screen). Pieces of degree <= 3 are
+    exact (L, Q, C commands; coordinates as shortest float repr). Higher-degree pieces need
+    `tolerance`: they become cubics within that distance of the curve at every parameter
+    (checked on the Bernstein form of the difference), else ValueError."""
+    segs = _segments(obj)
+    if segs[0].dimension != 2:
+        raise ValueError(f"SVG paths are 2D; this curve is {segs[0].dimension}D")
+    if tolerance is not None:
+        tolerance = float(tolerance)
+        if not math.isfinite(tolerance) or tolerance <= 0:
+            raise ValueError(f"tolerance must be a positive distance, got {tolerance}")
+    commands = []
+    previous = None
+    for i, seg in enumerate(segs):
+        rows = np.array(seg.to_bezier().points, dtype=float)
+        degree = rows.shape[0] - 1
+        if previous is None or not np.array_equal(rows[0], previous):
+            commands.append(f"M {_num(rows[0][0])} {_num(rows[0][1])}")
+        if degree <= 3:
+            pieces = [rows]
+        elif tolerance is None:
+            raise ValueError(
+                f"segment {i} is a polynomial of degree {degree}; SVG paths hold cubics at "
+                "most: pass tolerance= (a distance in the curve's units; --tolerance on the "
+                "command line) to approximate it"
+            )
+        else:
+            pieces = _cubics(rows, tolerance)
+        for piece in pieces:
+            letter = {1: "L", 2: "Q", 3: "C"}[piece.shape[0] - 1]
+            coords = " ".join(f"{_num(x)} {_num(y)}" for x, y in piece[1:])
+            commands.append(f"{letter} {coords}")
+        previous = rows[-1]
+    lo, hi = _svg_box(obj)
+    span = max(hi[0] - lo[0], hi[1] - lo[1], 1e-12)
+    pad = 0.02 * span
+    width = stroke_width if stroke_width is not None else span / 200
+    view = (lo[0] - pad, -hi[1] - pad, hi[0] - lo[0] + 2 * pad, hi[1] - lo[1] + 2 * pad)
+    return (
+        '<?xml version="1.0" encoding="UTF-8"?>\n'
+        f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="{" ".join(map(_num, view))}">\n'
+        '  <g transform="scale(1 -1)">\n'
+        f'    <path d="{" ".join(commands)}" fill="none" stroke="black" '
+        f'stroke-width="{_num(width)}"/>\n'
+        "  </g>\n"
+        "</svg>\n"
+    )
+
+
+def _svg_box(obj):
+    from .geometry import bounding_box
+
+    return bounding_box(obj)
+
+
+# ---------------------------------------------------------------------- JSON
+def _number_out(x):
+    if isinstance(x, Fraction):
+        return str(x)
+    return float(x)
+
+
+def _number_in(x, where: str):
+    from ._numbers import parse_number
+
+    if isinstance(x, bool) or not isinstance(x, str | int | float):
+        raise ValueError(f"{where}: expected a number or a string 'p/q', got {x!r}")
+    if isinstance(x, str):
+        try:
+            return parse_number(x)
+        except ValueError as exc:
+            raise ValueError(f"{where}: {exc}") from None
+    if isinstance(x, int):
+        return Fraction(x)
+    if not math.isfinite(x):
+        raise ValueError(f"{where}: {x} is not finite")
+    return x
+
+
+def _curve_dict(curve) -> dict:
+    return {
+        "family": curve.family,
+        "lambda": None if curve.lam is None else _number_out(curve.lam),
+        "points": [[_number_out(v) for v in row] for row in curve.control_points()],
+    }
+
+
+def to_json(obj, *, indent: int | None = 2) -> str:
+    """The JSON form of a curve or composite (see the module docstring): exact numbers as
+    strings, floats as JSON numbers; from_json reads it back exactly."""
+    from .composite import CompositeCurve
+
+    _segments(obj)  # type check
+    if isinstance(obj, CompositeCurve):
+        joints = [
+            None
+            if j is None
+            else {"continuity": j.continuity, "alpha": _number_out(j.alpha), "d": _number_out(j.d)}
+            for j in obj.joints
+        ]
+        doc = {
+            "lambda_bezier": FORMAT_VERSION,
+            "kind": "composite",
+            "segments": [_curve_dict(s) for s in obj.segments],
+            "joints": joints,
+        }
+    else:
+        doc = {"lambda_bezier": FORMAT_VERSION, "kind": "curve", **_curve_dict(obj)}
+    text = json.dumps(doc, indent=indent, ensure_ascii=False)
+    if indent is None:
+        return text
+    # one line per point (the numbers hold no spaces, brackets or braces)
+    return re.sub(r"\[\s+([^\[\]{}]*?)\s+\]", lambda m: "[" + " ".join(m[1].split()) + "]", text)
+
+
+def _curve_from(data, where: str, check_range: bool):
+    from .curves import FAMILIES
+
+    if not isinstance(data, dict):
+        raise ValueError(f"{where}: expected an object with family, lambda and points")
+    family = data.get("family")
+    if family not in FAMILIES:
+        raise ValueError(f"{where}.family must be one of {sorted(FAMILIES)}, got {family!r}")
+    points = data.get("points")
+    if not isinstance(points, list) or not all(isinstance(r, list) for r in points):
+        raise ValueError(f"{where}.points must be a list of [x, y] or [x, y, z] lists")
+    rows = [
+        [_number_in(v, f"{where}.points[{i}][{c}]") for c, v in enumerate(row)]
+        for i, row in enumerate(points)
+    ]
+    # one arithmetic per curve: exact only when every coordinate is
+    if not all(isinstance(v, Fraction) for row in rows for v in row):
+        rows = [[float(v) for v in row] for row in rows]
+    cls = FAMILIES[family]
+    lam = data.get("lambda")
+    if family == "bezier":
+        if lam is not None:
+            raise ValueError(f"{where}.lambda must be null for a bezier curve")
+        return cls(rows)
+    if lam is None:
+        raise ValueError(f"{where}.lambda is required for a {family} curve")
+    return cls(rows, _number_in(lam, f"{where}.lambda"), check_range=check_range)
+
+
+def from_json(text: str, *, check_range: bool = True):
+    """A curve or CompositeCurve from its JSON form (see the module docstring)."""
+    from .composite import CompositeCurve
+    from .joins import Joint
+
+    try:
+        doc = json.loads(text)
+    except (TypeError, json.JSONDecodeError) as exc:
+        raise ValueError(f"not valid JSON: {exc}") from None
+    if not isinstance(doc, dict) or doc.get("lambda_bezier") != FORMAT_VERSION:
+        raise ValueError(
+            f'not a lambda-bezier JSON document: expected "lambda_bezier": {FORMAT_VERSION}'
+        )
+    kind = doc.get("kind")
+    if kind == "curve":
+        return _curve_from(doc, "curve", check_range)
+    if kind != "composite":
+        raise ValueError(f'"kind" must be "curve" or "composite", got {kind!r}')
+    segs = doc.get("segments")
+    if not isinstance(segs, list) or not segs:
+        raise ValueError("composite.segments must be a non-empty list")
+    curves = [_curve_from(s, f"segments[{i}]", check_range) for i, s in enumerate(segs)]
+    joints_in = doc.get("joints", [None] * (len(curves) - 1))
+    if not isinstance(joints_in, list):
+        raise ValueError("composite.joints must be a list (null for a joint not built by join)")
+    joints: list[Joint | None] = []
+    for i, j in enumerate(joints_in):
+        if j is None:
+            joints.append(None)
+            continue
+        if not isinstance(j, dict) or "continuity" not in j:
+            raise ValueError(f"joints[{i}] must be null or an object with continuity, alpha, d")
+        joints.append(
+            Joint(
+                j["continuity"],
+                _number_in(j.get("alpha", "1"), f"joints[{i}].alpha"),
+                _number_in(j.get("d", "0"), f"joints[{i}].d"),
+            )
+        )
+    return CompositeCurve(curves, joints)

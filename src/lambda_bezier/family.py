@@ -1,0 +1,204 @@
+"""A family of the user's own: its definition file and the document `derive` made from it.
+
+``load_family(FILE)`` reads the ``[family]`` table of FILE and the derived document
+``<name>.derived.json`` beside it (written by ``lambda-bezier derive --family FILE``), checks
+that the document was derived from exactly this definition, and returns a ``Family`` whose
+curves have the API of the built-in classes. Nothing here imports SymPy, and nothing in either
+file is run: the definition is only fingerprinted, the derived document is data (exact
+rationals as strings).
+
+>>> import lambda_bezier as lb
+>>> fam = lb.load_family("tests/data/families/q_bernstein_like.toml")   # doctest: +SKIP
+>>> c = fam.curve([(0, 0), (1, 2), (3, 2), (4, 0)], lam=0.5)             # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import re
+import sys
+from fractions import Fraction
+from pathlib import Path
+from typing import Any
+
+from .curves import Curve
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+FORMAT = 1  # the derived document's format this runtime reads
+MAX_DOCUMENT_BYTES = 50_000_000
+_EXACT = re.compile(r"^-?[0-9]{1,400}(/[0-9]{1,400})?$")
+
+
+class FamilyFileError(ValueError):
+    """A definition or derived file that cannot be used (the message says what to run)."""
+
+
+def _fraction(text: object, where: str) -> Fraction:
+    if not isinstance(text, str) or not _EXACT.match(text):
+        raise FamilyFileError(f"{where}: {text!r} is not an exact number")
+    return Fraction(text)
+
+
+def _matrices(value: object, where: str) -> tuple:
+    if not isinstance(value, list):
+        raise FamilyFileError(f"{where}: expected a list of matrices")
+    return tuple(tuple(tuple(_fraction(v, where) for v in row) for row in mat) for mat in value)
+
+
+def _ints(value: object, where: str) -> tuple:
+    if not isinstance(value, list) or not all(
+        isinstance(row, list) and all(isinstance(v, int) for v in row) for row in value
+    ):
+        raise FamilyFileError(f"{where}: expected a matrix of integers")
+    return tuple(tuple(row) for row in value)
+
+
+def definition_digest(table: dict) -> str:
+    """The fingerprint derive/family_engine.py stores (the same canonical JSON, SHA-256)."""
+    text = json.dumps(table, sort_keys=True, ensure_ascii=True, separators=(",", ":"))
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+class FamilyData:
+    """The tables of one family, with the attributes of a generated family module (what the
+    Curve base class and the energy and batch code read)."""
+
+    def __init__(self, doc: dict[str, Any], where: str):
+        try:
+            self.FAMILY: str = doc["family"]
+            lo, hi = doc["degrees"]
+            self.DEGREES = tuple(range(int(lo), int(hi) + 1))
+            self.DEGREE_OFFSET = int(doc["degree_offset"])
+            rng = doc["range"]
+            self.LAMBDA_RANGE = (_fraction(rng["lo"], where), _fraction(rng["hi"], where))
+            self.LAMBDA_CLOSED = (bool(rng["closed"][0]), bool(rng["closed"][1]))
+            self.LAMBDA_RANGE_TEXT: str = rng["text"]
+            at = doc["bernstein_at"]
+            self.BERNSTEIN_LAMBDA = None if at is None else _fraction(at, where)
+            self.POWER = {int(k): _matrices(v, where) for k, v in doc["power"].items()}
+            self.CENTRED = {int(k): _matrices(v, where) for k, v in doc["centred"].items()}
+            self.BERNSTEIN = {int(k): _matrices(v, where) for k, v in doc["bernstein"].items()}
+            energy = doc["energy"]
+        except (KeyError, TypeError, ValueError) as exc:
+            if isinstance(exc, FamilyFileError):
+                raise
+            raise FamilyFileError(f"{where}: not a derived family document ({exc!r})") from None
+        self.ENERGY_REASON: str | None = energy.get("reason")
+        self.ENERGY: dict[tuple[int, int], tuple] = {}
+        for key, entry in energy.items():
+            if key == "reason":
+                continue
+            n, k = (int(x) for x in key.split(","))
+            self.ENERGY[(n, k)] = tuple(
+                (_fraction(entry[part][0], where), _ints(entry[part][1], where))
+                for part in ("ff", "fg", "gg")
+            )
+        for n in self.DEGREES:
+            for table in (self.POWER, self.CENTRED, self.BERNSTEIN):
+                if n not in table:
+                    raise FamilyFileError(f"{where}: no table for degree {n}")
+
+
+class Family:
+    """A shape-parameter family defined by data, with the toolkit of the built-in ones:
+    ``curve(points, lam)`` gives a curve with the built-in classes' API; ``optimal_lambda``,
+    ``join``, ``CompositeCurve`` and ``evaluate_many`` take the family object wherever they
+    take a family name."""
+
+    def __init__(self, data: FamilyData, definition: Path, title: str, parameter: str):
+        self.data = data
+        self.definition = definition
+        self.title = title
+        self.parameter = parameter
+        camel = "".join(part.capitalize() for part in data.FAMILY.split("_"))
+        self.curve_class: type[Curve] = type(
+            f"{camel}Curve",
+            (Curve,),
+            {
+                "family": data.FAMILY,
+                "_data": data,
+                "__doc__": f"A curve of the family {data.FAMILY!r} ({title}), from {definition}.",
+                "__module__": __name__,
+            },
+        )
+
+    @property
+    def name(self) -> str:
+        return self.data.FAMILY
+
+    @property
+    def degrees(self) -> tuple[int, ...]:
+        return self.data.DEGREES
+
+    @property
+    def range_text(self) -> str:
+        return self.data.LAMBDA_RANGE_TEXT
+
+    @property
+    def degree_offset(self) -> int:
+        return self.data.DEGREE_OFFSET
+
+    def curve(self, points, lam, *, check_range: bool = True) -> Curve:
+        """Σ P_i b_i(t; lam) with the family's degree-n basis (n + 1 points)."""
+        return self.curve_class(points, lam, check_range=check_range)
+
+    def __repr__(self) -> str:
+        return (
+            f"Family({self.name!r}, degrees {self.degrees[0]}..{self.degrees[-1]}, "
+            f"{self.parameter} in {self.range_text})"
+        )
+
+
+def load_family(path: str | Path, derived: str | Path | None = None) -> Family:
+    """The family defined in `path` (a TOML file with a ``[family]`` table), with the tables
+    of its derived document (default: ``<name>.derived.json`` beside `path`).
+
+    Refuses, naming the command to run, when the derived document is missing or was derived
+    from another version of the definition."""
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise FamilyFileError(f"{path}: no such file") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise FamilyFileError(f"{path}: cannot be read ({exc})") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise FamilyFileError(f"{path}: not valid TOML: {exc}") from None
+    table = data.get("family")
+    if not isinstance(table, dict) or not isinstance(table.get("name"), str):
+        raise FamilyFileError(f"{path}: no [family] table with a name")
+    name = table["name"]
+    if not re.match(r"^[a-z][a-z0-9_]{0,39}$", name):
+        raise FamilyFileError(f"{path}: [family] name {name!r} is not a lowercase identifier")
+    doc_path = (
+        Path(derived) if derived is not None else path.resolve().parent / (f"{name}.derived.json")
+    )
+    command = f"lambda-bezier derive --family {path}"
+    if not doc_path.is_file():
+        raise FamilyFileError(
+            f"{path}: the family {name!r} has not been derived ({doc_path} is missing); "
+            f"run `{command}`"
+        )
+    if doc_path.stat().st_size > MAX_DOCUMENT_BYTES:
+        raise FamilyFileError(f"{doc_path}: larger than {MAX_DOCUMENT_BYTES} bytes")
+    try:
+        doc = json.loads(doc_path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
+        raise FamilyFileError(f"{doc_path}: not a derived family document ({exc})") from None
+    if not isinstance(doc, dict) or doc.get("format") != FORMAT:
+        raise FamilyFileError(
+            f"{doc_path}: derived by another version of lambda-bezier (format "
+            f"{doc.get('format') if isinstance(doc, dict) else '?'}, this one reads {FORMAT}); "
+            f"run `{command}`"
+        )
+    if doc.get("definition_sha256") != definition_digest(table) or doc.get("family") != name:
+        raise FamilyFileError(
+            f"{doc_path} was derived from another version of the definition in {path}; "
+            f"run `{command}`"
+        )
+    return Family(FamilyData(doc, str(doc_path)), path, table.get("title", ""), doc["parameter"])

@@ -199,6 +199,10 @@ def test_self_intersections_against_sympy():
     assert len(got) == len(sols) == 1
     assert got[0].s == pytest.approx(sols[0][0], abs=1e-14)
     assert got[0].t == pytest.approx(sols[0][1], abs=1e-14)
+    # on a line: none when it runs one way, a continuum (refused) when it turns back
+    assert lb.BezierCurve([(0, 0), (1, 1), (1, 1), (3, 3)]).self_intersections() == []
+    with pytest.raises(ValueError, match="turns back"):
+        lb.BezierCurve([(0, 0), (2, 0), (-1, 0)]).self_intersections()
     # a cusp is not a self-intersection, a simple arc has none
     assert lb.BezierCurve([(0, 0), (2, 2), (0, 2), (2, 0)]).self_intersections() == []
     assert lb.BezierCurve([(0, 0), (1, 2), (3, 2), (4, 0)]).self_intersections() == []

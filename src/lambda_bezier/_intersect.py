@@ -548,22 +548,27 @@ def _quality(p: Prepared, q: Prepared, hit: Intersection) -> float:
     return float(np.linalg.norm(_tangent_residual(p, q, hit.s, hit.t, 1.0, True)))
 
 
+def _common_line(pts: np.ndarray, scale: float) -> tuple[np.ndarray, float] | None:
+    """(unit direction, extent) of the line all the points lie on (within ON_CURVE), or None."""
+    base = pts[0]
+    far = pts[np.argmax(np.linalg.norm(pts - base, axis=1))]
+    length = float(np.linalg.norm(far - base))
+    if length == 0.0:
+        return None
+    unit = (far - base) / length
+    rel = pts - base
+    off_line = np.linalg.norm(rel - np.outer(rel @ unit, unit), axis=1).max()
+    return (unit, length) if off_line <= ON_CURVE * scale else None
+
+
 def _refuse_collinear_overlap(p: Prepared, q: Prepared) -> None:
     """Two curves on one line whose images overlap along an interval meet in a continuum of
     parameter pairs; unless they are one curve up to an affine change of parameter
     (reported as coincident above) there are no end pairs to report, so say so."""
-    pts = np.vstack([p.pts, q.pts])
-    base = pts[0]
-    far = pts[np.argmax(np.linalg.norm(pts - base, axis=1))]
-    direction = far - base
-    length = float(np.linalg.norm(direction))
-    if length == 0.0:
+    line = _common_line(np.vstack([p.pts, q.pts]), max(p.scale, q.scale))
+    if line is None:
         return
-    unit = direction / length
-    rel = pts - base
-    off_line = np.linalg.norm(rel - np.outer(rel @ unit, unit), axis=1).max()
-    if off_line > ON_CURVE * max(p.scale, q.scale):
-        return
+    unit, length = line
     u = np.linspace(0.0, 1.0, 1025)
     image_p = np.array([p.at(x) for x in u]) @ unit
     image_q = np.array([q.at(x) for x in u]) @ unit
@@ -582,6 +587,17 @@ def self_intersections(p: Prepared) -> list[Intersection]:
     found: list[Intersection] = []
     if p.degree < 2 or p.is_point:
         return found
+    line = _common_line(p.pts, p.scale)
+    if line is not None:  # on a line: none if it runs one way, a continuum if it turns back
+        image = np.array([p.at(x) for x in np.linspace(0.0, 1.0, 1025)]) @ line[0]
+        steps = np.diff(image)
+        slack = 1e-12 * line[1]
+        if np.all(steps >= -slack) or np.all(steps <= slack):
+            return found
+        raise ValueError(
+            "the curve lies on a line and turns back along it: it meets itself along an "
+            "interval, not at points"
+        )
     ia, ib = _surviving_pairs(p, None, [])
     width = 0.5**LEVELS
     starts = []

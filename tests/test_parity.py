@@ -11,6 +11,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import lambda_bezier as lb
 
@@ -208,6 +210,41 @@ def test_self_intersections_against_sympy():
     assert lb.BezierCurve([(0, 0), (1, 2), (3, 2), (4, 0)]).self_intersections() == []
 
 
+def integer_curve(degree_range=(1, 4)):
+    return st.integers(*degree_range).flatmap(
+        lambda n: st.lists(
+            st.tuples(st.integers(-6, 6), st.integers(-6, 6)), min_size=n + 1, max_size=n + 1
+        )
+    )
+
+
+@settings(max_examples=40)
+@given(a=integer_curve(), b=integer_curve())
+def test_intersect_properties(a, b):
+    """Random exact curves: each pair is a root (exact evaluation), swapping the curves
+    swaps the pairs, and every crossing of fine polylines away from the ends and from
+    tangencies is among the pairs."""
+    p, q = lb.BezierCurve(a), lb.BezierCurve(b)
+    try:
+        hits = p.intersect(q)
+    except ValueError as exc:  # both on one line, overlapping: refused, and only then
+        assert "one line" in str(exc) or "single point" in str(exc)
+        return
+    for h in hits:
+        x = exact_point(p.control_points(), Fraction(h.s))
+        y = exact_point(q.control_points(), Fraction(h.t))
+        assert max(abs(float(u - v)) for u, v in zip(x, y, strict=True)) < 1e-12
+    swapped = sorted((h.t, h.s) for h in q.intersect(p))
+    np.testing.assert_allclose(swapped, sorted((h.s, h.t) for h in hits), atol=1e-12)
+    if any(h.kind == "coincident" for h in hits):
+        return  # a shared stretch: its points are not listed one by one
+    u = np.linspace(0, 1, 2001)
+    for s, t in polyline_crossing_params(p.evaluate(u), q.evaluate(u)):
+        if min(s, t, 1 - s, 1 - t) < 1e-3:
+            continue  # a crossing at an end may fall between the polylines' last segments
+        assert any(abs(h.s - s) < 1e-3 and abs(h.t - t) < 1e-3 for h in hits), (s, t, hits)
+
+
 def test_intersect_bad_input():
     c = lb.BezierCurve([(0, 0), (1, 1)])
     with pytest.raises(TypeError, match="curve"):
@@ -255,8 +292,9 @@ def test_family_intersections(case):
     check_pairs(hits, case)
 
 
-def polyline_crossings(a: np.ndarray, b: np.ndarray) -> int:
-    """Independent count: proper crossings of two fine polylines."""
+def polyline_crossing_params(a: np.ndarray, b: np.ndarray) -> list[tuple[float, float]]:
+    """Independent numerics: the (s, t) of the proper crossings of two fine polylines
+    (sampled at equal parameter steps)."""
     p, r = a[:-1, None], (a[1:] - a[:-1])[:, None]
     q, s = b[None, :-1], (b[1:] - b[:-1])[None]
     denom = r[..., 0] * s[..., 1] - r[..., 1] * s[..., 0]
@@ -264,7 +302,14 @@ def polyline_crossings(a: np.ndarray, b: np.ndarray) -> int:
     with np.errstate(divide="ignore", invalid="ignore"):
         u = (qp[..., 0] * s[..., 1] - qp[..., 1] * s[..., 0]) / denom
         v = (qp[..., 0] * r[..., 1] - qp[..., 1] * r[..., 0]) / denom
-    return int(np.sum((u >= 0) & (u < 1) & (v >= 0) & (v < 1)))
+    i, j = np.nonzero((u >= 0) & (u < 1) & (v >= 0) & (v < 1))
+    na, nb = len(a) - 1, len(b) - 1
+    return [((k + u[k, m]) / na, (m + v[k, m]) / nb) for k, m in zip(i, j, strict=True)]
+
+
+def polyline_crossings(a: np.ndarray, b: np.ndarray) -> int:
+    """Independent count: proper crossings of two fine polylines."""
+    return len(polyline_crossing_params(a, b))
 
 
 @pytest.mark.parametrize("seed", range(6))

@@ -40,6 +40,7 @@ MAX_PAIRS = 50_000  # a guard against runaway subdivision (degenerate input)
 BOX_SLACK = 1e-12  # relative: boxes that touch within rounding still overlap
 ON_CURVE = 1e-10  # relative distance below which a point counts as on a curve
 SAME_ROOT = 1e-9  # parameters closer than this are one intersection
+MERGE_RADIUS = 1e-3  # hits closer than this are compared for being one (see _add)
 NEAR_FOUND = 1e-6  # float Newton this close to a refined root has found that root
 TANGENT_SINE = 1e-6  # below this sine of the angle between tangents, refine as tangent
 
@@ -432,9 +433,30 @@ def locate_all(p: Prepared, point: np.ndarray, exact_point: tuple | None = None)
             t = _locate_newton(p, point, exact_target, (index[k] + 0.5) * width)
             if t is None or any(abs(t - u) < SAME_ROOT for u in found):
                 continue
-            if np.linalg.norm(p.at(t) - point) <= tol:
+            if np.linalg.norm(p.at(t) - point) > tol:
+                continue
+            # one location if the curve stays at the point all the way between (a flat
+            # spot, p' = p'' = 0, leaves the residual below tolerance around the root)
+            same = [
+                j
+                for j, u in enumerate(found)
+                if abs(t - u) < MERGE_RADIUS
+                and all(
+                    np.linalg.norm(p.at(u + x * (t - u)) - point) <= tol
+                    for x in np.linspace(0.0, 1.0, 9)
+                )
+            ]
+            if not same:
                 found.append(float(t))
+            elif _exact_distance(p, t, exact_target) < _exact_distance(
+                p, found[same[0]], exact_target
+            ):
+                found[same[0]] = float(t)
     return sorted(found)
+
+
+def _exact_distance(p: Prepared, t: float, target: tuple[list[int], int]) -> float:
+    return float(np.linalg.norm(_exact_difference(p.exact_at(t), target)))
 
 
 def _locate_newton(
@@ -515,7 +537,7 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
     found = list(coincident)
     for e in ends:
         if not _dedupe(found, e):
-            found.append(e)
+            _add(found, e, p, q)
     if not coincident:
         _refuse_collinear_overlap(p, q)
     ia, ib = _surviving_pairs(p, q, skip)
@@ -532,13 +554,24 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
 
 
 def _add(found: list[Intersection], hit: Intersection, p: Prepared, q: Prepared) -> None:
-    """Append hit, except that two tangent roots within NEAR_FOUND are one (refinement
-    converges only linearly at higher contact, so starts may stop at different distances):
-    the one with the smaller exact residual stays."""
-    if hit.kind == "tangent":
-        for k, old in enumerate(found):
-            if abs(hit.s - old.s) < NEAR_FOUND and abs(hit.t - old.t) < NEAR_FOUND:
-                if _quality(p, q, hit) < _quality(p, q, old) and old.kind == "tangent":
+    """Append hit, unless it is one already found: near it, with the curves staying within
+    ON_CURVE of each other all the way between the two. At a contact of high order the
+    residual is below tolerance over a whole small neighbourhood and refinement converges
+    only linearly, so starts stop at different points of it; the one with the smaller
+    exact residual stays."""
+    for k, old in enumerate(found):
+        if abs(hit.s - old.s) < MERGE_RADIUS and abs(hit.t - old.t) < MERGE_RADIUS:
+            x = np.linspace(0.0, 1.0, 9)
+            gap = max(
+                float(
+                    np.linalg.norm(
+                        p.at(old.s + u * (hit.s - old.s)) - q.at(old.t + u * (hit.t - old.t))
+                    )
+                )
+                for u in x
+            )
+            if gap <= ON_CURVE * max(p.scale, q.scale):
+                if old.kind != "coincident" and _quality(p, q, hit) < _quality(p, q, old):
                     found[k] = hit
                 return
     found.append(hit)

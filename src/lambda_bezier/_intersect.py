@@ -27,7 +27,6 @@ from __future__ import annotations
 import functools
 import math
 from fractions import Fraction
-from functools import cached_property
 from typing import NamedTuple
 
 import numpy as np
@@ -63,10 +62,14 @@ class Prepared:
         self.rows = rows if rows is not None else tuple(tuple(map(Fraction, r)) for r in points)
         self.degree = self.pts.shape[0] - 1
         self.dim = self.pts.shape[1]
-        h1 = _exact_hodograph(self.rows)
-        h2 = _exact_hodograph(h1)
-        self.rows_h1, self.rows_h2 = h1, h2
-        self.h1, self.h2 = forms.as_float_rows(h1), forms.as_float_rows(h2)
+        # exact values as integer numerators over one denominator per curve: p, p', p''
+        den = math.lcm(*(Fraction(v).denominator for row in self.rows for v in row))
+        ints = [[int(Fraction(v) * den) for v in row] for row in self.rows]
+        h1 = _integer_hodograph(ints)
+        h2 = _integer_hodograph(h1)
+        self._integer_rows = [(ints, den), (h1, den), (h2, den)]
+        self.h1 = np.array([[x / den for x in row] for row in h1])  # int / int rounds once
+        self.h2 = np.array([[x / den for x in row] for row in h2])
         span = float(np.ptp(self.pts, axis=0).max())
         self.is_point = span == 0.0  # every t gives the same point
         self.scale = float(max(span, np.abs(self.pts).max(), 1e-300))
@@ -102,14 +105,6 @@ class Prepared:
             ]
         return work[0], den * power_of_two ** (len(ints) - 1)
 
-    @cached_property
-    def _integer_rows(self) -> list[tuple[list[list[int]], int]]:
-        out = []
-        for rows in (self.rows, self.rows_h1, self.rows_h2):
-            den = math.lcm(*(Fraction(v).denominator for row in rows for v in row))
-            out.append(([[int(Fraction(v) * den) for v in row] for row in rows], den))
-        return out
-
 
 def _exact_difference(a: tuple[list[int], int], b: tuple[list[int], int]) -> np.ndarray:
     """a - b for exact values (numerators, denominator), correctly rounded to floats."""
@@ -122,20 +117,28 @@ def _integer_point(point: tuple) -> tuple[list[int], int]:
     return [int(Fraction(v) * den) for v in point], den
 
 
-def _exact_hodograph(rows: tuple[tuple, ...]) -> tuple[tuple, ...]:
-    return alg.exact_matmul(forms.hodograph_matrix(len(rows) - 1), rows)
+def _integer_hodograph(ints: list[list[int]]) -> list[list[int]]:
+    """The hodograph's numerators (same denominator), from the hodograph matrix, whose
+    entries are integers (n times 0 or ±1)."""
+    weights = [[int(w) for w in row] for row in forms.hodograph_matrix(len(ints) - 1)]
+    return [
+        [sum(w * r[c] for w, r in zip(wrow, ints, strict=True)) for c in range(len(ints[0]))]
+        for wrow in weights
+    ]
 
 
 # ---------------------------------------------------------------------------- subdivision
+@functools.cache
+def _half_matrices(degree: int) -> tuple[np.ndarray, np.ndarray]:
+    """Subdivision at 1/2 as two (n+1, n+1) matrices: de Casteljau on the unit points."""
+    left, right = alg.split_rows(np.eye(degree + 1).tolist(), 0.5)
+    return np.array(left), np.array(right)
+
+
 def _halves(pieces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """de Casteljau at 1/2 on (K, n+1, d) pieces: the left and right halves."""
-    left, right = [pieces[:, 0]], [pieces[:, -1]]
-    work = pieces
-    for _ in range(pieces.shape[1] - 1):
-        work = 0.5 * (work[:, :-1] + work[:, 1:])
-        left.append(work[:, 0])
-        right.append(work[:, -1])
-    return np.stack(left, axis=1), np.stack(right[::-1], axis=1)
+    left, right = _half_matrices(pieces.shape[1] - 1)
+    return np.matmul(left, pieces), np.matmul(right, pieces)
 
 
 def _boxes_overlap(a: np.ndarray, b: np.ndarray, slack: float) -> np.ndarray:

@@ -218,7 +218,7 @@ def integer_curve(degree_range=(1, 4)):
     )
 
 
-@settings(max_examples=40)
+@settings(max_examples=25)
 @given(a=integer_curve(), b=integer_curve())
 def test_intersect_properties(a, b):
     """Random exact curves: each pair is a root (exact evaluation), swapping the curves
@@ -238,7 +238,7 @@ def test_intersect_properties(a, b):
     np.testing.assert_allclose(swapped, sorted((h.s, h.t) for h in hits), atol=1e-12)
     if any(h.kind == "coincident" for h in hits):
         return  # a shared stretch: its points are not listed one by one
-    u = np.linspace(0, 1, 2001)
+    u = np.linspace(0, 1, 1201)
     for s, t in polyline_crossing_params(p.evaluate(u), q.evaluate(u)):
         if min(s, t, 1 - s, 1 - t) < 1e-3:
             continue  # a crossing at an end may fall between the polylines' last segments
@@ -320,7 +320,7 @@ def test_family_intersections_against_polylines(seed):
     a = lb.SameDegreeCurve(rng.integers(-9, 10, (5, 2)).tolist(), Fraction(-1, 2))
     b = lb.BernsteinLikeCurve(rng.integers(-9, 10, (4, 2)).tolist(), Fraction(1, 2))
     hits = a.intersect(b)
-    u = np.linspace(0, 1, 4001)
+    u = np.linspace(0, 1, 1201)
     assert len(hits) == polyline_crossings(a.evaluate(u), b.evaluate(u))
     for h in hits:
         assert np.linalg.norm(a.evaluate(h.s) - b.evaluate(h.t)) < 1e-12

@@ -7,9 +7,6 @@ ints, Fractions, tuples and SymPy expressions, and get back byte-stable module t
 from __future__ import annotations
 
 import difflib
-import os
-import shutil
-import tempfile
 from collections.abc import Iterable, Mapping
 from fractions import Fraction
 from pathlib import Path
@@ -172,36 +169,13 @@ def diff_tree(wanted: Mapping[str, str], directory: Path, label: str) -> list[st
     return out
 
 
-def write_tree(files: Mapping[str, str], directory: Path) -> None:
-    """Replace `directory` by exactly `files`, atomically as far as the file system allows:
-    everything is written and flushed in a sibling temporary directory first, then swapped in
-    with two renames. A leftover backup from an interrupted swap is restored first."""
-    directory = Path(directory)
-    parent = directory.parent
-    backup = parent / f".{directory.name}.old"
-    if backup.exists():
-        if directory.exists():
-            shutil.rmtree(backup)
-        else:
-            os.replace(backup, directory)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{directory.name}.new-", dir=parent))
-    try:
-        for name, text in files.items():
-            path = tmp / name
-            path.parent.mkdir(parents=True, exist_ok=True)
-            with open(path, "w", encoding="utf-8", newline="\n") as fh:
-                fh.write(text)
-                fh.flush()
-                os.fsync(fh.fileno())
-        if directory.exists():
-            os.replace(directory, backup)
-        os.replace(tmp, directory)
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        if backup.exists() and not directory.exists():
-            os.replace(backup, directory)
-        raise
-    shutil.rmtree(backup, ignore_errors=True)
+def write_tree(files: Mapping[str, str], directory: Path, say=None) -> None:
+    """Replace `directory` by exactly `files`, atomically (written and flushed in a sibling
+    directory, swapped in with one rename exchange), serialised by a lock, after cleaning up
+    what an interrupted earlier run left: see lambda_bezier._generated_dir."""
+    from lambda_bezier._generated_dir import replace_tree
+
+    replace_tree(files, Path(directory), *(() if say is None else (say,)))
 
 
 # --------------------------------------------------------------------------- fixed modules

@@ -1,6 +1,6 @@
 """The Bernstein-like basis (001_33da2b0fa8491127.txt).
 
-Axioms: the quadratic seed, eq. (1),
+Axioms (as data in derive/families/bernstein_like.toml): the quadratic seed, eq. (1),
     b_{0,2} = (1 - 2λt + λt²)(1-t)²,  b_{1,2} = 2t(1-t)(1 + λ - λt + λt²),
     b_{2,2} = (1 - λ + λt²)t²,
 and the recursion, eq. (2), b_{i,n} = (1-t) b_{i,n-1} + t b_{i-1,n-1} (b_{-1} = b_{n} = 0),
@@ -16,7 +16,7 @@ from functools import cache
 
 import sympy as sp
 
-from . import _emit
+from . import _emit, family_engine
 from ._algebra import (
     LAMBDA_SAMPLES,
     check_endpoint_closed_forms,
@@ -26,7 +26,6 @@ from ._algebra import (
     lam,
     linear_in_lambda,
     n,
-    poly,
     t,
 )
 from .bernstein import bernstein_basis, bernstein_poly, endpoint_weight
@@ -37,27 +36,18 @@ DEGREES = range(2, 13)
 DEGREE_OFFSET = 2  # the basis polynomials have degree n + 2
 ORDERS = 2
 
-SEED = (
-    (1 - 2 * lam * t + lam * t**2) * (1 - t) ** 2,
-    2 * t * (1 - t) * (1 + lam - lam * t + lam * t**2),
-    (1 - lam + lam * t**2) * t**2,
-)
+# The axioms are data: derive/families/bernstein_like.toml holds the seed (eq. 1) and the
+# recursion (eq. 2) as the records grammar reads them; the generic engine evaluates them per
+# degree (and checks polynomial degree, partition of unity and Bernstein at λ = 0). What stays
+# here is what no generic rule gives: the general-n explicit form (the shape of eq. 5).
+DEFINITION = family_engine.builtin_definition("bernstein_like")
+SEED = tuple(s.xreplace({family_engine.SYMBOLS["t"]: t}) for s in DEFINITION.seed)
 
 
 @cache
 def basis_polys(degree: int) -> tuple[sp.Poly, ...]:
-    """Eq. (2) applied degree - 2 times to the seed, exactly as stated."""
-    if degree == 2:
-        return tuple(poly(b) for b in SEED)
-    prev = basis_polys(degree - 1)
-    one_minus_t = sp.Poly(1 - t, t, lam, domain="QQ")
-    tt = sp.Poly(t, t, lam, domain="QQ")
-    zero = sp.Poly(0, t, lam, domain="QQ")
-
-    def b(idx):
-        return prev[idx] if 0 <= idx <= degree - 1 else zero
-
-    return tuple(one_minus_t * b(ii) + tt * b(ii - 1) for ii in range(degree + 1))
+    """Eq. (2) applied degree - 2 times to the seed, exactly as stated (by the engine)."""
+    return tuple(family_engine.basis_polys(DEFINITION, degree))
 
 
 @cache
@@ -111,6 +101,7 @@ def endpoint_closed_forms(q: sp.Expr) -> dict[tuple[str, int, int], sp.Expr]:
 
 def _check(q, closed) -> None:
     """The explicit form and the endpoint closed forms against the recursion, for every n."""
+    family_engine.check(DEFINITION)  # the definition's own claims, every degree
     coeffs = sp.Poly(q, t)
     if coeffs.degree() != 2 or not all(linear_in_lambda(c) for c in coeffs.all_coeffs()):
         raise AssertionError("explicit factor should be quadratic in t and linear in λ")

@@ -35,7 +35,7 @@ from pathlib import Path
 import sympy as sp
 
 from ._algebra import expansion_tables, lam, lambda_degree, t
-from .grammar import MAX_EXPONENT, SYMBOLS, ParseError, parse_formula, tokenize
+from .grammar import FUNCTIONS, MAX_EXPONENT, SYMBOLS, ParseError, parse_formula, tokenize
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -69,10 +69,19 @@ SCHEMA = {
         "bernstein_at": {"type": "string", "maxLength": 200},
         "degree_offset": {"type": "integer", "minimum": 0, "maximum": MAX_OFFSET},
         "basis": {"type": "string", "maxLength": 10_000},
+        # or a recursion from a seed: the functions of the lowest degree, then b(i, n, t) in
+        # terms of b(., n - 1, t) (e.g. 001's eqs. (1), (2))
+        "seed": {
+            "type": "array",
+            "items": {"type": "string", "maxLength": 10_000},
+            "minItems": 2,
+            "maxItems": MAX_DEGREE + 1,
+        },
+        "recursion": {"type": "string", "maxLength": 10_000},
         "source": {"type": "string"},
         "note": {"type": "string"},
     },
-    "required": ["name", "parameter", "range", "degrees", "degree_offset", "basis"],
+    "required": ["name", "parameter", "range", "degrees", "degree_offset"],
     "additionalProperties": False,
 }
 
@@ -95,12 +104,25 @@ class Definition:
     degrees: range
     bernstein_at: Fraction | None
     offset: int
-    basis_text: str
+    basis_text: str | None  # the closed formula, or
+    seed_texts: tuple[str, ...] | None  # the lowest degree's functions, and
+    recursion_text: str | None  # b(i, n, t) from the degree below
     digest: str  # of the [family] table: a derived file names the definition it came from
 
     @property
     def basis(self) -> sp.Expr:
+        assert self.basis_text is not None, "a family defined by a recursion"
         return _parse_basis(self.basis_text, self.parameter)
+
+    @property
+    def seed(self) -> tuple[sp.Expr, ...]:
+        assert self.seed_texts is not None
+        return tuple(_parse_basis(text, self.parameter) for text in self.seed_texts)
+
+    @property
+    def recursion(self) -> sp.Expr:
+        assert self.recursion_text is not None
+        return _parse_basis(self.recursion_text, self.parameter, recursive=True)
 
 
 def digest(table: dict) -> str:
@@ -125,8 +147,9 @@ def rename_parameter(text: str, parameter: str) -> str:
 
 
 @cache
-def _parse_basis(text: str, parameter: str) -> sp.Expr:
-    return parse_formula(rename_parameter(text, parameter), _BASIS_SYMBOLS, {})
+def _parse_basis(text: str, parameter: str, recursive: bool = False) -> sp.Expr:
+    functions = {"b": FUNCTIONS["b"]} if recursive else {}
+    return parse_formula(rename_parameter(text, parameter), _BASIS_SYMBOLS, functions)
 
 
 def _number(text: str, key: str) -> Fraction:
@@ -159,6 +182,16 @@ def definition_from_table(table: object, where: str = "", *, builtin: bool = Fal
     def fail(key: str, message: str) -> DefinitionError:
         return DefinitionError(f"{prefix}, key {key}: {message}")
 
+    given = [key for key in ("basis", "seed", "recursion") if key in table]
+    if given not in (["basis"], ["seed", "recursion"]):
+        raise fail(
+            "basis"
+            if "basis" in given or not given
+            else ("recursion" if "seed" in given else "seed"),
+            "a family is defined by `basis` (a closed formula in i, n, t and the parameter) or "
+            f"by `seed` and `recursion`, one of the two; this table has {given or 'neither'}",
+        )
+
     if table["name"] in BUILTIN and not builtin:
         raise fail("name", f"{table['name']!r} is a built-in family; choose another name")
     if table["parameter"] in SYMBOLS and table["parameter"] != "lam":
@@ -179,20 +212,20 @@ def definition_from_table(table: object, where: str = "", *, builtin: bool = Fal
     at = None
     if "bernstein_at" in table:
         at = _number(table["bernstein_at"], "bernstein_at")
-    try:
-        basis = _parse_basis(table["basis"], table["parameter"])
-    except ParseError as exc:
-        hint = f" (a basis is a formula in i, n, t and {table['parameter']})"
-        raise fail("basis", str(exc) + (hint if "unknown name" in str(exc) else "")) from None
-    extra = sorted(s.name for s in basis.free_symbols if s not in (_I, _N, _T, _LAM))
-    if extra:
+    formulas = (
+        [("basis", table["basis"], False)]
+        if "basis" in table
+        else [(f"seed[{k}]", text, False) for k, text in enumerate(table["seed"])]
+        + [("recursion", table["recursion"], True)]
+    )
+    for key, text, recursive in formulas:
+        _check_formula(fail, key, text, table["parameter"], recursive)
+    if "seed" in table and len(table["seed"]) != dlo + 1:
         raise fail(
-            "basis",
-            f"unknown symbol {extra[0]!r} (the basis is a formula in i, n, t "
-            f"and {table['parameter']})",
+            "seed",
+            f"the seed is the basis of the lowest degree {dlo}: {dlo + 1} functions, "
+            f"got {len(table['seed'])}",
         )
-    if basis.atoms(sp.core.function.AppliedUndef) or basis.has(sp.Sum, sp.Integral, sp.Subs):
-        raise fail("basis", "a basis is a closed formula: no functions, sums or integrals")
     return Definition(
         name=table["name"],
         title=table.get("title", ""),
@@ -205,9 +238,32 @@ def definition_from_table(table: object, where: str = "", *, builtin: bool = Fal
         degrees=range(dlo, dhi + 1),
         bernstein_at=at,
         offset=int(table["degree_offset"]),
-        basis_text=table["basis"],
+        basis_text=table.get("basis"),
+        seed_texts=tuple(table["seed"]) if "seed" in table else None,
+        recursion_text=table.get("recursion"),
         digest=digest(table),
     )
+
+
+def _check_formula(fail, key: str, text: str, parameter: str, recursive: bool) -> None:
+    try:
+        expr = _parse_basis(text, parameter, recursive)
+    except ParseError as exc:
+        hint = f" (a basis is a formula in i, n, t and {parameter})"
+        raise fail(key, str(exc) + (hint if "unknown name" in str(exc) else "")) from None
+    extra = sorted(s.name for s in expr.free_symbols if s not in (_I, _N, _T, _LAM))
+    if extra:
+        raise fail(
+            key,
+            f"unknown symbol {extra[0]!r} (the basis is a formula in i, n, t and {parameter})",
+        )
+    if expr.has(sp.Sum, sp.Integral, sp.Subs, sp.Derivative):
+        raise fail(key, "a basis is a closed formula: no sums, integrals or derivatives")
+    if not recursive and expr.atoms(sp.core.function.AppliedUndef):
+        raise fail(key, "a closed formula calls no functions (b(...) belongs in `recursion`)")
+    for call in expr.atoms(sp.core.function.AppliedUndef):
+        if len(call.args) != 3 or call.args[2] != _T:
+            raise fail(key, f"{call} must be b(index, degree, t)")
 
 
 def read_definition(path: Path, *, builtin: bool = False) -> Definition:
@@ -229,9 +285,14 @@ def read_definition(path: Path, *, builtin: bool = False) -> Definition:
 # --------------------------------------------------------------------------- the basis
 
 
-def _instantiate(e: sp.Basic, env: dict, ring) -> object:
+def _instantiate(e: sp.Basic, env: dict, ring, lookup=None) -> object:
     """e with n and i replaced by integers, evaluated in the field Q(t, lam): binomials with
-    the papers' convention, powers bounded."""
+    the papers' convention, powers bounded; b(i', n', t) of a recursion through lookup."""
+    if isinstance(e, sp.core.function.AppliedUndef):
+        if lookup is None:
+            raise DefinitionError(f"cannot evaluate {e} in a closed formula")
+        idx, deg = (_integer(_instantiate(x, env, ring), "index of b") for x in e.args[:2])
+        return lookup(idx, deg)
     if e.is_Symbol:
         if e in env:
             return ring(env[e])
@@ -249,15 +310,15 @@ def _instantiate(e: sp.Basic, env: dict, ring) -> object:
     if e.is_Add:
         out = ring(0)
         for a in e.args:
-            out += _instantiate(a, env, ring)
+            out += _instantiate(a, env, ring, lookup)
         return out
     if e.is_Mul:
         out = ring(1)
         for a in e.args:
-            out *= _instantiate(a, env, ring)
+            out *= _instantiate(a, env, ring, lookup)
         return out
     if e.is_Pow:
-        base = _instantiate(e.base, env, ring)
+        base = _instantiate(e.base, env, ring, lookup)
         ex = _integer(_instantiate(e.exp, env, ring), "exponent")
         if abs(ex) > MAX_EXPONENT:
             raise DefinitionError(f"an exponent {ex} in the basis")
@@ -288,12 +349,36 @@ def basis_polys(defn: Definition, degree: int) -> list[sp.Poly]:
 
 
 @cache
-def _basis_polys(defn: Definition, degree: int) -> tuple[sp.Poly, ...]:
+def _basis_values(defn: Definition, degree: int) -> tuple:
+    """The degree-`degree` functions as elements of Q(t, lam): the closed formula per index,
+    or the seed at the lowest degree and the recursion above it."""
     field = _field()
+    if defn.basis_text is not None:
+        basis = defn.basis
+        return tuple(_instantiate(basis, {_N: degree, _I: idx}, field) for idx in range(degree + 1))
+    if degree == defn.degrees.start:
+        return tuple(_instantiate(f, {_N: degree}, field) for f in defn.seed)
+    below = _basis_values(defn, degree - 1)
+
+    def lookup(idx: int, deg: int):
+        if deg != degree - 1:
+            raise DefinitionError(
+                f"[family] recursion: b({idx}, {deg}, t) at n = {degree}; a recursion reads "
+                "the degree below, b(., n - 1, t)"
+            )
+        return below[idx] if 0 <= idx <= deg else field(0)
+
+    rec = defn.recursion
+    return tuple(
+        _instantiate(rec, {_N: degree, _I: idx}, field, lookup) for idx in range(degree + 1)
+    )
+
+
+@cache
+def _basis_polys(defn: Definition, degree: int) -> tuple[sp.Poly, ...]:
     big = degree + defn.offset
     out = []
-    for idx in range(degree + 1):
-        value = _instantiate(defn.basis, {_N: degree, _I: idx}, field)
+    for idx, value in enumerate(_basis_values(defn, degree)):
         if not value.denom.is_ground:
             raise DefinitionError(
                 f"[family] basis: b({idx}, {degree}, t) is not a polynomial: "

@@ -1,6 +1,6 @@
 """The same-degree λ-Bernstein basis (000_10ca634d356c575d.txt).
 
-Axiom: eq. (1),
+Axiom: eq. (1), as data in derive/families/same_degree.toml,
     b_i^n(t) = C(n,i)(1-t)^(n-i) t^i + (1-λ)(1-t)^(n-i-1) t^(i-1)
                × [C(n-3,i-3)(1-t)^2 - C(n-2,i-1)(1-t)t + C(n-3,i)t^2],
 for n >= 3, λ in (-2, 1], with C(a, b) = 0 outside 0 <= b <= a.
@@ -15,7 +15,7 @@ from functools import cache
 
 import sympy as sp
 
-from . import _emit
+from . import _emit, family_engine
 from ._algebra import (
     LAMBDA_SAMPLES,
     bernstein_matrices,
@@ -38,47 +38,31 @@ DEGREE_OFFSET = 0  # the basis polynomials have degree n
 ORDERS = 2  # endpoint derivatives emitted in closed form: value, first, second
 
 
-def basis_definition(degree, index, x=t, shape=lam):
-    """Eq. (1) verbatim, as a (possibly rational-looking) SymPy expression."""
-    bracket = (
-        sp.binomial(degree - 3, index - 3) * (1 - x) ** 2
-        - sp.binomial(degree - 2, index - 1) * (1 - x) * x
-        + sp.binomial(degree - 3, index) * x**2
-    )
-    return (
-        sp.binomial(degree, index) * (1 - x) ** (degree - index) * x**index
-        + (1 - shape) * (1 - x) ** (degree - index - 1) * x ** (index - 1) * bracket
-    )
-
-
-# Exact arithmetic for evaluating the axiom per degree: the polynomial ring Q[t, λ] where every
-# power is non-negative (0 < i < n), the field Q(t, λ) where the axiom has powers t^(-1) or
-# (1-t)^(-1) that must cancel (i = 0 and i = n). Both are much faster than Poly or Expr.
-_RING, _T_RING, _LAM_RING = sp.polys.rings.ring([t, lam], sp.QQ)
-_FIELD, _T_FIELD, _LAM_FIELD = sp.polys.fields.field([t, lam], sp.QQ)
+# The axiom is data: derive/families/same_degree.toml holds eq. (1) as the records grammar
+# reads it, and the generic engine (derive/family_engine.py) evaluates it per degree in
+# Q(t, λ) (negative powers at i = 0 and i = n must cancel, checked) and checks its own claims
+# (polynomial degree, partition of unity, Bernstein at λ = 1). What stays here is what no
+# generic rule gives: 000's general-n three-term Bernstein form and its end closed forms.
+DEFINITION = family_engine.builtin_definition("same_degree")
 _CLOSED_FIELD = sp.polys.fields.field([n, lam], sp.QQ)[0]
+
+
+def basis_definition() -> sp.Expr:
+    """Eq. (1) for symbolic n and i (derive's integer symbols), from the definition file."""
+    g = family_engine.SYMBOLS
+    return DEFINITION.basis.xreplace({g["n"]: n, g["i"]: i, g["t"]: t, g["lam"]: lam})
 
 
 @cache
 def basis_polys(degree: int) -> list[sp.Poly]:
-    """Eq. (1) per index, evaluated exactly (see _RING, _FIELD)."""
-    out = []
-    for ii in range(degree + 1):
-        if 0 < ii < degree:
-            value = basis_definition(degree, ii, _T_RING, _LAM_RING)
-        else:
-            quotient = basis_definition(degree, ii, _T_FIELD, _LAM_FIELD)
-            if quotient.denom != 1:
-                raise ArithmeticError(f"b_{ii}^{degree} is not a polynomial: {quotient}")
-            value = quotient.numer
-        out.append(sp.Poly.from_dict(dict(value), t, lam, domain="QQ"))
-    return out
+    """Eq. (1) per index, evaluated exactly by the engine."""
+    return family_engine.basis_polys(DEFINITION, degree)
 
 
 @cache
 def three_term_form() -> tuple[sp.Expr, sp.Expr, sp.Expr]:
     """Coefficients of B_{i-1}^n, B_i^n, B_{i+1}^n in b_i^n, for symbolic n and i."""
-    terms = bernstein_terms(basis_definition(n, i), n)
+    terms = bernstein_terms(basis_definition(), n)
     if set(terms) != {i - 1, i, i + 1}:
         raise AssertionError(f"unexpected Bernstein support {sorted(terms, key=str)}")
     return terms[i - 1], terms[i], terms[i + 1]
@@ -116,6 +100,7 @@ def endpoint_closed_forms(form) -> dict[tuple[str, int, int], sp.Expr]:
 
 def _check(form, closed) -> None:
     """Every general-n result against the per-degree expansion of the axiom, for every n."""
+    family_engine.check(DEFINITION)  # the definition's own claims, every degree
     if not all(linear_in_lambda(c) for c in form):
         raise AssertionError("three-term coefficients are expected to be linear in λ")
     coeffs = exact_function(form, (n, i, lam))

@@ -239,7 +239,9 @@ def resolve_checker(record: dict) -> Checker:
     shared = [
         c
         for name, c in CHECKERS.items()
-        if claim_kind(name) == kind and _fits(c, record) and c.fn.__name__ not in _OWN_FAMILY
+        if claim_kind(name) == kind
+        and _fits(c, record)
+        and (c.fn.__name__ not in _OWN_FAMILY or name == f"{family}.{kind}")
     ]
     if shared:
         return shared[0]
@@ -253,11 +255,18 @@ _OWN_FAMILY = frozenset({"check_explicit", "check_three_term", "check_join_000"}
 
 
 def _fits(entry: Checker, record: dict) -> bool:
-    """Endpoint kinds come as `cases` (per index) or as `equations` (of the curve)."""
+    """Endpoint kinds come as `cases` (per index) or as `equations` (of the curve); joins
+    with or without a stated convention."""
     if entry.fn.__name__ == "check_cases":
         return "cases" in record
     if entry.fn.__name__ == "check_endpoint_equations":
         return "equations" in record
+    # a join states its continuity condition (001's convention), or is 000's sufficient G1
+    # condition with a free constant C (Prop. 9), which has none
+    if entry.fn.__name__ == "check_join":
+        return "convention" in record
+    if entry.fn.__name__ == "check_join_000":
+        return "convention" not in record
     return True
 
 

@@ -67,16 +67,39 @@ def test_builtin_families_as_data_match_their_hand_derivations(engine):
         name: importlib.import_module(f"{derive.__name__}.{name}")
         for name in ("same_degree", "bernstein_like", "energy")
     }
+    import reference
+    import sympy as sp
     from lambda_bezier._generated import bernstein_like as g_bl
     from lambda_bezier._generated import same_degree as g_sd
+
+    t_sym, lam_sym = sp.Symbol("t"), sp.Symbol("lam")
 
     for name, generated in (("same_degree", g_sd), ("bernstein_like", g_bl)):
         defn = engine.builtin_definition(name)
         engine.check(defn)
         hand = modules[name]
         doc = engine.derive(defn, with_joins=False)
+        ts = np.linspace(0, 1, 7)
         for deg in defn.degrees:
-            assert engine.basis_polys(defn, deg) == list(hand.basis_polys(deg)), (name, deg)
+            # the engine's polynomials against tests/reference.py's independent evaluation of
+            # the papers' definitions (000's eq. (1); 001's seed and recursion)
+            for lam_ in (-0.75, 0.5):
+                got = np.array(
+                    [
+                        [float(p.eval({t_sym: x, lam_sym: lam_})) for x in ts]
+                        for p in engine.basis_polys(defn, deg)
+                    ]
+                )
+                if name == "same_degree":
+                    want = np.array(
+                        [
+                            [reference.same_degree_definition(deg, i, x, lam_) for x in ts]
+                            for i in range(deg + 1)
+                        ]
+                    )
+                else:
+                    want = np.array(reference.bernstein_like_recursion(deg, ts, lam_))
+                assert np.allclose(got, want, atol=1e-12), (name, deg)
             for kind, table in (("power", generated.POWER), ("bernstein", generated.BERNSTEIN)):
                 got = tuple(
                     tuple(tuple(Fraction(v) for v in row) for row in mat)
@@ -93,15 +116,14 @@ def test_builtin_families_as_data_match_their_hand_derivations(engine):
                     scale, u = forms[part]
                     assert Fraction(entry[part][0]) == scale
                     assert tuple(tuple(r) for r in entry[part][1]) == u
-        # closed forms in n, interpolated by the engine, equal the hand-derived ones
+        # closed forms in n, interpolated by the engine, equal the ones derived symbolically
+        # from 000's three-term form and 001's explicit form
         closed = engine.closed_endpoint_forms(defn)
         form = (
             hand.endpoint_closed_forms(hand.three_term_form())
             if name == "same_degree"
             else hand.endpoint_closed_forms(hand.explicit_factor())
         )
-        import sympy as sp
-
         for key, value in form.items():
             assert sp.expand(closed[key] - value) == 0, (name, key)
 
@@ -208,10 +230,27 @@ ILL_DEFINED = {
     "wrong offset": ({"degree_offset": 1}, "not n + degree_offset"),
     "built-in name": ({"name": "same_degree"}, "is a built-in family"),
     "bad degrees": ({"degrees": "0..40"}, "degrees must satisfy"),
-    "missing key": ({"basis": None}, "'basis' is a required property"),
+    "missing key": ({"basis": None}, "defined by `basis`"),
     "unknown key": ({"colour": "red"}, "Additional properties"),
     "parameter taken": ({"parameter": "t"}, "is taken by the formula language"),
     "hostile basis": ({"basis": "__import__('os').system('true')"}, "not allowed"),
+    "seed of the wrong size": (
+        {"basis": None, "seed": ["1 - t", "t"], "recursion": "(1 - t)*b(i, n - 1, t)"},
+        "the seed is the basis of the lowest degree 2: 3 functions",
+    ),
+    "recursion two degrees down": (
+        {
+            "basis": None,
+            "seed": ["(1 - t)**2", "2*t*(1 - t)", "t**2"],
+            "recursion": "(1 - t)*b(i, n - 2, t) + t*b(i - 1, n - 1, t)",
+        },
+        "a recursion reads the degree below",
+    ),
+    "basis and recursion": (
+        {"seed": ["(1 - t)**2", "2*t*(1 - t)", "t**2"], "recursion": "b(i, n - 1, t)"},
+        "one of the two",
+    ),
+    "function in a closed formula": ({"basis": "b(i, n, t)"}, "unknown name 'b'"),
 }
 
 GOOD = {
@@ -307,3 +346,167 @@ def test_load_family_needs_no_sympy(tmp_path):
     res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT)
     assert res.returncode == 0, res.stderr
     assert res.stdout.strip().endswith("False")
+
+
+# --------------------------------------------------------------------------- the runtime
+
+
+@pytest.fixture(scope="module")
+def ns_family():
+    import lambda_bezier as lb
+
+    return lb.load_family(NS_FILE)
+
+
+def test_committed_derivation_is_current():
+    """The committed nouri_saeidian.derived.json is what derive gives now (golden file)."""
+    res = _derive_family(NS_FILE, "--check")
+    assert res.returncode == 0, res.stdout[-3000:] + res.stderr
+
+
+def test_family_curve_against_the_construction(ns_family):
+    rng = np.random.default_rng(11)
+    ts = np.linspace(0, 1, 33)
+    h = 1e-6
+    for n in (3, 5, 9):
+        for dim in (2, 3):
+            pts = rng.normal(size=(n + 1, dim))
+            for sigma in (0.0, 0.35, 1.0):
+                c = ns_family.curve(pts, sigma)
+                want = ns_basis(n, sigma, ts).T @ pts
+                assert np.allclose(c.evaluate(ts), want, atol=1e-12)
+                assert np.allclose(c.basis(ts), ns_basis(n, sigma, ts).T, atol=1e-12)
+                fd = (ns_basis(n, sigma, ts[1:-1] + h) - ns_basis(n, sigma, ts[1:-1] - h)).T
+                assert np.allclose(c.derivative(ts[1:-1]), fd @ pts / (2 * h), atol=1e-6)
+                assert np.allclose(c.to_bezier().evaluate(ts), want, atol=1e-12)
+    exact = ns_family.curve([(0, 0), (1, 2), (3, 2), (4, 0)], Fraction(1, 2))
+    assert exact.to_bezier().control_points()[1] == (Fraction(1, 2), Fraction(1))
+
+
+def _quad_energy(curve, k: int) -> float:
+    x, w = np.polynomial.legendre.leggauss(30)
+    vals = curve.derivative((x + 1) / 2, k)
+    return float(np.sum(w / 2 * np.sum(vals**2, axis=1)))
+
+
+def test_family_energy_and_optimal_lambda_by_quadrature(ns_family):
+    from scipy.optimize import minimize_scalar
+
+    import lambda_bezier as lb
+
+    rng = np.random.default_rng(5)
+    for n in (3, 4, 6):
+        pts = rng.normal(size=(n + 1, 2))
+        for k in (1, 2, 3):
+            c = ns_family.curve(pts, 0.6)
+            assert abs(c.energy(k) - _quad_energy(c, k)) <= 1e-9 * max(1, _quad_energy(c, k))
+            best = minimize_scalar(
+                lambda s, k=k, pts=pts: _quad_energy(ns_family.curve(pts, s, check_range=False), k),
+                bounds=(-5, 5),
+                method="bounded",
+                options={"xatol": 1e-11},
+            )
+            r = lb.optimal_lambda(pts, k, family=ns_family)
+            assert abs(r.unconstrained - best.x) < 1e-6, (n, k)
+            assert r.family == "nouri_saeidian" and r.range_text == "[0, 1]"
+    # exact in, exact out
+    r = lb.optimal_lambda([(0, 0), (1, 2), (3, 2), (4, 0)], 2, family=ns_family)
+    assert isinstance(r.lam, Fraction)
+    scale, x, y = lb.energy_matrices(3, 1, family=ns_family)
+    assert isinstance(scale, Fraction) and len(x) == 4
+
+
+def _check_joint(first, second, cont: str, alpha=1.0, d=0.0) -> None:
+    a1, b1 = first.derivative(1.0, 1), first.derivative(1.0, 2)
+    a2, b2 = second.derivative(0.0, 1), second.derivative(0.0, 2)
+    scale = max(1.0, float(np.abs(a1).max()), float(np.abs(b1).max()))
+    assert np.allclose(first.evaluate(1.0), second.evaluate(0.0), atol=1e-9 * scale)
+    assert np.allclose(a1, alpha * a2, atol=1e-9 * scale)
+    if cont in ("C2", "G2"):
+        assert np.allclose(b1, alpha**2 * b2 + d * a2, atol=1e-8 * scale)
+
+
+@pytest.mark.parametrize("other", ["bezier", "same_degree", "bernstein_like", "self"])
+@pytest.mark.parametrize("cont", ["C1", "C2", "G1", "G2"])
+def test_joins_into_and_out_of_the_family(ns_family, other, cont):
+    import lambda_bezier as lb
+
+    rng = np.random.default_rng(len(other) + len(cont))
+    alpha, d = (1.0, 0.0) if cont[0] == "C" else (1.7, 0.4 if cont == "G2" else 0.0)
+    target = ns_family if other == "self" else other
+    lam_other = {"bezier": None, "same_degree": 0.3, "bernstein_like": -0.4, "self": 0.8}[other]
+    for n, m in ((3, 4), (5, 3)):
+        first = ns_family.curve(rng.normal(size=(n + 1, 2)), 0.6)
+        order = 2 if cont in ("C2", "G2") else 1
+        rest = rng.normal(size=(m - order, 2))
+        kw = {} if lam_other is None else {"lam": lam_other}
+        second = lb.join(first, cont, m, alpha=alpha, d=d, rest=rest, family=target, **kw)
+        _check_joint(first, second, cont, alpha, d)
+        # and out of a built-in curve into the family
+        if other != "self":
+            cls = lb.FAMILIES[other]
+            pts = rng.normal(size=(n + 1, 2))
+            start = cls(pts) if lam_other is None else cls(pts, lam_other)
+            back = lb.join(start, cont, m, lam=0.7, alpha=alpha, d=d, rest=rest, family=ns_family)
+            _check_joint(start, back, cont, alpha, d)
+
+
+def test_exact_join_and_composite_with_the_family(ns_family):
+    import lambda_bezier as lb
+
+    first = ns_family.curve([(0, 0), (1, 2), (3, 2), (4, 0)], Fraction(1, 2))
+    nxt = lb.join(first, "C2", 4, lam=Fraction(3, 4), rest=[(9, 1), (10, 0)])
+    assert all(isinstance(v, Fraction) for p in nxt.control_points() for v in p)
+    assert nxt.control_points()[0] == (4, 0)
+    comp = (
+        lb.CompositeCurve([first])
+        .join("C2", 4, Fraction(3, 4), rest=[(9, 1), (10, 0)])
+        .join("G2", 3, 0.5, alpha=2, d=1, rest=[(14, 3)], family="same_degree")
+    )
+    assert [sorted(r.achieved) for r in comp.report()] == [
+        ["C0", "C1", "C2", "G1", "G2"],
+        ["C0", "G1", "G2"],
+    ]
+    assert [r.kept for r in comp.with_lambda(1, Fraction(1, 5)).report()] == [True, True]
+    pts = np.array([[(0, 0), (1, 2), (3, 2), (4, 0)]] * 3, dtype=float)
+    many = lb.evaluate_many(pts, [0.0, 0.5, 1.0], ns_family, lam=[0.0, 0.5, 1.0])
+    for j, s in enumerate((0.0, 0.5, 1.0)):
+        assert np.allclose(many[j], ns_family.curve(pts[0], s).evaluate([0.0, 0.5, 1.0]))
+
+
+def test_join_into_a_line_segment_names_the_pivot(ns_family):
+    """At sigma = 0 the family's curve is the segment P_0 P_m, whose end derivative ignores
+    P_1: a C1 join into it cannot be solved, and the message says which point and why."""
+    import lambda_bezier as lb
+
+    first = lb.BezierCurve([(0, 0), (1, 1), (2, 0)])
+    with pytest.raises(ValueError, match=r"cannot solve C1 for P_\{1,2\}.*nouri_saeidian"):
+        lb.join(first, "C1", 3, lam=0.0, rest=[(5, 5), (6, 0)], family=ns_family)
+
+
+def test_generic_join_engine_equals_the_closed_forms():
+    """The per-degree solve the runtime uses for families defined by data gives exactly the
+    closed-form vertex formulas derived for the built-in families (exact arithmetic)."""
+    import itertools
+
+    import lambda_bezier as lb
+    from lambda_bezier import _join_engine, joins
+
+    for f1, f2 in itertools.product(lb.FAMILIES, lb.FAMILIES):
+        for cont in ("C1", "C2", "G1", "G2"):
+            for n, m in ((3, 3), (4, 7), (6, 4)):
+                cls1 = lb.FAMILIES[f1]
+                pts = [(i, (i * i) % 5) for i in range(n + 1)]
+                first = cls1(pts) if f1 == "bezier" else cls1(pts, Fraction(1, 3))
+                lam2 = None if f2 == "bezier" else Fraction(-2, 5)
+                spec = joins.Joint(
+                    cont,
+                    Fraction(3, 2) if cont[0] == "G" else 1,
+                    Fraction(-7, 4) if cont == "G2" else 0,
+                )
+                want = joins.leading_weights(first, spec, f2, m, lam2)
+                want = {k: v for k, v in want.items() if v != 0 and k[0] <= spec.order}
+                got = _join_engine.weights(
+                    first, spec.order, spec.alpha, spec.d, lb.FAMILIES[f2], m, lam2, cont
+                )
+                assert got == want, (f1, f2, cont, n, m)

@@ -98,6 +98,7 @@ EXPECTED = {
     "survey.sd.example": "match",
     "survey.bl.g1": "match",
     "survey.bz.c1": "match",
+    "survey.sd.g1": "match",
 }
 
 

@@ -82,6 +82,10 @@ def run(check: bool, root: Path | None, quiet: bool = False) -> int:
     files = derive.render_all(progress=lambda name: say(f"deriving {name} ..."))
     if check:
         label = "generated" if checkout else str(target)
+        missing = _recover_before_check(target, say)
+        if missing:
+            print(missing, file=sys.stderr)
+            return 1
         diffs = emit.diff_tree(files, target, label)
         if diffs:
             sys.stdout.write("".join(diffs))
@@ -91,6 +95,35 @@ def run(check: bool, root: Path | None, quiet: bool = False) -> int:
         say(f"generated/ matches the derivation ({len(files)} files).")
         return 0
     assert checkout is not None
-    emit.write_tree(files, target)
+    try:
+        emit.write_tree(files, target, say)
+    except OSError as exc:
+        where = exc.filename or target
+        print(
+            f"lambda-bezier derive: error: cannot write {target}: {exc.strerror or exc} "
+            f"({where}); {target} was left as it was",
+            file=sys.stderr,
+        )
+        return 1
     say(f"wrote {len(files)} files to {target}")
     return 0
+
+
+def _recover_before_check(target: Path, say) -> str | None:
+    """--check compares against generated/: first undo an interrupted derive (a lone backup
+    put back, debris removed), then name a directory that is still missing instead of listing
+    every file as differing. Returns the error message, or None."""
+    from ._generated_dir import backup_path, locked, recover
+
+    try:
+        with locked(target, say, required=False):
+            for msg in recover(target):
+                say(msg)
+    except OSError as exc:
+        return f"lambda-bezier derive --check: error: cannot recover {target}: {exc}"
+    if not target.is_dir():
+        return (
+            f"lambda-bezier derive --check: error: {target} does not exist (no "
+            f"{backup_path(target).name} to restore it from either); {HINT[6:]}"
+        )
+    return None

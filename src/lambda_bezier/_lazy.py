@@ -13,6 +13,18 @@ class generated:  # noqa: N801  (reads as a module reference at the use sites)
         self._name = f"{__package__}._generated.{name}"
 
     def module(self) -> ModuleType:
+        try:
+            return importlib.import_module(self._name)
+        except ModuleNotFoundError as exc:
+            if exc.name not in (f"{__package__}._generated", self._name):
+                raise
+        # generated/ is gone: an interrupted `lambda-bezier derive` may have left it aside
+        from pathlib import Path
+
+        from ._generated_dir import recover_for_import
+
+        recover_for_import(Path(__file__).parent)  # or an ImportError saying what happened
+        importlib.invalidate_caches()
         return importlib.import_module(self._name)
 
     def __getattr__(self, attr: str):

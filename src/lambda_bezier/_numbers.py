@@ -1,6 +1,8 @@
 """Strict parsing of numbers typed by users: integers, decimals and p/q, nothing else.
 
-User text is never evaluated as code: no eval, no sympify. Every accepted form is exact.
+User text is never evaluated as code: no eval, no sympify. Every accepted form is exact. The
+grammar is ASCII: digits 0-9 only (Python's int() and regular expressions would also take
+full-width and other Unicode digits), surrounding spaces and tabs only.
 """
 
 from __future__ import annotations
@@ -8,13 +10,16 @@ from __future__ import annotations
 import re
 from fractions import Fraction
 
-_NUMBER = re.compile(r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:/[+-]?\d+)?")
-_RATIO = re.compile(r"[+-]?\d+/[+-]?\d+")
+_NUMBER = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:/[+-]?[0-9]+)?")
+_RATIO = re.compile(r"[+-]?[0-9]+/[+-]?[0-9]+")
+_SPACE = " \t"
+# a command-line word that is a negative number or a point starting with one ("-1,2", "-.5")
+NEGATIVE = re.compile(r"-[0-9.][0-9.,/+-]*")
 
 
 def parse_number(text: str) -> Fraction:
     """'3', '-0.25', '.5', '690/319' -> Fraction. Anything else raises ValueError."""
-    s = text.strip()
+    s = text.strip(_SPACE)
     if not _NUMBER.fullmatch(s) or ("/" in s and not _RATIO.fullmatch(s)):
         raise ValueError(
             f"not a number: {text!r} (use an integer, a decimal such as -0.25, or p/q such as 3/4)"
@@ -25,6 +30,14 @@ def parse_number(text: str) -> Fraction:
             raise ValueError(f"not a number: {text!r} (zero denominator)")
         return Fraction(int(p), int(q))
     return Fraction(s)
+
+
+def parse_int(text: str) -> int:
+    """An ASCII integer (argparse's type=int would take '２' or '1_0')."""
+    s = text.strip(_SPACE)
+    if not re.fullmatch(r"[+-]?[0-9]+", s):
+        raise ValueError(f"not an integer: {text!r}")
+    return int(s)
 
 
 def parse_point(text: str) -> tuple[Fraction, ...]:

@@ -1,9 +1,19 @@
-"""Input checks with messages that name the problem (never a traceback from deep in numpy)."""
+"""The public boundary's input checks: one place that every entry point goes through.
+
+Each check names the argument and the problem in a ValueError (never a traceback from deep in
+numpy, never a silent wrong number): the type (numbers only: booleans, text and complex values
+are refused rather than coerced), the shape, finiteness, and magnitude (an int or a Fraction
+too large for a float is refused by name instead of raising OverflowError later). A new public
+function gets all of this by calling `real_number`, `real_array`, `as_points`, `as_parameters`,
+`flag`, `integer`, `choice` or `tolerance` on its arguments.
+"""
 
 from __future__ import annotations
 
 import math
 import numbers
+import sys
+from decimal import Decimal
 from fractions import Fraction
 from types import ModuleType
 
@@ -11,9 +21,137 @@ import numpy as np
 
 ExactRows = tuple[tuple[Fraction, ...], ...]
 
+FLOAT_MAX = sys.float_info.max
+
 
 def is_exact_scalar(x: object) -> bool:
     return isinstance(x, numbers.Rational | np.integer) and not isinstance(x, bool | np.bool_)
+
+
+def describe(x: object) -> str:
+    """repr(x), shortened when it is huge (a 400-digit integer is summarised, not printed)."""
+    text = str(x) if isinstance(x, numbers.Number) and not isinstance(x, bool) else repr(x)
+    if len(text) <= 60:
+        return text
+    return f"{text[:24]}…{text[-8:]} ({len(text)} characters)"
+
+
+def to_float(q: Fraction, name: str) -> float:
+    """An exact value as a float, or a ValueError naming `name` when it is beyond the range."""
+    try:
+        return float(q)
+    except OverflowError:
+        raise ValueError(
+            f"{name} = {describe(q)} is too large for a float (magnitude above {FLOAT_MAX:.4g})"
+        ) from None
+
+
+def real_number(
+    x: object, name: str, *, keep_exact: bool = True, float_range: bool = True
+) -> Fraction | float:
+    """One real number: a Fraction for exact input (int, Fraction, numpy integer) when
+    `keep_exact`, otherwise a finite float. Booleans, text, complex and non-numbers are refused;
+    with `float_range` an exact value must also fit in a float."""
+    if isinstance(x, bool | np.bool_):
+        raise ValueError(f"{name} must be a real number, got the boolean {x!r}")
+    if isinstance(x, str | bytes):
+        raise ValueError(
+            f"{name} must be a real number, got the text {describe(x)} (pass 0.5 or Fraction(1, 2))"
+        )
+    if isinstance(x, complex | np.complexfloating):
+        raise ValueError(f"{name} must be a real number, got the complex number {x!r}")
+    if is_exact_scalar(x):
+        q = Fraction(int(x)) if isinstance(x, np.integer) else Fraction(x)  # type: ignore[call-overload]
+        if float_range or not keep_exact:
+            value = to_float(q, name)
+        return q if keep_exact else value
+    if isinstance(x, numbers.Real | np.floating | Decimal):
+        value = float(x)  # type: ignore[arg-type]
+        if not math.isfinite(value):
+            if isinstance(x, Decimal) and x.is_finite():
+                raise ValueError(f"{name} = {x} is too large for a float")
+            raise ValueError(f"{name} must be finite, got {value}")
+        return value
+    raise ValueError(f"{name} must be a real number, got {describe(x)} ({type(x).__name__})")
+
+
+def real_array(x: object, name: str) -> np.ndarray:
+    """`x` as a float array of any shape (no copy for a float64 ndarray). Text, booleans,
+    complex values, ragged nesting and non-numbers are refused by name; exact values beyond
+    the float range too. NaN/inf pass: finiteness is the caller's check (it knows the index
+    to report)."""
+    if isinstance(x, str | bytes):
+        raise ValueError(f"{name} must be numbers, got the text {describe(x)}")
+    if isinstance(x, np.ndarray):
+        arr = x
+    else:
+        try:
+            arr = np.asarray(x)
+        except (ValueError, TypeError) as exc:
+            raise ValueError(
+                f"{name} must be a regular array of numbers (equal-length rows): {exc}"
+            ) from None
+    kind = arr.dtype.kind
+    if kind in "iuf" and _bools_inside(x):  # numpy casts [True, 2] to [1, 2] silently
+        raise ValueError(f"{name} must be numbers, got booleans")
+    if kind == "f":
+        return arr.astype(float, copy=False)
+    if kind in "iu":
+        return arr.astype(float)
+    if kind == "c":
+        raise ValueError(f"{name} must be real numbers, got complex values (dtype {arr.dtype})")
+    if kind == "b":
+        raise ValueError(f"{name} must be numbers, got booleans")
+    if kind in "USa":
+        raise ValueError(f"{name} must be numbers, got text (dtype {arr.dtype})")
+    if kind == "O":
+        out = np.empty(arr.shape, dtype=float)
+        flat = out.reshape(-1)
+        for i, v in enumerate(arr.flat):
+            index = tuple(int(j) for j in np.unravel_index(i, arr.shape))
+            where = name if arr.ndim == 0 else f"{name} at index {index}"
+            flat[i] = real_number(v, where, keep_exact=False)
+        return out
+    raise ValueError(f"{name} must be numbers, got an array of dtype {arr.dtype}")
+
+
+def _bools_inside(x: object, depth: int = 0) -> bool:
+    """Whether a (nested) list or tuple holds a boolean, at C speed per level."""
+    if not isinstance(x, list | tuple) or depth > 4:
+        return False
+    types = set(map(type, x))
+    if bool in types or np.bool_ in types:
+        return True
+    if list in types or tuple in types:
+        return any(_bools_inside(v, depth + 1) for v in x)
+    return False
+
+
+def flag(x: object, name: str) -> bool:
+    """A True/False option (a string such as "no" would otherwise read as True)."""
+    if not isinstance(x, bool | np.bool_):
+        raise ValueError(f"{name} must be True or False, got {describe(x)}")
+    return bool(x)
+
+
+def integer(x: object, name: str) -> int:
+    if isinstance(x, bool | np.bool_) or not isinstance(x, numbers.Integral | np.integer):
+        raise ValueError(f"{name} must be an integer, got {describe(x)}")
+    return int(x)  # type: ignore[call-overload]
+
+
+def choice(x: object, name: str, choices) -> str:
+    """One of the names in `choices` (a list, unhashable values included, gets the message)."""
+    if isinstance(x, str) and x in choices:
+        return x
+    raise ValueError(f"unknown {name} {describe(x)}: choose one of {', '.join(map(repr, choices))}")
+
+
+def tolerance(tol: object, name: str = "tol") -> float:
+    value = float(real_number(tol, name, keep_exact=False))
+    if value < 0:
+        raise ValueError(f"{name} must be >= 0, got {tol}")
+    return value
 
 
 def exact_rows(points: object) -> ExactRows | None:
@@ -26,9 +164,11 @@ def exact_rows(points: object) -> ExactRows | None:
         if points.dtype.kind != "O":
             return None
         rows = points.tolist()
+    elif isinstance(points, str | bytes):
+        return None
     else:
         try:
-            rows = [list(r) for r in points]  # type: ignore[union-attr]
+            rows = [list(r) for r in points]  # type: ignore[attr-defined]
         except TypeError:
             return None
     try:
@@ -36,35 +176,44 @@ def exact_rows(points: object) -> ExactRows | None:
             return None
     except TypeError:  # a row that is not a sequence, or a deeper nesting (a batch)
         return None
-        return None
     return tuple(
         tuple(Fraction(int(v)) if isinstance(v, np.integer) else Fraction(v) for v in row)
         for row in rows
     )
 
 
-def as_points(points: object, *, family: str, degrees: tuple[int, ...]) -> np.ndarray:
-    """(n+1, d) float array, d >= 1, n in `degrees`, all finite."""
-    try:
-        arr = np.array(points, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"control points must be an (n+1, d) array of numbers: {exc}") from None
-    if arr.ndim != 2 or arr.shape[1] < 1:
+def check_point_shape(shape: tuple[int, ...], *, family: str, degrees: tuple[int, ...]) -> None:
+    """(n+1, d) with d >= 1 and n in `degrees`."""
+    if len(shape) != 2 or shape[1] < 1:
         raise ValueError(
-            f"control points must have shape (n+1, d) with d >= 1, got shape {arr.shape}"
+            f"control points must have shape (n+1, d) with d >= 1, got shape {tuple(shape)}"
         )
-    degree = arr.shape[0] - 1
+    degree = shape[0] - 1
     lo, hi = degrees[0], degrees[-1]
     if degree < lo:
         raise ValueError(
             f"a {family} curve needs at least {lo + 1} control points (degree >= {lo}), "
-            f"got {arr.shape[0]}"
+            f"got {shape[0]}"
         )
     if degree > hi:
         raise ValueError(
             f"degree {degree} is not supported for {family}: generated data covers degrees "
             f"{lo}..{hi}"
         )
+
+
+def exact_shape(rows: ExactRows, *, family: str, degrees: tuple[int, ...]) -> None:
+    """check_point_shape for exact rows (any magnitude: they are never made floats)."""
+    widths = {len(r) for r in rows}
+    if len(widths) > 1:
+        raise ValueError("control points must all have the same number of coordinates")
+    check_point_shape((len(rows), widths.pop() if widths else 0), family=family, degrees=degrees)
+
+
+def as_points(points: object, *, family: str, degrees: tuple[int, ...]) -> np.ndarray:
+    """(n+1, d) float array (a read-only copy), d >= 1, n in `degrees`, all finite."""
+    arr = np.array(real_array(points, "control points"), dtype=float)
+    check_point_shape(arr.shape, family=family, degrees=degrees)
     bad = ~np.isfinite(arr)
     if bad.any():
         row, col = map(int, np.argwhere(bad)[0])
@@ -73,57 +222,83 @@ def as_points(points: object, *, family: str, degrees: tuple[int, ...]) -> np.nd
     return arr
 
 
+def in_range(value, family: ModuleType) -> bool:
+    lo, hi = family.LAMBDA_RANGE
+    lo_closed, hi_closed = family.LAMBDA_CLOSED
+    below = value < lo or (value == lo and not lo_closed)
+    above = value > hi or (value == hi and not hi_closed)
+    return not (below or above)
+
+
 def as_lambda(lam: object, family: ModuleType, *, check_range: bool) -> Fraction | float:
     """λ as a Fraction (exact input) or a float; inside the family's range unless told not."""
-    if isinstance(lam, bool | np.bool_) or not isinstance(lam, numbers.Real | np.floating):
-        raise ValueError(f"lam must be a real number, got {lam!r}")
-    value: Fraction | float
-    if is_exact_scalar(lam):
-        value = Fraction(int(lam)) if isinstance(lam, np.integer) else Fraction(lam)  # type: ignore[arg-type]
-    else:
-        value = float(lam)  # type: ignore[arg-type]
-        if not math.isfinite(value):
-            raise ValueError(f"lam must be finite, got {value}")
-    if check_range:
-        lo, hi = family.LAMBDA_RANGE
-        lo_closed, hi_closed = family.LAMBDA_CLOSED
-        below = value < lo or (value == lo and not lo_closed)
-        above = value > hi or (value == hi and not hi_closed)
-        if below or above:
-            raise ValueError(
-                f"lam = {lam} is outside the {family.FAMILY} range {family.LAMBDA_RANGE_TEXT}; "
-                "pass check_range=False to use it anyway"
-            )
+    check_range = flag(check_range, "check_range")
+    value = real_number(lam, "lam")
+    if check_range and not in_range(value, family):
+        raise ValueError(
+            f"lam = {describe(lam) if not isinstance(lam, float) else lam} is outside the "
+            f"{family.FAMILY} range {family.LAMBDA_RANGE_TEXT}; pass check_range=False to use "
+            "it anyway"
+        )
     return value
 
 
-def as_parameters(t: object, *, extrapolate: bool) -> tuple[np.ndarray, bool]:
+def as_parameters(t: object, *, extrapolate: bool, name: str = "t") -> tuple[np.ndarray, bool]:
     """Parameter values as a 1-D float array, and whether the input was a scalar."""
-    try:
-        arr = np.asarray(t, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError(f"t must be a number or a 1-D array of numbers, got {t!r}") from None
+    extrapolate = flag(extrapolate, "extrapolate")
+    arr = real_array(t, name)
     if arr.ndim > 1:
-        raise ValueError(f"t must be a number or a 1-D array, got shape {arr.shape}")
+        raise ValueError(f"{name} must be a number or a 1-D array, got shape {arr.shape}")
     scalar = arr.ndim == 0
     arr = np.atleast_1d(arr)
     if arr.size:
         # min and max propagate NaN and expose ±inf: two reductions check everything
         lo, hi = float(arr.min()), float(arr.max())
         if not (math.isfinite(lo) and math.isfinite(hi)):
-            raise ValueError("t contains NaN or infinity")
+            raise ValueError(f"{name} contains NaN or infinity")
         if not extrapolate and (lo < 0.0 or hi > 1.0):
             bad = lo if lo < 0.0 else hi
             raise ValueError(
-                f"t = {bad} is outside [0, 1]; pass extrapolate=True to evaluate there"
+                f"{name} = {bad} is outside [0, 1]; pass extrapolate=True to evaluate there"
             )
     return arr, scalar
 
 
 def as_order(k: object) -> int:
-    if isinstance(k, bool) or not isinstance(k, numbers.Integral) or int(k) < 0:  # type: ignore[call-overload]
-        raise ValueError(f"derivative order k must be a non-negative integer, got {k!r}")
+    if isinstance(k, bool | np.bool_) or not isinstance(k, numbers.Integral) or int(k) < 0:  # type: ignore[call-overload]
+        raise ValueError(f"derivative order k must be a non-negative integer, got {describe(k)}")
     return int(k)  # type: ignore[call-overload]
+
+
+def finite_result(out: np.ndarray, what: str) -> np.ndarray:
+    """`out`, or a ValueError when finite input gave an overflow (coordinates near 1e308)."""
+    if not np.isfinite(out).all():
+        raise ValueError(
+            f"{what} overflows the float range (magnitude above {FLOAT_MAX:.4g}) for these "
+            "control points; scale them down (or use exact ints/Fractions where offered)"
+        )
+    return out
+
+
+def power_of_two_scale(points: np.ndarray) -> float:
+    """1.0 for ordinary coordinates; for magnitudes beyond 2^±900 the power of two that brings
+    them near 1, so products with basis coefficients (up to ~1e20) neither overflow nor
+    underflow. Dividing by a power of two is exact."""
+    return scale_for_magnitude(float(np.abs(points).max()) if points.size else 0.0)
+
+
+def scale_for_magnitude(big: float) -> float:
+    """power_of_two_scale for a known largest magnitude."""
+    if big == 0.0 or not math.isfinite(big):
+        return 1.0
+    exponent = math.frexp(big)[1]
+    return 1.0 if -900 <= exponent <= 900 else math.ldexp(1.0, exponent - 1)
+
+
+def overflow_allowed():
+    """numpy's overflow warnings off for a computation whose result `finite_result` checks:
+    the ValueError is the report, not a RuntimeWarning beside an inf."""
+    return np.errstate(over="ignore", invalid="ignore")
 
 
 def as_point(point: object, dimension: int) -> np.ndarray:

@@ -5,12 +5,12 @@ from __future__ import annotations
 import numpy as np
 
 from . import _validate as val
-from .curves import FAMILIES, _float_matrix, _tables
+from .curves import FAMILIES, Curve, _float_matrix, _tables, family_class
 
 
-def _lambdas(lam, family: str, m: int, check_range: bool) -> np.ndarray:
-    data = FAMILIES[family]._data
-    arr = np.asarray(lam, dtype=float)
+def _lambdas(lam, cls: type[Curve], m: int, check_range: bool) -> np.ndarray:
+    data, family = cls._data, cls.family
+    arr = val.real_array(lam, "lam")
     if arr.ndim > 1 or (arr.ndim == 1 and arr.size != m):
         raise ValueError(f"lam must be a number or an array of {m} numbers, got shape {arr.shape}")
     arr = np.broadcast_to(arr, (m,))
@@ -32,7 +32,7 @@ def _lambdas(lam, family: str, m: int, check_range: bool) -> np.ndarray:
 def evaluate_many(
     points,
     t,
-    family: str = "bezier",
+    family: object = "bezier",
     lam=None,
     *,
     k: int = 0,
@@ -48,50 +48,62 @@ def evaluate_many(
     array([[2.  , 1.5 ],
            [2.  , 1.25]])
     """
-    if family not in FAMILIES:
-        raise ValueError(f"unknown family {family!r}: choose one of {', '.join(FAMILIES)}")
-    cls = FAMILIES[family]
-    try:
-        arr = np.asarray(points, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"control points must be an (m, n+1, d) array of numbers: {exc}") from None
+    # a built-in family's name, or a family from lambda_bezier.load_family
+    cls = (
+        FAMILIES[val.choice(family, "family", tuple(FAMILIES))]
+        if isinstance(family, str)
+        else family_class(family)
+    )
+    family = cls.family
+    check_range = val.flag(check_range, "check_range")
+    arr = val.real_array(points, "control points")
     if arr.ndim != 3:
         raise ValueError(f"control points must have shape (m, n+1, d), got shape {arr.shape}")
     m, size, dim = arr.shape
     degrees = tuple(cls._data.DEGREES)
-    val.as_points(np.zeros((size, dim)), family=family, degrees=degrees)  # shape/degree checks
-    if not np.isfinite(arr).all():
+    val.check_point_shape((size, dim), family=family, degrees=degrees)
+    big = float(np.abs(arr).max()) if arr.size else 0.0  # NaN and inf propagate into this
+    if not np.isfinite(big):
         idx = np.argwhere(~np.isfinite(arr))[0]
         raise ValueError(f"curve {idx[0]}, control point {idx[1]} has a non-finite coordinate")
     k = val.as_order(k)
     tt, scalar = val.as_parameters(t, extrapolate=extrapolate)
     n = size - 1
-    data = cls._data  # the tables are keyed by the family's data (curves._tables)
-    mats = _tables(data, "centred")[n]
-    if family == "bezier":
+    mats = _tables(cls._data, "centred")[n]
+    if not cls._has_lambda:
         if lam is not None:
             raise ValueError("a classical Bézier curve takes no shape parameter")
         lams = np.zeros(m)
     else:
         if lam is None:
             raise ValueError(f"a {family} curve needs a shape parameter lam")
-        lams = _lambdas(lam, family, m, check_range)
+        lams = _lambdas(lam, cls, m, check_range)
     # Coefficients of every curve in the centred monomials (t - 1/2)^e, laid out (N+1, m·d)
     # so that both products below are wide matrix products (BLAS is slow on tall-skinny ones).
-    pt = np.ascontiguousarray(arr.transpose(1, 0, 2)).reshape(size, m * dim)
-    coeffs = _float_matrix(data, "centred", n, 0).T @ pt
-    for p in range(1, len(mats)):
-        part = _float_matrix(data, "centred", n, p).T @ pt
-        coeffs += part * np.repeat(lams**p, dim)
-    if k:
-        from ._algorithms import differentiate_coefficients
+    # coordinates beyond 2^±900: computed on points scaled by a power of two (exact), then
+    # scaled back, so a representable p(t) is not lost to an overflow in the coefficients
+    scale = val.scale_for_magnitude(big)
+    with val.overflow_allowed():
+        pt = np.ascontiguousarray(arr.transpose(1, 0, 2)).reshape(size, m * dim)
+        if scale != 1.0:
+            pt = pt / scale
+        coeffs = _float_matrix(cls._data, "centred", n, 0).T @ pt
+        for p in range(1, len(mats)):
+            part = _float_matrix(cls._data, "centred", n, p).T @ pt
+            coeffs += part * np.repeat(lams**p, dim)
+        if k:
+            from ._algorithms import differentiate_coefficients
 
-        coeffs = differentiate_coefficients(coeffs.T, k).T
-    # Every curve shares the parameter grid: one product with the monomials at the grid.
-    u = tt - 0.5
-    powers = np.empty((tt.size, coeffs.shape[0]))
-    powers[:, 0] = 1.0
-    for e in range(1, coeffs.shape[0]):
-        np.multiply(powers[:, e - 1], u, out=powers[:, e])
-    out = (powers @ coeffs).reshape(tt.size, m, dim).transpose(1, 0, 2)
+            coeffs = differentiate_coefficients(coeffs.T, k).T
+        # Every curve shares the parameter grid: one product with the monomials at the grid.
+        u = tt - 0.5
+        powers = np.empty((tt.size, coeffs.shape[0]))
+        powers[:, 0] = 1.0
+        for e in range(1, coeffs.shape[0]):
+            np.multiply(powers[:, e - 1], u, out=powers[:, e])
+        out = (powers @ coeffs).reshape(tt.size, m, dim).transpose(1, 0, 2)
+        if scale != 1.0:
+            out = out * scale
+    if scale != 1.0 or extrapolate or not check_range:  # otherwise nothing can overflow
+        val.finite_result(out, "p(t)" if k == 0 else f"the derivative of order {k}")
     return out[:, 0] if scalar else out

@@ -8,11 +8,24 @@ import sys
 from pathlib import Path
 
 
+def _energy_order(text: str) -> int:
+    """--energy: an ASCII integer (argparse's int() would take '２' or '1_0')."""
+    from ._numbers import parse_int
+
+    try:
+        return parse_int(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
 def build_parser() -> argparse.ArgumentParser:
+    from . import __version__
+
     parser = argparse.ArgumentParser(
         prog="lambda-bezier",
         description="Derive, check and use Bézier curves with a shape parameter λ.",
     )
+    parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     derive = sub.add_parser(
         "derive",
@@ -47,7 +60,8 @@ def build_parser() -> argparse.ArgumentParser:
         help="the λ minimising a curve energy for given control points",
         description="The λ minimising E_k = ∫|p^(k)|² dt (k = 1 stretch, 2 strain, 3 jerk) for "
         "the given control points, exactly. Points are x,y or x,y,z with integer, decimal or "
-        "p/q coordinates, e.g.: lambda-bezier optimal-lambda --energy 2 0,6 0,2 5,2 7,0 2,0 6,8",
+        "p/q coordinates (ASCII digits; negative ones as typed, e.g. -1,2), e.g.: "
+        "lambda-bezier optimal-lambda --energy 2 0,6 0,2 5,2 7,0 2,0 6,8",
     )
     opt.add_argument("points", nargs="+", metavar="POINT", help="control point x,y or x,y,z")
     opt.add_argument(
@@ -59,7 +73,7 @@ def build_parser() -> argparse.ArgumentParser:
     opt.add_argument(
         "--energy",
         "-k",
-        type=int,
+        type=_energy_order,
         default=2,
         choices=[1, 2, 3],
         help="energy order k (default: 2, strain)",
@@ -117,8 +131,22 @@ def console_main() -> None:
     os._exit(code)
 
 
+def _negative_points_as_positionals(argv: list[str]) -> list[str]:
+    """argparse takes a word starting with '-' for an option unless it is a plain negative
+    number: '-1,2' would be an unknown option. Negative coordinates are the commonest there
+    are, so after `optimal-lambda` such a word gets a leading space, which argparse reads as a
+    positional and the number grammar strips."""
+    from ._numbers import NEGATIVE
+
+    if "optimal-lambda" not in argv:
+        return argv
+    start = argv.index("optimal-lambda") + 1
+    return argv[:start] + [" " + a if NEGATIVE.fullmatch(a) else a for a in argv[start:]]
+
+
 def main(argv: list[str] | None = None) -> int:
-    args = build_parser().parse_args(argv)
+    argv = list(sys.argv[1:] if argv is None else argv)
+    args = build_parser().parse_args(_negative_points_as_positionals(argv))
     if args.command == "derive" and args.family is not None:
         from ._family_runner import run as run_family
 
@@ -165,7 +193,7 @@ def _optimal_lambda(args) -> int:
     from .energy import ENERGY_NAMES, optimal_lambda
 
     try:
-        points = [parse_point(p) for p in args.points]
+        points = [parse_point(p.lstrip(" ")) for p in args.points]
         if len({len(p) for p in points}) != 1:
             raise ValueError("all points must have the same dimension (2 or 3 coordinates)")
         result = optimal_lambda(points, args.energy, args.family, clamp=args.clamp)
@@ -179,17 +207,17 @@ def _optimal_lambda(args) -> int:
         "energy_order": k,
         "energy_name": ENERGY_NAMES[k],
         "lambda": str(result.unconstrained),
-        "lambda_decimal": float(result.unconstrained),
+        "lambda_decimal": _float_or_none(result.unconstrained),
         "energy": str(result.unconstrained_energy),
-        "energy_decimal": float(result.unconstrained_energy),
+        "energy_decimal": _float_or_none(result.unconstrained_energy),
         "admissible": bool(result.unconstrained_admissible),
     }
     if args.clamp:
         report |= {
             "clamped_lambda": str(result.lam),
-            "clamped_lambda_decimal": float(result.lam),
+            "clamped_lambda_decimal": _float_or_none(result.lam),
             "clamped_energy": str(result.energy),
-            "clamped_energy_decimal": float(result.energy),
+            "clamped_energy_decimal": _float_or_none(result.energy),
             "clamped_admissible": bool(result.admissible),
         }
     if args.json:
@@ -197,7 +225,14 @@ def _optimal_lambda(args) -> int:
         return 0
 
     def both(key: str) -> str:
-        return f"{report[key]}  ≈ {report[key + '_decimal']:.12g}"
+        return f"{report[key]}  ≈ {_decimal(exact[key])}"
+
+    exact = {
+        "lambda": result.unconstrained,
+        "energy": result.unconstrained_energy,
+        "clamped_lambda": result.lam,
+        "clamped_energy": result.energy,
+    }
 
     verdict = "yes" if report["admissible"] else f"no: outside {result.range_text}"
     lines = [
@@ -215,6 +250,30 @@ def _optimal_lambda(args) -> int:
         ]
     print("\n".join(lines))
     return 0
+
+
+def _float_or_none(q) -> float | None:
+    """The JSON *_decimal fields: the nearest float, or null for an exact value beyond the
+    float range (the exact value is in the field without _decimal)."""
+    try:
+        value = float(q)
+    except OverflowError:
+        return None
+    return value if value != 0 or q == 0 else None
+
+
+def _decimal(q) -> str:
+    """12 significant digits of an exact value, at any magnitude (a 400-digit coordinate
+    gives an energy far beyond the float range; it still prints)."""
+    from decimal import Decimal, localcontext
+
+    value = _float_or_none(q)
+    if value is not None:
+        return f"{value:.12g}"
+    with localcontext() as ctx:
+        ctx.prec = 12
+        d = Decimal(q.numerator) / Decimal(q.denominator)
+    return format(d.normalize(), "g")
 
 
 if __name__ == "__main__":

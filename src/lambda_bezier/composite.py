@@ -83,6 +83,7 @@ def _relative_gap(a: np.ndarray, b: np.ndarray) -> float:
 
 def measure(left: Curve, right: Curve, *, index: int = 0, joint=None, tol=1e-9) -> JointReport:
     """The JointReport for `right` following `left` (see JointReport)."""
+    tol = val.tolerance(tol)
     p1, p2 = left.evaluate(1.0), right.evaluate(0.0)
     d1, e1 = left.derivative(1.0, 1), right.derivative(0.0, 1)
     d2, e2 = left.derivative(1.0, 2), right.derivative(0.0, 2)
@@ -139,7 +140,7 @@ def _rejoin(left: Curve, right: Curve, joint: Joint, lam=None, *, check_range=Fa
         joint.alpha,
         joint.d,
         rest=keep if keep else np.zeros((0, right.dimension)),
-        family=right.family,
+        family=type(right),  # its class: a built-in family or one from load_family
         check_range=check_range,
     )
 
@@ -213,7 +214,7 @@ class CompositeCurve:
         alpha=1,
         d=0,
         rest=(),
-        family: str | None = None,
+        family: object = None,
         *,
         check_range: bool = True,
     ) -> CompositeCurve:
@@ -243,8 +244,8 @@ class CompositeCurve:
         stay); joints without a recorded Joint are left as they are. With resolve=False only
         λ changes: a G1 joint survives that (λ scales the end tangents, never turns them),
         C1, C2 and G2 joints in general do not; report() shows which."""
-        if isinstance(index, bool) or not isinstance(index, int | np.integer):
-            raise ValueError(f"index must be an integer, got {index!r}")
+        index = val.integer(index, "index")
+        resolve = val.flag(resolve, "resolve")
         if not 0 <= index < len(self.segments):
             raise ValueError(
                 f"index {index} is out of range: the composite has {len(self.segments)} segments"
@@ -272,13 +273,9 @@ class CompositeCurve:
 
     # ------------------------------------------------------------------ evaluation
     def _locate(self, u, extrapolate: bool):
-        arr = np.asarray(u, dtype=float) if not isinstance(u, str) else None
-        if arr is None or arr.ndim > 1:
-            raise ValueError(f"u must be a number or a 1-D array of numbers, got {u!r}")
-        scalar = arr.ndim == 0
-        arr = np.atleast_1d(arr)
-        if not np.isfinite(arr).all():
-            raise ValueError("u contains NaN or infinity")
+        # the checks of a curve's t (types, finiteness), then the composite's own interval
+        arr, scalar = val.as_parameters(u, extrapolate=True, name="u")
+        extrapolate = val.flag(extrapolate, "extrapolate")
         count = len(self.segments)
         if not extrapolate and arr.size and (arr.min() < 0 or arr.max() > count):
             bad = arr[(arr < 0) | (arr > count)][0]
@@ -336,6 +333,7 @@ class CompositeCurve:
     # ------------------------------------------------------------------ continuity
     def report(self, tol: float = 1e-9) -> tuple[JointReport, ...]:
         """One JointReport per joint (relative tolerance `tol`; see JointReport)."""
+        tol = val.tolerance(tol)
         return tuple(
             measure(self.segments[j], self.segments[j + 1], index=j, joint=self.joints[j], tol=tol)
             for j in range(len(self.segments) - 1)

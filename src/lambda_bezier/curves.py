@@ -98,11 +98,16 @@ class Curve:
             if lam is not None:
                 raise ValueError("a classical Bézier curve takes no shape parameter")
             self.lam = None
+        # Coordinates near the float limit (or near its bottom) would overflow (underflow) in
+        # the basis products although p(t) is representable: the coefficients are then kept
+        # for the points scaled by a power of two (exact), and evaluation scales back.
+        self._scale = val.power_of_two_scale(self.points)
+        unit = self.points if self._scale == 1.0 else self.points / self._scale
         # k -> Taylor coefficients of p^(k) about t = 1/2, coordinate-major (d, N+1 - k): what
         # evaluation uses at the tabulated degrees; filled on demand
         self._derivative_coeffs: dict[int, np.ndarray] = {}
         if self._tabulated:
-            centred = np.ascontiguousarray((self._combined("centred").T @ self.points).T)
+            centred = np.ascontiguousarray((self._combined("centred").T @ unit).T)
             centred.setflags(write=False)
             self._derivative_coeffs[0] = centred
         self._hodographs: list[np.ndarray] = []  # Bézier points of p, p', …, for energies
@@ -164,7 +169,7 @@ class Curve:
     def basis_bernstein_matrix(self, exact: bool = False):
         """(n+1, N+1): row i holds basis function i in the Bernstein basis of degree N.
         With exact=True (needs an exact λ) a tuple of tuples of Fractions."""
-        if not exact:
+        if not val.flag(exact, "exact"):
             return self._combined("bernstein")
         lam = Fraction(0) if self.lam is None else self.lam
         if isinstance(lam, float):
@@ -178,10 +183,20 @@ class Curve:
 
     def derivative(self, t, k: int = 1, *, extrapolate: bool = False) -> np.ndarray:
         """The k-th derivative p^(k)(t) (zero beyond the polynomial degree)."""
+        if self._scale == 1.0 and not extrapolate:  # cannot overflow: see __init__
+            return self._unit_derivative(t, k, extrapolate)
+        with val.overflow_allowed():
+            out = self._unit_derivative(t, k, extrapolate) * self._scale
+        return val.finite_result(out, "p(t)" if k == 0 else f"the derivative of order {k}")
+
+    def _unit_derivative(self, t, k, extrapolate: bool) -> np.ndarray:
+        """p^(k)(t) of the curve scaled by 1/self._scale."""
         k = val.as_order(k)
         tt, scalar = val.as_parameters(t, extrapolate=extrapolate)
         if not self._tabulated:  # de Casteljau on the k-th hodograph stays accurate
             ctrl = self._hodograph_points(k)
+            if self._scale != 1.0:
+                ctrl = ctrl / self._scale
             out = alg.de_casteljau_steps(ctrl, tt, ctrl.shape[0] - 1)[:, 0]
             return out[0] if scalar else out
         coeffs = self._derivative_coeffs.get(k)
@@ -221,15 +236,26 @@ class Curve:
                 f"curvature is defined here for planar and space curves (dimension 2 or 3), "
                 f"this curve has dimension {self.dimension}"
             )
-        d1 = self.derivative(t, 1, extrapolate=extrapolate)
-        d2 = self.derivative(t, 2, extrapolate=extrapolate)
+        with val.overflow_allowed():  # κ(s·p) = κ(p)/s: computed unscaled, scaled back below
+            d1 = self._unit_derivative(t, 1, extrapolate)
+            d2 = self._unit_derivative(t, 2, extrapolate)
+        if extrapolate:
+            val.finite_result(d1, "the curvature")
+            val.finite_result(d2, "the curvature")
+        # per point, d1 and d2 divided by a power of two c near their size: κ = κ_c / c
+        # without |p'|³ or p'×p'' overflowing (or underflowing) on the way
+        size = np.maximum(np.abs(d1).max(axis=-1), np.abs(d2).max(axis=-1))
+        c = np.ldexp(1.0, np.frexp(np.where(size > 0, size, 1.0))[1])
+        d1, d2 = d1 / c[..., None], d2 / c[..., None]
         if self.dimension == 2:
             cross = d1[..., 0] * d2[..., 1] - d1[..., 1] * d2[..., 0]
         else:
             cross = np.linalg.norm(np.cross(d1, d2), axis=-1)
         speed = np.linalg.norm(d1, axis=-1)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            kappa = np.where(speed > 0, cross / speed**3, np.nan)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            kappa = np.where(speed > 0, cross / speed**3, np.nan) / c / self._scale
+        if np.isinf(kappa).any():  # a curve of size ~1e-310
+            raise ValueError("the curvature overflows the float range for these control points")
         return kappa[()] if np.ndim(kappa) == 0 else kappa
 
     def energy(self, k: int):
@@ -262,9 +288,11 @@ class Curve:
                 Fraction(0),
             )
             return Fraction(scale) * total
-        ctrl = self._hodograph_points(k)
         g = np.array(upper, dtype=float) * float(scale)
-        return float(np.einsum("id,ij,jd->", ctrl, (g + g.T) / 2, ctrl))
+        with val.overflow_allowed():
+            ctrl = self._hodograph_points(k)
+            energy = np.einsum("id,ij,jd->", ctrl, (g + g.T) / 2, ctrl)
+        return float(val.finite_result(energy, f"E_{k}"))
 
     # ------------------------------------------------------------------ geometry (geometry.py)
     def arc_length(self, t0=0, t1=1) -> float:
@@ -295,7 +323,9 @@ class Curve:
             assert self._exact_points is not None
             weights = tuple(zip(*self.basis_bernstein_matrix(exact=True), strict=True))
             return BezierCurve(alg.exact_matmul(weights, self._exact_points))
-        return BezierCurve(self.basis_bernstein_matrix().T @ self.points)
+        with val.overflow_allowed():
+            ctrl = self.basis_bernstein_matrix().T @ self.points
+        return BezierCurve(val.finite_result(ctrl, "the Bézier control points"))
 
     def control_points(self) -> tuple[tuple, ...]:
         """The control points as given: Fractions if exact, floats otherwise."""
@@ -372,13 +402,17 @@ class BezierCurve(Curve):
     def de_casteljau(self, t, *, extrapolate: bool = False) -> np.ndarray:
         """p(t) by de Casteljau's algorithm (a second evaluator, vectorised over t)."""
         tt, scalar = val.as_parameters(t, extrapolate=extrapolate)
-        out = alg.de_casteljau_steps(self.points, tt, self.degree)[:, 0]
+        with val.overflow_allowed():
+            out = alg.de_casteljau_steps(self.points / self._scale, tt, self.degree)[:, 0]
+            out = out * self._scale
+        if self._scale != 1.0 or extrapolate:
+            val.finite_result(out, "p(t)")
         return out[0] if scalar else out
 
     def _exact_t(self, t, name: str = "t", extrapolate: bool = False):
         if val.is_exact_scalar(t):
             return Fraction(t)
-        tt, _ = val.as_parameters(t, extrapolate=extrapolate)
+        tt, _ = val.as_parameters(t, extrapolate=extrapolate, name=name)
         if tt.size != 1:
             raise ValueError(f"{name} must be a single number")
         return float(tt[0])
@@ -444,7 +478,9 @@ class BezierCurve(Curve):
     def _apply(self, weights: Matrix) -> BezierCurve:
         if self._exact_points is not None:
             return BezierCurve(alg.exact_matmul(weights, self._exact_points))
-        return BezierCurve(np.array(weights, dtype=float) @ self.points)
+        with val.overflow_allowed():
+            ctrl = np.array(weights, dtype=float) @ self.points
+        return BezierCurve(val.finite_result(ctrl, "the control points"))
 
 
 class SameDegreeCurve(Curve):
@@ -458,12 +494,16 @@ class SameDegreeCurve(Curve):
         control points Q (eq. 16, from the generated cubic Bernstein matrix), then de
         Casteljau on the cubic Bézier curve. An independent second evaluator."""
         tt, scalar = val.as_parameters(t, extrapolate=extrapolate)
-        cubic = alg.de_casteljau_steps(self.points, tt, self.degree - 3)  # (len t, 4, d)
         m3 = np.array(_float_matrix(self._data, "bernstein", 3, 0))
         lam = float(self.lam)  # type: ignore[arg-type]
         m3 = m3 + lam * _float_matrix(self._data, "bernstein", 3, 1)
-        q = np.einsum("ij,tid->tjd", m3, cubic)
-        out = alg.de_casteljau_steps(q, tt, 3)[:, 0]
+        with val.overflow_allowed():  # on the scaled points; checked below where it matters
+            unit = self.points / self._scale
+            cubic = alg.de_casteljau_steps(unit, tt, self.degree - 3)  # (len t, 4, d)
+            q = np.einsum("ij,tid->tjd", m3, cubic)
+            out = alg.de_casteljau_steps(q, tt, 3)[:, 0] * self._scale
+        if self._scale != 1.0 or extrapolate:
+            val.finite_result(out, "p(t)")
         return out[0] if scalar else out
 
     def geometric_levels(self, t) -> list[tuple[tuple, ...]]:
@@ -473,6 +513,8 @@ class SameDegreeCurve(Curve):
         exact = self.is_exact and val.is_exact_scalar(t)
         if exact:
             t = Fraction(t)
+            if not 0 <= t <= 1:
+                raise ValueError(f"t = {t} is outside [0, 1] (geometric_levels evaluates there)")
             rows = self.control_points()
             m3 = _combine_exact(_tables(self._data, "bernstein")[3], Fraction(self.lam))
         else:
@@ -511,3 +553,22 @@ FAMILIES: dict[str, type[Curve]] = {
     "same_degree": SameDegreeCurve,
     "bernstein_like": BernsteinLikeCurve,
 }
+
+
+def family_class(family: object) -> type[Curve]:
+    """The curve class of `family`: a built-in family's name, a family defined by data
+    (lambda_bezier.load_family), or a Curve subclass."""
+    if isinstance(family, str):
+        if family in FAMILIES:
+            return FAMILIES[family]
+        raise ValueError(
+            f"unknown family {family!r}: choose one of {', '.join(map(repr, FAMILIES))}, or "
+            "pass a family from lambda_bezier.load_family"
+        )
+    cls = getattr(family, "curve_class", family)
+    if isinstance(cls, type) and issubclass(cls, Curve) and cls is not Curve:
+        return cls
+    raise ValueError(
+        f"unknown family {family!r}: family must be a family name "
+        f"({', '.join(map(repr, FAMILIES))}) or a family from lambda_bezier.load_family"
+    )

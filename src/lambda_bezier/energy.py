@@ -15,7 +15,7 @@ import numpy as np
 
 from . import _validate as val
 from ._lazy import generated
-from .curves import FAMILIES
+from .curves import FAMILIES, Curve, family_class
 
 _energy = generated("energy")
 
@@ -48,21 +48,47 @@ class OptimalLambda:
     clamped: bool
 
 
-def _family_data(family: str):
-    if family not in LAMBDA_FAMILIES:
-        raise ValueError(
-            f"unknown family {family!r}: choose one of {', '.join(map(repr, LAMBDA_FAMILIES))}"
-        )
-    return FAMILIES[family]._data
+def _family_cls(family: object) -> type[Curve]:
+    """A family with a shape parameter: a built-in name, or a family from load_family."""
+    if isinstance(family, str):
+        return FAMILIES[val.choice(family, "family", LAMBDA_FAMILIES)]
+    cls = family_class(family)
+    if not cls._has_lambda:
+        raise ValueError(f"the {cls.family} family has no shape parameter to optimise")
+    return cls
+
+
+def _family_data(family: object):
+    return _family_cls(family)._data
+
+
+def _name(family: object) -> str:
+    return family if isinstance(family, str) else _family_cls(family).family
+
+
+def _energy_table(family: object) -> dict:
+    """{(n, k): ((s_ff, U_ff), (s_fg, X), (s_gg, Y))} of the family (generated, or derived)."""
+    if isinstance(family, str):
+        return _energy.ENERGY[family]
+    data = _family_data(family)
+    if not data.ENERGY:
+        raise ValueError(f"no energy forms for the {data.FAMILY} family: {data.ENERGY_REASON}")
+    return data.ENERGY
 
 
 def _check_order(k: object) -> int:
-    if isinstance(k, bool) or k not in _energy.ORDERS:
-        raise ValueError(f"energy order k must be 1, 2 or 3 (stretch, strain, jerk), got {k!r}")
-    return int(k)  # type: ignore[call-overload]
+    if (
+        isinstance(k, bool | np.bool_)
+        or not isinstance(k, int | np.integer)
+        or k not in _energy.ORDERS
+    ):
+        raise ValueError(
+            f"energy order k must be 1, 2 or 3 (stretch, strain, jerk), got {val.describe(k)}"
+        )
+    return int(k)
 
 
-def energy_matrices(n: int, k: int, family: str = "same_degree"):
+def energy_matrices(n: int, k: int, family: object = "same_degree"):
     """(scale, X, Y) with λ* = scale · DᵀXD / DᵀYD, in the paper's normalisation (eq. 20):
     scale a Fraction, X and Y upper-triangular tuples of tuples of ints.
 
@@ -72,19 +98,20 @@ def energy_matrices(n: int, k: int, family: str = "same_degree"):
     """
     data = _family_data(family)
     k = _check_order(k)
-    if (n, k) not in _energy.ENERGY[family]:
+    n = val.integer(n, "degree n")
+    if (n, k) not in _energy_table(family):
         raise ValueError(
-            f"degree {n} is not supported for {family}: "
+            f"degree {n} is not supported for {_name(family)}: "
             f"degrees {data.DEGREES[0]}..{data.DEGREES[-1]}"
         )
-    _, (s_fg, x), (s_gg, y) = _energy.ENERGY[family][(n, k)]
+    _, (s_fg, x), (s_gg, y) = _energy_table(family)[(n, k)]
     return Fraction(s_fg) / Fraction(s_gg), x, y
 
 
 @cache
-def _float_forms(family: str, n: int, k: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _float_forms(family: object, n: int, k: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(A0, A1, A2), symmetric, with E_k(λ) = Σ_coords Dᵀ(A0 + λA1 + λ²A2)D."""
-    (s_ff, u_ff), (s_fg, x), (s_gg, y) = _energy.ENERGY[family][(n, k)]
+    (s_ff, u_ff), (s_fg, x), (s_gg, y) = _energy_table(family)[(n, k)]
 
     def sym(scale, u) -> np.ndarray:
         a = np.array(u, dtype=float) * float(scale)
@@ -96,7 +123,9 @@ def _float_forms(family: str, n: int, k: int) -> tuple[np.ndarray, np.ndarray, n
     return out
 
 
-def _exact_coefficients(family: str, n: int, k: int, rows) -> tuple[Fraction, Fraction, Fraction]:
+def _exact_coefficients(
+    family: object, n: int, k: int, rows
+) -> tuple[Fraction, Fraction, Fraction]:
     def form(scale, u) -> Fraction:
         total = Fraction(0)
         for r in range(n + 1):
@@ -107,20 +136,14 @@ def _exact_coefficients(family: str, n: int, k: int, rows) -> tuple[Fraction, Fr
                     )
         return Fraction(scale) * total
 
-    (s_ff, u_ff), (s_fg, x), (s_gg, y) = _energy.ENERGY[family][(n, k)]
+    (s_ff, u_ff), (s_fg, x), (s_gg, y) = _energy_table(family)[(n, k)]
     return form(s_ff, u_ff), -2 * form(s_fg, x), form(s_gg, y)
 
 
-def _as_polygons(points, family: str) -> tuple[np.ndarray, bool]:
+def _as_polygons(points, family: object) -> tuple[np.ndarray, bool]:
     """(m, n+1, d) float array and whether the input was a single polygon."""
     data = _family_data(family)
-    arr = points if isinstance(points, np.ndarray) else None
-    if arr is None:
-        try:
-            arr = np.array(points, dtype=float)
-        except (TypeError, ValueError) as exc:
-            raise ValueError(f"control points must be an array of numbers: {exc}") from None
-    arr = np.asarray(arr, dtype=float)
+    arr = val.real_array(points, "control points")
     if arr.ndim == 2:
         single = True
         arr = arr[None]
@@ -131,7 +154,7 @@ def _as_polygons(points, family: str) -> tuple[np.ndarray, bool]:
             f"control points must have shape (n+1, d) or (m, n+1, d), got shape {arr.shape}"
         )
     # shape and degree checks on the first polygon; finiteness is read off the results
-    val.as_points(np.zeros(arr.shape[1:]), family=family, degrees=tuple(data.DEGREES))
+    val.check_point_shape(arr.shape[1:], family=_name(family), degrees=tuple(data.DEGREES))
     return np.ascontiguousarray(arr), single
 
 
@@ -141,21 +164,37 @@ def _non_finite_error(arr: np.ndarray, single: bool) -> ValueError:
     return ValueError(f"{where}control point {bad[-2]} has a non-finite coordinate")
 
 
-def energy_coefficients(points, k: int, family: str = "same_degree"):
+def energy_coefficients(points, k: int, family: object = "same_degree"):
     """(a0, a1, a2) with E_k(λ) = a0 + a1 λ + a2 λ² for one polygon (n+1, d) or a batch
     (m, n+1, d). A single polygon whose coordinates are all ints or Fractions gives exact
     Fractions; a batch is computed in floating point, vectorised over m."""
     k = _check_order(k)
     data = _family_data(family)
     rows = val.exact_rows(points)
-    if rows is not None:
-        val.as_points(rows, family=family, degrees=tuple(data.DEGREES))
+    if rows is not None:  # exact: any magnitude, nothing is made a float
+        val.exact_shape(rows, family=_name(family), degrees=tuple(data.DEGREES))
         return _exact_coefficients(family, len(rows) - 1, k, rows)
-    coeffs, _, single = _float_coefficients(points, k, family)
-    return tuple(c[0] for c in coeffs) if single else tuple(coeffs)
+    coeffs, _, exponents, single = _float_coefficients(points, k, family)
+    coeffs = tuple(_unscale(c, exponents, single, "the energy coefficients") for c in coeffs)
+    return tuple(c[0] for c in coeffs) if single else coeffs
 
 
-def _float_coefficients(points, k: int, family: str):
+def _unscale(values, exponents, single: bool, what: str):
+    """values · 2^exponents (the polygons' scaling undone), refused where that overflows."""
+    if exponents is None:
+        return values
+    with np.errstate(over="ignore"):
+        out = np.ldexp(values, exponents)
+    if not np.isfinite(out).all():
+        where = "" if single else f" (polygon {int(np.argmin(np.isfinite(out)))})"
+        raise ValueError(
+            f"{what}: beyond the float range for these control points{where}; pass exact "
+            "ints/Fractions (computed exactly) or scale the points down (λ* does not change)"
+        )
+    return out
+
+
+def _float_coefficients(points, k: int, family: object):
     """((a0, a1, a2) arrays over the batch, a bound on a2's rounding error, single?).
 
     E_k(λ) = ‖Lᵀ H (Q − λW)‖² summed over coordinates (L the Cholesky factor of the Gram
@@ -163,6 +202,25 @@ def _float_coefficients(points, k: int, family: str):
     for every polygon, and three row-wise dot products give the coefficients.
     """
     arr, single = _as_polygons(points, family)
+    (a0, a1, a2), rounding = _coefficients_of(arr, k, family)
+    exponents = None
+    # coordinates near the float limits overflow (or underflow) in the quadratic forms: those
+    # polygons are redone scaled by a power of two, E_k(λ) scaling by its square (exactly)
+    redo = ~(np.isfinite(a0) & np.isfinite(a2)) | (a2 <= rounding)
+    if redo.any():
+        sub = arr[redo]
+        if not np.isfinite(sub).all():  # NaN/inf in the input propagate into these
+            raise _non_finite_error(arr, single)
+        big = np.abs(sub).reshape(len(sub), -1).max(axis=1)
+        shift = np.where(big > 0, np.frexp(big)[1] - 1, 0)
+        (b0, b1, b2), r2 = _coefficients_of(np.ldexp(sub, -shift[:, None, None]), k, family)
+        a0[redo], a1[redo], a2[redo], rounding[redo] = b0, b1, b2, r2
+        exponents = np.zeros(arr.shape[0], dtype=int)
+        exponents[redo] = 2 * shift
+    return (a0, a1, a2), rounding, exponents, single
+
+
+def _coefficients_of(arr: np.ndarray, k: int, family: object):
     m, size, dim = arr.shape
     factor, rows, a2_weight = _factored_forms(family, size - 1, k, dim)
     flat_t = arr.reshape(m, size * dim).T  # a view: column j is (P_0x, P_0y, P_1x, …) of j
@@ -171,20 +229,18 @@ def _float_coefficients(points, k: int, family: str):
     a0 = np.einsum("ij,ij->j", zf, zf)
     a1 = 2 * np.einsum("ij,ij->j", zf, zg)
     a2 = np.einsum("ij,ij->j", zg, zg)
-    if not (np.isfinite(a0).all() and np.isfinite(a2).all()):  # NaN/inf propagate into these
-        raise _non_finite_error(arr, single)
     norm2 = np.einsum("ij,ij->j", flat_t, flat_t)
-    return (a0, a1, a2), 1e-12 * a2_weight * norm2, single
+    return (a0, a1, a2), 1e-12 * a2_weight * norm2
 
 
 @cache
-def _factored_forms(family: str, n: int, k: int, dim: int) -> tuple[np.ndarray, int, float]:
+def _factored_forms(family: object, n: int, k: int, dim: int) -> tuple[np.ndarray, int, float]:
     """([kron((LᵀH M_0ᵀ)ᵀ, I) | kron((LᵀH M_1ᵀ)ᵀ, I)], rows, Σ|A2|) for the flattened layout,
     from the generated Bernstein, hodograph and Gram tables (the same data the exact forms
     were derived from). With Q = M_0ᵀD and W = −M_1ᵀD: Q − λW = (M_0ᵀ + λM_1ᵀ)D."""
     from .curves import _bernstein, _float_matrix, _tables
 
-    big = n + FAMILIES[family]._data_offset()
+    big = n + _family_cls(family)._data_offset()
     h = np.eye(big + 1)
     for d in range(big, big - k, -1):
         h = np.array(_bernstein.HODOGRAPH[d], dtype=float) @ h
@@ -192,10 +248,11 @@ def _factored_forms(family: str, n: int, k: int, dim: int) -> tuple[np.ndarray, 
     g = np.array(upper, dtype=float) * float(scale)
     g = (g + g.T) / 2  # the off-diagonal entries were stored doubled
     lower = np.linalg.cholesky(g)
-    data = FAMILIES[family]._data  # the tables are keyed by the family's data
-    m0 = _float_matrix(data, "bernstein", n, 0)
-    m1 = _float_matrix(data, "bernstein", n, 1)
-    assert len(_tables(data, "bernstein")[n]) == 2, "E_k is quadratic in λ for these bases"
+    m0 = _float_matrix(_family_data(family), "bernstein", n, 0)
+    m1 = _float_matrix(_family_data(family), "bernstein", n, 1)
+    assert len(_tables(_family_data(family), "bernstein")[n]) == 2, (
+        "E_k is quadratic in λ for these bases"
+    )
     eye = np.eye(dim)
     f_part = np.kron((lower.T @ h @ m0.T).T, eye)
     g_part = np.kron((lower.T @ h @ m1.T).T, eye)
@@ -204,7 +261,7 @@ def _factored_forms(family: str, n: int, k: int, dim: int) -> tuple[np.ndarray, 
     return factor, f_part.shape[1], float(np.abs(_float_forms(family, n, k)[2]).sum())
 
 
-def optimal_lambda(points, k: int, family: str = "same_degree", clamp: bool = False):
+def optimal_lambda(points, k: int, family: object = "same_degree", clamp: bool = False):
     """The λ minimising E_k(λ) = ∫|p^(k)|² for control points of shape (n+1, d), or for a
     batch of shape (m, n+1, d) in one vectorised call. Exact (Fractions) when every coordinate
     is an int or a Fraction.
@@ -217,12 +274,14 @@ def optimal_lambda(points, k: int, family: str = "same_degree", clamp: bool = Fa
     """
     data = _family_data(family)
     k = _check_order(k)
+    clamp = val.flag(clamp, "clamp")
     rows = val.exact_rows(points)
     exact = rows is not None
+    exponents = None
     if exact:
         a0, a1, a2 = energy_coefficients(rows, k, family)
     else:
-        (a0, a1, a2), rounding, single = _float_coefficients(points, k, family)
+        (a0, a1, a2), rounding, exponents, single = _float_coefficients(points, k, family)
     lo, hi = data.LAMBDA_RANGE
     lo_closed, hi_closed = data.LAMBDA_CLOSED
     if exact:
@@ -245,6 +304,11 @@ def optimal_lambda(points, k: int, family: str = "same_degree", clamp: bool = Fa
 
     energy = a0 + a1 * lam + a2 * lam * lam
     unconstrained_energy = a0 + a1 * best + a2 * best * best
+    if exponents is not None:  # the polygons that were computed scaled (see above)
+        energy, unconstrained_energy = (
+            _unscale(e, exponents if not single else exponents[0], single, f"E_{k}")
+            for e in (energy, unconstrained_energy)
+        )
     ok, ok_best = inside(lam), inside(best)
     if exact or np.ndim(best) == 0:
         ok, ok_best = bool(ok), bool(ok_best)
@@ -260,7 +324,7 @@ def optimal_lambda(points, k: int, family: str = "same_degree", clamp: bool = Fa
         energy=energy,
         unconstrained_energy=unconstrained_energy,
         k=k,
-        family=family,
+        family=_name(family),
         range_text=data.LAMBDA_RANGE_TEXT,
         clamped=clamp,
     )

@@ -19,16 +19,15 @@ and that point enters the solve.
 
 from __future__ import annotations
 
-import math
-import numbers
 from dataclasses import dataclass
 from fractions import Fraction
 
 import numpy as np
 
+from . import _join_engine
 from . import _validate as val
 from ._lazy import generated
-from .curves import FAMILIES, Curve
+from .curves import FAMILIES, Curve, family_class
 
 _bernstein = generated("bernstein")
 _joins = generated("joins")
@@ -70,15 +69,8 @@ def continuity_name(name: object) -> str:
 
 
 def _real(x: object, name: str) -> Fraction | float:
-    """An exact input as a Fraction, anything else as a finite float."""
-    if isinstance(x, bool | np.bool_) or not isinstance(x, numbers.Real | np.floating):
-        raise ValueError(f"{name} must be a real number, got {x!r}")
-    if val.is_exact_scalar(x):
-        return Fraction(int(x)) if isinstance(x, np.integer) else Fraction(x)  # type: ignore[arg-type]
-    value = float(x)  # type: ignore[arg-type]
-    if not math.isfinite(value):
-        raise ValueError(f"{name} must be finite, got {value}")
-    return value
+    """An exact input as a Fraction (any magnitude), anything else as a finite float."""
+    return val.real_number(x, name, float_range=False)
 
 
 def _check_alpha_d(cont: str, alpha: object, d: object) -> tuple[Fraction | float, ...]:
@@ -99,10 +91,15 @@ def _check_alpha_d(cont: str, alpha: object, d: object) -> tuple[Fraction | floa
     return a, dd
 
 
-def _family_name(family: object) -> str:
-    if isinstance(family, str) and family in FAMILIES:
-        return family
-    raise ValueError(f"unknown family {family!r}: choose one of {', '.join(map(repr, FAMILIES))}")
+def _family_class(family: object) -> type[Curve]:
+    """A built-in family's name, a family from lambda_bezier.load_family, or a curve class."""
+    if isinstance(family, str):
+        return FAMILIES[val.choice(family, "family", tuple(FAMILIES))]
+    return family_class(family)
+
+
+def _builtin(cls: type[Curve]) -> bool:
+    return FAMILIES.get(cls.family) is cls
 
 
 def _end_factor(curve: Curve):
@@ -120,11 +117,18 @@ def _is_zero(x, scale: float = 1.0) -> bool:
 
 
 def leading_weights(
-    curve: Curve, joint: Joint, family: str, degree: int, lam
+    curve: Curve, joint: Joint, family: object, degree: int, lam
 ) -> dict[tuple[int, str, int], Fraction | float]:
     """{(row, source, j): weight}: P_{row,2} = Σ weight · X, X = P_{n−j} of `curve` (source
-    "first") or P_{3,2} of the new curve (source "second"). Raises ValueError where the join
-    does not exist (degenerate end of `curve`, vanishing pivot for this m and λ2)."""
+    "first") or a given P_{j,2} of the new curve (source "second"). Raises ValueError where
+    the join does not exist (degenerate end of `curve`, vanishing pivot for this m and λ2).
+
+    Built-in families use the closed forms derived in derive/joins.py; a family from
+    load_family (on either side) is solved per degree from the power tables."""
+    cls = _family_class(family)
+    if not (_builtin(cls) and _builtin(type(curve))):
+        return _generic_weights(curve, joint, cls, degree, lam)
+    family = cls.family
     n, m = curve.degree, degree
     order = joint.order
     pts = curve.points
@@ -145,7 +149,7 @@ def leading_weights(
         )
     pivot_fn, pivot_args = _joins.PIVOTS[family]
     values = {"n": n, "m": m, "lam1": curve.lam, "lam2": lam, "alpha": joint.alpha, "d": joint.d}
-    pivots = pivot_fn(*(values[a] for a in pivot_args))
+    pivots = _solve_step(pivot_fn, pivot_args, values, joint)
     for r in range(1, order + 1):
         if _is_zero(pivots[f"P{r}"], m * m):
             text = _joins.PIVOT_TEXT[family][f"P{r}"]
@@ -157,7 +161,46 @@ def leading_weights(
                 "another degree or lam"
             )
     fn, args = _joins.JOINS[(curve.family, family, joint.continuity)]
-    return fn(*(values[a] for a in args))
+    return _solve_step(fn, args, values, joint)
+
+
+def _generic_weights(curve: Curve, joint: Joint, cls: type[Curve], degree: int, lam):
+    e1 = _join_engine.end_coefficients(curve, 1)[1]  # weights of P_{n-j} in C1'(1)
+    pts = curve.control_points()
+    tangent = [
+        sum(e1[j] * pts[curve.degree - j][c] for j in range(len(e1)))
+        for c in range(curve.dimension)
+    ]
+    scale = max(1.0, float(np.abs(curve.points).max()))
+    if all(_is_zero(v, scale * curve.degree**2) for v in tangent):
+        raise ValueError(
+            f"the first curve's end is degenerate: C1'(1) = 0 for this {curve.family} curve "
+            f"of degree {curve.degree} with lam = {curve.lam}, so there is no tangent to continue"
+        )
+    try:
+        return _join_engine.weights(
+            curve, joint.order, joint.alpha, joint.d, cls, degree, lam, joint.continuity
+        )
+    except (ZeroDivisionError, OverflowError):
+        raise ValueError(_too_extreme(joint)) from None
+
+
+def _solve_step(fn, args, values, joint: Joint):
+    """fn(*args) from generated/joins.py; in floating point an extreme α or d (the formulas
+    divide by α and α²) overflows or divides by an underflowed zero: named here."""
+    try:
+        return fn(*(values[a] for a in args))
+    except (ZeroDivisionError, OverflowError):
+        raise ValueError(_too_extreme(joint)) from None
+
+
+def _too_extreme(joint: Joint) -> str:
+    return (
+        f"alpha = {val.describe(joint.alpha)}, d = {val.describe(joint.d)} are too extreme for "
+        "floating point: the solved points grow like 1/alpha and 1/alpha² (and d/alpha²) and "
+        "overflow the float range, or alpha² underflows to zero; use moderate values, or exact "
+        "ints/Fractions for every input"
+    )
 
 
 def join(
@@ -168,7 +211,7 @@ def join(
     alpha=1,
     d=0,
     rest=(),
-    family: str | None = None,
+    family: object = None,
     *,
     check_range: bool = True,
 ) -> Curve:
@@ -195,13 +238,11 @@ def join(
             f"BernsteinLikeCurve), got {type(curve).__name__}"
         )
     spec = Joint(continuity, alpha, d)
-    fam = curve.family if family is None else _family_name(family)
-    cls = FAMILIES[fam]
+    cls = type(curve) if family is None else _family_class(family)
+    fam = cls.family
     data = cls._data
     degrees = tuple(data.DEGREES)
-    if isinstance(degree, bool) or not isinstance(degree, numbers.Integral):
-        raise ValueError(f"degree must be an integer, got {degree!r}")
-    degree = int(degree)
+    degree = val.integer(degree, "degree")
     if not degrees[0] <= degree <= degrees[-1]:
         raise ValueError(
             f"degree {degree} is not supported for {fam}: degrees {degrees[0]}..{degrees[-1]}"
@@ -218,7 +259,7 @@ def join(
     elif lam is not None:
         raise ValueError("a classical Bézier segment takes no shape parameter lam")
     rest_rows = _rest(rest, curve, spec, fam, degree)
-    weights = leading_weights(curve, spec, fam, degree, lam)
+    weights = leading_weights(curve, spec, cls, degree, lam)
     exact = (
         curve.is_exact
         and not isinstance(lam, float)
@@ -247,7 +288,12 @@ def join(
             if r > spec.order or w == 0:
                 continue
             p = first_f[curve.degree - j] if src == "first" else given_f[j - spec.order - 1]
-            lead_f[r] += float(w) * p
+            try:
+                lead_f[r] += float(w) * p
+            except OverflowError:  # an exact weight beyond the float range
+                lead_f[r] = np.inf
+        if not np.isfinite(lead_f).all():
+            raise ValueError(_too_extreme(spec))
         points = np.vstack([lead_f, given_f])
     if cls._has_lambda:
         return cls(points, lam, check_range=check_range)
@@ -270,10 +316,7 @@ def _rest(rest, curve: Curve, spec: Joint, family: str, degree: int):
         if family == "same_degree" and spec.order == 2
         else ""
     )
-    try:
-        arr = np.array(rest, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError(f"rest must be a (k, d) array of numbers, got {rest!r}") from None
+    arr = np.array(val.real_array(rest, "rest"), dtype=float)
     if arr.size == 0:
         arr = arr.reshape(0, curve.dimension)
     if arr.ndim != 2:

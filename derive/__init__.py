@@ -10,7 +10,7 @@ from __future__ import annotations
 import importlib
 
 # Order matters only for readability of progress output; files are independent.
-GROUPS = ("bernstein", "same_degree", "bernstein_like", "energy", "joins")
+GROUPS = ("bernstein", "same_degree", "bernstein_like", "energy", "joins", "properties")
 SYMPY_VERSION = "1.14.0"  # the SymPy whose printing the committed generated/ comes from
 
 

@@ -42,7 +42,7 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
-FORMAT = 1  # version of the derived JSON document
+FORMAT = 2  # version of the derived JSON document (2: with singular_parameters)
 MAX_DEGREE = 20
 MAX_OFFSET = 6
 BUILTIN = ("bezier", "same_degree", "bernstein_like")
@@ -606,6 +606,7 @@ def derive(defn: Definition, *, with_joins: bool = True) -> dict:
         if closed is None
         else {f"{e},{r},{j}": str(v) for (e, r, j), v in sorted(closed.items())},
         "energy": energy_artifacts(defn),
+        "singular_parameters": singular_artifacts(defn),
     }
     if with_joins:
         doc["joins"] = (
@@ -621,6 +622,35 @@ def render(defn: Definition) -> str:
     # keys in the order derive() builds them (every loop there runs over sorted keys), so the
     # banner comes first; the text does not depend on PYTHONHASHSEED
     return json.dumps(derive(defn), indent=1, ensure_ascii=False) + "\n"
+
+
+def _register_properties(defn: Definition) -> None:
+    from . import properties
+
+    interval = properties.Interval(defn.lo, defn.hi, not defn.lo_closed, not defn.hi_closed)
+    properties.register(
+        defn.name, lambda degree: basis_polys(defn, degree), defn.offset, defn.degrees, interval
+    )
+
+
+def singular_artifacts(defn: Definition) -> dict[str, list]:
+    """{n: [root, ...]}: the parameters inside the range where the degree-n basis is linearly
+    dependent (derive/properties.py: the determinant of the Bernstein coefficients, exact root
+    isolation); a root is an exact "p/q" or [[lo, hi], [c_0, ..., c_k]] around an irrational
+    root of the integer polynomial Σ c_j λ^j."""
+    from . import properties
+
+    _register_properties(defn)
+    iv = properties.FAMILY_RANGES[defn.name]
+    out = {}
+    for deg in defn.degrees:
+        out[str(deg)] = [
+            str(r.exact)
+            if r.exact is not None
+            else [[str(r.lo), str(r.hi)], [int(c) for c in r.factor]]
+            for r in properties.singular_roots(defn.name, deg, iv)
+        ]
+    return out
 
 
 class _EnergyBasis:
@@ -654,6 +684,7 @@ def register(defn: Definition, points: str = "P") -> None:
         )
     )
     energy.EXTRA[defn.name] = _EnergyBasis(defn)
+    _register_properties(defn)
     if closed is not None:
         joins.register(defn.name, closed, tuple(defn.degrees), has_lambda=True)
 

@@ -22,6 +22,7 @@ from collections.abc import Iterable, Iterator
 from pathlib import Path
 
 from .grammar import ParseError
+from .properties import Interval
 from .verify_checks import FAMILIES, claim_kind, kind_problem
 from .verify_expr import parse as parse_formula  # cached: the checkers reuse each parse
 
@@ -83,6 +84,8 @@ _STEP = _table(
     }
 )
 
+_BOUND = r"\s*[-+]?\d{1,30}(/\d{1,30})?\s*"  # an end of a parameter_range: an exact number
+
 # The payload keys a record (and an erratum, which replaces them) may carry.
 PAYLOAD = {
     "equations": {"type": "array", "items": _EQUATION},
@@ -123,6 +126,19 @@ PAYLOAD = {
     "vector": _STRS,
     "printed_form": _STR,
     "lambda": _STR,
+    # property claims (derive/verify_properties.py) and worked examples checked against a range
+    "parameter_range": {
+        "type": "string",
+        "pattern": rf"^\s*[\(\[]{_BOUND},{_BOUND}[\)\]]\s*$",
+    },
+    "min_degree": {"type": "integer", "minimum": 0, "maximum": 64},
+    "shape": _STR,
+    "claimed_degree": _STR,
+    "count": _STR,
+    "counted": _STR,
+    "continuity": {"enum": ["C0", "C1", "C2", "G1", "G2"]},
+    "expression": _STR,
+    "sign": {"enum": ["positive", "nonnegative", "nonzero"]},
 }
 
 _RECORD = _table(
@@ -137,7 +153,7 @@ _RECORD = _table(
         "point_function": _STR,
         "domain": _STR,
         "ambiguous": _STR,
-        "expect": {"enum": ["match", "mismatch", "pending"]},
+        "expect": {"enum": ["match", "mismatch", "caveat", "pending"]},
         "n": {"type": "integer", "minimum": 0, "maximum": 64},
         "k": {"type": "integer", "minimum": 0, "maximum": 20},
         "erratum": {
@@ -204,6 +220,9 @@ TEXT_KEYS = frozenset(
         "parameter_printed",
         "origin",
         "explanation",
+        "parameter_range",
+        "continuity",
+        "sign",
     }
 )
 
@@ -301,6 +320,11 @@ def load_file(path: Path) -> list[dict]:
                 f"{_where(path, rec, 'n')}: degree {rec['n']} is outside the {family} range "
                 f"{FAMILIES[family].degrees.start}..{FAMILIES[family].degrees.stop - 1}"
             )
+        if "parameter_range" in rec:
+            try:
+                Interval.parse(rec["parameter_range"])
+            except ValueError as exc:
+                raise RecordsError(f"{_where(path, rec, 'parameter_range')}: {exc}") from None
         _parse_formulas(path, rec)
         out.append(rec)
     return out
@@ -341,7 +365,7 @@ def _parse_formulas(path: Path, rec: dict) -> None:
             continue
         for key, text in _strings(value, name):
             parts = [text]
-            if key.endswith(".index") or ".where." in key:
+            if key.endswith(".index") or ".where." in key or key == "counted":
                 if text == "otherwise":
                     continue
                 if ".." in text:

@@ -1938,9 +1938,45 @@ def check_energy_example(record: dict, ctx: Context) -> Outcome:
     printed = _frac(record["lambda"])
     if printed != derived:
         diffs.append(f"λ: printed {printed}, derived {derived}")
-    return Outcome(
-        "mismatch" if diffs else "match", diffs, [f"λ vs optimal_lambda_exact(points, k={k})"]
-    )
+    checked = [f"λ vs optimal_lambda_exact(points, k={k})"]
+    if not diffs:
+        caveat = _range_caveat(record, ctx, pts, k, derived)
+        if caveat:
+            return Outcome("caveat", caveat, [*checked, "λ against the stated parameter range"])
+    return Outcome("mismatch" if diffs else "match", diffs, checked)
+
+
+def _range_caveat(record: dict, ctx: Context, pts, k: int, lam: Fraction) -> list[str]:
+    """Why an exactly right λ* is still not the answer the example states: it lies outside
+    the paper's parameter range, where E_k (a quadratic in λ) has no minimiser at all."""
+    from . import properties
+
+    family = ctx.family.name
+    text = record.get("parameter_range")
+    iv = properties.Interval.parse(text) if text else properties.FAMILY_RANGES[family]
+    if iv.contains(lam):
+        return []
+    forms = _energy().energy_forms(family, len(pts) - 1, k)
+    scale, gg = forms["gg"]
+    leading = scale * _energy()._quadratic(gg, pts)  # E_k(λ) = ... + leading·λ², exactly
+    side = iv.lo if lam <= iv.lo else iv.hi
+    closed = (not iv.lo_open) if side == iv.lo else (not iv.hi_open)
+    lines = [
+        f"λ* = {lam} (≈ {float(lam):.6g}) is the exact minimiser of E_{k}, but it lies outside "
+        f"the stated range {iv}",
+        f"E_{k}(λ) = E_{k}(λ*) + {leading}·(λ - λ*)² is convex, so on {iv} it is smallest at "
+        f"the end λ = {side}"
+        + (
+            ""
+            if closed
+            else f", which the range excludes: E_{k} has NO minimum on {iv} "
+            f"(its infimum is approached as λ → {side})"
+        ),
+    ]
+    bad = properties.nonnegative(family, len(pts) - 1, properties.Interval(lam, lam))
+    if bad is not None:
+        lines.append(f"at λ* the basis is not non-negative ({bad.text}): no convex-hull property")
+    return lines
 
 
 # --------------------------------------------------------------------------- joins (issue 4)
@@ -2342,3 +2378,7 @@ def check_join_ratio(record: dict, ctx: Context) -> Outcome:
     tally = join_per_degree(record, ctx, rows, specs, conditions, "equations")
     diffs = tally.lines()
     return Outcome("mismatch" if diffs else "match", diffs, [f"per-degree: {tally.total} pairs"])
+
+
+# The property kinds (basis_nonnegative, basis_linearly_independent, ...) register themselves.
+from . import verify_properties  # noqa: E402, F401

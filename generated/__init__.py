@@ -2,4 +2,4 @@
 # Regenerate with `lambda-bezier derive`; `lambda-bezier derive --check` reports any drift.
 """Exact data and evaluation code derived by derive/ (one module per formula group)."""
 
-GROUPS = ('bernstein', 'same_degree', 'bernstein_like', 'energy', 'joins',)
+GROUPS = ('bernstein', 'same_degree', 'bernstein_like', 'energy', 'joins', 'properties',)

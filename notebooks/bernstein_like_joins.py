@@ -25,9 +25,6 @@ import os
 from fractions import Fraction as F
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use(os.environ.get("MPLBACKEND", "Agg"))
 import matplotlib.pyplot as plt
 import numpy as np
 
@@ -80,7 +77,7 @@ for ax, petal in zip(axes, (petal3, petal4), strict=True):
             )
     ax.set_title(f"degree {len(petal) - 1}: λ = 1 (solid), 0 (dashed), −1 (dash-dot)")
 fig.savefig(FIGURES / "bernstein_like_petals_fig1.png", dpi=80)
-plt.close(fig)
+plt.show()
 
 # %% [markdown]
 # ## Fig. 2: a closed C¹ "apple" of two quartic and two cubic segments
@@ -122,7 +119,7 @@ for seg, color in zip(apple.segments, ("C3", "C0", "C3", "C0"), strict=True):
     plot_curve(seg, ax, color=color)
 ax.set_title("C¹ apple: quartics red, cubics blue")
 fig.savefig(FIGURES / "bernstein_like_apple_fig2.png", dpi=80)
-plt.close(fig)
+plt.show()
 
 # %% [markdown]
 # ## Figs. 3–5: C², G¹ and G² composites
@@ -150,15 +147,16 @@ for ax, (name, comp) in zip(axes, (("C²", c2), ("G¹", g1), ("G²", g2)), stric
     plot_composite(comp, ax)
     ax.set_title(f"{name} joins (Fig. {3 + ['C²', 'G¹', 'G²'].index(name)})")
 fig.savefig(FIGURES / "bernstein_like_joins_fig3_5.png", dpi=80)
-plt.close(fig)
+plt.show()
 
 # %% [markdown]
 # ## Figs. 6–9: shape adjustment
 #
 # * **C¹ (Fig. 6).** With the control points fixed, changing one segment's λ breaks C¹ unless
-#   the neighbour's λ changes too (the paper's eq. 17): only global adjustment. We change the
-#   top's λ and solve each neighbour's λ so that the end derivatives agree again; the end
-#   derivative is affine in λ, so two evaluations determine it.
+#   the neighbours' λ change too (the paper's eq. 17): only global adjustment.
+#   `with_lambda(0, λ, keep_points=True)` changes the top's λ and lets the right, bottom and
+#   left λ follow through the C¹ joints (exactly: the end derivative is affine in λ); the
+#   closing joint (left to top) is then measured.
 # * **G¹ (Fig. 7).** λ scales end tangents but never turns them, so changing one λ with the
 #   points fixed keeps G¹: local adjustment (`with_lambda(..., resolve=False)`).
 # * **C², G² (Figs. 8, 9).** λ alone breaks them; changing λ *and* re-solving the joint's
@@ -166,36 +164,21 @@ plt.close(fig)
 
 
 # %%
-def neighbour_lambda(fixed, moving, at_start: bool):
-    """λ for `moving` (points fixed) making its end derivative equal fixed's at the joint."""
-    t_fixed, t_moving = (1.0, 0.0) if at_start else (0.0, 1.0)
-    target = fixed.derivative(t_fixed)
-
-    def deriv(lam):
-        return type(moving)(moving.control_points(), lam, check_range=False).derivative(t_moving)
-
-    d0, d1 = deriv(0.0), deriv(1.0)  # affine in λ
-    slope = d1 - d0
-    return float(np.dot(target - d0, slope) / np.dot(slope, slope))
-
-
 fig, axes = plt.subplots(1, 4, figsize=(20, 5))
 ax = axes[0]
 for seg in apple.segments:
     plot_curve(seg, ax, polygon=False, color="k")
 for new_top, style in ((F(1), "--"), (F(-1, 2), "-.")):
-    t2 = lb.BernsteinLikeCurve(top.control_points(), new_top)
-    lam_right = neighbour_lambda(t2, right, at_start=True)
-    lam_left = neighbour_lambda(t2, left, at_start=False)
-    r2 = lb.BernsteinLikeCurve(right.control_points(), lam_right, check_range=False)
-    l2 = lb.BernsteinLikeCurve(left.control_points(), lam_left, check_range=False)
-    lam_bottom = neighbour_lambda(r2, bottom, at_start=True)
-    b2 = lb.BernsteinLikeCurve(bottom.control_points(), lam_bottom, check_range=False)
-    adjusted = lb.CompositeCurve([t2, r2, b2, l2])
+    adjusted = apple.with_lambda(0, new_top, keep_points=True)
+    t2, r2, b2, l2 = adjusted.segments
     ok = all(r.holds("C1") for r in adjusted.report()) and measure(l2, t2).holds("C1")
     print(
-        f"Fig. 6: top λ = {new_top}: right λ = {lam_right:.4f}, left λ = {lam_left:.4f}, "
-        f"bottom λ = {lam_bottom:.4f}, C1 everywhere: {ok}"
+        f"Fig. 6: top λ = {new_top}: right λ = {r2.lam}, bottom λ = {b2.lam}, "
+        f"left λ = {l2.lam}, C1 everywhere (closing joint too): {ok}"
+    )
+    assert ok and all(
+        s.control_points() == o.control_points()
+        for s, o in zip(adjusted.segments, apple.segments, strict=True)
     )
     for seg in adjusted.segments:
         plot_curve(seg, ax, polygon=False, color="C3", linestyle=style)
@@ -225,4 +208,4 @@ for ax, comp, name, idx in ((axes[2], c2, "C²", 1), (axes[3], g2, "G²", 1)):
     ax.set_title(f"Fig. {8 if name == 'C²' else 9}: {name}, λ and starred points changed")
 fig.tight_layout()
 fig.savefig(FIGURES / "bernstein_like_adjustment_fig6_9.png", dpi=80)
-plt.close(fig)
+plt.show()

@@ -22,9 +22,6 @@ import os
 from fractions import Fraction as F
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use(os.environ.get("MPLBACKEND", "Agg"))
 import matplotlib.pyplot as plt
 import numpy as np
 
@@ -59,7 +56,7 @@ plot_de_casteljau(P, F(1, 3), ax)
 ax.legend(fontsize=8)
 ax.set_title("de Casteljau at t = 1/3")
 fig.savefig(FIGURES / "bezier_de_casteljau.png", dpi=80)
-plt.close(fig)
+plt.show()
 
 # %% [markdown]
 # ## Subdivision between t₁ = 1/4 and t₂ = 3/4
@@ -80,7 +77,7 @@ plot_curve(arch, ax, label="whole curve", color="0.5")
 plot_curve(piece, ax, label="piece [1/4, 3/4]", color="C3", linewidth=2.5)
 ax.legend(fontsize=8)
 fig.savefig(FIGURES / "bezier_segment.png", dpi=80)
-plt.close(fig)
+plt.show()
 
 # %% [markdown]
 # ## The convexity example
@@ -109,7 +106,7 @@ axes[1].axhline(0, color="k", linewidth=0.5)
 axes[1].set_xlabel("x")
 axes[1].set_ylabel("y''")
 fig.savefig(FIGURES / "bezier_convexity.png", dpi=80)
-plt.close(fig)
+plt.show()
 
 # %% [markdown]
 # ## Curvature at the ends
@@ -122,4 +119,4 @@ fig, ax = plt.subplots(figsize=(5, 3))
 plot_curvature(cubic, ax)
 print("curvature at t = 0 and 1:", cubic.curvature([0.0, 1.0]))
 fig.savefig(FIGURES / "bezier_curvature.png", dpi=80)
-plt.close(fig)
+plt.show()

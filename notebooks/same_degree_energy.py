@@ -29,9 +29,6 @@ import os
 from fractions import Fraction
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use(os.environ.get("MPLBACKEND", "Agg"))
 import matplotlib.pyplot as plt
 import numpy as np
 
@@ -75,7 +72,7 @@ for n, pts in POLYGONS.items():
     plot_curvature(bez, axes[1, 3], color="k")
     fig.tight_layout()
     fig.savefig(FIGURES / f"same_degree_energy_n{n}.png", dpi=80)
-    plt.close(fig)
+    plt.show()
 
 # %% [markdown]
 # ## Section 4.2: the published example, λ = −690/319
@@ -112,7 +109,7 @@ plot_curve(
 plot_curve(lb.BezierCurve(EXAMPLE), ax, polygon=False, label="Bézier", color="k", linewidth=0.8)
 ax.legend(fontsize=8)
 fig.savefig(FIGURES / "same_degree_example_4_2.png", dpi=80)
-plt.close(fig)
+plt.show()
 
 # %% [markdown]
 # ## Fig. 1: the geometric evaluation algorithm (n = 5, t = 2/3, λ = 1/2)
@@ -139,7 +136,7 @@ for level, name, marker in zip(levels, names, markers, strict=True):
 ax.legend(fontsize=7)
 ax.set_title("Geometric evaluation, n = 5, t = 2/3, λ = 1/2")
 fig.savefig(FIGURES / "same_degree_geometric_fig1.png", dpi=80)
-plt.close(fig)
+plt.show()
 
 # %% [markdown]
 # ## Fig. 2: shape adjustment of a closed composite of cubic λ-curves
@@ -182,4 +179,4 @@ for (name, comp), style in zip(variants.items(), ("-", ":", "-"), strict=True):
         )
 ax.set_title("Fig. 2: closed G¹ composite, λ changed per segment")
 fig.savefig(FIGURES / "same_degree_composite_fig2.png", dpi=80)
-plt.close(fig)
+plt.show()

@@ -24,14 +24,15 @@ import os
 import sys
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use(os.environ.get("MPLBACKEND", "Agg"))
 import matplotlib.pyplot as plt
 import numpy as np
 import sympy as sp
 
-ROOT = Path.cwd().resolve().parent if Path.cwd().name == "notebooks" else Path.cwd().resolve()
+# the checkout: the first of the working directory and its parents that holds derive/ (the
+# notebook runs from notebooks/, and from docs/tutorials/ when the docs are built)
+ROOT = next(
+    p for p in (Path.cwd().resolve(), *Path.cwd().resolve().parents) if (p / "derive").is_dir()
+)
 sys.path.insert(0, str(ROOT))
 import derive.verify as verify  # noqa: E402
 import lambda_bezier as lb  # noqa: E402
@@ -96,7 +97,7 @@ for ax, (label, text) in zip(
     ax.set_title(f"eq. (7) {label} (dotted: b_i^5 from eq. (1)), λ = 1/2")
     ax.legend(fontsize=7)
 fig.savefig(FIGURES / "verify_000_eq7.png", dpi=80)
-plt.close(fig)
+plt.show()
 
 # %% [markdown]
 # ## 002, the convexity example: y(x) printed with (1 − x²) instead of (1 − x)²
@@ -114,5 +115,39 @@ ax.plot(tt, printed_y(tt), "C3--", label="y(x) as printed")
 ax.set_title("002 convexity example, ω = 1/8")
 ax.legend(fontsize=8)
 fig.savefig(FIGURES / "verify_002_convexity.png", dpi=80)
-plt.close(fig)
+plt.show()
 print("largest gap:", float(np.max(np.abs(printed_y(tt) - xy[:, 1]))))
+
+# %% [markdown]
+# ## 000, Proposition 5: the basis is not independent on all of (−2, 1]
+#
+# The verifier decides linear independence exactly for every λ of the stated range: the
+# determinant of the Bernstein coefficients, as a polynomial in λ, has roots inside (−2, 1]
+# from degree 5 on. Below, from the definition (eq. 1) alone: the smallest singular value of
+# the sampled basis against λ, dropping to zero at each `singular_parameters` value; and
+# b₂⁵ = b₃⁵ at λ = −3/2.
+
+# %%
+tt = np.linspace(0, 1, 201)
+lams = np.linspace(-1.999, 1, 1200)
+fig, ax = plt.subplots(figsize=(7, 4))
+for n in (5, 6, 7, 9):
+    sv = []
+    for lam in lams:
+        basis = lb.SameDegreeCurve(np.eye(n + 1)[:, :2], lam).basis(tt)
+        s = np.linalg.svd(basis, compute_uv=False)
+        sv.append(s[-1] / s[0])
+    ax.semilogy(lams, sv, label=f"n = {n}")
+    roots = [float(r) for r in lb.singular_parameters("same_degree", n)]
+    print(f"degree {n}: singular at λ ≈ {[round(r, 6) for r in roots]}")
+    for r in roots:
+        ax.axvline(r, color="grey", linewidth=0.5)
+ax.set_xlabel("λ")
+ax.set_ylabel("smallest / largest singular value")
+ax.set_title("000 Prop. 5: the same-degree basis loses rank inside (−2, 1]")
+ax.legend(fontsize=8)
+fig.savefig(FIGURES / "verify_000_prop5.png", dpi=80)
+plt.close(fig)
+b5 = lb.SameDegreeCurve(np.eye(6)[:, :2], -1.5).basis(tt)
+print("max |b_2 - b_3| at λ = -3/2, degree 5:", float(np.max(np.abs(b5[:, 2] - b5[:, 3]))))
+assert np.max(np.abs(b5[:, 2] - b5[:, 3])) < 1e-12

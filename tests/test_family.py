@@ -510,3 +510,30 @@ def test_generic_join_engine_equals_the_closed_forms():
                     first, spec.order, spec.alpha, spec.d, lb.FAMILIES[f2], m, lam2, cont
                 )
                 assert got == want, (f1, f2, cont, n, m)
+
+
+def test_singular_parameters_of_a_family_defined_by_data(engine, ns_family):
+    """The engine runs the same exact procedure as for the built-in families: a copy of
+    same_degree under another name has exactly its singular parameters, and the published
+    family is singular at sigma = 0 (the inner functions vanish: the curve is the segment)."""
+    import dataclasses
+
+    import lambda_bezier as lb
+
+    copy = dataclasses.replace(engine.builtin_definition("same_degree"), name="sd_copy")
+    table = engine.singular_artifacts(copy)
+    for n in (3, 5, 6, 9):
+        want = lb.singular_parameters("same_degree", n)
+        got = table[str(n)]
+        assert len(got) == len(want)
+        for g, w in zip(got, want, strict=True):
+            if isinstance(g, str):
+                assert Fraction(g) == w
+            else:
+                assert (Fraction(g[0][0]), Fraction(g[0][1])) == (w.lo, w.hi)
+    assert lb.singular_parameters(ns_family, 4) == (Fraction(0),)
+    bez = lb.BezierCurve([(0, 0), (1, 2), (3, 2), (4, 0)])
+    c = ns_family.from_bezier(bez, Fraction(1, 2))
+    assert c.to_bezier().control_points() == bez.control_points()
+    with pytest.raises(ValueError, match="linearly dependent at λ = 0"):
+        ns_family.from_bezier(bez, 0)

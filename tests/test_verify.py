@@ -11,6 +11,7 @@ import io
 import json
 import re
 import shutil
+from fractions import Fraction
 
 import pytest
 from conftest import ROOT
@@ -46,16 +47,12 @@ def report(verify, records):
     return verify.verify(records)
 
 
-RECORD_IDS = [
-    r["id"]
-    for r in (
-        importlib.import_module(
-            _derive_runner.load_derive(ROOT).__name__ + ".verify"
-        ).load_records()
-        if (ROOT / "derive" / "verify.py").is_file()
-        else []
-    )
-]
+_RECORDS = (
+    importlib.import_module(_derive_runner.load_derive(ROOT).__name__ + ".verify").load_records()
+    if (ROOT / "derive" / "verify.py").is_file()
+    else []
+)
+RECORD_IDS = [r["id"] for r in _RECORDS]
 
 
 # --------------------------------------------------------------------------- the run
@@ -117,6 +114,17 @@ def _bump_point(rows):
 def mutate(record: dict) -> tuple[dict, str]:
     """The record with one printed number changed (and a description of the change)."""
     rec = copy.deepcopy(record)
+    for key in ("shape", "claimed_degree", "count", "continuity"):
+        if key in rec:  # property and word claims: the one printed value
+            rec[key] = _bump(rec[key])
+            return rec, f"{key} -> {rec[key]}"
+    if "expression" in rec and claim_kind(rec) == "formula_domain":
+        rec["min_degree"] = rec.get("min_degree", 0) + 1  # a caveat: past the degenerate degree
+        return rec, f"min_degree -> {rec['min_degree']}"
+    if "parameter_range" in rec and "lambda" not in rec:  # one unit wider at both ends
+        lo, hi = (Fraction(x) for x in re.findall(r"-?\d+(?:/\d+)?", rec["parameter_range"]))
+        rec["parameter_range"] = f"[{lo - 1}, {hi + 1}]"
+        return rec, f"parameter_range -> {rec['parameter_range']}"
     if "matrix" in rec:
         rec["matrix"][0][0] = int(rec["matrix"][0][0]) + 1
         return rec, "matrix[0][0] + 1"
@@ -149,7 +157,39 @@ def mutate(record: dict) -> tuple[dict, str]:
     raise AssertionError(f"no mutation for {record['id']}")
 
 
-@pytest.mark.parametrize("rid", RECORD_IDS)
+def claim_kind(record: dict) -> str:
+    return record["claim"].split(".", 1)[1]
+
+
+# Property claims that print no number: true for every λ whatever range one states (identities
+# between the Bernstein coefficients, or a basis independent for every real λ). That their
+# checkers do fail on a basis without the property is tested in tests/test_claims.py.
+NO_NUMBER = {
+    "basis_partition_of_unity",
+    "basis_symmetric",
+    "basis_endpoint_interpolation",
+}
+INDEPENDENT_FOR_EVERY_LAMBDA = {"001.eq2.independent", "002.bernstein.independent"}
+# The classical Bernstein basis has no parameter whose range a record could state.
+NO_PARAMETER = {"002.bernstein.nonnegative", "002.curve.convex_hull"}
+
+
+def _has_no_number(record: dict) -> bool:
+    kind = record["claim"].split(".", 1)[1]
+    return kind in NO_NUMBER or record["id"] in INDEPENDENT_FOR_EVERY_LAMBDA | NO_PARAMETER
+
+
+WITHOUT_NUMBER = [r["id"] for r in _RECORDS if _has_no_number(r)]
+
+
+def test_records_without_a_printed_number_match(report):
+    """These state a property with no number a misprint could change; that their checkers
+    fail on a basis without the property is tested in tests/test_claims.py."""
+    by_id = {r.id: r for r in report.results}
+    assert WITHOUT_NUMBER and all(by_id[rid].verdict == "match" for rid in WITHOUT_NUMBER)
+
+
+@pytest.mark.parametrize("rid", [rid for rid in RECORD_IDS if rid not in WITHOUT_NUMBER])
 def test_one_changed_number_flips_the_verdict(verify, report, rid):
     result = next(r for r in report.results if r.id == rid)
     record = result.record
@@ -161,12 +201,14 @@ def test_one_changed_number_flips_the_verdict(verify, report, rid):
         assert verify.check_record(fixed).verdict == "match", f"{rid}: erratum does not match"
         record = fixed
     else:
-        assert result.verdict == "match"
+        assert result.verdict in ("match", "caveat")
     mutated, how = mutate(record)
     res = verify.check_record(mutated)
     assert res.error is None, f"{rid} ({how}): {res.error}"
-    assert res.verdict == "mismatch", f"{rid}: changing {how} did not flip the verdict"
-    assert res.outcome.diffs
+    domain_caveat = result.verdict == "caveat" and claim_kind(record) == "formula_domain"
+    flipped = "match" if domain_caveat else "mismatch"
+    assert res.verdict == flipped, f"{rid}: changing {how} did not flip the verdict"
+    assert res.outcome.diffs or flipped == "match"
 
 
 # --------------------------------------------------------------------------- engine details
@@ -453,3 +495,28 @@ def test_exact_functions_in_fmpq_and_fraction_agree(verify):
     for fn in (slow, fast):
         with pytest.raises(ValueError, match="non-integer"):
             fn(Fraction(5, 2), 0)
+
+
+def test_coverage_names_every_record_and_the_readme_table_is_current(verify, report):
+    """The coverage inventory names only existing records and every built-in record; the
+    README's table is exactly `lambda-bezier verify --coverage --format markdown`."""
+    coverage = importlib.import_module(verify.__name__.rsplit(".", 1)[0] + ".coverage")
+    items = coverage.load()
+    verdicts = {r.id: r.verdict for r in report.results}
+    assert coverage.problems(items, verdicts) == []
+    assert all(it.records or it.reason for it in items)
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    start = readme.index("<!-- coverage:start -->\n") + len("<!-- coverage:start -->\n")
+    table = readme[start : readme.index("<!-- coverage:end -->")]
+    assert table == coverage.render(items, verdicts, markdown=True), (
+        "README coverage table is stale: paste `lambda-bezier verify --coverage --format "
+        "markdown` between its markers"
+    )
+
+
+def test_coverage_run_exits_cleanly(capsys):
+    code = _verify_runner.run(coverage=True, root=ROOT, progress=False, fmt="text")
+    out = capsys.readouterr().out
+    assert code == 0
+    assert "items in 3 documents" in out and "000.prop5 (mismatch)" in out
+    assert _verify_runner.run(coverage=True, root=ROOT, only=["000"], progress=False) == 2

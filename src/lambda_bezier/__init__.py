@@ -26,6 +26,7 @@ if TYPE_CHECKING:
     from .energy import OptimalLambda, energy_coefficients, energy_matrices, optimal_lambda
     from .family import Family, load_family
     from .joins import Joint, join
+    from .properties import IsolatedRoot, singular_parameters
 
 __version__ = "0.1.0"
 
@@ -49,6 +50,8 @@ _EXPORTS = {
     "load_family": "family",
     "Joint": "joins",
     "join": "joins",
+    "IsolatedRoot": "properties",
+    "singular_parameters": "properties",
 }
 __all__ = [
     "FAMILIES",
@@ -57,6 +60,7 @@ __all__ = [
     "CompositeCurve",
     "Curve",
     "Family",
+    "IsolatedRoot",
     "Joint",
     "JointReport",
     "OptimalLambda",
@@ -67,6 +71,7 @@ __all__ = [
     "join",
     "load_family",
     "optimal_lambda",
+    "singular_parameters",
 ]
 
 

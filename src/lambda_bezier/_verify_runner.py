@@ -1,8 +1,9 @@
 """`lambda-bezier verify`: every published formula and matrix checked against the derivation.
 
 The engine lives in derive/verify.py (it needs SymPy, imported only when the command runs);
-this module parses the options, shows progress on a terminal, renders the report and keeps
-ERRATA.md current in a checkout.
+this module parses the options, shows progress on a terminal, renders the report (or, with
+--coverage, the papers' inventory from derive/coverage.py) and keeps ERRATA.md current in a
+checkout.
 """
 
 from __future__ import annotations
@@ -24,7 +25,8 @@ FORMATS = ("text", "json", "markdown")
 EXIT_CODES = """exit codes:
   0  every verdict is as its record expects (a record without `expect` expects match)
   1  some verdict differs from its expectation (or, with --strict, is not match), an
-     erratum does not verify, a checker failed, or ERRATA.md is stale
+     erratum does not verify, a checker failed, or ERRATA.md is stale (with --coverage:
+     also an item naming a missing record, or a built-in record in no item)
   2  a records file cannot be read or validated, or the options are wrong
 
 Records files are read by a grammar of our own (nothing in them is run as code) and
@@ -57,6 +59,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="(re)write ERRATA.md at the checkout root from the recorded errata",
     )
     parser.add_argument(
+        "--coverage",
+        action="store_true",
+        help="print, per document and section, every item of the three papers with its "
+        "records and verdicts or the reason it has none (built-in records only)",
+    )
+    parser.add_argument(
         "--only",
         action="append",
         default=[],
@@ -80,6 +88,7 @@ def run_from_args(args) -> int:
         root=root,
         only=args.only,
         paths=args.paths,
+        coverage=args.coverage,
     )
 
 
@@ -129,6 +138,7 @@ def run(
     out=None,
     progress: bool | None = None,
     paths: list[Path] | None = None,
+    coverage: bool = False,
 ) -> int:
     out = out or sys.stdout
     if root is not None and find_checkout(root) != root:
@@ -142,6 +152,13 @@ def run(
         print(
             "lambda-bezier verify: --errata rewrites ERRATA.md from the built-in records; "
             "it takes no PATH",
+            file=sys.stderr,
+        )
+        return 2
+    if coverage and (paths or only or errata):
+        print(
+            "lambda-bezier verify: --coverage reports on the built-in records; it takes no "
+            "PATH, --only or --errata",
             file=sys.stderr,
         )
         return 2
@@ -188,7 +205,14 @@ def run(
             report.extra_problems.append(
                 f"{verify.ERRATA_FILE} is stale: run `{verify.ERRATA_COMMAND}` and commit it"
             )
-    out.write(verify.RENDERERS[fmt](report))
+    if coverage:
+        cov = importlib.import_module(f"{derive.__name__}.coverage")
+        items = cov.load()
+        verdicts = {r.id: r.verdict for r in report.results}
+        report.extra_problems += cov.problems(items, verdicts)
+        out.write(cov.render(items, verdicts, markdown=fmt == "markdown"))
+    else:
+        out.write(verify.RENDERERS[fmt](report))
     out.flush()
     problems = report.problems()
     if problems:

@@ -26,19 +26,39 @@ NAMES = ("C0", "C1", "C2", "G1", "G2")
 
 @dataclass(frozen=True)
 class JointReport:
-    """The continuity measured at the joint between segment `index` and `index + 1`
-    (global parameter u = index + 1), from evaluate/derivative/curvature of the segments.
+    r"""The continuity measured at the joint between segment `index` and `index + 1`
+    (global parameter u = index + 1), from evaluate/derivative/curvature of the segments
+    :math:`C_1` (the left one) and :math:`C_2` (the right one).
 
-    position_gap: |C1(1) − C2(0)|.
-    first_derivative_gap, second_derivative_gap: |C1^(k)(1) − C2^(k)(0)| (k = 1, 2).
-    speed_ratio: |C1'(1)| / |C2'(0)| (the α of a G joint; 1 for a C joint).
-    tangent_angle: angle between C1'(1) and C2'(0), in radians (NaN if one vanishes).
-    curvature: (κ1(1), κ2(0)), signed in 2D; curvature_gap = |κ1 − κ2|.
-    binormal_angle: 3D only (None in 2D, where the sign of κ carries the orientation): angle
-        between C1'×C1'' at 1 and C2'×C2'' at 0 (NaN where a curvature vanishes).
-    achieved: the names among C0, C1, C2, G1, G2 that hold within the tolerance.
-    built_with: the Joint the composite holds for this joint (None if it was not built by
-        join and is never re-solved).
+    Attributes
+    ----------
+    index, u : int
+        The left segment's index and the joint's global parameter u = index + 1.
+    position_gap : float
+        :math:`\lVert C_1(1) - C_2(0) \rVert`.
+    first_derivative_gap, second_derivative_gap : float
+        :math:`\lVert C_1^{(k)}(1) - C_2^{(k)}(0) \rVert` for k = 1, 2.
+    speed_ratio : float
+        :math:`\lVert C_1'(1) \rVert / \lVert C_2'(0) \rVert` (the α of a G joint; 1 for a
+        C joint).
+    tangent_angle : float
+        Angle between :math:`C_1'(1)` and :math:`C_2'(0)`, in radians (NaN if one vanishes).
+    curvature : tuple of float
+        :math:`(\kappa_1(1), \kappa_2(0))`, signed in 2D.
+    curvature_gap : float
+        :math:`\lvert \kappa_1(1) - \kappa_2(0) \rvert`.
+    binormal_angle : float or None
+        3D only (None in 2D, where the sign of κ carries the orientation): angle between
+        :math:`C_1' \times C_1''` at 1 and :math:`C_2' \times C_2''` at 0 (NaN where a
+        curvature vanishes).
+    achieved : frozenset of str
+        The names among C0, C1, C2, G1, G2 that hold within the tolerance.
+    built_with : Joint or None
+        The Joint the composite holds for this joint (None if it was not built by join and
+        is never re-solved).
+    tol : float
+        The tolerance the names in `achieved` were decided with (relative to the size of the
+        control points and of the derivatives compared).
     """
 
     index: int
@@ -235,7 +255,13 @@ class CompositeCurve:
         return CompositeCurve([*self.segments, nxt], [*self.joints, spec])
 
     def with_lambda(
-        self, index: int, lam, *, resolve: bool = True, check_range: bool = True
+        self,
+        index: int,
+        lam,
+        *,
+        resolve: bool = True,
+        check_range: bool = True,
+        keep_points: bool = False,
     ) -> CompositeCurve:
         """A new composite with segment `index` given shape parameter `lam` (001, section
         3.3). With resolve=True (default) the joint into that segment and every joint after
@@ -243,9 +269,20 @@ class CompositeCurve:
         moving the re-solved segments' leading control points (the caller's trailing points
         stay); joints without a recorded Joint are left as they are. With resolve=False only
         λ changes: a G1 joint survives that (λ scales the end tangents, never turns them),
-        C1, C2 and G2 joints in general do not; report() shows which."""
+        C1, C2 and G2 joints in general do not; report() shows which.
+
+        keep_points=True is 001's eq. (17) adjustment: every control point stays, and the
+        neighbours' shape parameters follow the changed one through every C1 joint reached
+        (in both directions; each new λ solves (end factor)·(last edge) = (start factor)·(first
+        edge), exactly for exact input). A G1 joint needs no change and ends the chain, as
+        does a joint without a recorded Joint; a C2 or G2 joint cannot be kept by λ alone and
+        is refused. A λ a joint needs outside its family's range is refused, naming the joint
+        and the value."""
         index = val.integer(index, "index")
         resolve = val.flag(resolve, "resolve")
+        keep_points = val.flag(keep_points, "keep_points")
+        if keep_points:
+            return _follow_c1(self, index, lam, check_range=check_range)
         if not 0 <= index < len(self.segments):
             raise ValueError(
                 f"index {index} is out of range: the composite has {len(self.segments)} segments"
@@ -338,3 +375,85 @@ class CompositeCurve:
             measure(self.segments[j], self.segments[j + 1], index=j, joint=self.joints[j], tol=tol)
             for j in range(len(self.segments) - 1)
         )
+
+
+# --------------------------------------------------------------------------- eq. (17) of 001
+
+
+def _end_velocity(curve: Curve, end: int):
+    """p'(end) for end 0 or 1: exact (Fractions) for an exact curve, else floats."""
+    bez = curve.to_bezier()
+    pts = bez.control_points()
+    size = bez.degree
+    a, b = (pts[0], pts[1]) if end == 0 else (pts[-2], pts[-1])
+    return tuple(size * (q - p) for p, q in zip(a, b, strict=True))
+
+
+def _velocity_in_lam(curve: Curve, end: int, *, exact: bool):
+    """(A, S) with p'(end; λ) = A + λ S: every basis of the project is affine in λ."""
+    lam0, lam1 = (0, 1) if exact else (0.0, 1.0)
+    pts = curve.control_points()
+    at0 = _end_velocity(type(curve)(pts, lam0, check_range=False), end)
+    at1 = _end_velocity(type(curve)(pts, lam1, check_range=False), end)
+    return at0, tuple(b - a for a, b in zip(at0, at1, strict=True))
+
+
+def _solve_lam(target, seg: Curve, end: int, joint: int, exact: bool):
+    """The λ of `seg` (points fixed) whose end velocity equals `target`."""
+    a, slope = _velocity_in_lam(seg, end, exact=exact)
+    ss = sum(v * v for v in slope)
+    if ss == 0:
+        raise ValueError(f"joint {joint}: λ does not change the segment's end tangent")
+    lam = sum((t - v) * w for t, v, w in zip(target, a, slope, strict=True)) / ss
+    miss = [t - (v + lam * w) for t, v, w in zip(target, a, slope, strict=True)]
+    scale = max(1.0, max(abs(float(t)) for t in target))
+    if any(m != 0 for m in miss) if exact else max(abs(float(m)) for m in miss) > 1e-9 * scale:
+        raise ValueError(
+            f"joint {joint}: no λ keeps it C1 with the control points fixed (the edges at the "
+            "joint are not parallel)"
+        )
+    return lam
+
+
+def _follow_c1(comp: CompositeCurve, index: int, lam, *, check_range: bool) -> CompositeCurve:
+    if isinstance(index, bool) or not isinstance(index, int | np.integer):
+        raise ValueError(f"index must be an integer, got {index!r}")
+    if not 0 <= index < len(comp.segments):
+        raise ValueError(
+            f"index {index} is out of range: the composite has {len(comp.segments)} segments"
+        )
+    segs = list(comp.segments)
+    old = segs[index]
+    if not type(old)._has_lambda:
+        raise ValueError(f"segment {index} is a classical Bézier curve: it has no lam")
+    segs[index] = type(old)(old.control_points(), lam, check_range=check_range)
+    # forward (joint j between j and j + 1: segment j + 1 follows) and backward
+    for direction in (1, -1):
+        j = index if direction == 1 else index - 1
+        while 0 <= j < len(segs) - 1:
+            spec = comp.joints[j]
+            if spec is None or spec.continuity in ("C0", "G1"):
+                break  # nothing to keep (G1: λ scales the tangents, never turns them)
+            if spec.continuity != "C1":
+                raise ValueError(
+                    f"joint {j} is {spec.continuity}: with the control points fixed a change of "
+                    "λ cannot keep it (001, section 3.3); use keep_points=False to re-solve "
+                    "its leading points"
+                )
+            fixed, moving = (segs[j], segs[j + 1]) if direction == 1 else (segs[j + 1], segs[j])
+            if not type(moving)._has_lambda:
+                raise ValueError(f"joint {j}: its other segment is a classical Bézier curve")
+            exact = fixed.is_exact and moving.is_exact
+            target = _end_velocity(fixed, 1 if direction == 1 else 0)
+            new = _solve_lam(target, moving, 0 if direction == 1 else 1, j, exact)
+            moved = j + 1 if direction == 1 else j
+            try:
+                val.as_lambda(new, moving._data, check_range=check_range)
+            except ValueError:
+                raise ValueError(
+                    f"joint {j}: keeping it C1 needs λ = {new} for segment {moved}, outside the "
+                    f"{moving.family} range {moving._data.LAMBDA_RANGE_TEXT}"
+                ) from None
+            segs[moved] = type(moving)(moving.control_points(), new, check_range=check_range)
+            j += direction
+    return CompositeCurve(segs, comp.joints)

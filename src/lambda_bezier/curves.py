@@ -115,7 +115,7 @@ class Curve:
     # ------------------------------------------------------------------ description
     @property
     def degree(self) -> int:
-        """n: the curve has n + 1 control points."""
+        """The degree n (the curve has n + 1 control points)."""
         return self.points.shape[0] - 1
 
     @property
@@ -259,9 +259,12 @@ class Curve:
         return kappa[()] if np.ndim(kappa) == 0 else kappa
 
     def energy(self, k: int):
-        """E_k = ∫_0^1 |p^(k)(t)|² dt (k = 1, 2, 3: stretch, strain, jerk; any k >= 0 works),
-        from the Bézier form and the generated Bernstein Gram matrices. A Fraction when the
-        curve is exact."""
+        r"""The energy :math:`E_k = \int_0^1 \lVert p^{(k)}(t) \rVert^2 \, dt`.
+
+        k = 1, 2, 3 are the stretch, strain and jerk energies (any k >= 0 works). Computed from
+        the Bézier form and the generated Bernstein Gram matrices: a Fraction when the curve is
+        exact, a float otherwise.
+        """
         from ._generated.energy import GRAM
 
         k = val.as_order(k)
@@ -316,6 +319,15 @@ class Curve:
         return _geometry.torsion(self, t, extrapolate=extrapolate)
 
     # ------------------------------------------------------------------ conversion
+    @classmethod
+    def from_bezier(cls, bezier: BezierCurve, lam=None) -> Curve:
+        """The curve of this family, at shape `lam`, that traces `bezier` exactly (Fractions
+        for exact input), in the smallest degree whose basis spans it; refused at a singular
+        parameter. See lambda_bezier.conversion for which degree that is."""
+        from .conversion import from_bezier
+
+        return from_bezier(cls, bezier, lam)
+
     def to_bezier(self) -> BezierCurve:
         """The same curve as a classical Bézier curve of degree N (n, or n + 2).
         Exact (Fraction control points) when the curve is exact."""
@@ -377,7 +389,8 @@ class Curve:
 
 
 class BezierCurve(Curve):
-    """A classical Bézier curve Σ P_i B_{i,n}(t) (lecture notes 002)."""
+    r"""A classical Bézier curve :math:`p(t) = \sum_{i=0}^n P_i B_{i,n}(t)` with the
+    Bernstein basis :math:`B_{i,n}(t) = \binom{n}{i} t^i (1-t)^{n-i}` (lecture notes 002)."""
 
     family = "bezier"
     _data = _bernstein
@@ -484,7 +497,9 @@ class BezierCurve(Curve):
 
 
 class SameDegreeCurve(Curve):
-    """λ-Bézier curve of the same-degree family (000): Σ V_i b_i^n(t; λ), λ in (-2, 1]."""
+    r"""λ-Bézier curve of the same-degree family (000):
+    :math:`p(t) = \sum_{i=0}^n V_i \, b_i^n(t; \lambda)`, :math:`\lambda \in (-2, 1]`,
+    degree n ≥ 3; λ = 1 is the Bézier curve."""
 
     family = "same_degree"
     _data = _same_degree
@@ -541,8 +556,9 @@ class SameDegreeCurve(Curve):
 
 
 class BernsteinLikeCurve(Curve):
-    """λ-Bézier curve of the Bernstein-like family (001): Σ P_i b_{i,n}(t; λ), λ in [-1, 1];
-    a degree-n curve is a polynomial of degree n + 2."""
+    r"""λ-Bézier curve of the Bernstein-like family (001):
+    :math:`p(t) = \sum_{i=0}^n P_i \, b_{i,n}(t; \lambda)`, :math:`\lambda \in [-1, 1]`;
+    a degree-n curve is a polynomial of degree n + 2, and λ = 0 is the Bézier curve."""
 
     family = "bernstein_like"
     _data = _bernstein_like

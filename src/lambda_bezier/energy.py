@@ -25,15 +25,31 @@ LAMBDA_FAMILIES = ("same_degree", "bernstein_like")  # the families with a shape
 
 @dataclass(frozen=True)
 class OptimalLambda:
-    """The λ minimising E_k for one polygon (scalars) or a batch (arrays of length m).
+    """The λ minimising E_k for one polygon (scalars) or a batch (arrays of length m),
+    as returned by `optimal_lambda`.
 
-    lam: the answer: the unconstrained minimiser, or with clamp=True the minimiser over the
+    Attributes
+    ----------
+    lam : Fraction, float or numpy.ndarray
+        The answer: the unconstrained minimiser, or with clamp=True the minimiser over the
         closed range (exact since E_k is a convex quadratic in λ).
-    unconstrained: the minimiser over all real λ.
-    admissible: whether `lam` lies in the family's range (False for an unconstrained optimum
-        outside it, and for a clamped one that sits on an excluded end such as λ = −2).
-    unconstrained_admissible: whether `unconstrained` lies in the family's range.
-    energy, unconstrained_energy: E_k at `lam` and at `unconstrained`.
+    unconstrained : Fraction, float or numpy.ndarray
+        The minimiser over all real λ.
+    admissible : bool or numpy.ndarray
+        Whether `lam` lies in the family's range (False for an unconstrained optimum outside
+        it, and for a clamped one that sits on an excluded end such as λ = −2).
+    unconstrained_admissible : bool or numpy.ndarray
+        Whether `unconstrained` lies in the family's range.
+    energy, unconstrained_energy : Fraction, float or numpy.ndarray
+        E_k at `lam` and at `unconstrained`.
+    k : int
+        The energy order.
+    family : str
+        The family name.
+    range_text : str
+        The family's λ-range as text, e.g. ``"(-2, 1]"``.
+    clamped : bool
+        Whether the answer was clamped to the range (``clamp=True``).
     """
 
     lam: Fraction | float | np.ndarray
@@ -89,9 +105,31 @@ def _check_order(k: object) -> int:
 
 
 def energy_matrices(n: int, k: int, family: object = "same_degree"):
-    """(scale, X, Y) with λ* = scale · DᵀXD / DᵀYD, in the paper's normalisation (eq. 20):
-    scale a Fraction, X and Y upper-triangular tuples of tuples of ints.
+    r"""The matrices of the optimal λ in the paper's normalisation (000, eq. 20).
 
+    .. math:: \lambda^\ast = c \, \frac{D^\mathsf{T} X D}{D^\mathsf{T} Y D},
+              \qquad D = (P_0, \dots, P_n)^\mathsf{T},
+
+    a product :math:`D^\mathsf{T} U D = \sum_{i \le j} U_{ij} \, P_i \cdot P_j`
+    summing over the coordinates.
+
+    Parameters
+    ----------
+    n : int
+        The degree (n + 1 control points), within the family's range.
+    k : int
+        The energy order: 1 stretch, 2 strain, 3 jerk.
+    family : str or Family
+        ``"same_degree"``, ``"bernstein_like"``, or a family from `load_family`.
+
+    Returns
+    -------
+    tuple
+        ``(c, X, Y)``: the scale c as a Fraction, and :math:`X_n^k`, :math:`Y_n^k` as
+        upper-triangular tuples of tuples of ints.
+
+    Examples
+    --------
     >>> scale, X, Y = energy_matrices(3, 1)
     >>> scale, X[0], Y[0]
     (Fraction(-1, 2), (5, -13, -7, 10), (2, -4, -1, 1))
@@ -165,9 +203,26 @@ def _non_finite_error(arr: np.ndarray, single: bool) -> ValueError:
 
 
 def energy_coefficients(points, k: int, family: object = "same_degree"):
-    """(a0, a1, a2) with E_k(λ) = a0 + a1 λ + a2 λ² for one polygon (n+1, d) or a batch
-    (m, n+1, d). A single polygon whose coordinates are all ints or Fractions gives exact
-    Fractions; a batch is computed in floating point, vectorised over m."""
+    r"""The coefficients of the energy as a quadratic in λ,
+    :math:`E_k(\lambda) = \int_0^1 \lVert p^{(k)}(t; \lambda) \rVert^2 dt
+    = a_0 + a_1 \lambda + a_2 \lambda^2`.
+
+    Parameters
+    ----------
+    points : array_like
+        One control polygon, shape (n+1, d), or a batch, shape (m, n+1, d).
+    k : int
+        The energy order: 1 stretch, 2 strain, 3 jerk.
+    family : str or Family
+        ``"same_degree"``, ``"bernstein_like"``, or a family from `load_family`.
+
+    Returns
+    -------
+    tuple
+        ``(a0, a1, a2)``: exact Fractions for a single polygon whose coordinates are all ints
+        or Fractions; floats for other single polygons; arrays of length m for a batch
+        (computed in floating point, vectorised over m).
+    """
     k = _check_order(k)
     data = _family_data(family)
     rows = val.exact_rows(points)
@@ -262,10 +317,39 @@ def _factored_forms(family: object, n: int, k: int, dim: int) -> tuple[np.ndarra
 
 
 def optimal_lambda(points, k: int, family: object = "same_degree", clamp: bool = False):
-    """The λ minimising E_k(λ) = ∫|p^(k)|² for control points of shape (n+1, d), or for a
-    batch of shape (m, n+1, d) in one vectorised call. Exact (Fractions) when every coordinate
-    is an int or a Fraction.
+    r"""The λ minimising the energy
+    :math:`E_k(\lambda) = \int_0^1 \lVert p^{(k)}(t; \lambda) \rVert^2 dt` (000, section 3).
 
+    :math:`E_k` is a convex quadratic in λ, so the minimiser is
+    :math:`\lambda^\ast = -a_1 / (2 a_2)` (see `energy_coefficients`), and over a closed
+    range the clamped value.
+
+    Parameters
+    ----------
+    points : array_like
+        Control points, shape (n+1, d), or a batch of polygons, shape (m, n+1, d), solved in
+        one vectorised call. Exact (Fractions) when every coordinate is an int or a Fraction.
+    k : int
+        The energy order: 1 stretch, 2 strain, 3 jerk.
+    family : str
+        ``"same_degree"`` (range (−2, 1]) or ``"bernstein_like"`` (range [−1, 1]).
+    clamp : bool
+        Return the minimiser over the family's closed range instead of over all real λ
+        (the unconstrained one is still reported).
+
+    Returns
+    -------
+    OptimalLambda
+        The minimiser, whether it is admissible, and the energy there.
+
+    Raises
+    ------
+    ValueError
+        When λ has no effect on the energy of a polygon (:math:`D^\mathsf{T} Y D = 0`), or
+        for bad input.
+
+    Examples
+    --------
     >>> r = optimal_lambda([(0, 6), (0, 2), (5, 2), (7, 0), (2, 0), (6, 8)], k=2)
     >>> r.lam, r.admissible
     (Fraction(-690, 319), False)

@@ -29,7 +29,7 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
-FORMAT = 1  # the derived document's format this runtime reads
+FORMAT = 2  # the derived document's format this runtime reads
 MAX_DOCUMENT_BYTES = 50_000_000
 _EXACT = re.compile(r"^-?[0-9]{1,400}(/[0-9]{1,400})?$")
 
@@ -98,6 +98,18 @@ class FamilyData:
                 (_fraction(entry[part][0], where), _ints(entry[part][1], where))
                 for part in ("ff", "fg", "gg")
             )
+        from .properties import IsolatedRoot
+
+        self.SINGULAR: dict[int, tuple] = {}
+        for key, roots in doc.get("singular_parameters", {}).items():
+            self.SINGULAR[int(key)] = tuple(
+                _fraction(r, where)
+                if isinstance(r, str)
+                else IsolatedRoot(
+                    _fraction(r[0][0], where), _fraction(r[0][1], where), tuple(map(int, r[1]))
+                )
+                for r in roots
+            )
         for n in self.DEGREES:
             for table in (self.POWER, self.CENTRED, self.BERNSTEIN):
                 if n not in table:
@@ -146,6 +158,10 @@ class Family:
     def curve(self, points, lam, *, check_range: bool = True) -> Curve:
         """Σ P_i b_i(t; lam) with the family's degree-n basis (n + 1 points)."""
         return self.curve_class(points, lam, check_range=check_range)
+
+    def from_bezier(self, bezier, lam) -> Curve:
+        """A classical Bézier curve written in this family (Curve.from_bezier)."""
+        return self.curve_class.from_bezier(bezier, lam)
 
     def __repr__(self) -> str:
         return (

@@ -215,7 +215,7 @@ def join(
     *,
     check_range: bool = True,
 ) -> Curve:
-    """The next segment after `curve`: a curve of `family` (default: `curve`'s own) and
+    r"""The next segment after `curve`: a curve of `family` (default: `curve`'s own) and
     `degree` whose leading control points make the joint `continuity` ("C1", "C2", "G1",
     "G2"), followed by the control points `rest`.
 
@@ -226,6 +226,33 @@ def join(
     C1''(1) = α² C2''(0) + d C2'(0) with α > 0 and d free; C joins have α = 1, d = 0.
     Exact inputs (ints/Fractions for the points, λs, α, d and `rest`) give exact points.
 
+    Parameters
+    ----------
+    curve : Curve
+        The segment to continue (any family).
+    continuity : str
+        ``"C1"``, ``"C2"``, ``"G1"`` or ``"G2"``.
+    degree : int
+        The new segment's degree m.
+    lam : number, optional
+        The new segment's λ (required unless its family is ``"bezier"``).
+    alpha, d : number
+        The G-joint constants α > 0 and d (:math:`C_1'(1) = \alpha C_2'(0)`,
+        :math:`C_1''(1) = \alpha^2 C_2''(0) + d \, C_2'(0)`); C joints take 1 and 0.
+    rest : array_like
+        The control points after the solved ones.
+    family : str, optional
+        The new segment's family; default that of `curve`.
+    check_range : bool
+        Refuse a λ outside the new family's range.
+
+    Returns
+    -------
+    Curve
+        The new segment, of the class of `family`.
+
+    Examples
+    --------
     >>> from lambda_bezier import BernsteinLikeCurve, join
     >>> c = BernsteinLikeCurve([(0, 0), (1, 2), (3, 2), (4, 0)], lam=1)
     >>> nxt = join(c, "C2", 3, lam=0, rest=[(9, 1)])

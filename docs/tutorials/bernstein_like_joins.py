@@ -1,0 +1,1 @@
+../../notebooks/bernstein_like_joins.py

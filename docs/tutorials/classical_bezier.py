@@ -1,0 +1,1 @@
+../../notebooks/classical_bezier.py

@@ -1,0 +1,1 @@
+../../notebooks/interactive_lambda.py

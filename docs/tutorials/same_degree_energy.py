@@ -1,0 +1,1 @@
+../../notebooks/same_degree_energy.py

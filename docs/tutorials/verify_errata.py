@@ -1,0 +1,1 @@
+../../notebooks/verify_errata.py

@@ -292,6 +292,19 @@ def test_family_intersections(case):
     check_pairs(hits, case)
 
 
+@pytest.mark.parametrize("case", CASES, ids=[f"case{c['id']}" for c in CASES])
+def test_family_intersections_from_bezier(case):
+    """The fixture curves written exactly in the same_degree family away from its Bernstein
+    parameter (from_bezier, λ = -1/2 and 1/3): the same parameters."""
+    c1 = lb.SameDegreeCurve.from_bezier(
+        lb.BezierCurve(control_rows(case["curve1"])), Fraction(-1, 2)
+    )
+    c2 = lb.SameDegreeCurve.from_bezier(
+        lb.BezierCurve(control_rows(case["curve2"])), Fraction(1, 3)
+    )
+    check_pairs(c1.intersect(c2), case)
+
+
 def polyline_crossing_params(a: np.ndarray, b: np.ndarray) -> list[tuple[float, float]]:
     """Independent numerics: the (s, t) of the proper crossings of two fine polylines
     (sampled at equal parameter steps)."""

@@ -158,11 +158,11 @@ GOOD = [(0, 0), (1, 2), (3, 2), (4, 0)]
 @pytest.mark.parametrize(
     ("cls", "args", "kwargs", "message"),
     [
-        (lb.SameDegreeCurve, ([(0, 0, 0, 0)] * 4, 0.5), {}, "shape"),
+        (lb.SameDegreeCurve, ([[(0, 0)]] * 4, 0.5), {}, "shape"),
         (lb.SameDegreeCurve, ([0, 1, 2, 3], 0.5), {}, "shape"),
         (lb.SameDegreeCurve, ([(0, 0)] * 3, 0.5), {}, "at least 4 control points"),
         (lb.BernsteinLikeCurve, ([(0, 0)] * 2, 0.5), {}, "at least 3 control points"),
-        (lb.BezierCurve, ([(0, 0)],), {}, "at least 2 control points"),
+        (lb.BezierCurve, (np.zeros((0, 2)),), {}, "at least 1 control points"),
         (lb.SameDegreeCurve, ([(0, 0)] * 14, 0.5), {}, "degree 13 is not supported"),
         (lb.SameDegreeCurve, ([(0, 0), (1, float("nan")), (2, 0), (3, 0)], 0.5), {}, "non-finite"),
         (lb.SameDegreeCurve, ([(0, 0), (1, float("inf")), (2, 0), (3, 0)], 0.5), {}, "non-finite"),

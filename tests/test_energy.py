@@ -159,7 +159,7 @@ def test_energy_matrices_api():
     [
         ([(1, 1)] * 4, {"k": 2}, "no effect"),
         ([(0, 0), (1, float("nan")), (2, 0), (3, 1)], {"k": 2}, "non-finite"),
-        ([(0, 0, 0, 0)] * 4, {"k": 2}, "shape"),
+        (np.zeros((4, 0)), {"k": 2}, "shape"),  # d >= 1: energies hold in any dimension
         ([(0, 0)] * 3, {"k": 2}, "at least 4"),
         (EXAMPLE, {"k": 4}, "1, 2 or 3"),
         (EXAMPLE, {"k": 2, "family": "bezier"}, "unknown family"),

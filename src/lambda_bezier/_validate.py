@@ -183,10 +183,10 @@ def exact_rows(points: object) -> ExactRows | None:
 
 
 def check_point_shape(shape: tuple[int, ...], *, family: str, degrees: tuple[int, ...]) -> None:
-    """(n+1, d) with d in (2, 3) and n in `degrees`."""
-    if len(shape) != 2 or shape[1] not in (2, 3):
+    """(n+1, d) with d >= 1 and n in `degrees`."""
+    if len(shape) != 2 or shape[1] < 1:
         raise ValueError(
-            f"control points must have shape (n+1, d) with d = 2 or 3, got shape {tuple(shape)}"
+            f"control points must have shape (n+1, d) with d >= 1, got shape {tuple(shape)}"
         )
     degree = shape[0] - 1
     lo, hi = degrees[0], degrees[-1]
@@ -211,7 +211,7 @@ def exact_shape(rows: ExactRows, *, family: str, degrees: tuple[int, ...]) -> No
 
 
 def as_points(points: object, *, family: str, degrees: tuple[int, ...]) -> np.ndarray:
-    """(n+1, d) float array (a read-only copy), d in (2, 3), n in `degrees`, all finite."""
+    """(n+1, d) float array (a read-only copy), d >= 1, n in `degrees`, all finite."""
     arr = np.array(real_array(points, "control points"), dtype=float)
     check_point_shape(arr.shape, family=family, degrees=degrees)
     bad = ~np.isfinite(arr)
@@ -299,3 +299,18 @@ def overflow_allowed():
     """numpy's overflow warnings off for a computation whose result `finite_result` checks:
     the ValueError is the report, not a RuntimeWarning beside an inf."""
     return np.errstate(over="ignore", invalid="ignore")
+
+
+def as_point(point: object, dimension: int) -> np.ndarray:
+    """One point as a (d,) float array matching the curve's dimension, all finite."""
+    try:
+        arr = np.array(point, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(
+            f"point must be a sequence of {dimension} numbers, got {point!r}"
+        ) from None
+    if arr.shape != (dimension,):
+        raise ValueError(f"point must have shape ({dimension},), got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"point has a non-finite coordinate: {arr.tolist()}")
+    return arr

@@ -8,14 +8,17 @@ evaluation is Horner's rule vectorised over t.
 
 from __future__ import annotations
 
+import sys
 from fractions import Fraction
-from functools import cache
+from functools import cache, cached_property
 from types import ModuleType
 from typing import ClassVar
 
 import numpy as np
 
 from . import _algorithms as alg
+from . import _bezier_forms as forms
+from . import _intersect, _reduce
 from . import _validate as val
 from . import geometry as _geometry
 from ._lazy import generated
@@ -37,9 +40,8 @@ def _float_matrix(data: object, kind: str, degree: int, power: int) -> np.ndarra
 
 @cache
 def _float_hodograph(degree: int) -> np.ndarray:
-    if degree == 0:
-        return np.zeros((1, 1))  # derivative of a constant; only reached past the degree
-    return np.array(_bernstein.HODOGRAPH[degree], dtype=float)
+    # degree 0: one zero row, the derivative of a constant (reached past the degree)
+    return np.array(forms.hodograph_matrix(degree), dtype=float)
 
 
 def _combine_exact(mats: tuple[Matrix, ...], lam: Fraction) -> Matrix:
@@ -80,9 +82,10 @@ class Curve:
     family: ClassVar[str]
     _data: ClassVar[ModuleType]
     _has_lambda: ClassVar[bool] = True
+    _any_degree: ClassVar[bool] = False  # True: degrees past the generated tables are allowed
 
     def __init__(self, points, lam=None, *, check_range: bool = True) -> None:
-        degrees = tuple(self._data.DEGREES)
+        degrees = (0, sys.maxsize) if self._any_degree else tuple(self._data.DEGREES)
         self.points = val.as_points(points, family=self.family, degrees=degrees)
         self._exact_points = val.exact_rows(points)
         if self._has_lambda:
@@ -100,10 +103,13 @@ class Curve:
         # for the points scaled by a power of two (exact), and evaluation scales back.
         self._scale = val.power_of_two_scale(self.points)
         unit = self.points if self._scale == 1.0 else self.points / self._scale
-        # Taylor coefficients about t = 1/2, coordinate-major (d, N+1): what evaluation uses
-        centred = np.ascontiguousarray((self._combined("centred").T @ unit).T)
-        centred.setflags(write=False)
-        self._derivative_coeffs = {0: centred}  # k -> coefficients of p^(k), filled on demand
+        # k -> Taylor coefficients of p^(k) about t = 1/2, coordinate-major (d, N+1 - k): what
+        # evaluation uses at the tabulated degrees; filled on demand
+        self._derivative_coeffs: dict[int, np.ndarray] = {}
+        if self._tabulated:
+            centred = np.ascontiguousarray((self._combined("centred").T @ unit).T)
+            centred.setflags(write=False)
+            self._derivative_coeffs[0] = centred
         self._hodographs: list[np.ndarray] = []  # Bézier points of p, p', …, for energies
 
     # ------------------------------------------------------------------ description
@@ -122,6 +128,11 @@ class Curve:
         return self.points.shape[1]
 
     @property
+    def _tabulated(self) -> bool:
+        """Whether generated/ has this degree's matrices (else de Casteljau evaluates)."""
+        return self.degree in self._data.DEGREES
+
+    @property
     def is_exact(self) -> bool:
         """True when control points and λ are all ints/Fractions (exact conversions)."""
         return self._exact_points is not None and not isinstance(self.lam, float)
@@ -136,6 +147,11 @@ class Curve:
 
     # ------------------------------------------------------------------ basis matrices
     def _matrices(self, kind: str) -> tuple[Matrix, ...]:
+        if not self._tabulated:
+            raise ValueError(
+                f"no generated basis matrices for degree {self.degree} (they cover degrees "
+                f"{self._data.DEGREES[0]}..{self._data.DEGREES[-1]})"
+            )
         return _tables(self._data, kind)[self.degree]
 
     def _combined(self, kind: str) -> np.ndarray:
@@ -177,6 +193,12 @@ class Curve:
         """p^(k)(t) of the curve scaled by 1/self._scale."""
         k = val.as_order(k)
         tt, scalar = val.as_parameters(t, extrapolate=extrapolate)
+        if not self._tabulated:  # de Casteljau on the k-th hodograph stays accurate
+            ctrl = self._hodograph_points(k)
+            if self._scale != 1.0:
+                ctrl = ctrl / self._scale
+            out = alg.de_casteljau_steps(ctrl, tt, ctrl.shape[0] - 1)[:, 0]
+            return out[0] if scalar else out
         coeffs = self._derivative_coeffs.get(k)
         if coeffs is None:
             coeffs = alg.differentiate_coefficients(self._derivative_coeffs[0], k)
@@ -201,11 +223,19 @@ class Curve:
     def basis(self, t, *, extrapolate: bool = False) -> np.ndarray:
         """Basis function values: (n+1,) for a scalar t, (len(t), n+1) for an array."""
         tt, scalar = val.as_parameters(t, extrapolate=extrapolate)
-        out = alg.centred_horner(self._combined("centred"), tt)
+        if not self._tabulated:  # the Bernstein polynomials, by de Casteljau on unit points
+            out = alg.de_casteljau_steps(np.eye(self.degree + 1), tt, self.degree)[:, 0]
+        else:
+            out = alg.centred_horner(self._combined("centred"), tt)
         return out[0] if scalar else out
 
     def curvature(self, t, *, extrapolate: bool = False) -> np.ndarray:
         """Signed curvature in 2D, unsigned in 3D; NaN where p'(t) = 0 (undefined there)."""
+        if self.dimension not in (2, 3):
+            raise ValueError(
+                f"curvature is defined here for planar and space curves (dimension 2 or 3), "
+                f"this curve has dimension {self.dimension}"
+            )
         with val.overflow_allowed():  # κ(s·p) = κ(p)/s: computed unscaled, scaled back below
             d1 = self._unit_derivative(t, 1, extrapolate)
             d2 = self._unit_derivative(t, 2, extrapolate)
@@ -243,11 +273,16 @@ class Curve:
         big = self.polynomial_degree
         if k > big:
             return Fraction(0) if self.is_exact else 0.0
+        if big - k not in GRAM:
+            raise ValueError(
+                f"energy: no generated Gram matrix for degree {big - k} (they cover degrees "
+                f"{min(GRAM)}..{max(GRAM)})"
+            )
         scale, upper = GRAM[big - k]
         if self.is_exact:
             h: tuple = self.to_bezier().control_points()
             for d in range(big, big - k, -1):
-                h = alg.exact_matmul(_bernstein.HODOGRAPH[d], h)
+                h = alg.exact_matmul(forms.hodograph_matrix(d), h)
             size = len(h)
             total = sum(
                 (
@@ -312,6 +347,48 @@ class Curve:
             return self._exact_points
         return tuple(tuple(float(v) for v in row) for row in self.points)
 
+    # ------------------------------------------------------------------ intersection, location
+    # All of these work on the exact Bézier form (to_bezier keeps the parameter t), see
+    # _intersect.py for the method; parameters are in this curve's own t.
+    @cached_property
+    def _prepared(self) -> _intersect.Prepared:
+        bez = self.to_bezier()
+        return _intersect.Prepared(bez.points, bez._exact_points)
+
+    def intersect(self, other: Curve) -> list[_intersect.Intersection]:
+        """Every intersection with another curve (any family), as Intersection(s, t, kind)
+        sorted by s: self(s) = other(t). kind is "transversal", "tangent" or "coincident";
+        a shared stretch is reported by its two end pairs, both "coincident"."""
+        if not isinstance(other, Curve):
+            raise TypeError(f"other must be a curve, got {type(other).__name__}")
+        return _intersect.intersect(self._prepared, other._prepared)
+
+    def self_intersections(self) -> list[_intersect.Intersection]:
+        """Every pair s < t with p(s) = p(t), as Intersection(s, t, kind), sorted by s."""
+        return _intersect.self_intersections(self._prepared)
+
+    def locate(self, point) -> float | None:
+        """The t with p(t) = point (within 1e-10 of the curve's size), or None when the point
+        is not on the curve. A ValueError when several t give the point (a self-crossing)."""
+        arr = val.as_point(point, self.dimension)
+        exact = val.exact_rows([point])
+        found = _intersect.locate_all(self._prepared, arr, None if exact is None else exact[0])
+        if len(found) > 1:
+            raise ValueError(f"the point is on the curve at several parameters: {found}")
+        return found[0] if found else None
+
+    def implicitize(self):
+        """The algebraic curve f(x, y) = 0 containing this planar curve, as an exact
+        sympy.Poly in x and y with coprime integer coefficients (SymPy is imported here).
+        Needs exact control points (and an exact lam)."""
+        if self.dimension != 2:
+            raise ValueError(f"implicitize needs a planar curve, got dimension {self.dimension}")
+        if not self.is_exact:
+            raise ValueError("implicitize needs exact control points (ints or Fractions)")
+        from ._implicit import implicitize
+
+        return implicitize(self.to_bezier().control_points())
+
 
 class BezierCurve(Curve):
     r"""A classical Bézier curve :math:`p(t) = \sum_{i=0}^n P_i B_{i,n}(t)` with the
@@ -320,9 +397,19 @@ class BezierCurve(Curve):
     family = "bezier"
     _data = _bernstein
     _has_lambda = False
+    _any_degree = True  # any degree >= 0: de Casteljau past the generated tables
 
     def __init__(self, points) -> None:
         super().__init__(points)
+
+    def basis_bernstein_matrix(self, exact: bool = False):
+        if self._tabulated:
+            return super().basis_bernstein_matrix(exact)
+        return _identity(self.degree + 1) if exact else np.eye(self.degree + 1)
+
+    def to_bezier(self) -> BezierCurve:
+        """The curve itself (it is one already; curves are immutable)."""
+        return self
 
     def _rows(self) -> tuple[tuple, ...]:
         return self.control_points()
@@ -337,10 +424,10 @@ class BezierCurve(Curve):
             val.finite_result(out, "p(t)")
         return out[0] if scalar else out
 
-    def _exact_t(self, t, name: str = "t"):
+    def _exact_t(self, t, name: str = "t", extrapolate: bool = False):
         if val.is_exact_scalar(t):
             return Fraction(t)
-        tt, _ = val.as_parameters(t, extrapolate=False, name=name)
+        tt, _ = val.as_parameters(t, extrapolate=extrapolate, name=name)
         if tt.size != 1:
             raise ValueError(f"{name} must be a single number")
         return float(tt[0])
@@ -354,14 +441,23 @@ class BezierCurve(Curve):
         left, right = alg.split_rows(rows, t)
         return BezierCurve(left), BezierCurve(right)
 
-    def segment(self, t1, t2) -> BezierCurve:
+    def segment(self, t1, t2, *, extrapolate: bool = False) -> BezierCurve:
         """The piece between p(t1) and p(t2), 0 <= t1 < t2 <= 1, reparametrised to [0, 1]
-        (the lecture notes' scheme 1: split at t2, then at t1/t2 of the left piece)."""
-        t1, t2 = self._exact_t(t1, "t1"), self._exact_t(t2, "t2")
-        if not 0 <= t1 < t2 <= 1:
-            raise ValueError(f"segment needs 0 <= t1 < t2 <= 1, got t1={t1}, t2={t2}")
+        (the lecture notes' scheme 1: split at t2, then at t1/t2 of the left piece). With
+        extrapolate=True any t1 < t2 (the polynomial continued past [0, 1], by blossoming)."""
+        t1 = self._exact_t(t1, "t1", extrapolate)
+        t2 = self._exact_t(t2, "t2", extrapolate)
+        if extrapolate and not t1 < t2:
+            raise ValueError(f"segment needs t1 < t2, got t1={t1}, t2={t2}")
+        if not extrapolate and not 0 <= t1 < t2 <= 1:
+            raise ValueError(
+                f"segment needs 0 <= t1 < t2 <= 1, got t1={t1}, t2={t2}; pass extrapolate=True "
+                "for a piece of the curve continued past [0, 1]"
+            )
         exact = isinstance(t1, Fraction) and isinstance(t2, Fraction)
         rows = self._rows() if exact else self.points.tolist()
+        if extrapolate:
+            return BezierCurve(forms.segment_rows(rows, t1, t2))
         if t2 != 1:
             rows, _ = alg.split_rows(rows, t2)
         if t1 != 0:
@@ -370,16 +466,29 @@ class BezierCurve(Curve):
 
     def elevate(self) -> BezierCurve:
         """The same curve with one degree more (generated elevation matrix)."""
-        if self.degree + 1 > _bernstein.DEGREES[-1]:
-            raise ValueError(f"cannot elevate beyond degree {_bernstein.DEGREES[-1]}")
-        weights = _bernstein.ELEVATION[self.degree]
-        return self._apply(weights)
+        return self._apply(forms.elevation_matrix(self.degree))
 
     def hodograph(self) -> BezierCurve:
-        """The derivative curve p'(t) as a Bézier curve of degree n - 1."""
-        if self.degree < 2:
-            raise ValueError("the hodograph of a line segment is a single point; use derivative()")
-        return self._apply(_bernstein.HODOGRAPH[self.degree])
+        """The derivative curve p'(t) as a Bézier curve of degree n - 1 (degree 0, a
+        constant, for a line segment)."""
+        if self.degree < 1:
+            raise ValueError("a degree-0 curve (a point) has no hodograph: its derivative is 0")
+        return self._apply(forms.hodograph_matrix(self.degree))
+
+    def reduce(self) -> tuple[BezierCurve, float]:
+        """The curve of one degree less whose elevation is closest to this one (least
+        squares on the control points), and the error: the largest distance between this
+        curve's control points and the elevated reduction's, which bounds |p(t) - r(t)|
+        on [0, 1]. Exact, with error 0, when the curve is an exact degree elevation."""
+        red = _reduce.reduce(self.points, self._exact_points)
+        return BezierCurve(red.points), red.error
+
+    def full_reduce(self, tol: float = 1e-12) -> tuple[BezierCurve, float]:
+        """Reduce as long as the curve is a degree elevation (exactly for exact points,
+        else while the summed error stays within tol times the control points' size);
+        returns the lowest-degree curve and the error bound."""
+        red = _reduce.full_reduce(self.points, self._exact_points, tol)
+        return BezierCurve(red.points), red.error
 
     def _apply(self, weights: Matrix) -> BezierCurve:
         if self._exact_points is not None:

@@ -59,6 +59,12 @@ def _centred_coefficients(curve) -> np.ndarray:
     """(d, N+1) Taylor coefficients about t = 1/2 of the curve's Bézier form, computed in
     Fractions and rounded once when the curve is exact. A float curve already holds them
     (Curve._derivative_coeffs[0], from the same generated centred matrices)."""
+    if not curve._tabulated:  # a classical curve of degree 0 or past the tables
+        raise ValueError(
+            f"this uses the generated Taylor tables, which cover degrees "
+            f"{_bernstein.DEGREES[0]}..{_bernstein.DEGREES[-1]}; the curve has degree "
+            f"{curve.degree}"
+        )
     if not curve.is_exact:
         return np.ascontiguousarray(curve._derivative_coeffs[0], dtype=float)
     bez = curve.to_bezier()

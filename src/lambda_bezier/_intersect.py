@@ -1,0 +1,657 @@
+"""Intersections, self-intersections and point location for classical Bézier curves.
+
+The method is the established geometric one (Sederberg & Nishita's subdivision with bounding
+boxes, as in the `bezier` package's geometric strategy), followed by Newton's method on the
+exact polynomials:
+
+1. Subdivision: both curves are halved level by level; a pair of pieces survives while
+   their axis-aligned bounding boxes (which contain the pieces, by the convex hull
+   property) overlap. Surviving pairs at the last level are grouped into clusters of
+   neighbouring pieces; each cluster gives Newton starting points.
+2. Newton on F(s, t) = p(s) - q(t) (Gauss-Newton when d > 2), in floats, then polished with
+   the residual evaluated exactly in Fractions (every float is a rational, so the curves'
+   exact values are known): the parameters are then right to a few ulps even where the
+   float residual is all rounding (nearly parallel curves).
+3. Tangent intersections make F's Jacobian singular, so Newton on F stalls near sqrt(eps).
+   There Gauss-Newton runs on F stacked with the cross products of p'(s) and q'(t), whose
+   root is regular when the curvatures differ; when they agree too (a crossing of higher
+   contact) the exact residuals let the linear convergence run to full precision.
+4. End points are located on the other curve first (a one-dimensional, well-posed problem).
+   When two such end point pairs bound pieces that are the same curve, the curves are
+   coincident there: the two pairs are reported with kind "coincident", and subdivision
+   skips the shared stretch (where boxes would never separate).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from fractions import Fraction
+from typing import NamedTuple
+
+import numpy as np
+
+from . import _algorithms as alg
+from . import _bezier_forms as forms
+
+LEVELS = 8  # subdivision depth: pieces of width 2^-8 seed Newton
+MAX_PAIRS = 50_000  # a guard against runaway subdivision (degenerate input)
+BOX_SLACK = 1e-12  # relative: boxes that touch within rounding still overlap
+ON_CURVE = 1e-10  # relative distance below which a point counts as on a curve
+SAME_ROOT = 1e-9  # parameters closer than this are one intersection
+MERGE_RADIUS = 1e-3  # hits closer than this are compared for being one (see _add)
+NEAR_FOUND = 1e-6  # float Newton this close to a refined root has found that root
+TANGENT_SINE = 1e-6  # below this sine of the angle between tangents, refine as tangent
+
+
+class Intersection(NamedTuple):
+    """One intersection: p(s) = q(t). kind is "transversal", "tangent" or "coincident"
+    (the two ends of a stretch the curves share)."""
+
+    s: float
+    t: float
+    kind: str
+
+
+class Prepared:
+    """A classical Bézier curve as the solvers use it: float and exact control points and
+    the first two hodographs of each."""
+
+    def __init__(self, points: np.ndarray, rows: tuple[tuple, ...] | None) -> None:
+        self.pts = np.asarray(points, dtype=float)
+        self.rows = rows if rows is not None else tuple(tuple(map(Fraction, r)) for r in points)
+        self.degree = self.pts.shape[0] - 1
+        self.dim = self.pts.shape[1]
+        # exact values as integer numerators over one denominator per curve: p, p', p''
+        den = math.lcm(*(Fraction(v).denominator for row in self.rows for v in row))
+        ints = [[int(Fraction(v) * den) for v in row] for row in self.rows]
+        h1 = _integer_hodograph(ints)
+        h2 = _integer_hodograph(h1)
+        self._integer_rows = [(ints, den), (h1, den), (h2, den)]
+        self.h1 = np.array([[x / den for x in row] for row in h1])  # int / int rounds once
+        self.h2 = np.array([[x / den for x in row] for row in h2])
+        span = float(np.ptp(self.pts, axis=0).max())
+        self.is_point = span == 0.0  # every t gives the same point
+        self.scale = float(max(span, np.abs(self.pts).max(), 1e-300))
+
+    def at(self, s: float, which: int = 0) -> np.ndarray:
+        work = (self.pts, self.h1, self.h2)[which]
+        while work.shape[0] > 1:
+            work = work[:-1] + s * (work[1:] - work[:-1])
+        return work[0]
+
+    def at_with_tangent(self, s: float) -> tuple[np.ndarray, np.ndarray]:
+        """p(s) and p'(s) from one de Casteljau pass (p' = n (b_1 - b_0) of its last level)."""
+        work = self.pts
+        if work.shape[0] == 1:
+            return work[0], np.zeros(self.dim)
+        while work.shape[0] > 2:
+            work = work[:-1] + s * (work[1:] - work[:-1])
+        a, b = work[0], work[1]
+        return a + s * (b - a), self.degree * (b - a)
+
+    def exact_at(self, s: float, which: int = 0) -> tuple[list[int], int]:
+        """p(s) (which = 0), p'(s) or p''(s) exactly, for a float s: integer numerators and
+        one denominator. de Casteljau on integers (control points over their common
+        denominator, s = m / 2^e): Python's int arithmetic is exact and much faster than
+        Fractions, and int / int rounds correctly when a float is finally wanted."""
+        ints, den = self._integer_rows[which]
+        m, power_of_two = float(s).as_integer_ratio()
+        work = ints
+        for _ in range(len(ints) - 1):  # (1 - s) a + s b, scaled by 2^e
+            work = [
+                [(power_of_two - m) * a + m * b for a, b in zip(p, q, strict=True)]
+                for p, q in zip(work[:-1], work[1:], strict=True)
+            ]
+        return work[0], den * power_of_two ** (len(ints) - 1)
+
+
+def _exact_difference(a: tuple[list[int], int], b: tuple[list[int], int]) -> np.ndarray:
+    """a - b for exact values (numerators, denominator), correctly rounded to floats."""
+    (na, da), (nb, db) = a, b
+    return np.array([(x * db - y * da) / (da * db) for x, y in zip(na, nb, strict=True)])
+
+
+def _integer_point(point: tuple) -> tuple[list[int], int]:
+    den = math.lcm(*(Fraction(v).denominator for v in point))
+    return [int(Fraction(v) * den) for v in point], den
+
+
+def _integer_hodograph(ints: list[list[int]]) -> list[list[int]]:
+    """The hodograph's numerators (same denominator), from the hodograph matrix, whose
+    entries are integers (n times 0 or ±1)."""
+    weights = [[int(w) for w in row] for row in forms.hodograph_matrix(len(ints) - 1)]
+    return [
+        [sum(w * r[c] for w, r in zip(wrow, ints, strict=True)) for c in range(len(ints[0]))]
+        for wrow in weights
+    ]
+
+
+# ---------------------------------------------------------------------------- subdivision
+@functools.cache
+def _half_matrices(degree: int) -> tuple[np.ndarray, np.ndarray]:
+    """Subdivision at 1/2 as two (n+1, n+1) matrices: de Casteljau on the unit points."""
+    left, right = alg.split_rows(np.eye(degree + 1).tolist(), 0.5)
+    return np.array(left), np.array(right)
+
+
+def _halves(pieces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """de Casteljau at 1/2 on (K, n+1, d) pieces: the left and right halves."""
+    left, right = _half_matrices(pieces.shape[1] - 1)
+    return np.matmul(left, pieces), np.matmul(right, pieces)
+
+
+def _boxes_overlap(a: np.ndarray, b: np.ndarray, slack: float) -> np.ndarray:
+    return np.all(
+        (a.min(axis=1) <= b.max(axis=1) + slack) & (b.min(axis=1) <= a.max(axis=1) + slack),
+        axis=1,
+    )
+
+
+def _injective(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """For pairs of neighbouring pieces of one curve: True where some direction u has
+    u·p' > 0 on both (u = the mean unit hodograph vector), so the curve is one-to-one there."""
+    h = np.concatenate([np.diff(a, axis=1), np.diff(b, axis=1)], axis=1)
+    norm = np.linalg.norm(h, axis=2, keepdims=True)
+    unit = np.divide(h, norm, out=np.zeros_like(h), where=norm > 0)
+    u = unit.sum(axis=1, keepdims=True)
+    return np.all(np.sum(h * u, axis=2) > 0, axis=1)
+
+
+def _surviving_pairs(
+    p: Prepared, q: Prepared | None, skip: list[tuple[float, float, float, float]]
+) -> tuple[np.ndarray, np.ndarray]:
+    """Index pairs (i, j) of the level-LEVELS pieces whose boxes still overlap. q None means
+    p against itself (pairs i <= j; neighbouring pieces are dropped once provably
+    one-to-one)."""
+    same = q is None
+    qq = p if q is None else q
+    slack = BOX_SLACK * max(p.scale, qq.scale)
+    a, b = p.pts[None], qq.pts[None]
+    ia, ib = np.zeros(1, dtype=np.int64), np.zeros(1, dtype=np.int64)
+    for level in range(LEVELS + 1):
+        keep = _boxes_overlap(a, b, slack)
+        if same:
+            near = np.abs(ia - ib) <= 1
+            if near.any():
+                keep[near] &= ~_injective(a[near], b[near])
+        width = 0.5**level
+        for s0, s1, t0, t1 in skip:  # pairs inside a coincident stretch
+            inside = (ia * width >= s0) & ((ia + 1) * width <= s1)
+            inside &= (ib * width >= t0) & ((ib + 1) * width <= t1)
+            keep &= ~inside
+        a, b, ia, ib = a[keep], b[keep], ia[keep], ib[keep]
+        if level == LEVELS or not ia.size:
+            break
+        if 4 * ia.size > MAX_PAIRS:
+            raise ValueError(
+                "intersection: subdivision does not separate the curves (more than "
+                f"{MAX_PAIRS} candidate pairs); are they coincident or degenerate?"
+            )
+        al, ar = _halves(a)
+        bl, br = _halves(b)
+        a = np.concatenate([al, al, ar, ar])
+        b = np.concatenate([bl, br, bl, br])
+        ia = np.concatenate([2 * ia, 2 * ia, 2 * ia + 1, 2 * ia + 1])
+        ib = np.concatenate([2 * ib, 2 * ib + 1, 2 * ib, 2 * ib + 1])
+        if same:
+            ok = ia <= ib
+            a, b, ia, ib = a[ok], b[ok], ia[ok], ib[ok]
+    return ia, ib
+
+
+def _clusters(ia: np.ndarray, ib: np.ndarray) -> list[np.ndarray]:
+    """Groups of pairs connected through neighbouring pieces (|Δi| <= 1 and |Δj| <= 1)."""
+    count = ia.size
+    if count == 0:
+        return []
+    adj = (np.abs(ia[:, None] - ia[None]) <= 1) & (np.abs(ib[:, None] - ib[None]) <= 1)
+    label = -np.ones(count, dtype=np.int64)
+    groups: list[np.ndarray] = []
+    for seed in range(count):
+        if label[seed] >= 0:
+            continue
+        label[seed] = len(groups)
+        stack, members = [seed], [seed]
+        while stack:
+            k = stack.pop()
+            for m in np.flatnonzero(adj[k] & (label < 0)):
+                label[m] = len(groups)
+                stack.append(int(m))
+                members.append(int(m))
+        groups.append(np.array(sorted(members)))
+    return groups
+
+
+def _starts(ia: np.ndarray, ib: np.ndarray, per_cluster: int = 6) -> list[tuple[float, float]]:
+    """Newton starting points: the middle pair of each cluster, and for a cluster longer
+    than a few pieces (a tangency, or crossings close together) pairs spread along it."""
+    width = 0.5**LEVELS
+    out = []
+    for members in _clusters(ia, ib):
+        order = members[np.argsort(ia[members] + ib[members], kind="stable")]
+        picks = [order[order.size // 2]]
+        if np.ptp(ia[members]) > 2 or np.ptp(ib[members]) > 2:
+            spread = np.linspace(0, order.size - 1, min(per_cluster, order.size)).astype(int)
+            picks += [k for k in order[np.unique(spread)] if k != picks[0]]
+        out += [((ia[k] + 0.5) * width, (ib[k] + 0.5) * width) for k in picks]
+    return out
+
+
+# ---------------------------------------------------------------------------- Newton
+def _residual(p: Prepared, q: Prepared, s: float, t: float, exact: bool) -> np.ndarray:
+    if exact:
+        return _exact_difference(p.exact_at(s), q.exact_at(t))
+    return p.at(s) - q.at(t)
+
+
+def _gauss_newton_step(u: np.ndarray, v: np.ndarray, f: np.ndarray) -> tuple[float, float]:
+    """The least-squares (ds, dt) of u ds + v dt = -f, from the 2x2 normal equations
+    (lstsq when they are singular)."""
+    a, b, c = float(u @ u), float(u @ v), float(v @ v)
+    det = a * c - b * b
+    if det > 1e-24 * a * c:
+        g, h = -float(u @ f), -float(v @ f)
+        return (c * g - b * h) / det, (a * h - b * g) / det
+    step = np.linalg.lstsq(np.column_stack([u, v]), -f, rcond=None)[0]
+    return float(step[0]), float(step[1])
+
+
+def _newton(p: Prepared, q: Prepared, s: float, t: float) -> tuple[float, float, str]:
+    """Newton (Gauss-Newton for d > 2) on p(s) - q(t). Status "out" when it leaves the
+    domain, "converged", or "slow" when convergence is only linear (a tangency, refined by
+    _tangent_refine) or the iterations ran out."""
+    prev = np.inf
+    for it in range(40):
+        ps, dps = p.at_with_tangent(s)
+        qt, dqt = q.at_with_tangent(t)
+        ds, dt = _gauss_newton_step(dps, -dqt, ps - qt)
+        s, t = s + ds, t + dt
+        if not (-0.5 < s < 1.5 and -0.5 < t < 1.5) or not (np.isfinite(s) and np.isfinite(t)):
+            return s, t, "out"
+        size = abs(ds) + abs(dt)
+        if size < 1e-15:
+            return s, t, "converged"
+        if it >= 8 and size > 0.25 * prev:
+            break
+        prev = size
+    return s, t, "slow"
+
+
+def _polish(
+    p: Prepared, q: Prepared, s: float, t: float, steps: int = 4
+) -> tuple[float, float, bool]:
+    """Newton steps with the residual evaluated exactly; True when they converged (the
+    last step below 1e-15: quadratic convergence, a regular root)."""
+    for _ in range(steps):
+        ds, dt = _gauss_newton_step(p.at(s, 1), -q.at(t, 1), _residual(p, q, s, t, True))
+        s, t = s + ds, t + dt
+        if abs(ds) + abs(dt) < 1e-17:
+            break
+    return s, t, abs(ds) + abs(dt) < 1e-15
+
+
+@functools.cache
+def _pairs(dim: int) -> tuple[np.ndarray, np.ndarray]:
+    return np.triu_indices(dim, 1)
+
+
+def _cross_terms(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """u_i v_j - u_j v_i for i < j: zero exactly when u and v are parallel."""
+    i, j = _pairs(u.shape[-1])
+    return u[..., i] * v[..., j] - u[..., j] * v[..., i]
+
+
+def _tangent_residual(
+    p: Prepared, q: Prepared, s: float, t: float, weight: float, exact: bool
+) -> np.ndarray:
+    if exact:
+        diff = _exact_difference(p.exact_at(s), q.exact_at(t))
+        (a, da), (b, db) = p.exact_at(s, 1), q.exact_at(t, 1)
+        dim = len(a)
+        cross = [
+            (a[i] * b[j] - a[j] * b[i]) / (da * db) * weight
+            for i in range(dim)
+            for j in range(i + 1, dim)
+        ]
+        return np.concatenate([diff, cross])
+    return np.concatenate([p.at(s) - q.at(t), _cross_terms(p.at(s, 1), q.at(t, 1)) * weight])
+
+
+def _tangent_refine(
+    p: Prepared, q: Prepared, s: float, t: float, phases: tuple[bool, ...] = (False, True)
+) -> tuple[float, float]:
+    """Gauss-Newton on [p(s) - q(t); w (p'(s) x q'(t))], first with float residuals, then
+    with exact ones (which stay meaningful where floats are all rounding, so the linear
+    convergence at a root of higher contact runs on). Each phase ends when its steps stop
+    shrinking; the point after the smallest step is kept."""
+    d1p, d1q = p.at(s, 1), q.at(t, 1)
+    weight = max(p.scale, q.scale) / max(float(np.linalg.norm(d1p) * np.linalg.norm(d1q)), 1e-300)
+    for exact in phases:
+        best = (np.inf, s, t)
+        stalled = 0
+        for _ in range(100):
+            res = _tangent_residual(p, q, s, t, weight, exact)
+            if not res.any():
+                best = (0.0, s, t)
+                break
+            d1p, d1q = p.at(s, 1), q.at(t, 1)
+            d2p, d2q = p.at(s, 2), q.at(t, 2)
+            jac = np.vstack(
+                [
+                    np.column_stack([d1p, -d1q]),
+                    np.column_stack([_cross_terms(d2p, d1q), _cross_terms(d1p, d2q)]) * weight,
+                ]
+            )
+            step = np.linalg.lstsq(jac, -res, rcond=None)[0]
+            if not np.all(np.isfinite(step)):
+                break
+            s, t = s + float(step[0]), t + float(step[1])
+            size = abs(float(step[0])) + abs(float(step[1]))
+            if size < best[0]:
+                best, stalled = (size, s, t), 0
+            else:
+                stalled += 1
+            if size < 1e-17 * (1 + abs(s) + abs(t)) or stalled >= 3:
+                break
+        s, t = best[1], best[2]
+    return s, t
+
+
+def _sine(p: Prepared, q: Prepared, s: float, t: float) -> float:
+    u, v = p.at(s, 1), q.at(t, 1)
+    nu, nv = float(np.linalg.norm(u)), float(np.linalg.norm(v))
+    if nu == 0.0 or nv == 0.0:
+        return 0.0
+    return float(np.linalg.norm(_cross_terms(u, v))) / (nu * nv)
+
+
+def _near_found(s: float, t: float, found: list[Intersection]) -> bool:
+    return any(abs(s - f.s) < NEAR_FOUND and abs(t - f.t) < NEAR_FOUND for f in found)
+
+
+def _solve_from(
+    p: Prepared, q: Prepared, s: float, t: float, found: list[Intersection]
+) -> Intersection | None:
+    s, t, status = _newton(p, q, s, t)
+    if status == "out":
+        return None
+    # Newton in floats stalls within ~1e-8 of a tangent root: a start that lands that close
+    # to a root already refined is that root (skips the costly exact refinement)
+    if _near_found(s, t, found):
+        return None
+    scale = max(p.scale, q.scale)
+    if np.linalg.norm(_residual(p, q, s, t, False)) > 1e-6 * scale:
+        return None  # Newton wandered off; a real root near a start converges closer
+    polished = False
+    if _sine(p, q, s, t) > TANGENT_SINE:  # looks transversal: Newton must then converge fast
+        ps, pt, polished = _polish(p, q, s, t)
+    if polished:
+        s, t, kind = ps, pt, "transversal"
+    else:
+        s, t = _tangent_refine(p, q, s, t, (False,))
+        if _near_found(s, t, found):  # before the costly exact phase
+            return None
+        s, t = _tangent_refine(p, q, s, t, (True,))
+        kind = "tangent" if _sine(p, q, s, t) <= TANGENT_SINE else "transversal"
+    if np.linalg.norm(_residual(p, q, s, t, True)) > ON_CURVE * scale:
+        return None
+    tol = 1e-12
+    if not (-tol <= s <= 1 + tol and -tol <= t <= 1 + tol):
+        return None
+    return Intersection(float(min(max(s, 0.0), 1.0)), float(min(max(t, 0.0), 1.0)), kind)
+
+
+# ---------------------------------------------------------------------------- locate
+def locate_all(p: Prepared, point: np.ndarray, exact_point: tuple | None = None) -> list[float]:
+    """Every t in [0, 1] with p(t) = point (within ON_CURVE of the curve's scale)."""
+    point = np.asarray(point, dtype=float)
+    target = exact_point if exact_point is not None else tuple(map(Fraction, point.tolist()))
+    scale = max(p.scale, float(np.abs(point).max(initial=0.0)))
+    tol = ON_CURVE * scale
+    found: list[float] = []
+    if p.is_point:
+        if np.linalg.norm(p.pts[0] - point) <= tol:
+            raise ValueError("the curve is a single point: every t gives it")
+        return found
+    for end in (0, 1):
+        if tuple(p.rows[-1 if end else 0]) == tuple(target):
+            found.append(float(end))
+    pieces = p.pts[None]
+    index = np.zeros(1, dtype=np.int64)
+    for level in range(LEVELS + 1):
+        keep = np.all(
+            (pieces.min(axis=1) <= point + tol) & (point - tol <= pieces.max(axis=1)), axis=1
+        )
+        pieces, index = pieces[keep], index[keep]
+        if level == LEVELS or not index.size:
+            break
+        left, right = _halves(pieces)
+        pieces = np.concatenate([left, right])
+        index = np.concatenate([2 * index, 2 * index + 1])
+    width = 0.5**LEVELS
+    exact_target = _integer_point(target)
+    for members in _clusters(index, np.zeros_like(index)):
+        for k in {members[0], members[members.size // 2], members[-1]}:
+            t = _locate_newton(p, point, exact_target, (index[k] + 0.5) * width)
+            if t is None or any(abs(t - u) < SAME_ROOT for u in found):
+                continue
+            if np.linalg.norm(p.at(t) - point) > tol:
+                continue
+            # one location if the curve stays at the point all the way between (a flat
+            # spot, p' = p'' = 0, leaves the residual below tolerance around the root)
+            same = [
+                j
+                for j, u in enumerate(found)
+                if abs(t - u) < MERGE_RADIUS
+                and all(
+                    np.linalg.norm(p.at(u + x * (t - u)) - point) <= tol
+                    for x in np.linspace(0.0, 1.0, 9)
+                )
+            ]
+            if not same:
+                found.append(float(t))
+            elif _exact_distance(p, t, exact_target) < _exact_distance(
+                p, found[same[0]], exact_target
+            ):
+                found[same[0]] = float(t)
+    return sorted(found)
+
+
+def _exact_distance(p: Prepared, t: float, target: tuple[list[int], int]) -> float:
+    return float(np.linalg.norm(_exact_difference(p.exact_at(t), target)))
+
+
+def _locate_newton(
+    p: Prepared, point: np.ndarray, target: tuple[list[int], int], t: float
+) -> float | None:
+    """Newton on (p(t) - point)·p'(t) = 0 (the foot point): in floats until the steps stop
+    shrinking, then up to three steps with the residual p(t) - point evaluated exactly."""
+    for exact, iterations in ((False, 40), (True, 3)):
+        prev = np.inf
+        for it in range(iterations):
+            diff = _exact_difference(p.exact_at(t), target) if exact else p.at(t) - point
+            d1 = p.at(t, 1)
+            slope = float(d1 @ d1 + diff @ p.at(t, 2))
+            if slope == 0.0:
+                break
+            step = float(diff @ d1) / slope
+            t -= step
+            if not -0.5 < t < 1.5:
+                return None
+            if abs(step) < 1e-16 or (it > 5 and abs(step) > 0.5 * prev):
+                break
+            prev = abs(step)
+    if -1e-12 <= t <= 1 + 1e-12:
+        return min(max(t, 0.0), 1.0)
+    return None
+
+
+# ---------------------------------------------------------------------------- drivers
+def _same_piece(p: Prepared, q: Prepared, s0: float, s1: float, t0: float, t1: float) -> bool:
+    """p over [s0, s1] and q over [t0, t1] are one curve: the polynomials agree at
+    max degree + 2 points."""
+    u = np.linspace(0.05, 0.95, max(p.degree, q.degree) + 2)
+    tol = ON_CURVE * max(p.scale, q.scale) * 10
+    return all(
+        np.linalg.norm(p.at(s0 + x * (s1 - s0)) - q.at(t0 + x * (t1 - t0))) <= tol for x in u
+    )
+
+
+def _dedupe(found: list[Intersection], new: Intersection) -> bool:
+    return any(abs(new.s - old.s) < SAME_ROOT and abs(new.t - old.t) < SAME_ROOT for old in found)
+
+
+def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
+    """Every intersection of p and q, sorted by s."""
+    if p.dim != q.dim:
+        raise ValueError(f"cannot intersect curves of dimensions {p.dim} and {q.dim}")
+    if p.dim < 2:
+        raise ValueError(
+            "intersection needs dimension >= 2: curves on a line meet along whole intervals"
+        )
+    for name, c in (("the first", p), ("the second", q)):
+        if c.is_point:
+            raise ValueError(f"{name} curve is a single point: use locate() on the other")
+    ends: list[Intersection] = []
+    for s_end in (0, 1):
+        for t in locate_all(q, p.pts[-1 if s_end else 0], p.rows[-1 if s_end else 0]):
+            cand = Intersection(float(s_end), t, "transversal")
+            if not _dedupe(ends, cand):
+                ends.append(cand)
+    for t_end in (0, 1):
+        for s in locate_all(p, q.pts[-1 if t_end else 0], q.rows[-1 if t_end else 0]):
+            cand = Intersection(s, float(t_end), "transversal")
+            if not _dedupe(ends, cand):
+                ends.append(cand)
+    ends = [
+        e._replace(kind="tangent") if _sine(p, q, e.s, e.t) <= TANGENT_SINE else e for e in ends
+    ]
+    skip = []
+    coincident: list[Intersection] = []
+    for i, a in enumerate(ends):
+        for b in ends[i + 1 :]:
+            if abs(a.s - b.s) < SAME_ROOT or abs(a.t - b.t) < SAME_ROOT:
+                continue
+            if _same_piece(p, q, a.s, b.s, a.t, b.t):
+                lo, hi = sorted((a, b))
+                coincident += [lo._replace(kind="coincident"), hi._replace(kind="coincident")]
+                skip.append((lo.s, hi.s, min(a.t, b.t), max(a.t, b.t)))
+    found = list(coincident)
+    for e in ends:
+        if not _dedupe(found, e):
+            _add(found, e, p, q)
+    if not coincident:
+        _refuse_collinear_overlap(p, q)
+    ia, ib = _surviving_pairs(p, q, skip)
+    for s, t in _starts(ia, ib):
+        if any(s0 <= s <= s1 and t0 <= t <= t1 for s0, s1, t0, t1 in skip):
+            continue
+        hit = _solve_from(p, q, s, t, found)
+        if hit is None or _dedupe(found, hit):
+            continue
+        if any(s0 < hit.s < s1 for s0, s1, _, _ in skip):
+            continue
+        _add(found, hit, p, q)
+    return sorted(found)
+
+
+def _add(found: list[Intersection], hit: Intersection, p: Prepared, q: Prepared) -> None:
+    """Append hit, unless it is one already found: near it, with the curves staying within
+    ON_CURVE of each other all the way between the two. At a contact of high order the
+    residual is below tolerance over a whole small neighbourhood and refinement converges
+    only linearly, so starts stop at different points of it; the one with the smaller
+    exact residual stays."""
+    for k, old in enumerate(found):
+        if abs(hit.s - old.s) < MERGE_RADIUS and abs(hit.t - old.t) < MERGE_RADIUS:
+            x = np.linspace(0.0, 1.0, 9)
+            gap = max(
+                float(
+                    np.linalg.norm(
+                        p.at(old.s + u * (hit.s - old.s)) - q.at(old.t + u * (hit.t - old.t))
+                    )
+                )
+                for u in x
+            )
+            if gap <= ON_CURVE * max(p.scale, q.scale):
+                if old.kind != "coincident" and _quality(p, q, hit) < _quality(p, q, old):
+                    found[k] = hit
+                return
+    found.append(hit)
+
+
+def _quality(p: Prepared, q: Prepared, hit: Intersection) -> float:
+    return float(np.linalg.norm(_tangent_residual(p, q, hit.s, hit.t, 1.0, True)))
+
+
+def _common_line(pts: np.ndarray, scale: float) -> tuple[np.ndarray, float] | None:
+    """(unit direction, extent) of the line all the points lie on (within ON_CURVE), or None."""
+    base = pts[0]
+    far = pts[np.argmax(np.linalg.norm(pts - base, axis=1))]
+    length = float(np.linalg.norm(far - base))
+    if length == 0.0:
+        return None
+    unit = (far - base) / length
+    rel = pts - base
+    off_line = np.linalg.norm(rel - np.outer(rel @ unit, unit), axis=1).max()
+    return (unit, length) if off_line <= ON_CURVE * scale else None
+
+
+def _refuse_collinear_overlap(p: Prepared, q: Prepared) -> None:
+    """Two curves on one line whose images overlap along an interval meet in a continuum of
+    parameter pairs; unless they are one curve up to an affine change of parameter
+    (reported as coincident above) there are no end pairs to report, so say so."""
+    line = _common_line(np.vstack([p.pts, q.pts]), max(p.scale, q.scale))
+    if line is None:
+        return
+    unit, length = line
+    u = np.linspace(0.0, 1.0, 1025)
+    image_p = np.array([p.at(x) for x in u]) @ unit
+    image_q = np.array([q.at(x) for x in u]) @ unit
+    overlap = min(image_p.max(), image_q.max()) - max(image_p.min(), image_q.min())
+    if overlap > 1e-9 * length:
+        raise ValueError(
+            "the curves lie on one line and overlap along an interval, with parametrisations "
+            "that are not affinely related: their intersection is not a set of points"
+        )
+
+
+def self_intersections(p: Prepared) -> list[Intersection]:
+    """Pairs s < t with p(s) = p(t), sorted by s."""
+    if p.dim < 2:
+        raise ValueError("self-intersections need dimension >= 2")
+    found: list[Intersection] = []
+    if p.degree < 2 or p.is_point:
+        return found
+    line = _common_line(p.pts, p.scale)
+    if line is not None:  # on a line: none if it runs one way, a continuum if it turns back
+        image = np.array([p.at(x) for x in np.linspace(0.0, 1.0, 1025)]) @ line[0]
+        steps = np.diff(image)
+        slack = 1e-12 * line[1]
+        if np.all(steps >= -slack) or np.all(steps <= slack):
+            return found
+        raise ValueError(
+            "the curve lies on a line and turns back along it: it meets itself along an "
+            "interval, not at points"
+        )
+    ia, ib = _surviving_pairs(p, None, [])
+    width = 0.5**LEVELS
+    starts = []
+    for s, t in _starts(ia, ib):
+        if abs(s - t) < 1.5 * width:  # neighbouring pieces: start apart, not on the diagonal
+            s, t = s - width, t + width
+        starts.append((s, t))
+    for s, t in starts:
+        hit = _solve_from(p, p, s, t, found)
+        if hit is None or abs(hit.s - hit.t) < 1e-7:
+            continue
+        # near a cusp p(s) - p(t) vanishes to third order for s close to t: a "loop" whose
+        # points all lie within rounding of each other is that, not a crossing
+        loop = np.array([p.at(u) for u in np.linspace(hit.s, hit.t, 9)])
+        if np.ptp(loop, axis=0).max() <= 1e-8 * p.scale:
+            continue
+        if hit.s > hit.t:
+            hit = Intersection(hit.t, hit.s, hit.kind)
+        if not _dedupe(found, hit):
+            _add(found, hit, p, p)
+    return sorted(found)

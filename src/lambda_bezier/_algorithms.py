@@ -12,6 +12,10 @@ from fractions import Fraction
 import numpy as np
 
 ExactRows = tuple[tuple[Fraction, ...], ...]
+# rows of exact or float coordinates: the exact paths keep Fractions, the others floats
+Scalar = Fraction | float
+Row = tuple[Scalar, ...]
+Rows = tuple[Row, ...]
 
 
 def de_casteljau_steps(points: np.ndarray, t: np.ndarray, steps: int) -> np.ndarray:
@@ -25,7 +29,7 @@ def de_casteljau_steps(points: np.ndarray, t: np.ndarray, steps: int) -> np.ndar
     return np.array(work)
 
 
-def de_casteljau_triangle(points: Sequence[Sequence], t) -> list[list[tuple]]:
+def de_casteljau_triangle(points: Sequence[Sequence[Scalar]], t: Scalar) -> list[list[Row]]:
     """The whole triangular array b_j^k(t) (k = 0..n), for one t, in the arithmetic of the
     inputs (Fractions stay exact). Row k holds b_0^k … b_{n-k}^k."""
     rows = [[tuple(p) for p in points]]
@@ -40,7 +44,7 @@ def de_casteljau_triangle(points: Sequence[Sequence], t) -> list[list[tuple]]:
     return rows
 
 
-def split_rows(points: Sequence[Sequence], t) -> tuple[list[tuple], list[tuple]]:
+def split_rows(points: Sequence[Sequence[Scalar]], t: Scalar) -> tuple[list[Row], list[Row]]:
     """Subdivision at t (lecture notes, 分割定理): the first points of every row of the
     triangle, and the last points in reverse order."""
     tri = de_casteljau_triangle(points, t)

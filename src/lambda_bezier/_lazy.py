@@ -4,6 +4,10 @@ from __future__ import annotations
 
 import importlib
 from types import ModuleType
+from typing import TYPE_CHECKING, Any, TypeAlias
+
+if TYPE_CHECKING:
+    from .family import FamilyData
 
 
 class generated:  # noqa: N801  (reads as a module reference at the use sites)
@@ -27,8 +31,13 @@ class generated:  # noqa: N801  (reads as a module reference at the use sites)
         importlib.invalidate_caches()
         return importlib.import_module(self._name)
 
-    def __getattr__(self, attr: str):
+    def __getattr__(self, attr: str) -> Any:  # a generated table: its type is the module's
         return getattr(self.module(), attr)
 
     def __repr__(self) -> str:
         return f"<lazy {self._name}>"
+
+
+# where a family's tables live: a generated module (imported on first use) or the data of a
+# user's family (family.py); each has DEGREES, LAMBDA_RANGE, POWER, CENTRED, BERNSTEIN, ...
+TableSource: TypeAlias = "ModuleType | generated | FamilyData"

@@ -13,18 +13,28 @@ from __future__ import annotations
 import math
 import numbers
 import sys
+from collections.abc import Sequence
 from decimal import Decimal
 from fractions import Fraction
-from types import ModuleType
+from typing import TYPE_CHECKING, TypeGuard
 
 import numpy as np
+import numpy.typing as npt
+
+if TYPE_CHECKING:
+    from ._lazy import TableSource
 
 ExactRows = tuple[tuple[Fraction, ...], ...]
+# What the public entry points accept (each is checked here): numbers and arrays of them, the
+# exact ones (ints, Fractions) kept exact where a function offers exact results.
+ParamLike = npt.ArrayLike | Fraction | Sequence[Fraction | float]
+PointsLike = npt.ArrayLike | Sequence[Sequence[Fraction | float]]
 
 FLOAT_MAX = sys.float_info.max
 
 
-def is_exact_scalar(x: object) -> bool:
+def is_exact_scalar(x: object) -> TypeGuard[numbers.Rational]:
+    # np.integer counts: numpy registers it as a numbers.Integral
     return isinstance(x, numbers.Rational | np.integer) and not isinstance(x, bool | np.bool_)
 
 
@@ -61,12 +71,12 @@ def real_number(
     if isinstance(x, complex | np.complexfloating):
         raise ValueError(f"{name} must be a real number, got the complex number {x!r}")
     if is_exact_scalar(x):
-        q = Fraction(int(x)) if isinstance(x, np.integer) else Fraction(x)  # type: ignore[call-overload]
+        q = Fraction(int(x)) if isinstance(x, np.integer) else Fraction(x)
         if float_range or not keep_exact:
             value = to_float(q, name)
         return q if keep_exact else value
     if isinstance(x, numbers.Real | np.floating | Decimal):
-        value = float(x)  # type: ignore[arg-type]
+        value = float(x)
         if not math.isfinite(value):
             if isinstance(x, Decimal) and x.is_finite():
                 raise ValueError(f"{name} = {x} is too large for a float")
@@ -137,10 +147,10 @@ def flag(x: object, name: str) -> bool:
 def integer(x: object, name: str) -> int:
     if isinstance(x, bool | np.bool_) or not isinstance(x, numbers.Integral | np.integer):
         raise ValueError(f"{name} must be an integer, got {describe(x)}")
-    return int(x)  # type: ignore[call-overload]
+    return int(x)
 
 
-def choice(x: object, name: str, choices) -> str:
+def choice(x: object, name: str, choices: Sequence[object]) -> str:
     """One of the names in `choices` (a list, unhashable values included, gets the message)."""
     if isinstance(x, str) and x in choices:
         return x
@@ -222,7 +232,7 @@ def as_points(points: object, *, family: str, degrees: tuple[int, ...]) -> np.nd
     return arr
 
 
-def in_range(value, family: ModuleType) -> bool:
+def in_range(value: Fraction | float, family: TableSource) -> bool:
     lo, hi = family.LAMBDA_RANGE
     lo_closed, hi_closed = family.LAMBDA_CLOSED
     below = value < lo or (value == lo and not lo_closed)
@@ -230,7 +240,7 @@ def in_range(value, family: ModuleType) -> bool:
     return not (below or above)
 
 
-def as_lambda(lam: object, family: ModuleType, *, check_range: bool) -> Fraction | float:
+def as_lambda(lam: object, family: TableSource, *, check_range: bool) -> Fraction | float:
     """λ as a Fraction (exact input) or a float; inside the family's range unless told not."""
     check_range = flag(check_range, "check_range")
     value = real_number(lam, "lam")
@@ -265,9 +275,9 @@ def as_parameters(t: object, *, extrapolate: bool, name: str = "t") -> tuple[np.
 
 
 def as_order(k: object) -> int:
-    if isinstance(k, bool | np.bool_) or not isinstance(k, numbers.Integral) or int(k) < 0:  # type: ignore[call-overload]
+    if isinstance(k, bool | np.bool_) or not isinstance(k, numbers.Integral) or int(k) < 0:
         raise ValueError(f"derivative order k must be a non-negative integer, got {describe(k)}")
-    return int(k)  # type: ignore[call-overload]
+    return int(k)
 
 
 def finite_result(out: np.ndarray, what: str) -> np.ndarray:
@@ -295,7 +305,7 @@ def scale_for_magnitude(big: float) -> float:
     return 1.0 if -900 <= exponent <= 900 else math.ldexp(1.0, exponent - 1)
 
 
-def overflow_allowed():
+def overflow_allowed() -> np.errstate:
     """numpy's overflow warnings off for a computation whose result `finite_result` checks:
     the ValueError is the report, not a RuntimeWarning beside an inf."""
     return np.errstate(over="ignore", invalid="ignore")

@@ -11,17 +11,21 @@ from __future__ import annotations
 import sys
 from fractions import Fraction
 from functools import cache, cached_property
-from types import ModuleType
-from typing import ClassVar
+from typing import TYPE_CHECKING, ClassVar, Literal, cast, overload
 
 import numpy as np
+import numpy.typing as npt
 
 from . import _algorithms as alg
 from . import _bezier_forms as forms
 from . import _intersect, _reduce
 from . import _validate as val
 from . import geometry as _geometry
-from ._lazy import generated
+from ._lazy import TableSource, generated
+from ._validate import ParamLike, PointsLike
+
+if TYPE_CHECKING:
+    from sympy import Poly
 
 _bernstein = generated("bernstein")
 _same_degree = generated("same_degree")
@@ -69,7 +73,8 @@ def _tables(data: object, kind: str) -> dict[int, tuple[Matrix, ...]]:
         if kind == "bernstein":
             return {d: (_identity(d + 1),) for d in _bernstein.DEGREES}
         return {d: (m,) for d, m in getattr(_bernstein, kind.upper()).items()}
-    return getattr(data, kind.upper())
+    tables: dict[int, tuple[Matrix, ...]] = getattr(data, kind.upper())
+    return tables
 
 
 class Curve:
@@ -80,11 +85,13 @@ class Curve:
     """
 
     family: ClassVar[str]
-    _data: ClassVar[ModuleType]
+    _data: ClassVar[TableSource]
     _has_lambda: ClassVar[bool] = True
     _any_degree: ClassVar[bool] = False  # True: degrees past the generated tables are allowed
 
-    def __init__(self, points, lam=None, *, check_range: bool = True) -> None:
+    def __init__(
+        self, points: PointsLike, lam: Fraction | float | None = None, *, check_range: bool = True
+    ) -> None:
         degrees = (0, sys.maxsize) if self._any_degree else tuple(self._data.DEGREES)
         self.points = val.as_points(points, family=self.family, degrees=degrees)
         self._exact_points = val.exact_rows(points)
@@ -116,7 +123,7 @@ class Curve:
     @property
     def degree(self) -> int:
         """The degree n (the curve has n + 1 control points)."""
-        return self.points.shape[0] - 1
+        return int(self.points.shape[0]) - 1
 
     @property
     def polynomial_degree(self) -> int:
@@ -125,7 +132,7 @@ class Curve:
 
     @property
     def dimension(self) -> int:
-        return self.points.shape[1]
+        return int(self.points.shape[1])
 
     @property
     def _tabulated(self) -> bool:
@@ -166,7 +173,13 @@ class Curve:
         """(n+1, N+1): row i holds the power coefficients of basis function i at this λ."""
         return self._combined("power")
 
-    def basis_bernstein_matrix(self, exact: bool = False):
+    @overload
+    def basis_bernstein_matrix(self, exact: Literal[False] = False) -> np.ndarray: ...
+    @overload
+    def basis_bernstein_matrix(self, exact: Literal[True]) -> Matrix: ...
+    @overload
+    def basis_bernstein_matrix(self, exact: bool) -> np.ndarray | Matrix: ...
+    def basis_bernstein_matrix(self, exact: bool = False) -> np.ndarray | Matrix:
         """(n+1, N+1): row i holds basis function i in the Bernstein basis of degree N.
         With exact=True (needs an exact λ) a tuple of tuples of Fractions."""
         if not val.flag(exact, "exact"):
@@ -177,11 +190,11 @@ class Curve:
         return _combine_exact(self._matrices("bernstein"), lam)
 
     # ------------------------------------------------------------------ evaluation
-    def evaluate(self, t, *, extrapolate: bool = False) -> np.ndarray:
+    def evaluate(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray:
         """p(t): shape (d,) for a scalar t, (len(t), d) for an array."""
         return self.derivative(t, 0, extrapolate=extrapolate)
 
-    def derivative(self, t, k: int = 1, *, extrapolate: bool = False) -> np.ndarray:
+    def derivative(self, t: ParamLike, k: int = 1, *, extrapolate: bool = False) -> np.ndarray:
         """The k-th derivative p^(k)(t) (zero beyond the polynomial degree)."""
         if self._scale == 1.0 and not extrapolate:  # cannot overflow: see __init__
             return self._unit_derivative(t, k, extrapolate)
@@ -189,21 +202,21 @@ class Curve:
             out = self._unit_derivative(t, k, extrapolate) * self._scale
         return val.finite_result(out, "p(t)" if k == 0 else f"the derivative of order {k}")
 
-    def _unit_derivative(self, t, k, extrapolate: bool) -> np.ndarray:
+    def _unit_derivative(self, t: ParamLike, k: object, extrapolate: bool) -> np.ndarray:
         """p^(k)(t) of the curve scaled by 1/self._scale."""
-        k = val.as_order(k)
+        order = val.as_order(k)
         tt, scalar = val.as_parameters(t, extrapolate=extrapolate)
         if not self._tabulated:  # de Casteljau on the k-th hodograph stays accurate
-            ctrl = self._hodograph_points(k)
+            ctrl = self._hodograph_points(order)
             if self._scale != 1.0:
                 ctrl = ctrl / self._scale
             out = alg.de_casteljau_steps(ctrl, tt, ctrl.shape[0] - 1)[:, 0]
             return out[0] if scalar else out
-        coeffs = self._derivative_coeffs.get(k)
+        coeffs = self._derivative_coeffs.get(order)
         if coeffs is None:
-            coeffs = alg.differentiate_coefficients(self._derivative_coeffs[0], k)
+            coeffs = alg.differentiate_coefficients(self._derivative_coeffs[0], order)
             coeffs.setflags(write=False)
-            self._derivative_coeffs[k] = coeffs
+            self._derivative_coeffs[order] = coeffs
         out = alg.centred_horner(coeffs, tt)
         return out[0] if scalar else out
 
@@ -220,7 +233,7 @@ class Curve:
             self._hodographs.append(nxt)
         return self._hodographs[k]
 
-    def basis(self, t, *, extrapolate: bool = False) -> np.ndarray:
+    def basis(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray:
         """Basis function values: (n+1,) for a scalar t, (len(t), n+1) for an array."""
         tt, scalar = val.as_parameters(t, extrapolate=extrapolate)
         if not self._tabulated:  # the Bernstein polynomials, by de Casteljau on unit points
@@ -229,7 +242,7 @@ class Curve:
             out = alg.centred_horner(self._combined("centred"), tt)
         return out[0] if scalar else out
 
-    def curvature(self, t, *, extrapolate: bool = False) -> np.ndarray:
+    def curvature(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
         """Signed curvature in 2D, unsigned in 3D; NaN where p'(t) = 0 (undefined there)."""
         if self.dimension not in (2, 3):
             raise ValueError(
@@ -260,7 +273,7 @@ class Curve:
             raise ValueError("the curvature overflows the float range for these control points")
         return kappa[()] if np.ndim(kappa) == 0 else kappa
 
-    def energy(self, k: int):
+    def energy(self, k: int) -> Fraction | float:
         r"""The energy :math:`E_k = \int_0^1 \lVert p^{(k)}(t) \rVert^2 \, dt`.
 
         k = 1, 2, 3 are the stretch, strain and jerk energies (any k >= 0 works). Computed from
@@ -280,7 +293,8 @@ class Curve:
             )
         scale, upper = GRAM[big - k]
         if self.is_exact:
-            h: tuple = self.to_bezier().control_points()
+            h = self.to_bezier()._exact_points
+            assert h is not None  # an exact curve has an exact Bézier form
             for d in range(big, big - k, -1):
                 h = alg.exact_matmul(forms.hodograph_matrix(d), h)
             size = len(h)
@@ -300,11 +314,11 @@ class Curve:
         return float(val.finite_result(energy, f"E_{k}"))
 
     # ------------------------------------------------------------------ geometry (geometry.py)
-    def arc_length(self, t0=0, t1=1) -> float:
+    def arc_length(self, t0: Fraction | float = 0, t1: Fraction | float = 1) -> float:
         """∫ |p'(t)| dt from t0 to t1 (0 <= t0 <= t1 <= 1), to a relative accuracy of 1e-12."""
         return _geometry.arc_length(self, t0, t1)
 
-    def parameter_at_length(self, s):
+    def parameter_at_length(self, s: npt.ArrayLike) -> np.ndarray | float:
         """The t at which the arc length from 0 equals s (a number or an array)."""
         return _geometry.parameter_at_length(self, s)
 
@@ -312,17 +326,17 @@ class Curve:
         """(lo, hi): the tight axis-aligned box, from the exact extremes of each coordinate."""
         return _geometry.bounding_box(self)
 
-    def closest_point(self, q) -> _geometry.ClosestPoint:
+    def closest_point(self, q: npt.ArrayLike) -> _geometry.ClosestPoint:
         """The global nearest point to q, (d,) or a batch (m, d): `t`, `point`, `distance`."""
         return _geometry.closest_point(self, q)
 
-    def torsion(self, t, *, extrapolate: bool = False):
+    def torsion(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
         """Signed torsion of a 3D curve; ValueError where undefined (2D, or p' x p'' = 0)."""
         return _geometry.torsion(self, t, extrapolate=extrapolate)
 
     # ------------------------------------------------------------------ conversion
     @classmethod
-    def from_bezier(cls, bezier: BezierCurve, lam=None) -> Curve:
+    def from_bezier(cls, bezier: BezierCurve, lam: Fraction | float | None = None) -> Curve:
         """The curve of this family, at shape `lam`, that traces `bezier` exactly (Fractions
         for exact input), in the smallest degree whose basis spans it; refused at a singular
         parameter. See lambda_bezier.conversion for which degree that is."""
@@ -341,7 +355,7 @@ class Curve:
             ctrl = self.basis_bernstein_matrix().T @ self.points
         return BezierCurve(val.finite_result(ctrl, "the Bézier control points"))
 
-    def control_points(self) -> tuple[tuple, ...]:
+    def control_points(self) -> tuple[tuple[Fraction, ...], ...] | tuple[tuple[float, ...], ...]:
         """The control points as given: Fractions if exact, floats otherwise."""
         if self._exact_points is not None:
             return self._exact_points
@@ -367,7 +381,7 @@ class Curve:
         """Every pair s < t with p(s) = p(t), as Intersection(s, t, kind), sorted by s."""
         return _intersect.self_intersections(self._prepared)
 
-    def locate(self, point) -> float | None:
+    def locate(self, point: PointsLike) -> float | None:
         """The t with p(t) = point (within 1e-10 of the curve's size), or None when the point
         is not on the curve. A ValueError when several t give the point (a self-crossing)."""
         arr = val.as_point(point, self.dimension)
@@ -377,7 +391,7 @@ class Curve:
             raise ValueError(f"the point is on the curve at several parameters: {found}")
         return found[0] if found else None
 
-    def implicitize(self):
+    def implicitize(self) -> Poly:
         """The algebraic curve f(x, y) = 0 containing this planar curve, as an exact
         sympy.Poly in x and y with coprime integer coefficients (SymPy is imported here).
         Needs exact control points (and an exact lam)."""
@@ -387,7 +401,9 @@ class Curve:
             raise ValueError("implicitize needs exact control points (ints or Fractions)")
         from ._implicit import implicitize
 
-        return implicitize(self.to_bezier().control_points())
+        rows = self.to_bezier()._exact_points
+        assert rows is not None  # checked above: the curve is exact
+        return implicitize(rows)
 
 
 class BezierCurve(Curve):
@@ -399,10 +415,16 @@ class BezierCurve(Curve):
     _has_lambda = False
     _any_degree = True  # any degree >= 0: de Casteljau past the generated tables
 
-    def __init__(self, points) -> None:
+    def __init__(self, points: PointsLike) -> None:
         super().__init__(points)
 
-    def basis_bernstein_matrix(self, exact: bool = False):
+    @overload
+    def basis_bernstein_matrix(self, exact: Literal[False] = False) -> np.ndarray: ...
+    @overload
+    def basis_bernstein_matrix(self, exact: Literal[True]) -> Matrix: ...
+    @overload
+    def basis_bernstein_matrix(self, exact: bool) -> np.ndarray | Matrix: ...
+    def basis_bernstein_matrix(self, exact: bool = False) -> np.ndarray | Matrix:
         if self._tabulated:
             return super().basis_bernstein_matrix(exact)
         return _identity(self.degree + 1) if exact else np.eye(self.degree + 1)
@@ -411,10 +433,10 @@ class BezierCurve(Curve):
         """The curve itself (it is one already; curves are immutable)."""
         return self
 
-    def _rows(self) -> tuple[tuple, ...]:
+    def _rows(self) -> tuple[tuple[Fraction, ...], ...] | tuple[tuple[float, ...], ...]:
         return self.control_points()
 
-    def de_casteljau(self, t, *, extrapolate: bool = False) -> np.ndarray:
+    def de_casteljau(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray:
         """p(t) by de Casteljau's algorithm (a second evaluator, vectorised over t)."""
         tt, scalar = val.as_parameters(t, extrapolate=extrapolate)
         with val.overflow_allowed():
@@ -424,7 +446,9 @@ class BezierCurve(Curve):
             val.finite_result(out, "p(t)")
         return out[0] if scalar else out
 
-    def _exact_t(self, t, name: str = "t", extrapolate: bool = False):
+    def _exact_t(
+        self, t: Fraction | float, name: str = "t", extrapolate: bool = False
+    ) -> Fraction | float:
         if val.is_exact_scalar(t):
             return Fraction(t)
         tt, _ = val.as_parameters(t, extrapolate=extrapolate, name=name)
@@ -432,7 +456,7 @@ class BezierCurve(Curve):
             raise ValueError(f"{name} must be a single number")
         return float(tt[0])
 
-    def split(self, t) -> tuple[BezierCurve, BezierCurve]:
+    def split(self, t: Fraction | float) -> tuple[BezierCurve, BezierCurve]:
         """The pieces over [0, t] and [t, 1] (exact for exact points and t)."""
         t = self._exact_t(t)
         if not 0 < t < 1:
@@ -441,7 +465,7 @@ class BezierCurve(Curve):
         left, right = alg.split_rows(rows, t)
         return BezierCurve(left), BezierCurve(right)
 
-    def segment(self, t1, t2, *, extrapolate: bool = False) -> BezierCurve:
+    def segment(self, t1: Fraction | float, t2: Fraction | float, *, extrapolate: bool = False) -> BezierCurve:
         """The piece between p(t1) and p(t2), 0 <= t1 < t2 <= 1, reparametrised to [0, 1]
         (the lecture notes' scheme 1: split at t2, then at t1/t2 of the left piece). With
         extrapolate=True any t1 < t2 (the polynomial continued past [0, 1], by blossoming)."""
@@ -506,7 +530,7 @@ class SameDegreeCurve(Curve):
     family = "same_degree"
     _data = _same_degree
 
-    def evaluate_geometric(self, t, *, extrapolate: bool = False) -> np.ndarray:
+    def evaluate_geometric(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray:
         """Prop. 8 of 000: n-3 de Casteljau steps down to a cubic, the cubic λ-Bernstein
         control points Q (eq. 16, from the generated cubic Bernstein matrix), then de
         Casteljau on the cubic Bézier curve. An independent second evaluator."""
@@ -523,7 +547,7 @@ class SameDegreeCurve(Curve):
             val.finite_result(out, "p(t)")
         return out[0] if scalar else out
 
-    def geometric_levels(self, t) -> list[tuple[tuple, ...]]:
+    def geometric_levels(self, t: Fraction | float) -> list[tuple[alg.Row, ...]]:
         """Every point of Prop. 8's construction at one t, level by level: V^0 … V^(n-3)
         (de Casteljau, eq. 14), then Q^(n-2) (eq. 16, from the generated cubic Bernstein
         matrix), Q^(n-1), Q^n and Q^(n+1) = p(t) (eq. 15). Exact for exact points, λ and t."""
@@ -532,20 +556,24 @@ class SameDegreeCurve(Curve):
             t = Fraction(t)
             if not 0 <= t <= 1:
                 raise ValueError(f"t = {t} is outside [0, 1] (geometric_levels evaluates there)")
-            rows = self.control_points()
-            m3 = _combine_exact(_tables(self._data, "bernstein")[3], Fraction(self.lam))
+            assert self._exact_points is not None and self.lam is not None  # is_exact
+            rows: alg.Rows = self._exact_points
+            m3: alg.Rows = _combine_exact(
+                _tables(self._data, "bernstein")[3], Fraction(self.lam)
+            )
         else:
             tt, _ = val.as_parameters(t, extrapolate=False)
             if tt.size != 1:
                 raise ValueError("geometric_levels takes a single t")
             t = float(tt[0])
             rows = tuple(tuple(float(v) for v in row) for row in self.points)
-            m3 = self.__class__(np.zeros((4, 2)), self.lam, check_range=False)
-            m3 = tuple(tuple(float(v) for v in row) for row in m3.basis_bernstein_matrix())
+            cubic_curve = self.__class__(np.zeros((4, 2)), self.lam, check_range=False)
+            m3 = tuple(tuple(float(v) for v in row) for row in cubic_curve.basis_bernstein_matrix())
         tri = alg.de_casteljau_triangle(rows, t)[: self.degree - 2]
         cubic = tri[-1]
         q = (
-            alg.exact_matmul(tuple(zip(*m3, strict=True)), cubic)
+            # exact: Fractions throughout (exact points, λ and t)
+            alg.exact_matmul(tuple(zip(*m3, strict=True)), cast(Matrix, tuple(cubic)))
             if exact
             else tuple(
                 tuple(sum(m3[i][j] * cubic[i][c] for i in range(4)) for c in range(len(cubic[0])))

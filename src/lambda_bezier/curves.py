@@ -465,7 +465,9 @@ class BezierCurve(Curve):
         left, right = alg.split_rows(rows, t)
         return BezierCurve(left), BezierCurve(right)
 
-    def segment(self, t1: Fraction | float, t2: Fraction | float, *, extrapolate: bool = False) -> BezierCurve:
+    def segment(
+        self, t1: Fraction | float, t2: Fraction | float, *, extrapolate: bool = False
+    ) -> BezierCurve:
         """The piece between p(t1) and p(t2), 0 <= t1 < t2 <= 1, reparametrised to [0, 1]
         (the lecture notes' scheme 1: split at t2, then at t1/t2 of the left piece). With
         extrapolate=True any t1 < t2 (the polynomial continued past [0, 1], by blossoming)."""
@@ -558,9 +560,7 @@ class SameDegreeCurve(Curve):
                 raise ValueError(f"t = {t} is outside [0, 1] (geometric_levels evaluates there)")
             assert self._exact_points is not None and self.lam is not None  # is_exact
             rows: alg.Rows = self._exact_points
-            m3: alg.Rows = _combine_exact(
-                _tables(self._data, "bernstein")[3], Fraction(self.lam)
-            )
+            m3: alg.Rows = _combine_exact(_tables(self._data, "bernstein")[3], Fraction(self.lam))
         else:
             tt, _ = val.as_parameters(t, extrapolate=False)
             if tt.size != 1:

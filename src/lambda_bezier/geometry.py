@@ -21,14 +21,22 @@ A CompositeCurve is handled segment by segment on its global parameter u ∈ [0,
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import cache
+from typing import TYPE_CHECKING, Literal, cast, overload
 
 import numpy as np
+import numpy.typing as npt
 
 from . import _algorithms as alg
 from ._lazy import generated
+
+if TYPE_CHECKING:
+    from ._validate import ParamLike
+    from .composite import CompositeCurve
+    from .curves import Curve
 
 _bernstein = generated("bernstein")
 
@@ -55,7 +63,7 @@ class _Poly:
         return out
 
 
-def _centred_coefficients(curve) -> np.ndarray:
+def _centred_coefficients(curve: Curve) -> np.ndarray:
     """(d, N+1) Taylor coefficients about t = 1/2 of the curve's Bézier form, computed in
     Fractions and rounded once when the curve is exact. A float curve already holds them
     (Curve._derivative_coeffs[0], from the same generated centred matrices)."""
@@ -68,14 +76,15 @@ def _centred_coefficients(curve) -> np.ndarray:
     if not curve.is_exact:
         return np.ascontiguousarray(curve._derivative_coeffs[0], dtype=float)
     bez = curve.to_bezier()
-    rows = bez.control_points()
+    rows = bez._exact_points
+    assert rows is not None  # an exact curve has an exact Bézier form
     cols = tuple(zip(*_bernstein.CENTRED[bez.degree], strict=True))  # row i: B_i about 1/2
     exact = alg.exact_matmul(cols, rows)  # (N+1, d)
     return np.array([[float(v) for v in row] for row in exact]).T.copy()
 
 
-def _poly(curve) -> _Poly:
-    cached = curve.__dict__.get("_geometry_poly")
+def _poly(curve: Curve) -> _Poly:
+    cached: _Poly | None = curve.__dict__.get("_geometry_poly")
     if cached is None:
         cached = curve.__dict__["_geometry_poly"] = _Poly(_centred_coefficients(curve))
     return cached
@@ -86,12 +95,13 @@ def _eval(coeffs: np.ndarray, t: np.ndarray) -> np.ndarray:
     return alg.centred_horner(coeffs, np.ascontiguousarray(t, dtype=float).ravel())
 
 
-def _segments(obj) -> tuple:
-    segs = getattr(obj, "segments", None)
-    return (obj,) if segs is None else tuple(segs)
+def _segments(obj: Curve | CompositeCurve) -> tuple[Curve, ...]:
+    segs: list[Curve] | None = getattr(obj, "segments", None)
+    # no segments: obj is a Curve (a CompositeCurve always has them)
+    return (cast("Curve", obj),) if segs is None else tuple(segs)
 
 
-def _parameter(value, name: str, hi: int) -> float:
+def _parameter(value: object, name: str, hi: int) -> float:
     if isinstance(value, bool) or not isinstance(value, int | float | Fraction | np.number):
         raise ValueError(f"{name} must be a number, got {value!r}")
     x = float(value)
@@ -130,7 +140,8 @@ def _unit_speeds(d1: np.ndarray, pieces: int) -> np.ndarray:
     [0, 1] and their halves; few array operations, since this is most calls' whole work."""
     values = d1 @ _unit_powers(pieces, d1.shape[1])  # (d, nodes)
     speed = np.sqrt(np.einsum("ij,ij->j", values, values))
-    return (speed.reshape(3 * pieces, _GL_ORDER) @ _gauss_legendre(_GL_ORDER)[1]).reshape(pieces, 3)
+    sums: np.ndarray = speed.reshape(3 * pieces, _GL_ORDER) @ _gauss_legendre(_GL_ORDER)[1]
+    return sums.reshape(pieces, 3)
 
 
 def _rule(d1: np.ndarray, left: np.ndarray, right: np.ndarray) -> np.ndarray:
@@ -139,10 +150,13 @@ def _rule(d1: np.ndarray, left: np.ndarray, right: np.ndarray) -> np.ndarray:
     width = right - left
     t = left[:, None] + width[:, None] * x
     speed = np.sqrt(np.square(_eval(d1, t)).sum(axis=1)).reshape(t.shape)
-    return (speed @ w) * width
+    out: np.ndarray = (speed @ w) * width
+    return out
 
 
-def _level(d1: np.ndarray, left: np.ndarray, right: np.ndarray, unit: bool):
+def _level(
+    d1: np.ndarray, left: np.ndarray, right: np.ndarray, unit: bool
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The rule on each interval and on each of its halves, in one evaluation."""
     width = right - left
     if unit:  # left, right = k/K, (k+1)/K
@@ -154,7 +168,17 @@ def _level(d1: np.ndarray, left: np.ndarray, right: np.ndarray, unit: bool):
     return sums[:, 0], sums[:, 1] / 2, sums[:, 2] / 2
 
 
-def _adaptive(d1: np.ndarray, a: float, b: float, rtol: float, *, table: bool = False):
+@overload
+def _adaptive(
+    d1: np.ndarray, a: float, b: float, rtol: float, *, table: Literal[False] = False
+) -> float: ...
+@overload
+def _adaptive(
+    d1: np.ndarray, a: float, b: float, rtol: float, *, table: Literal[True]
+) -> tuple[np.ndarray, np.ndarray]: ...
+def _adaptive(
+    d1: np.ndarray, a: float, b: float, rtol: float, *, table: bool = False
+) -> float | tuple[np.ndarray, np.ndarray]:
     """∫_a^b |p'| to a relative accuracy rtol: an interval is accepted when the rule on it
     and the sum over its halves agree to its share (by width) of rtol · total (the halves'
     sum is kept, far more accurate than that test asks); a rejected one is cut in _SPLIT.
@@ -199,7 +223,7 @@ def _adaptive(d1: np.ndarray, a: float, b: float, rtol: float, *, table: bool = 
     return edges, pairs.ravel()
 
 
-def _curve_arc_length(curve, t0: float, t1: float) -> float:
+def _curve_arc_length(curve: Curve, t0: float, t1: float) -> float:
     if t0 == t1:
         return 0.0
     d1 = _poly(curve)[1]
@@ -213,7 +237,9 @@ def _curve_arc_length(curve, t0: float, t1: float) -> float:
     return _adaptive(d1, t0, t1, RTOL)
 
 
-def arc_length(obj, start=0, end=None) -> float:
+def arc_length(
+    obj: Curve | CompositeCurve, start: Fraction | float = 0, end: Fraction | float | None = None
+) -> float:
     """∫ |p'| from `start` to `end` (a curve: 0 <= start <= end <= 1; a composite:
     0 <= start <= end <= N in its global u), to a relative accuracy of 1e-12."""
     segs = _segments(obj)
@@ -230,9 +256,9 @@ def arc_length(obj, start=0, end=None) -> float:
     return math.fsum(total)
 
 
-def _length_table(curve):
+def _length_table(curve: Curve) -> tuple[np.ndarray, np.ndarray]:
     """The accepted partition of [0, 1] with cumulative lengths (cached on the curve)."""
-    cached = curve.__dict__.get("_geometry_lengths")
+    cached: tuple[np.ndarray, np.ndarray] | None = curve.__dict__.get("_geometry_lengths")
     if cached is None:
         edges, values = _adaptive(_poly(curve)[1], 0.0, 1.0, RTOL, table=True)
         cum = np.concatenate([[0.0], np.cumsum(values)])
@@ -242,7 +268,7 @@ def _length_table(curve):
     return cached
 
 
-def _curve_parameter_at_length(curve, s: np.ndarray) -> np.ndarray:
+def _curve_parameter_at_length(curve: Curve, s: np.ndarray) -> np.ndarray:
     """t with L(0, t) = s for lengths 0 <= s <= L (vectorised safeguarded Newton inside the
     accepted interval holding s, where L(t) = cumulative + Gauss–Legendre up to t)."""
     d1 = _poly(curve)[1]
@@ -252,7 +278,7 @@ def _curve_parameter_at_length(curve, s: np.ndarray) -> np.ndarray:
     span = cum[k + 1] - base
     with np.errstate(divide="ignore", invalid="ignore"):
         frac = np.where(span > 0, (s - base) / span, 0.0)
-    t = lo + np.clip(frac, 0, 1) * (hi - lo)
+    t: np.ndarray = lo + np.clip(frac, 0, 1) * (hi - lo)
     start = edges[k]
     goal = RTOL * cum[-1] / 16
     for _ in range(100):
@@ -274,7 +300,7 @@ def _curve_parameter_at_length(curve, s: np.ndarray) -> np.ndarray:
     return t
 
 
-def parameter_at_length(obj, s):
+def parameter_at_length(obj: Curve | CompositeCurve, s: npt.ArrayLike) -> np.ndarray | float:
     """The parameter (t for a curve, u for a composite) at which the arc length from the
     start equals s, for a number or an array of lengths in [0, total length]."""
     try:
@@ -340,7 +366,12 @@ def _candidate_roots(c: np.ndarray) -> np.ndarray:
     return np.where(ok, np.clip(real, -0.5, 0.5) + 0.5, np.nan)
 
 
-def _newton(t: np.ndarray, f, fprime, steps: int = 4) -> np.ndarray:
+def _newton(
+    t: np.ndarray,
+    f: Callable[[np.ndarray], np.ndarray],
+    fprime: Callable[[np.ndarray], np.ndarray],
+    steps: int = 4,
+) -> np.ndarray:
     """A few guarded Newton steps on every finite candidate (kept inside [0, 1])."""
     for _ in range(steps):
         good = np.isfinite(t)
@@ -352,7 +383,7 @@ def _newton(t: np.ndarray, f, fprime, steps: int = 4) -> np.ndarray:
 
 
 # ---------------------------------------------------------------------- bounding box
-def _curve_box(curve) -> tuple[np.ndarray, np.ndarray]:
+def _curve_box(curve: Curve) -> tuple[np.ndarray, np.ndarray]:
     poly = _poly(curve)
     candidates = []
     for axis in range(curve.dimension):
@@ -362,10 +393,17 @@ def _curve_box(curve) -> tuple[np.ndarray, np.ndarray]:
             continue
         roots = _candidate_roots(c1)[0]
         roots = roots[np.isfinite(roots)]
+
+        def slope(t: np.ndarray, a: int = axis) -> np.ndarray:
+            return _eval(poly[1][a : a + 1], t)[:, 0]
+
+        def bend(t: np.ndarray, c: np.ndarray = c2) -> np.ndarray:
+            return _eval(c, t)[:, 0]
+
         polished = _newton(
             roots.copy(),
-            lambda t, a=axis: _eval(poly[1][a : a + 1], t)[:, 0],
-            lambda t, c=c2: _eval(c, t)[:, 0],
+            slope,
+            bend,
         )
         candidates += [roots, polished]
     t = np.concatenate([np.empty(0), *candidates])
@@ -377,7 +415,7 @@ def _curve_box(curve) -> tuple[np.ndarray, np.ndarray]:
     return values.min(axis=0), values.max(axis=0)
 
 
-def bounding_box(obj) -> tuple[np.ndarray, np.ndarray]:
+def bounding_box(obj: Curve | CompositeCurve) -> tuple[np.ndarray, np.ndarray]:
     """(lo, hi): the tight axis-aligned box, from the curve's values at both ends and at
     every root in [0, 1] of each coordinate's derivative."""
     boxes = [_curve_box(seg) for seg in _segments(obj)]
@@ -398,7 +436,7 @@ class ClosestPoint:
     distance: float | np.ndarray
 
 
-def _queries(q, dimension: int) -> tuple[np.ndarray, bool]:
+def _queries(q: npt.ArrayLike, dimension: int) -> tuple[np.ndarray, bool]:
     try:
         arr = np.asarray(q, dtype=float)
     except (TypeError, ValueError):
@@ -413,7 +451,7 @@ def _queries(q, dimension: int) -> tuple[np.ndarray, bool]:
     return np.atleast_2d(arr), arr.ndim == 1
 
 
-def _curve_closest(curve, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _curve_closest(curve: Curve, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Parameters, points and squared distances of the nearest points to each row of q."""
     poly = _poly(curve)
     p = _significant(poly[0])  # (d, N'+1) with the true leading term
@@ -429,18 +467,20 @@ def _curve_closest(curve, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.nda
         roots = _candidate_roots(g)
         d2 = alg.differentiate_coefficients(p, 2)
 
-        def gval(t):
+        def gval(t: np.ndarray) -> np.ndarray:
             shape = t.shape
             pts = _eval(p, t).reshape(*shape, dim)
             der = _eval(dp, t).reshape(*shape, dim)
-            return ((pts - q[:, None, :]) * der).sum(-1)
+            g: np.ndarray = ((pts - q[:, None, :]) * der).sum(-1)
+            return g
 
-        def gprime(t):
+        def gprime(t: np.ndarray) -> np.ndarray:
             shape = t.shape
             pts = _eval(p, t).reshape(*shape, dim)
             der = _eval(dp, t).reshape(*shape, dim)
             sec = _eval(d2, t).reshape(*shape, dim)
-            return (der * der).sum(-1) + ((pts - q[:, None, :]) * sec).sum(-1)
+            dg: np.ndarray = (der * der).sum(-1) + ((pts - q[:, None, :]) * sec).sum(-1)
+            return dg
 
         polished = _newton(roots.copy(), gval, gprime)
         cands += [np.nan_to_num(roots, nan=0.0), np.nan_to_num(polished, nan=0.0)]
@@ -452,7 +492,7 @@ def _curve_closest(curve, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.nda
     return t[rows, best], pts[rows, best], dist2[rows, best]
 
 
-def closest_point(obj, q) -> ClosestPoint:
+def closest_point(obj: Curve | CompositeCurve, q: npt.ArrayLike) -> ClosestPoint:
     """The global minimum of |p(t) − q| over the curve (u over a composite): the best of both
     ends and every critical point, i.e. every root of (p − q)·p' in [0, 1]. q is one point
     (d,) or a batch (m, d)."""
@@ -472,7 +512,9 @@ def closest_point(obj, q) -> ClosestPoint:
 
 
 # ---------------------------------------------------------------------- torsion
-def torsion_from_derivatives(d1: np.ndarray, d2: np.ndarray, d3: np.ndarray, where):
+def torsion_from_derivatives(
+    d1: np.ndarray, d2: np.ndarray, d3: np.ndarray, where: object
+) -> np.ndarray:
     """(p' × p'') · p''' / |p' × p''|², row-wise; ValueError where p' × p'' vanishes (below
     1e-12 |p'| |p''|: the curve is straight there, or has a cusp)."""
     cross = np.cross(d1, d2)
@@ -485,10 +527,13 @@ def torsion_from_derivatives(d1: np.ndarray, d2: np.ndarray, d3: np.ndarray, whe
             f"torsion is undefined at {at}: p' x p'' = 0 there (the curve is straight "
             "or has a cusp)"
         )
-    return (cross * d3).sum(-1) / norm2
+    tau: np.ndarray = (cross * d3).sum(-1) / norm2
+    return tau
 
 
-def torsion(obj, t, *, extrapolate: bool = False):
+def torsion(
+    obj: Curve | CompositeCurve, t: ParamLike, *, extrapolate: bool = False
+) -> np.ndarray | float:
     """Signed torsion of a 3D curve (composite: in u) at t, a number or an array."""
     if obj.dimension != 3:
         raise ValueError(

@@ -28,15 +28,17 @@ from .curves import Curve, _tables
 Number = Fraction | float
 
 
-def _combined_power(cls: type[Curve], degree: int, lam) -> list[list[Number]]:
+def _combined_power(
+    cls: type[Curve], degree: int, lam: Fraction | float | None
+) -> list[list[Number]]:
     """Power coefficients [i][e] of the degree-`degree` basis of `cls` at λ = lam."""
     mats = _tables(cls._data, "power")[degree]
     exact = lam is None or isinstance(lam, Fraction)
     x = Fraction(0) if lam is None else lam
     rows, cols = len(mats[0]), len(mats[0][0])
-    out = []
+    out: list[list[Number]] = []
     for i in range(rows):
-        row = []
+        row: list[Number] = []
         for e in range(cols):
             v = (
                 sum((Fraction(m[i][e]) * x**p for p, m in enumerate(mats)), Fraction(0))
@@ -52,9 +54,9 @@ def end_coefficients(curve: Curve, orders: int) -> list[list[Number]]:
     """e[r][j]: the coefficient of P_{n-j} in p^(r)(1), r = 0..orders."""
     power = _combined_power(type(curve), curve.degree, curve.lam)
     n = curve.degree
-    out = []
+    out: list[list[Number]] = []
     for r in range(orders + 1):
-        row = []
+        row: list[Number] = []
         for j in range(n + 1):
             coeffs = power[n - j]
             row.append(
@@ -67,7 +69,9 @@ def end_coefficients(curve: Curve, orders: int) -> list[list[Number]]:
     return out
 
 
-def start_coefficients(cls: type[Curve], degree: int, lam, orders: int) -> list[list[Number]]:
+def start_coefficients(
+    cls: type[Curve], degree: int, lam: Fraction | float | None, orders: int
+) -> list[list[Number]]:
     """s[r][j]: the coefficient of P_j in p^(r)(0), r = 0..orders."""
     power = _combined_power(cls, degree, lam)
     return [
@@ -84,7 +88,14 @@ def _is_zero(x: Number, scale: float) -> bool:
 
 
 def weights(
-    curve: Curve, order: int, alpha, d, cls: type[Curve], degree: int, lam, continuity: str
+    curve: Curve,
+    order: int,
+    alpha: Number,
+    d: Number,
+    cls: type[Curve],
+    degree: int,
+    lam: Fraction | float | None,
+    continuity: str,
 ) -> dict[tuple[int, str, int], Number]:
     """P_{row,2} as combinations of the first curve's points and the given P_{j,2}."""
     exact = all(x is None or isinstance(x, Fraction) for x in (curve.lam, lam, alpha, d))
@@ -93,7 +104,7 @@ def weights(
     s = start_coefficients(cls, degree, lam, order)
     n = curve.degree
     # right-hand sides T_r as {("first", j): weight}
-    targets: list[dict] = []
+    targets: list[dict[tuple[str, int], Number]] = []
     for r in range(order + 1):
         t = {("first", j): e[r][j] for j in range(n + 1) if e[r][j] != 0}
         if r == 1:

@@ -13,11 +13,14 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from fractions import Fraction
 
 import numpy as np
+import numpy.typing as npt
 
 from . import _validate as val
 from . import geometry as _geometry
+from ._validate import ParamLike, PointsLike
 from .curves import Curve
 from .joins import Joint, join
 
@@ -101,7 +104,9 @@ def _relative_gap(a: np.ndarray, b: np.ndarray) -> float:
     return 0.0 if gap == 0 else gap / scale
 
 
-def measure(left: Curve, right: Curve, *, index: int = 0, joint=None, tol=1e-9) -> JointReport:
+def measure(
+    left: Curve, right: Curve, *, index: int = 0, joint: Joint | None = None, tol: float = 1e-9
+) -> JointReport:
     """The JointReport for `right` following `left` (see JointReport)."""
     tol = val.tolerance(tol)
     p1, p2 = left.evaluate(1.0), right.evaluate(0.0)
@@ -148,7 +153,14 @@ def measure(left: Curve, right: Curve, *, index: int = 0, joint=None, tol=1e-9) 
     )
 
 
-def _rejoin(left: Curve, right: Curve, joint: Joint, lam=None, *, check_range=False) -> Curve:
+def _rejoin(
+    left: Curve,
+    right: Curve,
+    joint: Joint,
+    lam: Fraction | float | None = None,
+    *,
+    check_range: bool = False,
+) -> Curve:
     """`right` with its leading control points re-solved against `left` (same family,
     degree, λ unless given, and the same trailing control points)."""
     keep = right.control_points()[joint.order + 1 :]
@@ -184,7 +196,9 @@ class CompositeCurve:
     False
     """
 
-    def __init__(self, segments: Sequence[Curve], joints=None) -> None:
+    def __init__(
+        self, segments: Sequence[Curve] | Curve, joints: Sequence[Joint | str | None] | None = None
+    ) -> None:
         segs = tuple(segments) if not isinstance(segments, Curve) else (segments,)
         if not segs:
             raise ValueError("a composite curve needs at least one segment")
@@ -199,14 +213,14 @@ class CompositeCurve:
                     f"{segs[0].dimension}"
                 )
         if joints is None:
-            specs: tuple = (None,) * (len(segs) - 1)
+            specs: tuple[Joint | None, ...] = (None,) * (len(segs) - 1)
         else:
-            specs = tuple(joints)
-            if len(specs) != len(segs) - 1:
+            given = tuple(joints)
+            if len(given) != len(segs) - 1:
                 raise ValueError(
-                    f"joints must have one entry per joint ({len(segs) - 1}), got {len(specs)}"
+                    f"joints must have one entry per joint ({len(segs) - 1}), got {len(given)}"
                 )
-            specs = tuple(s if s is None or isinstance(s, Joint) else Joint(s) for s in specs)
+            specs = tuple(s if s is None or isinstance(s, Joint) else Joint(s) for s in given)
         self.segments: tuple[Curve, ...] = segs
         self.joints: tuple[Joint | None, ...] = specs
 
@@ -230,10 +244,10 @@ class CompositeCurve:
         self,
         continuity: str,
         degree: int,
-        lam=None,
-        alpha=1,
-        d=0,
-        rest=(),
+        lam: Fraction | float | None = None,
+        alpha: Fraction | float = 1,
+        d: Fraction | float = 0,
+        rest: PointsLike = (),
         family: object = None,
         *,
         check_range: bool = True,
@@ -257,7 +271,7 @@ class CompositeCurve:
     def with_lambda(
         self,
         index: int,
-        lam,
+        lam: Fraction | float,
         *,
         resolve: bool = True,
         check_range: bool = True,
@@ -309,7 +323,9 @@ class CompositeCurve:
         return CompositeCurve(segs, self.joints)
 
     # ------------------------------------------------------------------ evaluation
-    def _locate(self, u, extrapolate: bool):
+    def _locate(
+        self, u: ParamLike, extrapolate: bool
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool]:
         # the checks of a curve's t (types, finiteness), then the composite's own interval
         arr, scalar = val.as_parameters(u, extrapolate=True, name="u")
         extrapolate = val.flag(extrapolate, "extrapolate")
@@ -323,7 +339,7 @@ class CompositeCurve:
         idx = np.clip(np.floor(arr).astype(int), 0, count - 1)
         return arr, idx, arr - idx, scalar
 
-    def derivative(self, u, k: int = 1, *, extrapolate: bool = False) -> np.ndarray:
+    def derivative(self, u: ParamLike, k: int = 1, *, extrapolate: bool = False) -> np.ndarray:
         """d^k/du^k of the composite: shape (d,) for a scalar u, (len(u), d) for an array."""
         k = val.as_order(k)
         arr, idx, t, scalar = self._locate(u, extrapolate)
@@ -333,10 +349,10 @@ class CompositeCurve:
             out[mask] = self.segments[s].derivative(t[mask], k, extrapolate=extrapolate)
         return out[0] if scalar else out
 
-    def evaluate(self, u, *, extrapolate: bool = False) -> np.ndarray:
+    def evaluate(self, u: ParamLike, *, extrapolate: bool = False) -> np.ndarray:
         return self.derivative(u, 0, extrapolate=extrapolate)
 
-    def curvature(self, u, *, extrapolate: bool = False) -> np.ndarray:
+    def curvature(self, u: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
         """Signed in 2D, unsigned in 3D (as the segments' curvature)."""
         arr, idx, t, scalar = self._locate(u, extrapolate)
         out = np.zeros(arr.size)
@@ -346,11 +362,11 @@ class CompositeCurve:
         return out[0] if scalar else out
 
     # ------------------------------------------------------------------ geometry (geometry.py)
-    def arc_length(self, u0=0, u1=None) -> float:
+    def arc_length(self, u0: Fraction | float = 0, u1: Fraction | float | None = None) -> float:
         """∫ |C'(u)| du from u0 to u1 (0 <= u0 <= u1 <= N, default the whole composite)."""
         return _geometry.arc_length(self, u0, u1)
 
-    def parameter_at_length(self, s):
+    def parameter_at_length(self, s: npt.ArrayLike) -> np.ndarray | float:
         """The u at which the arc length from u = 0 equals s (a number or an array)."""
         return _geometry.parameter_at_length(self, s)
 
@@ -358,12 +374,12 @@ class CompositeCurve:
         """(lo, hi): the tight axis-aligned box of all segments."""
         return _geometry.bounding_box(self)
 
-    def closest_point(self, q) -> _geometry.ClosestPoint:
+    def closest_point(self, q: npt.ArrayLike) -> _geometry.ClosestPoint:
         """The global nearest point to q, (d,) or a batch (m, d): `t` (the u), `point`,
         `distance`."""
         return _geometry.closest_point(self, q)
 
-    def torsion(self, u, *, extrapolate: bool = False):
+    def torsion(self, u: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
         """Signed torsion in u of a 3D composite (see Curve.torsion)."""
         return _geometry.torsion(self, u, extrapolate=extrapolate)
 
@@ -380,16 +396,18 @@ class CompositeCurve:
 # --------------------------------------------------------------------------- eq. (17) of 001
 
 
-def _end_velocity(curve: Curve, end: int):
+def _end_velocity(curve: Curve, end: int) -> tuple[Fraction | float, ...]:
     """p'(end) for end 0 or 1: exact (Fractions) for an exact curve, else floats."""
     bez = curve.to_bezier()
-    pts = bez.control_points()
+    pts: Sequence[Sequence[Fraction | float]] = bez.control_points()
     size = bez.degree
     a, b = (pts[0], pts[1]) if end == 0 else (pts[-2], pts[-1])
     return tuple(size * (q - p) for p, q in zip(a, b, strict=True))
 
 
-def _velocity_in_lam(curve: Curve, end: int, *, exact: bool):
+def _velocity_in_lam(
+    curve: Curve, end: int, *, exact: bool
+) -> tuple[tuple[Fraction | float, ...], tuple[Fraction | float, ...]]:
     """(A, S) with p'(end; λ) = A + λ S: every basis of the project is affine in λ."""
     lam0, lam1 = (0, 1) if exact else (0.0, 1.0)
     pts = curve.control_points()
@@ -398,7 +416,9 @@ def _velocity_in_lam(curve: Curve, end: int, *, exact: bool):
     return at0, tuple(b - a for a, b in zip(at0, at1, strict=True))
 
 
-def _solve_lam(target, seg: Curve, end: int, joint: int, exact: bool):
+def _solve_lam(
+    target: Sequence[Fraction | float], seg: Curve, end: int, joint: int, exact: bool
+) -> Fraction | float:
     """The λ of `seg` (points fixed) whose end velocity equals `target`."""
     a, slope = _velocity_in_lam(seg, end, exact=exact)
     ss = sum(v * v for v in slope)
@@ -415,7 +435,9 @@ def _solve_lam(target, seg: Curve, end: int, joint: int, exact: bool):
     return lam
 
 
-def _follow_c1(comp: CompositeCurve, index: int, lam, *, check_range: bool) -> CompositeCurve:
+def _follow_c1(
+    comp: CompositeCurve, index: int, lam: Fraction | float, *, check_range: bool
+) -> CompositeCurve:
     if isinstance(index, bool) or not isinstance(index, int | np.integer):
         raise ValueError(f"index must be an integer, got {index!r}")
     if not 0 <= index < len(comp.segments):

@@ -19,23 +19,29 @@ and that point enters the solve.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
+from types import ModuleType
+from typing import TypeVar, cast
 
 import numpy as np
 
 from . import _join_engine
 from . import _validate as val
 from ._lazy import generated
+from ._validate import PointsLike
 from .curves import FAMILIES, Curve, family_class
 
 _bernstein = generated("bernstein")
 _joins = generated("joins")
+_Solved = TypeVar("_Solved")  # what a generated join formula returns
 
 
 def _order(continuity: str) -> int:
     """Derivatives matched at the joint (1 or 2), as emitted by derive/joins.py."""
-    return _joins.ORDER[continuity]
+    order: int = _joins.ORDER[continuity]
+    return order
 
 
 @dataclass(frozen=True)
@@ -102,22 +108,26 @@ def _builtin(cls: type[Curve]) -> bool:
     return FAMILIES.get(cls.family) is cls
 
 
-def _end_factor(curve: Curve):
+def _end_factor(curve: Curve) -> Fraction | float:
     """The coefficient of P_n in C1'(1) (= −that of P_{n−1}), from the generated end data."""
     if curve.family == "bezier":
-        return _bernstein.endpoint_weight_end(curve.degree, 1, 0)
+        weight: Fraction | float = _bernstein.endpoint_weight_end(curve.degree, 1, 0)
+        return weight
     lam = curve.lam
-    return curve._data.endpoint_end(curve.degree, lam)[(1, 0)]
+    # a built-in family (leading_weights checked): its generated module has endpoint_end
+    data = cast("ModuleType | generated", curve._data)
+    factor: Fraction | float = data.endpoint_end(curve.degree, lam)[(1, 0)]
+    return factor
 
 
-def _is_zero(x, scale: float = 1.0) -> bool:
+def _is_zero(x: Fraction | float, scale: float = 1.0) -> bool:
     if isinstance(x, Fraction):
         return x == 0
     return abs(float(x)) <= 1e-12 * scale
 
 
 def leading_weights(
-    curve: Curve, joint: Joint, family: object, degree: int, lam
+    curve: Curve, joint: Joint, family: object, degree: int, lam: Fraction | float | None
 ) -> dict[tuple[int, str, int], Fraction | float]:
     """{(row, source, j): weight}: P_{row,2} = Σ weight · X, X = P_{n−j} of `curve` (source
     "first") or a given P_{j,2} of the new curve (source "second"). Raises ValueError where
@@ -149,7 +159,7 @@ def leading_weights(
         )
     pivot_fn, pivot_args = _joins.PIVOTS[family]
     values = {"n": n, "m": m, "lam1": curve.lam, "lam2": lam, "alpha": joint.alpha, "d": joint.d}
-    pivots = _solve_step(pivot_fn, pivot_args, values, joint)
+    pivots: dict[str, Fraction | float] = _solve_step(pivot_fn, pivot_args, values, joint)
     for r in range(1, order + 1):
         if _is_zero(pivots[f"P{r}"], m * m):
             text = _joins.PIVOT_TEXT[family][f"P{r}"]
@@ -164,7 +174,9 @@ def leading_weights(
     return _solve_step(fn, args, values, joint)
 
 
-def _generic_weights(curve: Curve, joint: Joint, cls: type[Curve], degree: int, lam):
+def _generic_weights(
+    curve: Curve, joint: Joint, cls: type[Curve], degree: int, lam: Fraction | float | None
+) -> dict[tuple[int, str, int], Fraction | float]:
     e1 = _join_engine.end_coefficients(curve, 1)[1]  # weights of P_{n-j} in C1'(1)
     pts = curve.control_points()
     tangent = [
@@ -185,7 +197,12 @@ def _generic_weights(curve: Curve, joint: Joint, cls: type[Curve], degree: int, 
         raise ValueError(_too_extreme(joint)) from None
 
 
-def _solve_step(fn, args, values, joint: Joint):
+def _solve_step(
+    fn: Callable[..., _Solved],
+    args: Sequence[str],
+    values: Mapping[str, object],
+    joint: Joint,
+) -> _Solved:
     """fn(*args) from generated/joins.py; in floating point an extreme α or d (the formulas
     divide by α and α²) overflows or divides by an underflowed zero: named here."""
     try:
@@ -207,10 +224,10 @@ def join(
     curve: Curve,
     continuity: str,
     degree: int,
-    lam=None,
-    alpha=1,
-    d=0,
-    rest=(),
+    lam: Fraction | float | None = None,
+    alpha: Fraction | float = 1,
+    d: Fraction | float = 0,
+    rest: PointsLike = (),
     family: object = None,
     *,
     check_range: bool = True,
@@ -295,18 +312,19 @@ def join(
         and rest_rows[1] is not None
     )
     if exact:
-        first = curve.control_points()
+        first = curve._exact_points  # what control_points() gives for an exact curve
         given = rest_rows[1]
+        assert first is not None and given is not None  # exact: checked above
         lead = []
         for row in range(spec.order + 1):
-            acc = [Fraction(0)] * curve.dimension
+            acc: list[Fraction | float] = [Fraction(0)] * curve.dimension
             for (r, src, j), w in weights.items():
                 if r != row or w == 0:
                     continue
                 p = first[curve.degree - j] if src == "first" else given[j - spec.order - 1]
                 acc = [a + w * v for a, v in zip(acc, p, strict=True)]
             lead.append(tuple(acc))
-        points: object = [*lead, *given]
+        points: PointsLike = [*lead, *given]
     else:
         first_f = curve.points
         given_f = rest_rows[0]
@@ -327,7 +345,9 @@ def join(
     return cls(points)
 
 
-def _rest(rest, curve: Curve, spec: Joint, family: str, degree: int):
+def _rest(
+    rest: PointsLike, curve: Curve, spec: Joint, family: str, degree: int
+) -> tuple[np.ndarray, val.ExactRows | None]:
     """(float array (k, d), exact rows or None) for the caller's remaining control points."""
     want = degree - spec.order
     first_index = spec.order + 1

@@ -13,18 +13,20 @@ from fractions import Fraction
 
 import numpy as np
 
+from ._algorithms import Scalar
 from ._lazy import generated
 
 _bernstein = generated("bernstein")
 
-Rows = tuple[tuple, ...]
+Rows = tuple[tuple[Fraction | float, ...], ...]  # exact (Fractions) or float rows
 
 
 def hodograph_matrix(degree: int) -> tuple[tuple[Fraction, ...], ...]:
     """(n, n+1) weights of p' = n Σ (P_{i+1} - P_i) B_{i,n-1}: the generated table where it
     exists, the same formula beyond. Degree 0 has a zero derivative: one zero row."""
     if degree in _bernstein.DEGREES:
-        return _bernstein.HODOGRAPH[degree]
+        table: tuple[tuple[Fraction, ...], ...] = _bernstein.HODOGRAPH[degree]
+        return table
     if degree == 0:
         return ((Fraction(0),),)
     return tuple(
@@ -40,7 +42,8 @@ def elevation_matrix(degree: int) -> tuple[tuple[Fraction, ...], ...]:
     """(n+2, n+1) weights of one degree elevation, Q_i = i/(n+1) P_{i-1} + (1 - i/(n+1)) P_i:
     the generated table where it exists, the same formula beyond."""
     if degree in _bernstein.ELEVATION:
-        return _bernstein.ELEVATION[degree]
+        table: tuple[tuple[Fraction, ...], ...] = _bernstein.ELEVATION[degree]
+        return table
     top = degree + 1
     return tuple(
         tuple(
@@ -51,7 +54,7 @@ def elevation_matrix(degree: int) -> tuple[tuple[Fraction, ...], ...]:
     )
 
 
-def blossom(points: Sequence[Sequence], params: Sequence) -> tuple:
+def blossom(points: Sequence[Sequence[Scalar]], params: Sequence[Scalar]) -> tuple[Scalar, ...]:
     """The polar form b[u_1, …, u_n] of the curve: de Casteljau with a different parameter
     at each level (u_i = t for all i gives p(t))."""
     work = [tuple(p) for p in points]
@@ -63,7 +66,9 @@ def blossom(points: Sequence[Sequence], params: Sequence) -> tuple:
     return work[0]
 
 
-def segment_rows(points: Sequence[Sequence], t1, t2) -> list[tuple]:
+def segment_rows(
+    points: Sequence[Sequence[Scalar]], t1: Scalar, t2: Scalar
+) -> list[tuple[Scalar, ...]]:
     """Control points of the piece over [t1, t2] reparametrised to [0, 1], for any t1, t2
     (outside [0, 1] too): Q_k = b[t1^(n-k), t2^k] (blossoming)."""
     n = len(points) - 1

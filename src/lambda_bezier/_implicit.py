@@ -11,9 +11,13 @@ imported here, when the method is called, never by `import lambda_bezier`.
 from __future__ import annotations
 
 from fractions import Fraction
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import sympy
 
 
-def implicitize(rows: tuple[tuple[Fraction, ...], ...]):
+def implicitize(rows: tuple[tuple[Fraction, ...], ...]) -> sympy.Poly:
     """The implicit polynomial of a planar curve as a sympy.Poly in x, y over the integers."""
     try:
         import sympy

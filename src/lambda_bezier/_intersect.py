@@ -57,7 +57,7 @@ class Prepared:
     """A classical Bézier curve as the solvers use it: float and exact control points and
     the first two hodographs of each."""
 
-    def __init__(self, points: np.ndarray, rows: tuple[tuple, ...] | None) -> None:
+    def __init__(self, points: np.ndarray, rows: tuple[tuple[Fraction, ...], ...] | None) -> None:
         self.pts = np.asarray(points, dtype=float)
         self.rows = rows if rows is not None else tuple(tuple(map(Fraction, r)) for r in points)
         self.degree = self.pts.shape[0] - 1
@@ -78,7 +78,8 @@ class Prepared:
         work = (self.pts, self.h1, self.h2)[which]
         while work.shape[0] > 1:
             work = work[:-1] + s * (work[1:] - work[:-1])
-        return work[0]
+        point: np.ndarray = work[0]
+        return point
 
     def at_with_tangent(self, s: float) -> tuple[np.ndarray, np.ndarray]:
         """p(s) and p'(s) from one de Casteljau pass (p' = n (b_1 - b_0) of its last level)."""
@@ -112,7 +113,7 @@ def _exact_difference(a: tuple[list[int], int], b: tuple[list[int], int]) -> np.
     return np.array([(x * db - y * da) / (da * db) for x, y in zip(na, nb, strict=True)])
 
 
-def _integer_point(point: tuple) -> tuple[list[int], int]:
+def _integer_point(point: tuple[Fraction, ...]) -> tuple[list[int], int]:
     den = math.lcm(*(Fraction(v).denominator for v in point))
     return [int(Fraction(v) * den) for v in point], den
 
@@ -142,10 +143,11 @@ def _halves(pieces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _boxes_overlap(a: np.ndarray, b: np.ndarray, slack: float) -> np.ndarray:
-    return np.all(
+    overlap: np.ndarray = np.all(
         (a.min(axis=1) <= b.max(axis=1) + slack) & (b.min(axis=1) <= a.max(axis=1) + slack),
         axis=1,
     )
+    return overlap
 
 
 def _injective(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -155,7 +157,8 @@ def _injective(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     norm = np.linalg.norm(h, axis=2, keepdims=True)
     unit = np.divide(h, norm, out=np.zeros_like(h), where=norm > 0)
     u = unit.sum(axis=1, keepdims=True)
-    return np.all(np.sum(h * u, axis=2) > 0, axis=1)
+    one_to_one: np.ndarray = np.all(np.sum(h * u, axis=2) > 0, axis=1)
+    return one_to_one
 
 
 def _surviving_pairs(
@@ -242,7 +245,8 @@ def _starts(ia: np.ndarray, ib: np.ndarray, per_cluster: int = 6) -> list[tuple[
 def _residual(p: Prepared, q: Prepared, s: float, t: float, exact: bool) -> np.ndarray:
     if exact:
         return _exact_difference(p.exact_at(s), q.exact_at(t))
-    return p.at(s) - q.at(t)
+    diff: np.ndarray = p.at(s) - q.at(t)
+    return diff
 
 
 def _gauss_newton_step(u: np.ndarray, v: np.ndarray, f: np.ndarray) -> tuple[float, float]:
@@ -299,7 +303,8 @@ def _pairs(dim: int) -> tuple[np.ndarray, np.ndarray]:
 def _cross_terms(u: np.ndarray, v: np.ndarray) -> np.ndarray:
     """u_i v_j - u_j v_i for i < j: zero exactly when u and v are parallel."""
     i, j = _pairs(u.shape[-1])
-    return u[..., i] * v[..., j] - u[..., j] * v[..., i]
+    cross: np.ndarray = u[..., i] * v[..., j] - u[..., j] * v[..., i]
+    return cross
 
 
 def _tangent_residual(
@@ -403,7 +408,9 @@ def _solve_from(
 
 
 # ---------------------------------------------------------------------------- locate
-def locate_all(p: Prepared, point: np.ndarray, exact_point: tuple | None = None) -> list[float]:
+def locate_all(
+    p: Prepared, point: np.ndarray, exact_point: tuple[Fraction, ...] | None = None
+) -> list[float]:
     """Every t in [0, 1] with p(t) = point (within ON_CURVE of the curve's scale)."""
     point = np.asarray(point, dtype=float)
     target = exact_point if exact_point is not None else tuple(map(Fraction, point.tolist()))

@@ -18,7 +18,7 @@ import numpy as np
 from . import _algorithms as alg
 from . import _bezier_forms as forms
 
-Rows = tuple[tuple, ...]
+Rows = tuple[tuple[Fraction, ...], ...]  # exact control points
 
 
 class Reduction(NamedTuple):
@@ -35,7 +35,7 @@ def reduce_exact(rows: Rows) -> Rows | None:
     n = len(rows) - 1  # E is (n+1, n): elevation from degree n-1
     if n < 1:
         raise ValueError("a degree-0 curve (a point) cannot be reduced")
-    q: list[tuple] = [tuple(rows[0])]
+    q: list[tuple[Fraction, ...]] = [tuple(rows[0])]
     for i in range(1, n):
         w = Fraction(i, n)
         q.append(tuple((p - w * a) / (1 - w) for p, a in zip(rows[i], q[-1], strict=True)))

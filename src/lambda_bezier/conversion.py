@@ -24,16 +24,20 @@ are not unique and the conversion is refused with the exact λ named.
 from __future__ import annotations
 
 from fractions import Fraction
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from . import _validate as val
 from .properties import is_singular, singular_parameters
 
+if TYPE_CHECKING:
+    from .curves import BezierCurve, Curve
+
 RELATIVE_TOLERANCE = 1e-9  # float input: residual of the least-squares fit, relative
 
 
-def _solve_exact(a: list[list[Fraction]], b: list[list[Fraction]]):
+def _solve_exact(a: list[list[Fraction]], b: list[list[Fraction]]) -> list[list[Fraction]] | None:
     """x with a x = b (a: rows × cols, full column rank), or None when inconsistent."""
     rows, cols = len(a), len(a[0])
     aug = [list(a[r]) + list(b[r]) for r in range(rows)]
@@ -55,7 +59,9 @@ def _solve_exact(a: list[list[Fraction]], b: list[list[Fraction]]):
     return [aug[r][cols:] for r in range(cols)]
 
 
-def from_bezier(cls, bezier, lam=None):
+def from_bezier(
+    cls: type[Curve], bezier: BezierCurve, lam: Fraction | float | None = None
+) -> Curve:
     from .curves import FAMILIES, BezierCurve, _combine_exact, _tables
 
     if not isinstance(bezier, BezierCurve):
@@ -90,7 +96,8 @@ def from_bezier(cls, bezier, lam=None):
             mats = _tables(cls._data, "bernstein")[m]
             basis = _combine_exact(mats, Fraction(lam))  # (m+1) × (m+offset+1)
             a = [list(col) for col in zip(*basis, strict=True)]  # Mᵀ
-            b = [list(row) for row in target.control_points()]
+            assert target._exact_points is not None  # exact: so are its elevations
+            b = [list(row) for row in target._exact_points]
             try:
                 sol = _solve_exact(a, b)
             except ArithmeticError:
@@ -101,12 +108,12 @@ def from_bezier(cls, bezier, lam=None):
                 return cls([tuple(row) for row in sol], lam)
             continue
         probe = cls(np.zeros((m + 1, bezier.dimension)), lam, check_range=False)
-        a = probe.basis_bernstein_matrix().T
-        b = target.points
-        sol, *_ = np.linalg.lstsq(a, b, rcond=None)
-        residual = np.linalg.norm(a @ sol - b)
-        if residual <= RELATIVE_TOLERANCE * max(1.0, float(np.linalg.norm(b))):
-            return cls(sol, lam)
+        a_f = probe.basis_bernstein_matrix().T
+        b_f = target.points
+        sol_f, *_ = np.linalg.lstsq(a_f, b_f, rcond=None)
+        residual = np.linalg.norm(a_f @ sol_f - b_f)
+        if residual <= RELATIVE_TOLERANCE * max(1.0, float(np.linalg.norm(b_f))):
+            return cls(sol_f, lam)
     raise ValueError(
         f"bezier: this degree-{n_bez} Bézier curve is no {cls.family} curve of degree "
         f"{start}..{degrees[-1]} at λ = {lam} (the basis does not span it; see "

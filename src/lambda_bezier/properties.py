@@ -41,7 +41,7 @@ class IsolatedRoot:
                 hi = mid
         return float((lo + hi) / 2)
 
-    def __contains__(self, x) -> bool:
+    def __contains__(self, x: Fraction | float) -> bool:
         return self.lo < Fraction(x) < self.hi
 
 
@@ -66,7 +66,8 @@ def singular_parameters(family: object, n: int) -> tuple[Fraction | IsolatedRoot
             raise ValueError(
                 f"n: degree {n!r} is outside the {cls.family} range {degrees[0]}..{degrees[-1]}"
             )
-        return table[n]
+        roots: tuple[Fraction | IsolatedRoot, ...] = table[n]
+        return roots
     if family == "bezier":
         return ()
     if family not in _FAMILY_MODULES:
@@ -87,7 +88,7 @@ def singular_parameters(family: object, n: int) -> tuple[Fraction | IsolatedRoot
     return tuple(out)
 
 
-def is_singular(family: object, n: int, lam) -> bool:
+def is_singular(family: object, n: int, lam: Fraction | float) -> bool:
     """True when the degree-n basis of `family` is linearly dependent at this λ: exact for an
     exact λ; a float λ counts as singular within 1e-12 of a singular parameter."""
     for root in singular_parameters(family, n):

@@ -416,6 +416,19 @@ def test_family_energy_and_optimal_lambda_by_quadrature(ns_family):
     assert isinstance(scale, Fraction) and len(x) == 4
 
 
+def test_family_batch_clamped_optimal_lambda_is_a_float_array(ns_family):
+    """A batch clamped to a loaded family's range (Fraction ends) stays float64: np.clip with
+    the Fraction ends made an object array holding Fractions (found by mypy)."""
+    import lambda_bezier as lb
+
+    pts = np.random.default_rng(1).normal(size=(40, 4, 2)) * 5
+    free = lb.optimal_lambda(pts, 2, family=ns_family)
+    r = lb.optimal_lambda(pts, 2, family=ns_family, clamp=True)
+    assert r.lam.dtype == np.float64 and r.energy.dtype == np.float64
+    assert np.array_equal(r.lam, np.clip(free.unconstrained, 0.0, 1.0))
+    assert ((free.unconstrained < 0) | (free.unconstrained > 1)).any()  # some were clamped
+
+
 def _check_joint(first, second, cont: str, alpha=1.0, d=0.0) -> None:
     a1, b1 = first.derivative(1.0, 1), first.derivative(1.0, 2)
     a2, b2 = second.derivative(0.0, 1), second.derivative(0.0, 2)

@@ -10,17 +10,33 @@ from __future__ import annotations
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import cache
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
 
+if TYPE_CHECKING:
+    from ._lazy import TableSource
+
 from . import _validate as val
 from ._lazy import generated
+from ._validate import PointsLike
 from .curves import FAMILIES, Curve, family_class
 
 _energy = generated("energy")
 
 ENERGY_NAMES = {1: "stretch", 2: "strain", 3: "jerk"}
 LAMBDA_FAMILIES = ("same_degree", "bernstein_like")  # the families with a shape parameter
+
+# one quadratic form: (scale s, upper-triangular integer matrix U); E_k's three are ff, fg, gg
+_V = TypeVar("_V", np.ndarray, float)  # one value or an array of them, kept as given
+UpperInts = tuple[tuple[int, ...], ...]
+Form = tuple[Fraction | int, UpperInts]
+# (a0, a1, a2) of E_k(λ) = a0 + a1 λ + a2 λ²: exact, float, or arrays over a batch
+Coefficients = (
+    tuple[Fraction, Fraction, Fraction]
+    | tuple[float, float, float]
+    | tuple[np.ndarray, np.ndarray, np.ndarray]
+)
 
 
 @dataclass(frozen=True)
@@ -74,7 +90,7 @@ def _family_cls(family: object) -> type[Curve]:
     return cls
 
 
-def _family_data(family: object):
+def _family_data(family: object) -> TableSource:
     return _family_cls(family)._data
 
 
@@ -82,14 +98,16 @@ def _name(family: object) -> str:
     return family if isinstance(family, str) else _family_cls(family).family
 
 
-def _energy_table(family: object) -> dict:
+def _energy_table(family: object) -> dict[tuple[int, int], tuple[Form, ...]]:
     """{(n, k): ((s_ff, U_ff), (s_fg, X), (s_gg, Y))} of the family (generated, or derived)."""
     if isinstance(family, str):
-        return _energy.ENERGY[family]
+        table: dict[tuple[int, int], tuple[Form, ...]] = _energy.ENERGY[family]
+        return table
     data = _family_data(family)
     if not data.ENERGY:
         raise ValueError(f"no energy forms for the {data.FAMILY} family: {data.ENERGY_REASON}")
-    return data.ENERGY
+    forms: dict[tuple[int, int], tuple[Form, ...]] = data.ENERGY
+    return forms
 
 
 def _check_order(k: object) -> int:
@@ -104,7 +122,9 @@ def _check_order(k: object) -> int:
     return int(k)
 
 
-def energy_matrices(n: int, k: int, family: object = "same_degree"):
+def energy_matrices(
+    n: int, k: int, family: object = "same_degree"
+) -> tuple[Fraction, UpperInts, UpperInts]:
     r"""The matrices of the optimal λ in the paper's normalisation (000, eq. 20).
 
     .. math:: \lambda^\ast = c \, \frac{D^\mathsf{T} X D}{D^\mathsf{T} Y D},
@@ -151,9 +171,10 @@ def _float_forms(family: object, n: int, k: int) -> tuple[np.ndarray, np.ndarray
     """(A0, A1, A2), symmetric, with E_k(λ) = Σ_coords Dᵀ(A0 + λA1 + λ²A2)D."""
     (s_ff, u_ff), (s_fg, x), (s_gg, y) = _energy_table(family)[(n, k)]
 
-    def sym(scale, u) -> np.ndarray:
+    def sym(scale: Fraction | int, u: UpperInts) -> np.ndarray:
         a = np.array(u, dtype=float) * float(scale)
-        return (a + a.T) / 2
+        symmetric: np.ndarray = (a + a.T) / 2
+        return symmetric
 
     out = (sym(s_ff, u_ff), -2 * sym(s_fg, x), sym(s_gg, y))
     for a in out:
@@ -162,9 +183,9 @@ def _float_forms(family: object, n: int, k: int) -> tuple[np.ndarray, np.ndarray
 
 
 def _exact_coefficients(
-    family: object, n: int, k: int, rows
+    family: object, n: int, k: int, rows: val.ExactRows
 ) -> tuple[Fraction, Fraction, Fraction]:
-    def form(scale, u) -> Fraction:
+    def form(scale: Fraction | int, u: UpperInts) -> Fraction:
         total = Fraction(0)
         for r in range(n + 1):
             for c in range(r, n + 1):
@@ -178,7 +199,7 @@ def _exact_coefficients(
     return form(s_ff, u_ff), -2 * form(s_fg, x), form(s_gg, y)
 
 
-def _as_polygons(points, family: object) -> tuple[np.ndarray, bool]:
+def _as_polygons(points: PointsLike, family: object) -> tuple[np.ndarray, bool]:
     """(m, n+1, d) float array and whether the input was a single polygon."""
     data = _family_data(family)
     arr = val.real_array(points, "control points")
@@ -202,7 +223,7 @@ def _non_finite_error(arr: np.ndarray, single: bool) -> ValueError:
     return ValueError(f"{where}control point {bad[-2]} has a non-finite coordinate")
 
 
-def energy_coefficients(points, k: int, family: object = "same_degree"):
+def energy_coefficients(points: PointsLike, k: int, family: object = "same_degree") -> Coefficients:
     r"""The coefficients of the energy as a quadratic in λ,
     :math:`E_k(\lambda) = \int_0^1 \lVert p^{(k)}(t; \lambda) \rVert^2 dt
     = a_0 + a_1 \lambda + a_2 \lambda^2`.
@@ -230,16 +251,16 @@ def energy_coefficients(points, k: int, family: object = "same_degree"):
         val.exact_shape(rows, family=_name(family), degrees=tuple(data.DEGREES))
         return _exact_coefficients(family, len(rows) - 1, k, rows)
     coeffs, _, exponents, single = _float_coefficients(points, k, family)
-    coeffs = tuple(_unscale(c, exponents, single, "the energy coefficients") for c in coeffs)
-    return tuple(c[0] for c in coeffs) if single else coeffs
+    a0, a1, a2 = (_unscale(c, exponents, single, "the energy coefficients") for c in coeffs)
+    return (a0[0], a1[0], a2[0]) if single else (a0, a1, a2)
 
 
-def _unscale(values, exponents, single: bool, what: str):
+def _unscale(values: _V, exponents: np.ndarray | None, single: bool, what: str) -> _V:
     """values · 2^exponents (the polygons' scaling undone), refused where that overflows."""
     if exponents is None:
         return values
     with np.errstate(over="ignore"):
-        out = np.ldexp(values, exponents)
+        out: _V = np.ldexp(values, exponents)
     if not np.isfinite(out).all():
         where = "" if single else f" (polygon {int(np.argmin(np.isfinite(out)))})"
         raise ValueError(
@@ -249,7 +270,9 @@ def _unscale(values, exponents, single: bool, what: str):
     return out
 
 
-def _float_coefficients(points, k: int, family: object):
+def _float_coefficients(
+    points: PointsLike, k: int, family: object
+) -> tuple[tuple[np.ndarray, np.ndarray, np.ndarray], np.ndarray, np.ndarray | None, bool]:
     """((a0, a1, a2) arrays over the batch, a bound on a2's rounding error, single?).
 
     E_k(λ) = ‖Lᵀ H (Q − λW)‖² summed over coordinates (L the Cholesky factor of the Gram
@@ -258,7 +281,7 @@ def _float_coefficients(points, k: int, family: object):
     """
     arr, single = _as_polygons(points, family)
     (a0, a1, a2), rounding = _coefficients_of(arr, k, family)
-    exponents = None
+    exponents: np.ndarray | None = None
     # coordinates near the float limits overflow (or underflow) in the quadratic forms: those
     # polygons are redone scaled by a power of two, E_k(λ) scaling by its square (exactly)
     redo = ~(np.isfinite(a0) & np.isfinite(a2)) | (a2 <= rounding)
@@ -275,7 +298,9 @@ def _float_coefficients(points, k: int, family: object):
     return (a0, a1, a2), rounding, exponents, single
 
 
-def _coefficients_of(arr: np.ndarray, k: int, family: object):
+def _coefficients_of(
+    arr: np.ndarray, k: int, family: object
+) -> tuple[tuple[np.ndarray, np.ndarray, np.ndarray], np.ndarray]:
     m, size, dim = arr.shape
     factor, rows, a2_weight = _factored_forms(family, size - 1, k, dim)
     flat_t = arr.reshape(m, size * dim).T  # a view: column j is (P_0x, P_0y, P_1x, …) of j
@@ -316,7 +341,9 @@ def _factored_forms(family: object, n: int, k: int, dim: int) -> tuple[np.ndarra
     return factor, f_part.shape[1], float(np.abs(_float_forms(family, n, k)[2]).sum())
 
 
-def optimal_lambda(points, k: int, family: object = "same_degree", clamp: bool = False):
+def optimal_lambda(
+    points: PointsLike, k: int, family: object = "same_degree", clamp: bool = False
+) -> OptimalLambda:
     r"""The λ minimising the energy
     :math:`E_k(\lambda) = \int_0^1 \lVert p^{(k)}(t; \lambda) \rVert^2 dt` (000, section 3).
 
@@ -362,8 +389,14 @@ def optimal_lambda(points, k: int, family: object = "same_degree", clamp: bool =
     clamp = val.flag(clamp, "clamp")
     rows = val.exact_rows(points)
     exact = rows is not None
-    exponents = None
-    if exact:
+    # Fractions on the exact path, floats (or arrays over a batch) otherwise: the arithmetic
+    # below is shared, and mypy would check every pairing of a union (a Fraction with an
+    # array), which never meets at run time
+    a0: Any
+    a1: Any
+    a2: Any
+    exponents: np.ndarray | None = None
+    if rows is not None:
         a0, a1, a2 = energy_coefficients(rows, k, family)
     else:
         (a0, a1, a2), rounding, exponents, single = _float_coefficients(points, k, family)
@@ -382,10 +415,14 @@ def optimal_lambda(points, k: int, family: object = "same_degree", clamp: bool =
         if single:
             a0, a1, a2 = a0[0], a1[0], a2[0]
         best = -a1 / (2 * a2)
-        lam = np.clip(best, lo, hi) if clamp else best
+        # float bounds: a user family's range is in Fractions, which would make an object array
+        lam = np.clip(best, float(lo), float(hi)) if clamp else best
 
-    def inside(x):
-        return ((x > lo) | ((x == lo) & lo_closed)) & ((x < hi) | ((x == hi) & hi_closed))
+    def inside(x: Any) -> bool | np.ndarray:
+        ok: bool | np.ndarray = ((x > lo) | ((x == lo) & lo_closed)) & (
+            (x < hi) | ((x == hi) & hi_closed)
+        )
+        return ok
 
     energy = a0 + a1 * lam + a2 * lam * lam
     unconstrained_energy = a0 + a1 * best + a2 * best * best

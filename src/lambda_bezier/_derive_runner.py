@@ -9,6 +9,7 @@ import hashlib
 import importlib
 import importlib.util
 import sys
+from collections.abc import Callable
 from pathlib import Path
 from types import ModuleType
 
@@ -73,7 +74,9 @@ def run(check: bool, root: Path | None, quiet: bool = False) -> int:
 
     emit = importlib.import_module(f"{derive.__name__}._emit")
     target = checkout / "generated" if checkout else installed_generated_dir()
-    say = (lambda msg: None) if quiet else (lambda msg: print(msg, file=sys.stderr, flush=True))
+    say: Callable[[str], None] = (
+        (lambda msg: None) if quiet else (lambda msg: print(msg, file=sys.stderr, flush=True))
+    )
     if sympy.__version__ != derive.SYMPY_VERSION:
         say(
             f"warning: generated/ is printed with SymPy {derive.SYMPY_VERSION}, "
@@ -109,7 +112,7 @@ def run(check: bool, root: Path | None, quiet: bool = False) -> int:
     return 0
 
 
-def _recover_before_check(target: Path, say) -> str | None:
+def _recover_before_check(target: Path, say: Callable[[str], None]) -> str | None:
     """--check compares against generated/: first undo an interrupted derive (a lone backup
     put back, debris removed), then name a directory that is still missing instead of listing
     every file as differing. Returns the error message, or None."""

@@ -16,6 +16,7 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+from typing import TextIO
 
 from ._derive_runner import find_checkout, load_derive
 
@@ -79,7 +80,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
 
 
-def run_from_args(args) -> int:
+def run_from_args(args: argparse.Namespace) -> int:
     root = args.root.resolve() if args.root else None
     return run(
         fmt=args.format,
@@ -135,7 +136,7 @@ def run(
     errata: bool = False,
     root: Path | None = None,
     only: list[str] | None = None,
-    out=None,
+    out: TextIO | None = None,
     progress: bool | None = None,
     paths: list[Path] | None = None,
     coverage: bool = False,

@@ -3,12 +3,13 @@
 from __future__ import annotations
 
 import numpy as np
+import numpy.typing as npt
 
 from . import _validate as val
 from .curves import FAMILIES, Curve, _float_matrix, _tables, family_class
 
 
-def _lambdas(lam, cls: type[Curve], m: int, check_range: bool) -> np.ndarray:
+def _lambdas(lam: npt.ArrayLike, cls: type[Curve], m: int, check_range: bool) -> np.ndarray:
     data, family = cls._data, cls.family
     arr = val.real_array(lam, "lam")
     if arr.ndim > 1 or (arr.ndim == 1 and arr.size != m):
@@ -30,10 +31,10 @@ def _lambdas(lam, cls: type[Curve], m: int, check_range: bool) -> np.ndarray:
 
 
 def evaluate_many(
-    points,
-    t,
+    points: npt.ArrayLike,
+    t: npt.ArrayLike,
     family: object = "bezier",
-    lam=None,
+    lam: npt.ArrayLike | None = None,
     *,
     k: int = 0,
     check_range: bool = True,
@@ -41,35 +42,36 @@ def evaluate_many(
 ) -> np.ndarray:
     r"""The k-th derivative :math:`p^{(k)}(t)` of m curves of one family and degree at once.
 
-    Parameters
-    ----------
-    points : array_like
-        Control points of shape (m, n+1, d).
-    t : array_like
-        Parameter values, shape (T,), in [0, 1] unless `extrapolate`.
-    family : str
-        ``"bezier"``, ``"same_degree"`` or ``"bernstein_like"``.
-    lam : float or array_like, optional
-        One λ for every curve, or one per curve (shape (m,)); not for ``"bezier"``.
-    k : int
-        The derivative order (0: the points of the curves).
-    check_range : bool
-        Refuse a λ outside the family's range.
-    extrapolate : bool
-        Allow t outside [0, 1].
+        Parameters
+        ----------
+        points : array_like
+            Control points of shape (m, n+1, d).
+        t : array_like
+            Parameter values, shape (T,), in [0, 1] unless `extrapolate`.
+        family : str
+            ``"bezier"``, ``"same_degree"`` or ``"bernstein_like"``.
+        lam : float or array_like, optional
+            One λ for every curve, or one per curve (shape (m,)); not for ``"bezier"``.
+        k : int
+            The derivative order (0: the points of the curves).
+        check_range : bool
+            Refuse a λ outside the family's range.
+        extrapolate : bool
+            Allow t outside [0, 1].
 
-    Returns
-    -------
-    numpy.ndarray
-        Shape (m, T, d).
+        Returns
+        -------
+        numpy.ndarray
+            Shape (m, T, d).
 
-    Examples
-    --------
-    >>> import numpy as np
-    >>> pts = np.array([[(0, 0), (1, 2), (3, 2), (4, 0)]] * 2, dtype=float)
-    >>> evaluate_many(pts, [0.0, 0.5], "same_degree", lam=[1.0, 0.5])[:, 1]
-    array([[2.  , 1.5 ],
-           [2.  , 1.25]])
+        Examples
+        --------
+        >>> import numpy as np
+    import numpy.typing as npt
+        >>> pts = np.array([[(0, 0), (1, 2), (3, 2), (4, 0)]] * 2, dtype=float)
+        >>> evaluate_many(pts, [0.0, 0.5], "same_degree", lam=[1.0, 0.5])[:, 1]
+        array([[2.  , 1.5 ],
+               [2.  , 1.25]])
     """
     # a built-in family's name, or a family from lambda_bezier.load_family
     cls = (
@@ -129,4 +131,5 @@ def evaluate_many(
             out = out * scale
     if scale != 1.0 or extrapolate or not check_range:  # otherwise nothing can overflow
         val.finite_result(out, "p(t)" if k == 0 else f"the derivative of order {k}")
-    return out[:, 0] if scalar else out
+    values: np.ndarray = out[:, 0] if scalar else out
+    return values

@@ -5,7 +5,9 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+from fractions import Fraction
 from pathlib import Path
+from typing import SupportsFloat, cast
 
 
 def _energy_order(text: str) -> int:
@@ -167,7 +169,7 @@ def main(argv: list[str] | None = None) -> int:
     raise AssertionError(args.command)  # argparse enforces the choices
 
 
-def _export(args) -> int:
+def _export(args: argparse.Namespace) -> int:
     from . import export
 
     try:
@@ -186,7 +188,7 @@ def _export(args) -> int:
     return 0
 
 
-def _optimal_lambda(args) -> int:
+def _optimal_lambda(args: argparse.Namespace) -> int:
     import json
 
     from ._numbers import parse_point
@@ -225,8 +227,9 @@ def _optimal_lambda(args) -> int:
         return 0
 
     def both(key: str) -> str:
-        return f"{report[key]}  ≈ {_decimal(exact[key])}"
+        return f"{report[key]}  ≈ {_decimal(cast(Fraction, exact[key]))}"
 
+    # the points were parsed to Fractions, so every value of the result is an exact Fraction
     exact = {
         "lambda": result.unconstrained,
         "energy": result.unconstrained_energy,
@@ -252,7 +255,7 @@ def _optimal_lambda(args) -> int:
     return 0
 
 
-def _float_or_none(q) -> float | None:
+def _float_or_none(q: SupportsFloat) -> float | None:
     """The JSON *_decimal fields: the nearest float, or null for an exact value beyond the
     float range (the exact value is in the field without _decimal)."""
     try:
@@ -262,7 +265,7 @@ def _float_or_none(q) -> float | None:
     return value if value != 0 or q == 0 else None
 
 
-def _decimal(q) -> str:
+def _decimal(q: Fraction) -> str:
     """12 significant digits of an exact value, at any magnitude (a 400-digit coordinate
     gives an energy far beyond the float range; it still prints)."""
     from decimal import Decimal, localcontext

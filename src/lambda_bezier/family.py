@@ -20,9 +20,14 @@ import re
 import sys
 from fractions import Fraction
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from .curves import Curve
+from ._validate import PointsLike
+from .curves import BezierCurve, Curve, Matrix
+
+if TYPE_CHECKING:
+    from .energy import Form
+    from .properties import IsolatedRoot
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -44,13 +49,13 @@ def _fraction(text: object, where: str) -> Fraction:
     return Fraction(text)
 
 
-def _matrices(value: object, where: str) -> tuple:
+def _matrices(value: object, where: str) -> tuple[Matrix, ...]:
     if not isinstance(value, list):
         raise FamilyFileError(f"{where}: expected a list of matrices")
     return tuple(tuple(tuple(_fraction(v, where) for v in row) for row in mat) for mat in value)
 
 
-def _ints(value: object, where: str) -> tuple:
+def _ints(value: object, where: str) -> tuple[tuple[int, ...], ...]:
     if not isinstance(value, list) or not all(
         isinstance(row, list) and all(isinstance(v, int) for v in row) for row in value
     ):
@@ -58,7 +63,7 @@ def _ints(value: object, where: str) -> tuple:
     return tuple(tuple(row) for row in value)
 
 
-def definition_digest(table: dict) -> str:
+def definition_digest(table: dict[str, Any]) -> str:
     """The fingerprint derive/family_engine.py stores (the same canonical JSON, SHA-256)."""
     text = json.dumps(table, sort_keys=True, ensure_ascii=True, separators=(",", ":"))
     return hashlib.sha256(text.encode()).hexdigest()
@@ -89,7 +94,7 @@ class FamilyData:
                 raise
             raise FamilyFileError(f"{where}: not a derived family document ({exc!r})") from None
         self.ENERGY_REASON: str | None = energy.get("reason")
-        self.ENERGY: dict[tuple[int, int], tuple] = {}
+        self.ENERGY: dict[tuple[int, int], tuple[Form, ...]] = {}
         for key, entry in energy.items():
             if key == "reason":
                 continue
@@ -100,7 +105,7 @@ class FamilyData:
             )
         from .properties import IsolatedRoot
 
-        self.SINGULAR: dict[int, tuple] = {}
+        self.SINGULAR: dict[int, tuple[Fraction | IsolatedRoot, ...]] = {}
         for key, roots in doc.get("singular_parameters", {}).items():
             self.SINGULAR[int(key)] = tuple(
                 _fraction(r, where)
@@ -155,11 +160,13 @@ class Family:
     def degree_offset(self) -> int:
         return self.data.DEGREE_OFFSET
 
-    def curve(self, points, lam, *, check_range: bool = True) -> Curve:
+    def curve(
+        self, points: PointsLike, lam: Fraction | float, *, check_range: bool = True
+    ) -> Curve:
         """Σ P_i b_i(t; lam) with the family's degree-n basis (n + 1 points)."""
         return self.curve_class(points, lam, check_range=check_range)
 
-    def from_bezier(self, bezier, lam) -> Curve:
+    def from_bezier(self, bezier: BezierCurve, lam: Fraction | float) -> Curve:
         """A classical Bézier curve written in this family (Curve.from_bezier)."""
         return self.curve_class.from_bezier(bezier, lam)
 

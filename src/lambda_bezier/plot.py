@@ -7,6 +7,10 @@ with a ``segments`` attribute of curves works.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from fractions import Fraction
+from typing import TYPE_CHECKING, Any
+
 import numpy as np
 
 try:
@@ -16,33 +20,42 @@ except ImportError as exc:  # pragma: no cover - exercised only without the extr
         "lambda_bezier.plot needs matplotlib: pip install 'lambda-bezier[plot]'"
     ) from exc
 
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.typing import ColorType
+
+    from .composite import CompositeCurve
+    from .curves import Curve
+
 SAMPLES = 400
 
 
-def _axes(ax):
+def _axes(ax: Axes | None) -> Axes:
     if ax is None:
-        _, ax = plt.subplots()
+        new: Axes
+        _, new = plt.subplots()
+        return new
     return ax
 
 
 def plot_curve(
-    curve,
-    ax=None,
+    curve: Curve,
+    ax: Axes | None = None,
     *,
     polygon: bool = True,
     samples: int = SAMPLES,
-    label=None,
-    color=None,
-    polygon_style=None,
-    **line_kwargs,
-):
+    label: str | None = None,
+    color: ColorType | None = None,
+    polygon_style: dict[str, Any] | None = None,
+    **line_kwargs: Any,  # matplotlib's Line2D properties
+) -> Axes:
     """The curve (2D, or the xy projection of a 3D curve) with its control polygon."""
     ax = _axes(ax)
     t = np.linspace(0.0, 1.0, samples)
     xy = curve.evaluate(t)
     (line,) = ax.plot(xy[:, 0], xy[:, 1], label=label, color=color, **line_kwargs)
     if polygon:
-        style = {
+        style: dict[str, Any] = {  # matplotlib's Line2D properties
             "color": line.get_color(),
             "linestyle": ":",
             "marker": "o",
@@ -57,7 +70,14 @@ def plot_curve(
     return ax
 
 
-def plot_curvature(curve, ax=None, *, samples: int = SAMPLES, label=None, **line_kwargs):
+def plot_curvature(
+    curve: Curve,
+    ax: Axes | None = None,
+    *,
+    samples: int = SAMPLES,
+    label: str | None = None,
+    **line_kwargs: Any,  # matplotlib's Line2D properties
+) -> Axes:
     """Curvature against t (signed in 2D)."""
     ax = _axes(ax)
     t = np.linspace(0.0, 1.0, samples)
@@ -68,14 +88,14 @@ def plot_curvature(curve, ax=None, *, samples: int = SAMPLES, label=None, **line
 
 
 def plot_composite(
-    composite,
-    ax=None,
+    composite: CompositeCurve,
+    ax: Axes | None = None,
     *,
     polygon: bool = True,
     samples: int = SAMPLES,
     joints: bool = True,
-    **line_kwargs,
-):
+    **line_kwargs: Any,  # matplotlib's Line2D properties
+) -> Axes:
     """Every segment of a composite curve, with its joints marked."""
     ax = _axes(ax)
     for idx, seg in enumerate(composite.segments):
@@ -94,7 +114,13 @@ def plot_composite(
     return ax
 
 
-def plot_de_casteljau(points, t: float, ax=None, *, colors=None):
+def plot_de_casteljau(
+    points: np.ndarray | Sequence[Sequence[Fraction | float]],
+    t: float,
+    ax: Axes | None = None,
+    *,
+    colors: Sequence[ColorType] | None = None,
+) -> Axes:
     """The de Casteljau construction of p(t): every level of intermediate points."""
     from ._algorithms import de_casteljau_triangle
 

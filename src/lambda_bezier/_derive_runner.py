@@ -57,7 +57,10 @@ def load_derive(root: Path | None) -> ModuleType:
 
 
 def installed_generated_dir() -> Path:
-    from . import _generated
+    # the submodule by its full name: mypy, which does not see generated/ (it is installed
+    # under this name by the package-dir mapping), then skips it instead of reading the
+    # package's __getattr__
+    import lambda_bezier._generated as _generated
 
     return Path(_generated.__file__).parent
 

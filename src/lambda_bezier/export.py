@@ -37,17 +37,29 @@ from bisect import bisect_right
 from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
+from types import ModuleType
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import numpy.typing as npt
 
 from . import _algorithms as alg
+from ._algorithms import Row, Rows, Scalar
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    from .composite import CompositeCurve
+    from .curves import Curve
+
+    Shape = Curve | CompositeCurve  # what the exporters take
 
 FORMAT_VERSION = 1
 CAD_HINT = 'pip install "lambda-bezier[cad]"'
 DXF_MAX_DEGREE = 11  # AutoCAD's limit for SPLINE entities (ezdxf's documentation)
 
 
-def _optional(module: str, package: str, feature: str):
+def _optional(module: str, package: str, feature: str) -> ModuleType:
     """Import an optional dependency, or say which extra provides it."""
     try:
         return importlib.import_module(module)
@@ -55,7 +67,7 @@ def _optional(module: str, package: str, feature: str):
         raise ImportError(f"{feature} needs the optional package {package}: {CAD_HINT}") from None
 
 
-def _segments(obj) -> tuple:
+def _segments(obj: object) -> tuple[Curve, ...]:
     from .composite import CompositeCurve
     from .curves import Curve
 
@@ -74,17 +86,17 @@ class BSpline:
     `exact`. Its parameter is the composite's u ∈ [0, N] (a curve: t ∈ [0, 1])."""
 
     degree: int
-    knots: tuple
-    control_points: tuple[tuple, ...]
+    knots: tuple[Scalar, ...]
+    control_points: Rows
     exact: bool
 
     @property
     def dimension(self) -> int:
         return len(self.control_points[0])
 
-    def breakpoints(self) -> tuple[list, list[int]]:
+    def breakpoints(self) -> tuple[list[Scalar], list[int]]:
         """The distinct knot values and their multiplicities."""
-        values: list = []
+        values: list[Scalar] = []
         mults: list[int] = []
         for k in self.knots:
             if values and k == values[-1]:
@@ -94,7 +106,7 @@ class BSpline:
                 mults.append(1)
         return values, mults
 
-    def point(self, u):
+    def point(self, u: Scalar) -> Row:
         """C(u) by the B-spline basis (de Boor / Cox): exact for a Fraction u and an exact
         spline, floats otherwise."""
         p, knots = self.degree, self.knots
@@ -106,7 +118,7 @@ class BSpline:
             for c in range(self.dimension)
         )
 
-    def evaluate(self, u) -> np.ndarray:
+    def evaluate(self, u: npt.ArrayLike) -> np.ndarray:
         """Float values at a number or an array of u: (d,) or (len(u), d)."""
         arr = np.atleast_1d(np.asarray(u, dtype=float))
         knots = [float(k) for k in self.knots]
@@ -115,24 +127,25 @@ class BSpline:
         pts = [tuple(float(v) for v in row) for row in self.control_points]
         flt = BSpline(self.degree, tuple(knots), tuple(pts), False)
         out = np.array([flt.point(float(x)) for x in arr])
-        return out[0] if np.ndim(u) == 0 else out
+        values: np.ndarray = out[0] if np.ndim(u) == 0 else out
+        return values
 
 
-def _span(knots, p: int, n: int, u) -> int:
+def _span(knots: Sequence[Scalar], p: int, n: int, u: Scalar) -> int:
     """The knot span index i with knots[i] <= u < knots[i+1] (the last one at the end)."""
     return min(max(bisect_right(knots, u) - 1, p), n)
 
 
-def _basis(knots, p: int, i: int, u) -> list:
+def _basis(knots: Sequence[Scalar], p: int, i: int, u: Scalar) -> list[Scalar]:
     """The p + 1 nonzero B-spline basis functions on span i at u (Cox–de Boor, in the
     arithmetic of the inputs)."""
-    values = [u * 0 + 1]
-    left = [0] * (p + 1)
-    right = [0] * (p + 1)
+    values: list[Scalar] = [u * 0 + 1]
+    left: list[Scalar] = [0] * (p + 1)
+    right: list[Scalar] = [0] * (p + 1)
     for j in range(1, p + 1):
         left[j] = u - knots[i + 1 - j]
         right[j] = knots[i + j] - u
-        saved = 0 * values[0]
+        saved: Scalar = 0 * values[0]
         for r in range(j):
             temp = values[r] / (right[r + 1] + left[j - r])
             values[r] = saved + right[r + 1] * temp
@@ -141,12 +154,12 @@ def _basis(knots, p: int, i: int, u) -> list:
     return values
 
 
-def _pieces(segs) -> tuple[int, list[tuple[tuple, ...]], bool]:
+def _pieces(segs: Sequence[Curve]) -> tuple[int, list[Rows], bool]:
     """The segments' Bézier control points at one common degree, exact when all are."""
     beziers = [seg.to_bezier() for seg in segs]
     degree = max(b.degree for b in beziers)
     exact = all(b.is_exact for b in beziers)
-    rows = []
+    rows: list[Rows] = []
     for b in beziers:
         if not exact and b.is_exact:
             from .curves import BezierCurve
@@ -158,7 +171,7 @@ def _pieces(segs) -> tuple[int, list[tuple[tuple, ...]], bool]:
     return degree, rows, exact
 
 
-def _differences(rows, order: int, at_end: bool) -> tuple:
+def _differences(rows: Rows, order: int, at_end: bool) -> Row:
     """Δ^order of the last (at_end) or first order + 1 control points."""
     pts = [list(r) for r in (rows[len(rows) - order - 1 :] if at_end else rows[: order + 1])]
     for _ in range(order):
@@ -167,7 +180,7 @@ def _differences(rows, order: int, at_end: bool) -> tuple:
     return tuple(pts[0])
 
 
-def _joint_order(left, right, degree: int, exact: bool, tol: float, size: float) -> int:
+def _joint_order(left: Rows, right: Rows, degree: int, exact: bool, tol: float, size: float) -> int:
     """The largest k <= degree with C^k at the joint (−1 if not even C0): the m-th
     derivatives there are p!/(p−m)! Δ^m of the end points, so compare Δ^m."""
     k = -1
@@ -186,12 +199,15 @@ def _joint_order(left, right, degree: int, exact: bool, tol: float, size: float)
     return k
 
 
-def _solve(matrix: list[list], rhs: list[list], exact: bool) -> list[list]:
+def _solve(
+    matrix: list[list[Scalar]], rhs: list[list[Scalar]], exact: bool
+) -> Sequence[Sequence[Scalar]]:
     """matrix @ X = rhs. The collocation matrix at the Greville sites is totally positive
     and banded, so Gaussian elimination needs no pivoting and stays inside the band."""
     if not exact:
         sol = np.linalg.solve(np.array(matrix, dtype=float), np.array(rhs, dtype=float))
-        return sol.tolist()
+        floats: list[list[float]] = sol.tolist()
+        return floats
     n = len(matrix)
     a = [row[:] for row in matrix]
     b = [row[:] for row in rhs]
@@ -206,7 +222,7 @@ def _solve(matrix: list[list], rhs: list[list], exact: bool) -> list[list]:
             for c in cols:
                 a[r][c] -= f * a[i][c]
             b[r] = [x - f * y for x, y in zip(b[r], b[i], strict=True)]
-    x: list[list] = [[] for _ in range(n)]
+    x: list[list[Scalar]] = [[] for _ in range(n)]
     for i in range(n - 1, -1, -1):
         acc = list(b[i])
         for c in range(i + 1, n):
@@ -216,34 +232,36 @@ def _solve(matrix: list[list], rhs: list[list], exact: bool) -> list[list]:
     return x
 
 
-def _piece_value(rows, t):
+def _piece_value(rows: Rows, t: Scalar) -> Row:
     return alg.de_casteljau_triangle(rows, t)[-1][0]
 
 
-def _assemble(degree, rows, mults, exact: bool, tol: float, size: float) -> BSpline | None:
+def _assemble(
+    degree: int, rows: list[Rows], mults: list[int], exact: bool, tol: float, size: float
+) -> BSpline | None:
     """The B-spline with these interior multiplicities reproducing the pieces, or None."""
     p, count = degree, len(rows)
     one = Fraction(1) if exact else 1.0
-    knots: list = [0 * one] * (p + 1)
+    knots: list[Scalar] = [0 * one] * (p + 1)
     for j, m in enumerate(mults):
         knots += [(j + 1) * one] * m
     knots += [count * one] * (p + 1)
     n = len(knots) - p - 1
     if all(m == p for m in mults):  # the Bézier points themselves, joints shared
-        ctrl = list(rows[0])
+        shared = list(rows[0])
         for piece in rows[1:]:
-            ctrl += list(piece[1:])
-        return BSpline(p, tuple(knots), tuple(map(tuple, ctrl)), exact)
+            shared += list(piece[1:])
+        return BSpline(p, tuple(knots), tuple(map(tuple, shared)), exact)
     greville = [sum(knots[i + 1 : i + p + 1], 0 * one) / p for i in range(n)]
-    matrix = []
-    rhs = []
+    matrix: list[list[Scalar]] = []
+    rhs: list[list[Scalar]] = []
     for xi in greville:
         span = _span(knots, p, n - 1, xi)
-        row = [0 * one] * n
+        row: list[Scalar] = [0 * one] * n
         row[span - p : span + 1] = _basis(knots, p, span, xi)
         matrix.append(row)
-        piece = min(int(math.floor(xi)), count - 1)
-        rhs.append(list(_piece_value(rows[piece], xi - piece)))
+        at = min(int(math.floor(xi)), count - 1)  # the piece holding xi
+        rhs.append(list(_piece_value(rows[at], xi - at)))
     try:
         ctrl = _solve(matrix, rhs, exact)
     except (ZeroDivisionError, np.linalg.LinAlgError):
@@ -262,7 +280,7 @@ def _assemble(degree, rows, mults, exact: bool, tol: float, size: float) -> BSpl
     return spline
 
 
-def to_bspline(obj, *, tol: float = 1e-9) -> BSpline:
+def to_bspline(obj: Shape, *, tol: float = 1e-9) -> BSpline:
     """One clamped B-spline equal to the curve or composite (on t ∈ [0, 1] or u ∈ [0, N]):
     the Bernstein pieces at a common degree p, the knot at each joint repeated p − k times
     where the joint is C^k in u (exactly, for exact input; within the relative tolerance
@@ -271,7 +289,7 @@ def to_bspline(obj, *, tol: float = 1e-9) -> BSpline:
     segs = _segments(obj)
     degree, rows, exact = _pieces(segs)
     size = max(1.0, max(abs(float(v)) for piece in rows for row in piece for v in row))
-    mults = []
+    mults: list[int] = []
     for j in range(len(rows) - 1):
         k = _joint_order(rows[j], rows[j + 1], degree, exact, tol, size)
         if k < 0:
@@ -289,14 +307,14 @@ def to_bspline(obj, *, tol: float = 1e-9) -> BSpline:
 
 
 # ---------------------------------------------------------------------- STEP (OCCT)
-def _quiet_occt(message_module) -> None:
+def _quiet_occt(message_module: ModuleType) -> None:
     """OCCT's default messenger prints every transfer to stdout; keep only failures."""
     gravity = message_module.Message_Gravity.Message_Fail
     for printer in message_module.Message.DefaultMessenger_s().Printers():
         printer.SetTraceLevel(gravity)
 
 
-def to_step(obj, path) -> Path:
+def to_step(obj: Shape, path: str | Path) -> Path:
     """Write the curve or composite as one B-spline edge (B_SPLINE_CURVE_WITH_KNOTS) to a
     STEP file through OCCT (OCP); 2D curves lie in the plane z = 0."""
     feature = "to_step"
@@ -334,7 +352,7 @@ def to_step(obj, path) -> Path:
 
 
 # ---------------------------------------------------------------------- DXF (ezdxf)
-def to_dxf(obj, path) -> Path:
+def to_dxf(obj: Shape, path: str | Path) -> Path:
     """Write the curve or composite as one DXF SPLINE entity (DXF R2010) through ezdxf;
     2D curves lie in the plane z = 0. AutoCAD takes SPLINE degrees up to 11."""
     ezdxf = _optional("ezdxf", "ezdxf", "to_dxf")
@@ -394,7 +412,7 @@ def _num(x: float) -> str:
     return repr(float(x)) if x != 0 else "0"
 
 
-def to_svg(obj, *, tolerance: float | None = None, stroke_width: float | None = None) -> str:
+def to_svg(obj: Shape, *, tolerance: float | None = None, stroke_width: float | None = None) -> str:
     """An SVG document with one path for a 2D curve or composite, in the curve's own
     coordinates (the group flips y so that y points up on screen). Pieces of degree <= 3 are
     exact (L, Q, C commands; coordinates as shortest float repr). Higher-degree pieces need
@@ -407,8 +425,8 @@ def to_svg(obj, *, tolerance: float | None = None, stroke_width: float | None = 
         tolerance = float(tolerance)
         if not math.isfinite(tolerance) or tolerance <= 0:
             raise ValueError(f"tolerance must be a positive distance, got {tolerance}")
-    commands = []
-    previous = None
+    commands: list[str] = []
+    previous: np.ndarray | None = None
     for i, seg in enumerate(segs):
         rows = np.array(seg.to_bezier().points, dtype=float)
         degree = rows.shape[0] - 1
@@ -445,20 +463,20 @@ def to_svg(obj, *, tolerance: float | None = None, stroke_width: float | None = 
     )
 
 
-def _svg_box(obj):
+def _svg_box(obj: Shape) -> tuple[np.ndarray, np.ndarray]:
     from .geometry import bounding_box
 
     return bounding_box(obj)
 
 
 # ---------------------------------------------------------------------- JSON
-def _number_out(x):
+def _number_out(x: Fraction | float) -> str | float:
     if isinstance(x, Fraction):
         return str(x)
     return float(x)
 
 
-def _number_in(x, where: str):
+def _number_in(x: object, where: str) -> Fraction | float:
     from ._numbers import parse_number
 
     if isinstance(x, bool) or not isinstance(x, str | int | float):
@@ -475,7 +493,7 @@ def _number_in(x, where: str):
     return x
 
 
-def _curve_dict(curve) -> dict:
+def _curve_dict(curve: Curve) -> dict[str, Any]:  # JSON values
     return {
         "family": curve.family,
         "lambda": None if curve.lam is None else _number_out(curve.lam),
@@ -483,7 +501,7 @@ def _curve_dict(curve) -> dict:
     }
 
 
-def to_json(obj, *, indent: int | None = 2) -> str:
+def to_json(obj: Shape, *, indent: int | None = 2) -> str:
     """The JSON form of a curve or composite (see the module docstring): exact numbers as
     strings, floats as JSON numbers; from_json reads it back exactly."""
     from .composite import CompositeCurve
@@ -511,7 +529,7 @@ def to_json(obj, *, indent: int | None = 2) -> str:
     return re.sub(r"\[\s+([^\[\]{}]*?)\s+\]", lambda m: "[" + " ".join(m[1].split()) + "]", text)
 
 
-def _curve_from(data, where: str, check_range: bool):
+def _curve_from(data: object, where: str, check_range: bool) -> Curve:
     from .curves import FAMILIES
 
     if not isinstance(data, dict):
@@ -540,7 +558,7 @@ def _curve_from(data, where: str, check_range: bool):
     return cls(rows, _number_in(lam, f"{where}.lambda"), check_range=check_range)
 
 
-def from_json(text: str, *, check_range: bool = True):
+def from_json(text: str, *, check_range: bool = True) -> Shape:
     """A curve or CompositeCurve from its JSON form (see the module docstring)."""
     from .composite import CompositeCurve
     from .joins import Joint

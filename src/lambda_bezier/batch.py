@@ -67,7 +67,6 @@ def evaluate_many(
         Examples
         --------
         >>> import numpy as np
-    import numpy.typing as npt
         >>> pts = np.array([[(0, 0), (1, 2), (3, 2), (4, 0)]] * 2, dtype=float)
         >>> evaluate_many(pts, [0.0, 0.5], "same_degree", lam=[1.0, 0.5])[:, 1]
         array([[2.  , 1.5 ],

@@ -42,35 +42,35 @@ def evaluate_many(
 ) -> np.ndarray:
     r"""The k-th derivative :math:`p^{(k)}(t)` of m curves of one family and degree at once.
 
-        Parameters
-        ----------
-        points : array_like
-            Control points of shape (m, n+1, d).
-        t : array_like
-            Parameter values, shape (T,), in [0, 1] unless `extrapolate`.
-        family : str
-            ``"bezier"``, ``"same_degree"`` or ``"bernstein_like"``.
-        lam : float or array_like, optional
-            One λ for every curve, or one per curve (shape (m,)); not for ``"bezier"``.
-        k : int
-            The derivative order (0: the points of the curves).
-        check_range : bool
-            Refuse a λ outside the family's range.
-        extrapolate : bool
-            Allow t outside [0, 1].
+    Parameters
+    ----------
+    points : array_like
+        Control points of shape (m, n+1, d).
+    t : array_like
+        Parameter values, shape (T,), in [0, 1] unless `extrapolate`.
+    family : str
+        ``"bezier"``, ``"same_degree"`` or ``"bernstein_like"``.
+    lam : float or array_like, optional
+        One λ for every curve, or one per curve (shape (m,)); not for ``"bezier"``.
+    k : int
+        The derivative order (0: the points of the curves).
+    check_range : bool
+        Refuse a λ outside the family's range.
+    extrapolate : bool
+        Allow t outside [0, 1].
 
-        Returns
-        -------
-        numpy.ndarray
-            Shape (m, T, d).
+    Returns
+    -------
+    numpy.ndarray
+        Shape (m, T, d).
 
-        Examples
-        --------
-        >>> import numpy as np
-        >>> pts = np.array([[(0, 0), (1, 2), (3, 2), (4, 0)]] * 2, dtype=float)
-        >>> evaluate_many(pts, [0.0, 0.5], "same_degree", lam=[1.0, 0.5])[:, 1]
-        array([[2.  , 1.5 ],
-               [2.  , 1.25]])
+    Examples
+    --------
+    >>> import numpy as np
+    >>> pts = np.array([[(0, 0), (1, 2), (3, 2), (4, 0)]] * 2, dtype=float)
+    >>> evaluate_many(pts, [0.0, 0.5], "same_degree", lam=[1.0, 0.5])[:, 1]
+    array([[2.  , 1.5 ],
+           [2.  , 1.25]])
     """
     # a built-in family's name, or a family from lambda_bezier.load_family
     cls = (

@@ -363,7 +363,7 @@ class CompositeCurve:
 
     # ------------------------------------------------------------------ geometry (geometry.py)
     def arc_length(self, u0: Fraction | float = 0, u1: Fraction | float | None = None) -> float:
-        """∫ |C'(u)| du from u0 to u1 (0 <= u0 <= u1 <= N, default the whole composite)."""
+        """∫ ‖C'(u)‖ du from u0 to u1 (0 <= u0 <= u1 <= N, default the whole composite)."""
         return _geometry.arc_length(self, u0, u1)
 
     def parameter_at_length(self, s: npt.ArrayLike) -> np.ndarray | float:

@@ -315,7 +315,7 @@ class Curve:
 
     # ------------------------------------------------------------------ geometry (geometry.py)
     def arc_length(self, t0: Fraction | float = 0, t1: Fraction | float = 1) -> float:
-        """∫ |p'(t)| dt from t0 to t1 (0 <= t0 <= t1 <= 1), to a relative accuracy of 1e-12."""
+        """∫ ‖p'(t)‖ dt from t0 to t1 (0 <= t0 <= t1 <= 1), to a relative accuracy of 1e-12."""
         return _geometry.arc_length(self, t0, t1)
 
     def parameter_at_length(self, s: npt.ArrayLike) -> np.ndarray | float:
@@ -504,7 +504,7 @@ class BezierCurve(Curve):
     def reduce(self) -> tuple[BezierCurve, float]:
         """The curve of one degree less whose elevation is closest to this one (least
         squares on the control points), and the error: the largest distance between this
-        curve's control points and the elevated reduction's, which bounds |p(t) - r(t)|
+        curve's control points and the elevated reduction's, which bounds ‖p(t) − r(t)‖
         on [0, 1]. Exact, with error 0, when the curve is an exact degree elevation."""
         red = _reduce.reduce(self.points, self._exact_points)
         return BezierCurve(red.points), red.error

@@ -538,7 +538,8 @@ class SameDegreeCurve(Curve):
         Casteljau on the cubic Bézier curve. An independent second evaluator."""
         tt, scalar = val.as_parameters(t, extrapolate=extrapolate)
         m3 = np.array(_float_matrix(self._data, "bernstein", 3, 0))
-        lam = float(self.lam)  # type: ignore[arg-type]
+        assert self.lam is not None  # a same_degree curve always has one (__init__)
+        lam = float(self.lam)
         m3 = m3 + lam * _float_matrix(self._data, "bernstein", 3, 1)
         with val.overflow_allowed():  # on the scaled points; checked below where it matters
             unit = self.points / self._scale

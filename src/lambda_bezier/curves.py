@@ -18,14 +18,17 @@ import numpy.typing as npt
 
 from . import _algorithms as alg
 from . import _bezier_forms as forms
-from . import _intersect, _reduce
 from . import _validate as val
-from . import geometry as _geometry
-from ._lazy import TableSource, generated
+from ._lazy import TableSource, generated, submodule
 from ._validate import ParamLike, PointsLike
 
 if TYPE_CHECKING:
     from sympy import Poly
+
+    from . import _intersect, _reduce
+    from . import geometry as _geometry
+else:  # imported when a method first needs them (`import lambda_bezier` stays light)
+    _intersect, _reduce, _geometry = (submodule(m) for m in ("_intersect", "_reduce", "geometry"))
 
 _bernstein = generated("bernstein")
 _same_degree = generated("same_degree")

@@ -14,8 +14,6 @@ rationals as strings).
 
 from __future__ import annotations
 
-import hashlib
-import json
 import re
 import sys
 from fractions import Fraction
@@ -28,11 +26,6 @@ from .curves import BezierCurve, Curve, Matrix
 if TYPE_CHECKING:
     from .energy import Form
     from .properties import IsolatedRoot
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
 
 FORMAT = 2  # the derived document's format this runtime reads
 MAX_DOCUMENT_BYTES = 50_000_000
@@ -65,6 +58,9 @@ def _ints(value: object, where: str) -> tuple[tuple[int, ...], ...]:
 
 def definition_digest(table: dict[str, Any]) -> str:
     """The fingerprint derive/family_engine.py stores (the same canonical JSON, SHA-256)."""
+    import hashlib
+    import json
+
     text = json.dumps(table, sort_keys=True, ensure_ascii=True, separators=(",", ":"))
     return hashlib.sha256(text.encode()).hexdigest()
 
@@ -183,6 +179,13 @@ def load_family(path: str | Path, derived: str | Path | None = None) -> Family:
 
     Refuses, naming the command to run, when the derived document is missing or was derived
     from another version of the definition."""
+    import json  # the loaders are imported here: `import lambda_bezier` stays light
+
+    if sys.version_info >= (3, 11):
+        import tomllib
+    else:  # pragma: no cover - Python 3.10
+        import tomli as tomllib
+
     path = Path(path)
     try:
         data = tomllib.loads(path.read_text(encoding="utf-8"))

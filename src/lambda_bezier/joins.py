@@ -27,7 +27,6 @@ from typing import TypeVar, cast
 
 import numpy as np
 
-from . import _join_engine
 from . import _validate as val
 from ._lazy import generated
 from ._validate import PointsLike
@@ -177,6 +176,8 @@ def leading_weights(
 def _generic_weights(
     curve: Curve, joint: Joint, cls: type[Curve], degree: int, lam: Fraction | float | None
 ) -> dict[tuple[int, str, int], Fraction | float]:
+    from . import _join_engine  # only families from load_family need the per-degree solve
+
     e1 = _join_engine.end_coefficients(curve, 1)[1]  # weights of P_{n-j} in C1'(1)
     pts = curve.control_points()
     tangent = [

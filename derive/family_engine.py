@@ -22,7 +22,6 @@ code: a derived file is read by ``lambda_bezier.load_family`` without running an
 
 from __future__ import annotations
 
-import hashlib
 import json
 import re
 import sys
@@ -38,9 +37,9 @@ from ._algebra import expansion_tables, lam, lambda_degree, t
 from .grammar import FUNCTIONS, MAX_EXPONENT, SYMBOLS, ParseError, parse_formula, tokenize
 
 if sys.version_info >= (3, 11):
-    import tomllib
+    pass
 else:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
+    pass
 
 FORMAT = 2  # version of the derived JSON document (2: with singular_parameters)
 MAX_DEGREE = 20
@@ -126,9 +125,11 @@ class Definition:
 
 
 def digest(table: dict) -> str:
-    """A stable fingerprint of a [family] table (lambda_bezier.family computes the same)."""
-    text = json.dumps(table, sort_keys=True, ensure_ascii=True, separators=(",", ":"))
-    return hashlib.sha256(text.encode()).hexdigest()
+    """A stable fingerprint of a [family] table: the runtime's, so that load_family can tell
+    whether a derived document came from this very definition."""
+    from lambda_bezier.family import definition_digest
+
+    return definition_digest(table)
 
 
 def rename_parameter(text: str, parameter: str) -> str:
@@ -267,18 +268,14 @@ def _check_formula(fail, key: str, text: str, parameter: str, recursive: bool) -
 
 
 def read_definition(path: Path, *, builtin: bool = False) -> Definition:
-    """The [family] table of a file (a family file, or a records file that defines one)."""
+    """The [family] table of a file (a family file, or a records file that defines one), read
+    by the runtime's reader (the same table lambda_bezier.load_family fingerprints)."""
+    from lambda_bezier.family import FamilyFileError, read_family_table
+
     try:
-        data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise DefinitionError(f"{path}: no such file") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise DefinitionError(f"{path}: cannot be read ({exc})") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise DefinitionError(f"{path}: not valid TOML: {exc}") from None
-    table = data.get("family")
-    if not isinstance(table, dict):
-        raise DefinitionError(f"{path}: no [family] table (a family definition starts with one)")
+        table = read_family_table(path)
+    except FamilyFileError as exc:
+        raise DefinitionError(str(exc)) from None
     return definition_from_table(table, str(path), builtin=builtin)
 
 

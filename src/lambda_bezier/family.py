@@ -173,22 +173,17 @@ class Family:
         )
 
 
-def load_family(path: str | Path, derived: str | Path | None = None) -> Family:
-    """The family defined in `path` (a TOML file with a ``[family]`` table), with the tables
-    of its derived document (default: ``<name>.derived.json`` beside `path`).
-
-    Refuses, naming the command to run, when the derived document is missing or was derived
-    from another version of the definition."""
-    import json  # the loaders are imported here: `import lambda_bezier` stays light
-
+def read_family_table(path: str | Path) -> dict[str, Any]:
+    """The [family] table of a TOML file (a family file, or a records file that defines one);
+    derive/family_engine.py reads definitions through this too, so both fingerprint the same
+    table."""
     if sys.version_info >= (3, 11):
         import tomllib
     else:  # pragma: no cover - Python 3.10
         import tomli as tomllib
 
-    path = Path(path)
     try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
+        data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
     except FileNotFoundError:
         raise FamilyFileError(f"{path}: no such file") from None
     except (OSError, UnicodeDecodeError) as exc:
@@ -196,8 +191,23 @@ def load_family(path: str | Path, derived: str | Path | None = None) -> Family:
     except tomllib.TOMLDecodeError as exc:
         raise FamilyFileError(f"{path}: not valid TOML: {exc}") from None
     table = data.get("family")
-    if not isinstance(table, dict) or not isinstance(table.get("name"), str):
-        raise FamilyFileError(f"{path}: no [family] table with a name")
+    if not isinstance(table, dict):
+        raise FamilyFileError(f"{path}: no [family] table (a family definition starts with one)")
+    return table
+
+
+def load_family(path: str | Path, derived: str | Path | None = None) -> Family:
+    """The family defined in `path` (a TOML file with a ``[family]`` table), with the tables
+    of its derived document (default: ``<name>.derived.json`` beside `path`).
+
+    Refuses, naming the command to run, when the derived document is missing or was derived
+    from another version of the definition."""
+    import json  # imported here: `import lambda_bezier` stays light
+
+    path = Path(path)
+    table = read_family_table(path)
+    if not isinstance(table.get("name"), str):
+        raise FamilyFileError(f"{path}: the [family] table has no name")
     name = table["name"]
     if not re.match(r"^[a-z][a-z0-9_]{0,39}$", name):
         raise FamilyFileError(f"{path}: [family] name {name!r} is not a lowercase identifier")

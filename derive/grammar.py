@@ -357,19 +357,19 @@ class _Parser:
             self._arith_operand(r, tok)
         return (var, *rest)
 
-    def _b_Sum(self, args: list, tok: Token):
+    def _with_limits(self, form, example: str, args: list, tok: Token):
+        """Sum(expr, (i, lo, hi), ...) and Integral(expr, (t, lo, hi), ...)."""
+        name = form.__name__
         if len(args) < 2:
-            raise self.error("Sum takes an expression and at least one (i, lo, hi)", tok)
+            raise self.error(f"{name} takes an expression and at least one {example}", tok)
         body = self._arith_operand(args[0], tok)
-        limits = [self._limit(a, tok, "Sum", 3) for a in args[1:]]
-        return sp.Sum(body, *limits)
+        return form(body, *(self._limit(a, tok, name, 3) for a in args[1:]))
+
+    def _b_Sum(self, args: list, tok: Token):
+        return self._with_limits(sp.Sum, "(i, lo, hi)", args, tok)
 
     def _b_Integral(self, args: list, tok: Token):
-        if len(args) < 2:
-            raise self.error("Integral takes an expression and at least one (t, lo, hi)", tok)
-        body = self._arith_operand(args[0], tok)
-        limits = [self._limit(a, tok, "Integral", 3) for a in args[1:]]
-        return sp.Integral(body, *limits)
+        return self._with_limits(sp.Integral, "(t, lo, hi)", args, tok)
 
     def _b_Derivative(self, args: list, tok: Token):
         if len(args) < 2:

@@ -9,16 +9,33 @@ from __future__ import annotations
 
 import importlib
 
-# Order matters only for readability of progress output; files are independent.
-GROUPS = ("bernstein", "same_degree", "bernstein_like", "energy", "joins", "properties")
 SYMPY_VERSION = "1.14.0"  # the SymPy whose printing the committed generated/ comes from
+
+
+def groups() -> tuple[str, ...]:
+    """The formula groups: the reference Bernstein basis, each built-in family's derivation (in
+    the families' order, from derive/families/*.toml), then the groups over every family."""
+    from .family_engine import builtin_families
+
+    return (
+        "bernstein",
+        *(b.derivation for b in builtin_families()),
+        "energy",
+        "joins",
+        "properties",
+    )
 
 
 def render_all(progress=None) -> dict[str, str]:
     from . import _emit
+    from .family_engine import builtin_families
 
-    files = {"__init__.py": _emit.package_init(GROUPS), "_exact.py": _emit.exact_helpers()}
-    for name in GROUPS:
+    families = {b.derivation: b.curve_class for b in builtin_families()}
+    files = {
+        "__init__.py": _emit.package_init(groups(), families),
+        "_exact.py": _emit.exact_helpers(),
+    }
+    for name in groups():
         if progress:
             progress(name)
         module = importlib.import_module(f"{__name__}.{name}")

@@ -36,15 +36,12 @@ import sympy as sp
 from ._algebra import expansion_tables, lam, lambda_degree, t
 from .grammar import FUNCTIONS, MAX_EXPONENT, SYMBOLS, ParseError, parse_formula, tokenize
 
-if sys.version_info >= (3, 11):
-    pass
-else:  # pragma: no cover - Python 3.10
-    pass
-
 FORMAT = 2  # version of the derived JSON document (2: with singular_parameters)
 MAX_DEGREE = 20
 MAX_OFFSET = 6
-BUILTIN = ("bezier", "same_degree", "bernstein_like")
+# The classical Bernstein basis (derive/bernstein.py) is every family's reference (to_bezier,
+# bernstein_at), not a family defined by data; the built-in families are derive/families/*.toml.
+REFERENCE = "bezier"
 ENDPOINT_ORDERS = 3  # derivatives 0..3 at each end
 ENERGY_ORDERS = (1, 2, 3)
 CONTINUITIES = ("C1", "C2", "G1", "G2")
@@ -193,7 +190,7 @@ def definition_from_table(table: object, where: str = "", *, builtin: bool = Fal
             f"by `seed` and `recursion`, one of the two; this table has {given or 'neither'}",
         )
 
-    if table["name"] in BUILTIN and not builtin:
+    if not builtin and table["name"] in builtin_names():
         raise fail("name", f"{table['name']!r} is a built-in family; choose another name")
     if table["parameter"] in SYMBOLS and table["parameter"] != "lam":
         raise fail("parameter", f"{table['parameter']!r} is taken by the formula language")
@@ -539,7 +536,7 @@ def join_artifacts(defn: Definition, closed: dict) -> dict:
 
     out: dict = {}
     with joins.extra_family(defn.name, closed, tuple(defn.degrees), has_lambda=True):
-        for other in (*BUILTIN, defn.name):
+        for other in (*builtin_names(), defn.name):
             for first, second in ((defn.name, other), (other, defn.name)):
                 if (first, second) == (defn.name, defn.name) and f"{first}>{second}" in out:
                     continue
@@ -687,6 +684,80 @@ def register(defn: Definition, points: str = "P") -> None:
 
 
 FAMILY_DEFINITIONS = Path(__file__).resolve().parent / "families"
+
+
+@dataclass(frozen=True)
+class Builtin:
+    """A family the project ships: its definition (the [family] table of
+    derive/families/<name>.toml) and how it is shipped (the file's [builtin] table)."""
+
+    definition: Definition
+    order: int  # position in generated/ and in reports
+    derivation: str  # derive/<derivation>.py: the emitted module and the paper's own closed forms
+    points: str  # the control points' name in the paper's records
+    curve_class: str  # the runtime's class name for its curves
+
+    @property
+    def name(self) -> str:
+        return self.definition.name
+
+    def module(self):
+        """The derivation module (imported on demand: it imports this engine)."""
+        import importlib
+
+        return importlib.import_module(f"{__package__}.{self.derivation}")
+
+
+_BUILTIN_SCHEMA = {
+    "type": "object",
+    "properties": {
+        "order": {"type": "integer", "minimum": 0},
+        "derivation": {"type": "string", "pattern": _NAME},
+        "points": {"type": "string", "pattern": r"^[A-Za-z]$"},
+        "curve_class": {"type": "string", "pattern": r"^[A-Z][A-Za-z0-9]*Curve$"},
+    },
+    "required": ["order", "derivation", "points", "curve_class"],
+    "additionalProperties": False,
+}
+
+
+@cache
+def builtin_families() -> tuple[Builtin, ...]:
+    """Every family in derive/families/, in their `order`: the one list of built-in families
+    the derivations, the emitter and verify iterate over (no shared module names one)."""
+    import jsonschema
+
+    if sys.version_info >= (3, 11):
+        import tomllib
+    else:  # pragma: no cover - Python 3.10
+        import tomli as tomllib
+
+    out = []
+    for path in sorted(FAMILY_DEFINITIONS.glob("*.toml")):
+        info = tomllib.loads(path.read_text(encoding="utf-8")).get("builtin")
+        errors = list(jsonschema.Draft202012Validator(_BUILTIN_SCHEMA).iter_errors(info))
+        if errors:
+            raise DefinitionError(f"{path}: [builtin]: {errors[0].message}")
+        defn = read_definition(path, builtin=True)
+        if path.stem != defn.name:
+            raise DefinitionError(f"{path}: the file must be named after the family {defn.name}")
+        out.append(Builtin(defn, **info))
+    out.sort(key=lambda b: b.order)
+    if len({b.order for b in out}) != len(out):
+        raise DefinitionError(f"{FAMILY_DEFINITIONS}: two built-in families share an order")
+    return tuple(out)
+
+
+def builtin(name: str) -> Builtin:
+    for fam in builtin_families():
+        if fam.name == name:
+            return fam
+    raise KeyError(name)
+
+
+def builtin_names() -> tuple[str, ...]:
+    """The reference basis, then the built-in families in order."""
+    return (REFERENCE, *(b.name for b in builtin_families()))
 
 
 def builtin_definition(name: str) -> Definition:

@@ -3,3 +3,5 @@
 """Exact data and evaluation code derived by derive/ (one module per formula group)."""
 
 GROUPS = ('bernstein', 'same_degree', 'bernstein_like', 'energy', 'joins', 'properties',)
+# the built-in families (derive/families/*.toml), in order: module -> curve class
+FAMILIES = {'same_degree': 'SameDegreeCurve', 'bernstein_like': 'BernsteinLikeCurve'}

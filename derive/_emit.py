@@ -234,19 +234,19 @@ def family_module(
     *,
     script,
     doc,
-    family,
-    degrees,
-    lambda_range,
-    bernstein_lambda,
-    degree_offset,
+    definition,
     power,
     centred,
     bernstein,
     general_forms,
     endpoint,
 ) -> str:
-    """The module layout shared by every curve family (same_degree, bernstein_like)."""
-    (lo, lo_closed), (hi, hi_closed) = lambda_range
+    """The module layout shared by every built-in family: its definition's data (name, degrees,
+    offset, range, Bernstein parameter: derive/families/<name>.toml), its tables, the general
+    forms its derivation module prints and its end forms."""
+    d = definition
+    family, degrees, degree_offset, bernstein_lambda = d.name, d.degrees, d.offset, d.bernstein_at
+    lo, hi, lo_closed, hi_closed = d.lo, d.hi, d.lo_closed, d.hi_closed
     range_text = f"{'[' if lo_closed else '('}{lo}, {hi}{']' if hi_closed else ')'}"
 
     def endpoint_function(name: str, end: str, what: str) -> str:

@@ -29,12 +29,16 @@ from ._algebra import (
     t,
     transpose,
 )
+from .family_engine import builtin_families
 
 X = sp.Poly(t, t, lam, domain="QQ")  # evaluating the axioms at X gives them as polynomials
 
 SCRIPT = "bernstein.py"
 OUTPUT = "bernstein.py"
-DEGREES = range(1, 15)  # up to 12 + 2: bernstein_like curves of degree 12 convert to degree 14
+# Every built-in curve converts to a Bézier curve of degree n + offset: up to the largest.
+DEGREES = range(
+    1, max(b.definition.degrees.stop - 1 + b.definition.offset for b in builtin_families()) + 1
+)
 
 
 def bernstein_basis(degree, index, x=t):
@@ -106,6 +110,19 @@ def endpoint_weights() -> tuple[sp.Expr, sp.Expr]:
     # finds, without importing sympy.physics, which simplify does on first use: 0.45 s)
     end = sp.combsimp(((-1) ** k * leibniz).subs((-1) ** (k - i), (-1) ** (-i - k)))
     return start, end
+
+
+@cache
+def closed_end_forms() -> dict[tuple[str, int, int], sp.Expr]:
+    """{(end, r, idx): the r-th derivative of B_idx (start) or B_{n-idx} (end) at the end},
+    orders 0..2 in closed form in n: every derivation module's end forms, in one shape."""
+    start, end = endpoint_weights()
+    out = {}
+    for r in range(3):
+        for idx in range(r + 1):
+            out[("start", r, idx)] = start.subs({k: r, i: idx})
+            out[("end", r, idx)] = end.subs({k: r, i: idx})
+    return out
 
 
 @cache

@@ -32,8 +32,6 @@ from .bernstein import bernstein_basis, bernstein_poly, endpoint_weight
 
 SCRIPT = "bernstein_like.py"
 OUTPUT = "bernstein_like.py"
-DEGREES = range(2, 13)
-DEGREE_OFFSET = 2  # the basis polynomials have degree n + 2
 ORDERS = 2
 
 # The axioms are data: derive/families/bernstein_like.toml holds the seed (eq. 1) and the
@@ -41,6 +39,8 @@ ORDERS = 2
 # degree (and checks polynomial degree, partition of unity and Bernstein at λ = 0). What stays
 # here is what no generic rule gives: the general-n explicit form (the shape of eq. 5).
 DEFINITION = family_engine.builtin_definition("bernstein_like")
+DEGREES = DEFINITION.degrees
+DEGREE_OFFSET = DEFINITION.offset  # the basis polynomials have degree n + DEGREE_OFFSET
 SEED = tuple(s.xreplace({family_engine.SYMBOLS["t"]: t}) for s in DEFINITION.seed)
 
 
@@ -99,6 +99,11 @@ def endpoint_closed_forms(q: sp.Expr) -> dict[tuple[str, int, int], sp.Expr]:
     return out
 
 
+def closed_end_forms() -> dict[tuple[str, int, int], sp.Expr]:
+    """The end forms every derivation module gives (joins, verify): from the explicit form."""
+    return endpoint_closed_forms(explicit_factor())
+
+
 def _check(q, closed) -> None:
     """The explicit form and the endpoint closed forms against the recursion, for every n."""
     family_engine.check(DEFINITION)  # the definition's own claims, every degree
@@ -125,12 +130,8 @@ def render() -> str:
     return _emit.family_module(
         script=SCRIPT,
         doc="Bernstein-like basis b_{i,n}(t; λ) of 001_33da2b0fa8491127.txt, eqs. (1)-(2).",
-        family="bernstein_like",
-        degrees=degrees,
-        lambda_range=((-1, True), (1, True)),
-        bernstein_lambda=0,
-        degree_offset=2,
-        **expansion_tables(basis_polys, degrees, 2),
+        definition=DEFINITION,
+        **expansion_tables(basis_polys, degrees, DEFINITION.offset),
         general_forms=[
             _emit.function(
                 "explicit_factor",

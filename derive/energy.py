@@ -2,7 +2,7 @@
 
 From the basis only: a curve of either family is p = Σ_j (Q_j − λ W_j) B_j^N with
 Q = M_0ᵀ D and W = −M_1ᵀ D, where M(λ) = M_0 + λ M_1 is the family's Bernstein matrix
-(derived in same_degree.py / bernstein_like.py) and D = (P_0 … P_n)ᵀ. With f = Σ Q_j B_j,
+(derived by the family's derivation module) and D = (P_0 … P_n)ᵀ. With f = Σ Q_j B_j,
 g = Σ W_j B_j (eq. 19), E_k = ∫f⁽ᵏ⁾·f⁽ᵏ⁾ − 2λ ∫f⁽ᵏ⁾·g⁽ᵏ⁾ + λ² ∫g⁽ᵏ⁾·g⁽ᵏ⁾, and each integral is a
 quadratic form Dᵀ S D with S = M K Mᵀ, K = Hᵀ G H: H the k-fold hodograph matrix and G the
 Gram matrix ∫B_a^m B_b^m of the Bernstein basis of degree m = N − k.
@@ -26,15 +26,15 @@ import flint
 import sympy as sp
 
 from . import _emit
-from . import bernstein_like as _bernstein_like
-from . import same_degree as _same_degree
 from ._algebra import Matrix, bernstein_matrices, t, to_flint
 from .bernstein import bernstein_basis, hodograph_matrix
+from .family_engine import builtin_families
 
 SCRIPT = "energy.py"
 OUTPUT = "energy.py"
 ORDERS = (1, 2, 3)
-FAMILIES = {"same_degree": _same_degree, "bernstein_like": _bernstein_like}
+# the built-in families' derivation modules, in their order (derive/families/*.toml)
+FAMILIES = {b.name: b.module() for b in builtin_families()}
 # Families defined by data (derive/family_engine.py), for verify's energy checks: not emitted.
 EXTRA: dict = {}
 GRAM_DEGREES = range(0, 15)
@@ -160,7 +160,7 @@ def _quadratic(u, points) -> Fraction:
     )
 
 
-def optimal_lambda_exact(points, k: int, family: str = "same_degree") -> Fraction:
+def optimal_lambda_exact(points, k: int, family: str) -> Fraction:
     """λ* for exact control points, from the derived forms (used by verify's worked example)."""
     c, x, y = published_form(family, len(points) - 1, k)
     return c * _quadratic(x, points) / _quadratic(y, points)

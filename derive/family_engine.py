@@ -693,19 +693,78 @@ class Builtin:
 
     definition: Definition
     order: int  # position in generated/ and in reports
-    derivation: str  # derive/<derivation>.py: the emitted module and the paper's own closed forms
     points: str  # the control points' name in the paper's records
     curve_class: str  # the runtime's class name for its curves
+    # derive/<derivation>.py: the paper's own closed forms and the emitted module; without one
+    # the engine derives and emits the family from its definition alone (GenericDerivation)
+    derivation: str | None = None
+    # the degree symbols of the first and second curve of the paper's join records that do not
+    # name their curves (000's eq. 17 says p1 has degree m, 001's eq. 12 says n)
+    join_degrees: tuple[str, str] = ("n", "m")
+    checks: str | None = None  # derive/<checks>.py: checkers of claims only this paper makes
 
     @property
     def name(self) -> str:
         return self.definition.name
 
     def module(self):
-        """The derivation module (imported on demand: it imports this engine)."""
+        """The derivation module (imported on demand: it imports this engine), or the engine's
+        own derivation of the family when its paper prints no closed form of its own."""
+        if self.derivation is None:
+            return _generic_derivation(self.definition)
         import importlib
 
         return importlib.import_module(f"{__package__}.{self.derivation}")
+
+
+class GenericDerivation:
+    """What a derivation module provides (DEGREES, DEGREE_OFFSET, basis_polys,
+    closed_end_forms, OUTPUT, render), for a built-in family from its definition alone: the
+    emitted module has the tables and the end forms in closed form in n (fitted, then checked
+    against every degree of the range), and no general form of a paper's own."""
+
+    SCRIPT = "family_engine.py"
+
+    def __init__(self, defn: Definition):
+        self.DEFINITION = defn
+        self.DEGREES = defn.degrees
+        self.DEGREE_OFFSET = defn.offset
+        self.OUTPUT = f"{defn.name}.py"
+
+    def basis_polys(self, degree: int) -> list[sp.Poly]:
+        return basis_polys(self.DEFINITION, degree)
+
+    def closed_end_forms(self) -> dict[tuple[str, int, int], sp.Expr]:
+        closed = closed_endpoint_forms(self.DEFINITION)
+        if closed is None:
+            raise DefinitionError(
+                f"{self.DEFINITION.name}: a built-in family needs its end values and "
+                "derivatives in closed form in n (the joins are emitted in n, m); this "
+                "definition has none, so give it a derivation module or keep it a user family"
+            )
+        return {key: v for key, v in closed.items() if key[1] <= 2}
+
+    def render(self) -> str:
+        from . import _emit
+        from ._algebra import check_endpoint_closed_forms
+
+        defn = self.DEFINITION
+        check(defn)
+        closed = self.closed_end_forms()
+        check_endpoint_closed_forms(closed, {d: self.basis_polys(d) for d in defn.degrees}, 2)
+        return _emit.family_module(
+            script=self.SCRIPT,
+            doc=f"{defn.title or defn.name}: derived from its definition alone.",
+            definition=defn,
+            **expansion_tables(self.basis_polys, tuple(defn.degrees), defn.offset),
+            general_forms=[],
+            endpoint=closed,
+        )
+
+
+@cache
+def _generic_derivation(defn: Definition) -> GenericDerivation:
+    return GenericDerivation(defn)
 
 
 _BUILTIN_SCHEMA = {
@@ -715,8 +774,16 @@ _BUILTIN_SCHEMA = {
         "derivation": {"type": "string", "pattern": _NAME},
         "points": {"type": "string", "pattern": r"^[A-Za-z]$"},
         "curve_class": {"type": "string", "pattern": r"^[A-Z][A-Za-z0-9]*Curve$"},
+        "join_degrees": {
+            "type": "array",
+            "items": {"enum": ["n", "m"]},
+            "minItems": 2,
+            "maxItems": 2,
+            "uniqueItems": True,
+        },
+        "checks": {"type": "string", "pattern": _NAME},
     },
-    "required": ["order", "derivation", "points", "curve_class"],
+    "required": ["order", "points", "curve_class"],
     "additionalProperties": False,
 }
 
@@ -741,6 +808,8 @@ def builtin_families() -> tuple[Builtin, ...]:
         defn = read_definition(path, builtin=True)
         if path.stem != defn.name:
             raise DefinitionError(f"{path}: the file must be named after the family {defn.name}")
+        if "join_degrees" in info:
+            info["join_degrees"] = tuple(info["join_degrees"])
         out.append(Builtin(defn, **info))
     out.sort(key=lambda b: b.order)
     if len({b.order for b in out}) != len(out):
@@ -753,6 +822,16 @@ def builtin(name: str) -> Builtin:
         if fam.name == name:
             return fam
     raise KeyError(name)
+
+
+def derivation(name: str):
+    """The derive module of a built-in family, or derive/bernstein.py for the reference basis:
+    each has DEGREES and closed_end_forms() (the end values and derivatives in closed form)."""
+    if name == REFERENCE:
+        from . import bernstein
+
+        return bernstein
+    return builtin(name).module()
 
 
 def builtin_names() -> tuple[str, ...]:

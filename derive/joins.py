@@ -14,14 +14,14 @@ shape λ2 and points P_{j,2} (001's naming; 000's Prop. 9 swaps n and m). The co
 curvature forces the factor of C2''(0) to be α², see 001 eqs. 32-35.)
 
 Nothing here comes from the papers' printed joins. The only inputs are the endpoint closed
-forms derived in bernstein.py, same_degree.py and bernstein_like.py: with Q_j = P_{n-j,1},
+forms derived by each family's derivation module (closed_end_forms()): with Q_j = P_{n-j,1},
 
     C1^(r)(1) = Σ_j e_{r,j}(n, λ1) Q_j,    C2^(r)(0) = Σ_i s_{r,i}(m, λ2) P_{i,2}.
 
 The conditions are linear and triangular in P_{0,2}, P_{1,2}, P_{2,2} (the r-th derivative at
-0 involves P_{0,2} … P_{r,2}, and P_{3,2} too for a same_degree curve at r = 2, whose
-second derivative at an end involves four control points: there P_{2,2} is solved with
-P_{3,2} given). They are solved here symbolically in n, m, λ1, λ2, α, d, and each solved
+0 involves P_{0,2} … P_{r,2}, and P_{3,2} too at r = 2 for a family whose second
+derivative at an end involves four control points, as 000's does: there P_{2,2} is solved
+with P_{3,2} given). They are solved here symbolically in n, m, λ1, λ2, α, d, and each solved
 point is written as weights of the first curve's last points (and of P_{3,2}).
 
 Checked inside derive: (1) symbolically, for general n and m, every solution satisfies its
@@ -47,22 +47,17 @@ from sympy.polys.rings import ring
 
 from . import _emit
 from . import bernstein as _bernstein
-from . import bernstein_like as _bernstein_like
-from . import same_degree as _same_degree
-from ._algebra import i, k, lam, m, n, t
+from ._algebra import lam, m, n, t
+from .family_engine import REFERENCE, builtin_names, derivation
 
 SCRIPT = "joins.py"
 OUTPUT = "joins.py"
 
-FAMILIES = ("bezier", "same_degree", "bernstein_like")
+FAMILIES = builtin_names()  # the reference basis, then derive/families/*.toml in order
 CONTINUITIES = ("C1", "C2", "G1", "G2")
 ORDER = {"C1": 1, "C2": 2, "G1": 1, "G2": 2}  # derivatives matched; solved: P_{0..ORDER,2}
-DEGREES = {
-    "bezier": tuple(_bernstein.DEGREES),
-    "same_degree": tuple(_same_degree.DEGREES),
-    "bernstein_like": tuple(_bernstein_like.DEGREES),
-}
-HAS_LAMBDA = {"bezier": False, "same_degree": True, "bernstein_like": True}
+DEGREES = {name: tuple(derivation(name).DEGREES) for name in FAMILIES}
+HAS_LAMBDA = {name: name != REFERENCE for name in FAMILIES}
 
 lam1, lam2, alpha, d = sp.symbols("lam1 lam2 alpha d")
 
@@ -109,19 +104,9 @@ def endpoint_forms(family: str) -> dict[tuple[str, int, int], sp.Expr]:
 
 @cache
 def _builtin_endpoint_forms(family: str) -> dict[tuple[str, int, int], sp.Expr]:
-    if family == "bezier":
-        start, end = _bernstein.endpoint_weights()
-        raw = {}
-        for r in range(3):
-            for idx in range(r + 1):
-                raw[("start", r, idx)] = start.subs({k: r, i: idx})
-                raw[("end", r, idx)] = end.subs({k: r, i: idx})
-    elif family == "same_degree":
-        raw = _same_degree.endpoint_closed_forms(_same_degree.three_term_form())
-    elif family == "bernstein_like":
-        raw = _bernstein_like.endpoint_closed_forms(_bernstein_like.explicit_factor())
-    else:
+    if family not in FAMILIES:
         raise KeyError(f"no closed end forms for the family {family!r}")
+    raw = derivation(family).closed_end_forms()
     out = {}
     for key, v in raw.items():
         if v.has(sp.factorial, sp.binomial, sp.FallingFactorial):
@@ -326,13 +311,11 @@ def _per_degree_table(family: str, degree: int) -> dict[tuple[str, int, int], tu
     """Per-degree endpoint derivatives of the basis polynomials, as coefficient lists in λ
     (lowest power first), read off the polynomials' own terms: p^(r)(0) = r! [t^r] p and
     p^(r)(1) = Σ_e e!/(e-r)! [t^e] p. Independent of the closed forms."""
-    if family == "bezier":
+    if family == REFERENCE:
         x = sp.Poly(t, t, lam, domain="QQ")
         polys = [_bernstein.bernstein_basis(degree, ii, x) for ii in range(degree + 1)]
-    elif family == "same_degree":
-        polys = list(_same_degree.basis_polys(degree))
     else:
-        polys = list(_bernstein_like.basis_polys(degree))
+        polys = list(derivation(family).basis_polys(degree))
     out: dict = {}
     for idx, p in enumerate(polys):
         for (e, power), c in p.terms():
@@ -359,7 +342,8 @@ def _horner(coeffs: tuple, x) -> Fraction:
 
 def second_degrees(family: str, continuity: str) -> tuple[int, ...]:
     """Degrees of the second curve a join into `family` can have: enough control points for
-    the solved ones (a same_degree curve has n >= 3 anyway, so P_{3,2} always exists)."""
+    the solved ones (a family whose second end derivative involves P_{3,2} starts at n >= 3
+    (checked in solve), so P_{3,2} always exists)."""
     return tuple(deg for deg in DEGREES[family] if deg >= ORDER[continuity])
 
 
@@ -522,6 +506,7 @@ def _pivot_function(family: str) -> tuple[str, tuple[str, ...]]:
     return _emit.function(f"pivots_{family}", args, doc, body), args
 
 
+# {four_points}: the sentence on families whose second end derivative involves P_{3,2} (_module_doc)
 MODULE_DOC = """Joining two curves: leading control points of the second curve for C1, C2, G1, G2.
 
 First curve C1: degree n, shape lam1, points P_{i,1}; second curve C2: degree m, shape lam2,
@@ -531,11 +516,25 @@ C1''(1) = alpha**2 C2''(0) + d C2'(0) (d free); C joins are alpha = 1, d = 0.
 JOINS[(first, second, continuity)] = (function, argument names). The function returns
 {(row, source, j): weight} with P_{row,2} = sum of weight * X over its entries, where
 X = P_{n-j,1} (source 'first') or X = P_{j,2} (source 'second', only j = 3). Rows 0..1 are
-solved for C1/G1, rows 0..2 for C2/G2. A same_degree curve's second derivative at an end
-involves four control points, so for a same_degree second curve P_{2,2} is solved with
-P_{3,2} given. Pass ints/Fractions for exact weights. Denominators: powers of alpha and
+solved for C1/G1, rows 0..2 for C2/G2.{four_points} Pass ints/Fractions for exact weights. \
+Denominators: powers of alpha and
 PIVOTS[second] (a join is impossible where a needed pivot vanishes).
 """
+
+
+def _module_doc() -> str:
+    """MODULE_DOC naming the families whose second end derivative involves four points."""
+    four = [f for f in FAMILIES if ("start", 2, 3) in endpoint_forms(f)]
+    text = ""
+    if four:
+        names = " and ".join(four)
+        text = (
+            f" A {names} curve's second derivative at an end\n"
+            f"involves four control points, so for a {names} second curve P_{{2,2}} is solved "
+            "with\n"
+            "P_{3,2} given."
+        )
+    return MODULE_DOC.replace("{four_points}", text)
 
 
 def _checked_ranges() -> dict:
@@ -553,7 +552,7 @@ def _checked_ranges() -> dict:
 def render() -> str:
     table = joins()
     parts = [
-        _emit.banner(SCRIPT, MODULE_DOC),
+        _emit.banner(SCRIPT, _module_doc()),
         "",
         f"FAMILIES = {_emit.literal(FAMILIES)}",
         f"CONTINUITIES = {_emit.literal(CONTINUITIES)}",

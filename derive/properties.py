@@ -33,14 +33,12 @@ import flint
 import sympy as sp
 
 from . import _emit
-from . import bernstein_like as bl
-from . import same_degree as sd
 from ._algebra import bernstein_matrices
+from .family_engine import REFERENCE, builtin_families
 
 SCRIPT = "properties.py"
 OUTPUT = "properties.py"
 
-OFFSETS = {"same_degree": 0, "bernstein_like": 2, "bezier": 0}
 _X = sp.Symbol("x")
 
 
@@ -78,13 +76,19 @@ class Interval:
         return cls(lo, hi, m.group(1) == "(", m.group(4) == ")")
 
 
+# The built-in families (derive/families/*.toml, in order) and the reference Bernstein basis.
 FAMILY_RANGES = {
-    "same_degree": Interval(Fraction(-2), Fraction(1), lo_open=True),
-    "bernstein_like": Interval(Fraction(-1), Fraction(1)),
+    b.name: Interval(
+        b.definition.lo, b.definition.hi, not b.definition.lo_closed, not b.definition.hi_closed
+    )
+    for b in builtin_families()
 }
 BUILTIN_RANGES = dict(FAMILY_RANGES)  # what generated/properties.py holds
-FAMILY_DEGREES = {"same_degree": sd.DEGREES, "bernstein_like": bl.DEGREES, "bezier": range(1, 13)}
-_BASES = {"same_degree": sd.basis_polys, "bernstein_like": bl.basis_polys}
+OFFSETS = {b.name: b.definition.offset for b in builtin_families()} | {REFERENCE: 0}
+FAMILY_DEGREES = {b.name: b.module().DEGREES for b in builtin_families()} | {
+    REFERENCE: range(1, 13)
+}
+_BASES = {b.name: b.module().basis_polys for b in builtin_families()}
 
 
 def register(name: str, basis_polys, offset: int, degrees: range, interval: Interval) -> None:
@@ -111,7 +115,7 @@ def _frac(v: flint.fmpq) -> Fraction:
 @cache
 def coefficients(family: str, n: int) -> tuple[tuple[flint.fmpq_poly, ...], ...]:
     """c[i][j](λ): coefficient of B_j^{n+offset} in basis function i of degree n."""
-    if family == "bezier":
+    if family == REFERENCE:
         return tuple(
             tuple(flint.fmpq_poly([1 if i == j else 0]) for j in range(n + 1)) for i in range(n + 1)
         )

@@ -21,6 +21,7 @@ import sys
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 
+from .family_engine import REFERENCE
 from .grammar import ParseError
 from .properties import Interval
 from .verify_checks import FAMILIES, claim_kind, kind_problem
@@ -315,7 +316,7 @@ def load_file(path: Path) -> list[dict]:
         for key in ("variable", "point_function"):
             if key not in rec and key in data:
                 rec[key] = data[key]
-        if "n" in rec and rec["n"] not in FAMILIES[family].degrees and family != "bezier":
+        if "n" in rec and rec["n"] not in FAMILIES[family].degrees and family != REFERENCE:
             raise RecordsError(
                 f"{_where(path, rec, 'n')}: degree {rec['n']} is outside the {family} range "
                 f"{FAMILIES[family].degrees.start}..{FAMILIES[family].degrees.stop - 1}"

@@ -33,8 +33,6 @@ from .bernstein import endpoint_weight
 
 SCRIPT = "same_degree.py"
 OUTPUT = "same_degree.py"
-DEGREES = range(3, 13)
-DEGREE_OFFSET = 0  # the basis polynomials have degree n
 ORDERS = 2  # endpoint derivatives emitted in closed form: value, first, second
 
 
@@ -44,6 +42,8 @@ ORDERS = 2  # endpoint derivatives emitted in closed form: value, first, second
 # (polynomial degree, partition of unity, Bernstein at λ = 1). What stays here is what no
 # generic rule gives: 000's general-n three-term Bernstein form and its end closed forms.
 DEFINITION = family_engine.builtin_definition("same_degree")
+DEGREES = DEFINITION.degrees
+DEGREE_OFFSET = DEFINITION.offset  # the basis polynomials have degree n + DEGREE_OFFSET
 _CLOSED_FIELD = sp.polys.fields.field([n, lam], sp.QQ)[0]
 
 
@@ -98,6 +98,11 @@ def endpoint_closed_forms(form) -> dict[tuple[str, int, int], sp.Expr]:
     return out
 
 
+def closed_end_forms() -> dict[tuple[str, int, int], sp.Expr]:
+    """The end forms every derivation module gives (joins, verify): from the three-term form."""
+    return endpoint_closed_forms(three_term_form())
+
+
 def _check(form, closed) -> None:
     """Every general-n result against the per-degree expansion of the axiom, for every n."""
     family_engine.check(DEFINITION)  # the definition's own claims, every degree
@@ -125,12 +130,8 @@ def render() -> str:
     return _emit.family_module(
         script=SCRIPT,
         doc="Same-degree λ-Bernstein basis b_i^n(t; λ) of 000_10ca634d356c575d.txt, eq. (1).",
-        family="same_degree",
-        degrees=degrees,
-        lambda_range=((-2, False), (1, True)),
-        bernstein_lambda=1,
-        degree_offset=0,
-        **expansion_tables(basis_polys, degrees, 0),
+        definition=DEFINITION,
+        **expansion_tables(basis_polys, degrees, DEFINITION.offset),
         general_forms=[
             _emit.function(
                 "three_term_bernstein",

@@ -36,6 +36,7 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .family_engine import REFERENCE, builtin_families
 from .records import RecordsError, load_paths
 from .verify_checks import Outcome, run_checker
 
@@ -185,10 +186,18 @@ def default_jobs() -> int:
 
 
 # The order in which records are laid out for the workers: the first worker takes records from
-# the front and the second from the back, so same_degree records go to one worker and
-# bernstein_like records to the other, each deriving (and caching) only its own family's bases
-# and closed forms; they meet in the Bézier records, which need neither.
-FAMILY_ORDER = {"same_degree": 0, "bezier": 1, "bernstein_like": 2}
+# the front and the second from the back, so the first family's records go to one worker and
+# the last family's to the other, each deriving (and caching) only its own family's bases and
+# closed forms; they meet in the reference (Bézier) records, which need neither.
+def _family_order() -> dict[str, int]:
+    """The built-in families in order with the reference basis in the middle (for two
+    families: the first, the reference, the second)."""
+    names = [b.name for b in builtin_families()]
+    half = (len(names) + 1) // 2
+    return {name: pos for pos, name in enumerate([*names[:half], REFERENCE, *names[half:]])}
+
+
+FAMILY_ORDER = _family_order()
 
 
 def _parallel(records: list[dict], jobs: int, done: Callable[[int, Result], None]) -> None:

@@ -1,9 +1,10 @@
 """Claim checkers: each published record compared with OUR derivation.
 
-The derived side always comes from the derive modules (``same_degree.basis_polys``,
-``three_term_form``, ``endpoint_closed_forms``, ``bernstein_like.explicit_factor``,
-``bernstein.bernstein_basis``, ``original_basis``, ``endpoint_weights``, the Bernstein/power
-matrices, and ``energy`` once it exists); nothing printed is re-typed here.
+The derived side always comes from the derive modules (each family's ``basis_polys`` and
+``closed_end_forms``, ``bernstein.bernstein_basis``, ``original_basis``, ``endpoint_weights``,
+the Bernstein/power matrices, and ``energy``); nothing printed is re-typed here. A paper's
+own closed forms (000's three-term form, 001's explicit form) are checked by the module its
+family's definition names under ``checks`` (derive/verify_same_degree.py, ...).
 
 Every undefined function of the expression language has a *model*: the derived object it names
 (``b`` the family's basis polynomials, ``p`` the curve Σ b_i P_i, ``bk`` de Casteljau points,
@@ -12,11 +13,13 @@ parts of p^(k), ``A`` = (b - B)/(1 - λ), ``kappa`` the curvature |p' × p''|/|p
 equation ``lhs = rhs`` is then checked for every degree of the family's range and every index
 (``per-degree``), and, where derive has a general-n closed form, symbolically in n (and i, k).
 
-Registry: ``CHECKERS[claim] = Checker(function, requires)``. ``requires`` names derive modules a
+Registry: ``CHECKERS[kind] = [Checker(function, requires, family), ...]``; a checker with a
+family is that family's own (a paper's closed form no generic rule gives), registered by the
+module its derive/families/<name>.toml names under ``checks``. ``requires`` names derive modules a
 checker needs (REQUIREMENTS lists the functions each must provide); while one is missing the
 record's verdict is ``pending`` with the reason. The energy checkers use ``derive/energy.py``
 (issue 3), the join checkers ``derive/joins.py`` (issue 4); a new claim kind plugs in as one
-function registered with ``@checker(claim, requires=...)``.
+function registered with ``@checker(kind, requires=...)``.
 
 Per-degree ranges: the family's degrees (derive's DEGREES); indices 0..n unless
 ``index_ranges`` or an equation's ``where`` says otherwise; an instance whose evaluation leaves
@@ -43,8 +46,7 @@ from sympy.solvers.inequalities import reduce_rational_inequalities
 
 from . import _algebra
 from . import bernstein as bz
-from . import bernstein_like as bl
-from . import same_degree as sd
+from .family_engine import REFERENCE, builtin_families
 from .verify_expr import (
     DEGREE_SYMBOLS,
     GEN,
@@ -62,7 +64,6 @@ from .verify_expr import (
     as_fraction,
     as_int,
     as_sympy,
-    cancelled,
     compare,
     cross,
     delta_model,
@@ -109,9 +110,11 @@ class Outcome:
 class Checker:
     fn: Callable[[dict, Context], Outcome]
     requires: tuple[str, ...] = ()
+    family: str | None = None  # only this family's records (its paper's own form), else any
+    fits: Callable[[dict], bool] | None = None  # the records it checks, by their payload
 
 
-CHECKERS: dict[str, Checker] = {}
+CHECKERS: dict[str, list[Checker]] = {}  # kind -> its checkers, in registration order
 
 # Missing derivations: module -> (functions that must exist, what to say while missing).
 REQUIREMENTS = {
@@ -127,12 +130,26 @@ REQUIREMENTS = {
 }
 
 
-def checker(*claims: str, requires: tuple[str, ...] = ()):
+def checker(
+    *kinds: str,
+    requires: tuple[str, ...] = (),
+    family: str | None = None,
+    fits: Callable[[dict], bool] | None = None,
+    only: str | None = None,
+):
+    """Register fn for each claim kind. `family`: fn checks that family's records only (the
+    other families' records of the kind go to the shared checkers); `fits`: which records of
+    the kind it takes; `only`: the kind exists for `family` alone, with this reason."""
+
     def register(fn):
-        for claim in claims:
-            if claim in CHECKERS:
-                raise AssertionError(f"two checkers for {claim}")
-            CHECKERS[claim] = Checker(fn, requires)
+        for kind in kinds:
+            if "." in kind:
+                raise AssertionError(f"{kind}: a checker is registered for a bare kind")
+            entry = Checker(fn, requires, family, fits)
+            CHECKERS.setdefault(kind, []).append(entry)
+            if only is not None:
+                assert family is not None, "a kind for one family names it"
+                KIND_FAMILIES[kind] = ((family,), only)
         return fn
 
     return register
@@ -158,12 +175,13 @@ def missing_requirement(requires: tuple[str, ...]) -> str | None:
 
 
 def claim_kind(claim: str) -> str:
-    """`same_degree.endpoint_d1` -> `endpoint_d1` (a kind is family-independent)."""
+    """`<family>.endpoint_d1` -> `endpoint_d1` (a kind is family-independent)."""
     return claim.split(".", 1)[1] if "." in claim else claim
 
 
 # Kinds whose derivation exists for some families only, with the reason a user is told;
-# LAMBDA stands for every family with a shape parameter (every family but bezier).
+# LAMBDA stands for every family with a shape parameter (every family but the reference
+# Bernstein basis). A family's own kinds are added by its checks module (checker(only=...)).
 LAMBDA = "*"
 _LAMBDA_FAMILIES = (LAMBDA,)
 KIND_FAMILIES: dict[str, tuple[tuple[str, ...], str]] = {
@@ -185,12 +203,6 @@ KIND_FAMILIES: dict[str, tuple[tuple[str, ...], str]] = {
             "energy_derivative",
         )
     },
-    "basis_split": (("same_degree",), "A = (b - B)/(1 - λ) needs λ = 1 to give Bernstein"),
-    "three_term_bernstein": (("same_degree",), "it is 000's closed form of its own basis"),
-    "geometric_step": (("same_degree",), "it is 000's evaluation algorithm (Prop. 8)"),
-    "geometric_ratio": (("same_degree",), "it is 000's evaluation algorithm (Prop. 8)"),
-    "g1_join_ratio": (("same_degree",), "it is 000's proof of Prop. 9"),
-    "seed_basis": (("bernstein_like",), "it is 001's quadratic seed of the recursion"),
 }
 
 
@@ -208,7 +220,7 @@ def _allowed(kind: str) -> tuple[str, ...]:
     if not allowed:
         return tuple(FAMILIES)
     if LAMBDA in allowed:
-        return tuple(f for f in FAMILIES if f != "bezier")
+        return tuple(f for f in FAMILIES if f != REFERENCE)
     return allowed
 
 
@@ -226,47 +238,36 @@ def kind_problem(family: str, kind: str) -> str | None:
 
 
 def resolve_checker(record: dict) -> Checker:
-    """The checker of a record's claim: its own family's where one is registered, else the one
-    every family shares for that kind (an endpoint kind by its payload: cases or equations)."""
+    """The checker of a record's claim: its own family's where one is registered and takes the
+    record, else the first shared one for that kind that does (an endpoint kind by its payload:
+    cases or equations), else the per-degree check of an explicit form of the basis."""
     claim, family = record["claim"], record["family"]
     kind = claim_kind(claim)
     problem = kind_problem(family, kind)
     if problem:
         raise KeyError(problem)
-    entry = CHECKERS.get(f"{family}.{kind}")
-    if entry is not None and _fits(entry, record):
-        return entry
-    shared = [
-        c
-        for name, c in CHECKERS.items()
-        if claim_kind(name) == kind
-        and _fits(c, record)
-        and (c.fn.__name__ not in _OWN_FAMILY or name == f"{family}.{kind}")
-    ]
-    if shared:
-        return shared[0]
+    candidates = [c for c in CHECKERS.get(kind, []) if _fits(c, record)]
+    for wanted in (family, None):
+        for entry in candidates:
+            if entry.family == wanted:
+                return entry
     # an explicit form of another family's basis: every degree and index, per degree
-    return CHECKERS["same_degree.basis_general"]
-
-
-# Checkers that compare with one family's own closed form (000's three-term form, 001's
-# explicit factor, 000's G1 proof); another family's record of that kind is checked per degree.
-_OWN_FAMILY = frozenset({"check_explicit", "check_three_term", "check_join_000"})
+    return next(c for c in CHECKERS["basis_general"] if c.family is None)
 
 
 def _fits(entry: Checker, record: dict) -> bool:
     """Endpoint kinds come as `cases` (per index) or as `equations` (of the curve); joins
     with or without a stated convention."""
+    if entry.fits is not None:
+        return entry.fits(record)
     if entry.fn.__name__ == "check_cases":
         return "cases" in record
     if entry.fn.__name__ == "check_endpoint_equations":
         return "equations" in record
-    # a join states its continuity condition (001's convention), or is 000's sufficient G1
-    # condition with a free constant C (Prop. 9), which has none
+    # a join states its continuity condition (001's convention); one without it is a paper's
+    # own condition (000's Prop. 9, registered with its family)
     if entry.fn.__name__ == "check_join":
         return "convention" in record
-    if entry.fn.__name__ == "check_join_000":
-        return "convention" not in record
     return True
 
 
@@ -292,27 +293,27 @@ class Family:
     basis_polys: Callable[[int], list] | None = None  # per degree, Polys in t, lam
     offset: int = 0  # the basis polynomials have degree n + offset
     closed: Callable[[], dict] | None = None  # closed end forms {(end, r, idx): expr in n, lam}
+    # degree symbols of p1, p2 in a join record that does not name its curves (the paper's)
+    join_degrees: tuple[str, str] = ("n", "m")
 
 
-FAMILIES = {
-    "same_degree": Family(
-        "same_degree",
-        sd.DEGREES,
-        "V",
-        sd.basis_polys,
-        0,
-        lambda: sd.endpoint_closed_forms(sd.three_term_form()),
-    ),
-    "bernstein_like": Family(
-        "bernstein_like",
-        bl.DEGREES,
-        "P",
-        lambda n: list(bl.basis_polys(n)),
-        2,
-        lambda: bl.endpoint_closed_forms(bl.explicit_factor()),
-    ),
-    "bezier": Family("bezier", bz.DEGREES, "b"),
-}
+def _builtin_family(b) -> Family:
+    module = b.module()
+    return Family(
+        b.name,
+        module.DEGREES,
+        b.points,
+        lambda degree: list(module.basis_polys(degree)),
+        b.definition.offset,
+        module.closed_end_forms,
+        b.join_degrees,
+    )
+
+
+# The built-in families (derive/families/*.toml, in order), then the reference Bernstein basis
+# (002's notes: no shape parameter, no b(i, n, t); its control points are b_i).
+FAMILIES = {b.name: _builtin_family(b) for b in builtin_families()}
+FAMILIES[REFERENCE] = Family(REFERENCE, bz.DEGREES, "b")
 
 
 def register_family(family: Family) -> None:
@@ -340,7 +341,7 @@ def family_basis(family: str, degree: int, index: int, x=None, shape=None) -> Sc
     """The derived basis function at x (default t) with shape `shape` (default lam); zero
     outside 0..degree, Undefined for a degree outside the derived range."""
     x = ST if x is None else Sc.of(x)
-    if family == "bezier":
+    if family == REFERENCE:
         if degree < 0:
             raise Undefined(f"Bernstein degree {degree}")
         if not 0 <= index <= degree:
@@ -504,7 +505,7 @@ class Context:
         fam = self.family
         pts = fam.points
         models: dict = {
-            "B": lambda a, env: family_basis("bezier", _int(a[1]), _int(a[0]), a[2]),
+            "B": lambda a, env: family_basis(REFERENCE, _int(a[1]), _int(a[0]), a[2]),
             "b": self._b_model,
             "f": self._f_model,
             "a": self._a_model,
@@ -547,7 +548,7 @@ class Context:
         if len(a) == 1:
             return Form.point("b", _int(a[0]))
         fam = self.family.name
-        if fam == "bezier":
+        if fam == REFERENCE:
             raise TypeError("b(i, n, t) is not defined for the Bézier notes")
         shape = a[3] if len(a) == 4 else None
         return family_basis(fam, _int(a[1]), _int(a[0]), a[2], shape)
@@ -571,7 +572,7 @@ class Context:
         """A_i^n with b_i^n = B_i^n + (1 - λ) A_i^n."""
         i, deg = _int(a[0]), _int(a[1])
         b = family_basis(self.family.name, deg, i)
-        B = family_basis("bezier", deg, i)
+        B = family_basis(REFERENCE, deg, i)
         diff = b - B
         if diff.is_zero():
             return Sc.of(0)
@@ -620,17 +621,16 @@ class Context:
         if first and second:
             spec = first if which == 1 else second
             spec = _piece_text(spec["points"], spec["degree"], spec["shape"])
-        elif self.family.name == "bernstein_like":  # eq. 12: C_1 degree n, C_2 degree m
-            spec = ("P1", "n", S["lam1"]) if which == 1 else ("P2", "m", S["lam2"])
-        else:  # 000 eq. 17: p1 degree m, p2 degree n
-            spec = ("V1", "m", S["lam1"]) if which == 1 else ("V2", "n", S["lam2"])
+        else:  # the paper's convention (000 eq. 17: p1 degree m; 001 eq. 12: C_1 degree n)
+            pts, deg = self.family.points, self.family.join_degrees[which - 1]
+            spec = (f"{pts}{which}", deg, S[f"lam{which}"])
         shape = env[spec[2]] if spec[2] in env else spec[2]  # a sample value, or symbolic
         return spec[0], spec[1], Sc.of(shape)
 
     def _subdivision(self) -> bool:
         """p1, p2 of 002 are the two pieces of a subdivision at t*, unless the record is a join
         (which names its two curves in `first` and `second`)."""
-        return self.family.name == "bezier" and not self.record.get("first")
+        return self.family.name == REFERENCE and not self.record.get("first")
 
     def piece(self, which: int, env, x) -> Form:
         if self._subdivision():  # the two pieces of a subdivision at t*
@@ -661,7 +661,7 @@ class Context:
         if level == n - 2:
             if not 0 <= i <= 3:
                 raise Undefined(f"Q_{i}^(n-2)")
-            mats = _bernstein_mats("same_degree", 3)
+            mats = _bernstein_mats(self.family.name, 3)
             out = sp.Integer(0)
             for q in range(4):
                 coeff = sum((SLAM**p * mats[p][q][i] for p in range(len(mats))), Sc.of(0))
@@ -933,186 +933,51 @@ def equations_outcome(record, ctx, equations, real=None, extra_lines=()) -> Outc
 
 
 @checker(
-    "same_degree.basis_general",
-    "same_degree.basis_split",
-    "same_degree.recursion",
-    "same_degree.basis_list",
-    "same_degree.basis_in_bernstein",
-    "same_degree.curve_definition",
-    "same_degree.geometric_step",
-    "same_degree.energy_split",
-    "same_degree.energy_qw",
-    "same_degree.energy_derivative",
-    "bernstein_like.seed_basis",
-    "bernstein_like.recursion",
-    "bernstein_like.curve_definition",
-    "bernstein_like.basis_list",
-    "bernstein_like.join_setup",
-    "bezier.original_curve",
-    "bezier.original_basis",
-    "bezier.original_basis_list",
-    "bezier.original_to_bernstein",
-    "bezier.bernstein_definition",
-    "bezier.bernstein_list",
-    "bezier.partition_of_unity",
-    "bezier.symmetry",
-    "bezier.bernstein_derivative",
-    "bezier.recursion",
-    "bezier.degree_elevation",
-    "bezier.subdivision_identity",
-    "bezier.integral",
-    "bezier.power_to_bernstein",
-    "bezier.bernstein_to_power",
-    "bezier.endpoint_interpolation",
-    "bezier.decasteljau",
-    "bezier.decasteljau_intermediate",
-    "bezier.hodograph",
-    "bezier.end_curvature",
-    "bezier.derivative_decasteljau",
-    "bezier.derivative_decasteljau_example",
-    "bezier.subdivision",
+    "basis_general",
+    "recursion",
+    "basis_list",
+    "basis_in_bernstein",
+    "curve_definition",
+    "energy_split",
+    "energy_qw",
+    "energy_derivative",
+    "join_setup",
+    "original_curve",
+    "original_basis",
+    "original_basis_list",
+    "original_to_bernstein",
+    "bernstein_definition",
+    "bernstein_list",
+    "partition_of_unity",
+    "symmetry",
+    "bernstein_derivative",
+    "degree_elevation",
+    "subdivision_identity",
+    "integral",
+    "power_to_bernstein",
+    "bernstein_to_power",
+    "endpoint_interpolation",
+    "decasteljau",
+    "decasteljau_intermediate",
+    "hodograph",
+    "end_curvature",
+    "derivative_decasteljau",
+    "derivative_decasteljau_example",
+    "subdivision",
 )
-def check_equations(record: dict, ctx: Context) -> Outcome:
+def check_equations(record: dict, ctx: Context, extra_lines=()) -> Outcome:
     """Every printed equality, for every degree of the range and every index, with the models
-    (plus the symbolic three-term comparison for eq. 1 of 000)."""
+    (`extra_lines`: a family checker's own findings, e.g. a symbolic comparison)."""
     eqs = list(record["equations"]) + list(record.get("conventions") or [])
-    extra = []
-    if record["claim"] == "same_degree.basis_general":
-        try:
-            extra = symbolic_three_term(bernstein_terms_of(parse(record["equations"][0]["rhs"])))
-        except ArithmeticError as exc:
-            extra = [f"symbolic: not a combination of degree-n Bernstein functions ({exc})"]
-    out = equations_outcome(record, ctx, eqs, extra_lines=extra)
-    if record["claim"] == "same_degree.basis_general":
-        out.checked.insert(0, "symbolic: Bernstein coefficients vs three_term_form()")
-    return out
-
-
-# --------------------------------------------------------------------------- three-term form
-
-
-def bernstein_terms_of(expr) -> dict:
-    """{shift: coefficient} of b_i^n = Σ coeff B_{i+shift}^n from a printed explicit form."""
-    e = to_derive(expr)
-    terms = _algebra.bernstein_terms(e, _algebra.n)
-    return {sp.expand(a - _algebra.i): c for a, c in terms.items()}
-
-
-def b_function_terms(expr) -> dict:
-    """{shift: coefficient} from a printed Σ coeff·B(i + shift, n, t)."""
-    out: dict = {}
-    for term in sp.Add.make_args(sp.expand(to_derive(expr))):
-        fns = [f for f in sp.Mul.make_args(term) if fn_name(f) == "B"]
-        if len(fns) != 1:
-            raise ValueError(f"term {term} is not a multiple of one B(...)")
-        f = fns[0]
-        shift = sp.expand(f.args[0] - _algebra.i)  # an index: linear in i
-        out[shift] = out.get(shift, 0) + term / f
-    return out
-
-
-def symbolic_three_term(printed: dict) -> list[str]:
-    alpha, beta, gamma = sd.three_term_form()
-    derived = {sp.Integer(-1): alpha, sp.Integer(0): beta, sp.Integer(1): gamma}
-    diffs = []
-    for shift in sorted(set(printed) | set(derived), key=str):
-        a = printed.get(shift, 0)
-        d = derived.get(shift, 0)
-        if not symbolic_zero(a - d):
-            a_s = sp.factor(sp.combsimp(sp.expand_func(a)))
-            diffs.append(
-                f"symbolic: coefficient of B(i{_signed(shift)}, n, t): printed {_orig(a_s)}, "
-                f"derived {_orig(sp.factor(d))}"
-            )
-    return diffs
-
-
-def _signed(s) -> str:
-    s = int(s)
-    return "" if s == 0 else f" + {s}" if s > 0 else f" - {-s}"
+    return equations_outcome(record, ctx, eqs, extra_lines=extra_lines)
 
 
 def _orig(e) -> str:
     return str(e.xreplace({v: k for k, v in TO_DERIVE.items()}))
 
 
-@checker("same_degree.three_term_bernstein")
-def check_three_term(record: dict, ctx: Context) -> Outcome:
-    """Eq. 7: the left side must be b_i^n, and each coefficient of B_{i-1}, B_i, B_{i+1} must
-    equal three_term_form() symbolically and, with the papers' binomials, the derived Bernstein
-    matrix entry for every n and i (a coefficient beside a B outside 0..n is not looked at)."""
-    eq = record["equations"][0]
-    lhs, rhs = parse(eq["lhs"]), parse(eq["rhs"])
-    diffs = []
-    i, n, t = S["i"], S["n"], T
-    if lhs != sp.Function("b")(i, n, t):
-        diffs.append(f"left side: printed {eq['lhs']}, the derived identity is for b(i, n, t)")
-    try:
-        printed = b_function_terms(rhs)
-    except ValueError as exc:
-        return Outcome("mismatch", diffs + [f"right side: {exc}"])
-    diffs += symbolic_three_term(printed)
-    real = ctx.realiser()
-    tally = Tally("per-degree coefficients")
-    for deg in ctx.family.degrees:
-        mats = _bernstein_mats("same_degree", deg)
-        for ii in range(deg + 1):
-            env = {n: sp.Integer(deg), i: sp.Integer(ii)}
-            row = []
-            for shift, coeff in printed.items():
-                jj = ii + int(shift)
-                if not 0 <= jj <= deg:
-                    continue
-                want = sum((SLAM**p * mats[p][ii][jj] for p in range(len(mats))), Sc.of(0))
-                try:
-                    got = real(_from_derive(coeff), env)
-                except Undefined as exc:
-                    row.append(f"coefficient of B({jj}, {deg}, t): printed undefined ({exc})")
-                    continue
-                if not _is_zero(got - want):
-                    row.append(
-                        # only the first failing case is shown in full (Tally.lines)
-                        "differs"
-                        if tally.failures
-                        else f"coefficient of B({jj}, {deg}, t): printed {show(got)}, "
-                        f"derived {show(want)}"
-                    )
-            tally.add(env, row)
-    diffs += tally.lines()
-    checked = ["symbolic: coefficients vs three_term_form()", f"per-degree: {tally.total} cases"]
-    return Outcome("mismatch" if diffs else "match", diffs, checked)
-
-
 def _from_derive(e):
     return e.xreplace({v: k for k, v in TO_DERIVE.items()})
-
-
-# --------------------------------------------------------------------------- explicit form (001)
-
-
-@checker("bernstein_like.basis_explicit")
-def check_explicit(record: dict, ctx: Context) -> Outcome:
-    """Eq. 5: the printed factor q_i(t) = b_{i,n}/B_{i,n} against explicit_factor()
-    symbolically, and the whole formula for every n and i."""
-    eq = record["equations"][0]
-    rhs = to_derive(parse(eq["rhs"]))
-    n, i = _algebra.n, _algebra.i
-    bern = sp.binomial(n, i) * T**i * (1 - T) ** (n - i)
-    q_printed = sp.powsimp(sp.expand_power_base(rhs / bern), force=True)
-    q_derived = bl.explicit_factor()
-    diffs = []
-    diff = sp.expand(sp.combsimp(sp.expand_func(q_printed - q_derived)))
-    if not symbolic_zero(diff):
-        for e in range(3):
-            a = sp.factor(sp.combsimp(sp.expand_func(sp.expand(q_printed).coeff(T, e))))
-            b = sp.factor(sp.expand(q_derived).coeff(T, e))
-            if not symbolic_zero(a - b):
-                diffs.append(f"symbolic: coefficient of t^{e} in b/B: printed {a}, derived {b}")
-        if not diffs:
-            diffs.append(f"symbolic: printed/B - derived factor = {sp.factor(diff)}")
-    out = equations_outcome(record, ctx, record["equations"], extra_lines=diffs)
-    out.checked.insert(0, "symbolic: factor vs explicit_factor()")
-    return out
 
 
 # --------------------------------------------------------------------------- endpoint cases
@@ -1135,14 +1000,7 @@ def _generic_le(a, b) -> bool:
     return c > 0 or (c == 0 and d.subs(S["n"], 0) >= 0)
 
 
-@checker(
-    "same_degree.endpoint_values",
-    "same_degree.endpoint_d1",
-    "bernstein_like.endpoint_values",
-    "bernstein_like.endpoint_d1",
-    "bernstein_like.endpoint_d2",
-    "bezier.endpoint_values",
-)
+@checker("endpoint_values", "endpoint_d1", "endpoint_d2")
 def check_cases(record: dict, ctx: Context) -> Outcome:
     """By-index results (eqs. 8-11 of 000/001, B(0), B(1) of 002): every printed case against
     the derived closed forms symbolically, and every index 0..n of every degree against the
@@ -1153,7 +1011,7 @@ def check_cases(record: dict, ctx: Context) -> Outcome:
     order = int(record["order"])
     end = "start" if at == 0 else "end"
     cases = [(_index_bounds(c["index"]), parse(c["value"]), c) for c in record["cases"]]
-    fam = ctx.family.name if fn_name(func) == "b" else "bezier"
+    fam = ctx.family.name if fn_name(func) == "b" else REFERENCE
     diffs = symbolic_cases(fam, end, order, cases)
     real = ctx.realiser()
     tally = Tally("per-degree")
@@ -1192,7 +1050,7 @@ def check_cases(record: dict, ctx: Context) -> Outcome:
     diffs += tally.lines()
     checked = [
         "symbolic: cases vs derived closed forms"
-        if fam == "bezier" or has_closed_forms(fam)
+        if fam == REFERENCE or has_closed_forms(fam)
         else f"symbolic: none ({fam} has no closed end forms in n)",
         f"per-degree: {tally.total} cases",
     ]
@@ -1201,7 +1059,7 @@ def check_cases(record: dict, ctx: Context) -> Outcome:
 
 def symbolic_cases(family: str, end: str, order: int, cases) -> list[str]:
     n = S["n"]
-    if family == "bezier":
+    if family == REFERENCE:
         keys = {(end, order, idx): bezier_closed(end, order, idx) for idx in range(order + 1)}
     elif not has_closed_forms(family):
         return []  # a family without general-n end forms: checked per degree only
@@ -1267,7 +1125,7 @@ def symbolic_endpoint(family: str, eq: dict) -> list[str]:
     """p^(r)(0) / p^(r)(1) printed as a combination of control points vs the closed forms."""
     lhs, rhs = parse(eq["lhs"]), parse(eq["rhs"])
     which = _endpoint_lhs(lhs)
-    if which is None or (family != "bezier" and not has_closed_forms(family)):
+    if which is None or (family != REFERENCE and not has_closed_forms(family)):
         return []  # not an end value, or a family checked per degree only
     end, order = which
     n = S["n"]
@@ -1287,7 +1145,7 @@ def symbolic_endpoint(family: str, eq: dict) -> list[str]:
         printed[int(off)] = printed.get(int(off), 0) + c
     derived = {}
     for idx in range(order + 2):
-        if family == "bezier":
+        if family == REFERENCE:
             v = bezier_closed(end, order, idx)
         else:
             v = closed_forms(family).get((end, order, idx), 0)
@@ -1311,7 +1169,7 @@ def symbolic_endpoint(family: str, eq: dict) -> list[str]:
 def symbolic_endpoint_sum(family, end, order, lhs, rhs, eq) -> list[str]:
     """A printed C·Σ_{v=lo}^{hi} c(v)·point(e(v)) with a symbolic order, against the Bézier
     weights: reindexed by s (point s at t=0, point n - s at t=1)."""
-    if family != "bezier":
+    if family != REFERENCE:
         return []
     n = S["n"]
     sums = [a for a in sp.preorder_traversal(rhs) if isinstance(a, sp.Sum)]
@@ -1355,13 +1213,7 @@ def symbolic_endpoint_sum(family, end, order, lhs, rhs, eq) -> list[str]:
     return diffs
 
 
-@checker(
-    "bernstein_like.endpoint_curve",
-    "bezier.endpoint_d1",
-    "bezier.endpoint_d2",
-    "bezier.endpoint_dk",
-    "bezier.endpoint_dr_delta",
-)
+@checker("endpoint_curve", "endpoint_d1", "endpoint_d2", "endpoint_dk", "endpoint_dr_delta")
 def check_endpoint_equations(record: dict, ctx: Context) -> Outcome:
     """End points and end derivatives of the curve: symbolically against the closed forms
     (eq. 4 of 001; the Bernstein endpoint weights for 002) and per degree."""
@@ -1373,7 +1225,7 @@ def check_endpoint_equations(record: dict, ctx: Context) -> Outcome:
     out.checked.insert(
         0,
         "symbolic: vs derived endpoint closed forms"
-        if fam == "bezier" or has_closed_forms(fam)
+        if fam == REFERENCE or has_closed_forms(fam)
         else f"symbolic: none ({fam} has no closed end forms in n)",
     )
     return out
@@ -1382,25 +1234,10 @@ def check_endpoint_equations(record: dict, ctx: Context) -> Outcome:
 # --------------------------------------------------------------------------- geometric ratio
 
 
-@checker("same_degree.geometric_ratio")
-def check_ratio(record: dict, ctx: Context) -> Outcome:
-    """A point dividing start→end in ratio p:q is start + p/(p+q)·(end - start)."""
-    eqs = []
-    for r in record["ratios"]:
-        p, q = r["ratio"]
-        eqs.append(
-            {
-                "lhs": r["point"],
-                "rhs": f"({r['start']}) + ({p})/(({p}) + ({q}))*(({r['end']}) - ({r['start']}))",
-            }
-        )
-    return equations_outcome(record, ctx, eqs)
-
-
 # --------------------------------------------------------------------------- cubic matrix
 
 
-@checker("bezier.cubic_matrix")
+@checker("cubic_matrix")
 def check_cubic_matrix(record: dict, ctx: Context) -> Outcome:
     n = int(record["n"])
     row = [parse(x) for x in record["row"]]
@@ -1432,7 +1269,7 @@ def check_cubic_matrix(record: dict, ctx: Context) -> Outcome:
 # --------------------------------------------------------------------------- Bernstein maximum
 
 
-@checker("bezier.bernstein_maximum")
+@checker("bernstein_maximum")
 def check_maximum(record: dict, ctx: Context) -> Outcome:
     func = parse(record["function"])
     arg = parse(record["argmax"])
@@ -1565,7 +1402,7 @@ def _compare_levels(label, printed_levels, points, t) -> list[str]:
     return out
 
 
-@checker("bezier.subdivision_example")
+@checker("subdivision_example")
 def check_subdivision_example(record: dict, ctx: Context) -> Outcome:
     pts = _pts(record["control_points"])
     t = _frac(record["parameter"])
@@ -1579,7 +1416,7 @@ def check_subdivision_example(record: dict, ctx: Context) -> Outcome:
     return Outcome("mismatch" if diffs else "match", diffs, checked)
 
 
-@checker("bezier.segment_example")
+@checker("segment_example")
 def check_segment_example(record: dict, ctx: Context) -> Outcome:
     pts = _pts(record["control_points"])
     t1, t2 = _frac(record["t1"]), _frac(record["t2"])
@@ -1616,7 +1453,7 @@ def _pts_levels(levels):
 # --------------------------------------------------------------------------- convexity example
 
 
-@checker("bezier.convexity_example")
+@checker("convexity_example")
 def check_convexity(record: dict, ctx: Context) -> Outcome:
     """Quartic with a free ω: x(t), y(x), y''(x) against the derived curve; the conclusions
     against the ω-sets where the derived y'' keeps its sign / changes sign twice on [0, 1]
@@ -1808,9 +1645,9 @@ def lambda_star(family: str, n: int, k: int, points: str) -> Ratio:
 
 
 @checker(
-    "same_degree.energy_definition",
-    "same_degree.energy_functional",
-    "same_degree.energy_lambda",
+    "energy_definition",
+    "energy_functional",
+    "energy_lambda",
     requires=("energy",),
 )
 def check_energy_equations(record: dict, ctx: Context) -> Outcome:
@@ -1869,7 +1706,7 @@ def _normalised(matrix):
     return Fraction(sign * g), tuple(tuple(int(v) // (sign * g) for v in row) for row in matrix)
 
 
-@checker("same_degree.energy_matrix", requires=("energy",))
+@checker("energy_matrix", requires=("energy",))
 def check_energy_matrix(record: dict, ctx: Context) -> Outcome:
     """A printed X_n^k or Y_n^k, entry by entry, against published_form()."""
     n, k, family = int(record["n"]), int(record["k"]), ctx.family.name
@@ -1892,7 +1729,7 @@ def check_energy_matrix(record: dict, ctx: Context) -> Outcome:
     return Outcome("mismatch" if diffs else "match", diffs, checked + [f"scale {scale}"])
 
 
-@checker("same_degree.energy_lambda_nk", requires=("energy",))
+@checker("energy_lambda_nk", requires=("energy",))
 def check_energy_formula(record: dict, ctx: Context) -> Outcome:
     """λ = scale·DᵀXD/DᵀYD with the printed scale and matrices, against the derived minimiser
     c·DᵀX'D/DᵀY'D (equal as rational functions of the control points)."""
@@ -1927,7 +1764,7 @@ def check_energy_formula(record: dict, ctx: Context) -> Outcome:
     return Outcome("mismatch" if diffs else "match", diffs, [f"λ vs published_form({n}, {k})"])
 
 
-@checker("same_degree.energy_example", requires=("energy",))
+@checker("energy_example", requires=("energy",))
 def check_energy_example(record: dict, ctx: Context) -> Outcome:
     pts = _pts(record["control_points"])
     n, k = int(record["n"]), int(record["k"])
@@ -2000,9 +1837,8 @@ def _join_specs(record: dict, ctx: Context):
             (sp_["curve"], parse(sp_["degree"]), parse(sp_["shape"]), sp_["points"])
             for sp_ in (record["first"], record["second"])
         )
-    if ctx.family.name == "same_degree":
-        return (("p1", S["m"], S["lam1"], "V1"), ("p2", S["n"], S["lam2"], "V2"))
-    return (("p1", S["n"], S["lam1"], "P1"), ("p2", S["m"], S["lam2"], "P2"))
+    pts, degs = ctx.family.points, ctx.family.join_degrees
+    return tuple((f"p{w}", S[degs[w - 1]], S[f"lam{w}"], f"{pts}{w}") for w in (1, 2))
 
 
 def _printed_rows(record: dict, second_points: str) -> dict[int, sp.Expr]:
@@ -2201,10 +2037,10 @@ def join_per_degree(record, ctx, rows, specs, conventions, label="convention") -
 
 
 @checker(
-    "bernstein_like.c1_join",
-    "bernstein_like.c2_join",
-    "bernstein_like.g1_join",
-    "bernstein_like.g2_join",
+    "c1_join",
+    "c2_join",
+    "g1_join",
+    "g2_join",
     requires=("joins",),
 )
 def check_join(record: dict, ctx: Context) -> Outcome:
@@ -2215,7 +2051,7 @@ def check_join(record: dict, ctx: Context) -> Outcome:
     specs = _join_specs(record, ctx)
     rows = _printed_rows(record, specs[1][3])
     family = ctx.family.name
-    symbolic = family == "bezier" or has_closed_forms(family)
+    symbolic = family == REFERENCE or has_closed_forms(family)
     diffs = join_symbolic(record, ctx, rows, specs, continuity)[0] if symbolic else []
     tally = join_per_degree(record, ctx, rows, specs, record.get("convention", []))
     diffs += tally.lines()
@@ -2228,47 +2064,6 @@ def check_join(record: dict, ctx: Context) -> Outcome:
     return Outcome("mismatch" if diffs else "match", diffs, checked)
 
 
-def _corner_positive(expr, syms) -> bool:
-    """A rational function, multilinear in the λs, positive on λ ∈ (-2, 1]^k: numerator and
-    denominator (in lowest terms) each keep one sign on the closed box, checked at its corners
-    (a zero is allowed only at a corner with some λ = -2, which the range excludes), and the
-    two signs agree."""
-    try:
-        num, den, symbols = as_fraction(as_sympy(expr))
-    except _NotRational:
-        return False
-    num, den = cancelled(num, den)
-    if any(
-        part.degrees()[pos] > (1 if sym in syms else 0)
-        for part in (num, den)
-        for pos, sym in enumerate(symbols)
-    ):
-        return False  # not multilinear in the λs, or it depends on something else
-    index = {sym: pos for pos, sym in enumerate(symbols)}
-    top_signs = []
-    for part in (num, den):
-        signs, top = set(), None
-        for corner in _corners(len(syms)):
-            point = [0] * len(symbols)
-            for sym, value in zip(syms, corner, strict=True):
-                if sym in index:
-                    point[index[sym]] = value
-            value = part(*point)
-            sign = (value > 0) - (value < 0)
-            if all(c == 1 for c in corner):
-                top = sign
-            if sign:
-                signs.add(sign)
-        if len(signs) != 1 or not top:
-            return False
-        top_signs.append(top)
-    return top_signs[0] == top_signs[1]
-
-
-def _corners(k: int):
-    return list(itertools.product((-2, 1), repeat=k))
-
-
 def _solve_linear(lhs, rhs, x):
     """The x with lhs = rhs when lhs - rhs is linear in x, else None. (By hand: sp.solve
     imports sympy.physics on first use, half a second of a verify worker.)"""
@@ -2279,106 +2074,10 @@ def _solve_linear(lhs, rhs, x):
     return sp.cancel(-(diff - slope * x) / slope)
 
 
-def _solve_moebius(a, b, x):
-    """The one x with a = b(x), b = (p0 + p1·x)/(q0 + q1·x) (a derived G1 weight); None when
-    b is not of that form or no single x solves it. (Done by hand because sp.solve imports
-    sympy.physics on first use, half a second of a verify worker.)"""
-    num, den = (sp.Poly(e, x) for e in sp.fraction(sp.together(b)))
-    if num.degree() > 1 or den.degree() > 1:
-        return None
-    p0, p1 = num.coeff_monomial(1), num.coeff_monomial(x)
-    q0, q1 = den.coeff_monomial(1), den.coeff_monomial(x)
-    slope = a * q1 - p1
-    if _is_zero(slope):
-        return None
-    sol = sp.cancel((p0 - a * q0) / slope)
-    return None if _is_zero(q0 + q1 * sol) else sol
-
-
-@checker("same_degree.g1_join", requires=("joins",))
-def check_join_000(record: dict, ctx: Context) -> Outcome:
-    """Eq. (18) of 000: a sufficient G1 condition with a free C > 0. It is the derived G1
-    solution (derive/joins.py, α > 0) exactly when some α > 0 reproduces it for every C > 0:
-    α is solved from one weight, the others must then agree, and α must be positive on the
-    λ ranges for every degree pair; per degree, p2'(0) = β p1'(1) with β > 0 is checked too."""
-    specs = _join_specs(record, ctx)
-    (_, n1, l1, pts1), (_, n2, l2, pts2) = specs
-    rows = _printed_rows(record, pts2)
-    alpha, Csym = S["alpha"], S["C"]
-    to_j = {n1: _algebra.n, n2: _algebra.m}
-    derived = _join_derived("same_degree", "G1")
-    diffs = []
-    sol = None
-    for r, rhs in sorted(rows.items()):
-        printed, rest = _weights(rhs, pts1, pts2, n1)
-        printed = {(k[0], int(k[1])): as_sympy(v).xreplace(to_j) for k, v in printed.items()}
-        want = derived[r]
-        for key in sorted(set(printed) | set(want)):
-            a, b = printed.get(key, sp.Integer(0)), want.get(key, sp.Integer(0))
-            if sol is None and b.has(alpha):
-                sol = _solve_moebius(a, b, alpha)
-            b = b.xreplace({alpha: sol}) if sol is not None else b
-            if not _is_zero(as_sympy(a) - b):
-                diffs.append(
-                    f"symbolic: {pts2}({r}): weight of {pts1}({n1} - {key[1]}): printed "
-                    f"{sp.factor(a)}, derived {sp.factor(b)}"
-                )
-    if sol is None:
-        diffs.append("symbolic: no α reproduces the printed vertices")
-    tally = Tally("per-degree α > 0 and p2'(0) = β p1'(1), β > 0")
-    real = ctx.realiser()
-    lam_syms = [S["lam1"], S["lam2"]]
-    for a_, b_ in _degree_pairs(ctx):
-        env = {n1: sp.Integer(a_), n2: sp.Integer(b_)}
-        row = []
-        if sol is not None:
-            ac = as_sympy(sol * Csym).xreplace({_algebra.n: a_, _algebra.m: b_})
-            if not _corner_positive(ac, lam_syms):
-                row.append(f"α·C = {sp.factor(ac)} is not positive on the λ ranges")
-        sub = {(pts2, r): real(rhs, env) for r, rhs in rows.items()}
-        d1 = _substitute(real(parse("Subs(Derivative(p2(t), t), t, 0)"), env), sub)
-        e1 = real(parse("Subs(Derivative(p1(t), t), t, 1)"), env)
-        p0 = _substitute(real(parse("p2(0)"), env), sub)
-        if not equal(p0, real(parse("p1(1)"), env)):
-            row.append("p2(0) != p1(1)")
-        key = next(k for k in sorted(e1.terms) if not e1.terms[k].is_zero())
-        beta = d1.terms.get(key, Sc.of(0)) / e1.terms[key]
-        if not equal(d1, v_mul(beta, e1)):
-            row.append("p2'(0) is not a multiple of p1'(1)")
-        elif not _corner_positive(beta.to_expr() / Csym, lam_syms):
-            row.append(f"β = {sp.factor(beta.to_expr())} is not positive for C > 0")
-        tally.add(env, row)
-    diffs += tally.lines()
-    checked = ["symbolic: weights vs joins.solve() at the α solved", f"per-degree: {tally.total}"]
-    return Outcome("mismatch" if diffs else "match", diffs, checked)
-
-
-@checker("same_degree.g1_join_ratio", requires=("joins",))
-def check_join_ratio(record: dict, ctx: Context) -> Outcome:
-    """Proof of Prop. 9: the end values and derivatives (per degree pair, with the curves of
-    eq. 17), and p2'(0) = β p1'(1) with the printed β once eq. (18) holds (its vertices, from
-    the same_degree.g1_join record, substituted)."""
-    specs = _join_specs(record, ctx)
-    pts2 = specs[1][3]
-    g1 = next(r for r in _records_by_id(None).values() if r["claim"] == "same_degree.g1_join")
-    rows = _printed_rows(g1, pts2)
-    beta = S["beta"]
-    defs = {parse(e["lhs"]): parse(e["rhs"]) for e in record["equations"]}
-    conditions = []
-    for eq in record["equations"]:
-        lhs, rhs = parse(eq["lhs"]), parse(eq["rhs"])
-        if lhs == beta:
-            continue  # the definition of β, used below
-        conditions.append(
-            {
-                "lhs": str(lhs.xreplace({beta: defs.get(beta, beta)})),
-                "rhs": str(rhs.xreplace({beta: defs.get(beta, beta)})),
-            }
-        )
-    tally = join_per_degree(record, ctx, rows, specs, conditions, "equations")
-    diffs = tally.lines()
-    return Outcome("mismatch" if diffs else "match", diffs, [f"per-degree: {tally.total} pairs"])
-
-
-# The property kinds (basis_nonnegative, basis_linearly_independent, ...) register themselves.
+# The property kinds (basis_nonnegative, basis_linearly_independent, ...) register themselves,
+# and so do the kinds of a paper about one family (the `checks` module of its definition).
 from . import verify_properties  # noqa: E402, F401
+
+for _builtin in builtin_families():
+    if _builtin.checks:
+        importlib.import_module(f"{__package__}.{_builtin.checks}")

@@ -226,9 +226,11 @@ def checks_mod(verify):
 
 
 def test_corner_positive_needs_one_sign_and_the_same_sign(checks_mod, expr_mod):
+    # 000's G1 condition (Prop. 9) is checked by the same_degree family's own checks module
+    own = importlib.import_module(checks_mod.__name__.rsplit(".", 1)[0] + ".verify_same_degree")
     S, sp = expr_mod.SYMBOLS, expr_mod.sp
     l1, l2, C = S["lam1"], S["lam2"], S["C"]
-    positive = checks_mod._corner_positive
+    positive = own._corner_positive
     assert positive((l2 + 2) / (l1 + 2), [l1, l2])  # zeros only at λ = -2, excluded
     assert positive(C * (l1 + 3) / (C * l2 + 3 * C), [l1, l2])  # C cancels
     assert not positive(-(l2 + 2) / (l1 + 2), [l1, l2])  # one sign, but negative

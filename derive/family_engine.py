@@ -461,39 +461,51 @@ def _endpoint_table(defn: Definition) -> dict[str, dict[str, list[str]]]:
 
 
 def closed_endpoint_forms(defn: Definition) -> dict[tuple[str, int, int], sp.Expr] | None:
-    """Closed forms in n of the end values/derivatives: for each entry, the polynomial in n
-    (of degree at most #degrees - 3) through the values at all degrees but the last two that
-    also gives those two. None when an entry has no such polynomial (or the range has fewer
-    than five degrees): then the family is checked per degree only."""
-    return _closed_endpoint_forms(defn)
+    """Closed forms in n of the end values/derivatives of orders 0..closed_endpoint_order():
+    for each entry, the polynomial in n (of degree at most #degrees - 3) through the values at
+    all degrees but the last two that also gives those two. An order is in closed form only
+    when every entry of it and of the orders below has such a polynomial (a family whose
+    second derivative at 0 involves P_n, say, has its values and first derivatives in closed
+    form and its second per degree). None when not even the end values are (or the range has
+    fewer than five degrees): then the family is checked per degree only."""
+    forms, order = _closed_endpoint_forms(defn)
+    return forms if order >= 0 else None
+
+
+def closed_endpoint_order(defn: Definition) -> int:
+    """The highest order r such that the end derivatives of orders 0..r are in closed form in
+    n (-1: none)."""
+    return _closed_endpoint_forms(defn)[1]
 
 
 @cache
-def _closed_endpoint_forms(defn: Definition) -> dict[tuple[str, int, int], sp.Expr] | None:
+def _closed_endpoint_forms(defn: Definition) -> tuple[dict[tuple[str, int, int], sp.Expr], int]:
     table = endpoint_table(defn)
     keys = sorted({k for row in table.values() for k in row})
     nn = _algebra_n()
     out = {}
     degrees = list(defn.degrees)
     if len(degrees) < 5:
-        return None
+        return {}, -1
+    failed = ENDPOINT_ORDERS + 1  # the lowest order with an entry that has no closed form
     for key in keys:
         end, r, j = key.split(",")
         pts = [(deg, table[str(deg)].get(key, ["0"])) for deg in degrees if int(j) <= deg]
-        if len(pts) < 5:
-            return None
+        form = sp.Integer(0) if len(pts) >= 5 else None
         width = max(len(c) for _, c in pts)
-        form = sp.Integer(0)
-        for p in range(width):
+        for p in range(width if form is not None else 0):
             xs = [sp.Integer(deg) for deg, _ in pts]
             ys = [sp.Rational(c[p]) if p < len(c) else sp.Integer(0) for _, c in pts]
             poly = sp.interpolate(list(zip(xs[:-2], ys[:-2], strict=True)), nn)
             if any(poly.subs(nn, x) != y for x, y in zip(xs[-2:], ys[-2:], strict=True)):
-                return None
+                form = None
+                break
             form += sp.expand(poly) * lam**p
-        if form != 0:
+        if form is None:
+            failed = min(failed, int(r))
+        elif form != 0:
             out[(end, int(r), int(j))] = sp.factor(form)
-    return out
+    return {key: v for key, v in out.items() if key[1] < failed}, failed - 1
 
 
 def _algebra_n():
@@ -535,19 +547,29 @@ def join_artifacts(defn: Definition, closed: dict) -> dict:
     from . import joins
 
     out: dict = {}
-    with joins.extra_family(defn.name, closed, tuple(defn.degrees), has_lambda=True):
+    order = closed_endpoint_order(defn)
+    with joins.extra_family(defn.name, closed, tuple(defn.degrees), True, order):
         for other in (*builtin_names(), defn.name):
             for first, second in ((defn.name, other), (other, defn.name)):
                 if (first, second) == (defn.name, defn.name) and f"{first}>{second}" in out:
                     continue
-                try:
-                    rows = joins.solve(first, second)
-                except (AssertionError, KeyError, ZeroDivisionError) as exc:
-                    out[f"{first}>{second}"] = {"reason": f"no closed form: {exc}"}
-                    continue
+                solved, reasons = {}, []
+                for k in (1, 2):
+                    if k > order:
+                        reasons.append(
+                            f"{'C2/G2' if k == 2 else 'C1/G1'}: the end derivatives of order "
+                            f"{k} have no closed form in n (the runtime joins per degree)"
+                        )
+                        continue
+                    try:
+                        solved[k] = joins.solve(first, second, k)
+                    except (AssertionError, KeyError, ZeroDivisionError) as exc:
+                        reasons.append(f"{'C2/G2' if k == 2 else 'C1/G1'}: no closed form: {exc}")
                 weights = {}
                 for cont in CONTINUITIES:
-                    for r, combo in enumerate(rows[: joins.ORDER[cont] + 1]):
+                    if joins.ORDER[cont] not in solved:
+                        continue
+                    for r, combo in enumerate(solved[joins.ORDER[cont]]):
                         for (src, j), w in sorted(combo.items()):
                             e = w.as_expr()
                             if cont in ("C1", "C2"):
@@ -555,7 +577,10 @@ def join_artifacts(defn: Definition, closed: dict) -> dict:
                             e = sp.factor(e)
                             if e != 0:
                                 weights[f"{cont},{r},{src},{j}"] = str(e)
-                out[f"{first}>{second}"] = {"weights": weights}
+                entry: dict = {"weights": weights} if solved else {}
+                if reasons:
+                    entry["reason"] = "; ".join(reasons)
+                out[f"{first}>{second}"] = entry
     return out
 
 
@@ -596,6 +621,7 @@ def derive(defn: Definition, *, with_joins: bool = True) -> dict:
         "bernstein": {str(k): _matrices(v) for k, v in tables["bernstein"].items()},
         "centred": {str(k): _matrices(v) for k, v in tables["centred"].items()},
         "endpoints": endpoint_table(defn),
+        "endpoint_closed_orders": closed_endpoint_order(defn),
         "endpoint_closed_forms": None
         if closed is None
         else {f"{e},{r},{j}": str(v) for (e, r, j), v in sorted(closed.items())},
@@ -675,12 +701,13 @@ def register(defn: Definition, points: str = "P") -> None:
             lambda degree: basis_polys(defn, degree),
             defn.offset,
             lambda: closed,
+            closed_order=closed_endpoint_order(defn),
         )
     )
     energy.EXTRA[defn.name] = _EnergyBasis(defn)
     _register_properties(defn)
     if closed is not None:
-        joins.register(defn.name, closed, tuple(defn.degrees), has_lambda=True)
+        joins.register(defn.name, closed, tuple(defn.degrees), True, closed_endpoint_order(defn))
 
 
 FAMILY_DEFINITIONS = Path(__file__).resolve().parent / "families"

@@ -58,6 +58,8 @@ CONTINUITIES = ("C1", "C2", "G1", "G2")
 ORDER = {"C1": 1, "C2": 2, "G1": 1, "G2": 2}  # derivatives matched; solved: P_{0..ORDER,2}
 DEGREES = {name: tuple(derivation(name).DEGREES) for name in FAMILIES}
 HAS_LAMBDA = {name: name != REFERENCE for name in FAMILIES}
+# the highest end-derivative order each family has in closed form (the built-ins: 2)
+CLOSED_ORDER = dict.fromkeys(FAMILIES, 2)
 
 lam1, lam2, alpha, d = sp.symbols("lam1 lam2 alpha d")
 
@@ -76,22 +78,27 @@ SAMPLES = (
 _EXTRA: dict[str, dict[tuple[str, int, int], sp.Expr]] = {}
 
 
-def register(name: str, forms: dict, degrees: tuple[int, ...], has_lambda: bool) -> None:
-    """`name` becomes a family of the solve, with the given closed end forms (the orders the
-    solve uses, 0..2); it is never emitted."""
-    _EXTRA[name] = {key: v for key, v in forms.items() if key[1] <= 2 and v != 0}
+def register(
+    name: str, forms: dict, degrees: tuple[int, ...], has_lambda: bool, order: int = 2
+) -> None:
+    """`name` becomes a family of the solve, with the given closed end forms of orders
+    0..order (the solve uses up to 2); it is never emitted."""
+    _EXTRA[name] = {key: v for key, v in forms.items() if key[1] <= min(order, 2) and v != 0}
     DEGREES[name] = degrees
     HAS_LAMBDA[name] = has_lambda
+    CLOSED_ORDER[name] = order
 
 
 @contextmanager
-def extra_family(name: str, forms: dict, degrees: tuple[int, ...], has_lambda: bool):
+def extra_family(
+    name: str, forms: dict, degrees: tuple[int, ...], has_lambda: bool, order: int = 2
+):
     """register() for the duration of the block."""
-    register(name, forms, degrees, has_lambda)
+    register(name, forms, degrees, has_lambda, order)
     try:
         yield
     finally:
-        del _EXTRA[name], DEGREES[name], HAS_LAMBDA[name]
+        del _EXTRA[name], DEGREES[name], HAS_LAMBDA[name], CLOSED_ORDER[name]
 
 
 def endpoint_forms(family: str) -> dict[tuple[str, int, int], sp.Expr]:
@@ -163,62 +170,112 @@ def _combine(*terms) -> Combination:
     return out
 
 
-def solve(first: str, second: str) -> tuple[Combination, ...]:
-    """P_{0,2}, P_{1,2}, P_{2,2} from the G2 conditions, as elements of Q(n, m, λ1, λ2, α, d):
-    the triangular linear system solved row by row. G1 is its first two rows; C1 and C2 are
-    G1 and G2 at α = 1, d = 0."""
-    field_ = _field()
-    e = {key: field_(v) for key, v in end_coefficients(first).items()}
-    s = {key: field_(v) for key, v in start_coefficients(second).items()}
-    if any(r > 2 or (r == 0 and idx) or (r == 1 and idx > 1) or idx > 3 for r, idx in s):
-        raise AssertionError(f"{second}: unexpected start stencil {sorted(s)}")
-    a, dd = field_(alpha), field_(d)
-    c1 = [{("first", j): e[(r, j)] for j in range(4) if (r, j) in e} for r in range(3)]
-    # C2(0) = C1(1):  s00 P0 = C1(1)
-    p0 = {key: v / s[(0, 0)] for key, v in c1[0].items()}
-    # α C2'(0) = C1'(1):  s10 P0 + s11 P1 = C1'(1)/α
-    p1 = _combine((1 / (a * s[(1, 1)]), c1[1]), (-s[(1, 0)] / s[(1, 1)], p0))
-    # α² C2''(0) + d C2'(0) = C1''(1), with C2'(0) = C1'(1)/α:
-    #     s20 P0 + s21 P1 + s22 P2 (+ s23 P3) = (C1''(1) - d C1'(1)/α)/α²
-    rhs = _combine(
-        (1 / a**2, c1[2]),
-        (-dd / a**3, c1[1]),
-        (-s[(2, 0)], p0),
-        (-s[(2, 1)], p1),
-        (-s.get((2, 3), field_(0)), {("second", 3): field_(1)}),
-    )
-    p2 = {key: v / s[(2, 2)] for key, v in rhs.items()}
-    rows = tuple({key: v for key, v in p.items() if v != 0} for p in (p0, p1, p2))
-    _check_symbolic(first, second, rows, e, s, a, dd)
-    return rows
-
-
-def _check_symbolic(first, second, rows, e, s, a, dd) -> None:
-    """General n, m: the solution satisfies every condition; the weights of every solved point
-    sum to 1; every denominator divides α³ s11 s22; P_{1,2} does not involve d."""
+def solve(first: str, second: str, order: int = 2) -> tuple[Combination, ...]:
+    """P_{0,2} … P_{order,2} from the G1 (order 1) or G2 (order 2) conditions, as elements of
+    Q(n, m, λ1, λ2, α, d), every other control point of the second curve given: the
+    conditions are linear in the unknowns, solved by elimination with the pivots in their
+    natural order (for a family whose end value is P_0 and whose r-th derivative involves
+    P_0..P_r, the triangular solve: G1 is then the first two rows of G2). Nothing assumes
+    which points an end derivative involves: a first derivative with P_{2,2} in it (a
+    three-point stencil) makes P_{2,2} a given point of the G1 solve. C1 and C2 are G1 and G2
+    at α = 1, d = 0."""
+    for fam in (first, second):
+        if CLOSED_ORDER.get(fam, 2) < order:
+            raise AssertionError(f"{fam}: end derivatives of order {order} not in closed form")
     field_ = _field()
     zero = field_(0)
-    keys = [("first", j) for j in range(4)] + [("second", 3)]
+    e = {key: field_(v) for key, v in end_coefficients(first).items()}
+    s = {key: field_(v) for key, v in start_coefficients(second).items()}
+    if any(r > 2 for r, _ in s) or any(r > 2 for r, _ in e):
+        raise AssertionError(f"{first} -> {second}: end forms of order > 2 given")
+    a, dd = field_(alpha), field_(d)
+    width = 1 + max([j for _, j in e] + [order])
+    c1 = [{("first", j): e[(r, j)] for j in range(width) if (r, j) in e} for r in range(3)]
+    # the conditions, with the first curve's side scaled: C2^(r)(0) = target_r
+    #     C2(0) = C1(1),  α C2'(0) = C1'(1),  α² C2''(0) + d C2'(0) = C1''(1)
+    targets = [c1[0], _combine((1 / a, c1[1]))]
+    targets.append(_combine((1 / a**2, c1[2]), (-dd / a**3, c1[1])))
+    unknowns = range(order + 1)
+    given = sorted({j for r, j in s if r <= order and j > order})
+    # rows: ({unknown i: coefficient}, right side) with the given points moved to the right
+    rows = []
+    for r in range(order + 1):
+        coeffs = {i: s[(r, i)] for i in unknowns if (r, i) in s}
+        rhs = _combine(
+            (field_(1), targets[r]),
+            *((-s[(r, j)], {("second", j): field_(1)}) for j in given if (r, j) in s),
+        )
+        rows.append((coeffs, rhs))
+    solution: list[Combination | None] = [None] * (order + 1)
+    # forward elimination, pivot P_{i,2} in row i (the natural order)
+    for i in unknowns:
+        pivot = rows[i][0].get(i, zero)
+        if pivot == 0:
+            raise AssertionError(
+                f"{first} -> {second}: P_{i},2 has coefficient 0 in the condition of order {i}"
+            )
+        for r in range(i + 1, order + 1):
+            factor = rows[r][0].get(i, zero) / pivot
+            if factor != 0:
+                coeffs = {
+                    k: rows[r][0].get(k, zero) - factor * rows[i][0].get(k, zero)
+                    for k in unknowns
+                    if k > i
+                }
+                rows[r] = (coeffs, _combine((field_(1), rows[r][1]), (-factor, rows[i][1])))
+    for i in reversed(unknowns):
+        coeffs, rhs = rows[i]
+        terms = [(field_(1) / coeffs[i], rhs)]
+        for k in unknowns:
+            if k > i and coeffs.get(k, zero) != 0:
+                terms.append((-coeffs[k] / coeffs[i], solution[k]))
+        solution[i] = _combine(*terms)
+    out = tuple({key: v for key, v in p.items() if v != 0} for p in solution)
+    _check_symbolic(first, second, out, e, s, a, dd, order, width, given)
+    return out
+
+
+def _check_symbolic(first, second, rows, e, s, a, dd, order, width, given) -> None:
+    """General n, m: the solution satisfies every condition; the weights of every solved point
+    sum to 1 (affine invariance); every denominator divides α^(order+1) times the pivots'
+    product; P_{1,2} does not involve d where the stencil is triangular."""
+    field_ = _field()
+    zero = field_(0)
+    keys = [("first", j) for j in range(width)] + [("second", j) for j in given]
     for key in keys:  # everything is linear in the points: compare coefficients point by point
         c1 = [e.get((r, key[1]), zero) if key[0] == "first" else zero for r in range(3)]
         c2 = [
-            sum((s.get((r, ii), zero) * rows[ii].get(key, zero) for ii in range(3)), zero)
-            + (s.get((r, 3), zero) if key == ("second", 3) else zero)
+            sum((s.get((r, ii), zero) * rows[ii].get(key, zero) for ii in range(order + 1)), zero)
+            + (s.get((r, key[1]), zero) if key[0] == "second" else zero)
             for r in range(3)
         ]
         conditions = (c2[0] - c1[0], a * c2[1] - c1[1], a**2 * c2[2] + dd * c2[1] - c1[2])
-        for idx, cond in enumerate(conditions):
+        for idx, cond in enumerate(conditions[: order + 1]):
             if cond != 0:
                 raise AssertionError(f"{first} -> {second}: condition {idx} fails at {key}")
-    bound = field_(alpha) ** 3 * s[(1, 1)] * s[(2, 2)]
+    bound = field_(alpha) ** (order + 1)
+    for p_ in pivot_products(second, order):
+        bound *= field_(p_)
     for row, comb in enumerate(rows):
         if sum(comb.values(), field_(0)) != 1:
             raise AssertionError(f"{first} -> {second}: weights of P_{row},2 do not sum to 1")
         for w in comb.values():
             if not (bound / field_(w.denom)).denom.is_ground:
                 raise AssertionError(f"{first} -> {second}: unexpected denominator {w.denom}")
-    if any(w.numer.degree(5) > 0 or w.denom.degree(5) > 0 for w in rows[1].values()):  # d
+    # with C2(0), C2'(0) involving P_{0,2}, P_{1,2} only, those two come from the G1 rows and
+    # cannot depend on d (a wider first-derivative stencil couples P_{1,2} to the G2 row)
+    triangular = not any((r == 0 and j > 0) or (r == 1 and j > 1) for r, j in s)
+    if triangular and any(w.numer.degree(5) > 0 or w.denom.degree(5) > 0 for w in rows[1].values()):
         raise AssertionError(f"{first} -> {second}: P_1,2 depends on d")
+
+
+def pivot_products(family: str, order: int) -> list:
+    """The leading principal minors of the start stencil (orders 0..order), whose product
+    bounds every denominator of the solve (for a triangular stencil: s00, s00·s11, ...)."""
+    field_ = _field()
+    s = {key: field_(v) for key, v in start_coefficients(family).items()}
+    mat = sp.Matrix(order + 1, order + 1, lambda r, i: s.get((r, i), field_(0)).as_expr())
+    return [sp.factor(mat[: k + 1, : k + 1].det()) for k in range(order + 1)]
 
 
 @cache
@@ -280,10 +337,13 @@ def joins() -> dict[tuple[str, str, str], dict[tuple[int, str, int], sp.Expr]]:
     out = {}
     for first in FAMILIES:
         for second in FAMILIES:
-            geo = [{key: printed(w) for key, w in row.items()} for row in solve(first, second)]
-            par = [_at_unit_alpha(row) for row in geo]
+            geo = {
+                k: [{key: printed(w) for key, w in row.items()} for row in solve(first, second, k)]
+                for k in (1, 2)
+            }
+            par = {k: [_at_unit_alpha(row) for row in geo[k]] for k in (1, 2)}
             for cont in CONTINUITIES:
-                rows = geo if cont.startswith("G") else par
+                rows = (geo if cont.startswith("G") else par)[ORDER[cont]]
                 out[(first, second, cont)] = {
                     (row, src, j): w
                     for row in range(ORDER[cont] + 1)
@@ -474,8 +534,13 @@ CONDITION_TEXT = {
 
 
 def _join_function(first: str, second: str, cont: str, weights) -> str:
+    known = sorted({j for _, src, j in weights if src == "second"})
     given = (
-        " P_{2,2} is solved with P_{3,2} given." if ("second" in {s for _, s, _ in weights}) else ""
+        f" P_{{{ORDER[cont]},2}} is solved with "
+        + ", ".join(f"P_{{{j},2}}" for j in known)
+        + " given."
+        if known
+        else ""
     )
     doc = (
         f"{cont}: {first} curve C1 (degree n) then {second} curve C2 (degree m); "

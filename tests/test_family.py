@@ -196,10 +196,23 @@ def test_published_family_energy_matrices_by_quadrature(ns_doc):
 
 
 def test_published_family_closed_forms_say_why_they_are_missing(ns_doc):
-    """Its second end derivative involves P_n at t = 0 (phi''(0) = 6): no fixed stencil, so no
-    closed form in n; the joins are then derived per degree, and the document says so."""
-    assert ns_doc["endpoint_closed_forms"] is None
-    assert "per degree" in ns_doc["joins"]["reason"]
+    """Its second end derivative involves P_n at t = 0 (phi''(0) = 6): no fixed stencil, so
+    the end values and tangents are in closed form in n and the second derivatives are not;
+    C1/G1 joins get closed-form weights, C2/G2 are derived per degree, and the document says
+    so for every pair."""
+    assert ns_doc["endpoint_closed_orders"] == 1
+    closed = ns_doc["endpoint_closed_forms"]
+    assert closed["start,1,0"] == "-lam*n" and closed["start,1,1"] == "lam*n"
+    assert not any(key.split(",")[1] in ("2", "3") for key in closed)
+    pairs = ns_doc["joins"]
+    assert len(pairs) == 7  # after and before each built-in family, and itself
+    for entry in pairs.values():
+        assert "C2/G2" in entry["reason"] and "per degree" in entry["reason"]
+        assert {key.split(",")[0] for key in entry["weights"]} == {"C1", "G1"}
+    # C1 of two such curves: P_{1,2} = P_n + (λ1 n / (λ2 m)) (P_n - P_{n-1})
+    assert pairs["nouri_saeidian>nouri_saeidian"]["weights"]["C1,1,first,1"] == (
+        "-lam1*n/(lam2*m)"
+    )
     assert ns_doc["checked"][1] == "partition of unity, every degree"
 
 
@@ -550,3 +563,74 @@ def test_singular_parameters_of_a_family_defined_by_data(engine, ns_family):
     assert c.to_bezier().control_points() == bez.control_points()
     with pytest.raises(ValueError, match="linearly dependent at λ = 0"):
         ns_family.from_bezier(bez, 0)
+
+
+# A family whose end tangent involves three control points (P_0, P_1, P_2): the issue's case
+# of a first end derivative with three points. Bernstein plus a shape term that sums to zero
+# over i and vanishes at both ends.
+WIDE_STENCIL = """
+[family]
+name = "wide_stencil"
+title = "Bernstein plus a shape term whose end tangent involves P_2"
+parameter = "mu"
+range = "[-1/2, 1/2]"
+degrees = "4..12"
+bernstein_at = "0"
+degree_offset = 0
+basis = "{basis}"
+""".format(
+    basis="binomial(n, i)*(1 - t)**(n - i)*t**i"
+    " + mu*t*(1 - t)**(n - 1)*(binomial(0, i - 2) - binomial(0, i - 1))"
+    " + mu*t**(n - 1)*(1 - t)*(binomial(0, n - i - 2) - binomial(0, n - i - 1))"
+)
+
+
+def _weight_at(text: str, values: dict) -> Fraction:
+    import sympy as sp  # the test's own reading of the derived document (our output)
+
+    value = sp.sympify(text).subs({sp.Symbol(k): sp.Rational(str(v)) for k, v in values.items()})
+    return Fraction(int(value.p), int(value.q))
+
+
+def test_three_point_stencil_joins_in_closed_form(tmp_path, engine):
+    """Closed-form C1/C2/G1/G2 weights for a family whose first end derivative involves three
+    points (so P_{2,2} is given in C1/G1 and solved together with P_{1,2} in C2/G2), equal to
+    the runtime's per-degree solve at exact values, into and out of the built-in families."""
+    import lambda_bezier as lb
+    from lambda_bezier import _join_engine
+
+    path = tmp_path / "wide.toml"
+    path.write_text(WIDE_STENCIL)
+    defn = engine.read_definition(path)
+    (tmp_path / "wide_stencil.derived.json").write_text(engine.render(defn))
+    doc = json.loads((tmp_path / "wide_stencil.derived.json").read_text())
+    # orders 0..2 in closed form; the third derivative at 0 picks up the far term at n = 4 only
+    assert doc["endpoint_closed_orders"] == 2
+    assert doc["endpoint_closed_forms"]["start,1,2"] == "lam"  # p'(0) involves P_2
+    fam = lb.load_family(path)
+    classes = {**lb.FAMILIES, "wide_stencil": fam.curve_class}
+    lams = {"bezier": None, "same_degree": Fraction(1, 3), "bernstein_like": Fraction(-2, 5)}
+    lams["wide_stencil"] = Fraction(1, 4)
+    for other in ("bezier", "same_degree", "bernstein_like", "wide_stencil"):
+        for first, second in (("wide_stencil", other), (other, "wide_stencil")):
+            entry = doc["joins"][f"{first}>{second}"]
+            assert "reason" not in entry, entry
+            for cont in ("C1", "C2", "G1", "G2"):
+                n, m = 5, 6
+                alpha = Fraction(3, 2) if cont[0] == "G" else Fraction(1)
+                d = Fraction(-7, 4) if cont == "G2" else Fraction(0)
+                pts = [(i, (i * i) % 5) for i in range(n + 1)]
+                cls1 = classes[first]
+                curve = cls1(pts) if lams[first] is None else cls1(pts, lams[first])
+                order = 2 if cont[1] == "2" else 1
+                want = _join_engine.weights(
+                    curve, order, alpha, d, classes[second], m, lams[second], cont
+                )
+                values = {"n": n, "m": m, "alpha": alpha, "d": d}
+                values.update({"lam1": lams[first] or 0, "lam2": lams[second] or 0})
+                got = {}
+                for key, text in entry["weights"].items():
+                    c, row, src, j = key.split(",")
+                    if c == cont:
+                        got[(int(row), src, int(j))] = _weight_at(text, values)
+                assert got == {k: v for k, v in want.items() if v != 0}, (first, second, cont)

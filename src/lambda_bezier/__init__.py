@@ -21,8 +21,9 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from .batch import evaluate_many
+    from .builtin_curves import BernsteinLikeCurve, SameDegreeCurve
     from .composite import CompositeCurve, JointReport
-    from .curves import FAMILIES, BernsteinLikeCurve, BezierCurve, Curve, SameDegreeCurve
+    from .curves import FAMILIES, BezierCurve, Curve
     from .energy import OptimalLambda, energy_coefficients, energy_matrices, optimal_lambda
     from .family import Family, load_family
     from .joins import Joint, join
@@ -77,9 +78,13 @@ __all__ = [
 
 def __getattr__(name: str) -> object:  # the names above, typed by their imports
     module = _EXPORTS.get(name)
-    if module is None:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(f".{module}", __name__), name)
+    if module is not None:
+        value = getattr(importlib.import_module(f".{module}", __name__), name)
+    else:  # the class of a built-in family that generated/ lists (curves.FAMILIES), or nothing
+        curves = importlib.import_module(".curves", __name__) if name.endswith("Curve") else None
+        value = getattr(curves, name, None)
+        if value is None:
+            raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
     globals()[name] = value  # later accesses skip this function
     return value
 

@@ -10,26 +10,43 @@ if TYPE_CHECKING:
     from .family import FamilyData
 
 
+_PACKAGE = f"{__package__}._generated"
+
+
+def _import_generated(name: str) -> ModuleType:
+    """lambda_bezier._generated or one of its modules, restoring generated/ first when an
+    interrupted `lambda-bezier derive` left it aside."""
+    try:
+        return importlib.import_module(name)
+    except ModuleNotFoundError as exc:
+        if exc.name not in (_PACKAGE, name):
+            raise
+    # generated/ is gone: an interrupted `lambda-bezier derive` may have left it aside
+    from pathlib import Path
+
+    from ._generated_dir import recover_for_import
+
+    recover_for_import(Path(__file__).parent)  # or an ImportError saying what happened
+    importlib.invalidate_caches()
+    return importlib.import_module(name)
+
+
+def builtin_families() -> dict[str, str]:
+    """The built-in shape-parameter families, in order, as generated/__init__.py lists them
+    (emitted from derive/families/*.toml): family name (= its generated module) -> the name
+    of its curve class. Reads only that small module: no tables, no numpy."""
+    families: dict[str, str] = _import_generated(_PACKAGE).FAMILIES
+    return dict(families)
+
+
 class generated:  # noqa: N801  (reads as a module reference at the use sites)
     """Stands for lambda_bezier._generated.<name>; attribute access imports it once."""
 
     def __init__(self, name: str) -> None:
-        self._name = f"{__package__}._generated.{name}"
+        self._name = f"{_PACKAGE}.{name}"
 
     def module(self) -> ModuleType:
-        try:
-            return importlib.import_module(self._name)
-        except ModuleNotFoundError as exc:
-            if exc.name not in (f"{__package__}._generated", self._name):
-                raise
-        # generated/ is gone: an interrupted `lambda-bezier derive` may have left it aside
-        from pathlib import Path
-
-        from ._generated_dir import recover_for_import
-
-        recover_for_import(Path(__file__).parent)  # or an ImportError saying what happened
-        importlib.invalidate_caches()
-        return importlib.import_module(self._name)
+        return _import_generated(self._name)
 
     def __getattr__(self, attr: str) -> Any:  # a generated table: its type is the module's
         return getattr(self.module(), attr)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+from collections.abc import Iterator
 from fractions import Fraction
 from pathlib import Path
 from typing import SupportsFloat, cast
@@ -18,6 +19,24 @@ def _energy_order(text: str) -> int:
         return parse_int(text)
     except ValueError as exc:
         raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+class _ShapeFamilies:
+    """optimal-lambda's --family choices, the built-in shape-parameter families in order
+    (generated/__init__.py), read only when the option is checked or help is printed: the
+    parser is built for every command, and `lambda-bezier derive` must run where generated/
+    is missing."""
+
+    def names(self) -> list[str]:
+        from ._lazy import builtin_families
+
+        return list(builtin_families())
+
+    def __contains__(self, name: object) -> bool:
+        return name in self.names()
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self.names())
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -68,9 +87,8 @@ def build_parser() -> argparse.ArgumentParser:
     opt.add_argument("points", nargs="+", metavar="POINT", help="control point x,y or x,y,z")
     opt.add_argument(
         "--family",
-        default="same_degree",
-        choices=["same_degree", "bernstein_like"],
-        help="curve family (default: same_degree)",
+        choices=_ShapeFamilies(),
+        help="curve family: %(choices)s (default: the first)",
     )
     opt.add_argument(
         "--energy",
@@ -198,6 +216,8 @@ def _optimal_lambda(args: argparse.Namespace) -> int:
         points = [parse_point(p.lstrip(" ")) for p in args.points]
         if len({len(p) for p in points}) != 1:
             raise ValueError("all points must have the same dimension (2 or 3 coordinates)")
+        if args.family is None:
+            args.family = _ShapeFamilies().names()[0]
         result = optimal_lambda(points, args.energy, args.family, clamp=args.clamp)
     except ValueError as exc:
         print(f"lambda-bezier optimal-lambda: error: {exc}", file=sys.stderr)

@@ -1,17 +1,22 @@
-"""Curve classes: one shared base, one thin subclass per basis family.
+"""Curve classes: one shared base, the classical Bézier curve, and the built-in families.
 
 Every family is a polynomial curve p(t) = Σ_i P_i b_i(t; λ) whose basis functions are given,
 per degree, as exact matrices in generated/ (power and Bernstein coefficients, split by powers
 of λ). The base class turns those matrices into the curve's power coefficients once, and all
 evaluation is Horner's rule vectorised over t.
+
+BezierCurve, the classical Bézier curve (no λ, ``_has_lambda = False``), is the reference
+every curve converts to (``to_bezier``). The shape-parameter families are those generated/
+lists; `FAMILIES` gives their classes (see builtin_curves for the ones with code of their own).
 """
 
 from __future__ import annotations
 
 import sys
+import threading
 from fractions import Fraction
 from functools import cache, cached_property
-from typing import TYPE_CHECKING, ClassVar, Literal, cast, overload
+from typing import TYPE_CHECKING, ClassVar, Literal, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -19,7 +24,7 @@ import numpy.typing as npt
 from . import _algorithms as alg
 from . import _bezier_forms as forms
 from . import _validate as val
-from ._lazy import TableSource, generated, submodule
+from ._lazy import TableSource, builtin_families, generated, submodule
 from ._validate import ParamLike, PointsLike
 
 if TYPE_CHECKING:
@@ -31,8 +36,6 @@ else:  # imported when a method first needs them (`import lambda_bezier` stays l
     _intersect, _reduce, _geometry = (submodule(m) for m in ("_intersect", "_reduce", "geometry"))
 
 _bernstein = generated("bernstein")
-_same_degree = generated("same_degree")
-_bernstein_like = generated("bernstein_like")
 
 Matrix = tuple[tuple[Fraction, ...], ...]
 
@@ -527,92 +530,89 @@ class BezierCurve(Curve):
         return BezierCurve(val.finite_result(ctrl, "the control points"))
 
 
-class SameDegreeCurve(Curve):
-    r"""λ-Bézier curve of the same-degree family (000):
-    :math:`p(t) = \sum_{i=0}^n V_i \, b_i^n(t; \lambda)`, :math:`\lambda \in (-2, 1]`,
-    degree n ≥ 3; λ = 1 is the Bézier curve."""
+# ---------------------------------------------------------------------- the families
+# FAMILIES is assembled on first use (module __getattr__ below): the classes of families with
+# code of their own live in builtin_curves, which subclasses Curve, so importing it from the
+# top of this module would be an import cycle.
+if TYPE_CHECKING:
+    FAMILIES: dict[str, type[Curve]]
 
-    family = "same_degree"
-    _data = _same_degree
+_families_lock = threading.RLock()
+_families: dict[str, type[Curve]] = {}
+_assembling: list[bool] = []  # non-empty while builtin_curves is being imported
 
-    def evaluate_geometric(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray:
-        """Prop. 8 of 000: n-3 de Casteljau steps down to a cubic, the cubic λ-Bernstein
-        control points Q (eq. 16, from the generated cubic Bernstein matrix), then de
-        Casteljau on the cubic Bézier curve. An independent second evaluator."""
-        tt, scalar = val.as_parameters(t, extrapolate=extrapolate)
-        m3 = np.array(_float_matrix(self._data, "bernstein", 3, 0))
-        assert self.lam is not None  # a same_degree curve always has one (__init__)
-        lam = float(self.lam)
-        m3 = m3 + lam * _float_matrix(self._data, "bernstein", 3, 1)
-        with val.overflow_allowed():  # on the scaled points; checked below where it matters
-            unit = self.points / self._scale
-            cubic = alg.de_casteljau_steps(unit, tt, self.degree - 3)  # (len t, 4, d)
-            q = np.einsum("ij,tid->tjd", m3, cubic)
-            out = alg.de_casteljau_steps(q, tt, 3)[:, 0] * self._scale
-        if self._scale != 1.0 or extrapolate:
-            val.finite_result(out, "p(t)")
-        return out[0] if scalar else out
 
-    def geometric_levels(self, t: Fraction | float) -> list[tuple[alg.Row, ...]]:
-        """Every point of Prop. 8's construction at one t, level by level: V^0 … V^(n-3)
-        (de Casteljau, eq. 14), then Q^(n-2) (eq. 16, from the generated cubic Bernstein
-        matrix), Q^(n-1), Q^n and Q^(n+1) = p(t) (eq. 15). Exact for exact points, λ and t."""
-        exact = self.is_exact and val.is_exact_scalar(t)
-        if exact:
-            t = Fraction(t)
-            if not 0 <= t <= 1:
-                raise ValueError(f"t = {t} is outside [0, 1] (geometric_levels evaluates there)")
-            assert self._exact_points is not None and self.lam is not None  # is_exact
-            rows: alg.Rows = self._exact_points
-            m3: alg.Rows = _combine_exact(_tables(self._data, "bernstein")[3], Fraction(self.lam))
-        else:
-            tt, _ = val.as_parameters(t, extrapolate=False)
-            if tt.size != 1:
-                raise ValueError("geometric_levels takes a single t")
-            t = float(tt[0])
-            rows = tuple(tuple(float(v) for v in row) for row in self.points)
-            cubic_curve = self.__class__(np.zeros((4, 2)), self.lam, check_range=False)
-            m3 = tuple(tuple(float(v) for v in row) for row in cubic_curve.basis_bernstein_matrix())
-        tri = alg.de_casteljau_triangle(rows, t)[: self.degree - 2]
-        cubic = tri[-1]
-        q = (
-            # exact: Fractions throughout (exact points, λ and t)
-            alg.exact_matmul(tuple(zip(*m3, strict=True)), cast(Matrix, tuple(cubic)))
-            if exact
-            else tuple(
-                tuple(sum(m3[i][j] * cubic[i][c] for i in range(4)) for c in range(len(cubic[0])))
-                for j in range(4)
+def _families_by_name() -> dict[str, type[Curve]]:
+    """FAMILIES: the reference family (BezierCurve), then each built-in family that
+    generated/__init__.py lists, in its order. A family's class is the one builtin_curves
+    defines under the class name generated/ gives, or else one made here from the generated
+    module alone: a family added to generated/ needs no edit of the runtime."""
+    if _families:
+        return _families
+    with _families_lock:
+        if _families:
+            return _families
+        if _assembling:
+            raise ImportError(
+                "lambda_bezier.curves.FAMILIES was read while it was being assembled: a module "
+                "that builtin_curves imports reads it (an import cycle)"
             )
-        )
-        return [tuple(level) for level in tri] + [
-            tuple(level) for level in alg.de_casteljau_triangle(q, t)
-        ]
+        _assembling.append(True)
+        try:
+            from . import builtin_curves
+        finally:
+            _assembling.clear()
+
+        found: dict[str, type[Curve]] = {BezierCurve.family: BezierCurve}
+        for family, class_name in builtin_families().items():
+            cls = getattr(builtin_curves, class_name, None)
+            if cls is None:
+                cls = _generated_family_class(family, class_name)
+            elif not (isinstance(cls, type) and issubclass(cls, Curve)) or cls.family != family:
+                raise TypeError(
+                    f"builtin_curves.{class_name} is not the curve class of the family {family!r} "
+                    "that generated/__init__.py gives it to"
+                )
+            found[family] = cls
+        _families.update(found)
+        return _families
 
 
-class BernsteinLikeCurve(Curve):
-    r"""λ-Bézier curve of the Bernstein-like family (001):
-    :math:`p(t) = \sum_{i=0}^n P_i \, b_{i,n}(t; \lambda)`, :math:`\lambda \in [-1, 1]`;
-    a degree-n curve is a polynomial of degree n + 2, and λ = 0 is the Bézier curve."""
+def _generated_family_class(family: str, class_name: str) -> type[Curve]:
+    """The curve class of a built-in family from its generated module alone (nothing of the
+    module is read until a curve needs it). Picklable: it is an attribute of this module."""
+    return type(
+        class_name,
+        (Curve,),
+        {
+            "family": family,
+            "_data": generated(family),
+            "__doc__": f"A curve of the built-in family {family!r} (generated/{family}.py).",
+            "__module__": __name__,
+        },
+    )
 
-    family = "bernstein_like"
-    _data = _bernstein_like
 
-
-FAMILIES: dict[str, type[Curve]] = {
-    "bezier": BezierCurve,
-    "same_degree": SameDegreeCurve,
-    "bernstein_like": BernsteinLikeCurve,
-}
+def __getattr__(name: str) -> object:
+    """FAMILIES, and each built-in family's class by its name (e.g. for `pickle`)."""
+    if name == "FAMILIES":
+        return _families_by_name()
+    if name.endswith("Curve"):
+        for cls in _families_by_name().values():
+            if cls.__name__ == name:
+                return cls
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def family_class(family: object) -> type[Curve]:
     """The curve class of `family`: a built-in family's name, a family defined by data
     (lambda_bezier.load_family), or a Curve subclass."""
+    families = _families_by_name()
     if isinstance(family, str):
-        if family in FAMILIES:
-            return FAMILIES[family]
+        if family in families:
+            return families[family]
         raise ValueError(
-            f"unknown family {family!r}: choose one of {', '.join(map(repr, FAMILIES))}, or "
+            f"unknown family {family!r}: choose one of {', '.join(map(repr, families))}, or "
             "pass a family from lambda_bezier.load_family"
         )
     cls = getattr(family, "curve_class", family)
@@ -620,5 +620,5 @@ def family_class(family: object) -> type[Curve]:
         return cls
     raise ValueError(
         f"unknown family {family!r}: family must be a family name "
-        f"({', '.join(map(repr, FAMILIES))}) or a family from lambda_bezier.load_family"
+        f"({', '.join(map(repr, families))}) or a family from lambda_bezier.load_family"
     )

@@ -25,7 +25,8 @@ from .curves import FAMILIES, Curve, family_class
 _energy = generated("energy")
 
 ENERGY_NAMES = {1: "stretch", 2: "strain", 3: "jerk"}
-LAMBDA_FAMILIES = ("same_degree", "bernstein_like")  # the families with a shape parameter
+# the built-in families with a shape parameter (all but the reference, BezierCurve)
+LAMBDA_FAMILIES = tuple(name for name, cls in FAMILIES.items() if cls._has_lambda)
 
 # one quadratic form: (scale s, upper-triangular integer matrix U); E_k's three are ff, fg, gg
 _V = TypeVar("_V", np.ndarray, float)  # one value or an array of them, kept as given

@@ -549,9 +549,9 @@ def _curve_from(data: object, where: str, check_range: bool) -> Curve:
         rows = [[float(v) for v in row] for row in rows]
     cls = FAMILIES[family]
     lam = data.get("lambda")
-    if family == "bezier":
+    if not cls._has_lambda:  # the classical Bézier curve
         if lam is not None:
-            raise ValueError(f"{where}.lambda must be null for a bezier curve")
+            raise ValueError(f"{where}.lambda must be null for a {family} curve")
         return cls(rows)
     if lam is None:
         raise ValueError(f"{where}.lambda is required for a {family} curve")

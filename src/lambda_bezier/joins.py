@@ -30,7 +30,7 @@ import numpy as np
 from . import _validate as val
 from ._lazy import generated
 from ._validate import PointsLike
-from .curves import FAMILIES, Curve, family_class
+from .curves import FAMILIES, Curve, _tables, family_class
 
 _bernstein = generated("bernstein")
 _joins = generated("joins")
@@ -103,13 +103,20 @@ def _family_class(family: object) -> type[Curve]:
     return family_class(family)
 
 
-def _builtin(cls: type[Curve]) -> bool:
-    return FAMILIES.get(cls.family) is cls
+def _closed_forms(first: type[Curve], second: type[Curve], continuity: str) -> bool:
+    """Whether generated/joins.py has this join in closed form: both families built in, and
+    the pair emitted (otherwise the join is solved per degree, as for families from
+    load_family)."""
+    return (
+        all(FAMILIES.get(cls.family) is cls for cls in (first, second))
+        and (first.family, second.family, continuity) in _joins.JOINS
+        and second.family in _joins.PIVOTS
+    )
 
 
 def _end_factor(curve: Curve) -> Fraction | float:
     """The coefficient of P_n in C1'(1) (= −that of P_{n−1}), from the generated end data."""
-    if curve.family == "bezier":
+    if not curve._has_lambda:  # the reference, BezierCurve: generated/bernstein.py
         weight: Fraction | float = _bernstein.endpoint_weight_end(curve.degree, 1, 0)
         return weight
     lam = curve.lam
@@ -135,7 +142,7 @@ def leading_weights(
     Built-in families use the closed forms derived in derive/joins.py; a family from
     load_family (on either side) is solved per degree from the power tables."""
     cls = _family_class(family)
-    if not (_builtin(cls) and _builtin(type(curve))):
+    if not _closed_forms(type(curve), cls, joint.continuity):
         return _generic_weights(curve, joint, cls, degree, lam)
     family = cls.family
     n, m = curve.degree, degree
@@ -279,8 +286,9 @@ def join(
     """
     if not isinstance(curve, Curve):
         raise ValueError(
-            "curve must be a lambda_bezier curve (BezierCurve, SameDegreeCurve or "
-            f"BernsteinLikeCurve), got {type(curve).__name__}"
+            "curve must be a lambda_bezier curve (one of "
+            f"{', '.join(cls.__name__ for cls in FAMILIES.values())}, or a curve of a family "
+            f"from lambda_bezier.load_family), got {type(curve).__name__}"
         )
     spec = Joint(continuity, alpha, d)
     cls = type(curve) if family is None else _family_class(family)
@@ -303,7 +311,7 @@ def join(
         lam = val.as_lambda(lam, data, check_range=check_range)
     elif lam is not None:
         raise ValueError("a classical Bézier segment takes no shape parameter lam")
-    rest_rows = _rest(rest, curve, spec, fam, degree)
+    rest_rows = _rest(rest, curve, spec, cls, degree)
     weights = leading_weights(curve, spec, cls, degree, lam)
     exact = (
         curve.is_exact
@@ -346,10 +354,30 @@ def join(
     return cls(points)
 
 
+def _entering_given_points(cls: type[Curve], degree: int, order: int) -> str:
+    """Which given points P_{j,2} (j > order) enter the solve, and of which solved points: a
+    given point enters where the start derivatives p^(r)(0), r <= order, involve it (at some
+    λ), read off the power tables (the t^r coefficient of basis function j). "" for none."""
+    mats = _tables(cls._data, "power")[degree]
+    lowest: dict[int, int] = {}
+    for j in range(order + 1, degree + 1):
+        rows = [r for r in range(order + 1) if any(m[j][r] != 0 for m in mats)]
+        if rows:
+            lowest[j] = rows[0]
+    if not lowest:
+        return ""
+    given = ", ".join(f"P_{{{j},2}}" for j in lowest)
+    first = min(lowest.values())
+    solved = f"P_{{{first},2}}" if first == order else f"P_{{{first},2}}..P_{{{order},2}}"
+    verb = "enters" if len(lowest) == 1 else "enter"
+    return f"; {given} {verb} the solve of {solved}"
+
+
 def _rest(
-    rest: PointsLike, curve: Curve, spec: Joint, family: str, degree: int
+    rest: PointsLike, curve: Curve, spec: Joint, cls: type[Curve], degree: int
 ) -> tuple[np.ndarray, val.ExactRows | None]:
     """(float array (k, d), exact rows or None) for the caller's remaining control points."""
+    family = cls.family
     want = degree - spec.order
     first_index = spec.order + 1
     which = (
@@ -358,11 +386,6 @@ def _rest(
         else f"P_{{{first_index},2}}..P_{{{degree},2}}"
         if want > 1
         else f"P_{{{degree},2}}"
-    )
-    note = (
-        "; P_{3,2} enters the solve of P_{2,2}"
-        if family == "same_degree" and spec.order == 2
-        else ""
     )
     arr = np.array(val.real_array(rest, "rest"), dtype=float)
     if arr.size == 0:
@@ -375,6 +398,7 @@ def _rest(
             f"{curve.dimension}"
         )
     if arr.shape[0] != want:
+        note = _entering_given_points(cls, degree, spec.order)
         raise ValueError(
             f"a {spec.continuity} join into a {family} curve of degree {degree} solves "
             f"P_{{0,2}}..P_{{{spec.order},2}}; rest must hold the other {want} point(s) "

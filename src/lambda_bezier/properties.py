@@ -13,10 +13,6 @@ from fractions import Fraction
 from ._lazy import generated
 
 _properties = generated("properties")
-_FAMILY_MODULES = {
-    "same_degree": generated("same_degree"),
-    "bernstein_like": generated("bernstein_like"),
-}
 
 
 @dataclass(frozen=True)
@@ -54,32 +50,25 @@ def singular_parameters(family: object, n: int) -> tuple[Fraction | IsolatedRoot
     `family` is a built-in family's name or a family from ``load_family`` (whose derived
     document carries the same table, from the same exact procedure).
     """
-    if not isinstance(family, str):  # a family from load_family (or a curve class)
-        from .curves import family_class
+    from .curves import family_class  # numpy: imported when first asked
 
-        cls = family_class(family)
-        table = getattr(cls._data, "SINGULAR", None)
-        if table is None:  # a built-in class
-            return singular_parameters(cls.family, n)
-        if isinstance(n, bool) or not isinstance(n, int) or n not in table:
-            degrees = cls._data.DEGREES
-            raise ValueError(
-                f"n: degree {n!r} is outside the {cls.family} range {degrees[0]}..{degrees[-1]}"
-            )
-        roots: tuple[Fraction | IsolatedRoot, ...] = table[n]
-        return roots
-    if family == "bezier":
+    cls = family_class(family)  # a built-in family's name, a family from load_family, a class
+    if not cls._has_lambda:  # the classical Bézier basis
         return ()
-    if family not in _FAMILY_MODULES:
-        known = ", ".join(("bezier", *_FAMILY_MODULES))
-        raise ValueError(f"family: unknown family {family!r} (known: {known})")
     if isinstance(n, bool) or not isinstance(n, int):
         raise TypeError(f"n must be an integer degree, not {type(n).__name__}")
-    degrees = tuple(_FAMILY_MODULES[family].DEGREES)
+    degrees = tuple(cls._data.DEGREES)
     if n not in degrees:
-        raise ValueError(f"n: degree {n} is outside the {family} range {degrees[0]}..{degrees[-1]}")
+        raise ValueError(
+            f"n: degree {n} is outside the {cls.family} range {degrees[0]}..{degrees[-1]}"
+        )
+    # a family from load_family carries its table; a built-in one's is in generated/
+    table = getattr(cls._data, "SINGULAR", None)
+    if table is not None:
+        roots: tuple[Fraction | IsolatedRoot, ...] = table[n]
+        return roots
     out: list[Fraction | IsolatedRoot] = []
-    for entry in _properties.SINGULAR[family][n]:
+    for entry in _properties.SINGULAR[cls.family][n]:
         if isinstance(entry, tuple):
             (lo, hi), coefficients = entry
             out.append(IsolatedRoot(Fraction(lo), Fraction(hi), tuple(coefficients)))

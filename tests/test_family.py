@@ -210,9 +210,7 @@ def test_published_family_closed_forms_say_why_they_are_missing(ns_doc):
         assert "C2/G2" in entry["reason"] and "per degree" in entry["reason"]
         assert {key.split(",")[0] for key in entry["weights"]} == {"C1", "G1"}
     # C1 of two such curves: P_{1,2} = P_n + (λ1 n / (λ2 m)) (P_n - P_{n-1})
-    assert pairs["nouri_saeidian>nouri_saeidian"]["weights"]["C1,1,first,1"] == (
-        "-lam1*n/(lam2*m)"
-    )
+    assert pairs["nouri_saeidian>nouri_saeidian"]["weights"]["C1,1,first,1"] == ("-lam1*n/(lam2*m)")
     assert ns_doc["checked"][1] == "partition of unity, every degree"
 
 

@@ -578,19 +578,23 @@ def _families_by_name() -> dict[str, type[Curve]]:
         return _families
 
 
-def _generated_family_class(family: str, class_name: str) -> type[Curve]:
-    """The curve class of a built-in family from its generated module alone (nothing of the
-    module is read until a curve needs it). Picklable: it is an attribute of this module."""
+def data_curve_class(
+    family: str, class_name: str, data: object, doc: str, module: str = __name__
+) -> type[Curve]:
+    """The curve class of a family that is data only: its name and its tables (a generated
+    module, or a derived document read by lambda_bezier.family); the engine is Curve."""
     return type(
         class_name,
         (Curve,),
-        {
-            "family": family,
-            "_data": generated(family),
-            "__doc__": f"A curve of the built-in family {family!r} (generated/{family}.py).",
-            "__module__": __name__,
-        },
+        {"family": family, "_data": data, "__doc__": doc, "__module__": module},
     )
+
+
+def _generated_family_class(family: str, class_name: str) -> type[Curve]:
+    """The curve class of a built-in family from its generated module alone (nothing of the
+    module is read until a curve needs it). Picklable: it is an attribute of this module."""
+    doc = f"A curve of the built-in family {family!r} (generated/{family}.py)."
+    return data_curve_class(family, class_name, generated(family), doc)
 
 
 def __getattr__(name: str) -> object:

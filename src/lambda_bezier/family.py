@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ._validate import PointsLike
-from .curves import BezierCurve, Curve, Matrix
+from .curves import BezierCurve, Curve, Matrix, data_curve_class
 
 if TYPE_CHECKING:
     from .energy import Form
@@ -129,15 +129,9 @@ class Family:
         self.title = title
         self.parameter = parameter
         camel = "".join(part.capitalize() for part in data.FAMILY.split("_"))
-        self.curve_class: type[Curve] = type(
-            f"{camel}Curve",
-            (Curve,),
-            {
-                "family": data.FAMILY,
-                "_data": data,
-                "__doc__": f"A curve of the family {data.FAMILY!r} ({title}), from {definition}.",
-                "__module__": __name__,
-            },
+        doc = f"A curve of the family {data.FAMILY!r} ({title}), from {definition}."
+        self.curve_class: type[Curve] = data_curve_class(
+            data.FAMILY, f"{camel}Curve", data, doc, __name__
         )
 
     @property

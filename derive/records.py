@@ -247,10 +247,8 @@ def _key_path(parts: Iterable) -> str:
     return out
 
 
-def read_file(path: Path) -> dict:
-    """The TOML of one records file, validated against SCHEMA."""
-    import jsonschema
-
+def _toml(path: Path) -> dict:
+    """The TOML of a file, within the size limit, every failure a RecordsError naming it."""
     try:
         size = path.stat().st_size
         if size > MAX_FILE_BYTES:
@@ -268,6 +266,19 @@ def read_file(path: Path) -> dict:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise RecordsError(f"{path}: not valid TOML: {exc}") from None
+    return data
+
+
+def is_family_file(data: dict) -> bool:
+    """A family definition in a file of its own: a [family] table and no records."""
+    return isinstance(data.get("family"), dict) and "record" not in data
+
+
+def read_file(path: Path, data: dict | None = None) -> dict:
+    """The TOML of one records file, validated against SCHEMA."""
+    import jsonschema
+
+    data = _toml(path) if data is None else data
     validator = jsonschema.Draft202012Validator(SCHEMA)
     errors = sorted(validator.iter_errors(data), key=lambda e: list(map(str, e.absolute_path)))
     if errors:
@@ -282,9 +293,9 @@ def read_file(path: Path) -> dict:
     return data
 
 
-def load_file(path: Path) -> list[dict]:
+def load_file(path: Path, data: dict | None = None) -> list[dict]:
     """The records of one file, each with its family, file, source and variable filled in."""
-    data = read_file(path)
+    data = read_file(path, data)
     if isinstance(data.get("family"), dict):
         data["family"] = _define_family(path, data["family"], data.get("point_function", "P"))
     out = []
@@ -383,8 +394,14 @@ def _parse_formulas(path: Path, rec: dict) -> None:
 def load_paths(paths: Iterable[Path]) -> list[dict]:
     """The records of several files, ids unique across them and cross-references resolved."""
     records: list[dict] = []
-    for path in paths:
-        records += load_file(Path(path))
+    texts = [(Path(path), _toml(Path(path))) for path in paths]
+    # family definitions in files of their own first: a records file names them by `family`
+    for path, data in texts:
+        if is_family_file(data):
+            _define_family(path, data["family"], "P")
+    for path, data in texts:
+        if not is_family_file(data):
+            records += load_file(path, data)
     seen: dict[str, str] = {}
     for rec in records:
         if rec["id"] in seen:

@@ -227,7 +227,11 @@ def _allowed(kind: str) -> tuple[str, ...]:
 def kind_problem(family: str, kind: str) -> str | None:
     """Why `family.kind` cannot be checked (None when it can)."""
     if family not in FAMILIES:
-        return f"unknown family {family!r} (known: {', '.join(FAMILIES)})"
+        return (
+            f"unknown family {family!r} (known: {', '.join(FAMILIES)}; a family defined in a "
+            "file of its own is given to verify with the records: "
+            "`lambda-bezier verify FAMILY.toml RECORDS.toml`)"
+        )
     if kind not in kinds():
         return f"unknown claim kind {kind!r} (see the records format for the list)"
     reason = KIND_FAMILIES.get(kind, ((), ""))[1]

@@ -529,3 +529,50 @@ def test_a_dying_worker_names_its_record(monkeypatch):
     monkeypatch.setattr(verify, "check_record", dying)
     with pytest.raises(RuntimeError, match="survey.bz.d1_cases"):
         verify.verify(records, jobs=2)
+
+
+def test_family_in_a_file_of_its_own(tmp_path):
+    """A [family] table alone in a file defines the family for the run; the records file
+    names it, and the two files may come in either order. Without the family file, the error
+    says how to give it."""
+    ns = (ROOT / "tests" / "data" / "families" / "nouri_saeidian.toml").read_text()
+    family = tmp_path / "my_family.toml"
+    family.write_text(ns[ns.index("[family]") : ns.index("[[record]]")])
+    records = tmp_path / "my_records.toml"
+    records.write_text(
+        textwrap.dedent(
+            """
+            schema_version = 2
+            source = "a paper about the family"
+            family = "nouri_saeidian"
+
+            [[record]]
+            id = "own.tangent"
+            claim = "endpoint_curve"
+            location = "the end tangent"
+            equations = [{ lhs = "Subs(Derivative(p(t), t), t, 0)", rhs = "n*lam*(P(1) - P(0))" }]
+
+            [[record]]
+            id = "own.wrong"
+            claim = "nouri_saeidian.endpoint_curve"
+            location = "a wrong end tangent"
+            expect = "mismatch"
+            equations = [{ lhs = "Subs(Derivative(p(t), t), t, 0)", rhs = "n*(P(1) - P(0))" }]
+            [record.erratum]
+            origin = "paper"
+            explanation = "the factor lam is missing"
+            equations = [
+              { lhs = "Subs(Derivative(p(t), t), t, 0)", rhs = "n*lam*(P(1) - P(0))" },
+            ]
+            """
+        )
+    )
+    for paths in ([family, records], [records, family]):
+        code, text = run_in_process(paths)
+        assert code == 0, text
+        verdicts = {r["id"]: r["verdict"] for r in json.loads(text)["records"]}
+        assert verdicts == {"own.tangent": "match", "own.wrong": "mismatch"}
+    code, out, err = run_verify(str(records))
+    assert code == 2
+    assert "unknown family 'nouri_saeidian'" in err
+    assert "lambda-bezier verify FAMILY.toml RECORDS.toml" in err

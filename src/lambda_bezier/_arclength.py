@@ -117,23 +117,28 @@ def _powers(u: np.ndarray, size: int) -> np.ndarray:
 @cache
 def _unit_levels(
     size: int,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The fixed levels on [0, 1] for p with `size` Taylor coefficients: _square_map; the
-    powers (2·size − 3, K·(m+g)) of t − 1/2 at the first level's nodes, the weights scaled
-    to its width 1/K and K ones (to add up the pieces' sums with np.dot, cheaper than
-    .sum(axis=0)); then for each first-level piece the powers (K, 2·size − 3, S·(m+g)) at
-    the nodes of its S parts, and the weights scaled to 1/(K·S)."""
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The fixed levels on [0, 1] for p with `size` Taylor coefficients: at the first
+    level's nodes the matrix that takes the operand (q's coefficients up to degree
+    _SQUARED_UP_TO, else p's: rows of powers (t − 1/2)^e, or e (t − 1/2)^(e−1)) to values,
+    the weights scaled to its width 1/K and K ones (to add up the pieces' sums with np.dot,
+    cheaper than .sum(axis=0)); then the same matrix (K, ·, S·(m+g)) at the nodes of the S
+    parts of each first-level piece, and the weights scaled to 1/(K·S)."""
     nodes, weights = _pair()
     first = ((np.arange(_PIECES)[:, None] + nodes) / _PIECES).ravel()
     parts = (np.arange(_SPLIT)[:, None] + nodes).ravel() / _SPLIT
     second = (np.arange(_PIECES)[:, None] + parts) / _PIECES
-    terms = 2 * size - 3
+    if size <= _SQUARED_UP_TO + 1:
+        terms = 2 * size - 3
+        matrix = _powers
+    else:
+        terms = size
+        matrix = _derivative_powers
     out = (
-        _square_map(size),
-        _powers(first - 0.5, terms),
+        matrix(first - 0.5, terms),
         weights / _PIECES,
         np.ones(_PIECES),
-        np.stack([_powers(row - 0.5, terms) for row in second]),
+        np.stack([matrix(row - 0.5, terms) for row in second]),
         weights / (_PIECES * _SPLIT),
     )
     for arr in out:
@@ -175,22 +180,27 @@ def partial(coeffs: np.ndarray, start: np.ndarray, end: np.ndarray) -> np.ndarra
 
 
 def unit_integral(coeffs: np.ndarray, rtol: float) -> float:
-    """∫_0^1 |p'| to a relative accuracy rtol. Up to degree _SQUARED_UP_TO the first level
-    and the refinement of its rejected pieces use the fixed nodes, with |p'|² evaluated as
-    the one polynomial q (a product and two ufuncs instead of a product and d + 1 ufuncs;
-    its rounding, about C² instead of C·|p'| ulps, is harmless at these degrees at the
-    distance from zeros of q where these levels accept a piece); what fails goes to
-    _finish, which evaluates p' itself."""
+    """∫_0^1 |p'| to a relative accuracy rtol. The first level and the refinement of its
+    rejected pieces use the fixed nodes; what still fails goes on in _finish. Up to degree
+    _SQUARED_UP_TO of p, |p'|² is evaluated there as the one polynomial q (one product and
+    two ufuncs instead of one product and d + 1 ufuncs, and this is most of the work): its
+    rounding, about C² ulps instead of C·|p'| (C the size of p' on [0, 1]), is harmless at
+    such degrees where these levels accept a piece (away from zeros of q). (Measured on
+    random curves of degree 9..14, still within 1e-13, but C grows fast with the degree;
+    past _SQUARED_UP_TO these levels evaluate p' itself.)"""
     size = coeffs.shape[1]
-    if size > _SQUARED_UP_TO + 1:
-        return integral(coeffs, 0.0, 1.0, rtol)
-    square, first, weights, ones, second, second_weights = _unit_levels(size)
-    q = np.dot(square, np.dot(coeffs.T, coeffs).ravel())
-    # (np.dot: a little cheaper than @ on operands this small; np.abs before np.sqrt: q < 0
-    # only by rounding, where it is 0 within it, and half the cost of np.maximum with 0)
-    values = np.dot(q, first)
-    np.abs(values, out=values)
-    np.sqrt(values, out=values)
+    first, weights, ones, second, second_weights = _unit_levels(size)
+    squared = size <= _SQUARED_UP_TO + 1
+    if squared:
+        operand = np.dot(_square_map(size), np.dot(coeffs.T, coeffs).ravel())  # q
+        # (np.dot: a little cheaper than @ here; np.abs before np.sqrt: q < 0 only by
+        # rounding, where it is 0 within it, and half the cost of np.maximum with 0)
+        values = np.dot(operand, first)
+        np.abs(values, out=values)
+        np.sqrt(values, out=values)
+    else:
+        operand = coeffs
+        values = _norms(np.dot(coeffs, first))
     sums = np.dot(values.reshape(_PIECES, -1), weights)
     size = np.abs(sums)
     spent, total = np.dot(ones, size).tolist()
@@ -201,9 +211,12 @@ def unit_integral(coeffs: np.ndarray, rtol: float) -> float:
         spent -= rejected
         total -= value
     # one piece as a rule, or two (a near-cusp by a joint): one product for all
-    values = np.dot(q, second[bad[0]]) if bad.size == 1 else q @ second[bad]
-    np.abs(values, out=values)
-    np.sqrt(values, out=values)
+    values = np.dot(operand, second[bad[0]]) if bad.size == 1 else operand @ second[bad]
+    if squared:
+        np.abs(values, out=values)
+        np.sqrt(values, out=values)
+    else:
+        values = _norms(values)
     sums = np.dot(values.reshape(bad.size * _SPLIT, -1), second_weights)
     size = np.abs(sums)
     new_spent, new_total = size.sum(axis=0).tolist()
@@ -257,11 +270,11 @@ def _finish(
     Returns the total; `parts` (if given) collects the accepted pieces' left ends and
     values."""
     span = b - a
+    stage = 0 if width[0] * _PIECES >= span * (1 - 1e-9) else 1  # (first-level pieces: 0)
     # C, the size of p' on [0, 1] (Σ |e · coeffs[:, e]| 2^-(e−1)), and from it the rounding
     # of a difference of the rules per unit width (see the module's note on rounding)
     e = np.arange(1.0, coeffs.shape[1])
     noise = _NOISE * float((np.abs(coeffs[:, 1:]) * (e * 0.5 ** (e - 1))).sum())
-    cut = False
     while True:
         size = np.abs(sums)
         level_spent, level_total = size.sum(axis=0).tolist()
@@ -280,12 +293,15 @@ def _finish(
         if parts is not None:
             parts.append((left[ok], sums[ok, 1]))
         left, width = left[~ok], width[~ok]
-        if cut:
+        if stage == 0:  # as the fixed second level: wide pieces are cut in _SPLIT, blindly
+            width = np.repeat(width / _SPLIT, _SPLIT)
+            left = (left[:, None] + width.reshape(-1, _SPLIT) * np.arange(_SPLIT)).ravel()
+        elif stage == 1:
+            left, width = _partition(coeffs, left, width)
+        else:
             left = np.concatenate([left, left + width / 2])
             width = np.concatenate([width, width]) / 2
-        else:
-            left, width = _partition(coeffs, left, width)
-            cut = True
+        stage += 1
         sums = _sums(coeffs, left, width)
 
 

@@ -191,19 +191,20 @@ def unit_integral(coeffs: np.ndarray, rtol: float) -> float:
     size = coeffs.shape[1]
     first, weights, ones, second, second_weights = _unit_levels(size)
     squared = size <= _SQUARED_UP_TO + 1
+    # (the .dot method: a little cheaper than np.dot, which is cheaper than @, on operands
+    # this small; np.abs before np.sqrt: q < 0 only by rounding, where it is 0 within it,
+    # and half the cost of np.maximum with 0)
     if squared:
-        operand = np.dot(_square_map(size), np.dot(coeffs.T, coeffs).ravel())  # q
-        # (np.dot: a little cheaper than @ here; np.abs before np.sqrt: q < 0 only by
-        # rounding, where it is 0 within it, and half the cost of np.maximum with 0)
-        values = np.dot(operand, first)
+        operand = _square_map(size).dot(coeffs.T.dot(coeffs).ravel())  # q
+        values = operand.dot(first)
         np.abs(values, out=values)
         np.sqrt(values, out=values)
     else:
         operand = coeffs
-        values = _norms(np.dot(coeffs, first))
-    sums = np.dot(values.reshape(_PIECES, -1), weights)
+        values = _norms(coeffs.dot(first))
+    sums = values.reshape(_PIECES, -1).dot(weights)
     size = np.abs(sums)
-    spent, total = np.dot(ones, size).tolist()
+    spent, total = ones.dot(size).tolist()
     if spent <= rtol * total or not total > 0.0:  # most curves: accepted at once
         return float(total)  # (0: a constant curve)
     bad = (size[:, 0] > rtol * total / _PIECES).nonzero()[0]
@@ -211,13 +212,13 @@ def unit_integral(coeffs: np.ndarray, rtol: float) -> float:
         spent -= rejected
         total -= value
     # one piece as a rule, or two (a near-cusp by a joint): one product for all
-    values = np.dot(operand, second[bad[0]]) if bad.size == 1 else operand @ second[bad]
+    values = operand.dot(second[bad[0]]) if bad.size == 1 else operand @ second[bad]
     if squared:
         np.abs(values, out=values)
         np.sqrt(values, out=values)
     else:
         values = _norms(values)
-    sums = np.dot(values.reshape(bad.size * _SPLIT, -1), second_weights)
+    sums = values.reshape(bad.size * _SPLIT, -1).dot(second_weights)
     size = np.abs(sums)
     new_spent, new_total = size.sum(axis=0).tolist()
     if spent + new_spent <= rtol * (total + new_total):

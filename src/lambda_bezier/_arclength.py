@@ -2,27 +2,29 @@
 (d, N+1): the engine behind geometry.arc_length and parameter_at_length.
 
 The rule. [a, b] is cut in equal pieces. On each piece two rules are compared, the m-point
-Gauss–Lobatto rule and the g-point Gauss–Legendre rule (g ≈ 2m), and the piece keeps the
-latter's value. A level is accepted when the differences of its pieces and of those
-accepted before add up to at most rtol · total; otherwise the pieces whose difference is
-within their share (by width) of that are accepted and the others are refined.
+Gauss–Lobatto rule (exact to degree 2m − 3) and the g-point Gauss–Legendre rule (to degree
+2g − 1, higher), and the piece keeps the latter's value. A level is accepted when the
+differences of its pieces and of those accepted before add up to at most rtol · total;
+otherwise the pieces whose difference is within their share (by width) of that are
+accepted and the others are refined.
 
 Why the estimate holds. The speed is analytic away from the complex zeros of
 q = |p'|² = Σ_c p'_c², which come in conjugate pairs x ± iy (y = 0: a cusp, p' = 0). On a
-piece whose Bernstein ellipse of parameter ρ avoids them, the n-point Gauss error is
-O(ρ^-2n): the value's error is about the square of the test rule's, so the difference is
-an honest estimate of the test rule's error and a very safe one of the value's. It can
-fail where that does not hold, near a zero with y small against the piece (the speed is
-then |t − x| up to a smooth factor, errors decay only algebraically and two rules can agree
-by chance):
+piece whose Bernstein ellipse of parameter ρ avoids them, the errors fall like ρ^-(degree):
+where the test rule's is within the tolerance (ρ >= 2.6 or so), the value's is smaller by
+ρ^-(2g − 2m + 2), below 1e-4, so the difference is an honest estimate of the test rule's
+error and a very safe one of the value's. It can fail where that does not hold, near a
+zero with y small against the piece (the speed is then |t − x| up to a smooth factor,
+errors decay only algebraically and two rules can agree by chance):
 - a kink in a Gauss rule's end gap is invisible to any pair of Gauss rules (all nodes on
   one side of it, both integrate the same smooth branch exactly): measured, two in a
   thousand random kinks in a piece fooled a 12/24-point Gauss pair, by up to 1e-8 of the
   total. The test rule is therefore Lobatto's, whose nodes include both ends;
-- elsewhere the two errors cross by chance: measured, about one kink in 10^5 at the first
-  levels' widths, where the errors are 1e-7..1e-9 of the total, but a few in a hundred at
-  the widths where they come near the tolerance (seen: 1.6e-12 where 1e-12 was due). So
-  after the two fixed levels nothing is refined blindly: the zeros of q are computed
+- elsewhere the two errors cross by chance: measured, a few kinks in 10^5 at the first
+  two levels' widths, where the errors are 1e-7..1e-9 of the total, but a few in a hundred
+  at the widths where they come near the tolerance (seen: 1.6e-12 where 1e-12 was due). So
+  after the first two levels (the second cuts each rejected piece of the first in _SPLIT)
+  nothing is refined blindly: the zeros of q are computed
   (companion eigenvalues, once) and the rejected pieces are cut at their real parts and
   graded geometrically towards them, so that every piece keeps a distance from every zero
   of at least its own width (ρ >= 4.2), where the two rules' difference is a safe estimate.
@@ -35,8 +37,8 @@ difference within it instead of refining for ever.
 Cost. A near-cusp is what makes a piece fail, and about one random quintic in four has one
 near enough, so the refinement must be cheap too. On [0, 1] (most calls) the nodes of the
 first level, and of the refinement of each of its pieces, are fixed, and so are the
-matrices of the derivative's powers there: such a level is one matrix product and a few
-ufuncs, and numpy's cost per call is most of what a call costs.
+matrices of powers there: such a level is one matrix product and a few ufuncs, and numpy's
+cost per call is most of what a call costs.
 """
 
 from __future__ import annotations
@@ -266,10 +268,10 @@ def _finish(
     parts: list[tuple[np.ndarray, np.ndarray]] | None,
 ) -> float:
     """The adaptive rule from a level of pieces [left_i, left_i + width_i] with their sums,
-    given the value and the error estimate of the pieces accepted before it: the rejected
-    pieces are cut once by the zeros of q (_partition), then halved while they fail.
-    Returns the total; `parts` (if given) collects the accepted pieces' left ends and
-    values."""
+    given the value and the error estimate of the pieces accepted before it: rejected
+    pieces of the first level are cut in _SPLIT, then the rejected ones once by the zeros
+    of q (_partition), then halved while they fail. Returns the total; `parts` (if given)
+    collects the accepted pieces' left ends and values."""
     span = b - a
     stage = 0 if width[0] * _PIECES >= span * (1 - 1e-9) else 1  # (first-level pieces: 0)
     # C, the size of p' on [0, 1] (Σ |e · coeffs[:, e]| 2^-(e−1)), and from it the rounding

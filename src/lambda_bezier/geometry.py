@@ -9,7 +9,7 @@ as well conditioned on [0, 1] as the Bernstein basis, which matters for the root
 - Arc length (_arclength): adaptive quadrature of the speed |p'|, a piece accepted when a
   Gauss–Lobatto and a higher Gauss–Legendre rule agree to its share of the tolerance, every
   piece of a level in one vectorised evaluation, and pieces kept away from the complex
-  zeros of |p'|² (near-cusps) once the first two, fixed, levels have not sufficed.
+  zeros of |p'|² (near-cusps) once the first two levels have not sufficed.
 - Extremes and closest points: all real roots in [0, 1] of a polynomial (a derivative
   component, or (p − q)·p'), from the eigenvalues of its companion matrix (batched over query
   points), accepted generously (near-real, slightly outside [0, 1]: a spurious candidate only

@@ -10,12 +10,14 @@ accepted and the others are refined.
 
 Why the estimate holds. The speed is analytic away from the complex zeros of
 q = |p'|² = Σ_c p'_c², which come in conjugate pairs x ± iy (y = 0: a cusp, p' = 0). On a
-piece whose Bernstein ellipse of parameter ρ avoids them, the errors fall like ρ^-(degree):
-where the test rule's is within the tolerance (ρ >= 2.6 or so), the value's is smaller by
-ρ^-(2g − 2m + 2), below 1e-4, so the difference is an honest estimate of the test rule's
-error and a very safe one of the value's. It can fail where that does not hold, near a
-zero with y small against the piece (the speed is then |t − x| up to a smooth factor,
-errors decay only algebraically and two rules can agree by chance):
+piece whose Bernstein ellipse of parameter ρ avoids them, the errors fall like ρ^-(degree),
+so the value's is smaller than the test rule's by about ρ^-(2g − 2m + 2) = ρ^-18 and the
+difference is an honest estimate of the test rule's error and a very safe one of the
+value's. (The gap matters: with a 20-point value, ρ^-10, the two rules were both off by
+4e-12 in the same direction on a random curve, at ρ ≈ 1.6, and the length by 2e-12.) It
+can fail where that does not hold, near a zero with y small against the piece (the speed
+is then |t − x| up to a smooth factor, errors decay only algebraically and two rules can
+agree by chance):
 - a kink in a Gauss rule's end gap is invisible to any pair of Gauss rules (all nodes on
   one side of it, both integrate the same smooth branch exactly): measured, two in a
   thousand random kinks in a piece fooled a 12/24-point Gauss pair, by up to 1e-8 of the
@@ -49,12 +51,11 @@ from functools import cache
 import numpy as np
 
 _ORDER = 16  # m: the Lobatto test rule's points (both ends among them)
-_VALUE = 20  # g: the Gauss rule's points, whose sums are the values
+_VALUE = 24  # g: the Gauss rule's points, whose sums are the values (degree 47 against 29)
 _PIECES = 24  # equal pieces of the first level
 _SPLIT = 16  # a rejected first-level piece is cut in this many
 _SNAP = 1e-9  # zeros of q nearer the real axis than this count as real (double: a cusp)
 _NOISE = 32 * np.finfo(float).eps  # rounding of a speed value, relative to C
-_SQUARED_UP_TO = 8  # the fixed levels evaluate |p'|² as one polynomial up to this degree of p
 _MAX_PIECES = 4096  # a level with more pieces than this is accepted as it stands
 
 
@@ -105,42 +106,24 @@ def _square_map(size: int) -> np.ndarray:
     return out
 
 
-def _powers(u: np.ndarray, size: int) -> np.ndarray:
-    """(size, len(u)) rows u^e."""
-    out = np.empty((size, u.size))
-    out[0] = 1.0
-    if size > 1:
-        out[1] = u
-    for e in range(2, size):
-        np.multiply(out[e - 1], u, out=out[e])
-    return out
-
-
 @cache
 def _unit_levels(
     size: int,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The fixed levels on [0, 1] for p with `size` Taylor coefficients: at the first
-    level's nodes the matrix that takes the operand (q's coefficients up to degree
-    _SQUARED_UP_TO, else p's: rows of powers (t − 1/2)^e, or e (t − 1/2)^(e−1)) to values,
-    the weights scaled to its width 1/K and K ones (to add up the pieces' sums with np.dot,
-    cheaper than .sum(axis=0)); then the same matrix (K, ·, S·(m+g)) at the nodes of the S
-    parts of each first-level piece, and the weights scaled to 1/(K·S)."""
+    """The fixed levels on [0, 1] for p with `size` Taylor coefficients: the derivative
+    powers (size, K·(m+g)) at the first level's nodes (p's coefficients times them are p'
+    there), the weights scaled to its width 1/K and K ones (to add up the pieces' sums with
+    .dot, cheaper than .sum(axis=0)); then the derivative powers (K, size, S·(m+g)) at the
+    nodes of the S parts of each first-level piece, and the weights scaled to 1/(K·S)."""
     nodes, weights = _pair()
     first = ((np.arange(_PIECES)[:, None] + nodes) / _PIECES).ravel()
     parts = (np.arange(_SPLIT)[:, None] + nodes).ravel() / _SPLIT
     second = (np.arange(_PIECES)[:, None] + parts) / _PIECES
-    if size <= _SQUARED_UP_TO + 1:
-        terms = 2 * size - 3
-        matrix = _powers
-    else:
-        terms = size
-        matrix = _derivative_powers
     out = (
-        matrix(first - 0.5, terms),
+        _derivative_powers(first - 0.5, size),
         weights / _PIECES,
         np.ones(_PIECES),
-        np.stack([matrix(row - 0.5, terms) for row in second]),
+        np.stack([_derivative_powers(row - 0.5, size) for row in second]),
         weights / (_PIECES * _SPLIT),
     )
     for arr in out:
@@ -149,11 +132,18 @@ def _unit_levels(
 
 
 def _norms(values: np.ndarray) -> np.ndarray:
-    """|p'| from p' values (…, d, n), overwriting them: (…, n)."""
+    """|p'| from p' values (d, n) or (P, d, n), overwriting them: (n,) or (P, n). (p' itself,
+    not |p'|² as one polynomial: that would save a ufunc or two, but its rounding, about
+    1e-16 of C² (C the size of p' on [0, 1]), swamps the speed near a zero of p' of order
+    k over a width of about 1e-16^(1/2k); measured 1.7e-10 of the length at a flat end with
+    p' ~ (1 − t)³.)"""
     np.multiply(values, values, out=values)
-    total = values[..., 0, :]
-    for c in range(1, values.shape[-2]):  # d − 1 additions beat a reduction over d
-        total += values[..., c, :]
+    if values.ndim == 2:
+        total = values[0]
+        for c in range(1, values.shape[0]):  # d − 1 additions beat a reduction over d
+            total += values[c]
+    else:
+        total = values.sum(axis=1)
     out: np.ndarray = np.sqrt(total, out=total)
     return out
 
@@ -183,28 +173,11 @@ def partial(coeffs: np.ndarray, start: np.ndarray, end: np.ndarray) -> np.ndarra
 
 def unit_integral(coeffs: np.ndarray, rtol: float) -> float:
     """∫_0^1 |p'| to a relative accuracy rtol. The first level and the refinement of its
-    rejected pieces use the fixed nodes; what still fails goes on in _finish. Up to degree
-    _SQUARED_UP_TO of p, |p'|² is evaluated there as the one polynomial q (one product and
-    two ufuncs instead of one product and d + 1 ufuncs, and this is most of the work): its
-    rounding, about C² ulps instead of C·|p'| (C the size of p' on [0, 1]), is harmless at
-    such degrees where these levels accept a piece (away from zeros of q). (Measured on
-    random curves of degree 9..14, still within 1e-13, but C grows fast with the degree;
-    past _SQUARED_UP_TO these levels evaluate p' itself.)"""
-    size = coeffs.shape[1]
-    first, weights, ones, second, second_weights = _unit_levels(size)
-    squared = size <= _SQUARED_UP_TO + 1
+    rejected pieces use the fixed nodes; what still fails goes on in _finish."""
+    first, weights, ones, second, second_weights = _unit_levels(coeffs.shape[1])
     # (the .dot method: a little cheaper than np.dot, which is cheaper than @, on operands
-    # this small; np.abs before np.sqrt: q < 0 only by rounding, where it is 0 within it,
-    # and half the cost of np.maximum with 0)
-    if squared:
-        operand = _square_map(size).dot(coeffs.T.dot(coeffs).ravel())  # q
-        values = operand.dot(first)
-        np.abs(values, out=values)
-        np.sqrt(values, out=values)
-    else:
-        operand = coeffs
-        values = _norms(coeffs.dot(first))
-    sums = values.reshape(_PIECES, -1).dot(weights)
+    # this small)
+    sums = _norms(coeffs.dot(first)).reshape(_PIECES, -1).dot(weights)
     size = np.abs(sums)
     spent, total = ones.dot(size).tolist()
     if spent <= rtol * total or not total > 0.0:  # most curves: accepted at once
@@ -214,13 +187,8 @@ def unit_integral(coeffs: np.ndarray, rtol: float) -> float:
         spent -= rejected
         total -= value
     # one piece as a rule, or two (a near-cusp by a joint): one product for all
-    values = operand.dot(second[bad[0]]) if bad.size == 1 else operand @ second[bad]
-    if squared:
-        np.abs(values, out=values)
-        np.sqrt(values, out=values)
-    else:
-        values = _norms(values)
-    sums = values.reshape(bad.size * _SPLIT, -1).dot(second_weights)
+    values = coeffs.dot(second[bad[0]]) if bad.size == 1 else coeffs @ second[bad]
+    sums = _norms(values).reshape(bad.size * _SPLIT, -1).dot(second_weights)
     size = np.abs(sums)
     new_spent, new_total = size.sum(axis=0).tolist()
     if spent + new_spent <= rtol * (total + new_total):

@@ -239,15 +239,20 @@ def test_a_line_with_a_flat_end():
 
 @pytest.mark.parametrize("scale", [2.0**600, 1e200, 1e-200, 2.0**-600])
 def test_huge_and_tiny_coordinates(scale):
-    # |p'|² would overflow (underflow) without the power-of-two scaling
+    # |p'|² would overflow (underflow) without the power-of-two scaling; in 3D, and in 2D
+    # (|x + iy| at the fixed levels, scaled only where the rule goes on past them: the
+    # near-cusp's curve does)
     rng = np.random.default_rng(1)
-    pts = rng.normal(size=(6, 3))
-    plain = lb.BezierCurve(pts)
-    big = lb.BezierCurve(pts * scale)
-    assert big.arc_length() / scale == pytest.approx(plain.arc_length(), rel=1e-13)
-    assert big.arc_length(0.2, 0.6) / scale == pytest.approx(plain.arc_length(0.2, 0.6), rel=1e-13)
-    s = plain.arc_length(0, 0.3)
-    assert big.parameter_at_length(s * scale) == pytest.approx(0.3, abs=1e-12)
+    near, _ = kinked_curve(Fraction(3, 10), Fraction(1, 10**9), seed=3)
+    for pts in (rng.normal(size=(6, 3)), rng.normal(size=(6, 2)), near.points):
+        plain = lb.BezierCurve(pts)
+        big = lb.BezierCurve(pts * scale)
+        assert big.arc_length() / scale == pytest.approx(plain.arc_length(), rel=1e-13)
+        part = plain.arc_length(0.2, 0.6)
+        assert big.arc_length(0.2, 0.6) / scale == pytest.approx(part, rel=1e-13)
+        s, total = plain.arc_length(0, 0.3), plain.arc_length()
+        t = big.parameter_at_length(s * scale)  # (the near-cusp is at 0.3: t is ill-posed)
+        assert plain.arc_length(0, t) == pytest.approx(s, rel=0, abs=2e-12 * total)
 
 
 # ---------------------------------------------------------------------- the rule itself

@@ -50,7 +50,8 @@ _EDGE_TOL = 1e-6  # eigenvalues this far outside [0, 1] are still tried (then cl
 class _Poly:
     """p/scale and its derivatives as Taylor coefficients about 1/2, (d, N+1) each (on
     demand); scale is a power of two (a float curve with huge or tiny coordinates keeps its
-    coefficients scaled, see Curve.__init__). `speed`: arc length's (coeffs, scale), once."""
+    coefficients scaled, see Curve.__init__). `speed`: parameter_at_length's (coeffs,
+    scale) with coeffs safe to square (_arclength.scaled), once."""
 
     def __init__(self, base: np.ndarray, scale: float) -> None:
         self._coeffs = {0: base}
@@ -120,26 +121,18 @@ def _speed_coefficients(curve: Curve) -> tuple[np.ndarray, float]:
     derivative's squares neither overflow nor underflow (scale a power of two; cached)."""
     poly = _poly(curve)
     if poly.speed is None:
-        base, scale = poly[0], poly.scale
-        # the largest |coefficient| of p' (not of the constant term: a far translation
-        # does not matter); a Python max over these few numbers is cheaper than numpy's
-        terms = base.ravel().tolist()
-        del terms[:: base.shape[1]]
-        peak = max(map(abs, terms), default=0.0)
-        if peak != 0.0 and not 2.0**-400 <= peak <= 2.0**400:
-            step = math.ldexp(1.0, math.frexp(peak)[1])
-            base, scale = base / step, scale * step
-        poly.speed = (base, scale)
+        coeffs, factor = _arclength.scaled(poly[0])
+        poly.speed = (coeffs, poly.scale * factor)
     return poly.speed
 
 
 def _curve_arc_length(curve: Curve, t0: float, t1: float) -> float:
     if t0 == t1:
         return 0.0
-    coeffs, scale = _speed_coefficients(curve)
+    poly = _poly(curve)
     if t0 == 0.0 and t1 == 1.0:  # most calls: the whole curve
-        return scale * _arclength.unit_integral(coeffs, RTOL)
-    return scale * _arclength.integral(coeffs, t0, t1, RTOL)
+        return poly.scale * _arclength.unit_integral(poly[0], RTOL)
+    return poly.scale * _arclength.integral(poly[0], t0, t1, RTOL)
 
 
 def arc_length(
@@ -157,8 +150,8 @@ def arc_length(
         and end == 1
         and getattr(obj, "segments", None) is None
     ):
-        coeffs, scale = _speed_coefficients(cast("Curve", obj))
-        return scale * _arclength.unit_integral(coeffs, RTOL)
+        poly = _poly(cast("Curve", obj))
+        return poly.scale * _arclength.unit_integral(poly[0], RTOL)
     segs = _segments(obj)
     hi = len(segs)  # 1 for a curve, N for a composite
     a = _parameter(start, "t0", hi)
@@ -179,9 +172,9 @@ def _length_table(curve: Curve) -> tuple[np.ndarray, np.ndarray]:
     """The accepted partition of [0, 1] with cumulative lengths (cached on the curve)."""
     cached: tuple[np.ndarray, np.ndarray] | None = curve.__dict__.get("_geometry_lengths")
     if cached is None:
-        coeffs, scale = _speed_coefficients(curve)
-        edges, cum = _arclength.table(coeffs, RTOL)
-        cached = (edges, cum * scale)
+        poly = _poly(curve)
+        edges, cum = _arclength.table(poly[0], RTOL)
+        cached = (edges, cum * poly.scale)
         curve.__dict__["_geometry_lengths"] = cached
     return cached
 

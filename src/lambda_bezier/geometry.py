@@ -6,9 +6,10 @@ to one on polynomials. We take the Taylor coefficients about t = 1/2 of that Bé
 (computed in Fractions and rounded once when the curve is exact): about 1/2 the monomials are
 as well conditioned on [0, 1] as the Bernstein basis, which matters for the root finding.
 
-- Arc length: adaptive Gauss–Legendre on the speed |p'(t)|, every interval of a level in one
-  vectorised evaluation; an interval is accepted when the rule on it and the sum of the rule
-  on its halves agree to the share of the tolerance its width gets (the halves' sum is kept).
+- Arc length (_arclength): adaptive quadrature of the speed |p'|, a piece accepted when a
+  Gauss–Lobatto and a higher Gauss–Legendre rule agree to its share of the tolerance, every
+  piece of a level in one vectorised evaluation, and pieces kept away from the complex
+  zeros of |p'|² (near-cusps) once the first two levels have not sufficed.
 - Extremes and closest points: all real roots in [0, 1] of a polynomial (a derivative
   component, or (p − q)·p'), from the eigenvalues of its companion matrix (batched over query
   points), accepted generously (near-real, slightly outside [0, 1]: a spurious candidate only
@@ -24,13 +25,13 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from fractions import Fraction
-from functools import cache
-from typing import TYPE_CHECKING, Literal, cast, overload
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
 import numpy.typing as npt
 
 from . import _algorithms as alg
+from . import _arclength
 from ._lazy import generated
 
 if TYPE_CHECKING:
@@ -41,20 +42,21 @@ if TYPE_CHECKING:
 _bernstein = generated("bernstein")
 
 RTOL = 1e-12  # the relative accuracy arc_length and parameter_at_length aim for
-_GL_ORDER = 20  # Gauss–Legendre points per interval
-_FIRST_PIECES = 24  # equal intervals the adaptive rule starts from (most curves end there)
-_SPLIT = 4  # a rejected interval is cut in this many (fewer levels near a near-cusp)
-_MAX_LEVELS = 60  # bisection depth: widths down to 2^-60 of the range
 _IMAG_TOL = 1e-4  # eigenvalues with a larger imaginary part (in u = t - 1/2) are not roots
 _EDGE_TOL = 1e-6  # eigenvalues this far outside [0, 1] are still tried (then clipped)
 
 
 # ---------------------------------------------------------------------- polynomial data
 class _Poly:
-    """p and its derivatives as Taylor coefficients about 1/2, (d, N+1) each (on demand)."""
+    """p/scale and its derivatives as Taylor coefficients about 1/2, (d, N+1) each (on
+    demand); scale is a power of two (a float curve with huge or tiny coordinates keeps its
+    coefficients scaled, see Curve.__init__). `speed`: parameter_at_length's (coeffs,
+    scale) with coeffs safe to square (_arclength.scaled), once."""
 
-    def __init__(self, base: np.ndarray) -> None:
+    def __init__(self, base: np.ndarray, scale: float) -> None:
         self._coeffs = {0: base}
+        self.scale = scale
+        self.speed: tuple[np.ndarray, float] | None = None
 
     def __getitem__(self, k: int) -> np.ndarray:
         out = self._coeffs.get(k)
@@ -63,30 +65,33 @@ class _Poly:
         return out
 
 
-def _centred_coefficients(curve: Curve) -> np.ndarray:
-    """(d, N+1) Taylor coefficients about t = 1/2 of the curve's Bézier form, computed in
-    Fractions and rounded once when the curve is exact. A float curve already holds them
-    (Curve._derivative_coeffs[0], from the same generated centred matrices)."""
-    if not curve._tabulated:  # a classical curve of degree 0 or past the tables
+def _centred_coefficients(curve: Curve) -> tuple[np.ndarray, float]:
+    """(coeffs, scale): p = scale · Σ_e coeffs[:, e] (t − 1/2)^e, the (d, N+1) Taylor
+    coefficients about t = 1/2 of the curve's Bézier form, computed in Fractions and rounded
+    once when the curve is exact (scale 1). A float curve already holds them
+    (Curve._derivative_coeffs[0], from the same generated centred matrices, filled in
+    exactly at the tabulated degrees), for its points divided by Curve._scale."""
+    base = curve._derivative_coeffs.get(0)
+    if base is None:  # a classical curve of degree 0 or past the tables
         raise ValueError(
             f"this uses the generated Taylor tables, which cover degrees "
             f"{_bernstein.DEGREES[0]}..{_bernstein.DEGREES[-1]}; the curve has degree "
             f"{curve.degree}"
         )
     if not curve.is_exact:
-        return np.ascontiguousarray(curve._derivative_coeffs[0], dtype=float)
+        return base, curve._scale
     bez = curve.to_bezier()
     rows = bez._exact_points
     assert rows is not None  # an exact curve has an exact Bézier form
     cols = tuple(zip(*_bernstein.CENTRED[bez.degree], strict=True))  # row i: B_i about 1/2
     exact = alg.exact_matmul(cols, rows)  # (N+1, d)
-    return np.array([[float(v) for v in row] for row in exact]).T.copy()
+    return np.array([[float(v) for v in row] for row in exact]).T.copy(), 1.0
 
 
 def _poly(curve: Curve) -> _Poly:
     cached: _Poly | None = curve.__dict__.get("_geometry_poly")
     if cached is None:
-        cached = curve.__dict__["_geometry_poly"] = _Poly(_centred_coefficients(curve))
+        cached = curve.__dict__["_geometry_poly"] = _Poly(*_centred_coefficients(curve))
     return cached
 
 
@@ -111,143 +116,50 @@ def _parameter(value: object, name: str, hi: int) -> float:
 
 
 # ---------------------------------------------------------------------- arc length
-@cache
-def _gauss_legendre(order: int) -> tuple[np.ndarray, np.ndarray]:
-    nodes, weights = np.polynomial.legendre.leggauss(order)
-    return (nodes + 1) / 2, weights / 2  # on [0, 1]
-
-
-@cache
-def _pattern() -> np.ndarray:
-    """(3, order) nodes on [0, 1]: the rule on the interval, on its left and right half."""
-    x, _ = _gauss_legendre(_GL_ORDER)
-    return np.stack([x, x / 2, 0.5 + x / 2])
-
-
-@cache
-def _unit_powers(pieces: int, size: int) -> np.ndarray:
-    """(size, nodes): (t − 1/2)^e at the level-0 nodes of [0, 1] cut into `pieces`, so the
-    derivative there is one matrix product (the common case: the whole curve)."""
-    left = np.arange(pieces)[:, None, None] / pieces
-    t = (left + _pattern() / pieces).ravel()
-    out = np.ascontiguousarray(((t[:, None] - 0.5) ** np.arange(size)).T)
-    out.setflags(write=False)
-    return out
-
-
-def _unit_speeds(d1: np.ndarray, pieces: int) -> np.ndarray:
-    """(pieces, 3) Gauss–Legendre sums (unscaled) of the speed over the level-0 intervals of
-    [0, 1] and their halves; few array operations, since this is most calls' whole work."""
-    values = d1 @ _unit_powers(pieces, d1.shape[1])  # (d, nodes)
-    speed = np.sqrt(np.einsum("ij,ij->j", values, values))
-    sums: np.ndarray = speed.reshape(3 * pieces, _GL_ORDER) @ _gauss_legendre(_GL_ORDER)[1]
-    return sums.reshape(pieces, 3)
-
-
-def _rule(d1: np.ndarray, left: np.ndarray, right: np.ndarray) -> np.ndarray:
-    """Gauss–Legendre of the speed over each [left_i, right_i] (vectorised)."""
-    x, w = _gauss_legendre(_GL_ORDER)
-    width = right - left
-    t = left[:, None] + width[:, None] * x
-    speed = np.sqrt(np.square(_eval(d1, t)).sum(axis=1)).reshape(t.shape)
-    out: np.ndarray = (speed @ w) * width
-    return out
-
-
-def _level(
-    d1: np.ndarray, left: np.ndarray, right: np.ndarray, unit: bool
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The rule on each interval and on each of its halves, in one evaluation."""
-    width = right - left
-    if unit:  # left, right = k/K, (k+1)/K
-        sums = _unit_speeds(d1, left.size) * width[:, None]
-    else:
-        values = _eval(d1, left[:, None, None] + width[:, None, None] * _pattern())
-        speed = np.sqrt(np.square(values).sum(axis=1)).reshape(left.size, 3, _GL_ORDER)
-        sums = (speed @ _gauss_legendre(_GL_ORDER)[1]) * width[:, None]
-    return sums[:, 0], sums[:, 1] / 2, sums[:, 2] / 2
-
-
-@overload
-def _adaptive(
-    d1: np.ndarray, a: float, b: float, rtol: float, *, table: Literal[False] = False
-) -> float: ...
-@overload
-def _adaptive(
-    d1: np.ndarray, a: float, b: float, rtol: float, *, table: Literal[True]
-) -> tuple[np.ndarray, np.ndarray]: ...
-def _adaptive(
-    d1: np.ndarray, a: float, b: float, rtol: float, *, table: bool = False
-) -> float | tuple[np.ndarray, np.ndarray]:
-    """∫_a^b |p'| to a relative accuracy rtol: an interval is accepted when the rule on it
-    and the sum over its halves agree to its share (by width) of rtol · total (the halves'
-    sum is kept, far more accurate than that test asks); a rejected one is cut in _SPLIT.
-    With table=True: the accepted half-intervals' sorted edges (K+1,) and integrals (K,)."""
-    pieces = _FIRST_PIECES
-    left = a + (b - a) * np.arange(pieces) / pieces
-    right = np.append(left[1:], b)
-    unit = a == 0.0 and b == 1.0
-    done_left: list[np.ndarray] = []
-    done_values: list[np.ndarray] = []
-    accepted_total = 0.0
-    for level in range(_MAX_LEVELS):
-        whole, first, second = _level(d1, left, right, unit and level == 0)
-        both = first + second
-        total = accepted_total + float(both.sum())
-        ok = np.abs(whole - both) <= (rtol * max(total, 0.0) / (b - a)) * (right - left)
-        if level == _MAX_LEVELS - 1 or total == 0.0:
-            ok[:] = True
-        every = bool(ok.all())
-        if not table and every and not done_values:  # the common case: accepted at once
-            return math.fsum(both)
-        if every or ok.any():
-            accepted_total += float(both[ok].sum())
-            done_left.append(left[ok])
-            done_values.append(np.stack([first[ok], second[ok]], axis=1).ravel())
-        if every:
-            break
-        keep = ~ok
-        width = (right[keep] - left[keep])[:, None] / _SPLIT
-        left = (left[keep][:, None] + width * np.arange(_SPLIT)).ravel()
-        right = np.append(left[1:], 0.0)
-        right[_SPLIT - 1 :: _SPLIT] = left[_SPLIT - 1 :: _SPLIT] + width[:, 0]
-    values = np.concatenate(done_values)
-    if not table:
-        return math.fsum(values)
-    starts = np.concatenate(done_left)
-    order = np.argsort(starts, kind="stable")
-    lo = starts[order]
-    pairs = values.reshape(-1, 2)[order]
-    mids = (lo + np.append(lo[1:], b)) / 2  # the accepted intervals tile [a, b]
-    edges = np.append(np.stack([lo, mids], axis=1).ravel(), b)
-    return edges, pairs.ravel()
+def _speed_coefficients(curve: Curve) -> tuple[np.ndarray, float]:
+    """(coeffs, scale): p = scale · Σ_e coeffs[:, e] (t − 1/2)^e, coeffs of a size whose
+    derivative's squares neither overflow nor underflow (scale a power of two; cached)."""
+    poly = _poly(curve)
+    if poly.speed is None:
+        coeffs, factor = _arclength.scaled(poly[0])
+        poly.speed = (coeffs, poly.scale * factor)
+    return poly.speed
 
 
 def _curve_arc_length(curve: Curve, t0: float, t1: float) -> float:
     if t0 == t1:
         return 0.0
-    d1 = _poly(curve)[1]
-    if t0 == 0.0 and t1 == 1.0:  # most calls: the whole curve, accepted at the first level
-        sums = _unit_speeds(d1, _FIRST_PIECES)
-        both = (sums[:, 1] + sums[:, 2]) / 2
-        total = math.fsum(both)
-        # _adaptive's test with every piece's share rtol · total / K, both sides times K
-        if np.abs(sums[:, 0] - both).max() <= RTOL * total:
-            return total / _FIRST_PIECES
-    return _adaptive(d1, t0, t1, RTOL)
+    poly = _poly(curve)
+    if t0 == 0.0 and t1 == 1.0:  # most calls: the whole curve
+        return poly.scale * _arclength.unit_integral(poly[0], RTOL)
+    return poly.scale * _arclength.integral(poly[0], t0, t1, RTOL)
 
 
 def arc_length(
     obj: Curve | CompositeCurve, start: Fraction | float = 0, end: Fraction | float | None = None
 ) -> float:
     """∫ |p'| from `start` to `end` (a curve: 0 <= start <= end <= 1; a composite:
-    0 <= start <= end <= N in its global u), to a relative accuracy of 1e-12."""
+    0 <= start <= end <= N in its global u), to a relative accuracy of 1e-12. (Not below
+    the rounding of p' itself, about 1e-16 of its size on [0, 1] times end − start, which
+    matters only where |p'| is far smaller than that all over [start, end]: a short
+    interval around a cusp.)"""
+    if (  # Curve.arc_length's defaults (ints 0 and 1) on a curve: most calls
+        type(start) is int
+        and type(end) is int
+        and start == 0
+        and end == 1
+        and getattr(obj, "segments", None) is None
+    ):
+        poly = _poly(cast("Curve", obj))
+        return poly.scale * _arclength.unit_integral(poly[0], RTOL)
     segs = _segments(obj)
     hi = len(segs)  # 1 for a curve, N for a composite
     a = _parameter(start, "t0", hi)
     b = _parameter(hi if end is None else end, "t1", hi)
     if a > b:
         raise ValueError(f"arc_length needs t0 <= t1, got t0={start}, t1={end}")
+    if hi == 1:
+        return _curve_arc_length(segs[0], a, b)
     total = []
     for i, seg in enumerate(segs):
         lo, up = max(a - i, 0.0), min(b - i, 1.0)
@@ -260,18 +172,18 @@ def _length_table(curve: Curve) -> tuple[np.ndarray, np.ndarray]:
     """The accepted partition of [0, 1] with cumulative lengths (cached on the curve)."""
     cached: tuple[np.ndarray, np.ndarray] | None = curve.__dict__.get("_geometry_lengths")
     if cached is None:
-        edges, values = _adaptive(_poly(curve)[1], 0.0, 1.0, RTOL, table=True)
-        cum = np.concatenate([[0.0], np.cumsum(values)])
-        cum[-1] = math.fsum(values)
-        cached = (edges, cum)
+        poly = _poly(curve)
+        edges, cum = _arclength.table(poly[0], RTOL)
+        cached = (edges, cum * poly.scale)
         curve.__dict__["_geometry_lengths"] = cached
     return cached
 
 
 def _curve_parameter_at_length(curve: Curve, s: np.ndarray) -> np.ndarray:
     """t with L(0, t) = s for lengths 0 <= s <= L (vectorised safeguarded Newton inside the
-    accepted interval holding s, where L(t) = cumulative + Gauss–Legendre up to t)."""
-    d1 = _poly(curve)[1]
+    accepted piece holding s, where L(t) = cumulative + the Gauss rule up to t: on a part
+    of an accepted piece that rule is at least as accurate as on the whole)."""
+    coeffs, scale = _speed_coefficients(curve)
     edges, cum = _length_table(curve)
     k = np.clip(np.searchsorted(cum, s, side="right") - 1, 0, edges.size - 2)
     base, lo, hi = cum[k], edges[k].copy(), edges[k + 1].copy()
@@ -282,13 +194,13 @@ def _curve_parameter_at_length(curve: Curve, s: np.ndarray) -> np.ndarray:
     start = edges[k]
     goal = RTOL * cum[-1] / 16
     for _ in range(100):
-        f = base + _rule(d1, start, t) - s
+        f = base + scale * _arclength.partial(coeffs, start, t) - s
         done = np.abs(f) <= goal
         if done.all():
             break
         lo = np.where(f < 0, t, lo)
         hi = np.where(f > 0, t, hi)
-        speed = np.sqrt(np.square(_eval(d1, t)).sum(axis=1))
+        speed = scale * _arclength.speeds(coeffs, t)
         with np.errstate(divide="ignore", invalid="ignore"):
             step = t - f / speed
         inside = np.isfinite(step) & (step > lo) & (step < hi)

@@ -16,10 +16,9 @@ so the value's is smaller than the test rule's by about ρ^-m = ρ^-16 and the d
 is an honest estimate of the test rule's error and a very safe one of the value's. (The
 gap matters: with a 20-point Gauss value, degree 39 against 29, the two rules were both
 off by 4e-12 in the same direction on a random curve, at ρ ≈ 1.6, and the length by
-2e-12.) It
-can fail where that does not hold, near a zero with y small against the piece (the speed
-is then |t − x| up to a smooth factor, errors decay only algebraically and two rules can
-agree by chance):
+2e-12.) It can fail where that does not hold, near a zero with y small against the piece
+(the speed is then |t − x| up to a smooth factor, errors decay only algebraically and two
+rules can agree by chance):
 - a kink in a Gauss rule's end gap is invisible to any pair of Gauss rules (all nodes on
   one side of it, both integrate the same smooth branch exactly): measured, two in a
   thousand random kinks in a piece fooled a 12/24-point Gauss pair, by up to 1e-8 of the
@@ -28,17 +27,17 @@ agree by chance):
   two levels' widths, where the errors are 1e-7..1e-9 of the total, but a few in a hundred
   at the widths where they come near the tolerance (seen: 1.6e-12 where 1e-12 was due). So
   after the first two levels (the second cuts each rejected piece of the first in _SPLIT)
-  nothing is refined blindly: the zeros of q are computed
-  (companion eigenvalues, once) and the rejected pieces are cut at their real parts and
-  graded geometrically towards them, so that every piece keeps a distance from every zero
-  of at least its own width (ρ >= 4.2), where the two rules' difference is a safe estimate.
+  nothing is refined blindly: the zeros of q are computed (companion eigenvalues, once)
+  and the rejected pieces are cut at their real parts and graded geometrically towards
+  them, so that every piece keeps a distance from every zero of at least its own width
+  (ρ >= 4.2), where the two rules' difference is a safe estimate.
 
 Rounding. p' is evaluated with an absolute error of a few ulps of C = Σ |p' coefficient| ·
 2^-k (its size on [0, 1]); where the speed is much smaller than C over all of [a, b] (a short
 interval around a cusp) that, not rtol, bounds the accuracy, and the rule accepts a
 difference within it instead of refining for ever.
 
-Cost. A near-cusp is what makes a piece fail, and about one random quintic in four has one
+Cost. A near-cusp is what makes a piece fail, and about one random quintic in five has one
 near enough, so the refinement must be cheap too. On [0, 1] (most calls) the nodes of the
 first level, and of the refinement of each of its pieces, are fixed, and so are the
 matrices of powers there: such a level is one matrix product and a few ufuncs, and numpy's

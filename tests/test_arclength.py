@@ -239,9 +239,8 @@ def test_a_line_with_a_flat_end():
 
 @pytest.mark.parametrize("scale", [2.0**600, 1e200, 1e-200, 2.0**-600])
 def test_huge_and_tiny_coordinates(scale):
-    # |p'|² would overflow (underflow) without the power-of-two scaling; in 3D, and in 2D
-    # (|x + iy| at the fixed levels, scaled only where the rule goes on past them: the
-    # near-cusp's curve does)
+    # |p'|² would overflow (underflow) without the power-of-two scaling: in 3D, in 2D, and
+    # for a near-cusp's curve, on which the rule goes on past its fixed levels
     rng = np.random.default_rng(1)
     near, _ = kinked_curve(Fraction(3, 10), Fraction(1, 10**9), seed=3)
     for pts in (rng.normal(size=(6, 3)), rng.normal(size=(6, 2)), near.points):
@@ -258,14 +257,30 @@ def test_huge_and_tiny_coordinates(scale):
 # ---------------------------------------------------------------------- the rule itself
 def test_the_rule_pair_is_exact_where_it_should_be():
     nodes, weights = _arclength._pair()
-    m, g = _arclength._ORDER, _arclength._VALUE
-    lobatto, gauss = nodes[:m], nodes[m:]
-    assert lobatto[0] == 0 and lobatto[-1] == 1  # the test rule sees both ends
-    for k in range(2 * g):
+    m = _arclength._ORDER
+    value, test = weights[:, 1], weights[:, 0] + weights[:, 1]
+    assert nodes.size == 2 * m - 1 and nodes[0] == 0 and nodes[m - 1] == 1  # sees both ends
+    assert np.all(value > 0) and np.all(test[m:] == 0)  # the test rule uses its m nodes only
+    for k in range(3 * m):
         exact = 1 / (k + 1)
-        assert gauss**k @ weights[m:, 1] == pytest.approx(exact, rel=1e-14)
+        if k <= 3 * m - 3:
+            assert nodes**k @ value == pytest.approx(exact, rel=1e-14)
         if k <= 2 * m - 3:
-            assert nodes**k @ weights[:, 0] == pytest.approx(0, abs=1e-15)
+            assert nodes**k @ test == pytest.approx(exact, rel=1e-14)
+    # the same construction for m = 4 is Gander and Gautschi's 7-point Lobatto–Kronrod rule
+    # (adaptlob): nodes ±1, ±sqrt(2/3), ±1/sqrt(5), 0; weights 11/210, 72/245, 125/294, 16/35
+    try:
+        _arclength._ORDER = 4
+        _arclength._pair.cache_clear()
+        small, small_weights = _arclength._pair()
+    finally:
+        _arclength._ORDER = m
+        _arclength._pair.cache_clear()
+    order = np.argsort(small)
+    half = [-1, -math.sqrt(2 / 3), -1 / math.sqrt(5), 0, 1 / math.sqrt(5), math.sqrt(2 / 3), 1]
+    np.testing.assert_allclose(2 * small[order] - 1, half, atol=1e-15)
+    published = np.array([11 / 210, 72 / 245, 125 / 294, 16 / 35, 125 / 294, 72 / 245, 11 / 210])
+    np.testing.assert_allclose(2 * small_weights[order, 1], published, rtol=1e-14)
 
 
 @pytest.mark.parametrize("y", [0.0, 1e-10, 1e-4])

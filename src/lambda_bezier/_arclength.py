@@ -2,22 +2,23 @@
 (d, N+1): the engine behind geometry.arc_length and parameter_at_length.
 
 The rule. [a, b] is cut in equal pieces. On each piece two rules are compared, the m-point
-Gauss–Lobatto rule (exact to degree 2m − 3) and the g-point Gauss–Legendre rule (to degree
-2g − 1, higher), and the piece keeps the latter's value. A level is accepted when the
-differences of its pieces and of those accepted before add up to at most rtol · total;
-otherwise the pieces whose difference is within their share (by width) of that are
-accepted and the others are refined.
+Gauss–Lobatto rule (exact to degree 2m − 3) and its Kronrod extension (2m − 1 points, the
+same and m − 1 more, exact to degree 3m − 3), and the piece keeps the latter's value (a
+Gauss value rule as far above the test would need about m + 8 points of its own). A level
+is accepted when the differences of its pieces and of those accepted before add up to at
+most rtol · total; otherwise the pieces whose difference is within their share (by width)
+of that are accepted and the others are refined.
 
 Why the estimate holds. The speed is analytic away from the complex zeros of
 q = |p'|² = Σ_c p'_c², which come in conjugate pairs x ± iy (y = 0: a cusp, p' = 0). On a
 piece whose Bernstein ellipse of parameter ρ avoids them, the errors fall like ρ^-(degree),
-so the value's is smaller than the test rule's by about ρ^-(2g − 2m + 2) = ρ^-18 and the
-difference is an honest estimate of the test rule's error and a very safe one of the
-value's. (The gap matters: with a 20-point value, ρ^-10, the two rules were both off by
-4e-12 in the same direction on a random curve, at ρ ≈ 1.6, and the length by 2e-12.) It
-can fail where that does not hold, near a zero with y small against the piece (the speed
-is then |t − x| up to a smooth factor, errors decay only algebraically and two rules can
-agree by chance):
+so the value's is smaller than the test rule's by about ρ^-m = ρ^-16 and the difference
+is an honest estimate of the test rule's error and a very safe one of the value's. (The
+gap matters: with a 20-point Gauss value, degree 39 against 29, the two rules were both
+off by 4e-12 in the same direction on a random curve, at ρ ≈ 1.6, and the length by
+2e-12.) It can fail where that does not hold, near a zero with y small against the piece
+(the speed is then |t − x| up to a smooth factor, errors decay only algebraically and two
+rules can agree by chance):
 - a kink in a Gauss rule's end gap is invisible to any pair of Gauss rules (all nodes on
   one side of it, both integrate the same smooth branch exactly): measured, two in a
   thousand random kinks in a piece fooled a 12/24-point Gauss pair, by up to 1e-8 of the
@@ -26,17 +27,17 @@ agree by chance):
   two levels' widths, where the errors are 1e-7..1e-9 of the total, but a few in a hundred
   at the widths where they come near the tolerance (seen: 1.6e-12 where 1e-12 was due). So
   after the first two levels (the second cuts each rejected piece of the first in _SPLIT)
-  nothing is refined blindly: the zeros of q are computed
-  (companion eigenvalues, once) and the rejected pieces are cut at their real parts and
-  graded geometrically towards them, so that every piece keeps a distance from every zero
-  of at least its own width (ρ >= 4.2), where the two rules' difference is a safe estimate.
+  nothing is refined blindly: the zeros of q are computed (companion eigenvalues, once)
+  and the rejected pieces are cut at their real parts and graded geometrically towards
+  them, so that every piece keeps a distance from every zero of at least its own width
+  (ρ >= 4.2), where the two rules' difference is a safe estimate.
 
 Rounding. p' is evaluated with an absolute error of a few ulps of C = Σ |p' coefficient| ·
 2^-k (its size on [0, 1]); where the speed is much smaller than C over all of [a, b] (a short
 interval around a cusp) that, not rtol, bounds the accuracy, and the rule accepts a
 difference within it instead of refining for ever.
 
-Cost. A near-cusp is what makes a piece fail, and about one random quintic in four has one
+Cost. A near-cusp is what makes a piece fail, and about one random quintic in five has one
 near enough, so the refinement must be cheap too. On [0, 1] (most calls) the nodes of the
 first level, and of the refinement of each of its pieces, are fixed, and so are the
 matrices of powers there: such a level is one matrix product and a few ufuncs, and numpy's
@@ -50,8 +51,7 @@ from functools import cache
 
 import numpy as np
 
-_ORDER = 16  # m: the Lobatto test rule's points (both ends among them)
-_VALUE = 24  # g: the Gauss rule's points, whose sums are the values (degree 47 against 29)
+_ORDER = 16  # m: the Lobatto test rule's points (both ends among them); 2m − 1 in all
 _PIECES = 24  # equal pieces of the first level
 _SPLIT = 16  # a rejected first-level piece is cut in this many
 _SNAP = 1e-9  # zeros of q nearer the real axis than this count as real (double: a cusp)
@@ -61,18 +61,34 @@ _MAX_PIECES = 4096  # a level with more pieces than this is accepted as it stand
 
 @cache
 def _pair() -> tuple[np.ndarray, np.ndarray]:
-    """Nodes (m + g,) on [0, 1], the m-point Lobatto rule's then the g-point Gauss rule's,
-    and weights (m + g, 2): column 0 gives (Lobatto − Gauss), column 1 the Gauss value."""
-    legendre = np.polynomial.legendre.Legendre.basis(_ORDER - 1)
-    inner = np.sort(legendre.deriv().roots().real)
-    lobatto = np.concatenate([[-1.0], inner, [1.0]])
-    w_lobatto = 2.0 / (_ORDER * (_ORDER - 1) * legendre(lobatto) ** 2)
-    gauss, w_gauss = np.polynomial.legendre.leggauss(_VALUE)
-    nodes = (np.concatenate([lobatto, gauss]) + 1) / 2
-    weights = np.zeros((_ORDER + _VALUE, 2))
-    weights[:_ORDER, 0] = w_lobatto / 2
-    weights[_ORDER:, 0] = -w_gauss / 2
-    weights[_ORDER:, 1] = w_gauss / 2
+    """Nodes (2m − 1,) on [0, 1]: the m-point Gauss–Lobatto rule's, then the m − 1 of its
+    Kronrod extension; and weights (2m − 1, 2): column 0 gives (Lobatto − Lobatto–Kronrod),
+    column 1 the Lobatto–Kronrod value (exact to degree 3m − 3, against 2m − 3).
+
+    The extension's nodes are the zeros of the polynomial E of degree m − 1 orthogonal to
+    all of lower degree with the weight ω(x) = (1 − x²) P'_{m−1}(x) of the Lobatto nodes
+    (Kronrod's condition); the weights then make the 2m − 1 nodes' rule interpolatory. For
+    m = 4 this is Gander and Gautschi's 7-point rule (tests/test_arclength.py)."""
+    legendre = np.polynomial.legendre
+    derivative = legendre.Legendre.basis(_ORDER - 1).deriv()
+    lobatto = np.concatenate([[-1.0], np.sort(derivative.roots().real), [1.0]])
+    w_lobatto = 2.0 / (_ORDER * (_ORDER - 1) * legendre.legval(lobatto, np.eye(_ORDER)[-1]) ** 2)
+    x, w = legendre.leggauss(3 * _ORDER)  # exact for ω P_j P_k, j, k < m
+    basis = legendre.legvander(x, _ORDER - 1)
+    gram = (basis * (w * (1 - x * x) * derivative(x))[:, None]).T @ basis
+    e = np.zeros(_ORDER)
+    e[-1] = 1.0
+    e[:-1] = np.linalg.solve(gram[:-1, :-1], -gram[:-1, -1])
+    kronrod = np.sort(legendre.legroots(e).real)
+    nodes = np.concatenate([lobatto, kronrod])
+    moments = np.zeros(nodes.size)
+    moments[0] = 2.0
+    w_value = np.linalg.solve(legendre.legvander(nodes, nodes.size - 1).T, moments)
+    weights = np.zeros((nodes.size, 2))
+    weights[:, 0] = -w_value / 2
+    weights[:_ORDER, 0] += w_lobatto / 2
+    weights[:, 1] = w_value / 2
+    nodes = (nodes + 1) / 2
     nodes.setflags(write=False)
     weights.setflags(write=False)
     return nodes, weights
@@ -111,9 +127,9 @@ def _unit_levels(
     size: int,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The fixed levels on [0, 1] for p with `size` Taylor coefficients: the derivative
-    powers (size, K·(m+g)) at the first level's nodes (p's coefficients times them are p'
+    powers (size, K·(2m−1)) at the first level's nodes (p's coefficients times them are p'
     there), the weights scaled to its width 1/K and K ones (to add up the pieces' sums with
-    .dot, cheaper than .sum(axis=0)); then the derivative powers (K, size, S·(m+g)) at the
+    .dot, cheaper than .sum(axis=0)); then the derivative powers (K, size, S·(2m−1)) at the
     nodes of the S parts of each first-level piece, and the weights scaled to 1/(K·S)."""
     nodes, weights = _pair()
     first = ((np.arange(_PIECES)[:, None] + nodes) / _PIECES).ravel()
@@ -126,19 +142,6 @@ def _unit_levels(
         np.stack([_derivative_powers(row - 0.5, size) for row in second]),
         weights / (_PIECES * _SPLIT),
     )
-    for arr in out:
-        arr.setflags(write=False)
-    return out
-
-
-@cache
-def _plane_levels(size: int) -> tuple[np.ndarray, np.ndarray]:
-    """_unit_levels' two matrices as complex numbers, for a plane curve: with its
-    coefficients as x + iy, p' at the nodes is one complex matrix-vector product and |p'|
-    one np.abs (which takes |x + iy| without overflow, and costs less than squaring,
-    adding and a square root: about 5 us instead of 7 for the first level)."""
-    first, _, _, second, _ = _unit_levels(size)
-    out = (first.astype(complex), second.astype(complex))
     for arr in out:
         arr.setflags(write=False)
     return out
@@ -182,7 +185,7 @@ def speeds(coeffs: np.ndarray, t: np.ndarray) -> np.ndarray:
 
 
 def _sums(coeffs: np.ndarray, left: np.ndarray, width: np.ndarray) -> np.ndarray:
-    """(P, 2): (Lobatto − Gauss, Gauss) on each [left_i, left_i + width_i]."""
+    """(P, 2): (test − value, value) on each [left_i, left_i + width_i]."""
     nodes, weights = _pair()
     speed = speeds(coeffs, left[:, None] + width[:, None] * nodes)
     sums: np.ndarray = np.dot(speed, weights) * width[:, None]
@@ -190,33 +193,29 @@ def _sums(coeffs: np.ndarray, left: np.ndarray, width: np.ndarray) -> np.ndarray
 
 
 def partial(coeffs: np.ndarray, start: np.ndarray, end: np.ndarray) -> np.ndarray:
-    """The Gauss rule for ∫|p'| over each [start_i, end_i] (vectorised), for coefficients
+    """The value rule for ∫|p'| over each [start_i, end_i] (vectorised), for coefficients
     from `scaled`."""
     nodes, weights = _pair()
     width = end - start
-    speed = speeds(coeffs, start[:, None] + width[:, None] * nodes[_ORDER:])
-    out: np.ndarray = np.dot(speed, weights[_ORDER:, 1]) * width
+    speed = speeds(coeffs, start[:, None] + width[:, None] * nodes)
+    out: np.ndarray = np.dot(speed, weights[:, 1]) * width
     return out
 
 
 def unit_integral(coeffs: np.ndarray, rtol: float) -> float:
     """∫_0^1 |p'| to a relative accuracy rtol (coefficients of any size). The first level
     and the refinement of its rejected pieces use the fixed nodes; what still fails goes
-    on in _finish."""
-    size = coeffs.shape[1]
-    first, weights, ones, second, second_weights = _unit_levels(size)
+    on in _finish. (Every product here stays single-threaded in OpenBLAS, which is what
+    makes these products cheap: a plane curve's p' as one complex matrix-vector product,
+    x + iy, with |p'| from np.abs, measured 2 us faster on an idle machine, but OpenBLAS
+    runs a complex product of 4096 entries or more on two threads, which with the other
+    core busy doubled its time and once stretched a benchmark run of 100 curves to 0.8 s;
+    cut into single-threaded blocks it was no faster than this.)"""
+    coeffs, factor = scaled(coeffs)
+    first, weights, ones, second, second_weights = _unit_levels(coeffs.shape[1])
     # (the .dot method: a little cheaper than np.dot, which is cheaper than @, on operands
     # this small)
-    plane = coeffs.shape[0] == 2
-    if plane:  # x + iy: no squares, no scaling
-        first, second = _plane_levels(size)
-        operand = np.ascontiguousarray(coeffs.T).view(complex).ravel()
-        speed = np.abs(operand.dot(first))
-        factor = 1.0
-    else:
-        operand, factor = scaled(coeffs)
-        speed = _norms(operand.dot(first))
-    sums = speed.reshape(_PIECES, -1).dot(weights)
+    sums = _norms(coeffs.dot(first)).reshape(_PIECES, -1).dot(weights)
     size = np.abs(sums)
     spent, total = ones.dot(size).tolist()
     if spent <= rtol * total or not total > 0.0:  # most curves: accepted at once
@@ -228,22 +227,18 @@ def unit_integral(coeffs: np.ndarray, rtol: float) -> float:
     # one piece as a rule, or two (a near-cusp by a joint): a product each (cheaper than one
     # batched product of a fancy-indexed stack)
     if bad.size == 1:
-        values = operand.dot(second[bad[0]])
+        values = coeffs.dot(second[bad[0]])
     else:
-        values = np.concatenate([operand.dot(second[k]) for k in bad.tolist()], axis=-1)
-    speed = np.abs(values) if plane else _norms(values)
-    sums = speed.reshape(bad.size * _SPLIT, -1).dot(second_weights)
+        values = np.concatenate([coeffs.dot(second[k]) for k in bad], axis=-1)
+    sums = _norms(values).reshape(bad.size * _SPLIT, -1).dot(second_weights)
     size = np.abs(sums)
     new_spent, new_total = size.sum(axis=0).tolist()
     if spent + new_spent <= rtol * (total + new_total):
         return float(factor * (total + new_total))
-    if plane:  # _finish squares p': from here on the scaled coefficients
-        operand, factor = scaled(coeffs)
-        sums, total, spent = sums / factor, total / factor, spent / factor
     width = 1.0 / (_PIECES * _SPLIT)
     left = ((bad[:, None] * _SPLIT + np.arange(_SPLIT)) * width).ravel()
     widths = np.full(left.size, width)
-    return factor * _finish(operand, 0.0, 1.0, rtol, left, widths, sums, total, spent, None)
+    return factor * _finish(coeffs, 0.0, 1.0, rtol, left, widths, sums, total, spent, None)
 
 
 def integral(coeffs: np.ndarray, a: float, b: float, rtol: float) -> float:

@@ -7,7 +7,7 @@ to one on polynomials. We take the Taylor coefficients about t = 1/2 of that Bé
 as well conditioned on [0, 1] as the Bernstein basis, which matters for the root finding.
 
 - Arc length (_arclength): adaptive quadrature of the speed |p'|, a piece accepted when a
-  Gauss–Lobatto and a higher Gauss–Legendre rule agree to its share of the tolerance, every
+  Gauss–Lobatto rule and its Kronrod extension agree to its share of the tolerance, every
   piece of a level in one vectorised evaluation, and pieces kept away from the complex
   zeros of |p'|² (near-cusps) once the first two levels have not sufficed.
 - Extremes and closest points: all real roots in [0, 1] of a polynomial (a derivative

@@ -292,18 +292,22 @@ def _finish(
     e = np.arange(1.0, coeffs.shape[1])
     noise = _NOISE * float((np.abs(coeffs[:, 1:]) * (e * 0.5 ** (e - 1))).sum())
     while True:
+        # a difference within rounding is accepted only from pieces the zeros of q have cut
+        # (stage 2 on), where it cannot be truncation; before that it could be (a curve
+        # with coefficients large against its length has a large rounding allowance)
+        allowance = noise if stage >= 2 else 0.0
         size = np.abs(sums)
         level_spent, level_total = size.sum(axis=0).tolist()
         total = accepted + level_total
         if (
-            spent + level_spent <= max(rtol * total, noise * span)
+            spent + level_spent <= max(rtol * total, allowance * span)
             or left.size > _MAX_PIECES
             or not total > 0
         ):
             if parts is not None:
                 parts.append((left, sums[:, 1]))
             return float(total)
-        ok = size[:, 0] <= np.maximum(rtol * total / span, noise) * width
+        ok = size[:, 0] <= np.maximum(rtol * total / span, allowance) * width
         accepted += float(size[ok, 1].sum())
         spent += float(size[ok, 0].sum())
         if parts is not None:

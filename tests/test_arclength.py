@@ -18,7 +18,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import lambda_bezier as lb
-from lambda_bezier import _arclength
+from lambda_bezier.hazmat import arclength as _arclength
 
 mpmath.mp.dps = 30
 RTOL = 1e-12

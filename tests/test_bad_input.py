@@ -17,7 +17,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import lambda_bezier as lb
-from lambda_bezier import _algorithms as alg
+from lambda_bezier.hazmat import kernels as alg
 from lambda_bezier.cli import main
 
 pytestmark = pytest.mark.filterwarnings("error")  # a RuntimeWarning is an escape too

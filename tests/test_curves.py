@@ -225,7 +225,7 @@ def test_geometric_levels(data):
 
 def test_evaluation_across_cache_blocks():
     """More parameters than one evaluation block: every block agrees with de Casteljau."""
-    from lambda_bezier._algorithms import BLOCK
+    from lambda_bezier.hazmat.kernels import BLOCK
 
     curve = lb.BezierCurve(np.random.default_rng(9).normal(size=(7, 3)))
     t = np.random.default_rng(10).random(2 * BLOCK + 17)

@@ -18,7 +18,7 @@ from reference import FAMILIES
 from scipy.optimize import minimize_scalar
 
 import lambda_bezier as lb
-from lambda_bezier._numbers import parse_number, parse_point
+from lambda_bezier.hazmat.numbers import parse_number, parse_point
 from lambda_bezier.cli import main
 
 LAMBDA_FAMILIES = ["same_degree", "bernstein_like"]

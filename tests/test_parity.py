@@ -407,7 +407,7 @@ def test_full_reduce_line_and_reduce_error():
 def test_elevation_and_hodograph_formulas_match_tables():
     from lambda_bezier._generated import bernstein
 
-    from lambda_bezier import _bezier_forms as forms
+    from lambda_bezier.hazmat import forms
 
     for n in bernstein.DEGREES:
         assert forms.hodograph_matrix(n) == bernstein.HODOGRAPH[n]

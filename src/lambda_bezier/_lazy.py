@@ -58,15 +58,3 @@ class generated:  # noqa: N801  (reads as a module reference at the use sites)
 # where a family's tables live: a generated module (imported on first use) or the data of a
 # user's family (family.py); each has DEGREES, LAMBDA_RANGE, POWER, CENTRED, BERNSTEIN, ...
 TableSource: TypeAlias = "ModuleType | generated | FamilyData"
-
-
-class submodule:  # noqa: N801  (reads as a module at the use sites)
-    """Stands for lambda_bezier.<name>, imported on first attribute access: the algorithms
-    behind a few curve methods (intersections, reduction, geometry) cost `import lambda_bezier`
-    nothing until one of them is called."""
-
-    def __init__(self, name: str) -> None:
-        self._name = f"{__package__}.{name}"
-
-    def __getattr__(self, attr: str) -> Any:
-        return getattr(importlib.import_module(self._name), attr)

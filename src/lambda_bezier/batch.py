@@ -116,7 +116,7 @@ def evaluate_many(
             part = _float_matrix(cls._data, "centred", n, p).T @ pt
             coeffs += part * np.repeat(lams**p, dim)
         if k:
-            from ._algorithms import differentiate_coefficients
+            from .hazmat.kernels import differentiate_coefficients
 
             coeffs = differentiate_coefficients(coeffs.T, k).T
         # Every curve shares the parameter grid: one product with the monomials at the grid.

@@ -17,11 +17,11 @@ from typing import cast
 
 import numpy as np
 
-from . import _algorithms as alg
 from . import _validate as val
+from ._curve_base import Curve, Matrix, _combine_exact, _float_matrix, _tables
 from ._lazy import generated
 from ._validate import ParamLike
-from .curves import Curve, Matrix, _combine_exact, _float_matrix, _tables
+from .hazmat import kernels as alg
 
 
 class SameDegreeCurve(Curve):

@@ -13,7 +13,7 @@ from typing import SupportsFloat, cast
 
 def _energy_order(text: str) -> int:
     """--energy: an ASCII integer (argparse's int() would take '２' or '1_0')."""
-    from ._numbers import parse_int
+    from .hazmat.numbers import parse_int
 
     try:
         return parse_int(text)
@@ -156,7 +156,7 @@ def _negative_points_as_positionals(argv: list[str]) -> list[str]:
     number: '-1,2' would be an unknown option. Negative coordinates are the commonest there
     are, so after `optimal-lambda` such a word gets a leading space, which argparse reads as a
     positional and the number grammar strips."""
-    from ._numbers import NEGATIVE
+    from .hazmat.numbers import NEGATIVE
 
     if "optimal-lambda" not in argv:
         return argv
@@ -209,8 +209,8 @@ def _export(args: argparse.Namespace) -> int:
 def _optimal_lambda(args: argparse.Namespace) -> int:
     import json
 
-    from ._numbers import parse_point
     from .energy import ENERGY_NAMES, optimal_lambda
+    from .hazmat.numbers import parse_point
 
     try:
         points = [parse_point(p.lstrip(" ")) for p in args.points]

@@ -14,21 +14,15 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import TYPE_CHECKING
 
 import numpy as np
 import numpy.typing as npt
 
 from . import _validate as val
-from ._lazy import submodule
+from . import geometry as _geometry
 from ._validate import ParamLike, PointsLike
 from .curves import Curve
 from .joins import Joint, join
-
-if TYPE_CHECKING:
-    from . import geometry as _geometry
-else:  # imported when a geometry method is first called
-    _geometry = submodule("geometry")
 
 NAMES = ("C0", "C1", "C2", "G1", "G2")
 

@@ -43,8 +43,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import numpy.typing as npt
 
-from . import _algorithms as alg
-from ._algorithms import Row, Rows, Scalar
+from .hazmat import kernels as alg
+from .hazmat.kernels import Row, Rows, Scalar
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -477,7 +477,7 @@ def _number_out(x: Fraction | float) -> str | float:
 
 
 def _number_in(x: object, where: str) -> Fraction | float:
-    from ._numbers import parse_number
+    from .hazmat.numbers import parse_number
 
     if isinstance(x, bool) or not isinstance(x, str | int | float):
         raise ValueError(f"{where}: expected a number or a string 'p/q', got {x!r}")

@@ -20,12 +20,12 @@ from fractions import Fraction
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from ._singular import IsolatedRoot
 from ._validate import PointsLike
 from .curves import BezierCurve, Curve, Matrix, data_curve_class
 
 if TYPE_CHECKING:
     from .energy import Form
-    from .properties import IsolatedRoot
 
 FORMAT = 2  # the derived document's format this runtime reads
 MAX_DOCUMENT_BYTES = 50_000_000
@@ -99,8 +99,6 @@ class FamilyData:
                 (_fraction(entry[part][0], where), _ints(entry[part][1], where))
                 for part in ("ff", "fg", "gg")
             )
-        from .properties import IsolatedRoot
-
         self.SINGULAR: dict[int, tuple[Fraction | IsolatedRoot, ...]] = {}
         for key, roots in doc.get("singular_parameters", {}).items():
             self.SINGULAR[int(key)] = tuple(

@@ -30,9 +30,9 @@ from typing import TYPE_CHECKING, cast
 import numpy as np
 import numpy.typing as npt
 
-from . import _algorithms as alg
-from . import _arclength
 from ._lazy import generated
+from .hazmat import arclength as _arclength
+from .hazmat import kernels as alg
 
 if TYPE_CHECKING:
     from ._validate import ParamLike

@@ -122,7 +122,7 @@ def plot_de_casteljau(
     colors: Sequence[ColorType] | None = None,
 ) -> Axes:
     """The de Casteljau construction of p(t): every level of intermediate points."""
-    from ._algorithms import de_casteljau_triangle
+    from .hazmat.kernels import de_casteljau_triangle
 
     ax = _axes(ax)
     rows = de_casteljau_triangle([tuple(map(float, p)) for p in points], float(t))

@@ -7,38 +7,12 @@ exact isolating interval.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from fractions import Fraction
 
-from ._lazy import generated
+from . import _singular
+from ._singular import IsolatedRoot as IsolatedRoot
 
-_properties = generated("properties")
-
-
-@dataclass(frozen=True)
-class IsolatedRoot:
-    """An irrational λ: the only root of Σ coefficients[j] λ^j in the open interval (lo, hi)."""
-
-    lo: Fraction
-    hi: Fraction
-    coefficients: tuple[int, ...]  # integers, lowest degree first
-
-    def polynomial(self, x: Fraction) -> Fraction:
-        return sum((c * Fraction(x) ** j for j, c in enumerate(self.coefficients)), Fraction(0))
-
-    def __float__(self) -> float:
-        lo, hi = self.lo, self.hi
-        sign_lo = self.polynomial(lo) > 0
-        for _ in range(64):  # exact bisection: the interval halves, the root stays inside
-            mid = (lo + hi) / 2
-            if (self.polynomial(mid) > 0) == sign_lo:
-                lo = mid
-            else:
-                hi = mid
-        return float((lo + hi) / 2)
-
-    def __contains__(self, x: Fraction | float) -> bool:
-        return self.lo < Fraction(x) < self.hi
+IsolatedRoot.__module__ = __name__  # documented (and pickled) as lambda_bezier.properties'
 
 
 def singular_parameters(family: object, n: int) -> tuple[Fraction | IsolatedRoot, ...]:
@@ -62,29 +36,10 @@ def singular_parameters(family: object, n: int) -> tuple[Fraction | IsolatedRoot
         raise ValueError(
             f"n: degree {n} is outside the {cls.family} range {degrees[0]}..{degrees[-1]}"
         )
-    # a family from load_family carries its table; a built-in one's is in generated/
-    table = getattr(cls._data, "SINGULAR", None)
-    if table is not None:
-        roots: tuple[Fraction | IsolatedRoot, ...] = table[n]
-        return roots
-    out: list[Fraction | IsolatedRoot] = []
-    for entry in _properties.SINGULAR[cls.family][n]:
-        if isinstance(entry, tuple):
-            (lo, hi), coefficients = entry
-            out.append(IsolatedRoot(Fraction(lo), Fraction(hi), tuple(coefficients)))
-        else:
-            out.append(Fraction(entry))
-    return tuple(out)
+    return _singular.roots(cls.family, cls._data, n)
 
 
 def is_singular(family: object, n: int, lam: Fraction | float) -> bool:
     """True when the degree-n basis of `family` is linearly dependent at this λ: exact for an
     exact λ; a float λ counts as singular within 1e-12 of a singular parameter."""
-    for root in singular_parameters(family, n):
-        if isinstance(lam, float):
-            if abs(float(root) - lam) <= 1e-12 * max(1.0, abs(lam)):
-                return True
-        elif isinstance(root, Fraction) and Fraction(lam) == root:
-            return True
-        # an exact rational λ is never an irrational root
-    return False
+    return _singular.is_root(singular_parameters(family, n), lam)

@@ -1,32 +1,27 @@
 """Classical Bézier forms at any degree: hodograph, elevation, segments by blossoming.
 
-The generated tables (generated/bernstein.py) cover degrees 1..14, derived symbolically; the
-functions here take over beyond them (and for degree 0), so that a classical curve of any
-degree works. Each works in the arithmetic of its input: Fractions stay exact. Tests check
-that they agree with the generated tables where both exist.
+The formulas hold at every degree, so a classical curve of any degree works (generated/
+bernstein.py tabulates degrees 1..14, derived symbolically; tests check that the two agree
+where both exist). Each works in the arithmetic of its input: Fractions stay exact.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 from fractions import Fraction
+from functools import cache
 
 import numpy as np
 
-from ._algorithms import Scalar
-from ._lazy import generated
-
-_bernstein = generated("bernstein")
+from .kernels import Scalar
 
 Rows = tuple[tuple[Fraction | float, ...], ...]  # exact (Fractions) or float rows
 
 
+@cache
 def hodograph_matrix(degree: int) -> tuple[tuple[Fraction, ...], ...]:
-    """(n, n+1) weights of p' = n Σ (P_{i+1} - P_i) B_{i,n-1}: the generated table where it
-    exists, the same formula beyond. Degree 0 has a zero derivative: one zero row."""
-    if degree in _bernstein.DEGREES:
-        table: tuple[tuple[Fraction, ...], ...] = _bernstein.HODOGRAPH[degree]
-        return table
+    """(n, n+1) weights of p' = n Σ (P_{i+1} - P_i) B_{i,n-1} (equal to generated/bernstein.py's
+    HODOGRAPH where that exists: a test checks). Degree 0 has a zero derivative: one zero row."""
     if degree == 0:
         return ((Fraction(0),),)
     return tuple(
@@ -38,12 +33,10 @@ def hodograph_matrix(degree: int) -> tuple[tuple[Fraction, ...], ...]:
     )
 
 
+@cache
 def elevation_matrix(degree: int) -> tuple[tuple[Fraction, ...], ...]:
     """(n+2, n+1) weights of one degree elevation, Q_i = i/(n+1) P_{i-1} + (1 - i/(n+1)) P_i:
-    the generated table where it exists, the same formula beyond."""
-    if degree in _bernstein.ELEVATION:
-        table: tuple[tuple[Fraction, ...], ...] = _bernstein.ELEVATION[degree]
-        return table
+    equal to generated/bernstein.py's ELEVATION where that exists (a test checks)."""
     top = degree + 1
     return tuple(
         tuple(

@@ -31,8 +31,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from . import _algorithms as alg
-from . import _bezier_forms as forms
+from . import forms
+from . import kernels as alg
 
 LEVELS = 8  # subdivision depth: pieces of width 2^-8 seed Newton
 MAX_PAIRS = 50_000  # a guard against runaway subdivision (degenerate input)

@@ -102,3 +102,25 @@ def exact_matmul(weights: Sequence[Sequence[Fraction]], rows: ExactRows) -> Exac
         )
         for wrow in weights
     )
+
+
+def solve_exact(a: list[list[Fraction]], b: list[list[Fraction]]) -> list[list[Fraction]] | None:
+    """x with a x = b (a: rows × cols, full column rank), or None when inconsistent."""
+    rows, cols = len(a), len(a[0])
+    aug = [list(a[r]) + list(b[r]) for r in range(rows)]
+    piv_row = 0
+    for c in range(cols):
+        p = next((r for r in range(piv_row, rows) if aug[r][c] != 0), None)
+        if p is None:
+            raise ArithmeticError("rank deficient")
+        aug[piv_row], aug[p] = aug[p], aug[piv_row]
+        inv = 1 / aug[piv_row][c]
+        aug[piv_row] = [v * inv for v in aug[piv_row]]
+        for r in range(rows):
+            if r != piv_row and aug[r][c] != 0:
+                f = aug[r][c]
+                aug[r] = [v - f * w for v, w in zip(aug[r], aug[piv_row], strict=True)]
+        piv_row += 1
+    if any(v != 0 for r in range(piv_row, rows) for v in aug[r][cols:]):
+        return None
+    return [aug[r][cols:] for r in range(cols)]

@@ -15,8 +15,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from . import _algorithms as alg
-from . import _bezier_forms as forms
+from . import forms
+from . import kernels as alg
 
 Rows = tuple[tuple[Fraction, ...], ...]  # exact control points
 

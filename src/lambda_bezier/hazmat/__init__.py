@@ -1,0 +1,23 @@
+"""lambda_bezier.hazmat: pure functions on coefficient and point arrays.
+
+The rule: a module here imports numpy, the standard library and other hazmat modules,
+nothing else from lambda_bezier (import-linter checks it in CI, and
+tests/test_runtime_layers.py). A kernel that needs a generated table takes it as an
+argument. Inputs are not validated here: the curve classes above check them first, so
+calling these directly with bad arrays gives numpy's errors, not ours (the name follows the
+`bezier` package's `hazmat`).
+
+- `kernels`: de Casteljau, subdivision, blocked Horner, exact matrix products;
+- `forms`: classical Bézier hodograph, elevation and blossoming at any degree;
+- `arclength`: adaptive Gauss-Lobatto/Kronrod quadrature of the speed;
+- `intersect`: curve/curve intersection, self-intersection and point location;
+- `reduce`: degree reduction, exact or least squares;
+- `implicit`: implicitization (imports SymPy when called, never at import);
+- `numbers`: the exact-number grammar of the command line and of export files.
+
+The submodules are imported on use: ``from lambda_bezier.hazmat import kernels``.
+"""
+
+from __future__ import annotations
+
+__all__ = ["arclength", "forms", "implicit", "intersect", "kernels", "numbers", "reduce"]

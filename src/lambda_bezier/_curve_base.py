@@ -24,16 +24,40 @@ import numpy.typing as npt
 
 from . import _singular
 from . import _validate as val
-from . import geometry as _geometry
-from ._lazy import TableSource, generated
+from ._lazy import TableSource, deferred, generated
 from ._validate import ParamLike, PointsLike
 from .hazmat import forms
-from .hazmat import intersect as _intersect
 from .hazmat import kernels as alg
-from .hazmat import reduce as _reduce
 
 if TYPE_CHECKING:
+    from types import ModuleType
+
     from sympy import Poly
+
+    from . import geometry as _geometry
+    from .hazmat import intersect as _intersect
+    from .hazmat import reduce as _reduce
+else:
+
+    def _load_geometry() -> ModuleType:
+        from . import geometry
+
+        return geometry
+
+    def _load_intersect() -> ModuleType:
+        from .hazmat import intersect
+
+        return intersect
+
+    def _load_reduce() -> ModuleType:
+        from .hazmat import reduce
+
+        return reduce
+
+    # imported when a method first needs them, then bound (`import lambda_bezier` stays light)
+    _geometry = deferred(_load_geometry)
+    _intersect = deferred(_load_intersect)
+    _reduce = deferred(_load_reduce)
 
 _bernstein = generated("bernstein")
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib
+from collections.abc import Callable
 from types import ModuleType
 from typing import TYPE_CHECKING, Any, TypeAlias
 
@@ -58,3 +59,19 @@ class generated:  # noqa: N801  (reads as a module reference at the use sites)
 # where a family's tables live: a generated module (imported on first use) or the data of a
 # user's family (family.py); each has DEGREES, LAMBDA_RANGE, POWER, CENTRED, BERNSTEIN, ...
 TableSource: TypeAlias = "ModuleType | generated | FamilyData"
+
+
+class deferred:  # noqa: N801  (reads as a module at the use sites)
+    """Stands for a module that `load` imports on the first attribute access (with an
+    ordinary import statement, which the layer checks see). Each attribute read is then kept
+    on this object, so a curve method bound to a lower module's function pays one attribute
+    lookup per call, not the import machinery (issue #29), and `import lambda_bezier` pays
+    nothing for algorithms it has not used."""
+
+    def __init__(self, load: Callable[[], ModuleType]) -> None:
+        self._load = load
+
+    def __getattr__(self, attr: str) -> Any:
+        value = getattr(self._load(), attr)
+        setattr(self, attr, value)  # bound once: later reads skip __getattr__
+        return value

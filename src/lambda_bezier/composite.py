@@ -14,15 +14,29 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
+from typing import TYPE_CHECKING
 
 import numpy as np
 import numpy.typing as npt
 
 from . import _validate as val
-from . import geometry as _geometry
+from ._lazy import deferred
 from ._validate import ParamLike, PointsLike
 from .curves import Curve
 from .joins import Joint, join
+
+if TYPE_CHECKING:
+    from types import ModuleType
+
+    from . import geometry as _geometry
+else:
+
+    def _load_geometry() -> ModuleType:
+        from . import geometry
+
+        return geometry
+
+    _geometry = deferred(_load_geometry)  # imported when a geometry method is first called
 
 NAMES = ("C0", "C1", "C2", "G1", "G2")
 

@@ -1,0 +1,151 @@
+"""The runtime's layers (issue #27): no import circle in lambda_bezier, hazmat self-contained,
+and import-linter's contracts (pyproject.toml) kept. Imports inside functions count;
+imports under `if TYPE_CHECKING:` (annotations only) do not."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import grimp
+
+ROOT = Path(__file__).resolve().parents[1]
+# generated/ and derive/ are installed inside the package (lambda_bezier._generated, ._derive
+# in a non-editable install): they are not the runtime, and derive has contracts of its own
+NOT_RUNTIME = ("lambda_bezier._generated", "lambda_bezier._derive")
+
+
+def _graph(package: str) -> grimp.ImportGraph:
+    return grimp.build_graph(package, exclude_type_checking_imports=True, cache_dir=None)
+
+
+def _edges(graph: grimp.ImportGraph, skip: tuple[str, ...] = ()) -> dict[str, set[str]]:
+    def kept(module: str) -> bool:
+        return not any(module == s or module.startswith(s + ".") for s in skip)
+
+    return {
+        m: {i for i in graph.find_modules_directly_imported_by(m) if kept(i)}
+        for m in graph.modules
+        if kept(m)
+    }
+
+
+def cycles(edges: dict[str, set[str]]) -> list[list[str]]:
+    """The strongly connected components with more than one module (Tarjan), each sorted."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on_stack: set[str] = set()
+    found: list[list[str]] = []
+
+    def visit(v: str) -> None:
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on_stack.add(v)
+        for w in sorted(edges.get(v, ())):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on_stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            component = []
+            while True:
+                w = stack.pop()
+                on_stack.discard(w)
+                component.append(w)
+                if w == v:
+                    break
+            if len(component) > 1:
+                found.append(sorted(component))
+
+    for v in sorted(edges):
+        if v not in index:
+            visit(v)
+    return found
+
+
+def _describe(graph: grimp.ImportGraph, component: list[str]) -> str:
+    members = set(component)
+    lines = []
+    for m in component:
+        for i in sorted(graph.find_modules_directly_imported_by(m) & members):
+            details = graph.get_import_details(importer=m, imported=i)
+            where = ", ".join(f"l.{d['line_number']}" for d in details)
+            lines.append(f"  {m} -> {i} ({where})")
+    return "\n".join(lines)
+
+
+def test_no_import_cycle_in_the_runtime():
+    graph = _graph("lambda_bezier")
+    found = cycles(_edges(graph, NOT_RUNTIME))
+    assert not found, "import cycles in lambda_bezier:\n" + "\n\n".join(
+        _describe(graph, c) for c in found
+    )
+
+
+def test_a_cycle_through_a_function_level_import_is_found(tmp_path, monkeypatch):
+    pkg = tmp_path / "cyclepkg"
+    pkg.mkdir()
+    (pkg / "__init__.py").write_text("")
+    (pkg / "low.py").write_text(
+        textwrap.dedent(
+            """
+            def helper():
+                from . import high  # the upward import a lazy dispatch hides
+                return high
+            """
+        )
+    )
+    (pkg / "high.py").write_text("from . import low, typing_only\n")
+    # an annotation-only import back up closes no circle
+    (pkg / "typing_only.py").write_text(
+        "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    from . import high\n"
+    )
+    monkeypatch.syspath_prepend(str(tmp_path))
+    graph = _graph("cyclepkg")
+    assert cycles(_edges(graph)) == [["cyclepkg.high", "cyclepkg.low"]]
+    assert "cyclepkg.low -> cyclepkg.high (l.3)" in _describe(
+        graph, ["cyclepkg.high", "cyclepkg.low"]
+    )
+
+
+def test_hazmat_imports_nothing_else_from_lambda_bezier():
+    graph = _graph("lambda_bezier")
+    hazmat = "lambda_bezier.hazmat"
+    modules = {m for m in graph.modules if m == hazmat or m.startswith(hazmat + ".")}
+    assert {f"{hazmat}.{name}" for name in ("kernels", "arclength", "intersect")} <= modules
+    outside = sorted(
+        f"{m} -> {i}"
+        for m in modules
+        for i in graph.find_modules_directly_imported_by(m)
+        if i.startswith("lambda_bezier") and i not in modules
+    )
+    assert not outside, outside
+
+
+def test_hazmat_all_names_its_modules():
+    import lambda_bezier.hazmat as hazmat
+
+    here = Path(hazmat.__file__).parent
+    assert sorted(hazmat.__all__) == sorted(p.stem for p in here.glob("[!_]*.py"))
+
+
+def test_import_linter_contracts_are_kept():
+    env = dict(os.environ)
+    # the source tree, whether the package is installed editable or not
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(ROOT / "src"), env.get("PYTHONPATH")]))
+    # lint-imports, run by this interpreter (the console script may be another environment's)
+    code = "from importlinter.cli import lint_imports_command; lint_imports_command()"
+    out = subprocess.run(
+        [sys.executable, "-c", code, "--no-cache"],
+        cwd=ROOT,
+        env=env,
+        capture_output=True,
+        text=True,
+    )
+    assert out.returncode == 0, out.stdout + out.stderr
+    assert "0 broken" in out.stdout

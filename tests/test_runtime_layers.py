@@ -149,3 +149,45 @@ def test_import_linter_contracts_are_kept():
     )
     assert out.returncode == 0, out.stdout + out.stderr
     assert "0 broken" in out.stdout
+
+
+def test_pickles_made_before_the_layers_load():
+    """Pickles name a class by module and name: the classes that moved (Curve, BezierCurve to
+    _curve_base, IsolatedRoot to _singular) still pickle and unpickle under their documented
+    modules."""
+    import base64
+    import json
+    import pickle
+    from fractions import Fraction as F
+
+    import numpy as np
+
+    import lambda_bezier as lb
+    from lambda_bezier.geometry import ClosestPoint
+
+    data = json.loads((ROOT / "tests" / "data" / "old_pickles.json").read_text())
+    old = {k: pickle.loads(base64.b64decode(v)) for k, v in data["pickles"].items()}
+    a = lb.SameDegreeCurve([(0, 0), (1, 2), (3, 2), (4, 0)], lam=F(1, 2))
+    want = {
+        "bezier_exact": lb.BezierCurve([(0, 0), (1, 2), (3, 2), (4, 0)]),
+        "bezier_float": lb.BezierCurve([(0.0, 0.5), (1.5, 2.0), (3.0, -1.0)]),
+        "same_degree": a,
+        "bernstein_like": lb.BernsteinLikeCurve([(0, 0), (1, 2), (3, 2), (4, 0)], lam=F(-1, 3)),
+    }
+    for name, curve in want.items():
+        got = old[name]
+        assert type(got) is type(curve), name
+        assert got.control_points() == curve.control_points() and got.lam == curve.lam, name
+        assert np.array_equal(got.evaluate([0.25, 0.5]), curve.evaluate([0.25, 0.5])), name
+        assert pickle.loads(pickle.dumps(curve)).control_points() == curve.control_points()
+    assert old["isolated_root"] == lb.IsolatedRoot(F(1), F(2), (-2, 0, 1))
+    assert abs(float(old["isolated_root"]) - 2**0.5) < 1e-15
+    point = old["closest_point"]
+    assert type(point) is ClosestPoint and (point.t, point.distance) == (0.5, 1.5)
+    composite = old["composite"]
+    assert type(composite) is lb.CompositeCurve and len(composite.segments) == 2
+    assert composite.segments[1].control_points()[-1] == (10, 3)
+    # new pickles name the documented modules, not the private ones the classes live in
+    assert b"lambda_bezier.curves" in pickle.dumps(want["bezier_exact"])
+    assert b"_curve_base" not in pickle.dumps(want["bezier_exact"])
+    assert b"lambda_bezier.properties" in pickle.dumps(lb.IsolatedRoot(F(1), F(2), (-2, 0, 1)))

@@ -6,15 +6,15 @@ to one on polynomials. We take the Taylor coefficients about t = 1/2 of that Bé
 (computed in Fractions and rounded once when the curve is exact): about 1/2 the monomials are
 as well conditioned on [0, 1] as the Bernstein basis, which matters for the root finding.
 
-- Arc length (_arclength): adaptive quadrature of the speed |p'|, a piece accepted when a
+- Arc length (hazmat.arclength): adaptive quadrature of the speed |p'|, a piece accepted when a
   Gauss–Lobatto rule and its Kronrod extension agree to its share of the tolerance, every
   piece of a level in one vectorised evaluation, and pieces kept away from the complex
   zeros of |p'|² (near-cusps) once the first two levels have not sufficed.
-- Extremes and closest points: all real roots in [0, 1] of a polynomial (a derivative
-  component, or (p − q)·p'), from the eigenvalues of its companion matrix (batched over query
-  points), accepted generously (near-real, slightly outside [0, 1]: a spurious candidate only
-  costs one evaluation, since the answer is the best of all candidates and the ends) and
-  polished by Newton steps. Nothing starts from a guess.
+- Extremes and closest points (hazmat.extremes, hazmat.roots): all real roots in [0, 1] of a
+  polynomial (a derivative component, or (p − q)·p'), from the eigenvalues of its companion
+  matrix (batched over query points), accepted generously (near-real, slightly outside [0,
+  1]: a spurious candidate only costs one evaluation, since the answer is the best of all
+  candidates and the ends) and polished by Newton steps. Nothing starts from a guess.
 
 A CompositeCurve is handled segment by segment on its global parameter u ∈ [0, N].
 """
@@ -22,7 +22,6 @@ A CompositeCurve is handled segment by segment on its global parameter u ∈ [0,
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import TYPE_CHECKING, cast
@@ -32,6 +31,7 @@ import numpy.typing as npt
 
 from ._lazy import generated
 from .hazmat import arclength as _arclength
+from .hazmat import extremes
 from .hazmat import kernels as alg
 
 if TYPE_CHECKING:
@@ -42,8 +42,6 @@ if TYPE_CHECKING:
 _bernstein = generated("bernstein")
 
 RTOL = 1e-12  # the relative accuracy arc_length and parameter_at_length aim for
-_IMAG_TOL = 1e-4  # eigenvalues with a larger imaginary part (in u = t - 1/2) are not roots
-_EDGE_TOL = 1e-6  # eigenvalues this far outside [0, 1] are still tried (then clipped)
 
 
 # ---------------------------------------------------------------------- polynomial data
@@ -246,85 +244,11 @@ def parameter_at_length(obj: Curve | CompositeCurve, s: npt.ArrayLike) -> np.nda
 
 
 # ---------------------------------------------------------------------- real roots
-def _significant(coeffs: np.ndarray) -> np.ndarray:
-    """Drop leading (highest-power) coefficients whose term is below 1e-13 of the largest on
-    |u| <= 1/2: rounding noise (a degree-elevated float curve's top coefficient is zero up
-    to it) would make the companion matrix's other entries huge. The candidates found
-    without such a term are polished and judged on the full polynomial, so what it can move
-    is a flat spot's value by about 1e-13 of the curve's size."""
-    c = np.atleast_2d(coeffs)
-    size = np.abs(c) * 0.5 ** np.arange(c.shape[-1])
-    scale = size.max()
-    if scale == 0:
-        return c[..., :1]
-    keep = np.nonzero((size > 1e-13 * scale).any(axis=0))[0]
-    return c[..., : keep[-1] + 1]
-
-
-def _candidate_roots(c: np.ndarray) -> np.ndarray:
-    """Candidate roots t in [0, 1] of each polynomial Σ_e c[j, e] (t - 1/2)^e (rows share
-    their degree, its leading coefficient nonzero): (m, degree) with NaN where none."""
-    m, size = c.shape
-    degree = size - 1
-    if degree < 1:
-        return np.full((m, 0), np.nan)
-    comp = np.zeros((m, degree, degree))
-    if degree > 1:
-        comp[:, np.arange(1, degree), np.arange(degree - 1)] = 1.0
-    comp[:, :, -1] = -c[:, :-1] / c[:, -1:]
-    roots = np.linalg.eigvals(comp)
-    real = roots.real
-    ok = (np.abs(roots.imag) <= _IMAG_TOL) & (np.abs(real) <= 0.5 + _EDGE_TOL)
-    return np.where(ok, np.clip(real, -0.5, 0.5) + 0.5, np.nan)
-
-
-def _newton(
-    t: np.ndarray,
-    f: Callable[[np.ndarray], np.ndarray],
-    fprime: Callable[[np.ndarray], np.ndarray],
-    steps: int = 4,
-) -> np.ndarray:
-    """A few guarded Newton steps on every finite candidate (kept inside [0, 1])."""
-    for _ in range(steps):
-        good = np.isfinite(t)
-        tt = np.where(good, t, 0.5)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            step = f(tt) / fprime(tt)
-        t = np.where(good & np.isfinite(step), np.clip(tt - step, 0.0, 1.0), t)
-    return t
-
-
 # ---------------------------------------------------------------------- bounding box
 def _curve_box(curve: Curve) -> tuple[np.ndarray, np.ndarray]:
     poly = _poly(curve)
-    candidates = []
-    for axis in range(curve.dimension):
-        c1 = _significant(poly[1][axis])
-        c2 = poly[2][axis : axis + 1]
-        if c1.shape[-1] < 2 or not c1.any():
-            continue
-        roots = _candidate_roots(c1)[0]
-        roots = roots[np.isfinite(roots)]
-
-        def slope(t: np.ndarray, a: int = axis) -> np.ndarray:
-            return _eval(poly[1][a : a + 1], t)[:, 0]
-
-        def bend(t: np.ndarray, c: np.ndarray = c2) -> np.ndarray:
-            return _eval(c, t)[:, 0]
-
-        polished = _newton(
-            roots.copy(),
-            slope,
-            bend,
-        )
-        candidates += [roots, polished]
-    t = np.concatenate([np.empty(0), *candidates])
-    # a root within 1e-12 of an end adds nothing to the end itself (the coordinate is flat
-    # there), and the ends are the Bézier form's first and last control points, exactly
-    t = t[(t > 1e-12) & (t < 1 - 1e-12)]
-    bez = curve.to_bezier().points
-    values = np.vstack([bez[[0, -1]], _eval(poly[0], t)])
-    return values.min(axis=0), values.max(axis=0)
+    ends = curve.to_bezier().points[[0, -1]]
+    return extremes.box(poly[0], poly[1], poly[2], ends)
 
 
 def bounding_box(obj: Curve | CompositeCurve) -> tuple[np.ndarray, np.ndarray]:
@@ -365,43 +289,7 @@ def _queries(q: npt.ArrayLike, dimension: int) -> tuple[np.ndarray, bool]:
 
 def _curve_closest(curve: Curve, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Parameters, points and squared distances of the nearest points to each row of q."""
-    poly = _poly(curve)
-    p = _significant(poly[0])  # (d, N'+1) with the true leading term
-    m, dim = q.shape
-    size = p.shape[1]
-    cands = [np.zeros((m, 1)), np.ones((m, 1))]
-    if size >= 2:
-        dp = alg.differentiate_coefficients(p, 1)  # (d, N')
-        # g(u) = (p(u) - q) · p'(u) = Σ_c p_c p'_c − Σ_c q_c p'_c: degree 2N' − 1
-        fixed = sum(np.convolve(p[c], dp[c]) for c in range(dim))
-        g = np.tile(fixed, (m, 1))
-        g[:, : size - 1] -= q @ dp
-        roots = _candidate_roots(g)
-        d2 = alg.differentiate_coefficients(p, 2)
-
-        def gval(t: np.ndarray) -> np.ndarray:
-            shape = t.shape
-            pts = _eval(p, t).reshape(*shape, dim)
-            der = _eval(dp, t).reshape(*shape, dim)
-            g: np.ndarray = ((pts - q[:, None, :]) * der).sum(-1)
-            return g
-
-        def gprime(t: np.ndarray) -> np.ndarray:
-            shape = t.shape
-            pts = _eval(p, t).reshape(*shape, dim)
-            der = _eval(dp, t).reshape(*shape, dim)
-            sec = _eval(d2, t).reshape(*shape, dim)
-            dg: np.ndarray = (der * der).sum(-1) + ((pts - q[:, None, :]) * sec).sum(-1)
-            return dg
-
-        polished = _newton(roots.copy(), gval, gprime)
-        cands += [np.nan_to_num(roots, nan=0.0), np.nan_to_num(polished, nan=0.0)]
-    t = np.concatenate(cands, axis=1)
-    pts = _eval(poly[0], t).reshape(*t.shape, dim)
-    dist2 = np.square(pts - q[:, None, :]).sum(-1)
-    best = np.argmin(dist2, axis=1)
-    rows = np.arange(m)
-    return t[rows, best], pts[rows, best], dist2[rows, best]
+    return extremes.closest(_poly(curve)[0], q)
 
 
 def closest_point(obj: Curve | CompositeCurve, q: npt.ArrayLike) -> ClosestPoint:

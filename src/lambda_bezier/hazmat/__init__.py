@@ -10,6 +10,8 @@ calling these directly with bad arrays gives numpy's errors, not ours (the name 
 - `kernels`: de Casteljau, subdivision, blocked Horner, exact matrix products;
 - `forms`: classical Bézier hodograph, elevation and blossoming at any degree;
 - `arclength`: adaptive Gauss-Lobatto/Kronrod quadrature of the speed;
+- `roots`: real roots in [0, 1] of polynomials about t = 1/2 (companion matrix, Newton);
+- `extremes`: tight bounding boxes and closest points from those roots;
 - `intersect`: curve/curve intersection, self-intersection and point location;
 - `reduce`: degree reduction, exact or least squares;
 - `implicit`: implicitization (imports SymPy when called, never at import);
@@ -20,4 +22,14 @@ The submodules are imported on use: ``from lambda_bezier.hazmat import kernels``
 
 from __future__ import annotations
 
-__all__ = ["arclength", "forms", "implicit", "intersect", "kernels", "numbers", "reduce"]
+__all__ = [
+    "arclength",
+    "extremes",
+    "forms",
+    "implicit",
+    "intersect",
+    "kernels",
+    "numbers",
+    "reduce",
+    "roots",
+]

@@ -1,0 +1,94 @@
+"""Extremes of polynomial curves given by Taylor coefficients about t = 1/2: tight bounding
+boxes and closest points, from the real roots in [0, 1] (roots.py) of a derivative component
+or of (p − q)·p', each candidate polished and judged on the full polynomial, the ends always
+among the candidates."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import kernels as alg
+from .roots import candidate_roots, newton, significant
+
+
+def _eval(coeffs: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """(len(t), d) values of the polynomial with centred coefficients (d, N+1)."""
+    return alg.centred_horner(coeffs, np.ascontiguousarray(t, dtype=float).ravel())
+
+
+def box(
+    p0: np.ndarray, p1: np.ndarray, p2: np.ndarray, ends: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """(lo, hi): the tight axis-aligned box of the polynomial curve with centred coefficients
+    p0 (d, N+1), from its values at the ends (`ends`, (2, d): the exact first and last
+    control points) and at every root in [0, 1] of each coordinate's derivative (p1, p2: the
+    first and second derivatives' coefficients)."""
+    candidates = []
+    for axis in range(p0.shape[0]):
+        c1 = significant(p1[axis])
+        c2 = p2[axis : axis + 1]
+        if c1.shape[-1] < 2 or not c1.any():
+            continue
+        roots = candidate_roots(c1)[0]
+        roots = roots[np.isfinite(roots)]
+
+        def slope(t: np.ndarray, a: int = axis) -> np.ndarray:
+            return _eval(p1[a : a + 1], t)[:, 0]
+
+        def bend(t: np.ndarray, c: np.ndarray = c2) -> np.ndarray:
+            return _eval(c, t)[:, 0]
+
+        polished = newton(
+            roots.copy(),
+            slope,
+            bend,
+        )
+        candidates += [roots, polished]
+    t = np.concatenate([np.empty(0), *candidates])
+    # a root within 1e-12 of an end adds nothing to the end itself (the coordinate is flat
+    # there), and the ends are the Bézier form's first and last control points, exactly
+    t = t[(t > 1e-12) & (t < 1 - 1e-12)]
+    values = np.vstack([ends, _eval(p0, t)])
+    return values.min(axis=0), values.max(axis=0)
+
+
+def closest(c0: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Parameters, points and squared distances of the points of the polynomial curve with
+    centred coefficients c0 (d, N+1) nearest to each row of q (m, d): the best of both ends
+    and every root in [0, 1] of (p − q)·p'."""
+    p = significant(c0)  # (d, N'+1) with the true leading term
+    m, dim = q.shape
+    size = p.shape[1]
+    cands = [np.zeros((m, 1)), np.ones((m, 1))]
+    if size >= 2:
+        dp = alg.differentiate_coefficients(p, 1)  # (d, N')
+        # g(u) = (p(u) - q) · p'(u) = Σ_c p_c p'_c − Σ_c q_c p'_c: degree 2N' − 1
+        fixed = sum(np.convolve(p[c], dp[c]) for c in range(dim))
+        g = np.tile(fixed, (m, 1))
+        g[:, : size - 1] -= q @ dp
+        roots = candidate_roots(g)
+        d2 = alg.differentiate_coefficients(p, 2)
+
+        def gval(t: np.ndarray) -> np.ndarray:
+            shape = t.shape
+            pts = _eval(p, t).reshape(*shape, dim)
+            der = _eval(dp, t).reshape(*shape, dim)
+            g: np.ndarray = ((pts - q[:, None, :]) * der).sum(-1)
+            return g
+
+        def gprime(t: np.ndarray) -> np.ndarray:
+            shape = t.shape
+            pts = _eval(p, t).reshape(*shape, dim)
+            der = _eval(dp, t).reshape(*shape, dim)
+            sec = _eval(d2, t).reshape(*shape, dim)
+            dg: np.ndarray = (der * der).sum(-1) + ((pts - q[:, None, :]) * sec).sum(-1)
+            return dg
+
+        polished = newton(roots.copy(), gval, gprime)
+        cands += [np.nan_to_num(roots, nan=0.0), np.nan_to_num(polished, nan=0.0)]
+    t = np.concatenate(cands, axis=1)
+    pts = _eval(c0, t).reshape(*t.shape, dim)
+    dist2 = np.square(pts - q[:, None, :]).sum(-1)
+    best = np.argmin(dist2, axis=1)
+    rows = np.arange(m)
+    return t[rows, best], pts[rows, best], dist2[rows, best]

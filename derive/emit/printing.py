@@ -8,10 +8,11 @@ from __future__ import annotations
 
 import difflib
 from collections.abc import Iterable, Mapping
-from fractions import Fraction
 from pathlib import Path
 
 import sympy as sp
+
+from ..algebra import to_fraction
 from sympy.printing.str import StrPrinter
 
 REGENERATE = "lambda-bezier derive"
@@ -32,17 +33,6 @@ EXACT_HELPERS = "from ._exact import binomial, factorial, falling_factorial\n"
 
 
 # --------------------------------------------------------------------------- exact literals
-
-
-def to_fraction(x: object) -> Fraction:
-    """An exact SymPy/Python rational as a Fraction; anything inexact is a derivation bug."""
-    if isinstance(x, bool):
-        raise TypeError("bool is not a coefficient")
-    if isinstance(x, int | Fraction):
-        return Fraction(x)
-    if isinstance(x, sp.Rational):
-        return Fraction(int(x.p), int(x.q))
-    raise TypeError(f"not an exact rational: {x!r} ({type(x).__name__})")
 
 
 def scalar(x: object) -> str:

@@ -1,0 +1,50 @@
+"""The exact core: symbols, polynomials in t and the parameters, FLINT/SymPy conversions,
+and the classical Bernstein basis as pure algebra (derive/algebra/bernstein.py).
+
+The lowest layer of derive: it imports nothing else of derive.
+"""
+
+from .bernstein import (
+    X as X,
+    bernstein_basis as bernstein_basis,
+    bernstein_matrices as bernstein_matrices,
+    bernstein_poly as bernstein_poly,
+    bernstein_power_matrix as bernstein_power_matrix,
+    check_endpoint_weights as check_endpoint_weights,
+    closed_end_forms as closed_end_forms,
+    elevation_matrix as elevation_matrix,
+    endpoint_weight as endpoint_weight,
+    endpoint_weights as endpoint_weights,
+    expansion_tables as expansion_tables,
+    hodograph_matrix as hodograph_matrix,
+    original_basis as original_basis,
+    original_power_matrix as original_power_matrix,
+    power_to_bernstein_matrix as power_to_bernstein_matrix,
+)
+from .core import (
+    CENTRE as CENTRE,
+    LAMBDA_SAMPLES as LAMBDA_SAMPLES,
+    Matrix as Matrix,
+    bernstein_terms as bernstein_terms,
+    centred_matrices as centred_matrices,
+    centred_row as centred_row,
+    check_endpoint_closed_forms as check_endpoint_closed_forms,
+    endpoint_values as endpoint_values,
+    exact_function as exact_function,
+    from_flint as from_flint,
+    i as i,
+    j as j,
+    k as k,
+    lam as lam,
+    lambda_degree as lambda_degree,
+    linear_in_lambda as linear_in_lambda,
+    m as m,
+    matmul as matmul,
+    n as n,
+    poly as poly,
+    power_matrices as power_matrices,
+    t as t,
+    to_flint as to_flint,
+    to_fraction as to_fraction,
+    transpose as transpose,
+)

@@ -16,9 +16,8 @@ import sympy as sp
 
 from .core import (
     Matrix,
-    from_flint,
-    to_flint,
     centred_matrices,
+    from_flint,
     i,
     k,
     lam,
@@ -26,6 +25,7 @@ from .core import (
     n,
     power_matrices,
     t,
+    to_flint,
     transpose,
 )
 

@@ -15,7 +15,6 @@ import flint
 import sympy as sp
 from sympy.printing.pycode import PythonCodePrinter
 
-
 t, lam = sp.symbols("t lam")
 # Symbols of the general-n closed forms: integers, so SymPy may simplify binomials.
 n, m, i, j, k = sp.symbols("n m i j k", integer=True, nonnegative=True)

@@ -3,7 +3,6 @@ reference basis's degrees (the built-in families' registry gives them)."""
 
 from __future__ import annotations
 
-from . import printing as _emit
 from ..algebra import (
     bernstein_power_matrix,
     centred_matrices,
@@ -15,6 +14,7 @@ from ..algebra import (
     power_to_bernstein_matrix,
 )
 from ..families.registry import reference_degrees
+from . import printing as _emit
 
 SCRIPT = "bernstein.py"  # the banner names the pre-#27 path (generated/ unchanged)
 OUTPUT = "bernstein.py"

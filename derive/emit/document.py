@@ -9,9 +9,7 @@ import json
 from fractions import Fraction
 from pathlib import Path
 
-
 from ..algebra import expansion_tables
-
 from ..families.definition import FORMAT, Definition
 from ..families.engine import (
     basis_polys,
@@ -21,7 +19,6 @@ from ..families.engine import (
     endpoint_table,
 )
 from ..formulas.family import energy_artifacts, join_artifacts, singular_artifacts
-
 
 # --------------------------------------------------------------------------- the document
 

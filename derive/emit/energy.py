@@ -3,8 +3,8 @@ matrices (derive/formulas/energy.py derives them)."""
 
 from __future__ import annotations
 
-from . import printing as _emit
 from ..formulas.energy import FAMILIES, GRAM_DEGREES, ORDERS, SCRIPT, energy_forms, gram, upper_form
+from . import printing as _emit
 
 OUTPUT = "energy.py"
 

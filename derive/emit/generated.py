@@ -24,7 +24,7 @@ def _renderer(name: str) -> tuple[str, Callable[[], str]]:
     for b in builtin_families():
         if b.name == name:
             module = b.module()  # the family's derivation module, or the engine's own
-            return module.OUTPUT, lambda: families.render(module.module_data())
+            return module.OUTPUT, lambda module=module: families.render(module.module_data())
     return _SHARED[name].OUTPUT, _SHARED[name].render
 
 

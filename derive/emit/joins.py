@@ -10,7 +10,6 @@ from math import factorial, perm
 
 import sympy as sp
 
-from . import printing as _emit
 from ..algebra import bernstein as _bernstein
 from ..algebra import lam, t, to_fraction
 from ..families.registry import REFERENCE, derivation
@@ -26,6 +25,7 @@ from ..formulas.joins import (
     joins,
     pivots,
 )
+from . import printing as _emit
 
 OUTPUT = "joins.py"
 

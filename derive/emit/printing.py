@@ -11,9 +11,9 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 
 import sympy as sp
+from sympy.printing.str import StrPrinter
 
 from ..algebra import to_fraction
-from sympy.printing.str import StrPrinter
 
 REGENERATE = "lambda-bezier derive"
 LINE_WIDTH = 100

@@ -3,8 +3,8 @@
 
 from __future__ import annotations
 
-from . import printing as _emit
 from ..formulas.properties import SCRIPT, singular_table
+from . import printing as _emit
 
 OUTPUT = "properties.py"
 

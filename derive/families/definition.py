@@ -16,15 +16,14 @@ from pathlib import Path
 
 import sympy as sp
 
-from ..grammar import Interval
-from ..grammar import FUNCTIONS, SYMBOLS, ParseError, parse_formula, tokenize
-
+from ..grammar import FUNCTIONS, SYMBOLS, Interval, ParseError, parse_formula, tokenize
 
 FORMAT = 2  # version of the derived JSON document (2: with singular_parameters)
 MAX_DEGREE = 20
 MAX_OFFSET = 6
-# The classical Bernstein basis (derive/algebra/bernstein.py) is every family's reference (to_bezier,
-# bernstein_at), not a family defined by data; the built-in families are derive/families/*.toml.
+# The classical Bernstein basis (derive/algebra/bernstein.py) is every family's reference
+# (to_bezier, bernstein_at), not a family defined by data; the built-in families are
+# derive/families/*.toml.
 REFERENCE = "bezier"
 ENDPOINT_ORDERS = 3  # derivatives 0..3 at each end
 ENERGY_ORDERS = (1, 2, 3)

@@ -32,7 +32,6 @@ from ..algebra import (
     t,
 )
 from ..grammar import MAX_EXPONENT
-
 from .definition import (
     _I,
     _LAM,

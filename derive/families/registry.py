@@ -9,7 +9,6 @@ import sys
 from dataclasses import dataclass
 from functools import cache
 
-
 from ..algebra import bernstein as _bernstein
 from .definition import (
     _NAME,
@@ -31,8 +30,9 @@ class Builtin:
     order: int  # position in generated/ and in reports
     points: str  # the control points' name in the paper's records
     curve_class: str  # the runtime's class name for its curves
-    # derive/families/<derivation>.py: the paper's own closed forms and the emitted module; without one
-    # the engine derives and emits the family from its definition alone (GenericDerivation)
+    # derive/families/<derivation>.py: the paper's own closed forms and the emitted module;
+    # without one the engine derives and emits the family from its definition alone
+    # (GenericDerivation)
     derivation: str | None = None
     # the degree symbols of the first and second curve of the paper's join records that do not
     # name their curves (000's eq. 17 says p1 has degree m, 001's eq. 12 says n)

@@ -25,7 +25,7 @@ from math import gcd, lcm
 import flint
 import sympy as sp
 
-from ..algebra import Matrix, to_fraction, bernstein_matrices, t, to_flint
+from ..algebra import Matrix, bernstein_matrices, t, to_flint, to_fraction
 from ..algebra.bernstein import bernstein_basis, hodograph_matrix
 from ..families.registry import builtin_families
 

@@ -5,13 +5,11 @@ and making the family known to the formula tables for this process (register_for
 
 from __future__ import annotations
 
-
 import sympy as sp
 
 from ..algebra import lambda_degree
-
 from ..families.definition import CONTINUITIES, ENERGY_ORDERS, Definition
-from ..families.engine import basis_polys, closed_endpoint_order, closed_endpoint_forms
+from ..families.engine import basis_polys, closed_endpoint_forms, closed_endpoint_order
 from ..families.registry import builtin_names
 from . import energy, joins, properties
 

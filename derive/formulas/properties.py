@@ -32,8 +32,8 @@ import flint
 import sympy as sp
 
 from ..algebra import bernstein_matrices
-from ..grammar import Interval
 from ..families.registry import REFERENCE, builtin_families
+from ..grammar import Interval
 
 SCRIPT = "properties.py"
 OUTPUT = "properties.py"

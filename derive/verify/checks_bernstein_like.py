@@ -9,18 +9,26 @@ from __future__ import annotations
 
 import sympy as sp
 
-from . import _algebra
-from . import bernstein_like as bl
-from .verify_checks import (
-    Context,
+from .. import algebra as _algebra
+from ..families import bernstein_like as bl
+from .checks_core import (
     Outcome,
     T,
-    check_equations,
     checker,
-    equations_outcome,
-    parse,
+)
+from .checks_equations import (
+    check_equations,
+)
+from .claim_families import (
     symbolic_zero,
     to_derive,
+)
+from .context import (
+    Context,
+    equations_outcome,
+)
+from .expr_parse import (
+    parse,
 )
 
 NAME = bl.DEFINITION.name

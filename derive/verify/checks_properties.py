@@ -15,19 +15,27 @@ from fractions import Fraction
 import flint
 import sympy as sp
 
-from . import properties as pr
-from .family_engine import REFERENCE
-from .verify_checks import (
-    JOIN_CONTINUITY,
+from ..families.registry import REFERENCE
+from ..formulas import properties as pr
+from .checks_core import (
     LAM,
-    Context,
     Outcome,
     S,
-    check_equations,
     checker,
     claim_kind,
-    parse,
+)
+from .checks_equations import (
+    check_equations,
+)
+from .checks_joins import (
+    JOIN_CONTINUITY,
     records_by_id_safe,
+)
+from .context import (
+    Context,
+)
+from .expr_parse import (
+    parse,
 )
 
 MAX_LINES = 6  # failing degrees listed in full; the rest are counted

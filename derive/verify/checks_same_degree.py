@@ -13,45 +13,63 @@ import itertools
 
 import sympy as sp
 
-from . import _algebra
-from . import same_degree as sd
-from .verify_checks import (
+from .. import algebra as _algebra
+from ..families import same_degree as sd
+from .checks_core import (
     SLAM,
-    Context,
     Outcome,
     S,
-    Sc,
     T,
-    Tally,
-    Undefined,
-    _bernstein_mats,
-    _degree_pairs,
-    _from_derive,
-    _is_zero,
-    _join_derived,
-    _join_specs,
-    _NotRational,
-    _orig,
-    _printed_rows,
-    _records_by_id,
-    _substitute,
-    _weights,
-    as_fraction,
-    as_sympy,
-    check_equations,
     checker,
     claim_kind,
-    equal,
-    equations_outcome,
-    fn_name,
+)
+from .checks_energy import (
+    _records_by_id,
+)
+from .checks_equations import (
+    _from_derive,
+    _orig,
+    check_equations,
+)
+from .checks_joins import (
+    _degree_pairs,
+    _join_derived,
+    _join_specs,
+    _printed_rows,
+    _substitute,
+    _weights,
     join_per_degree,
-    parse,
-    show,
+)
+from .claim_families import (
+    _bernstein_mats,
     symbolic_zero,
     to_derive,
+)
+from .compare import (
+    equal,
+    show,
+)
+from .context import (
+    Context,
+    Tally,
+    equations_outcome,
+)
+from .expr_parse import (
+    as_sympy,
+    fn_name,
+    parse,
+)
+from .scalar import (
+    Sc,
+    Undefined,
+    _is_zero,
+    _NotRational,
+    as_fraction,
+    cancelled,
+)
+from .values import (
     v_mul,
 )
-from .verify_expr import cancelled
 
 DEFINITION = sd.DEFINITION
 NAME = DEFINITION.name

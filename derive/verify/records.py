@@ -21,11 +21,10 @@ import sys
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 
-from .family_engine import REFERENCE
-from .grammar import ParseError
-from .properties import Interval
-from .verify_checks import FAMILIES, claim_kind, kind_problem
-from .verify_expr import parse as parse_formula  # cached: the checkers reuse each parse
+from ..families.definition import REFERENCE, DefinitionError, definition_from_table
+from ..grammar import Interval, ParseError
+from .expr_parse import parse as parse_formula  # cached: the checkers reuse each parse
+from .registry import FAMILIES, claim_kind, kind_problem, register_defined_family
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -344,12 +343,10 @@ def load_file(path: Path, data: dict | None = None) -> list[dict]:
 
 def _define_family(path: Path, table: dict, points: str) -> str:
     """Derive the family a records file defines and make it known to this run's checkers."""
-    from . import family_engine
-
     try:
-        defn = family_engine.definition_from_table(table, str(path))
-        family_engine.register(defn, points)
-    except family_engine.DefinitionError as exc:
+        defn = definition_from_table(table, str(path))
+        register_defined_family(defn, points)
+    except DefinitionError as exc:
         raise RecordsError(
             str(exc) if str(exc).startswith(str(path)) else f"{path}: {exc}"
         ) from None

@@ -26,7 +26,9 @@ NODES, WEIGHTS = np.polynomial.legendre.leggauss(24)
 
 @pytest.fixture(scope="module")
 def pr():
-    return importlib.import_module(_derive_runner.load_derive(ROOT).__name__ + ".properties")
+    return importlib.import_module(
+        _derive_runner.load_derive(ROOT).__name__ + ".formulas.properties"
+    )
 
 
 def ref_basis(family: str, n: int, t, lam) -> np.ndarray:

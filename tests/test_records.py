@@ -238,7 +238,7 @@ def test_format_document_example_runs(tmp_path):
     verdicts = {r["id"]: r["verdict"] for r in data["records"]}
     assert "mismatch" in verdicts.values() and "match" in verdicts.values()
     # every claim kind of the document's table is one the verifier knows, for its families
-    checks = importlib.import_module(_derive_runner.load_derive(ROOT).__name__ + ".verify_checks")
+    checks = importlib.import_module(_derive_runner.load_derive(ROOT).__name__ + ".verify.registry")
     table = doc[doc.index("## Claim kinds") : doc.index("**Reading Dᵀ M D.**")]
     documented = set(re.findall(r"^\| `([a-z_0-9]+)` \|", table, flags=re.M))
     assert documented == set(checks.kinds())
@@ -517,7 +517,7 @@ def test_a_dying_worker_names_its_record(monkeypatch):
     the record it was checking, not as an anonymous failure."""
     import os
 
-    verify = importlib.import_module(_derive_runner.load_derive(ROOT).__name__ + ".verify")
+    verify = importlib.import_module(_derive_runner.load_derive(ROOT).__name__ + ".verify.report")
     records = verify.load_records([USER_FILE])
     real = verify.check_record
 

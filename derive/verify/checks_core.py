@@ -38,16 +38,12 @@ from __future__ import annotations
 import importlib
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
 
 from ..grammar import SYMBOLS
 from .scalar import (
     GEN,
     Sc,
 )
-
-if TYPE_CHECKING:  # the context sits above the registry of checkers
-    from .context import Context
 
 S = SYMBOLS
 T, LAM = S["t"], S["lam"]
@@ -75,7 +71,8 @@ class Outcome:
 
 @dataclass
 class Checker:
-    fn: Callable[[dict, Context], Outcome]
+    # (record, context.Context) -> Outcome; the context sits above this registry
+    fn: Callable[..., Outcome]
     requires: tuple[str, ...] = ()
     family: str | None = None  # only this family's records (its paper's own form), else any
     fits: Callable[[dict], bool] | None = None  # the records it checks, by their payload

@@ -1,6 +1,6 @@
 """Property claims, caveats, singular parameters and from_bezier, against independent numerics.
 
-Every verdict the exact procedures of derive/properties.py reach about the papers is
+Every verdict the exact procedures of derive/formulas/properties.py reach about the papers is
 re-computed here in floats from the basis *definitions* (tests/reference.py), never from
 generated/ or derive/.
 """

@@ -5,7 +5,7 @@ The published family used here is neither of ours: Nouri and Saeidian's enhanced
 checked against independent numerics written from the paper's construction (direct
 evaluation, finite differences, quadrature energies, numeric minimisation), and the built-in
 families, defined as data in derive/families/*.toml, must come out of the same engine exactly
-as derive/same_degree.py and derive/bernstein_like.py derive them by hand.
+as derive/families/same_degree.py and derive/families/bernstein_like.py derive them by hand.
 """
 
 from __future__ import annotations

@@ -169,8 +169,8 @@ def test_user_file_true_values_by_independent_numerics():
 
     best = minimize_scalar(energy_sd, bounds=(-3, 3), method="bounded", options={"xatol": 1e-10})
     assert abs(best.x - (-3 / 5)) < 1e-6
-    # survey.bl.g1 and survey.bz.c1: the runtime's joins (solved from derive/joins.py, compared
-    # here with the user's formulas at a few parameter values)
+    # survey.bl.g1 and survey.bz.c1: the runtime's joins (solved from derive/formulas/joins.py,
+    # compared here with the user's formulas at a few parameter values)
     for alpha in (0.5, 2.0):
         first = lb.BernsteinLikeCurve(rng.normal(size=(4, 2)), lam=0.4)
         second = lb.join(first, "G1", 5, lam=-0.3, alpha=alpha, rest=[(0, 1)] * 4)

@@ -363,11 +363,13 @@ def test_misprint_diff_names_what_differs(report):
 def test_energy_checks_are_pending_without_energy(verify, records, monkeypatch):
     checks = _verify_modules(verify, "checks_core")
     monkeypatch.setitem(
-        checks.REQUIREMENTS, "energy", (("no_such_function",), "needs derive/energy.py (test)")
+        checks.REQUIREMENTS,
+        "energy",
+        (("no_such_function",), "needs derive/formulas/energy.py (test)"),
     )
     rec = next(r for r in records if r["id"] == "000.X_3^1")
     res = verify.check_record(rec)
-    assert res.verdict == "pending" and "derive/energy.py" in res.outcome.diffs[0]
+    assert res.verdict == "pending" and "derive/formulas/energy.py" in res.outcome.diffs[0]
 
 
 # --------------------------------------------------------------------------- CLI

@@ -38,7 +38,7 @@ def energy_artifacts(defn: Definition) -> dict:
 
 
 def join_artifacts(defn: Definition, closed: dict) -> dict:
-    """Closed-form join weights (derive/joins.py's solve) of the family after and before
+    """Closed-form join weights (derive/formulas/joins.py's solve) of the family after and before
     itself and every built-in family, each checked per degree pair; a pair whose stencil the
     closed-form solve does not cover is named with the reason (the runtime still joins it,
     per degree)."""
@@ -89,9 +89,9 @@ def _register_properties(defn: Definition) -> None:
 
 def singular_artifacts(defn: Definition) -> dict[str, list]:
     """{n: [root, ...]}: the parameters inside the range where the degree-n basis is linearly
-    dependent (derive/properties.py: the determinant of the Bernstein coefficients, exact root
-    isolation); a root is an exact "p/q" or [[lo, hi], [c_0, ..., c_k]] around an irrational
-    root of the integer polynomial Σ c_j λ^j."""
+    dependent (derive/formulas/properties.py: the determinant of the Bernstein coefficients,
+    exact root isolation); a root is an exact "p/q" or [[lo, hi], [c_0, ..., c_k]] around an
+    irrational root of the integer polynomial Σ c_j λ^j."""
     _register_properties(defn)
     iv = properties.FAMILY_RANGES[defn.name]
     out = {}
@@ -106,7 +106,7 @@ def singular_artifacts(defn: Definition) -> dict[str, list]:
 
 
 class _EnergyBasis:
-    """What derive/energy.py reads of a family module, for a family defined by data."""
+    """What derive/formulas/energy.py reads of a family module, for a family defined by data."""
 
     def __init__(self, defn: Definition):
         self.defn = defn

@@ -2,7 +2,7 @@
 
 001 prints the general-n explicit form of its basis (eq. 5), which no generic rule gives, and
 its quadratic seed (eq. 1). derive/families/bernstein_like.toml names this module under
-`checks`; verify_checks imports it after its own checkers.
+`checks`; verify/registry.py imports it with the shared checkers.
 """
 
 from __future__ import annotations

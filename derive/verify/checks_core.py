@@ -84,12 +84,12 @@ CHECKERS: dict[str, list[Checker]] = {}  # kind -> its checkers, in registration
 REQUIREMENTS = {
     "energy": (
         ("energy_forms", "published_form", "optimal_lambda_exact"),
-        "needs the energy derivation derive/energy.py (energy_forms, published_form, "
+        "needs the energy derivation derive/formulas/energy.py (energy_forms, published_form, "
         "optimal_lambda_exact; issue 3)",
     ),
     "joins": (
         ("solve",),
-        "needs the join derivation derive/joins.py (C1/C2/G1/G2 vertex formulas; issue 4)",
+        "needs the join derivation derive/formulas/joins.py (C1/C2/G1/G2 vertex formulas; issue 4)",
     ),
 }
 

@@ -173,7 +173,7 @@ def linear_in_points(rhs, syms: tuple):
 
 
 def _weights(rhs, first_pts: str, second_pts: str, n_first) -> tuple[dict, sp.Expr]:
-    """Printed weights keyed like derive/joins.py: ("first", j) for P_{n-j,1}."""
+    """Printed weights keyed like derive/formulas/joins.py: ("first", j) for P_{n-j,1}."""
     pts = {a for a in sp.preorder_traversal(rhs) if fn_name(a) in (first_pts, second_pts)}
     out: dict = {}
     for pt in pts:
@@ -230,7 +230,8 @@ def _substitute(value, sub: dict):
 
 # Exact parameter values for the per-degree join checks (inside both λ ranges, α ≠ 1, d ≠ 0):
 # the weights are compared for general n, m, λ1, λ2, α, d symbolically; per degree pair the
-# printed conditions are evaluated exactly at these values, as derive/joins.py checks its own.
+# printed conditions are evaluated exactly at these values, as derive/formulas/joins.py checks
+# its own.
 JOIN_SAMPLES = (
     {
         "lam1": Fraction(1, 3),
@@ -286,7 +287,7 @@ def join_per_degree(record, ctx, rows, specs, conventions, label="convention") -
     requires=("joins",),
 )
 def check_join(record: dict, ctx: Context) -> Outcome:
-    """Vertex formulas of 001's C1/C2/G1/G2 theorems: each weight against derive/joins.py's
+    """Vertex formulas of 001's C1/C2/G1/G2 theorems: each weight against derive/formulas/joins.py's
     solve() symbolically in n, m, λ1, λ2 (α, d), and, per degree pair, the printed continuity
     conditions with the printed vertices substituted."""
     continuity = JOIN_CONTINUITY[claim_kind(record["claim"])]

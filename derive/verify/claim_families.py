@@ -72,7 +72,7 @@ FAMILIES[REFERENCE] = Family(REFERENCE, reference_degrees(), "b")
 
 
 def register_family(family: Family) -> None:
-    """A family defined by data (derive/family_engine.py) joins the built-in ones for this run:
+    """A family defined by data (derive/families/engine.py) joins the built-in ones for this run:
     its records are checked with the same checkers (the derivations it has: no closed form of
     its own where the engine found none)."""
     FAMILIES[family.name] = family

@@ -38,7 +38,7 @@ def as_sympy(x: object) -> sp.Basic:
 
 @cache
 def parse(text: str) -> sp.Expr:
-    """A printed expression, read by the records grammar (derive/grammar.py): our own parser
+    """A printed expression, read by the records grammar (derive/grammar/formula.py): our own parser
     over a fixed table of symbols and functions, nothing evaluated."""
     return parse_formula(text)
 

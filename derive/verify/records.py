@@ -9,7 +9,7 @@ the key:
    type, the schema version supported;
 3. ids unique, every ``claim`` a known kind for its family, every cross-reference (``uses``,
    ``numerator``, ``denominator``, ``formula``) to a record of the same run;
-4. every formula read by the records grammar (derive/grammar.py), so a syntax error, an
+4. every formula read by the records grammar (derive/grammar/formula.py), so a syntax error, an
    unknown name or a limit is reported here and not halfway through a run.
 
 The format itself is documented in derive/published/README.md ("The records format").
@@ -126,7 +126,8 @@ PAYLOAD = {
     "vector": _STRS,
     "printed_form": _STR,
     "lambda": _STR,
-    # property claims (derive/verify_properties.py) and worked examples checked against a range
+    # property claims (derive/verify/checks_properties.py) and worked examples checked against
+    # a range
     "parameter_range": {
         "type": "string",
         "pattern": rf"^\s*[\(\[]{_BOUND},{_BOUND}[\)\]]\s*$",
@@ -180,7 +181,7 @@ SCHEMA = {
         "source": _STR,
         "title": _STR,
         # the default family of the records: a name, or the definition of a family of the
-        # user's own (a [family] table, validated by derive/family_engine.py)
+        # user's own (a [family] table, validated by derive/families/engine.py)
         "family": {
             "oneOf": [{"type": "string", "pattern": r"^[a-z][a-z0-9_]*$"}, {"type": "object"}]
         },

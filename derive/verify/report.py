@@ -1,7 +1,7 @@
 """`lambda-bezier verify`: every published record compared with the derivation.
 
 Records come from derive/published/*.toml (the printed formulas, misprints kept). Each record
-is checked by the checker registered for its `claim` (derive/verify_checks.py) and gets a
+is checked by the checker registered for its `claim` (derive/verify/) and gets a
 verdict:
 
 * ``match``     — the printed form agrees with our derivation (symbolically where derive has a
@@ -55,7 +55,7 @@ ERRATA_COMMAND = "lambda-bezier verify --errata"
 
 
 def load_records(paths: Iterable[Path] | None = None) -> list[dict]:
-    """The records of `paths` (default: every built-in file), validated (derive/records.py)."""
+    """The records of `paths` (default: every built-in file), validated (records.py)."""
     if paths is None:
         paths = sorted(PUBLISHED.glob("*.toml"))
     return load_paths(paths)

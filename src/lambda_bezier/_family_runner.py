@@ -1,6 +1,6 @@
 """`lambda-bezier derive --family FILE [--out DIR] [--check]`: a user's family, derived.
 
-The derivation (derive/family_engine.py) needs SymPy, imported only when the command runs.
+The derivation (derive/families/engine.py) needs SymPy, imported only when the command runs.
 The result is one JSON document written beside FILE (or into DIR) as `<name>.derived.json`,
 atomically; `--check` compares instead and prints a unified diff when it drifted.
 """

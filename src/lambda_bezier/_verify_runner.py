@@ -1,8 +1,8 @@
 """`lambda-bezier verify`: every published formula and matrix checked against the derivation.
 
-The engine lives in derive/verify.py (it needs SymPy, imported only when the command runs);
+The engine lives in derive/verify/report.py (it needs SymPy, imported only when the command runs);
 this module parses the options, shows progress on a terminal, renders the report (or, with
---coverage, the papers' inventory from derive/coverage.py) and keeps ERRATA.md current in a
+--coverage, the papers' inventory from derive/verify/coverage.py) and keeps ERRATA.md current in a
 checkout.
 """
 

@@ -13,6 +13,10 @@ from collections.abc import Callable
 SYMPY_VERSION = "1.14.0"  # the SymPy whose printing the committed generated/ comes from
 
 
+# emit is imported when asked for: `lambda-bezier verify` loads this package too, and needs
+# none of the emitters (nor the formulas they import).
+
+
 def groups() -> tuple[str, ...]:
     """The formula groups, in the order generated/ lists them (derive/emit/generated.py)."""
     from .emit import generated

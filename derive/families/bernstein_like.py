@@ -44,6 +44,8 @@ ORDERS = 2
 DEFINITION = builtin_definition("bernstein_like")
 DEGREES = DEFINITION.degrees
 DEGREE_OFFSET = DEFINITION.offset  # the basis polynomials have degree n + DEGREE_OFFSET
+PARAMETERS = DEFINITION.parameters  # the shape parameters' names, a tuple (issue #30)
+DOMAIN = DEFINITION.domain  # the interval of t
 SEED = tuple(s.xreplace({SYMBOLS["t"]: t}) for s in DEFINITION.seed)
 
 

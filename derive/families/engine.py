@@ -299,10 +299,11 @@ def _closed_endpoint_forms(defn: Definition) -> tuple[dict[tuple[str, int, int],
 
 
 class GenericDerivation:
-    """What a derivation module provides (DEGREES, DEGREE_OFFSET, basis_polys,
-    closed_end_forms, OUTPUT, render), for a built-in family from its definition alone: the
-    emitted module has the tables and the end forms in closed form in n (fitted, then checked
-    against every degree of the range), and no general form of a paper's own."""
+    """What a derivation module provides (DEGREES, DEGREE_OFFSET, PARAMETERS, DOMAIN,
+    basis_polys, closed_end_forms, OUTPUT, module_data), for a built-in family from its
+    definition alone: the emitted module has the tables and the end forms in closed form in n
+    (fitted, then checked against every degree of the range), and no general form of a
+    paper's own."""
 
     SCRIPT = "family_engine.py"  # the banner names the pre-#27 path (generated/ unchanged)
 
@@ -310,6 +311,8 @@ class GenericDerivation:
         self.DEFINITION = defn
         self.DEGREES = defn.degrees
         self.DEGREE_OFFSET = defn.offset
+        self.PARAMETERS = defn.parameters  # the shape parameters' names, a tuple (issue #30)
+        self.DOMAIN = defn.domain  # the interval of t
         self.OUTPUT = f"{defn.name}.py"
 
     def basis_polys(self, degree: int) -> list[sp.Poly]:

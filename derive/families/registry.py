@@ -5,6 +5,7 @@ the verify module of the paper's own claims). Every layer above reads this one l
 
 from __future__ import annotations
 
+import importlib
 import sys
 from dataclasses import dataclass
 from functools import cache
@@ -37,19 +38,19 @@ class Builtin:
     # the degree symbols of the first and second curve of the paper's join records that do not
     # name their curves (000's eq. 17 says p1 has degree m, 001's eq. 12 says n)
     join_degrees: tuple[str, str] = ("n", "m")
-    checks: str | None = None  # derive/verify/<checks>.py: checkers of claims only this paper makes
+    # derive/verify/<checks>.py: checkers of claims only this paper makes (verify imports it)
+    checks: str | None = None
 
     @property
     def name(self) -> str:
         return self.definition.name
 
     def module(self):
-        """The derivation module (imported on demand: it imports this engine), or the engine's
-        own derivation of the family when its paper prints no closed form of its own."""
+        """The derivation module (derive/families/<derivation>.py, imported by the name the
+        [builtin] table gives), or the engine's own derivation of the family when its paper
+        prints no closed form of its own."""
         if self.derivation is None:
             return _generic_derivation(self.definition)
-        import importlib
-
         return importlib.import_module(f"{__package__}.{self.derivation}")
 
 

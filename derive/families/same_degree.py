@@ -47,6 +47,8 @@ ORDERS = 2  # endpoint derivatives emitted in closed form: value, first, second
 DEFINITION = builtin_definition("same_degree")
 DEGREES = DEFINITION.degrees
 DEGREE_OFFSET = DEFINITION.offset  # the basis polynomials have degree n + DEGREE_OFFSET
+PARAMETERS = DEFINITION.parameters  # the shape parameters' names, a tuple (issue #30)
+DOMAIN = DEFINITION.domain  # the interval of t
 _CLOSED_FIELD = sp.polys.fields.field([n, lam], sp.QQ)[0]
 
 

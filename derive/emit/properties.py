@@ -3,9 +3,10 @@
 
 from __future__ import annotations
 
-from ..formulas.properties import SCRIPT, singular_table
+from ..formulas.properties import singular_table
 from . import printing as _emit
 
+SCRIPT = "properties.py"  # the banner names the pre-#27 path (generated/ unchanged)
 OUTPUT = "properties.py"
 
 

@@ -29,8 +29,6 @@ from ..algebra import Matrix, bernstein_matrices, t, to_flint, to_fraction
 from ..algebra.bernstein import bernstein_basis, hodograph_matrix
 from ..families.registry import builtin_families
 
-SCRIPT = "energy.py"
-OUTPUT = "energy.py"
 ORDERS = (1, 2, 3)
 # the built-in families' derivation modules, in their order (derive/families/*.toml)
 FAMILIES = {b.name: b.module() for b in builtin_families()}

@@ -47,9 +47,6 @@ from sympy.polys.rings import ring
 from ..algebra import lam, m, n
 from ..families.registry import REFERENCE, builtin_names, derivation
 
-SCRIPT = "joins.py"
-OUTPUT = "joins.py"
-
 FAMILIES = builtin_names()  # the reference basis, then derive/families/*.toml in order
 CONTINUITIES = ("C1", "C2", "G1", "G2")
 ORDER = {"C1": 1, "C2": 2, "G1": 1, "G2": 2}  # derivatives matched; solved: P_{0..ORDER,2}

@@ -35,9 +35,6 @@ from ..algebra import bernstein_matrices
 from ..families.registry import REFERENCE, builtin_families
 from ..grammar import Interval
 
-SCRIPT = "properties.py"
-OUTPUT = "properties.py"
-
 _X = sp.Symbol("x")
 
 

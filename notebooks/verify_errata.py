@@ -34,9 +34,9 @@ ROOT = next(
     p for p in (Path.cwd().resolve(), *Path.cwd().resolve().parents) if (p / "derive").is_dir()
 )
 sys.path.insert(0, str(ROOT))
-import derive.verify as verify  # noqa: E402
+import derive.verify.report as verify  # noqa: E402
 import lambda_bezier as lb  # noqa: E402
-from derive.verify_expr import parse  # noqa: E402
+from derive.verify.expr_parse import parse  # noqa: E402
 
 FIGURES = Path(os.environ.get("LAMBDA_BEZIER_FIGURES", Path.cwd() / "figures"))
 FIGURES.mkdir(parents=True, exist_ok=True)

@@ -65,7 +65,7 @@ def test_shared_derive_modules_name_no_builtin_family():
     for table in tables.values():
         own |= {table["builtin"].get(k) for k in ("derivation", "checks")} - {None}
     found = []
-    for path in sorted(DERIVE.glob("*.py")):
+    for path in sorted(DERIVE.rglob("*.py")):
         if path.stem in own:
             continue
         for line, text in _code_tokens(path):
@@ -86,11 +86,11 @@ def test_registry_follows_the_definition_files():
     from lambda_bezier import _derive_runner
 
     derive = _derive_runner.load_derive(ROOT)
-    engine = importlib.import_module(f"{derive.__name__}.family_engine")
-    order = [b.name for b in engine.builtin_families()]
+    registry = importlib.import_module(f"{derive.__name__}.families.registry")
+    order = [b.name for b in registry.builtin_families()]
     tables = _builtin_tables()
     assert order == sorted(tables, key=lambda name: tables[name]["builtin"]["order"])
-    assert engine.builtin_names() == (engine.REFERENCE, *order)
+    assert registry.builtin_names() == (registry.REFERENCE, *order)
     assert derive.groups()[1 : 1 + len(order)] == tuple(order)
     init = (ROOT / "generated" / "__init__.py").read_text(encoding="utf-8")
     namespace: dict = {}
@@ -166,7 +166,7 @@ def checkout_with_new_family(tmp_path_factory) -> Path:
         """
         import json, sys
         import derive
-        from derive import verify
+        from derive.verify import report as verify
         files = derive.render_all()
         out = sys.argv[1]
         json.dump(files, open(out + "/files.json", "w"))

@@ -1,6 +1,6 @@
 """Property claims, caveats, singular parameters and from_bezier, against independent numerics.
 
-Every verdict the exact procedures of derive/properties.py reach about the papers is
+Every verdict the exact procedures of derive/formulas/properties.py reach about the papers is
 re-computed here in floats from the basis *definitions* (tests/reference.py), never from
 generated/ or derive/.
 """
@@ -26,7 +26,9 @@ NODES, WEIGHTS = np.polynomial.legendre.leggauss(24)
 
 @pytest.fixture(scope="module")
 def pr():
-    return importlib.import_module(_derive_runner.load_derive(ROOT).__name__ + ".properties")
+    return importlib.import_module(
+        _derive_runner.load_derive(ROOT).__name__ + ".formulas.properties"
+    )
 
 
 def ref_basis(family: str, n: int, t, lam) -> np.ndarray:

@@ -32,7 +32,7 @@ def rendered(derive_pkg):
 def emit(derive_pkg):
     import importlib
 
-    return importlib.import_module(f"{derive_pkg.__name__}._emit")
+    return importlib.import_module(f"{derive_pkg.__name__}.emit.printing")
 
 
 def test_check_passes_on_checkout_under_another_hash_seed():

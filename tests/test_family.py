@@ -5,7 +5,7 @@ The published family used here is neither of ours: Nouri and Saeidian's enhanced
 checked against independent numerics written from the paper's construction (direct
 evaluation, finite differences, quadrature energies, numeric minimisation), and the built-in
 families, defined as data in derive/families/*.toml, must come out of the same engine exactly
-as derive/same_degree.py and derive/bernstein_like.py derive them by hand.
+as derive/families/same_degree.py and derive/families/bernstein_like.py derive them by hand.
 """
 
 from __future__ import annotations
@@ -27,21 +27,37 @@ from conftest import ROOT
 from lambda_bezier import _derive_runner
 
 pytestmark = pytest.mark.skipif(
-    not (ROOT / "derive" / "family_engine.py").is_file(), reason="needs the source checkout"
+    not (ROOT / "derive" / "families" / "engine.py").is_file(), reason="needs the source checkout"
 )
 
 NS_FILE = ROOT / "tests" / "data" / "families" / "nouri_saeidian.toml"
 
 
+def _derive_module(name: str):
+    return importlib.import_module(f"{_derive_runner.load_derive(ROOT).__name__}.{name}")
+
+
+@pytest.fixture(scope="module")
+def definition():
+    """Reading and validating a definition (derive/families/definition.py)."""
+    return _derive_module("families.definition")
+
+
 @pytest.fixture(scope="module")
 def engine():
-    derive = _derive_runner.load_derive(ROOT)
-    return importlib.import_module(f"{derive.__name__}.family_engine")
+    """The engine: one definition to its bases, tables and end forms."""
+    return _derive_module("families.engine")
 
 
 @pytest.fixture(scope="module")
-def ns_doc(engine):
-    return engine.derive(engine.read_definition(NS_FILE))
+def document():
+    """The derived family document (derive/emit/document.py)."""
+    return _derive_module("emit.document")
+
+
+@pytest.fixture(scope="module")
+def ns_doc(definition, document):
+    return document.derive(definition.read_definition(NS_FILE))
 
 
 def ns_basis(n: int, sigma: float, t: np.ndarray) -> np.ndarray:
@@ -61,11 +77,15 @@ def _fr(x: str) -> float:
 # --------------------------------------------------------------------------- the engine
 
 
-def test_builtin_families_as_data_match_their_hand_derivations(engine):
+def test_builtin_families_as_data_match_their_hand_derivations(definition, engine, document):
     derive = _derive_runner.load_derive(ROOT)
     modules = {
-        name: importlib.import_module(f"{derive.__name__}.{name}")
-        for name in ("same_degree", "bernstein_like", "energy")
+        name: importlib.import_module(f"{derive.__name__}.{package}.{name}")
+        for package, name in (
+            ("families", "same_degree"),
+            ("families", "bernstein_like"),
+            ("formulas", "energy"),
+        )
     }
     import reference
     import sympy as sp
@@ -75,10 +95,10 @@ def test_builtin_families_as_data_match_their_hand_derivations(engine):
     t_sym, lam_sym = sp.Symbol("t"), sp.Symbol("lam")
 
     for name, generated in (("same_degree", g_sd), ("bernstein_like", g_bl)):
-        defn = engine.builtin_definition(name)
+        defn = definition.builtin_definition(name)
         engine.check(defn)
         hand = modules[name]
-        doc = engine.derive(defn, with_joins=False)
+        doc = document.derive(defn, with_joins=False)
         ts = np.linspace(0, 1, 7)
         for deg in defn.degrees:
             # the engine's polynomials against tests/reference.py's independent evaluation of
@@ -276,22 +296,22 @@ GOOD = {
 
 
 @pytest.mark.parametrize("case", list(ILL_DEFINED))
-def test_ill_defined_families_get_their_message(engine, case):
+def test_ill_defined_families_get_their_message(definition, engine, case):
     change, needle = ILL_DEFINED[case]
     table = {**GOOD, "basis": "binomial(n, i)*t**i*(1 - t)**(n - i)*(lam + (1 - lam))"}
     table.update(change)
     table = {k: v for k, v in table.items() if v is not None}
-    with pytest.raises(engine.DefinitionError) as info:
-        defn = engine.definition_from_table(table, "fam.toml")
+    with pytest.raises(definition.DefinitionError) as info:
+        defn = definition.definition_from_table(table, "fam.toml")
         engine.check(defn)
     assert needle in str(info.value), str(info.value)
 
 
-def test_parameter_of_its_own_name(engine):
+def test_parameter_of_its_own_name(definition, engine):
     table = dict(GOOD, parameter="mu", basis="binomial(n, i)*t**i*(1 - t)**(n - i)*(mu + 1 - mu)")
-    defn = engine.definition_from_table(table)
+    defn = definition.definition_from_table(table)
     assert engine.check(defn)[0].startswith("polynomials")
-    assert engine.rename_parameter("mu*mu2 + mu", "mu") == "lam*mu2 + lam"
+    assert definition.rename_parameter("mu*mu2 + mu", "mu") == "lam*mu2 + lam"
 
 
 # --------------------------------------------------------------------------- the command
@@ -536,7 +556,7 @@ def test_generic_join_engine_equals_the_closed_forms():
                 assert got == want, (f1, f2, cont, n, m)
 
 
-def test_singular_parameters_of_a_family_defined_by_data(engine, ns_family):
+def test_singular_parameters_of_a_family_defined_by_data(definition, ns_family):
     """The engine runs the same exact procedure as for the built-in families: a copy of
     same_degree under another name has exactly its singular parameters, and the published
     family is singular at sigma = 0 (the inner functions vanish: the curve is the segment)."""
@@ -544,8 +564,8 @@ def test_singular_parameters_of_a_family_defined_by_data(engine, ns_family):
 
     import lambda_bezier as lb
 
-    copy = dataclasses.replace(engine.builtin_definition("same_degree"), name="sd_copy")
-    table = engine.singular_artifacts(copy)
+    copy = dataclasses.replace(definition.builtin_definition("same_degree"), name="sd_copy")
+    table = _derive_module("formulas.family").singular_artifacts(copy)
     for n in (3, 5, 6, 9):
         want = lb.singular_parameters("same_degree", n)
         got = table[str(n)]
@@ -590,7 +610,7 @@ def _weight_at(text: str, values: dict) -> Fraction:
     return Fraction(int(value.p), int(value.q))
 
 
-def test_three_point_stencil_joins_in_closed_form(tmp_path, engine):
+def test_three_point_stencil_joins_in_closed_form(tmp_path, definition, document):
     """Closed-form C1/C2/G1/G2 weights for a family whose first end derivative involves three
     points (so P_{2,2} is given in C1/G1 and solved together with P_{1,2} in C2/G2), equal to
     the runtime's per-degree solve at exact values, into and out of the built-in families."""
@@ -599,8 +619,8 @@ def test_three_point_stencil_joins_in_closed_form(tmp_path, engine):
 
     path = tmp_path / "wide.toml"
     path.write_text(WIDE_STENCIL)
-    defn = engine.read_definition(path)
-    (tmp_path / "wide_stencil.derived.json").write_text(engine.render(defn))
+    defn = definition.read_definition(path)
+    (tmp_path / "wide_stencil.derived.json").write_text(document.render(defn))
     doc = json.loads((tmp_path / "wide_stencil.derived.json").read_text())
     # orders 0..2 in closed form; the third derivative at 0 picks up the far term at n = 4 only
     assert doc["endpoint_closed_orders"] == 2

@@ -31,7 +31,8 @@ import lambda_bezier as lb
 from lambda_bezier import _derive_runner, _verify_runner
 
 pytestmark = pytest.mark.skipif(
-    not (ROOT / "derive" / "verify.py").is_file(), reason="needs the source checkout (derive/)"
+    not (ROOT / "derive" / "verify" / "report.py").is_file(),
+    reason="needs the source checkout (derive/)",
 )
 
 USER_FILE = ROOT / "tests" / "data" / "records" / "user_paper.toml"
@@ -169,8 +170,8 @@ def test_user_file_true_values_by_independent_numerics():
 
     best = minimize_scalar(energy_sd, bounds=(-3, 3), method="bounded", options={"xatol": 1e-10})
     assert abs(best.x - (-3 / 5)) < 1e-6
-    # survey.bl.g1 and survey.bz.c1: the runtime's joins (solved from derive/joins.py, compared
-    # here with the user's formulas at a few parameter values)
+    # survey.bl.g1 and survey.bz.c1: the runtime's joins (solved from derive/formulas/joins.py,
+    # compared here with the user's formulas at a few parameter values)
     for alpha in (0.5, 2.0):
         first = lb.BernsteinLikeCurve(rng.normal(size=(4, 2)), lam=0.4)
         second = lb.join(first, "G1", 5, lam=-0.3, alpha=alpha, rest=[(0, 1)] * 4)
@@ -238,7 +239,7 @@ def test_format_document_example_runs(tmp_path):
     verdicts = {r["id"]: r["verdict"] for r in data["records"]}
     assert "mismatch" in verdicts.values() and "match" in verdicts.values()
     # every claim kind of the document's table is one the verifier knows, for its families
-    checks = importlib.import_module(_derive_runner.load_derive(ROOT).__name__ + ".verify_checks")
+    checks = importlib.import_module(_derive_runner.load_derive(ROOT).__name__ + ".verify.registry")
     table = doc[doc.index("## Claim kinds") : doc.index("**Reading Dᵀ M D.**")]
     documented = set(re.findall(r"^\| `([a-z_0-9]+)` \|", table, flags=re.M))
     assert documented == set(checks.kinds())
@@ -498,7 +499,13 @@ def test_grammar_near_valid_text_raises_only_its_own_error(grammar, text):
 def test_grammar_module_never_calls_an_evaluator():
     import ast
 
-    for name in ("grammar.py", "records.py"):
+    # what reads untrusted text: the grammar, records files and family definitions
+    for name in (
+        "grammar/formula.py",
+        "grammar/interval.py",
+        "verify/records.py",
+        "families/definition.py",
+    ):
         tree = ast.parse((ROOT / "derive" / name).read_text(encoding="utf-8"))
         calls = [node.func for node in ast.walk(tree) if isinstance(node, ast.Call)]
         names = {f.id for f in calls if isinstance(f, ast.Name)}
@@ -517,7 +524,7 @@ def test_a_dying_worker_names_its_record(monkeypatch):
     the record it was checking, not as an anonymous failure."""
     import os
 
-    verify = importlib.import_module(_derive_runner.load_derive(ROOT).__name__ + ".verify")
+    verify = importlib.import_module(_derive_runner.load_derive(ROOT).__name__ + ".verify.report")
     records = verify.load_records([USER_FILE])
     real = verify.check_record
 

@@ -11,6 +11,7 @@ import io
 import json
 import re
 import shutil
+import types
 from fractions import Fraction
 
 import pytest
@@ -21,19 +22,32 @@ from hypothesis import strategies as st
 from lambda_bezier import _derive_runner, _verify_runner
 
 pytestmark = pytest.mark.skipif(
-    not (ROOT / "derive" / "verify.py").is_file(), reason="needs the source checkout (derive/)"
+    not (ROOT / "derive" / "verify" / "report.py").is_file(),
+    reason="needs the source checkout (derive/)",
 )
 
 
 @pytest.fixture(scope="module")
 def verify():
     derive = _derive_runner.load_derive(ROOT)
-    return importlib.import_module(f"{derive.__name__}.verify")
+    return importlib.import_module(f"{derive.__name__}.verify.report")
+
+
+def _verify_modules(verify, *names: str) -> types.SimpleNamespace:
+    """The public and private names of several derive/verify modules, as one namespace (the
+    tests below reach into a group of modules that used to be one)."""
+    package = verify.__name__.rsplit(".", 1)[0]
+    out: dict = {}
+    for name in names:
+        module = importlib.import_module(f"{package}.{name}")
+        out.update({k: v for k, v in vars(module).items() if not k.startswith("__")})
+    return types.SimpleNamespace(**out)
 
 
 @pytest.fixture(scope="module")
 def expr_mod(verify):
-    return importlib.import_module(verify.__name__.rsplit(".", 1)[0] + ".verify_expr")
+    """The expression model: parsing, scalars, values, the realiser, comparison."""
+    return _verify_modules(verify, "expr_parse", "scalar", "values", "realiser", "compare")
 
 
 @pytest.fixture(scope="module")
@@ -48,8 +62,10 @@ def report(verify, records):
 
 
 _RECORDS = (
-    importlib.import_module(_derive_runner.load_derive(ROOT).__name__ + ".verify").load_records()
-    if (ROOT / "derive" / "verify.py").is_file()
+    importlib.import_module(
+        _derive_runner.load_derive(ROOT).__name__ + ".verify.report"
+    ).load_records()
+    if (ROOT / "derive" / "verify" / "report.py").is_file()
     else []
 )
 RECORD_IDS = [r["id"] for r in _RECORDS]
@@ -222,13 +238,16 @@ def test_paper_binomial_convention(expr_mod):
 
 @pytest.fixture(scope="module")
 def checks_mod(verify):
-    return importlib.import_module(verify.__name__.rsplit(".", 1)[0] + ".verify_checks")
+    """The checkers' shared machinery: registry, families, context, the examples' helpers."""
+    return _verify_modules(verify, "checks_core", "claim_families", "context", "checks_examples")
 
 
-def test_corner_positive_needs_one_sign_and_the_same_sign(checks_mod, expr_mod):
+def test_corner_positive_needs_one_sign_and_the_same_sign(verify, expr_mod):
+    import sympy as sp
+
     # 000's G1 condition (Prop. 9) is checked by the same_degree family's own checks module
-    own = importlib.import_module(checks_mod.__name__.rsplit(".", 1)[0] + ".verify_same_degree")
-    S, sp = expr_mod.SYMBOLS, expr_mod.sp
+    own = _verify_modules(verify, "checks_same_degree")
+    S = expr_mod.SYMBOLS
     l1, l2, C = S["lam1"], S["lam2"], S["C"]
     positive = own._corner_positive
     assert positive((l2 + 2) / (l1 + 2), [l1, l2])  # zeros only at λ = -2, excluded
@@ -241,9 +260,10 @@ def test_corner_positive_needs_one_sign_and_the_same_sign(checks_mod, expr_mod):
 
 
 def test_symbolic_zero_without_simplify(checks_mod, expr_mod):
+    import sympy as sp
+
     S = expr_mod.SYMBOLS
     n, k = S["n"], S["k"]
-    sp = expr_mod.sp
     same = sp.factorial(n) / sp.factorial(n - k) - sp.ff(n, k)
     assert checks_mod.symbolic_zero(same)
     # the generic-point value proves a difference nonzero (a printed sign misprint)
@@ -254,8 +274,9 @@ def test_symbolic_zero_without_simplify(checks_mod, expr_mod):
 
 
 def test_linear_solve_and_condition_sets(checks_mod, expr_mod):
+    import sympy as sp
+
     S = expr_mod.SYMBOLS
-    sp = expr_mod.sp
     x, n = S["x"], S["n"]
     assert checks_mod._solve_linear(n - 2 * x, 4, x) == n / 2 - 2
     assert checks_mod._solve_linear(x**2, 1, x) is None
@@ -308,7 +329,7 @@ def test_quadratic_form_as_one_polynomial_matches_pair_by_pair(expr_mod, a, b, c
         quadrature = E.v_add(quadrature, E.v_mul(E.Sc.of(w), E._at(v, t, E.Sc.of(x))))
     assert E.equal(integral, quadrature)
     # the whole-interval integral of one coefficient, by the two routes of Sc.integrate
-    half = expr_mod.Fraction(1, 2)
+    half = Fraction(1, 2)
     for value in one_poly.terms.values():
         split = value.integrate(t, 0, half) + value.integrate(t, half, 1)
         assert (value.integrate(t, 0, 1) - split).is_zero()
@@ -340,13 +361,15 @@ def test_misprint_diff_names_what_differs(report):
 
 
 def test_energy_checks_are_pending_without_energy(verify, records, monkeypatch):
-    checks = importlib.import_module(verify.__name__.rsplit(".", 1)[0] + ".verify_checks")
+    checks = _verify_modules(verify, "checks_core")
     monkeypatch.setitem(
-        checks.REQUIREMENTS, "energy", (("no_such_function",), "needs derive/energy.py (test)")
+        checks.REQUIREMENTS,
+        "energy",
+        (("no_such_function",), "needs derive/formulas/energy.py (test)"),
     )
     rec = next(r for r in records if r["id"] == "000.X_3^1")
     res = verify.check_record(rec)
-    assert res.verdict == "pending" and "derive/energy.py" in res.outcome.diffs[0]
+    assert res.verdict == "pending" and "derive/formulas/energy.py" in res.outcome.diffs[0]
 
 
 # --------------------------------------------------------------------------- CLI
@@ -479,7 +502,7 @@ def test_exact_functions_in_fmpq_and_fraction_agree(verify):
     import sympy as sp
 
     package = verify.__name__.rsplit(".", 1)[0]
-    algebra = importlib.import_module(package + "._algebra")
+    algebra = importlib.import_module(package.rsplit(".", 1)[0] + ".algebra")
     n, lam = sp.symbols("n lam")
     expr = sp.binomial(n, 2) * (1 - lam) / (n + 1) - sp.Rational(1, 3)
     slow = algebra.exact_function(expr, (n, lam))
@@ -502,7 +525,7 @@ def test_exact_functions_in_fmpq_and_fraction_agree(verify):
 def test_coverage_names_every_record_and_the_readme_table_is_current(verify, report):
     """The coverage inventory names only existing records and every built-in record; the
     README's table is exactly `lambda-bezier verify --coverage --format markdown`."""
-    coverage = importlib.import_module(verify.__name__.rsplit(".", 1)[0] + ".coverage")
+    coverage = _verify_modules(verify, "coverage")
     items = coverage.load()
     verdicts = {r.id: r.verdict for r in report.results}
     assert coverage.problems(items, verdicts) == []

@@ -75,7 +75,7 @@ def run(check: bool, root: Path | None, quiet: bool = False) -> int:
     derive = load_derive(checkout)  # exits with an install hint when SymPy is missing
     import sympy
 
-    emit = importlib.import_module(f"{derive.__name__}._emit")
+    emit = importlib.import_module(f"{derive.__name__}.emit.printing")
     target = checkout / "generated" if checkout else installed_generated_dir()
     say: Callable[[str], None] = (
         (lambda msg: None) if quiet else (lambda msg: print(msg, file=sys.stderr, flush=True))

@@ -1,6 +1,6 @@
 """`lambda-bezier derive --family FILE [--out DIR] [--check]`: a user's family, derived.
 
-The derivation (derive/family_engine.py) needs SymPy, imported only when the command runs.
+The derivation (derive/families/engine.py) needs SymPy, imported only when the command runs.
 The result is one JSON document written beside FILE (or into DIR) as `<name>.derived.json`,
 atomically; `--check` compares instead and prints a unified diff when it drifted.
 """
@@ -36,18 +36,19 @@ def _write_atomically(path: Path, text: str) -> None:
 
 def run(path: Path, out_dir: Path | None, check: bool, quiet: bool = False) -> int:
     derive = load_derive(find_checkout(Path.cwd()))  # exits with a hint without SymPy
-    engine = importlib.import_module(f"{derive.__name__}.family_engine")
+    definition = importlib.import_module(f"{derive.__name__}.families.definition")
+    document = importlib.import_module(f"{derive.__name__}.emit.document")
     if out_dir is not None and not out_dir.is_dir():
         print(f"lambda-bezier derive: --out {out_dir} is not a directory", file=sys.stderr)
         return 2
     try:
-        defn = engine.read_definition(path)
+        defn = definition.read_definition(path)
         _say(quiet, f"deriving family {defn.name!r} from {path} ...")
-        text = engine.render(defn)
-    except engine.DefinitionError as exc:
+        text = document.render(defn)
+    except definition.DefinitionError as exc:
         print(f"lambda-bezier derive: {exc}", file=sys.stderr)
         return 2
-    target = engine.derived_path(path, defn.name, out_dir)
+    target = document.derived_path(path, defn.name, out_dir)
     if check:
         old = target.read_text(encoding="utf-8") if target.is_file() else ""
         if old == text:

@@ -1,8 +1,8 @@
 """`lambda-bezier verify`: every published formula and matrix checked against the derivation.
 
-The engine lives in derive/verify.py (it needs SymPy, imported only when the command runs);
+The engine lives in derive/verify/report.py (it needs SymPy, imported only when the command runs);
 this module parses the options, shows progress on a terminal, renders the report (or, with
---coverage, the papers' inventory from derive/coverage.py) and keeps ERRATA.md current in a
+--coverage, the papers' inventory from derive/verify/coverage.py) and keeps ERRATA.md current in a
 checkout.
 """
 
@@ -170,7 +170,7 @@ def run(
             "inside the checkout or pass --root PATH"
         )
     derive = load_derive(checkout)  # exits with an install hint when SymPy is missing
-    verify = importlib.import_module(f"{derive.__name__}.verify")
+    verify = importlib.import_module(f"{derive.__name__}.verify.report")
     if not paths:
         published = checkout / "derive" / "published" if checkout else verify.PUBLISHED
         paths = sorted(published.glob("*.toml"))
@@ -207,7 +207,7 @@ def run(
                 f"{verify.ERRATA_FILE} is stale: run `{verify.ERRATA_COMMAND}` and commit it"
             )
     if coverage:
-        cov = importlib.import_module(f"{derive.__name__}.coverage")
+        cov = importlib.import_module(f"{derive.__name__}.verify.coverage")
         items = cov.load()
         verdicts = {r.id: r.verdict for r in report.results}
         report.extra_problems += cov.problems(items, verdicts)

@@ -20,7 +20,7 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
-COVERAGE_DIR = Path(__file__).resolve().parent / "published" / "coverage"
+COVERAGE_DIR = Path(__file__).resolve().parents[1] / "published" / "coverage"
 
 
 @dataclass(frozen=True)

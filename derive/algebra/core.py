@@ -9,20 +9,28 @@ Bernstein coefficients; both split by powers of λ so that the runtime can assem
 from __future__ import annotations
 
 from fractions import Fraction
-from functools import cache
 from math import comb
 
 import flint
 import sympy as sp
 from sympy.printing.pycode import PythonCodePrinter
 
-from ._emit import to_fraction
-
 t, lam = sp.symbols("t lam")
 # Symbols of the general-n closed forms: integers, so SymPy may simplify binomials.
 n, m, i, j, k = sp.symbols("n m i j k", integer=True, nonnegative=True)
 
 Matrix = tuple[tuple[Fraction, ...], ...]
+
+
+def to_fraction(x: object) -> Fraction:
+    """An exact SymPy/Python rational as a Fraction; anything inexact is a derivation bug."""
+    if isinstance(x, bool):
+        raise TypeError("bool is not a coefficient")
+    if isinstance(x, int | Fraction):
+        return Fraction(x)
+    if isinstance(x, sp.Rational):
+        return Fraction(int(x.p), int(x.q))
+    raise TypeError(f"not an exact rational: {x!r} ({type(x).__name__})")
 
 
 def poly(expr: sp.Expr) -> sp.Poly:
@@ -41,22 +49,6 @@ def poly(expr: sp.Expr) -> sp.Poly:
     if not r.is_zero:
         raise ArithmeticError(f"{expr} is not a polynomial in t and lam")
     return q
-
-
-@cache
-def bernstein_power_matrix(degree: int) -> Matrix:
-    """Row j: power coefficients of B_j^degree (imported lazily to keep the axiom in one
-    place: derive/bernstein.py)."""
-    from .bernstein import bernstein_poly
-
-    return power_matrices([bernstein_poly(degree, jj) for jj in range(degree + 1)], degree)[0]
-
-
-@cache
-def power_to_bernstein_matrix(degree: int) -> Matrix:
-    """Inverse of bernstein_power_matrix: row e gives t^e in the Bernstein basis (exact;
-    a maps Bernstein to power coefficients row by row, so power to Bernstein is a^{-1})."""
-    return from_flint(to_flint(bernstein_power_matrix(degree)).inv())
 
 
 def to_flint(mat) -> flint.fmpq_mat:
@@ -100,12 +92,6 @@ def power_matrices(polys: list[sp.Poly], degree: int) -> tuple[Matrix, ...]:
                 raise ArithmeticError(f"basis function {row} has degree {e} > {degree}")
             mats[p][row][e] = to_fraction(c)
     return tuple(tuple(tuple(r) for r in mat) for mat in mats)
-
-
-def bernstein_matrices(polys: list[sp.Poly], degree: int) -> tuple[Matrix, ...]:
-    """M_p[i][j] = coefficient of lam^p B_j^degree in basis function i."""
-    conv = power_to_bernstein_matrix(degree)
-    return tuple(matmul(mat, conv) for mat in power_matrices(polys, degree))
 
 
 LAMBDA_SAMPLES = (0, 1)  # two values of λ decide equality of expressions linear in λ
@@ -229,14 +215,3 @@ def centred_row(row: tuple[Fraction, ...], centre: Fraction = CENTRE) -> tuple[F
 
 def centred_matrices(mats: tuple[Matrix, ...]) -> tuple[Matrix, ...]:
     return tuple(tuple(centred_row(row) for row in mat) for mat in mats)
-
-
-def expansion_tables(basis_polys, degrees, offset: int) -> dict[str, dict[int, tuple]]:
-    """The per-degree tables every family emits: power, centred and Bernstein coefficients
-    (split by powers of λ) of the basis functions of each degree n, in degree n + offset."""
-    power = {d: power_matrices(list(basis_polys(d)), d + offset) for d in degrees}
-    return {
-        "power": power,
-        "centred": {d: centred_matrices(m) for d, m in power.items()},
-        "bernstein": {d: bernstein_matrices(list(basis_polys(d)), d + offset) for d in degrees},
-    }

@@ -1,7 +1,7 @@
 """`lambda-bezier verify`: every published record compared with the derivation.
 
 Records come from derive/published/*.toml (the printed formulas, misprints kept). Each record
-is checked by the checker registered for its `claim` (derive/verify_checks.py) and gets a
+is checked by the checker registered for its `claim` (derive/verify/) and gets a
 verdict:
 
 * ``match``     — the printed form agrees with our derivation (symbolically where derive has a
@@ -36,13 +36,15 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .family_engine import REFERENCE, builtin_families
+from ..families.registry import REFERENCE, builtin_families
+from . import index as record_index
+from .index import records_by_id as records_by_id  # the run's records, for cross-references
 from .records import RecordsError, load_paths
-from .verify_checks import Outcome, run_checker
+from .registry import Outcome, run_checker
 
 __all__ = ["RecordsError", "load_records", "verify"]
 
-PUBLISHED = Path(__file__).resolve().parent / "published"
+PUBLISHED = Path(__file__).resolve().parents[1] / "published"
 VERDICTS = ("match", "mismatch", "caveat", "pending")
 ERRATUM_META = ("explanation", "origin")
 ERRATA_FILE = "ERRATA.md"
@@ -53,20 +55,13 @@ ERRATA_COMMAND = "lambda-bezier verify --errata"
 
 
 def load_records(paths: Iterable[Path] | None = None) -> list[dict]:
-    """The records of `paths` (default: every built-in file), validated (derive/records.py)."""
+    """The records of `paths` (default: every built-in file), validated (records.py)."""
     if paths is None:
         paths = sorted(PUBLISHED.glob("*.toml"))
     return load_paths(paths)
 
 
-_INDEX: dict[str, dict] = {}  # all records of the current run, for cross-references
-
-
-def records_by_id() -> dict[str, dict]:
-    """Every record by id (a formula record names the matrix records it uses)."""
-    if not _INDEX:
-        _INDEX.update({r["id"]: r for r in load_records()})
-    return _INDEX
+record_index.set_loader(lambda: load_records())
 
 
 def corrected(record: dict) -> dict:
@@ -263,8 +258,7 @@ def verify(
     to (default: `records`); `jobs` worker processes (default: default_jobs()); progress(done,
     total, id of the last record checked) as results arrive."""
     records = load_records() if records is None else records
-    _INDEX.clear()
-    _INDEX.update({r["id"]: r for r in (records if index is None else index)})
+    record_index.replace(records if index is None else index)
     start = time.perf_counter()
     jobs = default_jobs() if jobs is None else jobs
     total = len(records)

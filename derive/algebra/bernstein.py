@@ -14,31 +14,22 @@ from functools import cache
 
 import sympy as sp
 
-from . import _emit
-from ._algebra import (
+from .core import (
     Matrix,
-    bernstein_power_matrix,
     centred_matrices,
+    from_flint,
     i,
     k,
     lam,
     matmul,
     n,
     power_matrices,
-    power_to_bernstein_matrix,
     t,
+    to_flint,
     transpose,
 )
-from .family_engine import builtin_families
 
 X = sp.Poly(t, t, lam, domain="QQ")  # evaluating the axioms at X gives them as polynomials
-
-SCRIPT = "bernstein.py"
-OUTPUT = "bernstein.py"
-# Every built-in curve converts to a Bézier curve of degree n + offset: up to the largest.
-DEGREES = range(
-    1, max(b.definition.degrees.stop - 1 + b.definition.offset for b in builtin_families()) + 1
-)
 
 
 def bernstein_basis(degree, index, x=t):
@@ -134,11 +125,11 @@ def endpoint_weight(end: str, order: int, index: int) -> sp.Expr:
     return sp.expand(sp.combsimp(w.subs({i: index, k: order})))
 
 
-def _check_endpoint_weights(start: sp.Expr, end: sp.Expr) -> None:
-    """The closed forms agree with differentiating every B_{i,N} for every N of the range."""
+def check_endpoint_weights(start: sp.Expr, end: sp.Expr, degrees: range) -> None:
+    """The closed forms agree with differentiating every B_{i,N} for every N in `degrees`."""
     w_start = sp.lambdify((n, k, i), start, modules="sympy")
     w_end = sp.lambdify((n, k, i), end, modules="sympy")
-    for deg in DEGREES:
+    for deg in degrees:
         for ii in range(deg + 1):
             p0 = bernstein_poly(deg, ii)
             p1 = bernstein_poly(deg, deg - ii)
@@ -157,50 +148,31 @@ def _check_endpoint_weights(start: sp.Expr, end: sp.Expr) -> None:
                 p0, p1 = p0.diff(t), p1.diff(t)
 
 
-def render() -> str:
-    start, end = endpoint_weights()
-    _check_endpoint_weights(start, end)
-    degrees = tuple(DEGREES)
-    parts = [
-        _emit.banner(
-            SCRIPT, "Classical Bézier data, derived from B_{j,N}(t) = C(N,j) t^j (1-t)^(N-j)."
-        ),
-        _emit.EXACT_HELPERS,
-        "",
-        f"DEGREES = {_emit.literal(degrees)}",
-        "",
-        "# POWER[N][j][e]: coefficient of t^e in B_{j,N}.",
-        "POWER = " + _emit.literal({d: bernstein_power_matrix(d) for d in degrees}),
-        "",
-        "# CENTRED[N][j][e]: coefficient of (t - 1/2)^e in B_{j,N}.",
-        "CENTRED = "
-        + _emit.literal({d: centred_matrices((bernstein_power_matrix(d),))[0] for d in degrees}),
-        "",
-        "# TO_BERNSTEIN[N][e][j]: coefficient of B_{j,N} in t^e.",
-        "TO_BERNSTEIN = " + _emit.literal({d: power_to_bernstein_matrix(d) for d in degrees}),
-        "",
-        "# HODOGRAPH[N][j][i]: weight of P_i in control point j of p'(t) (degree N - 1).",
-        "HODOGRAPH = " + _emit.literal({d: hodograph_matrix(d) for d in degrees}),
-        "",
-        "# ELEVATION[N][j][i]: weight of P_i in control point j of p(t) written in degree N + 1.",
-        "ELEVATION = " + _emit.literal({d: elevation_matrix(d) for d in degrees}),
-        "",
-        "# ORIGINAL_POWER[N][i][e]: coefficient of t^e in Bézier's f_i = sum_{j>=i} B_{j,N}.",
-        "ORIGINAL_POWER = " + _emit.literal({d: original_power_matrix(d) for d in degrees}),
-        "",
-        "",
-        _emit.function(
-            "endpoint_weight_start",
-            ["n", "k", "i"],
-            "Weight of P_i (0 <= i <= k) in p^(k)(0) of a degree-n Bézier curve.",
-            f"return {_emit.expression(start)}",
-        ),
-        "",
-        _emit.function(
-            "endpoint_weight_end",
-            ["n", "k", "i"],
-            "Weight of P_{n-i} (0 <= i <= k) in p^(k)(1) of a degree-n Bézier curve.",
-            f"return {_emit.expression(end)}",
-        ),
-    ]
-    return "\n".join(parts)
+@cache
+def bernstein_power_matrix(degree: int) -> Matrix:
+    """Row j: power coefficients of B_j^degree."""
+    return power_matrices([bernstein_poly(degree, jj) for jj in range(degree + 1)], degree)[0]
+
+
+@cache
+def power_to_bernstein_matrix(degree: int) -> Matrix:
+    """Inverse of bernstein_power_matrix: row e gives t^e in the Bernstein basis (exact;
+    a maps Bernstein to power coefficients row by row, so power to Bernstein is a^{-1})."""
+    return from_flint(to_flint(bernstein_power_matrix(degree)).inv())
+
+
+def bernstein_matrices(polys: list[sp.Poly], degree: int) -> tuple[Matrix, ...]:
+    """M_p[i][j] = coefficient of lam^p B_j^degree in basis function i."""
+    conv = power_to_bernstein_matrix(degree)
+    return tuple(matmul(mat, conv) for mat in power_matrices(polys, degree))
+
+
+def expansion_tables(basis_polys, degrees, offset: int) -> dict[str, dict[int, tuple]]:
+    """The per-degree tables every family emits: power, centred and Bernstein coefficients
+    (split by powers of λ) of the basis functions of each degree n, in degree n + offset."""
+    power = {d: power_matrices(list(basis_polys(d)), d + offset) for d in degrees}
+    return {
+        "power": power,
+        "centred": {d: centred_matrices(m) for d, m in power.items()},
+        "bernstein": {d: bernstein_matrices(list(basis_polys(d)), d + offset) for d in degrees},
+    }

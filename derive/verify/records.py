@@ -9,7 +9,7 @@ the key:
    type, the schema version supported;
 3. ids unique, every ``claim`` a known kind for its family, every cross-reference (``uses``,
    ``numerator``, ``denominator``, ``formula``) to a record of the same run;
-4. every formula read by the records grammar (derive/grammar.py), so a syntax error, an
+4. every formula read by the records grammar (derive/grammar/formula.py), so a syntax error, an
    unknown name or a limit is reported here and not halfway through a run.
 
 The format itself is documented in derive/published/README.md ("The records format").
@@ -21,11 +21,10 @@ import sys
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 
-from .family_engine import REFERENCE
-from .grammar import ParseError
-from .properties import Interval
-from .verify_checks import FAMILIES, claim_kind, kind_problem
-from .verify_expr import parse as parse_formula  # cached: the checkers reuse each parse
+from ..families.definition import REFERENCE, DefinitionError, definition_from_table
+from ..grammar import Interval, ParseError
+from .expr_parse import parse as parse_formula  # cached: the checkers reuse each parse
+from .registry import FAMILIES, claim_kind, kind_problem, register_defined_family
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -127,7 +126,8 @@ PAYLOAD = {
     "vector": _STRS,
     "printed_form": _STR,
     "lambda": _STR,
-    # property claims (derive/verify_properties.py) and worked examples checked against a range
+    # property claims (derive/verify/checks_properties.py) and worked examples checked against
+    # a range
     "parameter_range": {
         "type": "string",
         "pattern": rf"^\s*[\(\[]{_BOUND},{_BOUND}[\)\]]\s*$",
@@ -181,7 +181,7 @@ SCHEMA = {
         "source": _STR,
         "title": _STR,
         # the default family of the records: a name, or the definition of a family of the
-        # user's own (a [family] table, validated by derive/family_engine.py)
+        # user's own (a [family] table, validated by derive/families/engine.py)
         "family": {
             "oneOf": [{"type": "string", "pattern": r"^[a-z][a-z0-9_]*$"}, {"type": "object"}]
         },
@@ -344,12 +344,10 @@ def load_file(path: Path, data: dict | None = None) -> list[dict]:
 
 def _define_family(path: Path, table: dict, points: str) -> str:
     """Derive the family a records file defines and make it known to this run's checkers."""
-    from . import family_engine
-
     try:
-        defn = family_engine.definition_from_table(table, str(path))
-        family_engine.register(defn, points)
-    except family_engine.DefinitionError as exc:
+        defn = definition_from_table(table, str(path))
+        register_defined_family(defn, points)
+    except DefinitionError as exc:
         raise RecordsError(
             str(exc) if str(exc).startswith(str(path)) else f"{path}: {exc}"
         ) from None

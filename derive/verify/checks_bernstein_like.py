@@ -2,25 +2,33 @@
 
 001 prints the general-n explicit form of its basis (eq. 5), which no generic rule gives, and
 its quadratic seed (eq. 1). derive/families/bernstein_like.toml names this module under
-`checks`; verify_checks imports it after its own checkers.
+`checks`; verify/registry.py imports it with the shared checkers.
 """
 
 from __future__ import annotations
 
 import sympy as sp
 
-from . import _algebra
-from . import bernstein_like as bl
-from .verify_checks import (
-    Context,
+from .. import algebra as _algebra
+from ..families import bernstein_like as bl
+from .checks_core import (
     Outcome,
     T,
-    check_equations,
     checker,
-    equations_outcome,
-    parse,
+)
+from .checks_equations import (
+    check_equations,
+)
+from .claim_families import (
     symbolic_zero,
     to_derive,
+)
+from .context import (
+    Context,
+    equations_outcome,
+)
+from .expr_parse import (
+    parse,
 )
 
 NAME = bl.DEFINITION.name

@@ -23,7 +23,6 @@ range where its degree-n basis is linearly dependent.
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import cache
@@ -32,48 +31,11 @@ from math import comb
 import flint
 import sympy as sp
 
-from . import _emit
-from ._algebra import bernstein_matrices
-from .family_engine import REFERENCE, builtin_families
-
-SCRIPT = "properties.py"
-OUTPUT = "properties.py"
+from ..algebra import bernstein_matrices
+from ..families.registry import REFERENCE, builtin_families
+from ..grammar import Interval
 
 _X = sp.Symbol("x")
-
-
-# --------------------------------------------------------------------------- intervals
-
-
-_NUMBER = r"\s*([-+]?\d+(?:/\d+)?)\s*"
-_RANGE = re.compile(rf"\s*([\(\[]){_NUMBER},{_NUMBER}([\)\]])\s*")
-
-
-@dataclass(frozen=True)
-class Interval:
-    lo: Fraction
-    hi: Fraction
-    lo_open: bool = False
-    hi_open: bool = False
-
-    def __str__(self) -> str:
-        return f"{'(' if self.lo_open else '['}{self.lo}, {self.hi}{')' if self.hi_open else ']'}"
-
-    def contains(self, x: Fraction) -> bool:
-        above = x > self.lo if self.lo_open else x >= self.lo
-        below = x < self.hi if self.hi_open else x <= self.hi
-        return above and below
-
-    @classmethod
-    def parse(cls, text: str) -> Interval:
-        """`(-2, 1]`, `[-1, 1]`: exact numbers (integers or p/q), brackets say closed."""
-        m = _RANGE.fullmatch(text)
-        if not m:
-            raise ValueError(f"parameter range {text!r} is not of the form (a, b], [a, b], ...")
-        lo, hi = Fraction(m.group(2)), Fraction(m.group(3))
-        if lo > hi or (lo == hi and (m.group(1) == "(" or m.group(4) == ")")):
-            raise ValueError(f"parameter range {text!r} is empty")
-        return cls(lo, hi, m.group(1) == "(", m.group(4) == ")")
 
 
 # The built-in families (derive/families/*.toml, in order) and the reference Bernstein basis.
@@ -92,7 +54,7 @@ _BASES = {b.name: b.module().basis_polys for b in builtin_families()}
 
 
 def register(name: str, basis_polys, offset: int, degrees: range, interval: Interval) -> None:
-    """A family defined by data (derive/family_engine.py) gets the same property procedures."""
+    """A family defined by data (derive/families/engine.py) gets the same property procedures."""
     _BASES[name] = basis_polys
     OFFSETS[name] = offset
     FAMILY_DEGREES[name] = degrees
@@ -475,17 +437,3 @@ def singular_table() -> dict[str, dict[int, tuple]]:
                 for r in singular_roots(family, deg, iv)
             )
     return out
-
-
-def render() -> str:
-    table = singular_table()
-    parts = [
-        _emit.banner(SCRIPT, "Exact basis properties derived from the definitions."),
-        "# SINGULAR[family][n]: the λ inside the family's range where its degree-n basis is",
-        "# linearly dependent (the determinant of its Bernstein coefficients, or their Gram",
-        "# determinant, vanishes there): an exact F, or ((lo, hi), (c_0, ..., c_k)) for an",
-        "# irrational root, the only root in (lo, hi) of the integer polynomial Σ c_j λ^j.",
-        "SINGULAR = " + _emit.literal(table),
-        "",
-    ]
-    return "\n".join(parts)

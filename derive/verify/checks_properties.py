@@ -1,11 +1,11 @@
 """Checkers of the property claims: statements about a whole basis, for a whole λ interval.
 
-Each kind is decided exactly by derive/properties.py for every degree of the family's range
+Each kind is decided exactly by derive/formulas/properties.py for every degree of the family's range
 (from the record's `min_degree` on) and every λ of the record's `parameter_range` (default: the
 family's range), never at sampled λ. A failure names the degree, the exact λ (or an interval
 with rational ends isolating an irrational one) and what goes wrong there.
 
-Registered into verify_checks.CHECKERS on import (verify_checks imports this module last).
+Registered into checks_core.CHECKERS on import (verify/registry.py imports this module).
 """
 
 from __future__ import annotations
@@ -15,19 +15,27 @@ from fractions import Fraction
 import flint
 import sympy as sp
 
-from . import properties as pr
-from .family_engine import REFERENCE
-from .verify_checks import (
-    JOIN_CONTINUITY,
+from ..families.registry import REFERENCE
+from ..formulas import properties as pr
+from .checks_core import (
     LAM,
-    Context,
     Outcome,
     S,
-    check_equations,
     checker,
     claim_kind,
-    parse,
+)
+from .checks_equations import (
+    check_equations,
+)
+from .checks_joins import (
+    JOIN_CONTINUITY,
     records_by_id_safe,
+)
+from .context import (
+    Context,
+)
+from .expr_parse import (
+    parse,
 )
 
 MAX_LINES = 6  # failing degrees listed in full; the rest are counted

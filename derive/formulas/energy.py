@@ -25,17 +25,14 @@ from math import gcd, lcm
 import flint
 import sympy as sp
 
-from . import _emit
-from ._algebra import Matrix, bernstein_matrices, t, to_flint
-from .bernstein import bernstein_basis, hodograph_matrix
-from .family_engine import builtin_families
+from ..algebra import Matrix, bernstein_matrices, t, to_flint, to_fraction
+from ..algebra.bernstein import bernstein_basis, hodograph_matrix
+from ..families.registry import builtin_families
 
-SCRIPT = "energy.py"
-OUTPUT = "energy.py"
 ORDERS = (1, 2, 3)
 # the built-in families' derivation modules, in their order (derive/families/*.toml)
 FAMILIES = {b.name: b.module() for b in builtin_families()}
-# Families defined by data (derive/family_engine.py), for verify's energy checks: not emitted.
+# Families defined by data (derive/families/engine.py), for verify's energy checks: not emitted.
 EXTRA: dict = {}
 GRAM_DEGREES = range(0, 15)
 
@@ -76,7 +73,7 @@ def gram(m: int) -> Matrix:
     """G[a][b] = ∫_0^1 B_a^m B_b^m dt, exact."""
     _, integral = bernstein_identities()
     rho_f = _rho_function()
-    scale = _emit.to_fraction(integral.subs(_N, 2 * m))
+    scale = to_fraction(integral.subs(_N, 2 * m))
     return tuple(
         tuple(Fraction(rho_f(m, a, b)) * scale for b in range(m + 1)) for a in range(m + 1)
     )
@@ -164,39 +161,3 @@ def optimal_lambda_exact(points, k: int, family: str) -> Fraction:
     """λ* for exact control points, from the derived forms (used by verify's worked example)."""
     c, x, y = published_form(family, len(points) - 1, k)
     return c * _quadratic(x, points) / _quadratic(y, points)
-
-
-def render() -> str:
-    degrees = {name: tuple(module.DEGREES) for name, module in FAMILIES.items()}
-    energy = {
-        name: {
-            (n, k): tuple(energy_forms(name, n, k)[key] for key in ("ff", "fg", "gg"))
-            for n in degrees[name]
-            for k in ORDERS
-        }
-        for name in FAMILIES
-    }
-    grams = {m: upper_form(gram(m)) for m in GRAM_DEGREES}
-    return "\n".join(
-        [
-            _emit.banner(
-                SCRIPT,
-                "Energy quadratic forms E_k(λ) (000, section 3) for both families, and Bernstein "
-                "Gram matrices.",
-            ),
-            "",
-            f"ORDERS = {_emit.literal(ORDERS)}",
-            "",
-            "# GRAM[m] = (s, U), U upper-triangular: ∫_0^1 B_a^m B_b^m dt = s·U[a][b] for a = b,",
-            "# s·U[a][b]/2 for a < b.",
-            "GRAM = " + _emit.literal(grams),
-            "",
-            "# ENERGY[family][(n, k)] = ((s_ff, U_ff), (s_fg, X), (s_gg, Y)): with",
-            "# D = (P_0 … P_n)ᵀ and DᵀUD = Σ_coords Σ_{i<=j} U_ij P_i·P_j,",
-            "#     E_k(λ) = s_ff·DᵀU_ffD − 2λ·s_fg·DᵀXD + λ²·s_gg·DᵀYD,",
-            "#     λ* = (s_fg / s_gg) · DᵀXD / DᵀYD",
-            "# (eq. 20; the paper prints c = s_fg / s_gg with X and Y).",
-            "ENERGY = " + _emit.literal(energy),
-            "",
-        ]
-    )

@@ -16,8 +16,7 @@ from functools import cache
 
 import sympy as sp
 
-from . import _emit, family_engine
-from ._algebra import (
+from ..algebra import (
     LAMBDA_SAMPLES,
     check_endpoint_closed_forms,
     exact_function,
@@ -28,9 +27,13 @@ from ._algebra import (
     n,
     t,
 )
-from .bernstein import bernstein_basis, bernstein_poly, endpoint_weight
+from ..algebra.bernstein import bernstein_basis, bernstein_poly, endpoint_weight
+from ..grammar import SYMBOLS
+from .definition import builtin_definition
+from .engine import FamilyModule, GeneralForm, check
+from .engine import basis_polys as basis_polys_of
 
-SCRIPT = "bernstein_like.py"
+SCRIPT = "bernstein_like.py"  # the banner names the pre-#27 path (generated/ unchanged)
 OUTPUT = "bernstein_like.py"
 ORDERS = 2
 
@@ -38,16 +41,18 @@ ORDERS = 2
 # recursion (eq. 2) as the records grammar reads them; the generic engine evaluates them per
 # degree (and checks polynomial degree, partition of unity and Bernstein at λ = 0). What stays
 # here is what no generic rule gives: the general-n explicit form (the shape of eq. 5).
-DEFINITION = family_engine.builtin_definition("bernstein_like")
+DEFINITION = builtin_definition("bernstein_like")
 DEGREES = DEFINITION.degrees
 DEGREE_OFFSET = DEFINITION.offset  # the basis polynomials have degree n + DEGREE_OFFSET
-SEED = tuple(s.xreplace({family_engine.SYMBOLS["t"]: t}) for s in DEFINITION.seed)
+PARAMETERS = DEFINITION.parameters  # the shape parameters' names, a tuple (issue #30)
+DOMAIN = DEFINITION.domain  # the interval of t
+SEED = tuple(s.xreplace({SYMBOLS["t"]: t}) for s in DEFINITION.seed)
 
 
 @cache
 def basis_polys(degree: int) -> tuple[sp.Poly, ...]:
     """Eq. (2) applied degree - 2 times to the seed, exactly as stated (by the engine)."""
-    return tuple(family_engine.basis_polys(DEFINITION, degree))
+    return tuple(basis_polys_of(DEFINITION, degree))
 
 
 @cache
@@ -106,7 +111,7 @@ def closed_end_forms() -> dict[tuple[str, int, int], sp.Expr]:
 
 def _check(q, closed) -> None:
     """The explicit form and the endpoint closed forms against the recursion, for every n."""
-    family_engine.check(DEFINITION)  # the definition's own claims, every degree
+    check(DEFINITION)  # the definition's own claims, every degree
     coeffs = sp.Poly(q, t)
     if coeffs.degree() != 2 or not all(linear_in_lambda(c) for c in coeffs.all_coeffs()):
         raise AssertionError("explicit factor should be quadratic in t and linear in λ")
@@ -121,29 +126,25 @@ def _check(q, closed) -> None:
     check_endpoint_closed_forms(closed, {d: basis_polys(d) for d in DEGREES}, ORDERS)
 
 
-def render() -> str:
+def module_data() -> FamilyModule:
+    """What the emitted module holds (derive/emit prints it): the tables, the explicit
+    factor (checked) and the end forms (checked against every degree)."""
     q = explicit_factor()
     closed = endpoint_closed_forms(q)
     _check(q, closed)
-    degrees = tuple(DEGREES)
     coeffs = sp.Poly(q, t)
-    return _emit.family_module(
+    return FamilyModule(
         script=SCRIPT,
         doc="Bernstein-like basis b_{i,n}(t; λ) of 001_33da2b0fa8491127.txt, eqs. (1)-(2).",
         definition=DEFINITION,
-        **expansion_tables(basis_polys, degrees, DEFINITION.offset),
-        general_forms=[
-            _emit.function(
+        tables=expansion_tables(basis_polys, tuple(DEGREES), DEFINITION.offset),
+        general_forms=(
+            GeneralForm(
                 "explicit_factor",
-                ["n", "i", "lam"],
+                ("n", "i", "lam"),
                 "(c0, c1, c2) with b_{i,n}(t) = (c0 + c1 t + c2 t^2) B_{i,n}(t), for 0 <= i <= n.",
-                "return (\n"
-                + "".join(
-                    f"    {_emit.expression(sp.factor(coeffs.coeff_monomial(t**e)))},\n"
-                    for e in range(3)
-                )
-                + ")",
+                tuple(sp.factor(coeffs.coeff_monomial(t**e)) for e in range(3)),
             ),
-        ],
+        ),
         endpoint=closed,
     )

@@ -3,8 +3,8 @@
 000 prints closed forms no generic rule gives: the three-term Bernstein form of its basis
 (eq. 7, and eq. 1 compared with it symbolically), the ratios of its geometric construction
 (Prop. 8) and a sufficient G1 condition with a free constant C (Prop. 9, eq. 18) and its
-proof. derive/families/same_degree.toml names this module under `checks`; verify_checks
-imports it after its own checkers, so a record of another family never reaches these.
+proof. derive/families/same_degree.toml names this module under `checks`; verify/registry.py
+imports it after the shared checkers, so a record of another family never reaches these.
 """
 
 from __future__ import annotations
@@ -13,45 +13,63 @@ import itertools
 
 import sympy as sp
 
-from . import _algebra
-from . import same_degree as sd
-from .verify_checks import (
+from .. import algebra as _algebra
+from ..families import same_degree as sd
+from .checks_core import (
     SLAM,
-    Context,
     Outcome,
     S,
-    Sc,
     T,
-    Tally,
-    Undefined,
-    _bernstein_mats,
-    _degree_pairs,
-    _from_derive,
-    _is_zero,
-    _join_derived,
-    _join_specs,
-    _NotRational,
-    _orig,
-    _printed_rows,
-    _records_by_id,
-    _substitute,
-    _weights,
-    as_fraction,
-    as_sympy,
-    check_equations,
     checker,
     claim_kind,
-    equal,
-    equations_outcome,
-    fn_name,
+)
+from .checks_energy import (
+    _records_by_id,
+)
+from .checks_equations import (
+    _from_derive,
+    _orig,
+    check_equations,
+)
+from .checks_joins import (
+    _degree_pairs,
+    _join_derived,
+    _join_specs,
+    _printed_rows,
+    _substitute,
+    _weights,
     join_per_degree,
-    parse,
-    show,
+)
+from .claim_families import (
+    _bernstein_mats,
     symbolic_zero,
     to_derive,
+)
+from .compare import (
+    equal,
+    show,
+)
+from .context import (
+    Context,
+    Tally,
+    equations_outcome,
+)
+from .expr_parse import (
+    as_sympy,
+    fn_name,
+    parse,
+)
+from .scalar import (
+    Sc,
+    Undefined,
+    _is_zero,
+    _NotRational,
+    as_fraction,
+    cancelled,
+)
+from .values import (
     v_mul,
 )
-from .verify_expr import cancelled
 
 DEFINITION = sd.DEFINITION
 NAME = DEFINITION.name
@@ -254,8 +272,8 @@ def _solve_moebius(a, b, x):
 )
 def check_join_000(record: dict, ctx: Context) -> Outcome:
     """Eq. (18) of 000: a sufficient G1 condition with a free C > 0. It is the derived G1
-    solution (derive/joins.py, α > 0) exactly when some α > 0 reproduces it for every C > 0:
-    α is solved from one weight, the others must then agree, and α must be positive on the
+    solution (derive/formulas/joins.py, α > 0) exactly when some α > 0 reproduces it for every
+    C > 0: α is solved from one weight, the others must then agree, and α must be positive on the
     λ ranges for every degree pair; per degree, p2'(0) = β p1'(1) with β > 0 is checked too."""
     specs = _join_specs(record, ctx)
     (_, n1, l1, pts1), (_, n2, l2, pts2) = specs

@@ -15,8 +15,7 @@ from functools import cache
 
 import sympy as sp
 
-from . import _emit, family_engine
-from ._algebra import (
+from ..algebra import (
     LAMBDA_SAMPLES,
     bernstein_matrices,
     bernstein_terms,
@@ -29,34 +28,40 @@ from ._algebra import (
     n,
     t,
 )
-from .bernstein import endpoint_weight
+from ..algebra.bernstein import endpoint_weight
+from ..grammar import SYMBOLS
+from .definition import builtin_definition
+from .engine import FamilyModule, GeneralForm, check
+from .engine import basis_polys as basis_polys_of
 
-SCRIPT = "same_degree.py"
+SCRIPT = "same_degree.py"  # the banner names the pre-#27 path (generated/ unchanged)
 OUTPUT = "same_degree.py"
 ORDERS = 2  # endpoint derivatives emitted in closed form: value, first, second
 
 
 # The axiom is data: derive/families/same_degree.toml holds eq. (1) as the records grammar
-# reads it, and the generic engine (derive/family_engine.py) evaluates it per degree in
+# reads it, and the generic engine (derive/families/engine.py) evaluates it per degree in
 # Q(t, λ) (negative powers at i = 0 and i = n must cancel, checked) and checks its own claims
 # (polynomial degree, partition of unity, Bernstein at λ = 1). What stays here is what no
 # generic rule gives: 000's general-n three-term Bernstein form and its end closed forms.
-DEFINITION = family_engine.builtin_definition("same_degree")
+DEFINITION = builtin_definition("same_degree")
 DEGREES = DEFINITION.degrees
 DEGREE_OFFSET = DEFINITION.offset  # the basis polynomials have degree n + DEGREE_OFFSET
+PARAMETERS = DEFINITION.parameters  # the shape parameters' names, a tuple (issue #30)
+DOMAIN = DEFINITION.domain  # the interval of t
 _CLOSED_FIELD = sp.polys.fields.field([n, lam], sp.QQ)[0]
 
 
 def basis_definition() -> sp.Expr:
     """Eq. (1) for symbolic n and i (derive's integer symbols), from the definition file."""
-    g = family_engine.SYMBOLS
+    g = SYMBOLS
     return DEFINITION.basis.xreplace({g["n"]: n, g["i"]: i, g["t"]: t, g["lam"]: lam})
 
 
 @cache
 def basis_polys(degree: int) -> list[sp.Poly]:
     """Eq. (1) per index, evaluated exactly by the engine."""
-    return family_engine.basis_polys(DEFINITION, degree)
+    return basis_polys_of(DEFINITION, degree)
 
 
 @cache
@@ -105,7 +110,7 @@ def closed_end_forms() -> dict[tuple[str, int, int], sp.Expr]:
 
 def _check(form, closed) -> None:
     """Every general-n result against the per-degree expansion of the axiom, for every n."""
-    family_engine.check(DEFINITION)  # the definition's own claims, every degree
+    check(DEFINITION)  # the definition's own claims, every degree
     if not all(linear_in_lambda(c) for c in form):
         raise AssertionError("three-term coefficients are expected to be linear in λ")
     coeffs = exact_function(form, (n, i, lam))
@@ -122,24 +127,25 @@ def _check(form, closed) -> None:
     check_endpoint_closed_forms(closed, {d: basis_polys(d) for d in DEGREES}, ORDERS)
 
 
-def render() -> str:
+def module_data() -> FamilyModule:
+    """What the emitted module holds (derive/emit prints it): the tables, the three-term
+    form (checked) and the end forms (checked against every degree)."""
     form = three_term_form()
     closed = endpoint_closed_forms(form)
     _check(form, closed)
-    degrees = tuple(DEGREES)
-    return _emit.family_module(
+    return FamilyModule(
         script=SCRIPT,
         doc="Same-degree λ-Bernstein basis b_i^n(t; λ) of 000_10ca634d356c575d.txt, eq. (1).",
         definition=DEFINITION,
-        **expansion_tables(basis_polys, degrees, DEFINITION.offset),
-        general_forms=[
-            _emit.function(
+        tables=expansion_tables(basis_polys, tuple(DEGREES), DEFINITION.offset),
+        general_forms=(
+            GeneralForm(
                 "three_term_bernstein",
-                ["n", "i", "lam"],
+                ("n", "i", "lam"),
                 "(α, β, γ) with b_i^n = α B_{i-1}^n + β B_i^n + γ B_{i+1}^n, for 0 <= i <= n "
                 "(α unused at i = 0, γ at i = n).",
-                "return (\n" + "".join(f"    {_emit.expression(c)},\n" for c in form) + ")",
+                tuple(form),
             ),
-        ],
+        ),
         endpoint=closed,
     )

@@ -28,7 +28,7 @@ Limits keep a hostile formula from hanging or crashing the checker: the text's l
 nesting depth, the size of integer literals, and constant exponents (``t**10**10`` and
 ``2**2**40`` are refused while they are parsed, before anything is computed). The evaluator
 applies the same exponent limit to exponents that become concrete only later (``t**n``), and
-bounds summation ranges and derivative orders (derive/verify_expr.py).
+bounds summation ranges and derivative orders (derive/verify/realiser.py).
 
 Binomials follow the papers: ``binomial(a, b)`` with integer literals is C_a^b, zero unless
 0 <= b <= a (SymPy's own ``binomial`` differs for negative arguments).

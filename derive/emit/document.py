@@ -1,0 +1,84 @@
+"""The derived family document (``<name>.derived.json``): every artifact of a family defined
+by data, as one deterministic JSON text (data, never code: ``lambda_bezier.load_family``
+reads it without running anything).
+"""
+
+from __future__ import annotations
+
+import json
+from fractions import Fraction
+from pathlib import Path
+
+from ..algebra import expansion_tables
+from ..families.definition import FORMAT, Definition
+from ..families.engine import (
+    basis_polys,
+    check,
+    closed_endpoint_forms,
+    closed_endpoint_order,
+    endpoint_table,
+)
+from ..formulas.family import energy_artifacts, join_artifacts, singular_artifacts
+
+# --------------------------------------------------------------------------- the document
+
+
+def _matrices(mats) -> list:
+    return [[[str(Fraction(v)) for v in row] for row in mat] for mat in mats]
+
+
+def derive(defn: Definition, *, with_joins: bool = True) -> dict:
+    """Every artifact of the family, as one JSON-able document (exact numbers as strings)."""
+    checked = check(defn)
+    tables = expansion_tables(lambda deg: basis_polys(defn, deg), tuple(defn.degrees), defn.offset)
+    closed = closed_endpoint_forms(defn)
+    doc = {
+        "generated_by": "lambda-bezier derive --family -- DO NOT EDIT; regenerate with "
+        "`lambda-bezier derive --family FILE`",
+        "format": FORMAT,
+        "definition_sha256": defn.digest,
+        "family": defn.name,
+        "title": defn.title,
+        "parameter": defn.parameter,
+        "range": {
+            "text": defn.range_text,
+            "lo": str(defn.lo),
+            "hi": str(defn.hi),
+            "closed": [defn.lo_closed, defn.hi_closed],
+        },
+        "degrees": [defn.degrees.start, defn.degrees.stop - 1],
+        "degree_offset": defn.offset,
+        "bernstein_at": None if defn.bernstein_at is None else str(defn.bernstein_at),
+        "checked": checked,
+        "basis": {
+            str(deg): [str(p.as_expr()) for p in basis_polys(defn, deg)] for deg in defn.degrees
+        },
+        "power": {str(k): _matrices(v) for k, v in tables["power"].items()},
+        "bernstein": {str(k): _matrices(v) for k, v in tables["bernstein"].items()},
+        "centred": {str(k): _matrices(v) for k, v in tables["centred"].items()},
+        "endpoints": endpoint_table(defn),
+        "endpoint_closed_orders": closed_endpoint_order(defn),
+        "endpoint_closed_forms": None
+        if closed is None
+        else {f"{e},{r},{j}": str(v) for (e, r, j), v in sorted(closed.items())},
+        "energy": energy_artifacts(defn),
+        "singular_parameters": singular_artifacts(defn),
+    }
+    if with_joins:
+        doc["joins"] = (
+            {"reason": "no closed end forms in n: the runtime joins per degree"}
+            if closed is None
+            else join_artifacts(defn, closed)
+        )
+    return doc
+
+
+def render(defn: Definition) -> str:
+    """The derived document as deterministic text (sorted keys, fixed separators)."""
+    # keys in the order derive() builds them (every loop there runs over sorted keys), so the
+    # banner comes first; the text does not depend on PYTHONHASHSEED
+    return json.dumps(derive(defn), indent=1, ensure_ascii=False) + "\n"
+
+
+def derived_path(definition_file: Path, name: str, out_dir: Path | None = None) -> Path:
+    return (out_dir or Path(definition_file).resolve().parent) / f"{name}.derived.json"

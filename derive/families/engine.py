@@ -1,0 +1,349 @@
+"""A shape-parameter family from its definition: one engine for any basis.
+
+A family is data: a ``[family]`` table (in a file of its own or at the top of a records file)
+whose ``basis`` is a formula of the records grammar in i, n, t and the shape parameter. From
+that definition alone this module derives what a built-in family gets:
+
+* per degree n: the basis polynomials (negative powers that cancel are allowed; anything that
+  is not a polynomial of degree <= n + degree_offset in t after cancellation is an error), the
+  checks (partition of unity, reduction to Bernstein at ``bernstein_at``), the power, Bernstein
+  and centred (Taylor about 1/2) tables split by powers of the parameter;
+* the values and derivatives (orders 0..3) of every basis function at both ends, per degree,
+  and in closed form in n where one polynomial in n reproduces every degree of the range;
+
+What is derived for any family from these (energies, joins, singular parameters) is in
+derive/formulas/; the derived JSON document is assembled and printed by derive/emit/.
+Everything is exact (SymPy/FLINT rationals).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cache
+from math import comb
+
+import sympy as sp
+
+from ..algebra import (
+    check_endpoint_closed_forms,
+    expansion_tables,
+    lam,
+    n,
+    t,
+)
+from ..grammar import MAX_EXPONENT
+from .definition import (
+    _I,
+    _LAM,
+    _N,
+    _T,
+    ENDPOINT_ORDERS,
+    Definition,
+    DefinitionError,
+)
+
+
+@dataclass(frozen=True)
+class GeneralForm:
+    """A function of n, i and the parameter that a paper prints in closed form: the emitted
+    module gets ``def name(*args): return values`` (a tuple of expressions)."""
+
+    name: str
+    args: tuple[str, ...]
+    doc: str
+    values: tuple[sp.Expr, ...]
+
+
+@dataclass(frozen=True)
+class FamilyModule:
+    """Everything the emitted module of a built-in family holds, as exact data."""
+
+    script: str  # named in the emitted banner
+    doc: str
+    definition: Definition
+    tables: dict  # expansion_tables(): power, centred, bernstein
+    general_forms: tuple[GeneralForm, ...]
+    endpoint: dict  # closed end forms {(end, r, idx): expr}
+
+
+# --------------------------------------------------------------------------- the basis
+
+
+def _instantiate(e: sp.Basic, env: dict, ring, lookup=None) -> object:
+    """e with n and i replaced by integers, evaluated in the field Q(t, lam): binomials with
+    the papers' convention, powers bounded; b(i', n', t) of a recursion through lookup."""
+    if isinstance(e, sp.core.function.AppliedUndef):
+        if lookup is None:
+            raise DefinitionError(f"cannot evaluate {e} in a closed formula")
+        idx, deg = (_integer(_instantiate(x, env, ring), "index of b") for x in e.args[:2])
+        return lookup(idx, deg)
+    if e.is_Symbol:
+        if e in env:
+            return ring(env[e])
+        return ring(e)
+    if e.is_Rational:
+        return ring(e)
+    if isinstance(e, sp.binomial):
+        a, b = (_integer(_instantiate(x, env, ring), "binomial") for x in e.args)
+        return ring(comb(a, b) if 0 <= b <= a else 0)
+    if isinstance(e, sp.factorial):
+        a = _integer(_instantiate(e.args[0], env, ring), "factorial")
+        if not 0 <= a <= 1000:
+            raise DefinitionError(f"factorial({a}) in the basis")
+        return ring(sp.factorial(a))
+    if e.is_Add:
+        out = ring(0)
+        for a in e.args:
+            out += _instantiate(a, env, ring, lookup)
+        return out
+    if e.is_Mul:
+        out = ring(1)
+        for a in e.args:
+            out *= _instantiate(a, env, ring, lookup)
+        return out
+    if e.is_Pow:
+        base = _instantiate(e.base, env, ring, lookup)
+        ex = _integer(_instantiate(e.exp, env, ring), "exponent")
+        if abs(ex) > MAX_EXPONENT:
+            raise DefinitionError(f"an exponent {ex} in the basis")
+        if ex < 0:
+            if base == 0:
+                raise DefinitionError("the basis divides by zero")
+            return 1 / base**-ex
+        return base**ex
+    raise DefinitionError(f"cannot evaluate {e} in a basis definition")
+
+
+def _integer(x, what: str) -> int:
+    if x.denom != 1 or not x.numer.is_ground:
+        raise DefinitionError(f"the {what} {x.as_expr()} is not an integer once n and i are set")
+    value = sp.Rational(x.numer.LC if x.numer else 0)
+    if not value.is_Integer:
+        raise DefinitionError(f"the {what} {value} is not an integer")
+    return int(value)
+
+
+@cache
+def _field():
+    return sp.polys.fields.field([_T, _LAM], sp.QQ)[0]
+
+
+def basis_polys(defn: Definition, degree: int) -> list[sp.Poly]:
+    return list(_basis_polys(defn, degree))
+
+
+@cache
+def _basis_values(defn: Definition, degree: int) -> tuple:
+    """The degree-`degree` functions as elements of Q(t, lam): the closed formula per index,
+    or the seed at the lowest degree and the recursion above it."""
+    field = _field()
+    if defn.basis_text is not None:
+        basis = defn.basis
+        return tuple(_instantiate(basis, {_N: degree, _I: idx}, field) for idx in range(degree + 1))
+    if degree == defn.degrees.start:
+        return tuple(_instantiate(f, {_N: degree}, field) for f in defn.seed)
+    below = _basis_values(defn, degree - 1)
+
+    def lookup(idx: int, deg: int):
+        if deg != degree - 1:
+            raise DefinitionError(
+                f"[family] recursion: b({idx}, {deg}, t) at n = {degree}; a recursion reads "
+                "the degree below, b(., n - 1, t)"
+            )
+        return below[idx] if 0 <= idx <= deg else field(0)
+
+    rec = defn.recursion
+    return tuple(
+        _instantiate(rec, {_N: degree, _I: idx}, field, lookup) for idx in range(degree + 1)
+    )
+
+
+@cache
+def _basis_polys(defn: Definition, degree: int) -> tuple[sp.Poly, ...]:
+    big = degree + defn.offset
+    out = []
+    for idx, value in enumerate(_basis_values(defn, degree)):
+        if not value.denom.is_ground:
+            raise DefinitionError(
+                f"[family] basis: b({idx}, {degree}, t) is not a polynomial: "
+                f"{sp.factor(value.as_expr())} (a negative power that does not cancel)"
+            )
+        numer = value.numer.quo_ground(value.denom.LC)  # the denominator is a number
+        p = sp.Poly.from_dict(dict(numer), t, lam, domain="QQ")  # same t, lam symbols
+        if p.degree(t) > big:
+            raise DefinitionError(
+                f"[family] basis: b({idx}, {degree}, t) has degree {p.degree(t)} in t, more "
+                f"than n + degree_offset = {big}"
+            )
+        out.append(p)
+    return tuple(out)
+
+
+def check(defn: Definition) -> list[str]:
+    """The definition's own claims, for every degree: what was checked (raises on failure)."""
+    done = []
+    one = sp.Poly(1, t, lam, domain="QQ")
+    for deg in defn.degrees:
+        polys = basis_polys(defn, deg)
+        big = deg + defn.offset
+        total = sum(polys[1:], polys[0])
+        if total != one:
+            raise DefinitionError(
+                f"[family] basis: no partition of unity at n = {deg}: the functions sum to "
+                f"{sp.factor(total.as_expr())}"
+            )
+        if defn.bernstein_at is not None:
+            x = sp.Rational(defn.bernstein_at.numerator, defn.bernstein_at.denominator)
+            for idx, p in enumerate(polys):
+                want = sp.Poly(comb(deg, idx) * t**idx * (1 - t) ** (deg - idx), t, domain="QQ")
+                got = sp.Poly(p.eval(lam, x).as_expr(), t, domain="QQ")
+                if got != want:
+                    raise DefinitionError(
+                        f"[family] bernstein_at: at {defn.parameter} = {x}, b({idx}, {deg}, t) "
+                        f"= {sp.factor(got.as_expr())}, not the Bernstein function "
+                        f"{sp.factor(want.as_expr())}"
+                    )
+        generic = max(p.degree(t) for p in polys)
+        if generic != big:
+            raise DefinitionError(
+                f"[family] degree_offset: at n = {deg} the basis functions have degree "
+                f"{generic} in t, not n + degree_offset = {big}"
+            )
+    done.append(
+        f"polynomials of degree n + {defn.offset}, n = {defn.degrees.start}.."
+        f"{defn.degrees.stop - 1}"
+    )
+    done.append("partition of unity, every degree")
+    if defn.bernstein_at is not None:
+        done.append(f"Bernstein basis at {defn.parameter} = {defn.bernstein_at}, every degree")
+    return done
+
+
+# --------------------------------------------------------------------------- artifacts
+
+
+def _lam_coeffs(p: sp.Poly) -> list[str]:
+    """A polynomial in lam as its coefficients, constant first, exact strings."""
+    return [str(c) for c in reversed(p.all_coeffs())]
+
+
+def endpoint_table(defn: Definition) -> dict[str, dict[str, list[str]]]:
+    """{n: {"start,r,j" | "end,r,j": lam-coefficients}}: d^r/dt^r of b_j (start, at t = 0)
+    and of b_{n-j} (end, at t = 1)."""
+    return _endpoint_table(defn)
+
+
+@cache
+def _endpoint_table(defn: Definition) -> dict[str, dict[str, list[str]]]:
+    out = {}
+    for deg in defn.degrees:
+        row = {}
+        for idx, p in enumerate(basis_polys(defn, deg)):
+            d = p
+            for r in range(ENDPOINT_ORDERS + 1):
+                for end, at, j in (("start", 0, idx), ("end", 1, deg - idx)):
+                    value = d.eval(t, at)  # a Poly in lam
+                    if not value.is_zero:
+                        row[f"{end},{r},{j}"] = _lam_coeffs(value)
+                d = d.diff(t)
+        out[str(deg)] = dict(sorted(row.items()))
+    return out
+
+
+def closed_endpoint_forms(defn: Definition) -> dict[tuple[str, int, int], sp.Expr] | None:
+    """Closed forms in n of the end values/derivatives of orders 0..closed_endpoint_order():
+    for each entry, the polynomial in n (of degree at most #degrees - 3) through the values at
+    all degrees but the last two that also gives those two. An order is in closed form only
+    when every entry of it and of the orders below has such a polynomial (a family whose
+    second derivative at 0 involves P_n, say, has its values and first derivatives in closed
+    form and its second per degree). None when not even the end values are (or the range has
+    fewer than five degrees): then the family is checked per degree only."""
+    forms, order = _closed_endpoint_forms(defn)
+    return forms if order >= 0 else None
+
+
+def closed_endpoint_order(defn: Definition) -> int:
+    """The highest order r such that the end derivatives of orders 0..r are in closed form in
+    n (-1: none)."""
+    return _closed_endpoint_forms(defn)[1]
+
+
+@cache
+def _closed_endpoint_forms(defn: Definition) -> tuple[dict[tuple[str, int, int], sp.Expr], int]:
+    table = endpoint_table(defn)
+    keys = sorted({k for row in table.values() for k in row})
+    nn = n
+    out = {}
+    degrees = list(defn.degrees)
+    if len(degrees) < 5:
+        return {}, -1
+    failed = ENDPOINT_ORDERS + 1  # the lowest order with an entry that has no closed form
+    for key in keys:
+        end, r, j = key.split(",")
+        pts = [(deg, table[str(deg)].get(key, ["0"])) for deg in degrees if int(j) <= deg]
+        form = sp.Integer(0) if len(pts) >= 5 else None
+        width = max(len(c) for _, c in pts)
+        for p in range(width if form is not None else 0):
+            xs = [sp.Integer(deg) for deg, _ in pts]
+            ys = [sp.Rational(c[p]) if p < len(c) else sp.Integer(0) for _, c in pts]
+            poly = sp.interpolate(list(zip(xs[:-2], ys[:-2], strict=True)), nn)
+            if any(poly.subs(nn, x) != y for x, y in zip(xs[-2:], ys[-2:], strict=True)):
+                form = None
+                break
+            form += sp.expand(poly) * lam**p
+        if form is None:
+            failed = min(failed, int(r))
+        elif form != 0:
+            out[(end, int(r), int(j))] = sp.factor(form)
+    return {key: v for key, v in out.items() if key[1] < failed}, failed - 1
+
+
+class GenericDerivation:
+    """What a derivation module provides (DEGREES, DEGREE_OFFSET, PARAMETERS, DOMAIN,
+    basis_polys, closed_end_forms, OUTPUT, module_data), for a built-in family from its
+    definition alone: the emitted module has the tables and the end forms in closed form in n
+    (fitted, then checked against every degree of the range), and no general form of a
+    paper's own."""
+
+    SCRIPT = "family_engine.py"  # the banner names the pre-#27 path (generated/ unchanged)
+
+    def __init__(self, defn: Definition):
+        self.DEFINITION = defn
+        self.DEGREES = defn.degrees
+        self.DEGREE_OFFSET = defn.offset
+        self.PARAMETERS = defn.parameters  # the shape parameters' names, a tuple (issue #30)
+        self.DOMAIN = defn.domain  # the interval of t
+        self.OUTPUT = f"{defn.name}.py"
+
+    def basis_polys(self, degree: int) -> list[sp.Poly]:
+        return basis_polys(self.DEFINITION, degree)
+
+    def closed_end_forms(self) -> dict[tuple[str, int, int], sp.Expr]:
+        closed = closed_endpoint_forms(self.DEFINITION)
+        if closed is None:
+            raise DefinitionError(
+                f"{self.DEFINITION.name}: a built-in family needs its end values and "
+                "derivatives in closed form in n (the joins are emitted in n, m); this "
+                "definition has none, so give it a derivation module or keep it a user family"
+            )
+        return {key: v for key, v in closed.items() if key[1] <= 2}
+
+    def module_data(self) -> FamilyModule:
+        """What the emitted module holds (derive/emit prints it)."""
+        defn = self.DEFINITION
+        check(defn)
+        closed = self.closed_end_forms()
+        check_endpoint_closed_forms(closed, {d: self.basis_polys(d) for d in defn.degrees}, 2)
+        return FamilyModule(
+            script=self.SCRIPT,
+            doc=f"{defn.title or defn.name}: derived from its definition alone.",
+            definition=defn,
+            tables=expansion_tables(self.basis_polys, tuple(defn.degrees), defn.offset),
+            general_forms=(),
+            endpoint=closed,
+        )
+
+
+@cache
+def _generic_derivation(defn: Definition) -> GenericDerivation:
+    return GenericDerivation(defn)

@@ -1,0 +1,83 @@
+"""The registry verify reads itself: every checker module, the paper-specific checkers each
+built-in family's definition names (derive/families/<name>.toml, ``[builtin] checks``), and
+the families a records file defines. Importing this module registers every claim kind.
+
+Nothing below verify knows verify: the families layer only names the checks module, and
+verify imports it here.
+"""
+
+from __future__ import annotations
+
+import importlib
+
+from ..families.definition import Definition
+from ..families.engine import basis_polys, check, closed_endpoint_forms, closed_endpoint_order
+from ..families.registry import builtin_families
+from ..formulas.family import register_formulas
+
+# The shared checkers register their claim kinds on import (one module per group of kinds).
+from . import (  # noqa: F401 - imported for their registrations
+    checks_energy,
+    checks_equations,
+    checks_examples,
+    checks_joins,
+    checks_properties,
+)
+from .checks_core import CHECKERS, Outcome, Pending, claim_kind, missing_requirement
+from .claim_families import (
+    FAMILIES,
+    Family,
+    kind_problem,
+    kinds,
+    register_family,
+    resolve_checker,
+)
+from .context import Context
+
+__all__ = [
+    "CHECKERS",
+    "FAMILIES",
+    "Outcome",
+    "claim_kind",
+    "kind_problem",
+    "kinds",
+    "register_defined_family",
+    "run_checker",
+]
+
+# A paper's own claims: the module its family's definition names (checks = "checks_<name>").
+for _builtin in builtin_families():
+    if _builtin.checks:
+        importlib.import_module(f"{__package__}.{_builtin.checks}")
+
+
+def run_checker(record: dict) -> Outcome:
+    entry = resolve_checker(record)
+    reason = missing_requirement(entry.requires)
+    if reason is not None:
+        return Outcome("pending", [reason])
+    try:
+        return entry.fn(record, Context.of(record))
+    except Pending as exc:
+        return Outcome("pending", [str(exc)])
+
+
+def register_defined_family(defn: Definition, points: str = "P") -> None:
+    """Make a family a records file defines known to verify for this process: its records are
+    checked by the same checkers as a built-in family's (per degree always; symbolically in n
+    where the engine found closed end forms; energies where the basis is linear in the
+    parameter), and the formula tables know it (derive/formulas/family.py)."""
+    check(defn)
+    closed = closed_endpoint_forms(defn)
+    register_family(
+        Family(
+            defn.name,
+            defn.degrees,
+            points,
+            lambda degree: basis_polys(defn, degree),
+            defn.offset,
+            lambda: closed,
+            closed_order=closed_endpoint_order(defn),
+        )
+    )
+    register_formulas(defn)

@@ -33,12 +33,14 @@ import numpy as np
 
 from . import _algorithms as alg
 from . import _bezier_forms as forms
+from . import _intersect_subdivide as sub
 
 LEVELS = 8  # subdivision depth: pieces of width 2^-8 seed Newton
 MAX_PAIRS = 50_000  # a guard against runaway subdivision (degenerate input)
 BOX_SLACK = 1e-12  # relative: boxes that touch within rounding still overlap
 ON_CURVE = 1e-10  # relative distance below which a point counts as on a curve
 SAME_ROOT = 1e-9  # parameters closer than this are one intersection
+ISOLATED_SAME = 1e-13  # two polished roots of isolated pieces this close are one (a shared edge)
 MERGE_RADIUS = 1e-3  # hits closer than this are compared for being one (see _add)
 NEAR_FOUND = 1e-6  # float Newton this close to a refined root has found that root
 TANGENT_SINE = 1e-6  # below this sine of the angle between tangents, refine as tangent
@@ -73,6 +75,13 @@ class Prepared:
         span = float(np.ptp(self.pts, axis=0).max())
         self.is_point = span == 0.0  # every t gives the same point
         self.scale = float(max(span, np.abs(self.pts).max(), 1e-300))
+
+    @functools.cached_property
+    def size(self) -> float:
+        """The size of the curve itself (its points' extent and distance from the origin,
+        from 129 samples), which tolerances on distances to it are relative to."""
+        samples = alg.de_casteljau_steps(self.pts, np.linspace(0.0, 1.0, 129), self.degree)[:, 0]
+        return float(max(np.ptp(samples, axis=0).max(), np.abs(samples).max(), 1e-300))
 
     def at(self, s: float, which: int = 0) -> np.ndarray:
         work = (self.pts, self.h1, self.h2)[which]
@@ -142,67 +151,6 @@ def _halves(pieces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return np.matmul(left, pieces), np.matmul(right, pieces)
 
 
-def _boxes_overlap(a: np.ndarray, b: np.ndarray, slack: float) -> np.ndarray:
-    overlap: np.ndarray = np.all(
-        (a.min(axis=1) <= b.max(axis=1) + slack) & (b.min(axis=1) <= a.max(axis=1) + slack),
-        axis=1,
-    )
-    return overlap
-
-
-def _injective(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """For pairs of neighbouring pieces of one curve: True where some direction u has
-    u·p' > 0 on both (u = the mean unit hodograph vector), so the curve is one-to-one there."""
-    h = np.concatenate([np.diff(a, axis=1), np.diff(b, axis=1)], axis=1)
-    norm = np.linalg.norm(h, axis=2, keepdims=True)
-    unit = np.divide(h, norm, out=np.zeros_like(h), where=norm > 0)
-    u = unit.sum(axis=1, keepdims=True)
-    one_to_one: np.ndarray = np.all(np.sum(h * u, axis=2) > 0, axis=1)
-    return one_to_one
-
-
-def _surviving_pairs(
-    p: Prepared, q: Prepared | None, skip: list[tuple[float, float, float, float]]
-) -> tuple[np.ndarray, np.ndarray]:
-    """Index pairs (i, j) of the level-LEVELS pieces whose boxes still overlap. q None means
-    p against itself (pairs i <= j; neighbouring pieces are dropped once provably
-    one-to-one)."""
-    same = q is None
-    qq = p if q is None else q
-    slack = BOX_SLACK * max(p.scale, qq.scale)
-    a, b = p.pts[None], qq.pts[None]
-    ia, ib = np.zeros(1, dtype=np.int64), np.zeros(1, dtype=np.int64)
-    for level in range(LEVELS + 1):
-        keep = _boxes_overlap(a, b, slack)
-        if same:
-            near = np.abs(ia - ib) <= 1
-            if near.any():
-                keep[near] &= ~_injective(a[near], b[near])
-        width = 0.5**level
-        for s0, s1, t0, t1 in skip:  # pairs inside a coincident stretch
-            inside = (ia * width >= s0) & ((ia + 1) * width <= s1)
-            inside &= (ib * width >= t0) & ((ib + 1) * width <= t1)
-            keep &= ~inside
-        a, b, ia, ib = a[keep], b[keep], ia[keep], ib[keep]
-        if level == LEVELS or not ia.size:
-            break
-        if 4 * ia.size > MAX_PAIRS:
-            raise ValueError(
-                "intersection: subdivision does not separate the curves (more than "
-                f"{MAX_PAIRS} candidate pairs); are they coincident or degenerate?"
-            )
-        al, ar = _halves(a)
-        bl, br = _halves(b)
-        a = np.concatenate([al, al, ar, ar])
-        b = np.concatenate([bl, br, bl, br])
-        ia = np.concatenate([2 * ia, 2 * ia, 2 * ia + 1, 2 * ia + 1])
-        ib = np.concatenate([2 * ib, 2 * ib + 1, 2 * ib, 2 * ib + 1])
-        if same:
-            ok = ia <= ib
-            a, b, ia, ib = a[ok], b[ok], ia[ok], ib[ok]
-    return ia, ib
-
-
 def _clusters(ia: np.ndarray, ib: np.ndarray) -> list[np.ndarray]:
     """Groups of pairs connected through neighbouring pieces (|Δi| <= 1 and |Δj| <= 1)."""
     count = ia.size
@@ -226,18 +174,48 @@ def _clusters(ia: np.ndarray, ib: np.ndarray) -> list[np.ndarray]:
     return groups
 
 
-def _starts(ia: np.ndarray, ib: np.ndarray, per_cluster: int = 6) -> list[tuple[float, float]]:
-    """Newton starting points: the middle pair of each cluster, and for a cluster longer
-    than a few pieces (a tangency, or crossings close together) pairs spread along it."""
-    width = 0.5**LEVELS
+def _interval_clusters(s0: np.ndarray, t0: np.ndarray, width: np.ndarray) -> list[np.ndarray]:
+    """Groups of unresolved pairs of pieces whose s and t intervals touch (transitively): a
+    sweep over the pairs sorted by s0, so no K x K table."""
+    count = s0.size
+    parent = list(range(count))
+
+    def root(k: int) -> int:
+        while parent[k] != k:
+            parent[k] = parent[parent[k]]
+            k = parent[k]
+        return k
+
+    order = np.argsort(s0, kind="stable").tolist()
+    s_lo, t_lo, w = s0.tolist(), t0.tolist(), width.tolist()
+    active: list[int] = []
+    for k in order:
+        active = [j for j in active if s_lo[j] + w[j] >= s_lo[k] - 1e-15]
+        for j in active:
+            if t_lo[j] <= t_lo[k] + w[k] + 1e-15 and t_lo[k] <= t_lo[j] + w[j] + 1e-15:
+                parent[root(j)] = root(k)
+        active.append(k)
+    groups: dict[int, list[int]] = {}
+    for k in range(count):
+        groups.setdefault(root(k), []).append(k)
+    return [np.array(members) for members in groups.values()]
+
+
+def _starts(
+    s0: np.ndarray, t0: np.ndarray, width: np.ndarray, per_cluster: int = 6
+) -> list[tuple[float, float]]:
+    """Newton starting points for unresolved pairs of pieces (a tangency, or a contact
+    subdivision could not split): the middle pair of each cluster, and for a cluster longer
+    than a few pieces pairs spread along it."""
     out = []
-    for members in _clusters(ia, ib):
-        order = members[np.argsort(ia[members] + ib[members], kind="stable")]
+    for members in _interval_clusters(s0, t0, width):
+        centre_s, centre_t = s0[members] + width[members] / 2, t0[members] + width[members] / 2
+        order = members[np.argsort(centre_s + centre_t, kind="stable")]
         picks = [order[order.size // 2]]
-        if np.ptp(ia[members]) > 2 or np.ptp(ib[members]) > 2:
+        if order.size > 3:
             spread = np.linspace(0, order.size - 1, min(per_cluster, order.size)).astype(int)
             picks += [k for k in order[np.unique(spread)] if k != picks[0]]
-        out += [((ia[k] + 0.5) * width, (ib[k] + 0.5) * width) for k in picks]
+        out += [(float(s0[k] + width[k] / 2), float(t0[k] + width[k] / 2)) for k in picks]
     return out
 
 
@@ -376,14 +354,22 @@ def _near_found(s: float, t: float, found: list[Intersection]) -> bool:
 
 
 def _solve_from(
-    p: Prepared, q: Prepared, s: float, t: float, found: list[Intersection]
+    p: Prepared, q: Prepared, s: float, t: float, found: list[Intersection], isolated: bool = False
 ) -> Intersection | None:
+    """The intersection Newton reaches from (s, t), refined. isolated: (s, t) is already a
+    float root in pieces that hold no other (see _intersect_subdivide), so no shortcut may
+    identify it with a root found before."""
+    s0, t0 = s, t
     s, t, status = _newton(p, q, s, t)
     if status == "out":
-        return None
+        # float Newton is thrown far off near a tangency (the Jacobian is nearly singular);
+        # the tangent system is regular there, so refine from the start instead
+        s, t = _tangent_refine(p, q, s0, t0, (False,))
+        if not (-0.5 < s < 1.5 and -0.5 < t < 1.5):
+            return None
     # Newton in floats stalls within ~1e-8 of a tangent root: a start that lands that close
     # to a root already refined is that root (skips the costly exact refinement)
-    if _near_found(s, t, found):
+    if not isolated and _near_found(s, t, found):
         return None
     scale = max(p.scale, q.scale)
     if np.linalg.norm(_residual(p, q, s, t, False)) > 1e-6 * scale:
@@ -416,6 +402,7 @@ def locate_all(
     target = exact_point if exact_point is not None else tuple(map(Fraction, point.tolist()))
     scale = max(p.scale, float(np.abs(point).max(initial=0.0)))
     tol = ON_CURVE * scale
+    on_curve = ON_CURVE * max(p.size, float(np.abs(point).max(initial=0.0)))
     found: list[float] = []
     if p.is_point:
         if np.linalg.norm(p.pts[0] - point) <= tol:
@@ -443,7 +430,9 @@ def locate_all(
             t = _locate_newton(p, point, exact_target, (index[k] + 0.5) * width)
             if t is None or any(abs(t - u) < SAME_ROOT for u in found):
                 continue
-            if np.linalg.norm(p.at(t) - point) > tol:
+            # on the curve: the exact distance, relative to the curve's own size (its control
+            # polygon can be far larger: a Chebyshev polynomial's Bernstein coefficients)
+            if _exact_distance(p, t, exact_target) > on_curve:
                 continue
             # one location if the curve stays at the point all the way between (a flat
             # spot, p' = p'' = 0, leaves the residual below tolerance around the root)
@@ -452,7 +441,7 @@ def locate_all(
                 for j, u in enumerate(found)
                 if abs(t - u) < MERGE_RADIUS
                 and all(
-                    np.linalg.norm(p.at(u + x * (t - u)) - point) <= tol
+                    np.linalg.norm(p.at(u + x * (t - u)) - point) <= on_curve
                     for x in np.linspace(0.0, 1.0, 9)
                 )
             ]
@@ -505,8 +494,28 @@ def _same_piece(p: Prepared, q: Prepared, s0: float, s1: float, t0: float, t1: f
     )
 
 
-def _dedupe(found: list[Intersection], new: Intersection) -> bool:
-    return any(abs(new.s - old.s) < SAME_ROOT and abs(new.t - old.t) < SAME_ROOT for old in found)
+def _same_image(p: Prepared, q: Prepared, s0: float, s1: float, t0: float, t1: float) -> bool:
+    """p over [s0, s1] runs along q over [t0, t1] under some parameterisation (not only an
+    affine one, which _same_piece checks): degree(p) degree(q) + 1 points of p's stretch lie
+    on q's stretch, each at exactly one t, in the same order. By Bezout, that many common
+    points put p's stretch on q's algebraic curve; the order rules out a stretch that
+    folds back over q."""
+    count = max(p.degree * q.degree + 1, 3)
+    fractions = (np.arange(count) + 0.5) / count
+    middle_first = [count // 2] + [k for k in range(count) if k != count // 2]
+    lo, hi = min(t0, t1) - SAME_ROOT, max(t0, t1) + SAME_ROOT
+    located: dict[int, float] = {}
+    for k in middle_first:
+        on_q = [t for t in locate_all(q, p.at(s0 + fractions[k] * (s1 - s0))) if lo <= t <= hi]
+        if len(on_q) != 1:
+            return False
+        located[k] = on_q[0]
+    steps = np.diff([located[k] for k in range(count)]) * np.sign(t1 - t0)
+    return bool(np.all(steps > 0))
+
+
+def _dedupe(found: list[Intersection], new: Intersection, same: float = SAME_ROOT) -> bool:
+    return any(abs(new.s - old.s) < same and abs(new.t - old.t) < same for old in found)
 
 
 def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
@@ -540,7 +549,7 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
         for b in ends[i + 1 :]:
             if abs(a.s - b.s) < SAME_ROOT or abs(a.t - b.t) < SAME_ROOT:
                 continue
-            if _same_piece(p, q, a.s, b.s, a.t, b.t):
+            if _same_piece(p, q, a.s, b.s, a.t, b.t) or _same_image(p, q, a.s, b.s, a.t, b.t):
                 lo, hi = sorted((a, b))
                 coincident += [lo._replace(kind="coincident"), hi._replace(kind="coincident")]
                 skip.append((lo.s, hi.s, min(a.t, b.t), max(a.t, b.t)))
@@ -550,8 +559,17 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
             _add(found, e, p, q)
     if not coincident:
         _refuse_collinear_overlap(p, q)
-    ia, ib = _surviving_pairs(p, q, skip)
-    for s, t in _starts(ia, ib):
+    iso = sub.isolate(
+        p.pts[None],
+        q.pts[None],
+        np.array([BOX_SLACK * max(p.scale, q.scale)]),
+        [(0, *box) for box in skip],
+    )
+    for s, t in zip(iso.root_s.tolist(), iso.root_t.tolist(), strict=True):
+        hit = _solve_from(p, q, s, t, found, isolated=True)
+        if hit is not None and not _dedupe(found, hit, ISOLATED_SAME):
+            found.append(hit)
+    for s, t in _starts(iso.left_s0, iso.left_t0, iso.left_width):
         if any(s0 <= s <= s1 and t0 <= t <= t1 for s0, s1, t0, t1 in skip):
             continue
         hit = _solve_from(p, q, s, t, found)
@@ -641,13 +659,20 @@ def self_intersections(p: Prepared) -> list[Intersection]:
             "the curve lies on a line and turns back along it: it meets itself along an "
             "interval, not at points"
         )
-    ia, ib = _surviving_pairs(p, None, [])
-    width = 0.5**LEVELS
-    starts = []
-    for s, t in _starts(ia, ib):
-        if abs(s - t) < 1.5 * width:  # neighbouring pieces: start apart, not on the diagonal
-            s, t = s - width, t + width
-        starts.append((s, t))
+    iso = sub.isolate(p.pts[None], None, np.array([BOX_SLACK * p.scale]))
+    for s, t in zip(iso.root_s.tolist(), iso.root_t.tolist(), strict=True):
+        hit = _solve_from(p, p, s, t, found, isolated=True)
+        if hit is None or abs(hit.s - hit.t) < 1e-7:
+            continue
+        if hit.s > hit.t:
+            hit = Intersection(hit.t, hit.s, hit.kind)
+        if not _dedupe(found, hit, ISOLATED_SAME):
+            found.append(hit)
+    # unresolved pieces on the diagonal are not one-to-one even at width 2^-DEPTH: a cusp
+    # (p' = 0), where p(s) - p(t) vanishes to third order, not a crossing
+    starts = [
+        (s, t) for s, t in _starts(iso.left_s0, iso.left_t0, iso.left_width) if abs(s - t) > 1e-7
+    ]
     for s, t in starts:
         hit = _solve_from(p, p, s, t, found)
         if hit is None or abs(hit.s - hit.t) < 1e-7:

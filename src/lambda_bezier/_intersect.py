@@ -35,13 +35,20 @@ from . import _algorithms as alg
 from . import _bezier_forms as forms
 from . import _intersect_subdivide as sub
 
-LEVELS = 8  # subdivision depth: pieces of width 2^-8 seed Newton
-MAX_PAIRS = 50_000  # a guard against runaway subdivision (degenerate input)
-BOX_SLACK = 1e-12  # relative: boxes that touch within rounding still overlap
+# relative, per unit of degree: pieces whose boxes or fat lines are this close still overlap.
+# It covers the rounding of repeated halving (a few ulps of the control points' size per
+# level and degree) and no more, so that curves 1e-13 of their size apart are still told apart
+BOX_SLACK = 64 * np.finfo(float).eps
 ON_CURVE = 1e-10  # relative distance below which a point counts as on a curve
 SAME_ROOT = 1e-9  # parameters closer than this are one intersection
 ISOLATED_SAME = 1e-13  # two polished roots of isolated pieces this close are one (a shared edge)
 MERGE_RADIUS = 1e-3  # hits closer than this are compared for being one (see _add)
+# ... and are one when the curves stay this close (relative, per unit of degree) all the way
+# between them: a contact of high order, which refinement approaches only linearly, so that
+# starts stop at different points of it. Rounding level, so that two crossings of curves that
+# separate by more than ~1e-13 of their size between them stay two.
+MERGE_GAP = 64 * np.finfo(float).eps
+ROOT_RESIDUAL = 64 * np.finfo(float).eps  # relative, per degree: a refined root's exact residual
 NEAR_FOUND = 1e-6  # float Newton this close to a refined root has found that root
 TANGENT_SINE = 1e-6  # below this sine of the angle between tangents, refine as tangent
 
@@ -137,43 +144,7 @@ def _integer_hodograph(ints: list[list[int]]) -> list[list[int]]:
     ]
 
 
-# ---------------------------------------------------------------------------- subdivision
-@functools.cache
-def _half_matrices(degree: int) -> tuple[np.ndarray, np.ndarray]:
-    """Subdivision at 1/2 as two (n+1, n+1) matrices: de Casteljau on the unit points."""
-    left, right = alg.split_rows(np.eye(degree + 1).tolist(), 0.5)
-    return np.array(left), np.array(right)
-
-
-def _halves(pieces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """de Casteljau at 1/2 on (K, n+1, d) pieces: the left and right halves."""
-    left, right = _half_matrices(pieces.shape[1] - 1)
-    return np.matmul(left, pieces), np.matmul(right, pieces)
-
-
-def _clusters(ia: np.ndarray, ib: np.ndarray) -> list[np.ndarray]:
-    """Groups of pairs connected through neighbouring pieces (|Δi| <= 1 and |Δj| <= 1)."""
-    count = ia.size
-    if count == 0:
-        return []
-    adj = (np.abs(ia[:, None] - ia[None]) <= 1) & (np.abs(ib[:, None] - ib[None]) <= 1)
-    label = -np.ones(count, dtype=np.int64)
-    groups: list[np.ndarray] = []
-    for seed in range(count):
-        if label[seed] >= 0:
-            continue
-        label[seed] = len(groups)
-        stack, members = [seed], [seed]
-        while stack:
-            k = stack.pop()
-            for m in np.flatnonzero(adj[k] & (label < 0)):
-                label[m] = len(groups)
-                stack.append(int(m))
-                members.append(int(m))
-        groups.append(np.array(sorted(members)))
-    return groups
-
-
+# ---------------------------------------------------------------------------- clusters
 def _interval_clusters(s0: np.ndarray, t0: np.ndarray, width: np.ndarray) -> list[np.ndarray]:
     """Groups of unresolved pairs of pieces whose s and t intervals touch (transitively): a
     sweep over the pairs sorted by s0, so no K x K table."""
@@ -212,7 +183,9 @@ def _starts(
         centre_s, centre_t = s0[members] + width[members] / 2, t0[members] + width[members] / 2
         order = members[np.argsort(centre_s + centre_t, kind="stable")]
         picks = [order[order.size // 2]]
-        if order.size > 3:
+        if order.size <= per_cluster:  # a few flat pieces: each may hold its own crossing
+            picks = list(order)
+        elif order.size > 3:
             spread = np.linspace(0, order.size - 1, min(per_cluster, order.size)).astype(int)
             picks += [k for k in order[np.unique(spread)] if k != picks[0]]
         out += [(float(s0[k] + width[k] / 2), float(t0[k] + width[k] / 2)) for k in picks]
@@ -353,6 +326,12 @@ def _near_found(s: float, t: float, found: list[Intersection]) -> bool:
     return any(abs(s - f.s) < NEAR_FOUND and abs(t - f.t) < NEAR_FOUND for f in found)
 
 
+def _on_both(p: Prepared, q: Prepared, s: float, t: float) -> bool:
+    """p(s) = q(t) to rounding: the exact residual within ROOT_RESIDUAL of the curves' size."""
+    bound = ROOT_RESIDUAL * max(p.degree, q.degree) * max(p.scale, q.scale)
+    return bool(np.linalg.norm(_residual(p, q, s, t, True)) <= bound)
+
+
 def _solve_from(
     p: Prepared, q: Prepared, s: float, t: float, found: list[Intersection], isolated: bool = False
 ) -> Intersection | None:
@@ -374,9 +353,18 @@ def _solve_from(
     scale = max(p.scale, q.scale)
     if np.linalg.norm(_residual(p, q, s, t, False)) > 1e-6 * scale:
         return None  # Newton wandered off; a real root near a start converges closer
+    # a root from isolated pieces is transversal (a tangency puts one tangent line in both
+    # pieces' cones, which isolation rules out), however small the angle: two crossings 1e-6
+    # apart meet at a sine below TANGENT_SINE. Elsewhere a small sine means a tangency, where
+    # exact-residual Newton can stall at a point that merely looks converged
     polished = False
-    if _sine(p, q, s, t) > TANGENT_SINE:  # looks transversal: Newton must then converge fast
-        ps, pt, polished = _polish(p, q, s, t)
+    if isolated or _sine(p, q, s, t) > TANGENT_SINE:
+        # an isolated root may sit close to others (a near-double crossing), where float
+        # Newton's root is off by far more than an ulp: allow polishing the time to get there
+        ps, pt, polished = _polish(p, q, s, t, 12 if isolated else 4)
+        # ... where, with the columns of the float Jacobian nearly parallel, its last steps
+        # can cycle at a few ulps; the residual then says whether it got there
+        polished = polished or (isolated and _on_both(p, q, ps, pt))
     if polished:
         s, t, kind = ps, pt, "transversal"
     else:
@@ -385,7 +373,10 @@ def _solve_from(
             return None
         s, t = _tangent_refine(p, q, s, t, (True,))
         kind = "tangent" if _sine(p, q, s, t) <= TANGENT_SINE else "transversal"
-    if np.linalg.norm(_residual(p, q, s, t, True)) > ON_CURVE * scale:
+    # a root: the exact residual at rounding level (a tangency refined through the regular
+    # tangent system converges as far as a crossing does; a point that stays farther off is
+    # a near miss, or a stall next to a root of another kind)
+    if not _on_both(p, q, s, t):
         return None
     tol = 1e-12
     if not (-tol <= s <= 1 + tol and -tol <= t <= 1 + tol):
@@ -411,46 +402,34 @@ def locate_all(
     for end in (0, 1):
         if tuple(p.rows[-1 if end else 0]) == tuple(target):
             found.append(float(end))
-    pieces = p.pts[None]
-    index = np.zeros(1, dtype=np.int64)
-    for level in range(LEVELS + 1):
-        keep = np.all(
-            (pieces.min(axis=1) <= point + tol) & (point - tol <= pieces.max(axis=1)), axis=1
-        )
-        pieces, index = pieces[keep], index[keep]
-        if level == LEVELS or not index.size:
-            break
-        left, right = _halves(pieces)
-        pieces = np.concatenate([left, right])
-        index = np.concatenate([2 * index, 2 * index + 1])
-    width = 0.5**LEVELS
+    # candidates from the subdivision engine: Newton roots on one-to-one pieces, and the
+    # middles of pieces that stay flat around the point (a zero of the speed there)
+    iso = sub.isolate_points(p.pts[None], point[None], np.array([tol]))
+    starts = iso.root_s.tolist() + [s for s, _ in _starts(iso.left_s0, iso.left_t0, iso.left_width)]
     exact_target = _integer_point(target)
-    for members in _clusters(index, np.zeros_like(index)):
-        for k in {members[0], members[members.size // 2], members[-1]}:
-            t = _locate_newton(p, point, exact_target, (index[k] + 0.5) * width)
-            if t is None or any(abs(t - u) < SAME_ROOT for u in found):
-                continue
-            # on the curve: the exact distance, relative to the curve's own size (its control
-            # polygon can be far larger: a Chebyshev polynomial's Bernstein coefficients)
-            if _exact_distance(p, t, exact_target) > on_curve:
-                continue
-            # one location if the curve stays at the point all the way between (a flat
-            # spot, p' = p'' = 0, leaves the residual below tolerance around the root)
-            same = [
-                j
-                for j, u in enumerate(found)
-                if abs(t - u) < MERGE_RADIUS
-                and all(
-                    np.linalg.norm(p.at(u + x * (t - u)) - point) <= on_curve
-                    for x in np.linspace(0.0, 1.0, 9)
-                )
-            ]
-            if not same:
-                found.append(float(t))
-            elif _exact_distance(p, t, exact_target) < _exact_distance(
-                p, found[same[0]], exact_target
-            ):
-                found[same[0]] = float(t)
+    for start in starts:
+        t = _locate_newton(p, point, exact_target, start)
+        if t is None or any(abs(t - u) < SAME_ROOT for u in found):
+            continue
+        # on the curve: the exact distance, relative to the curve's own size (its control
+        # polygon can be far larger: a Chebyshev polynomial's Bernstein coefficients)
+        if _exact_distance(p, t, exact_target) > on_curve:
+            continue
+        # one location if the curve stays at the point all the way between (a flat
+        # spot, p' = p'' = 0, leaves the residual below tolerance around the root, over
+        # a stretch as wide as tolerance^(1/order): 0.02 for a zero of order 6)
+        same = [
+            j
+            for j, u in enumerate(found)
+            if all(
+                np.linalg.norm(p.at(u + x * (t - u)) - point) <= on_curve
+                for x in np.linspace(0.0, 1.0, 17)
+            )
+        ]
+        if not same:
+            found.append(float(t))
+        elif _exact_distance(p, t, exact_target) < _exact_distance(p, found[same[0]], exact_target):
+            found[same[0]] = float(t)
     return sorted(found)
 
 
@@ -562,7 +541,7 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
     iso = sub.isolate(
         p.pts[None],
         q.pts[None],
-        np.array([BOX_SLACK * max(p.scale, q.scale)]),
+        np.array([BOX_SLACK * max(p.degree, q.degree) * max(p.scale, q.scale)]),
         [(0, *box) for box in skip],
     )
     for s, t in zip(iso.root_s.tolist(), iso.root_t.tolist(), strict=True):
@@ -598,7 +577,7 @@ def _add(found: list[Intersection], hit: Intersection, p: Prepared, q: Prepared)
                 )
                 for u in x
             )
-            if gap <= ON_CURVE * max(p.scale, q.scale):
+            if gap <= MERGE_GAP * max(p.degree, q.degree) * max(p.scale, q.scale):
                 if old.kind != "coincident" and _quality(p, q, hit) < _quality(p, q, old):
                     found[k] = hit
                 return
@@ -641,6 +620,13 @@ def _refuse_collinear_overlap(p: Prepared, q: Prepared) -> None:
         )
 
 
+def _cusp_loop(p: Prepared, hit: Intersection) -> bool:
+    """Near a cusp p(s) - p(t) vanishes to third order for s close to t: a "loop" whose
+    points all lie within rounding of each other is that, not a crossing."""
+    loop = np.array([p.at(u) for u in np.linspace(hit.s, hit.t, 9)])
+    return bool(np.ptp(loop, axis=0).max() <= 1e-8 * p.scale)
+
+
 def self_intersections(p: Prepared) -> list[Intersection]:
     """Pairs s < t with p(s) = p(t), sorted by s."""
     if p.dim < 2:
@@ -659,10 +645,10 @@ def self_intersections(p: Prepared) -> list[Intersection]:
             "the curve lies on a line and turns back along it: it meets itself along an "
             "interval, not at points"
         )
-    iso = sub.isolate(p.pts[None], None, np.array([BOX_SLACK * p.scale]))
+    iso = sub.isolate(p.pts[None], None, np.array([BOX_SLACK * p.degree * p.scale]))
     for s, t in zip(iso.root_s.tolist(), iso.root_t.tolist(), strict=True):
         hit = _solve_from(p, p, s, t, found, isolated=True)
-        if hit is None or abs(hit.s - hit.t) < 1e-7:
+        if hit is None or abs(hit.s - hit.t) < 1e-7 or _cusp_loop(p, hit):
             continue
         if hit.s > hit.t:
             hit = Intersection(hit.t, hit.s, hit.kind)
@@ -677,10 +663,7 @@ def self_intersections(p: Prepared) -> list[Intersection]:
         hit = _solve_from(p, p, s, t, found)
         if hit is None or abs(hit.s - hit.t) < 1e-7:
             continue
-        # near a cusp p(s) - p(t) vanishes to third order for s close to t: a "loop" whose
-        # points all lie within rounding of each other is that, not a crossing
-        loop = np.array([p.at(u) for u in np.linspace(hit.s, hit.t, 9)])
-        if np.ptp(loop, axis=0).max() <= 1e-8 * p.scale:
+        if _cusp_loop(p, hit):
             continue
         if hit.s > hit.t:
             hit = Intersection(hit.t, hit.s, hit.kind)

@@ -108,6 +108,16 @@ def _thickness(pieces: np.ndarray) -> np.ndarray:
     return thickness
 
 
+def _runs_forward(pieces: np.ndarray) -> np.ndarray:
+    """True where every hodograph control point has a non-negative component along the
+    chord: the piece never turns back along it (a flat piece that does can pass a point, or
+    cross a line, twice)."""
+    chord = pieces[:, -1] - pieces[:, 0]
+    along = np.einsum("kid,kd->ki", np.diff(pieces, axis=1), chord)
+    forward: np.ndarray = np.all(along >= 0, axis=1) & np.any(chord != 0, axis=1)
+    return forward
+
+
 def _cones(pieces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The axis (unit vector) and half-angle of a circular cone holding every hodograph
     control point of each piece; half-angle >= pi/2 (not pointed) where there is none
@@ -261,6 +271,7 @@ def isolate(
         # pieces flat to within the slack on both sides are as resolved as subdivision gets
         # (a tangency or a contact of higher order, within rounding of the input)
         flat = (_thickness(pa) <= slack[pid]) & (_thickness(pb) <= slack[pid])
+        flat &= _runs_forward(pa) & _runs_forward(pb)
         if same:
             flat &= np.abs(ia - ib) > 1
         if flat.any():
@@ -299,3 +310,90 @@ def isolate(
     else:
         parts = [np.zeros(0, dtype=np.int64), empty, empty, empty]
     return Isolated(root_pair, root_s, root_t, *parts)
+
+
+def _local_foot_newton(pieces: np.ndarray, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Newton on |p(u) - x|^2 / 2 restricted to the pieces' own u (Gauss-Newton: the step
+    -(p - x)·p' / p'·p'), from u = 1/2: (u, converged), converged where the step fell below
+    1e-12 inside the piece."""
+    u = np.full(pieces.shape[0], 0.5)
+    step = np.full(pieces.shape[0], np.inf)
+    with np.errstate(all="ignore"):
+        for _ in range(NEWTON_STEPS):
+            value, slope = _eval_with_derivative(pieces, u)
+            du = -np.einsum("kd,kd->k", value - points, slope) / np.einsum("kd,kd->k", slope, slope)
+            u = u + du
+            step = np.abs(du)
+            if not np.any(step > 1e-15):
+                break
+    converged = np.isfinite(step) & (step < 1e-12) & (u >= -INSIDE) & (u <= 1 + INSIDE)
+    return u, converged
+
+
+def isolate_points(
+    curves: np.ndarray, points: np.ndarray, slack: np.ndarray, depth: int = DEPTH
+) -> Isolated:
+    """The same subdivision for P curves (P, n+1, d) against P points (P, d): pieces whose
+    boxes (and, in the plane, fat lines) hold the point survive; a one-to-one piece (pointed
+    hodograph cone) passes the point at most once, so Newton on it is run and a root inside
+    it reported. root_t is unused (zeros); left_t0 likewise."""
+    planar = curves.shape[2] == 2
+    left_m, right_m = half_matrices(curves.shape[1] - 1)
+    pieces, pid = curves, np.arange(curves.shape[0])
+    index = np.zeros(curves.shape[0], dtype=np.int64)
+    roots: list[tuple[np.ndarray, np.ndarray]] = []
+    left: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
+    level = 0
+    while pid.size:
+        sl = slack[pid][:, None]
+        target = points[pid]
+        keep = np.all(
+            (pieces.min(axis=1) <= target + sl) & (target - sl <= pieces.max(axis=1)), axis=1
+        )
+        if planar:
+            keep &= ~_fat_line_apart(target[:, None, :], pieces, slack[pid])
+        pieces, pid, index, target = pieces[keep], pid[keep], index[keep], target[keep]
+        if not pid.size:
+            break
+        width = 0.5**level
+        if level == depth or 2 * pid.size > MAX_ROWS:
+            left.append((pid, index * width, np.full(pid.size, width)))
+            break
+        _, half = _cones(pieces)
+        one_to_one = _pointed(half)
+        if one_to_one.any():
+            idx = np.flatnonzero(one_to_one)
+            u, ok = _local_foot_newton(pieces[idx], target[idx])
+            hit = idx[ok]
+            roots.append((pid[hit], (index[hit] + np.clip(u[ok], 0, 1)) * width))
+            rest = np.ones(pid.size, dtype=bool)
+            rest[hit] = False
+            pieces, pid, index = pieces[rest], pid[rest], index[rest]
+        flat = (_thickness(pieces) <= slack[pid]) & _runs_forward(pieces)
+        if flat.any():  # a piece flat to rounding that still holds the point: Newton decides
+            left.append((pid[flat], index[flat] * width, np.full(int(flat.sum()), width)))
+            pieces, pid, index = pieces[~flat], pid[~flat], index[~flat]
+        if not pid.size:
+            break
+        pieces = np.concatenate([np.matmul(left_m, pieces), np.matmul(right_m, pieces)])
+        pid = np.concatenate([pid, pid])
+        index = np.concatenate([2 * index, 2 * index + 1])
+        level += 1
+    empty = np.zeros(0)
+    root_pair = np.concatenate([r[0] for r in roots]) if roots else np.zeros(0, dtype=np.int64)
+    root_s = np.concatenate([r[1] for r in roots]) if roots else empty
+    if left:
+        left_pair, left_s0, left_width = (
+            np.concatenate([part[k] for part in left]) for k in range(3)
+        )
+    else:
+        left_pair, left_s0, left_width = np.zeros(0, dtype=np.int64), empty, empty
+    return Isolated(
+        root_pair,
+        root_s,
+        np.zeros_like(root_s),
+        left_pair,
+        left_s0,
+        np.zeros_like(left_s0),
+        left_width,
+    )

@@ -412,3 +412,57 @@ def test_merge_tolerance_is_documented_and_applied():
     assert [h.s for h in parabola.intersect(line)] == pytest.approx(
         [float(r) for r in roots], abs=1e-15
     )
+
+
+# ---------------------------------------------------------------------------- intersect_many
+@settings(max_examples=10, deadline=None)
+@given(
+    a=st.lists(
+        st.integers(1, 4).flatmap(
+            lambda n: st.lists(st.tuples(small_ints, small_ints), min_size=n + 1, max_size=n + 1)
+        ),
+        min_size=1,
+        max_size=4,
+    ),
+    b=st.lists(
+        st.integers(1, 4).flatmap(
+            lambda n: st.lists(st.tuples(small_ints, small_ints), min_size=n + 1, max_size=n + 1)
+        ),
+        min_size=1,
+        max_size=4,
+    ),
+)
+def test_intersect_many_is_intersect_pair_by_pair(a, b):
+    """Batched subdivision (pairs of equal degrees share arrays) gives what each pair gives
+    alone, in both modes; a pair the single form refuses makes the batch raise the same."""
+    curves_a = [lb.BezierCurve(p) for p in a]
+    curves_b = [lb.BezierCurve(p) for p in b]
+
+    def single(p, q):
+        try:
+            return p.intersect(q)
+        except ValueError as exc:
+            return str(exc)
+
+    want = [[single(p, q) for q in curves_b] for p in curves_a]
+    refused = [w for row in want for w in row if isinstance(w, str)]
+    if refused:
+        with pytest.raises(ValueError):
+            lb.intersect_many(curves_a, curves_b, mode="all")
+        return
+    assert lb.intersect_many(curves_a, curves_b, mode="all") == want
+    k = min(len(curves_a), len(curves_b))
+    assert lb.intersect_many(curves_a[:k], curves_b[:k]) == [want[i][i] for i in range(k)]
+
+
+def test_intersect_many_bad_input():
+    c = lb.BezierCurve([(0, 0), (1, 1)])
+    with pytest.raises(TypeError, match="curves_a must be a sequence of curves"):
+        lb.intersect_many(c, [c])
+    with pytest.raises(TypeError, match=r"curves_b\[1\] must be a curve"):
+        lb.intersect_many([c, c], [c, (0, 0)])
+    with pytest.raises(ValueError, match="equal length"):
+        lb.intersect_many([c, c], [c])
+    with pytest.raises(ValueError, match="mode must be"):
+        lb.intersect_many([c], [c], mode="some")
+    assert lb.intersect_many([], []) == []

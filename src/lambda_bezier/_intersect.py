@@ -38,7 +38,7 @@ from . import _intersect_subdivide as sub
 # relative, per unit of degree: pieces whose boxes or fat lines are this close still overlap.
 # It covers the rounding of repeated halving (a few ulps of the control points' size per
 # level and degree) and no more, so that curves 1e-13 of their size apart are still told apart
-BOX_SLACK = 64 * np.finfo(float).eps
+BOX_SLACK = 64 * float(np.finfo(float).eps)
 ON_CURVE = 1e-10  # relative distance below which a point counts as on a curve
 SAME_ROOT = 1e-9  # parameters closer than this are one intersection
 ISOLATED_SAME = 1e-13  # two polished roots of isolated pieces this close are one (a shared edge)
@@ -47,8 +47,8 @@ MERGE_RADIUS = 1e-3  # hits closer than this are compared for being one (see _ad
 # between them: a contact of high order, which refinement approaches only linearly, so that
 # starts stop at different points of it. Rounding level, so that two crossings of curves that
 # separate by more than ~1e-13 of their size between them stay two.
-MERGE_GAP = 64 * np.finfo(float).eps
-ROOT_RESIDUAL = 64 * np.finfo(float).eps  # relative, per degree: a refined root's exact residual
+MERGE_GAP = 64 * float(np.finfo(float).eps)
+ROOT_RESIDUAL = 64 * float(np.finfo(float).eps)  # relative, per degree: a refined root's exact residual
 NEAR_FOUND = 1e-6  # float Newton this close to a refined root has found that root
 TANGENT_SINE = 1e-6  # below this sine of the angle between tangents, refine as tangent
 
@@ -497,8 +497,53 @@ def _dedupe(found: list[Intersection], new: Intersection, same: float = SAME_ROO
     return any(abs(new.s - old.s) < same and abs(new.t - old.t) < same for old in found)
 
 
+Box = tuple[float, float, float, float]  # s0, s1, t0, t1 of a coincident stretch
+
+
 def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
     """Every intersection of p and q, sorted by s."""
+    return intersect_pairs([(p, q)])[0]
+
+
+def intersect_pairs(pairs: list[tuple[Prepared, Prepared]]) -> list[list[Intersection]]:
+    """Every intersection of each pair, sorted by s: the end points and shared stretches
+    pair by pair, then the subdivision of all pairs of equal degrees and dimension in one
+    set of arrays (_intersect_subdivide.isolate), then refinement pair by pair."""
+    setups = [_pair_setup(p, q) for p, q in pairs]
+    groups: dict[tuple[int, int, int], list[int]] = {}
+    for k, (p, q) in enumerate(pairs):
+        groups.setdefault((p.degree, q.degree, p.dim), []).append(k)
+    results: list[list[Intersection]] = [[] for _ in pairs]
+    for members in groups.values():
+        iso = sub.isolate(
+            np.stack([pairs[k][0].pts for k in members]),
+            np.stack([pairs[k][1].pts for k in members]),
+            np.array([_slack(*pairs[k]) for k in members]),
+            [(g, *box) for g, k in enumerate(members) for box in setups[k][1]],
+        )
+        for g, k in enumerate(members):
+            p, q = pairs[k]
+            found, skip = setups[k]
+            roots = iso.root_pair == g
+            left = iso.left_pair == g
+            results[k] = _pair_finish(
+                p,
+                q,
+                found,
+                skip,
+                list(zip(iso.root_s[roots].tolist(), iso.root_t[roots].tolist(), strict=True)),
+                _starts(iso.left_s0[left], iso.left_t0[left], iso.left_width[left]),
+            )
+    return results
+
+
+def _slack(p: Prepared, q: Prepared) -> float:
+    return float(BOX_SLACK * max(p.degree, q.degree) * max(p.scale, q.scale))
+
+
+def _pair_setup(p: Prepared, q: Prepared) -> tuple[list[Intersection], list[Box]]:
+    """Checks, then the end points located on the other curve, and the shared stretches
+    they bound: (hits so far, rectangles of shared stretches for subdivision to skip)."""
     if p.dim != q.dim:
         raise ValueError(f"cannot intersect curves of dimensions {p.dim} and {q.dim}")
     if p.dim < 2:
@@ -522,7 +567,7 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
     ends = [
         e._replace(kind="tangent") if _sine(p, q, e.s, e.t) <= TANGENT_SINE else e for e in ends
     ]
-    skip = []
+    skip: list[Box] = []
     coincident: list[Intersection] = []
     for i, a in enumerate(ends):
         for b in ends[i + 1 :]:
@@ -538,17 +583,24 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
             _add(found, e, p, q)
     if not coincident:
         _refuse_collinear_overlap(p, q)
-    iso = sub.isolate(
-        p.pts[None],
-        q.pts[None],
-        np.array([BOX_SLACK * max(p.degree, q.degree) * max(p.scale, q.scale)]),
-        [(0, *box) for box in skip],
-    )
-    for s, t in zip(iso.root_s.tolist(), iso.root_t.tolist(), strict=True):
+    return found, skip
+
+
+def _pair_finish(
+    p: Prepared,
+    q: Prepared,
+    found: list[Intersection],
+    skip: list[Box],
+    isolated: list[tuple[float, float]],
+    starts: list[tuple[float, float]],
+) -> list[Intersection]:
+    """Refine the subdivision's roots (isolated: one per pair of pieces, transversal) and
+    Newton from the starts of unresolved pieces (tangencies), into found."""
+    for s, t in isolated:
         hit = _solve_from(p, q, s, t, found, isolated=True)
         if hit is not None and not _dedupe(found, hit, ISOLATED_SAME):
             found.append(hit)
-    for s, t in _starts(iso.left_s0, iso.left_t0, iso.left_width):
+    for s, t in starts:
         if any(s0 <= s <= s1 and t0 <= t <= t1 for s0, s1, t0, t1 in skip):
             continue
         hit = _solve_from(p, q, s, t, found)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from fractions import Fraction
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -405,13 +406,16 @@ def test_reparameterised_stretch_is_coincident(points, a, b, shape):
 # ---------------------------------------------------------------------------- the merge tolerance
 def test_merge_tolerance_is_documented_and_applied():
     """Hits closer than MERGE_RADIUS in both parameters are one only when the curves stay
-    within ON_CURVE of each other between them (a contact of high order); two transversal
-    crossings 1e-5 apart stay two."""
-    assert _intersect.MERGE_RADIUS == 1e-3 and _intersect.ON_CURVE == 1e-10
+    within MERGE_GAP (64 eps per degree, relative) of each other between them (a contact of
+    high order), as docs/guide/geometry.md says; two transversal crossings 1e-5 apart, whose
+    curves separate by 1e-10 between them, stay two."""
+    assert _intersect.MERGE_RADIUS == 1e-3
+    assert 64 * np.finfo(float).eps == _intersect.MERGE_GAP
+    guide = (Path(__file__).parents[1] / "docs" / "guide" / "geometry.md").read_text()
+    assert "merged into one only when the curves stay within 64 ε per degree" in guide
     parabola, line, roots = parabola_and_line(F(0), F(1, 10**5))
-    assert [h.s for h in parabola.intersect(line)] == pytest.approx(
-        [float(r) for r in roots], abs=1e-15
-    )
+    got = [h.s for h in parabola.intersect(line)]
+    assert got == pytest.approx([float(r) for r in roots], abs=1e-15)
 
 
 # ---------------------------------------------------------------------------- intersect_many

@@ -48,7 +48,8 @@ MERGE_RADIUS = 1e-3  # hits closer than this are compared for being one (see _ad
 # starts stop at different points of it. Rounding level, so that two crossings of curves that
 # separate by more than ~1e-13 of their size between them stay two.
 MERGE_GAP = 64 * float(np.finfo(float).eps)
-ROOT_RESIDUAL = 64 * float(np.finfo(float).eps)  # relative, per degree: a refined root's exact residual
+# relative, per degree: how far from zero a refined root's exact residual may be
+ROOT_RESIDUAL = 64 * float(np.finfo(float).eps)
 NEAR_FOUND = 1e-6  # float Newton this close to a refined root has found that root
 TANGENT_SINE = 1e-6  # below this sine of the angle between tangents, refine as tangent
 
@@ -614,7 +615,7 @@ def _pair_finish(
 
 def _add(found: list[Intersection], hit: Intersection, p: Prepared, q: Prepared) -> None:
     """Append hit, unless it is one already found: near it, with the curves staying within
-    ON_CURVE of each other all the way between the two. At a contact of high order the
+    MERGE_GAP of each other all the way between the two. At a contact of high order the
     residual is below tolerance over a whole small neighbourhood and refinement converges
     only linearly, so starts stop at different points of it; the one with the smaller
     exact residual stays."""

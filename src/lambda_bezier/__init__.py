@@ -26,6 +26,7 @@ if TYPE_CHECKING:
     from .curves import FAMILIES, BezierCurve, Curve
     from .energy import OptimalLambda, energy_coefficients, energy_matrices, optimal_lambda
     from .family import Family, load_family
+    from .intersection import intersect_many
     from .joins import Joint, join
     from .properties import IsolatedRoot, singular_parameters
 
@@ -49,6 +50,7 @@ _EXPORTS = {
     "optimal_lambda": "energy",
     "Family": "family",
     "load_family": "family",
+    "intersect_many": "intersection",
     "Joint": "joins",
     "join": "joins",
     "IsolatedRoot": "properties",
@@ -69,6 +71,7 @@ __all__ = [
     "energy_coefficients",
     "energy_matrices",
     "evaluate_many",
+    "intersect_many",
     "join",
     "load_family",
     "optimal_lambda",

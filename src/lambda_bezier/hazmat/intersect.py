@@ -32,14 +32,24 @@ from typing import NamedTuple
 import numpy as np
 
 from . import forms
+from . import intersect_subdivide as sub
 from . import kernels as alg
 
-LEVELS = 8  # subdivision depth: pieces of width 2^-8 seed Newton
-MAX_PAIRS = 50_000  # a guard against runaway subdivision (degenerate input)
-BOX_SLACK = 1e-12  # relative: boxes that touch within rounding still overlap
+# relative, per unit of degree: pieces whose boxes or fat lines are this close still overlap.
+# It covers the rounding of repeated halving (a few ulps of the control points' size per
+# level and degree) and no more, so that curves 1e-13 of their size apart are still told apart
+BOX_SLACK = 64 * float(np.finfo(float).eps)
 ON_CURVE = 1e-10  # relative distance below which a point counts as on a curve
 SAME_ROOT = 1e-9  # parameters closer than this are one intersection
+ISOLATED_SAME = 1e-13  # two polished roots of isolated pieces this close are one (a shared edge)
 MERGE_RADIUS = 1e-3  # hits closer than this are compared for being one (see _add)
+# ... and are one when the curves stay this close (relative, per unit of degree) all the way
+# between them: a contact of high order, which refinement approaches only linearly, so that
+# starts stop at different points of it. Rounding level, so that two crossings of curves that
+# separate by more than ~1e-13 of their size between them stay two.
+MERGE_GAP = 64 * float(np.finfo(float).eps)
+# relative, per degree: how far from zero a refined root's exact residual may be
+ROOT_RESIDUAL = 64 * float(np.finfo(float).eps)
 NEAR_FOUND = 1e-6  # float Newton this close to a refined root has found that root
 TANGENT_SINE = 1e-6  # below this sine of the angle between tangents, refine as tangent
 
@@ -73,6 +83,13 @@ class Prepared:
         span = float(np.ptp(self.pts, axis=0).max())
         self.is_point = span == 0.0  # every t gives the same point
         self.scale = float(max(span, np.abs(self.pts).max(), 1e-300))
+
+    @functools.cached_property
+    def size(self) -> float:
+        """The size of the curve itself (its points' extent and distance from the origin,
+        from 129 samples), which tolerances on distances to it are relative to."""
+        samples = alg.de_casteljau_steps(self.pts, np.linspace(0.0, 1.0, 129), self.degree)[:, 0]
+        return float(max(np.ptp(samples, axis=0).max(), np.abs(samples).max(), 1e-300))
 
     def at(self, s: float, which: int = 0) -> np.ndarray:
         work = (self.pts, self.h1, self.h2)[which]
@@ -128,116 +145,51 @@ def _integer_hodograph(ints: list[list[int]]) -> list[list[int]]:
     ]
 
 
-# ---------------------------------------------------------------------------- subdivision
-@functools.cache
-def _half_matrices(degree: int) -> tuple[np.ndarray, np.ndarray]:
-    """Subdivision at 1/2 as two (n+1, n+1) matrices: de Casteljau on the unit points."""
-    left, right = alg.split_rows(np.eye(degree + 1).tolist(), 0.5)
-    return np.array(left), np.array(right)
+# ---------------------------------------------------------------------------- clusters
+def _interval_clusters(s0: np.ndarray, t0: np.ndarray, width: np.ndarray) -> list[np.ndarray]:
+    """Groups of unresolved pairs of pieces whose s and t intervals touch (transitively): a
+    sweep over the pairs sorted by s0, so no K x K table."""
+    count = s0.size
+    parent = list(range(count))
+
+    def root(k: int) -> int:
+        while parent[k] != k:
+            parent[k] = parent[parent[k]]
+            k = parent[k]
+        return k
+
+    order = np.argsort(s0, kind="stable").tolist()
+    s_lo, t_lo, w = s0.tolist(), t0.tolist(), width.tolist()
+    active: list[int] = []
+    for k in order:
+        active = [j for j in active if s_lo[j] + w[j] >= s_lo[k] - 1e-15]
+        for j in active:
+            if t_lo[j] <= t_lo[k] + w[k] + 1e-15 and t_lo[k] <= t_lo[j] + w[j] + 1e-15:
+                parent[root(j)] = root(k)
+        active.append(k)
+    groups: dict[int, list[int]] = {}
+    for k in range(count):
+        groups.setdefault(root(k), []).append(k)
+    return [np.array(members) for members in groups.values()]
 
 
-def _halves(pieces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """de Casteljau at 1/2 on (K, n+1, d) pieces: the left and right halves."""
-    left, right = _half_matrices(pieces.shape[1] - 1)
-    return np.matmul(left, pieces), np.matmul(right, pieces)
-
-
-def _boxes_overlap(a: np.ndarray, b: np.ndarray, slack: float) -> np.ndarray:
-    overlap: np.ndarray = np.all(
-        (a.min(axis=1) <= b.max(axis=1) + slack) & (b.min(axis=1) <= a.max(axis=1) + slack),
-        axis=1,
-    )
-    return overlap
-
-
-def _injective(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """For pairs of neighbouring pieces of one curve: True where some direction u has
-    u·p' > 0 on both (u = the mean unit hodograph vector), so the curve is one-to-one there."""
-    h = np.concatenate([np.diff(a, axis=1), np.diff(b, axis=1)], axis=1)
-    norm = np.linalg.norm(h, axis=2, keepdims=True)
-    unit = np.divide(h, norm, out=np.zeros_like(h), where=norm > 0)
-    u = unit.sum(axis=1, keepdims=True)
-    one_to_one: np.ndarray = np.all(np.sum(h * u, axis=2) > 0, axis=1)
-    return one_to_one
-
-
-def _surviving_pairs(
-    p: Prepared, q: Prepared | None, skip: list[tuple[float, float, float, float]]
-) -> tuple[np.ndarray, np.ndarray]:
-    """Index pairs (i, j) of the level-LEVELS pieces whose boxes still overlap. q None means
-    p against itself (pairs i <= j; neighbouring pieces are dropped once provably
-    one-to-one)."""
-    same = q is None
-    qq = p if q is None else q
-    slack = BOX_SLACK * max(p.scale, qq.scale)
-    a, b = p.pts[None], qq.pts[None]
-    ia, ib = np.zeros(1, dtype=np.int64), np.zeros(1, dtype=np.int64)
-    for level in range(LEVELS + 1):
-        keep = _boxes_overlap(a, b, slack)
-        if same:
-            near = np.abs(ia - ib) <= 1
-            if near.any():
-                keep[near] &= ~_injective(a[near], b[near])
-        width = 0.5**level
-        for s0, s1, t0, t1 in skip:  # pairs inside a coincident stretch
-            inside = (ia * width >= s0) & ((ia + 1) * width <= s1)
-            inside &= (ib * width >= t0) & ((ib + 1) * width <= t1)
-            keep &= ~inside
-        a, b, ia, ib = a[keep], b[keep], ia[keep], ib[keep]
-        if level == LEVELS or not ia.size:
-            break
-        if 4 * ia.size > MAX_PAIRS:
-            raise ValueError(
-                "intersection: subdivision does not separate the curves (more than "
-                f"{MAX_PAIRS} candidate pairs); are they coincident or degenerate?"
-            )
-        al, ar = _halves(a)
-        bl, br = _halves(b)
-        a = np.concatenate([al, al, ar, ar])
-        b = np.concatenate([bl, br, bl, br])
-        ia = np.concatenate([2 * ia, 2 * ia, 2 * ia + 1, 2 * ia + 1])
-        ib = np.concatenate([2 * ib, 2 * ib + 1, 2 * ib, 2 * ib + 1])
-        if same:
-            ok = ia <= ib
-            a, b, ia, ib = a[ok], b[ok], ia[ok], ib[ok]
-    return ia, ib
-
-
-def _clusters(ia: np.ndarray, ib: np.ndarray) -> list[np.ndarray]:
-    """Groups of pairs connected through neighbouring pieces (|Δi| <= 1 and |Δj| <= 1)."""
-    count = ia.size
-    if count == 0:
-        return []
-    adj = (np.abs(ia[:, None] - ia[None]) <= 1) & (np.abs(ib[:, None] - ib[None]) <= 1)
-    label = -np.ones(count, dtype=np.int64)
-    groups: list[np.ndarray] = []
-    for seed in range(count):
-        if label[seed] >= 0:
-            continue
-        label[seed] = len(groups)
-        stack, members = [seed], [seed]
-        while stack:
-            k = stack.pop()
-            for m in np.flatnonzero(adj[k] & (label < 0)):
-                label[m] = len(groups)
-                stack.append(int(m))
-                members.append(int(m))
-        groups.append(np.array(sorted(members)))
-    return groups
-
-
-def _starts(ia: np.ndarray, ib: np.ndarray, per_cluster: int = 6) -> list[tuple[float, float]]:
-    """Newton starting points: the middle pair of each cluster, and for a cluster longer
-    than a few pieces (a tangency, or crossings close together) pairs spread along it."""
-    width = 0.5**LEVELS
+def _starts(
+    s0: np.ndarray, t0: np.ndarray, width: np.ndarray, per_cluster: int = 6
+) -> list[tuple[float, float]]:
+    """Newton starting points for unresolved pairs of pieces (a tangency, or a contact
+    subdivision could not split): the middle pair of each cluster, and for a cluster longer
+    than a few pieces pairs spread along it."""
     out = []
-    for members in _clusters(ia, ib):
-        order = members[np.argsort(ia[members] + ib[members], kind="stable")]
+    for members in _interval_clusters(s0, t0, width):
+        centre_s, centre_t = s0[members] + width[members] / 2, t0[members] + width[members] / 2
+        order = members[np.argsort(centre_s + centre_t, kind="stable")]
         picks = [order[order.size // 2]]
-        if np.ptp(ia[members]) > 2 or np.ptp(ib[members]) > 2:
+        if order.size <= per_cluster:  # a few flat pieces: each may hold its own crossing
+            picks = list(order)
+        elif order.size > 3:
             spread = np.linspace(0, order.size - 1, min(per_cluster, order.size)).astype(int)
             picks += [k for k in order[np.unique(spread)] if k != picks[0]]
-        out += [((ia[k] + 0.5) * width, (ib[k] + 0.5) * width) for k in picks]
+        out += [(float(s0[k] + width[k] / 2), float(t0[k] + width[k] / 2)) for k in picks]
     return out
 
 
@@ -375,22 +327,45 @@ def _near_found(s: float, t: float, found: list[Intersection]) -> bool:
     return any(abs(s - f.s) < NEAR_FOUND and abs(t - f.t) < NEAR_FOUND for f in found)
 
 
+def _on_both(p: Prepared, q: Prepared, s: float, t: float) -> bool:
+    """p(s) = q(t) to rounding: the exact residual within ROOT_RESIDUAL of the curves' size."""
+    bound = ROOT_RESIDUAL * max(p.degree, q.degree) * max(p.scale, q.scale)
+    return bool(np.linalg.norm(_residual(p, q, s, t, True)) <= bound)
+
+
 def _solve_from(
-    p: Prepared, q: Prepared, s: float, t: float, found: list[Intersection]
+    p: Prepared, q: Prepared, s: float, t: float, found: list[Intersection], isolated: bool = False
 ) -> Intersection | None:
+    """The intersection Newton reaches from (s, t), refined. isolated: (s, t) is already a
+    float root in pieces that hold no other (see intersect_subdivide), so no shortcut may
+    identify it with a root found before."""
+    s0, t0 = s, t
     s, t, status = _newton(p, q, s, t)
     if status == "out":
-        return None
+        # float Newton is thrown far off near a tangency (the Jacobian is nearly singular);
+        # the tangent system is regular there, so refine from the start instead
+        s, t = _tangent_refine(p, q, s0, t0, (False,))
+        if not (-0.5 < s < 1.5 and -0.5 < t < 1.5):
+            return None
     # Newton in floats stalls within ~1e-8 of a tangent root: a start that lands that close
     # to a root already refined is that root (skips the costly exact refinement)
-    if _near_found(s, t, found):
+    if not isolated and _near_found(s, t, found):
         return None
     scale = max(p.scale, q.scale)
     if np.linalg.norm(_residual(p, q, s, t, False)) > 1e-6 * scale:
         return None  # Newton wandered off; a real root near a start converges closer
+    # a root from isolated pieces is transversal (a tangency puts one tangent line in both
+    # pieces' cones, which isolation rules out), however small the angle: two crossings 1e-6
+    # apart meet at a sine below TANGENT_SINE. Elsewhere a small sine means a tangency, where
+    # exact-residual Newton can stall at a point that merely looks converged
     polished = False
-    if _sine(p, q, s, t) > TANGENT_SINE:  # looks transversal: Newton must then converge fast
-        ps, pt, polished = _polish(p, q, s, t)
+    if isolated or _sine(p, q, s, t) > TANGENT_SINE:
+        # an isolated root may sit close to others (a near-double crossing), where float
+        # Newton's root is off by far more than an ulp: allow polishing the time to get there
+        ps, pt, polished = _polish(p, q, s, t, 12 if isolated else 4)
+        # ... where, with the columns of the float Jacobian nearly parallel, its last steps
+        # can cycle at a few ulps; the residual then says whether it got there
+        polished = polished or (isolated and _on_both(p, q, ps, pt))
     if polished:
         s, t, kind = ps, pt, "transversal"
     else:
@@ -399,7 +374,10 @@ def _solve_from(
             return None
         s, t = _tangent_refine(p, q, s, t, (True,))
         kind = "tangent" if _sine(p, q, s, t) <= TANGENT_SINE else "transversal"
-    if np.linalg.norm(_residual(p, q, s, t, True)) > ON_CURVE * scale:
+    # a root: the exact residual at rounding level (a tangency refined through the regular
+    # tangent system converges as far as a crossing does; a point that stays farther off is
+    # a near miss, or a stall next to a root of another kind)
+    if not _on_both(p, q, s, t):
         return None
     tol = 1e-12
     if not (-tol <= s <= 1 + tol and -tol <= t <= 1 + tol):
@@ -416,6 +394,7 @@ def locate_all(
     target = exact_point if exact_point is not None else tuple(map(Fraction, point.tolist()))
     scale = max(p.scale, float(np.abs(point).max(initial=0.0)))
     tol = ON_CURVE * scale
+    on_curve = ON_CURVE * max(p.size, float(np.abs(point).max(initial=0.0)))
     found: list[float] = []
     if p.is_point:
         if np.linalg.norm(p.pts[0] - point) <= tol:
@@ -424,44 +403,34 @@ def locate_all(
     for end in (0, 1):
         if tuple(p.rows[-1 if end else 0]) == tuple(target):
             found.append(float(end))
-    pieces = p.pts[None]
-    index = np.zeros(1, dtype=np.int64)
-    for level in range(LEVELS + 1):
-        keep = np.all(
-            (pieces.min(axis=1) <= point + tol) & (point - tol <= pieces.max(axis=1)), axis=1
-        )
-        pieces, index = pieces[keep], index[keep]
-        if level == LEVELS or not index.size:
-            break
-        left, right = _halves(pieces)
-        pieces = np.concatenate([left, right])
-        index = np.concatenate([2 * index, 2 * index + 1])
-    width = 0.5**LEVELS
+    # candidates from the subdivision engine: Newton roots on one-to-one pieces, and the
+    # middles of pieces that stay flat around the point (a zero of the speed there)
+    iso = sub.isolate_points(p.pts[None], point[None], np.array([tol]))
+    starts = iso.root_s.tolist() + [s for s, _ in _starts(iso.left_s0, iso.left_t0, iso.left_width)]
     exact_target = _integer_point(target)
-    for members in _clusters(index, np.zeros_like(index)):
-        for k in {members[0], members[members.size // 2], members[-1]}:
-            t = _locate_newton(p, point, exact_target, (index[k] + 0.5) * width)
-            if t is None or any(abs(t - u) < SAME_ROOT for u in found):
-                continue
-            if np.linalg.norm(p.at(t) - point) > tol:
-                continue
-            # one location if the curve stays at the point all the way between (a flat
-            # spot, p' = p'' = 0, leaves the residual below tolerance around the root)
-            same = [
-                j
-                for j, u in enumerate(found)
-                if abs(t - u) < MERGE_RADIUS
-                and all(
-                    np.linalg.norm(p.at(u + x * (t - u)) - point) <= tol
-                    for x in np.linspace(0.0, 1.0, 9)
-                )
-            ]
-            if not same:
-                found.append(float(t))
-            elif _exact_distance(p, t, exact_target) < _exact_distance(
-                p, found[same[0]], exact_target
-            ):
-                found[same[0]] = float(t)
+    for start in starts:
+        t = _locate_newton(p, point, exact_target, start)
+        if t is None or any(abs(t - u) < SAME_ROOT for u in found):
+            continue
+        # on the curve: the exact distance, relative to the curve's own size (its control
+        # polygon can be far larger: a Chebyshev polynomial's Bernstein coefficients)
+        if _exact_distance(p, t, exact_target) > on_curve:
+            continue
+        # one location if the curve stays at the point all the way between (a flat
+        # spot, p' = p'' = 0, leaves the residual below tolerance around the root, over
+        # a stretch as wide as tolerance^(1/order): 0.02 for a zero of order 6)
+        same = [
+            j
+            for j, u in enumerate(found)
+            if all(
+                np.linalg.norm(p.at(u + x * (t - u)) - point) <= on_curve
+                for x in np.linspace(0.0, 1.0, 17)
+            )
+        ]
+        if not same:
+            found.append(float(t))
+        elif _exact_distance(p, t, exact_target) < _exact_distance(p, found[same[0]], exact_target):
+            found[same[0]] = float(t)
     return sorted(found)
 
 
@@ -505,12 +474,77 @@ def _same_piece(p: Prepared, q: Prepared, s0: float, s1: float, t0: float, t1: f
     )
 
 
-def _dedupe(found: list[Intersection], new: Intersection) -> bool:
-    return any(abs(new.s - old.s) < SAME_ROOT and abs(new.t - old.t) < SAME_ROOT for old in found)
+def _same_image(p: Prepared, q: Prepared, s0: float, s1: float, t0: float, t1: float) -> bool:
+    """p over [s0, s1] runs along q over [t0, t1] under some parameterisation (not only an
+    affine one, which _same_piece checks): degree(p) degree(q) + 1 points of p's stretch lie
+    on q's stretch, each at exactly one t, in the same order. By Bezout, that many common
+    points put p's stretch on q's algebraic curve; the order rules out a stretch that
+    folds back over q."""
+    count = max(p.degree * q.degree + 1, 3)
+    fractions = (np.arange(count) + 0.5) / count
+    middle_first = [count // 2] + [k for k in range(count) if k != count // 2]
+    lo, hi = min(t0, t1) - SAME_ROOT, max(t0, t1) + SAME_ROOT
+    located: dict[int, float] = {}
+    for k in middle_first:
+        on_q = [t for t in locate_all(q, p.at(s0 + fractions[k] * (s1 - s0))) if lo <= t <= hi]
+        if len(on_q) != 1:
+            return False
+        located[k] = on_q[0]
+    steps = np.diff([located[k] for k in range(count)]) * np.sign(t1 - t0)
+    return bool(np.all(steps > 0))
+
+
+def _dedupe(found: list[Intersection], new: Intersection, same: float = SAME_ROOT) -> bool:
+    return any(abs(new.s - old.s) < same and abs(new.t - old.t) < same for old in found)
+
+
+Box = tuple[float, float, float, float]  # s0, s1, t0, t1 of a coincident stretch
 
 
 def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
     """Every intersection of p and q, sorted by s."""
+    return intersect_pairs([(p, q)])[0]
+
+
+def intersect_pairs(pairs: list[tuple[Prepared, Prepared]]) -> list[list[Intersection]]:
+    """Every intersection of each pair, sorted by s: the end points and shared stretches
+    pair by pair, then the subdivision of all pairs of equal degrees and dimension in one
+    set of arrays (intersect_subdivide.isolate), then refinement pair by pair."""
+    setups = [_pair_setup(p, q) for p, q in pairs]
+    groups: dict[tuple[int, int, int], list[int]] = {}
+    for k, (p, q) in enumerate(pairs):
+        groups.setdefault((p.degree, q.degree, p.dim), []).append(k)
+    results: list[list[Intersection]] = [[] for _ in pairs]
+    for members in groups.values():
+        iso = sub.isolate(
+            np.stack([pairs[k][0].pts for k in members]),
+            np.stack([pairs[k][1].pts for k in members]),
+            np.array([_slack(*pairs[k]) for k in members]),
+            [(g, *box) for g, k in enumerate(members) for box in setups[k][1]],
+        )
+        for g, k in enumerate(members):
+            p, q = pairs[k]
+            found, skip = setups[k]
+            roots = iso.root_pair == g
+            left = iso.left_pair == g
+            results[k] = _pair_finish(
+                p,
+                q,
+                found,
+                skip,
+                list(zip(iso.root_s[roots].tolist(), iso.root_t[roots].tolist(), strict=True)),
+                _starts(iso.left_s0[left], iso.left_t0[left], iso.left_width[left]),
+            )
+    return results
+
+
+def _slack(p: Prepared, q: Prepared) -> float:
+    return float(BOX_SLACK * max(p.degree, q.degree) * max(p.scale, q.scale))
+
+
+def _pair_setup(p: Prepared, q: Prepared) -> tuple[list[Intersection], list[Box]]:
+    """Checks, then the end points located on the other curve, and the shared stretches
+    they bound: (hits so far, rectangles of shared stretches for subdivision to skip)."""
     if p.dim != q.dim:
         raise ValueError(f"cannot intersect curves of dimensions {p.dim} and {q.dim}")
     if p.dim < 2:
@@ -534,13 +568,13 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
     ends = [
         e._replace(kind="tangent") if _sine(p, q, e.s, e.t) <= TANGENT_SINE else e for e in ends
     ]
-    skip = []
+    skip: list[Box] = []
     coincident: list[Intersection] = []
     for i, a in enumerate(ends):
         for b in ends[i + 1 :]:
             if abs(a.s - b.s) < SAME_ROOT or abs(a.t - b.t) < SAME_ROOT:
                 continue
-            if _same_piece(p, q, a.s, b.s, a.t, b.t):
+            if _same_piece(p, q, a.s, b.s, a.t, b.t) or _same_image(p, q, a.s, b.s, a.t, b.t):
                 lo, hi = sorted((a, b))
                 coincident += [lo._replace(kind="coincident"), hi._replace(kind="coincident")]
                 skip.append((lo.s, hi.s, min(a.t, b.t), max(a.t, b.t)))
@@ -550,8 +584,24 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
             _add(found, e, p, q)
     if not coincident:
         _refuse_collinear_overlap(p, q)
-    ia, ib = _surviving_pairs(p, q, skip)
-    for s, t in _starts(ia, ib):
+    return found, skip
+
+
+def _pair_finish(
+    p: Prepared,
+    q: Prepared,
+    found: list[Intersection],
+    skip: list[Box],
+    isolated: list[tuple[float, float]],
+    starts: list[tuple[float, float]],
+) -> list[Intersection]:
+    """Refine the subdivision's roots (isolated: one per pair of pieces, transversal) and
+    Newton from the starts of unresolved pieces (tangencies), into found."""
+    for s, t in isolated:
+        hit = _solve_from(p, q, s, t, found, isolated=True)
+        if hit is not None and not _dedupe(found, hit, ISOLATED_SAME):
+            found.append(hit)
+    for s, t in starts:
         if any(s0 <= s <= s1 and t0 <= t <= t1 for s0, s1, t0, t1 in skip):
             continue
         hit = _solve_from(p, q, s, t, found)
@@ -565,7 +615,7 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
 
 def _add(found: list[Intersection], hit: Intersection, p: Prepared, q: Prepared) -> None:
     """Append hit, unless it is one already found: near it, with the curves staying within
-    ON_CURVE of each other all the way between the two. At a contact of high order the
+    MERGE_GAP of each other all the way between the two. At a contact of high order the
     residual is below tolerance over a whole small neighbourhood and refinement converges
     only linearly, so starts stop at different points of it; the one with the smaller
     exact residual stays."""
@@ -580,7 +630,7 @@ def _add(found: list[Intersection], hit: Intersection, p: Prepared, q: Prepared)
                 )
                 for u in x
             )
-            if gap <= ON_CURVE * max(p.scale, q.scale):
+            if gap <= MERGE_GAP * max(p.degree, q.degree) * max(p.scale, q.scale):
                 if old.kind != "coincident" and _quality(p, q, hit) < _quality(p, q, old):
                     found[k] = hit
                 return
@@ -623,6 +673,13 @@ def _refuse_collinear_overlap(p: Prepared, q: Prepared) -> None:
         )
 
 
+def _cusp_loop(p: Prepared, hit: Intersection) -> bool:
+    """Near a cusp p(s) - p(t) vanishes to third order for s close to t: a "loop" whose
+    points all lie within rounding of each other is that, not a crossing."""
+    loop = np.array([p.at(u) for u in np.linspace(hit.s, hit.t, 9)])
+    return bool(np.ptp(loop, axis=0).max() <= 1e-8 * p.scale)
+
+
 def self_intersections(p: Prepared) -> list[Intersection]:
     """Pairs s < t with p(s) = p(t), sorted by s."""
     if p.dim < 2:
@@ -641,21 +698,25 @@ def self_intersections(p: Prepared) -> list[Intersection]:
             "the curve lies on a line and turns back along it: it meets itself along an "
             "interval, not at points"
         )
-    ia, ib = _surviving_pairs(p, None, [])
-    width = 0.5**LEVELS
-    starts = []
-    for s, t in _starts(ia, ib):
-        if abs(s - t) < 1.5 * width:  # neighbouring pieces: start apart, not on the diagonal
-            s, t = s - width, t + width
-        starts.append((s, t))
+    iso = sub.isolate(p.pts[None], None, np.array([BOX_SLACK * p.degree * p.scale]))
+    for s, t in zip(iso.root_s.tolist(), iso.root_t.tolist(), strict=True):
+        hit = _solve_from(p, p, s, t, found, isolated=True)
+        if hit is None or abs(hit.s - hit.t) < 1e-7 or _cusp_loop(p, hit):
+            continue
+        if hit.s > hit.t:
+            hit = Intersection(hit.t, hit.s, hit.kind)
+        if not _dedupe(found, hit, ISOLATED_SAME):
+            found.append(hit)
+    # unresolved pieces on the diagonal are not one-to-one even at width 2^-DEPTH: a cusp
+    # (p' = 0), where p(s) - p(t) vanishes to third order, not a crossing
+    starts = [
+        (s, t) for s, t in _starts(iso.left_s0, iso.left_t0, iso.left_width) if abs(s - t) > 1e-7
+    ]
     for s, t in starts:
         hit = _solve_from(p, p, s, t, found)
         if hit is None or abs(hit.s - hit.t) < 1e-7:
             continue
-        # near a cusp p(s) - p(t) vanishes to third order for s close to t: a "loop" whose
-        # points all lie within rounding of each other is that, not a crossing
-        loop = np.array([p.at(u) for u in np.linspace(hit.s, hit.t, 9)])
-        if np.ptp(loop, axis=0).max() <= 1e-8 * p.scale:
+        if _cusp_loop(p, hit):
             continue
         if hit.s > hit.t:
             hit = Intersection(hit.t, hit.s, hit.kind)

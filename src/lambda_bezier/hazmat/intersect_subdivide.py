@@ -1,0 +1,399 @@
+"""Candidate isolation for curve intersections: adaptive subdivision on arrays, many pairs at once.
+
+Pure functions on control-point arrays (numpy only, no curve classes): this module belongs to
+the low-level layer. `isolate` takes P pairs of classical Bézier curves of equal degrees
+((P, n+1, d) and (P, m+1, d)) and halves every surviving pair of pieces level by level, all
+pairs of all curve pairs in one array per level. A pair of pieces is
+
+- dropped when it provably holds no intersection: its axis-aligned boxes are apart, or (in
+  the plane) one piece's control points lie strictly on one side of the other's fat line
+  (the band between its control points' extreme distances to its chord). The fat line is
+  what keeps tangencies cheap: near a tangency the pieces' axis-aligned boxes overlap over a
+  stretch of width ~sqrt(w) for pieces of width w, the fat lines only over ~w;
+- *isolated* when it provably holds at most one intersection: the hodograph of each piece
+  lies in a circular cone (so the piece is one-to-one) and the two cones share no line. Two
+  intersections X != Y would put the chord X - Y in both cones (it is the integral of either
+  piece's derivative between them). Newton then runs on the isolated pair (vectorised over all
+  of them); a root it finds inside the pair's pieces is that pair's only intersection. Where
+  Newton fails, the pair is halved further;
+- kept otherwise, until `depth` halvings: what is left then are pieces of width 2^-depth
+  around tangencies (or contacts closer than that), reported as unresolved for the caller's
+  tangent refinement.
+
+Two crossings a distance delta apart in parameter are therefore separated as soon as the
+pieces are narrower than about delta (the cones of pieces on either side of the turning point
+between them share no line), whatever delta is above 2^-depth.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+DEPTH = 32  # halvings at most: 2^-32 ~ 2.3e-10 in parameter, below which a pair is unresolved
+MAX_ROWS = 200_000  # pairs of pieces alive at one level, a guard against runaway subdivision
+NEWTON_STEPS = 10  # local Newton iterations on an isolated pair (quadratic from its middle)
+INSIDE = 1e-9  # a Newton root this far (in the pieces' local parameter) outside still counts
+CONE_MARGIN = 1e-9  # radians: cones closer than this are treated as sharing a line
+
+
+class Isolated(NamedTuple):
+    """Roots found on isolated pairs (pair index, s, t: float Newton, to be polished), and the
+    unresolved pairs of pieces (pair index, s and t intervals [s0, s0 + width] and
+    [t0, t0 + width])."""
+
+    root_pair: np.ndarray
+    root_s: np.ndarray
+    root_t: np.ndarray
+    left_pair: np.ndarray
+    left_s0: np.ndarray
+    left_t0: np.ndarray
+    left_width: np.ndarray
+
+
+_HALF_CACHE: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+
+
+def half_matrices(degree: int) -> tuple[np.ndarray, np.ndarray]:
+    """Subdivision at 1/2 as two (n+1, n+1) matrices (de Casteljau's triangle's edges):
+    left[i, k] = C(i, k) / 2^i, right[i, k] = C(n-i, k-i) / 2^(n-i). Exact in floats."""
+    if degree not in _HALF_CACHE:
+        from math import comb
+
+        n = degree
+        left = np.zeros((n + 1, n + 1))
+        right = np.zeros((n + 1, n + 1))
+        for i in range(n + 1):
+            for k in range(i + 1):
+                left[i, k] = comb(i, k) / 2.0**i
+            for k in range(i, n + 1):
+                right[i, k] = comb(n - i, k - i) / 2.0 ** (n - i)
+        _HALF_CACHE[degree] = (left, right)
+    return _HALF_CACHE[degree]
+
+
+def _boxes_apart(a: np.ndarray, b: np.ndarray, slack: np.ndarray) -> np.ndarray:
+    sl = slack[:, None]
+    apart: np.ndarray = np.any(
+        (a.min(axis=1) > b.max(axis=1) + sl) | (b.min(axis=1) > a.max(axis=1) + sl), axis=1
+    )
+    return apart
+
+
+def _fat_line_apart(a: np.ndarray, b: np.ndarray, slack: np.ndarray) -> np.ndarray:
+    """Planar pieces: True where a's control points lie beyond b's fat line (one side)."""
+    chord = b[:, -1] - b[:, 0]
+    length = np.hypot(chord[:, 0], chord[:, 1])
+    ok = length > 0
+    normal = np.stack([-chord[:, 1], chord[:, 0]], axis=1) / np.where(ok, length, 1.0)[:, None]
+    base = b[:, :1]
+    db = np.einsum("kid,kd->ki", b - base, normal)
+    da = np.einsum("kid,kd->ki", a - base, normal)
+    apart = (da.min(axis=1) > db.max(axis=1) + slack) | (da.max(axis=1) < db.min(axis=1) - slack)
+    result: np.ndarray = apart & ok
+    return result
+
+
+def _thickness(pieces: np.ndarray) -> np.ndarray:
+    """The largest distance of a piece's control points from its chord (inf for a closed
+    piece, whose chord is a point)."""
+    chord = pieces[:, -1] - pieces[:, 0]
+    length = np.linalg.norm(chord, axis=1)
+    unit = chord / np.where(length > 0, length, 1.0)[:, None]
+    rel = pieces - pieces[:, :1]
+    along = np.einsum("kid,kd->ki", rel, unit)
+    off = np.linalg.norm(rel - along[..., None] * unit[:, None], axis=2).max(axis=1)
+    thickness: np.ndarray = np.where(length > 0, off, np.inf)
+    return thickness
+
+
+def _runs_forward(pieces: np.ndarray) -> np.ndarray:
+    """True where every hodograph control point has a non-negative component along the
+    chord: the piece never turns back along it (a flat piece that does can pass a point, or
+    cross a line, twice)."""
+    chord = pieces[:, -1] - pieces[:, 0]
+    along = np.einsum("kid,kd->ki", np.diff(pieces, axis=1), chord)
+    forward: np.ndarray = np.all(along >= 0, axis=1) & np.any(chord != 0, axis=1)
+    return forward
+
+
+def _cones(pieces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The axis (unit vector) and half-angle of a circular cone holding every hodograph
+    control point of each piece; half-angle >= pi/2 (not pointed) where there is none
+    this way (a zero hodograph point, or directions that turn too far)."""
+    h = np.diff(pieces, axis=1)
+    norm = np.linalg.norm(h, axis=2)
+    good = np.all(norm > 0, axis=1)
+    unit = h / np.where(norm > 0, norm, 1.0)[..., None]
+    axis = unit.sum(axis=1)
+    axis_norm = np.linalg.norm(axis, axis=1)
+    good &= axis_norm > 0
+    axis = axis / np.where(axis_norm > 0, axis_norm, 1.0)[:, None]
+    cos = np.einsum("kid,kd->ki", unit, axis).min(axis=1)
+    half = np.where(good & (cos > 0), np.arccos(np.clip(cos, -1.0, 1.0)), np.pi)
+    return axis, half
+
+
+def _pointed(half: np.ndarray) -> np.ndarray:
+    pointed: np.ndarray = half < np.pi / 2 - CONE_MARGIN
+    return pointed
+
+
+def _one_to_one_union(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """For neighbouring pieces of one curve: True where both together are one-to-one (one
+    pointed cone holds both hodographs)."""
+    _, half = _cones(np.concatenate([a, b[:, 1:]], axis=1))
+    return _pointed(half)
+
+
+def _eval_with_derivative(pieces: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """p(u) and p'(u) of each piece at its own local u: (K, d) each."""
+    work = pieces
+    uu = u[:, None, None]
+    degree = pieces.shape[1] - 1
+    if degree == 0:
+        return work[:, 0], np.zeros_like(work[:, 0])
+    while work.shape[1] > 2:
+        work = work[:, :-1] + uu * (work[:, 1:] - work[:, :-1])
+    lo, hi = work[:, 0], work[:, 1]
+    return lo + u[:, None] * (hi - lo), degree * (hi - lo)
+
+
+def local_newton(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Gauss-Newton on a(u) - b(v) from (1/2, 1/2), on K pairs at once: (u, v, converged)
+    with converged True where the last step was below 1e-12 and (u, v) lies in the pieces."""
+    k = a.shape[0]
+    u = np.full(k, 0.5)
+    v = np.full(k, 0.5)
+    step = np.full(k, np.inf)
+    with np.errstate(all="ignore"):
+        for _ in range(NEWTON_STEPS):
+            pa, da = _eval_with_derivative(a, u)
+            pb, db = _eval_with_derivative(b, v)
+            f = pa - pb
+            # normal equations of [da, -db] (du, dv) = -f
+            aa = np.einsum("kd,kd->k", da, da)
+            ab = -np.einsum("kd,kd->k", da, db)
+            bb = np.einsum("kd,kd->k", db, db)
+            ga = -np.einsum("kd,kd->k", da, f)
+            gb = np.einsum("kd,kd->k", db, f)
+            det = aa * bb - ab * ab
+            du = (bb * ga - ab * gb) / det
+            dv = (aa * gb - ab * ga) / det
+            u = u + du
+            v = v + dv
+            step = np.abs(du) + np.abs(dv)
+            if not np.any(step > 1e-15):
+                break
+    inside = (u >= -INSIDE) & (u <= 1 + INSIDE) & (v >= -INSIDE) & (v <= 1 + INSIDE)
+    converged = np.isfinite(step) & (step < 1e-12) & inside
+    return u, v, converged
+
+
+def isolate(
+    a: np.ndarray,
+    b: np.ndarray | None,
+    slack: np.ndarray,
+    skip: list[tuple[int, float, float, float, float]] | None = None,
+    depth: int = DEPTH,
+) -> Isolated:
+    """Subdivide P pairs of curves at once. a: (P, n+1, d); b: (P, m+1, d), or None for each
+    curve of a against itself (pairs of pieces ia <= ib; neighbouring pieces are dropped
+    once provably one-to-one, and never isolated: they share an end point). slack: (P,),
+    the distance within which boxes still count as touching. skip: (pair, s0, s1, t0, t1)
+    rectangles of a shared stretch, whose pairs of pieces are dropped."""
+    same = b is None
+    bb_all = a if b is None else b
+    planar = a.shape[2] == 2
+    left_a, right_a = half_matrices(a.shape[1] - 1)
+    left_b, right_b = half_matrices(bb_all.shape[1] - 1)
+    pa, pb = a, bb_all
+    pid = np.arange(a.shape[0])
+    ia = np.zeros(a.shape[0], dtype=np.int64)
+    ib = np.zeros(a.shape[0], dtype=np.int64)
+    roots: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
+    left: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = []
+    level = 0
+    while True:
+        sl = slack[pid]
+        keep = ~_boxes_apart(pa, pb, sl)
+        if planar:
+            keep &= ~_fat_line_apart(pa, pb, sl)
+            keep &= ~_fat_line_apart(pb, pa, sl)
+        if skip:
+            width = 0.5**level
+            for pair, s0, s1, t0, t1 in skip:
+                inside = (pid == pair) & (ia * width >= s0) & ((ia + 1) * width <= s1)
+                inside &= (ib * width >= t0) & ((ib + 1) * width <= t1)
+                keep &= ~inside
+        if same:
+            near = np.abs(ia - ib) <= 1
+            if near.any():
+                diag = near & (ia == ib)
+                _, half = _cones(pa[diag])
+                drop = np.zeros_like(keep)
+                drop[np.flatnonzero(diag)[_pointed(half)]] = True
+                nb = near & (ia != ib)
+                drop[np.flatnonzero(nb)[_one_to_one_union(pa[nb], pb[nb])]] = True
+                keep &= ~drop
+        pa, pb, pid, ia, ib = pa[keep], pb[keep], pid[keep], ia[keep], ib[keep]
+        if not pid.size:
+            break
+        if level == depth or 4 * pid.size > MAX_ROWS:
+            left.append((pid, ia * 0.5**level, ib * 0.5**level, np.full(pid.size, 0.5**level)))
+            break
+        # isolation: one-to-one pieces whose tangent cones share no line hold one root at most
+        axis_a, half_a = _cones(pa)
+        axis_b, half_b = _cones(pb)
+        between = np.arccos(np.clip(np.abs(np.einsum("kd,kd->k", axis_a, axis_b)), 0.0, 1.0))
+        isolated = _pointed(half_a) & _pointed(half_b) & (between > half_a + half_b + CONE_MARGIN)
+        if same:
+            isolated &= np.abs(ia - ib) > 1
+        if isolated.any():
+            idx = np.flatnonzero(isolated)
+            u, v, ok = local_newton(pa[idx], pb[idx])
+            width = 0.5**level
+            hit = idx[ok]
+            roots.append(
+                (
+                    pid[hit],
+                    (ia[hit] + np.clip(u[ok], 0, 1)) * width,
+                    (ib[hit] + np.clip(v[ok], 0, 1)) * width,
+                )
+            )
+            resolved = np.zeros_like(isolated)
+            resolved[hit] = True
+            rest = ~resolved
+            pa, pb, pid, ia, ib = pa[rest], pb[rest], pid[rest], ia[rest], ib[rest]
+            if not pid.size:
+                break
+        # pieces flat to within the slack on both sides are as resolved as subdivision gets
+        # (a tangency or a contact of higher order, within rounding of the input)
+        flat = (_thickness(pa) <= slack[pid]) & (_thickness(pb) <= slack[pid])
+        flat &= _runs_forward(pa) & _runs_forward(pb)
+        if same:
+            flat &= np.abs(ia - ib) > 1
+        if flat.any():
+            w = 0.5**level
+            left.append((pid[flat], ia[flat] * w, ib[flat] * w, np.full(int(flat.sum()), w)))
+            rest = ~flat
+            pa, pb, pid, ia, ib = pa[rest], pb[rest], pid[rest], ia[rest], ib[rest]
+            if not pid.size:
+                break
+        al, ar = np.matmul(left_a, pa), np.matmul(right_a, pa)
+        bl, br = np.matmul(left_b, pb), np.matmul(right_b, pb)
+        pa = np.concatenate([al, al, ar, ar])
+        pb = np.concatenate([bl, br, bl, br])
+        pid = np.concatenate([pid, pid, pid, pid])
+        ia = np.concatenate([2 * ia, 2 * ia, 2 * ia + 1, 2 * ia + 1])
+        ib = np.concatenate([2 * ib, 2 * ib + 1, 2 * ib, 2 * ib + 1])
+        if same:
+            ok_order = ia <= ib
+            pa, pb, pid, ia, ib = (
+                pa[ok_order],
+                pb[ok_order],
+                pid[ok_order],
+                ia[ok_order],
+                ib[ok_order],
+            )
+        level += 1
+    empty = np.zeros(0)
+    if roots:
+        root_pair = np.concatenate([r[0] for r in roots])
+        root_s = np.concatenate([r[1] for r in roots])
+        root_t = np.concatenate([r[2] for r in roots])
+    else:
+        root_pair, root_s, root_t = np.zeros(0, dtype=np.int64), empty, empty
+    if left:
+        parts = [np.concatenate([part[k] for part in left]) for k in range(4)]
+    else:
+        parts = [np.zeros(0, dtype=np.int64), empty, empty, empty]
+    return Isolated(root_pair, root_s, root_t, *parts)
+
+
+def _local_foot_newton(pieces: np.ndarray, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Newton on |p(u) - x|^2 / 2 restricted to the pieces' own u (Gauss-Newton: the step
+    -(p - x)·p' / p'·p'), from u = 1/2: (u, converged), converged where the step fell below
+    1e-12 inside the piece."""
+    u = np.full(pieces.shape[0], 0.5)
+    step = np.full(pieces.shape[0], np.inf)
+    with np.errstate(all="ignore"):
+        for _ in range(NEWTON_STEPS):
+            value, slope = _eval_with_derivative(pieces, u)
+            du = -np.einsum("kd,kd->k", value - points, slope) / np.einsum("kd,kd->k", slope, slope)
+            u = u + du
+            step = np.abs(du)
+            if not np.any(step > 1e-15):
+                break
+    converged = np.isfinite(step) & (step < 1e-12) & (u >= -INSIDE) & (u <= 1 + INSIDE)
+    return u, converged
+
+
+def isolate_points(
+    curves: np.ndarray, points: np.ndarray, slack: np.ndarray, depth: int = DEPTH
+) -> Isolated:
+    """The same subdivision for P curves (P, n+1, d) against P points (P, d): pieces whose
+    boxes (and, in the plane, fat lines) hold the point survive; a one-to-one piece (pointed
+    hodograph cone) passes the point at most once, so Newton on it is run and a root inside
+    it reported. root_t is unused (zeros); left_t0 likewise."""
+    planar = curves.shape[2] == 2
+    left_m, right_m = half_matrices(curves.shape[1] - 1)
+    pieces, pid = curves, np.arange(curves.shape[0])
+    index = np.zeros(curves.shape[0], dtype=np.int64)
+    roots: list[tuple[np.ndarray, np.ndarray]] = []
+    left: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
+    level = 0
+    while pid.size:
+        sl = slack[pid][:, None]
+        target = points[pid]
+        keep = np.all(
+            (pieces.min(axis=1) <= target + sl) & (target - sl <= pieces.max(axis=1)), axis=1
+        )
+        if planar:
+            keep &= ~_fat_line_apart(target[:, None, :], pieces, slack[pid])
+        pieces, pid, index, target = pieces[keep], pid[keep], index[keep], target[keep]
+        if not pid.size:
+            break
+        width = 0.5**level
+        if level == depth or 2 * pid.size > MAX_ROWS:
+            left.append((pid, index * width, np.full(pid.size, width)))
+            break
+        _, half = _cones(pieces)
+        one_to_one = _pointed(half)
+        if one_to_one.any():
+            idx = np.flatnonzero(one_to_one)
+            u, ok = _local_foot_newton(pieces[idx], target[idx])
+            hit = idx[ok]
+            roots.append((pid[hit], (index[hit] + np.clip(u[ok], 0, 1)) * width))
+            rest = np.ones(pid.size, dtype=bool)
+            rest[hit] = False
+            pieces, pid, index = pieces[rest], pid[rest], index[rest]
+        flat = (_thickness(pieces) <= slack[pid]) & _runs_forward(pieces)
+        if flat.any():  # a piece flat to rounding that still holds the point: Newton decides
+            left.append((pid[flat], index[flat] * width, np.full(int(flat.sum()), width)))
+            pieces, pid, index = pieces[~flat], pid[~flat], index[~flat]
+        if not pid.size:
+            break
+        pieces = np.concatenate([np.matmul(left_m, pieces), np.matmul(right_m, pieces)])
+        pid = np.concatenate([pid, pid])
+        index = np.concatenate([2 * index, 2 * index + 1])
+        level += 1
+    empty = np.zeros(0)
+    root_pair = np.concatenate([r[0] for r in roots]) if roots else np.zeros(0, dtype=np.int64)
+    root_s = np.concatenate([r[1] for r in roots]) if roots else empty
+    if left:
+        left_pair, left_s0, left_width = (
+            np.concatenate([part[k] for part in left]) for k in range(3)
+        )
+    else:
+        left_pair, left_s0, left_width = np.zeros(0, dtype=np.int64), empty, empty
+    return Isolated(
+        root_pair,
+        root_s,
+        np.zeros_like(root_s),
+        left_pair,
+        left_s0,
+        np.zeros_like(left_s0),
+        left_width,
+    )

@@ -1,0 +1,72 @@
+"""intersect_many: the intersections of many pairs of curves, their subdivision done together.
+
+Each curve's exact Bézier form is prepared once (a curve in several pairs is not prepared
+again); the pairs' end points and shared stretches are found pair by pair, then every pair of
+the same degrees and dimension is subdivided in one set of arrays
+(hazmat.intersect_subdivide.isolate), and the roots are refined pair by pair. The answers are those
+of Curve.intersect, pair for pair.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Literal
+
+from .hazmat import intersect as _intersect
+
+if TYPE_CHECKING:
+    from .curves import Curve
+
+Intersection = _intersect.Intersection
+
+
+def _curves(curves: object, name: str) -> list[Curve]:
+    from .curves import Curve
+
+    if isinstance(curves, Curve) or not isinstance(curves, Sequence):
+        raise TypeError(f"{name} must be a sequence of curves, got {type(curves).__name__}")
+    for k, c in enumerate(curves):
+        if not isinstance(c, Curve):
+            raise TypeError(f"{name}[{k}] must be a curve, got {type(c).__name__}")
+    return list(curves)
+
+
+def intersect_many(
+    curves_a: Sequence[Curve],
+    curves_b: Sequence[Curve],
+    mode: Literal["pairs", "all"] = "pairs",
+) -> list[list[Intersection]] | list[list[list[Intersection]]]:
+    """Intersections of many curve pairs at once.
+
+    mode "pairs": curves_a[k] against curves_b[k] (equal lengths); returns one list of
+    Intersection(s, t, kind) per pair, as curves_a[k].intersect(curves_b[k]) gives it.
+    mode "all": every curve of curves_a against every curve of curves_b; returns
+    result[i][j] = curves_a[i].intersect(curves_b[j]).
+
+    >>> from lambda_bezier import BezierCurve, intersect_many
+    >>> arch = BezierCurve([(0, 0), (1, 2), (2, 0)])
+    >>> lines = [BezierCurve([(0, y), (2, y)]) for y in (0.5, 1, 2)]
+    >>> [len(hits) for hits in intersect_many([arch] * 3, lines)]
+    [2, 1, 0]
+    >>> intersect_many([arch], lines, mode="all")[0][1]
+    [Intersection(s=0.5, t=0.5, kind='tangent')]
+    """
+    a = _curves(curves_a, "curves_a")
+    b = _curves(curves_b, "curves_b")
+    if mode == "pairs":
+        if len(a) != len(b):
+            raise ValueError(
+                f"mode 'pairs' needs curves_a and curves_b of equal length, got {len(a)} "
+                f"and {len(b)}"
+            )
+        index = [(k, k) for k in range(len(a))]
+    elif mode == "all":
+        index = [(i, j) for i in range(len(a)) for j in range(len(b))]
+    else:
+        raise ValueError(f"mode must be 'pairs' or 'all', got {mode!r}")
+    prepared_a = [c._prepared for c in a]
+    prepared_b = [c._prepared for c in b]
+    found = _intersect.intersect_pairs([(prepared_a[i], prepared_b[j]) for i, j in index])
+    if mode == "pairs":
+        return found
+    return [found[i * len(b) : (i + 1) * len(b)] for i in range(len(a))]

@@ -96,7 +96,7 @@ def direction_forms(cls: type[Curve], degree: int, k: int) -> tuple[Matrix, ...]
     return tuple(tuple(tuple(row) for row in mat) for mat in out)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)  # hashed by identity: one object per (families, degrees)
 class SurfaceEnergyMatrices:
     """The energy as Σ_{a,b} λ_u^a λ_v^b vec(P)ᵀ Q_ab vec(P), summed over coordinates, with
     vec(P) the net read row by row (P_00, P_01, …, P_0n, P_10, …).

@@ -28,6 +28,14 @@ if TYPE_CHECKING:
     from .family import Family, load_family
     from .joins import Joint, join
     from .properties import IsolatedRoot, singular_parameters
+    from .surface_energy import (
+        OptimalParameters,
+        optimal_parameters,
+        surface_energy,
+        surface_energy_matrices,
+    )
+    from .surface_joins import CompositeSurface, join_surface
+    from .surfaces import BernsteinLikeSurface, BezierSurface, SameDegreeSurface, Surface
 
 __version__ = "0.1.0"
 
@@ -53,26 +61,46 @@ _EXPORTS = {
     "join": "joins",
     "IsolatedRoot": "properties",
     "singular_parameters": "properties",
+    "OptimalParameters": "surface_energy",
+    "optimal_parameters": "surface_energy",
+    "surface_energy": "surface_energy",
+    "surface_energy_matrices": "surface_energy",
+    "CompositeSurface": "surface_joins",
+    "join_surface": "surface_joins",
+    "BernsteinLikeSurface": "surfaces",
+    "BezierSurface": "surfaces",
+    "SameDegreeSurface": "surfaces",
+    "Surface": "surfaces",
 }
 __all__ = [
     "FAMILIES",
     "BernsteinLikeCurve",
+    "BernsteinLikeSurface",
     "BezierCurve",
+    "BezierSurface",
     "CompositeCurve",
+    "CompositeSurface",
     "Curve",
     "Family",
     "IsolatedRoot",
     "Joint",
     "JointReport",
     "OptimalLambda",
+    "OptimalParameters",
     "SameDegreeCurve",
+    "SameDegreeSurface",
+    "Surface",
     "energy_coefficients",
     "energy_matrices",
     "evaluate_many",
     "join",
+    "join_surface",
     "load_family",
     "optimal_lambda",
+    "optimal_parameters",
     "singular_parameters",
+    "surface_energy",
+    "surface_energy_matrices",
 ]
 
 

@@ -10,6 +10,7 @@ Bernstein basis (the curves use the same centre).
 from __future__ import annotations
 
 import heapq
+import itertools
 from collections.abc import Callable, Sequence
 from fractions import Fraction
 from functools import cache
@@ -217,7 +218,7 @@ def minimise_scalar_net(
     net: np.ndarray,
     value: Callable[[float, float], float],
     polish: Callable[[float, float], tuple[float, float]],
-    tol: float,
+    tol: float | Callable[[float], float],
     max_patches: int = 200_000,
 ) -> tuple[float, float, float, float]:
     """The global minimum over the unit square of a scalar Bézier polynomial f given by its net
@@ -226,27 +227,34 @@ def minimise_scalar_net(
     patch centre, kept inside the square) supplies better attained values.
 
     Returns (u, v, f(u, v), lower): the best point found and a certified lower bound of the
-    minimum; stops when the best value exceeds `lower` by at most `tol`. A RuntimeError when
-    `max_patches` patches did not get there.
+    minimum; stops when the best value exceeds `lower` by at most `tol` (a number, or a
+    function of the best value). A RuntimeError when `max_patches` patches did not get there.
     """
+    gap = tol if callable(tol) else (lambda _best: float(tol))
     best_u, best_v, best = 0.0, 0.0, np.inf
     for u, v in ((0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0), (0.5, 0.5)):
         cand = _try(u, v, value, polish)
         if cand[2] < best:
             best_u, best_v, best = cand
-    counter = 0
+    # a patch is dropped when its lower bound is within `tol` of the best value then known;
+    # `floor` keeps the least such bound, so min(floor, heap) bounds the minimum from below
+    floor = np.inf
+    tie = itertools.count()
     heap: list[tuple[float, int, float, float, float, float, np.ndarray]] = [
-        (float(net.min()), counter, 0.0, 1.0, 0.0, 1.0, net)
+        (float(net.min()), next(tie), 0.0, 1.0, 0.0, 1.0, net)
     ]
+    splits = 0
     while heap:
-        lower = heap[0][0]
-        if best - lower <= tol:
+        lower = min(heap[0][0], floor)
+        allowed = gap(best)
+        if best - lower <= allowed:
             return best_u, best_v, best, lower
         lb, _, u0, u1, v0, v1, patch = heapq.heappop(heap)
-        if lb > best - tol:
+        if lb > best - allowed:
+            floor = min(floor, lb)
             continue
-        counter += 1
-        if counter > max_patches:
+        splits += 1
+        if splits > max_patches:
             raise RuntimeError("the global minimum search did not converge")
         um, vm = (u0 + u1) / 2, (v0 + v1) / 2
         cand = _try(um, vm, value, polish)
@@ -256,16 +264,16 @@ def minimise_scalar_net(
         for (a0, a1), half in (((u0, um), left), ((um, u1), right)):
             low, high = split_float(half, 0.5, 1)
             for (b0, b1), piece in (((v0, vm), low), ((vm, v1), high)):
-                corner = min(piece[0, 0], piece[-1, 0], piece[0, -1], piece[-1, -1])
-                if corner < best:
-                    best = float(corner)
-                    best_u = a0 if corner in (piece[0, 0], piece[0, -1]) else a1
-                    best_v = b0 if corner in (piece[0, 0], piece[-1, 0]) else b1
-                    best = value(best_u, best_v)
+                for cu, cv in ((a0, b0), (a1, b0), (a0, b1), (a1, b1)):
+                    corner = value(cu, cv)  # the net's corners are attained values
+                    if corner < best:
+                        best_u, best_v, best = cu, cv, corner
                 lo = float(piece.min())
-                if lo <= best - tol:
-                    heapq.heappush(heap, (lo, counter * 4 + len(heap), a0, a1, b0, b1, piece))
-    return best_u, best_v, best, best - tol
+                if lo <= best - gap(best):
+                    heapq.heappush(heap, (lo, next(tie), a0, a1, b0, b1, piece))
+                else:
+                    floor = min(floor, lo)
+    return best_u, best_v, best, min(floor, best)
 
 
 def _try(u: float, v: float, value: Callable[[float, float], float],

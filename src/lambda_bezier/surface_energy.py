@@ -346,9 +346,8 @@ def minimise_polynomial(
         ys, xs = _roots(ry, ylo, yhi), _roots(rx, xlo, xhi)
         for xr in xs:
             for yr in ys:
-                pair = _pair(fx, fy, rx, ry, xr, yr)
-                if pair is not None:
-                    cands.append((pair[0], pair[1], rx, ry, "interior"))
+                if _pair(fx, fy, rx, ry, xr, yr) is not None:
+                    cands.append((xr, yr, rx, ry, "interior"))
     return _least(e, cands)
 
 
@@ -371,20 +370,27 @@ def _pair(fx: xp.Bivariate, fy: xp.Bivariate, rx: list[Fraction], ry: list[Fract
 
 
 def _least(e: xp.Bivariate, cands: list[Any]) -> tuple[Algebraic, Algebraic, str]:
+    """The candidate of least energy, its parameters given by their isolating intervals as
+    found (refined copies decide the comparison)."""
     width = Fraction(1, 2**20)
+    work = list(cands)
     while True:
         encl = []
-        for i, (x, y, px, py, where) in enumerate(cands):
+        for i, (x, y, px, py, where) in enumerate(work):
             if px is not None:
                 x = _refine_all(px, x, width)
             if py is not None:
                 y = _refine_all(py, y, width)
-            cands[i] = (x, y, px, py, where)
+            work[i] = (x, y, px, py, where)
             encl.append(xp.interval_evaluate2(e, _interval(x), _interval(y)))
-        best = min(range(len(cands)), key=lambda i: encl[i][1])
-        rivals = [i for i in range(len(cands)) if i != best and encl[i][0] < encl[best][1]]
+        best = min(range(len(work)), key=lambda i: encl[i][1])
+        rivals = [i for i in range(len(work)) if i != best and encl[i][0] < encl[best][1]]
         if not rivals or width < Fraction(1, 2**200):
             x, y, px, py, where = cands[best]
+            # a refined end met the root exactly: that root is rational
+            rx, ry = work[best][0], work[best][1]
+            x = rx if isinstance(rx, Fraction) else x
+            y = ry if isinstance(ry, Fraction) else y
             return _algebraic(x, px), _algebraic(y, py), where
         width /= 2**20
 

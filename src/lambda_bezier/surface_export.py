@@ -70,10 +70,12 @@ def to_step_surface(surf: Surface, path: str | Path) -> Path:
 # ---------------------------------------------------------------------- triangle mesh
 @dataclass(frozen=True)
 class SurfaceMesh:
-    """Vertices (k, 3), triangles (t, 3) of vertex indices, and a bound on the distance from
-    any point of a triangle to the surface point of the same parameters."""
+    """Vertices (k, 3), their parameters (k, 2), triangles (t, 3) of vertex indices, and a
+    bound on the distance from any point of a triangle to the surface point of the same
+    (linearly interpolated) parameters."""
 
     vertices: np.ndarray
+    parameters: np.ndarray
     faces: np.ndarray
     deviation_bound: float
 
@@ -125,7 +127,8 @@ def mesh(surf: Surface, tolerance: float) -> SurfaceMesh:
     faces = np.concatenate([np.stack([a, b, c], 1), np.stack([a, c, d], 1)])
     h1, h2 = 1 / nu, 1 / nv
     bound = (muu * h1 * h1 + 2 * muv * h1 * h2 + mvv * h2 * h2) / 2
-    return SurfaceMesh(pts, faces, bound)
+    params = np.stack(np.meshgrid(us, vs, indexing="ij"), axis=-1).reshape(-1, 2)
+    return SurfaceMesh(pts, params, faces, bound)
 
 
 def to_mesh_file(surf: Surface, path: str | Path, tolerance: float) -> Path:

@@ -417,8 +417,10 @@ class Surface:
     def closest_point(self, q: npt.ArrayLike, tol: float = 1e-12) -> SurfaceClosestPoint:
         """The global nearest point of the surface (over the unit square) to q, certified: the
         squared distance's Bézier net bounds it from below on every patch of a branch and
-        bound, which stops when the best attained distance is within `tol` of the net's size
-        of that bound."""
+        bound, which stops when the best attained distance is within `tol` times the net's
+        size of the bound (``lower_bound``). Within about 1e-7 of the net's size from the
+        surface, float rounding of the squared distance limits that gap to about
+        sqrt(256 eps) times the size; ``lower_bound`` always says what was certified."""
         point = val.as_point(q, self.dimension)
         tol = val.tolerance(tol)
         net = self._bezier_net - point
@@ -434,9 +436,14 @@ class Surface:
             return float(diff @ diff)
 
         polish = _newton_polish(grad, hess)
-        # stop when sqrt(best) - sqrt(lower) <= tol·size, i.e. best - lower <= that times
-        # sqrt(best) + sqrt(lower) (>= tol·size): a bound on the gap in squared distance
-        gap = (tol * size) ** 2
+        # the distance gap sqrt(best) - sqrt(lower) <= tol·size needs a squared-distance gap of
+        # tol·size·(sqrt(best) + sqrt(lower)) >= tol·size·sqrt(best); float rounding of the
+        # squared distance's net (about eps·size²) sets a floor under it near the surface
+        floor = 256 * np.finfo(float).eps * size * size
+
+        def gap(best: float) -> float:
+            return max(tol * size * float(np.sqrt(max(best, 0.0))), floor)
+
         u, v, best, lower = ker.minimise_scalar_net(np.asarray(f_net), value, polish, gap)
         at = ker.evaluate_points(self._coefficients, np.array([u]), np.array([v]))[0]
         return SurfaceClosestPoint(u, v, at, float(np.sqrt(best)), float(np.sqrt(max(lower, 0.0))))

@@ -33,7 +33,9 @@ def make(fam, net, lu, lv):
 
 
 def lams(fam):
-    return {"bezier": (None, None), "same_degree": (0.5, -1.25), "bernstein_like": (-0.5, 0.75)}[fam]
+    return {"bezier": (None, None), "same_degree": (0.5, -1.25), "bernstein_like": (-0.5, 0.75)}[
+        fam
+    ]
 
 
 def reference_value(fam, net, lu, lv, u, v):
@@ -48,7 +50,12 @@ def exact_bernstein(net, u, v):
     m, n = len(net) - 1, len(net[0]) - 1
     return tuple(
         sum(
-            math.comb(m, i) * u**i * (1 - u) ** (m - i) * math.comb(n, j) * v**j * (1 - v) ** (n - j)
+            math.comb(m, i)
+            * u**i
+            * (1 - u) ** (m - i)
+            * math.comb(n, j)
+            * v**j
+            * (1 - v) ** (n - j)
             * net[i][j][c]
             for i in range(m + 1)
             for j in range(n + 1)
@@ -67,7 +74,7 @@ def test_evaluate_matches_the_papers_basis_definitions(fam):
     s = make(fam, net, lu, lv)
     u, v = rng.random(20), rng.random(20)
     got = s.evaluate(u, v)
-    want = np.array([reference_value(fam, net, lu, lv, a, b) for a, b in zip(u, v)])
+    want = np.array([reference_value(fam, net, lu, lv, a, b) for a, b in zip(u, v, strict=True)])
     np.testing.assert_allclose(got, want, rtol=1e-12, atol=1e-12)
     grid = s.evaluate_grid(u[:5], v[:7])
     pts = s.evaluate(np.repeat(u[:5], 7), np.tile(v[:7], 5)).reshape(5, 7, 3)
@@ -176,7 +183,9 @@ def test_split_and_elevation_keep_the_surface_exactly():
     low, high = s.split_v(F(3, 4))
     for a, b in ((F(1, 2), F(1, 5)), (F(0), F(1))):
         assert exact_bernstein(left.control_net(), a, b) == exact_bernstein(bez, a / 3, b)
-        assert exact_bernstein(right.control_net(), a, b) == exact_bernstein(bez, F(1, 3) + a * F(2, 3), b)
+        assert exact_bernstein(right.control_net(), a, b) == exact_bernstein(
+            bez, F(1, 3) + a * F(2, 3), b
+        )
         assert exact_bernstein(low.control_net(), a, b) == exact_bernstein(bez, a, b * F(3, 4))
         assert exact_bernstein(high.control_net(), a, b) == exact_bernstein(bez, a, F(3, 4) + b / 4)
     up = s.elevate_u().elevate_v()
@@ -253,23 +262,44 @@ def test_energy_matrices_equal_the_direct_bezier_gram_form(fam):
             for _ in range(k):
                 if axis == 0:
                     h = hodograph_matrix(len(rows) - 1)
-                    rows = [[tuple(sum((w * rows[i][j][c] for i, w in enumerate(hr)), F(0)) for c in range(3))
-                             for j in range(len(rows[0]))] for hr in h]
+                    rows = [
+                        [
+                            tuple(
+                                sum((w * rows[i][j][c] for i, w in enumerate(hr)), F(0))
+                                for c in range(3)
+                            )
+                            for j in range(len(rows[0]))
+                        ]
+                        for hr in h
+                    ]
                 else:
                     h = hodograph_matrix(len(rows[0]) - 1)
-                    rows = [[tuple(sum((w * r[j][c] for j, w in enumerate(hr)), F(0)) for c in range(3))
-                             for hr in h] for r in rows]
+                    rows = [
+                        [
+                            tuple(
+                                sum((w * r[j][c] for j, w in enumerate(hr)), F(0)) for c in range(3)
+                            )
+                            for hr in h
+                        ]
+                        for r in rows
+                    ]
         return rows
 
     def gram_energy(rows):
         gu, gv = _gram(len(rows) - 1), _gram(len(rows[0]) - 1)
         return sum(
-            gu[i][k] * gv[j][l] * sum(x * y for x, y in zip(rows[i][j], rows[k][l]))
-            for i in range(len(rows)) for k in range(len(rows))
-            for j in range(len(rows[0])) for l in range(len(rows[0]))
+            gu[i][k] * gv[j][q] * sum(x * y for x, y in zip(rows[i][j], rows[k][q], strict=True))
+            for i in range(len(rows))
+            for k in range(len(rows))
+            for j in range(len(rows[0]))
+            for q in range(len(rows[0]))
         )
 
-    direct = gram_energy(deriv_net(bez, 2, 0)) + 2 * gram_energy(deriv_net(bez, 1, 1)) + gram_energy(deriv_net(bez, 0, 2))
+    direct = (
+        gram_energy(deriv_net(bez, 2, 0))
+        + 2 * gram_energy(deriv_net(bez, 1, 1))
+        + gram_energy(deriv_net(bez, 0, 2))
+    )
     assert lb.surface_energy(s, "thin_plate") == direct
     mats = lb.surface_energy_matrices((4, 3), "thin_plate", fam)
     scale, upper = mats.terms[(1, 1)]
@@ -300,18 +330,25 @@ def test_exact_optimum_is_the_global_minimum(fam, box, kind):
 
     rng = np.random.default_rng(17)
     for _ in range(3):
-        net = [[tuple(int(c) for c in rng.integers(-3, 4, 3) + (i, j, 0)) for j in range(4)] for i in range(4)]
+        net = [
+            [tuple(int(c) for c in rng.integers(-3, 4, 3) + (i, j, 0)) for j in range(4)]
+            for i in range(4)
+        ]
         res = lb.optimal_parameters(net, kind, fam)
         poly = lb.surface_energy_matrices((3, 3), kind, fam).polynomial(net)
         x, y, e = dense_minimum(poly, box, box)
 
-        def f(p):
+        def f(p, poly=poly):
             return sum(float(c) * p[0] ** a * p[1] ** b for (a, b), c in poly.items())
 
-        polished = minimize(f, [x, y], bounds=[box, box], method="L-BFGS-B", options={"ftol": 1e-15, "gtol": 1e-12})
+        polished = minimize(
+            f, [x, y], bounds=[box, box], method="L-BFGS-B", options={"ftol": 1e-15, "gtol": 1e-12}
+        )
         best = min(e, polished.fun)
         assert float(res.energy) <= best + 1e-9 * max(1.0, abs(best))
-        assert abs(float(res.energy) - f([res["lam_u_float"], res["lam_v_float"]])) <= 1e-9 * max(1, abs(best))
+        assert abs(float(res.energy) - f([res["lam_u_float"], res["lam_v_float"]])) <= 1e-9 * max(
+            1, abs(best)
+        )
         for key in ("lam_u", "lam_v"):
             value = res[key]
             assert isinstance(value, Fraction | lb.IsolatedRoot)
@@ -354,14 +391,24 @@ def test_batch_falls_back_to_exact_on_a_planar_net():
 @pytest.mark.parametrize("cont, order", [("C1", 1), ("C2", 2), ("G1", 1)])
 @pytest.mark.parametrize("side", ["u", "v"])
 def test_join_surface_continuity(cont, order, side):
-    a = lb.SameDegreeSurface([[(i, j, (i * j) % 3) for j in range(4)] for i in range(4)], F(1, 2), F(1, 3))
+    a = lb.SameDegreeSurface(
+        [[(i, j, (i * j) % 3) for j in range(4)] for i in range(4)], F(1, 2), F(1, 3)
+    )
     solved = order + 1
     if side == "u":
         rest = [[(4 + k, j, 0) for j in range(4)] for k in range(4 - solved)]
     else:
         rest = [[(i, 4 + k, 0) for k in range(5 - solved)] for i in range(4)]
-    b = lb.join_surface(a, side, cont, 3 if side == "u" else 4, F(-1, 2), rest=rest, alpha=2,
-                        family="same_degree" if side == "u" else "bernstein_like")
+    b = lb.join_surface(
+        a,
+        side,
+        cont,
+        3 if side == "u" else 4,
+        F(-1, 2),
+        rest=rest,
+        alpha=2,
+        family="same_degree" if side == "u" else "bernstein_like",
+    )
     assert b.is_exact
     t = np.linspace(0, 1, 7)
     one, zero = np.ones(7), np.zeros(7)
@@ -376,13 +423,20 @@ def test_join_surface_continuity(cont, order, side):
         np.testing.assert_allclose(da[r], alpha**r * db[r], atol=1e-12)
     report = lb.CompositeSurface([[a], [b]] if side == "u" else [[a, b]]).report()
     assert [r.continuity for r in report] == [cont if cont != "C1" else "C1"] or (
-        cont == "C1" and report[0].continuity in ("C1", "C2"))
+        cont == "C1" and report[0].continuity in ("C1", "C2")
+    )
 
 
 def test_composite_report_finds_gaps_and_corners():
     a = lb.BezierSurface([[(i, j, 0) for j in range(3)] for i in range(3)])
     moved = lb.BezierSurface([[(2 + i, j, 1) for j in range(3)] for i in range(3)])
-    kinked = lb.BezierSurface([[(2, j, 0) for j in range(3)], [(2, j, 1) for j in range(3)], [(2, j, 2) for j in range(3)]])
+    kinked = lb.BezierSurface(
+        [
+            [(2, j, 0) for j in range(3)],
+            [(2, j, 1) for j in range(3)],
+            [(2, j, 2) for j in range(3)],
+        ]
+    )
     assert lb.CompositeSurface([[a], [moved]]).report()[0].continuity == "none"
     assert lb.CompositeSurface([[a], [kinked]]).report()[0].continuity == "C0"
 
@@ -397,7 +451,9 @@ def test_step_is_read_back_by_occt(tmp_path):
 
     from lambda_bezier.surface_export import to_step_surface
 
-    s = lb.BernsteinLikeSurface([[(i, j, (i * j) % 3) for j in range(4)] for i in range(5)], F(1, 2), F(-1, 3))
+    s = lb.BernsteinLikeSurface(
+        [[(i, j, (i * j) % 3) for j in range(4)] for i in range(5)], F(1, 2), F(-1, 3)
+    )
     path = to_step_surface(s, tmp_path / "s.step")
     reader = STEPControl_Reader()
     reader.ReadFile(str(path))
@@ -433,8 +489,12 @@ def test_mesh_respects_its_tolerance(tmp_path):
 def test_json_round_trip_is_exact():
     from lambda_bezier.surface_export import surface_from_json, surface_to_json
 
-    s = lb.Surface([[(i, F(j, 3), 1) for j in range(4)] for i in range(3)], None, F(-1, 3),
-                   family=("bezier", "bernstein_like"))
+    s = lb.Surface(
+        [[(i, F(j, 3), 1) for j in range(4)] for i in range(3)],
+        None,
+        F(-1, 3),
+        family=("bezier", "bernstein_like"),
+    )
     back = surface_from_json(surface_to_json(s))
     assert back.control_net() == s.control_net() and back.lam_v == F(-1, 3) and back.lam_u is None
     assert back.family == ("bezier", "bernstein_like")
@@ -482,15 +542,23 @@ coord = st.integers(-5, 5)
 
 
 @given(
-    st.integers(1, 4), st.integers(1, 4),
+    st.integers(1, 4),
+    st.integers(1, 4),
     st.lists(coord, min_size=75, max_size=75),
-    st.fractions(-1, 1, max_denominator=7), st.fractions(-1, 1, max_denominator=7),
-    st.fractions(0, 1, max_denominator=9), st.fractions(0, 1, max_denominator=9),
+    st.fractions(-1, 1, max_denominator=7),
+    st.fractions(-1, 1, max_denominator=7),
+    st.fractions(0, 1, max_denominator=9),
+    st.fractions(0, 1, max_denominator=9),
 )
 def test_random_exact_nets_bernstein_like(m, n, values, lu, lv, u, v):
-    net = [[tuple(values[3 * (i * 5 + j) + c] for c in range(3)) for j in range(n + 1)] for i in range(m + 1)]
+    net = [
+        [tuple(values[3 * (i * 5 + j) + c] for c in range(3)) for j in range(n + 1)]
+        for i in range(m + 1)
+    ]
     s = lb.BernsteinLikeSurface(net, lu, lv) if m >= 2 and n >= 2 else lb.BezierSurface(net)
     exact = exact_bernstein(s.to_bezier().control_net(), u, v)
-    np.testing.assert_allclose(s.evaluate(float(u), float(v)), [float(c) for c in exact], atol=1e-12 * 50)
+    np.testing.assert_allclose(
+        s.evaluate(float(u), float(v)), [float(c) for c in exact], atol=1e-12 * 50
+    )
     iso = s.curve_at_u(u).to_bezier().control_points()
     assert exact_bernstein([[p] for p in iso], v, F(0)) == exact

@@ -82,10 +82,12 @@ def sturm_sequence(p: Poly) -> list[Poly]:
 
 def _sign_changes(seq: list[Poly], x: Fraction) -> int:
     signs = [s for s in ((evaluate(p, x) > 0) - (evaluate(p, x) < 0) for p in seq) if s]
-    return sum(1 for a, b in zip(signs, signs[1:]) if a != b)
+    return sum(1 for a, b in zip(signs, signs[1:], strict=False) if a != b)
 
 
-def real_roots(p: Sequence[Fraction], lo: Fraction, hi: Fraction) -> list[Fraction | tuple[Fraction, Fraction]]:
+def real_roots(
+    p: Sequence[Fraction], lo: Fraction, hi: Fraction
+) -> list[Fraction | tuple[Fraction, Fraction]]:
     """The distinct real roots of p in [lo, hi], increasing: a Fraction for a rational root
     met exactly, else (a, b), an open interval with rational ends holding exactly one root."""
     q = squarefree(trim(p))
@@ -116,7 +118,9 @@ def real_roots(p: Sequence[Fraction], lo: Fraction, hi: Fraction) -> list[Fracti
     return sorted(out, key=lambda r: r if isinstance(r, Fraction) else r[0])
 
 
-def refine(p: Sequence[Fraction], interval: tuple[Fraction, Fraction], width: Fraction) -> Fraction | tuple[Fraction, Fraction]:
+def refine(
+    p: Sequence[Fraction], interval: tuple[Fraction, Fraction], width: Fraction
+) -> Fraction | tuple[Fraction, Fraction]:
     """Bisect an isolating interval of a square-free factor's root down to `width` (or hit it)."""
     a, b = interval
     fa = evaluate(p, a)
@@ -134,7 +138,8 @@ def refine(p: Sequence[Fraction], interval: tuple[Fraction, Fraction], width: Fr
 
 def integer_coefficients(p: Sequence[Fraction]) -> tuple[int, ...]:
     """p scaled to coprime integers with a positive leading coefficient."""
-    from math import gcd as igcd, lcm
+    from math import gcd as igcd
+    from math import lcm
 
     p = trim(p)
     den = lcm(*(c.denominator for c in p)) if p else 1

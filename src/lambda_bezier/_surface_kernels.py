@@ -31,7 +31,10 @@ def bernstein_to_centred(degree: int) -> tuple[tuple[Fraction, ...], ...]:
     rows = []
     for i in range(degree + 1):
         a = [comb(i, k) * half ** (i - k) for k in range(i + 1)]
-        b = [comb(degree - i, k) * half ** (degree - i - k) * (-1) ** k for k in range(degree - i + 1)]
+        b = [
+            comb(degree - i, k) * half ** (degree - i - k) * (-1) ** k
+            for k in range(degree - i + 1)
+        ]
         row = [Fraction(0)] * (degree + 1)
         for p, x in enumerate(a):
             for q, y in enumerate(b):
@@ -116,8 +119,9 @@ def evaluate_grid(coeffs: np.ndarray, us: np.ndarray, vs: np.ndarray) -> np.ndar
 
 
 # ---------------------------------------------------------------------- exact net algebra
-def exact_transform(left: Sequence[Sequence[Fraction]], net: ExactNet,
-                    right: Sequence[Sequence[Fraction]]) -> ExactNet:
+def exact_transform(
+    left: Sequence[Sequence[Fraction]], net: ExactNet, right: Sequence[Sequence[Fraction]]
+) -> ExactNet:
     """Lᵀ · net · R per coordinate, in Fractions: L (m+1, M+1), R (n+1, N+1)."""
     rows_in, cols_in = len(net), len(net[0])
     dim = len(net[0][0])
@@ -126,8 +130,9 @@ def exact_transform(left: Sequence[Sequence[Fraction]], net: ExactNet,
     tmp = [
         [
             tuple(
-                sum((net[i][j][c] * right[j][b] for j in range(cols_in) if right[j][b]),
-                    Fraction(0))
+                sum(
+                    (net[i][j][c] * right[j][b] for j in range(cols_in) if right[j][b]), Fraction(0)
+                )
                 for c in range(dim)
             )
             for b in range(big_n)
@@ -137,8 +142,7 @@ def exact_transform(left: Sequence[Sequence[Fraction]], net: ExactNet,
     return tuple(
         tuple(
             tuple(
-                sum((tmp[i][b][c] * left[i][a] for i in range(rows_in) if left[i][a]),
-                    Fraction(0))
+                sum((tmp[i][b][c] * left[i][a] for i in range(rows_in) if left[i][a]), Fraction(0))
                 for c in range(dim)
             )
             for b in range(big_n)
@@ -152,8 +156,9 @@ def bernstein_values(degree: int, t: Scalar) -> tuple[Scalar, ...]:
     return tuple(comb(degree, i) * t**i * (1 - t) ** (degree - i) for i in range(degree + 1))
 
 
-def split_net(net: Sequence[Sequence[Sequence[Scalar]]], t: Scalar,
-              axis: int) -> tuple[list[list[tuple[Scalar, ...]]], list[list[tuple[Scalar, ...]]]]:
+def split_net(
+    net: Sequence[Sequence[Sequence[Scalar]]], t: Scalar, axis: int
+) -> tuple[list[list[tuple[Scalar, ...]]], list[list[tuple[Scalar, ...]]]]:
     """The two nets of the pieces over [0, t] and [t, 1] along `axis` (0: u, 1: v), by de
     Casteljau on every row of control points across that axis; exact for Fractions."""
     if axis == 1:
@@ -165,17 +170,22 @@ def split_net(net: Sequence[Sequence[Sequence[Scalar]]], t: Scalar,
         return left, right
     transposed = [[net[i][j] for i in range(len(net))] for j in range(len(net[0]))]
     lo_t, hi_t = split_net(transposed, t, 1)
-    return ([[lo_t[j][i] for j in range(len(lo_t))] for i in range(len(lo_t[0]))],
-            [[hi_t[j][i] for j in range(len(hi_t))] for i in range(len(hi_t[0]))])
+    return (
+        [[lo_t[j][i] for j in range(len(lo_t))] for i in range(len(lo_t[0]))],
+        [[hi_t[j][i] for j in range(len(hi_t))] for i in range(len(hi_t[0]))],
+    )
 
 
-def _split_row(points: list[tuple[Scalar, ...]], t: Scalar) -> tuple[list[tuple[Scalar, ...]],
-                                                                      list[tuple[Scalar, ...]]]:
+def _split_row(
+    points: list[tuple[Scalar, ...]], t: Scalar
+) -> tuple[list[tuple[Scalar, ...]], list[tuple[Scalar, ...]]]:
     work = points
     first, last = [work[0]], [work[-1]]
     while len(work) > 1:
-        work = [tuple((1 - t) * a + t * b for a, b in zip(p, q, strict=True))
-                for p, q in zip(work[:-1], work[1:], strict=True)]
+        work = [
+            tuple((1 - t) * a + t * b for a, b in zip(p, q, strict=True))
+            for p, q in zip(work[:-1], work[1:], strict=True)
+        ]
         first.append(work[0])
         last.append(work[-1])
     return first, last[::-1]
@@ -276,8 +286,12 @@ def minimise_scalar_net(
     return best_u, best_v, best, min(floor, best)
 
 
-def _try(u: float, v: float, value: Callable[[float, float], float],
-         polish: Callable[[float, float], tuple[float, float]]) -> tuple[float, float, float]:
+def _try(
+    u: float,
+    v: float,
+    value: Callable[[float, float], float],
+    polish: Callable[[float, float], tuple[float, float]],
+) -> tuple[float, float, float]:
     pu, pv = polish(u, v)
     fa, fb = value(u, v), value(pu, pv)
     return (u, v, fa) if fa <= fb else (pu, pv, fb)

@@ -25,12 +25,12 @@ import numpy as np
 
 from .surface_energy import (
     OptimalParameters,
-    _as_family_pair,
     _box,
     _exact_optimum,
     _float_polynomial,
     surface_energy_matrices,
 )
+from .surfaces import _as_family_pair
 
 STEP_TOLERANCE = 1e-13
 
@@ -51,11 +51,14 @@ def _energy_at(e: np.ndarray, x: np.ndarray, y: np.ndarray) -> np.ndarray:
     return out
 
 
-def _edge_minima(c0: np.ndarray, c1: np.ndarray, c2: np.ndarray, lo: float, hi: float) -> np.ndarray:
+def _edge_minima(
+    c0: np.ndarray, c1: np.ndarray, c2: np.ndarray, lo: float, hi: float
+) -> np.ndarray:
     """argmin of c0 + c1 t + c2 t² over [lo, hi] (an end where the quadratic is not convex)."""
     with np.errstate(divide="ignore", invalid="ignore"):
         t = np.where(c2 > 0, -c1 / (2 * c2), lo)
-    return np.clip(np.nan_to_num(t, nan=lo), lo, hi)
+    out: np.ndarray = np.clip(np.nan_to_num(t, nan=lo), lo, hi)
+    return out
 
 
 def optimal_parameters_batch(nets: np.ndarray, energy: str, family: object) -> OptimalParameters:
@@ -79,14 +82,15 @@ def optimal_parameters_batch(nets: np.ndarray, energy: str, family: object) -> O
     ylo, yhi = float(v_box[0]), float(v_box[1])
     xs, ys, kinds = [], [], []
     for x0 in (xlo, xhi):  # edges x = x0 (with their corners)
-        c = [np.einsum("kab,a->kb", e, np.array([1.0, x0, x0 * x0]))[:, j] for j in range(3)]
-        for y in (np.full(count, ylo), np.full(count, yhi), _edge_minima(*c, ylo, yhi)):
+        cb = np.einsum("kab,a->kb", e, np.array([1.0, x0, x0 * x0]))
+        edge = _edge_minima(cb[:, 0], cb[:, 1], cb[:, 2], ylo, yhi)
+        for y in (np.full(count, ylo), np.full(count, yhi), edge):
             xs.append(np.full(count, x0))
             ys.append(y)
             kinds.append(0)
     for y0 in (ylo, yhi):
-        c = [np.einsum("kab,b->ka", e, np.array([1.0, y0, y0 * y0]))[:, j] for j in range(3)]
-        xs.append(_edge_minima(*c, xlo, xhi))
+        ca = np.einsum("kab,b->ka", e, np.array([1.0, y0, y0 * y0]))
+        xs.append(_edge_minima(ca[:, 0], ca[:, 1], ca[:, 2], xlo, xhi))
         ys.append(np.full(count, y0))
         kinds.append(0)
     # interior: the resultant in y, its roots, then x = -β/α and Newton
@@ -95,8 +99,11 @@ def optimal_parameters_batch(nets: np.ndarray, energy: str, family: object) -> O
     gamma = np.stack([e[:, 2, 1], 2 * e[:, 2, 2]], axis=1)
     delta = np.stack([e[:, 1, 1], 2 * e[:, 1, 2]], axis=1)
     eps = np.stack([e[:, 0, 1], 2 * e[:, 0, 2]], axis=1)
-    res = (_polymul(gamma, _polymul(beta, beta)) - _polymul(delta, _polymul(alpha, beta))
-           + _polymul(eps, _polymul(alpha, alpha)))  # (k, 6)
+    res = (
+        _polymul(gamma, _polymul(beta, beta))
+        - _polymul(delta, _polymul(alpha, beta))
+        + _polymul(eps, _polymul(alpha, alpha))
+    )  # (k, 6)
     size = np.abs(res).max(axis=1)
     lead = res[:, 5]
     suspect = ~(np.abs(lead) > 1e-9 * size)
@@ -150,7 +157,10 @@ def optimal_parameters_batch(nets: np.ndarray, energy: str, family: object) -> O
     corner = np.isin(bx, (xlo, xhi)) & np.isin(by, (ylo, yhi))
     where[corner] = "corner"
     result = {
-        "lam_u": bx, "lam_v": by, "energy": bval, "where": where,
+        "lam_u": bx,
+        "lam_v": by,
+        "energy": bval,
+        "where": where,
         "admissible": _admissible(bx, u_box) & _admissible(by, v_box),
     }
     return _all_exact(nets, uncertain, result, energy, u_box, v_box, u_cls, v_cls)
@@ -167,7 +177,7 @@ def _derivatives(e: np.ndarray, x: np.ndarray, y: np.ndarray) -> tuple[np.ndarra
     hxx = sum(2 * c(2, b) * py[b] for b in range(3))
     hyy = sum(2 * c(a, 2) * px[a] for a in range(3))
     hxy = sum(a * b * c(a, b) * px[a - 1] * py[b - 1] for a in (1, 2) for b in (1, 2))
-    return gx, gy, hxx, hxy, hyy  # type: ignore[return-value]
+    return gx, gy, hxx, hxy, hyy
 
 
 def _admissible(x: np.ndarray, box: Any) -> np.ndarray:
@@ -176,13 +186,26 @@ def _admissible(x: np.ndarray, box: Any) -> np.ndarray:
     return out
 
 
-def _all_exact(nets: np.ndarray, which: np.ndarray, result: dict[str, Any] | None,
-               energy: str, u_box: Any, v_box: Any, u_cls: Any, v_cls: Any) -> OptimalParameters:
+def _all_exact(
+    nets: np.ndarray,
+    which: np.ndarray,
+    result: dict[str, Any] | None,
+    energy: str,
+    u_box: Any,
+    v_box: Any,
+    u_cls: Any,
+    v_cls: Any,
+) -> OptimalParameters:
     """Fill the nets marked `which` from the exact method on their exact rational values."""
     count, m1, n1, _ = nets.shape
     if result is None:
-        result = {"lam_u": np.zeros(count), "lam_v": np.zeros(count), "energy": np.zeros(count),
-                  "where": np.empty(count, object), "admissible": np.ones(count, bool)}
+        result = {
+            "lam_u": np.zeros(count),
+            "lam_v": np.zeros(count),
+            "energy": np.zeros(count),
+            "where": np.empty(count, object),
+            "admissible": np.ones(count, bool),
+        }
     free_u, free_v = np.zeros(count, bool), np.zeros(count, bool)
     mats = surface_energy_matrices((m1 - 1, n1 - 1), energy, (u_cls, v_cls))
     indices = np.flatnonzero(which)
@@ -198,6 +221,14 @@ def _all_exact(nets: np.ndarray, which: np.ndarray, result: dict[str, Any] | Non
         result["admissible"][i] = r["admissible"]
         free_u[i], free_v[i] = r["free_u"], r["free_v"]
     return OptimalParameters(
-        result["lam_u"], result["lam_v"], result["lam_u"], result["lam_v"], result["energy"],
-        result["where"], result["admissible"], free_u, free_v, int(indices.size),
+        result["lam_u"],
+        result["lam_v"],
+        result["lam_u"],
+        result["lam_v"],
+        result["energy"],
+        result["where"],
+        result["admissible"],
+        free_u,
+        free_v,
+        int(indices.size),
     )

@@ -54,21 +54,25 @@ def _gram(degree: int) -> list[list[Fraction]]:
     scale, upper = _energy.GRAM[degree]
     size = degree + 1
     return [
-        [Fraction(scale) * (upper[min(a, b)][max(a, b)] if a == b else
-                            Fraction(upper[min(a, b)][max(a, b)], 2))
-         for b in range(size)]
+        [
+            Fraction(scale)
+            * (upper[min(a, b)][max(a, b)] if a == b else Fraction(upper[min(a, b)][max(a, b)], 2))
+            for b in range(size)
+        ]
         for a in range(size)
     ]
 
 
 def _matmul(a: Any, b: Any) -> list[list[Fraction]]:
     cols = list(zip(*b, strict=True))
-    return [[sum((x * y for x, y in zip(row, col, strict=True)), Fraction(0)) for col in cols]
-            for row in a]
+    return [
+        [sum((x * y for x, y in zip(row, col, strict=True)), Fraction(0)) for col in cols]
+        for row in a
+    ]
 
 
 @cache
-def direction_forms(cls: type[Curve], degree: int, k: int) -> tuple[Matrix, ...]:
+def direction_forms(cls: Any, degree: int, k: int) -> tuple[Matrix, ...]:
     """(A_0, A_1, …): ∫ |p^(k)|² = Dᵀ (Σ_a λ^a A_a) D summed over coordinates, for the
     family's degree-`degree` curve with control points D; exact, symmetric."""
     split = basis_to_bernstein_split(cls, degree)
@@ -76,7 +80,9 @@ def direction_forms(cls: type[Curve], degree: int, k: int) -> tuple[Matrix, ...]
     if k > big:
         zero = tuple(tuple(Fraction(0) for _ in range(degree + 1)) for _ in range(degree + 1))
         return (zero,)
-    h: list[list[Fraction]] = [[Fraction(int(r == c)) for c in range(big + 1)] for r in range(big + 1)]
+    h: list[list[Fraction]] = [
+        [Fraction(int(r == c)) for c in range(big + 1)] for r in range(big + 1)
+    ]
     for d in range(big, big - k, -1):
         h = _matmul(hodograph_matrix(d), h)
     inner = _matmul(_matmul(list(zip(*h, strict=True)), _gram(big - k)), h)  # Hᵀ G H
@@ -121,10 +127,14 @@ class SurfaceEnergyMatrices:
         return {key: float(v[0]) for key, v in coeffs.items()}
 
 
-def _integer_form(mat: tuple[tuple[Fraction, ...], ...]) -> tuple[Fraction, tuple[tuple[int, ...], ...]]:
+def _integer_form(
+    mat: tuple[tuple[Fraction, ...], ...],
+) -> tuple[Fraction, tuple[tuple[int, ...], ...]]:
     size = len(mat)
-    upper = [[mat[r][c] * (1 if r == c else 2) if c >= r else Fraction(0) for c in range(size)]
-             for r in range(size)]
+    upper = [
+        [mat[r][c] * (1 if r == c else 2) if c >= r else Fraction(0) for c in range(size)]
+        for r in range(size)
+    ]
     den = lcm(*(v.denominator for row in upper for v in row))
     ints = [[int(v * den) for v in row] for row in upper]
     from math import gcd
@@ -138,8 +148,7 @@ def _integer_form(mat: tuple[tuple[Fraction, ...], ...]) -> tuple[Fraction, tupl
 
 
 @cache
-def _cached_matrices(u_cls: type[Curve], v_cls: type[Curve], m: int, n: int,
-                     energy: str) -> SurfaceEnergyMatrices:
+def _cached_matrices(u_cls: Any, v_cls: Any, m: int, n: int, energy: str) -> SurfaceEnergyMatrices:
     full: dict[tuple[int, int], list[list[Fraction]]] = {}
     size = (m + 1) * (n + 1)
     for ku, kv, weight in ENERGIES[energy]:
@@ -157,8 +166,11 @@ def _cached_matrices(u_cls: type[Curve], v_cls: type[Curve], m: int, n: int,
                             for l_ in range(n + 1):
                                 if mb[j][l_]:
                                     row[k * (n + 1) + l_] += w * mb[j][l_]
-    frozen = {key: tuple(tuple(r) for r in mat) for key, mat in sorted(full.items())
-              if any(any(r) for r in mat)}
+    frozen = {
+        key: tuple(tuple(r) for r in mat)
+        for key, mat in sorted(full.items())
+        if any(any(r) for r in mat)
+    }
     return SurfaceEnergyMatrices(
         energy, (m, n), {key: _integer_form(mat) for key, mat in frozen.items()}, frozen
     )
@@ -180,16 +192,19 @@ def surface_energy_matrices(
     u_cls, v_cls = _as_family_pair(family)
     _check_degree(u_cls, m, "u")
     _check_degree(v_cls, n, "v")
-    return _cached_matrices(u_cls, v_cls, m, n, energy)
+    classes: tuple[Any, Any] = (u_cls, v_cls)  # hashable: classes hash by identity
+    return _cached_matrices(*classes, m, n, energy)
 
 
 def surface_energy(surf: Surface, energy: str = "thin_plate") -> Fraction | float:
     """The energy of a surface (exact for an exact surface)."""
     mats = surface_energy_matrices(surf.degrees, energy, (surf._u_cls, surf._v_cls))
-    poly = mats.polynomial(surf._exact if surf.is_exact else surf.net)
+    poly = mats.polynomial(surf._exact if surf._exact is not None and surf.is_exact else surf.net)
     lu = Fraction(0) if surf.lam_u is None else surf.lam_u
     lv = Fraction(0) if surf.lam_v is None else surf.lam_v
-    total = sum((c * lu**a * lv**b for (a, b), c in poly.items()), Fraction(0) if surf.is_exact else 0.0)
+    total = sum(
+        (c * lu**a * lv**b for (a, b), c in poly.items()), Fraction(0) if surf.is_exact else 0.0
+    )
     return total
 
 
@@ -199,8 +214,10 @@ def _exact_vector(net: object, degrees: tuple[int, int]) -> list[tuple[Fraction,
 
     arr = _as_net(net)
     if arr.shape[:2] != (degrees[0] + 1, degrees[1] + 1):
-        raise ValueError(f"net has {arr.shape[0]} x {arr.shape[1]} points, the matrices are for "
-                         f"{degrees[0] + 1} x {degrees[1] + 1}")
+        raise ValueError(
+            f"net has {arr.shape[0]} x {arr.shape[1]} points, the matrices are for "
+            f"{degrees[0] + 1} x {degrees[1] + 1}"
+        )
     exact = _exact_net(net)
     if exact is None or len(exact[0][0]) != arr.shape[2]:
         return None
@@ -212,8 +229,10 @@ def _float_vectors(net: object, degrees: tuple[int, int]) -> np.ndarray:
 
     arr = _as_net(net)
     if arr.shape[:2] != (degrees[0] + 1, degrees[1] + 1):
-        raise ValueError(f"net has {arr.shape[0]} x {arr.shape[1]} points, the matrices are for "
-                         f"{degrees[0] + 1} x {degrees[1] + 1}")
+        raise ValueError(
+            f"net has {arr.shape[0]} x {arr.shape[1]} points, the matrices are for "
+            f"{degrees[0] + 1} x {degrees[1] + 1}"
+        )
     return arr.reshape(-1, arr.shape[2])
 
 
@@ -231,7 +250,9 @@ def _float_full(mats: SurfaceEnergyMatrices) -> dict[tuple[int, int], np.ndarray
     return {key: np.array(mat, dtype=float) for key, mat in mats.full.items()}
 
 
-def _float_polynomial(mats: SurfaceEnergyMatrices, flat: np.ndarray) -> dict[tuple[int, int], np.ndarray]:
+def _float_polynomial(
+    mats: SurfaceEnergyMatrices, flat: np.ndarray
+) -> dict[tuple[int, int], np.ndarray]:
     """{(a, b): e_ab over the batch} for nets flattened to (batch, (m+1)(n+1), d)."""
     out = {}
     for key, q in _float_full(mats).items():
@@ -281,7 +302,8 @@ def _box(cls: type[Curve]) -> tuple[Fraction, Fraction, tuple[bool, bool]] | Non
     if not cls._has_lambda:
         return None
     lo, hi = cls._data.LAMBDA_RANGE
-    return Fraction(lo), Fraction(hi), tuple(cls._data.LAMBDA_CLOSED)  # type: ignore[return-value]
+    lo_closed, hi_closed = cls._data.LAMBDA_CLOSED
+    return Fraction(lo), Fraction(hi), (bool(lo_closed), bool(hi_closed))
 
 
 def _default(cls: type[Curve], box: tuple[Fraction, Fraction, Any]) -> Fraction:
@@ -298,7 +320,9 @@ def _interval(r: Fraction | tuple[Fraction, Fraction]) -> tuple[Fraction, Fracti
     return (r, r) if isinstance(r, Fraction) else r
 
 
-def _roots(p: list[Fraction], lo: Fraction, hi: Fraction) -> list[Fraction | tuple[Fraction, Fraction]]:
+def _roots(
+    p: list[Fraction], lo: Fraction, hi: Fraction
+) -> list[Fraction | tuple[Fraction, Fraction]]:
     """The roots of p in the open interval (lo, hi) (none for the zero polynomial: handled by
     the caller as a free parameter)."""
     p = xp.trim(p)
@@ -307,7 +331,9 @@ def _roots(p: list[Fraction], lo: Fraction, hi: Fraction) -> list[Fraction | tup
     return [r for r in xp.real_roots(p, lo, hi) if not (isinstance(r, Fraction) and r in (lo, hi))]
 
 
-def _refine_all(poly: list[Fraction], r: Fraction | tuple[Fraction, Fraction], width: Fraction) -> Fraction | tuple[Fraction, Fraction]:
+def _refine_all(
+    poly: list[Fraction], r: Fraction | tuple[Fraction, Fraction], width: Fraction
+) -> Fraction | tuple[Fraction, Fraction]:
     if isinstance(r, Fraction):
         return r
     return xp.refine(xp.squarefree(poly), r, width)
@@ -351,8 +377,9 @@ def minimise_polynomial(
     return _least(e, cands)
 
 
-def _pair(fx: xp.Bivariate, fy: xp.Bivariate, rx: list[Fraction], ry: list[Fraction],
-          xr: Any, yr: Any) -> tuple[Any, Any] | None:
+def _pair(
+    fx: xp.Bivariate, fy: xp.Bivariate, rx: list[Fraction], ry: list[Fraction], xr: Any, yr: Any
+) -> tuple[Any, Any] | None:
     """(xr, yr) refined, when ∇E may vanish there: interval evaluation excludes the pairs that
     are not common roots; a pair is kept once its intervals are 2^-120 wide and still enclose
     a zero of both derivatives."""
@@ -406,30 +433,49 @@ def _float(x: Algebraic) -> float:
     return float(x)
 
 
-def _exact_optimum(e: dict[tuple[int, int], Fraction], u_box: Any, v_box: Any,
-                   u_cls: type[Curve], v_cls: type[Curve]) -> OptimalParameters:
+def _exact_optimum(
+    e: dict[tuple[int, int], Fraction],
+    u_box: Any,
+    v_box: Any,
+    u_cls: type[Curve],
+    v_cls: type[Curve],
+) -> OptimalParameters:
     free_u = u_box is None or not any(a for (a, _), c in e.items() if c)
     free_v = v_box is None or not any(b for (_, b), c in e.items() if c)
     pin_u = None if u_box is None else _default(u_cls, u_box)
     pin_v = None if v_box is None else _default(v_cls, v_box)
-    bx = (pin_u, pin_u) if free_u and pin_u is not None else (
-        (Fraction(0), Fraction(0)) if u_box is None else (u_box[0], u_box[1]))
-    by = (pin_v, pin_v) if free_v and pin_v is not None else (
-        (Fraction(0), Fraction(0)) if v_box is None else (v_box[0], v_box[1]))
-    x, y, where = minimise_polynomial(e, bx, by)  # type: ignore[arg-type]
+    bx = (
+        (pin_u, pin_u)
+        if free_u and pin_u is not None
+        else ((Fraction(0), Fraction(0)) if u_box is None else (u_box[0], u_box[1]))
+    )
+    by = (
+        (pin_v, pin_v)
+        if free_v and pin_v is not None
+        else ((Fraction(0), Fraction(0)) if v_box is None else (v_box[0], v_box[1]))
+    )
+    x, y, where = minimise_polynomial(e, bx, by)
     energy: Fraction | float
     if isinstance(x, Fraction) and isinstance(y, Fraction):
         energy = xp.evaluate2(e, x, y)
     else:
         energy = sum(float(c) * float(x) ** a * float(y) ** b for (a, b), c in e.items())
     admissible = all(
-        box is None or free or not ((val_ == box[0] and not box[2][0]) or (val_ == box[1] and not box[2][1]))
+        box is None
+        or free
+        or not ((val_ == box[0] and not box[2][0]) or (val_ == box[1] and not box[2][1]))
         for box, val_, free in ((u_box, x, free_u), (v_box, y, free_v))
     )
     return OptimalParameters(
-        None if u_box is None else x, None if v_box is None else y,
-        None if u_box is None else float(x), None if v_box is None else float(y),
-        energy, where, admissible, free_u, free_v,
+        None if u_box is None else x,
+        None if v_box is None else y,
+        None if u_box is None else float(x),
+        None if v_box is None else float(y),
+        energy,
+        where,
+        admissible,
+        free_u,
+        free_v,
     )
 
 

@@ -14,7 +14,6 @@ from typing import Any
 
 import numpy as np
 
-
 from . import _validate as val
 from .export import FORMAT_VERSION, _number_in, _number_out, _optional, _quiet_occt
 from .surfaces import Surface
@@ -25,9 +24,9 @@ from .surfaces import Surface
 def occt_bezier_surface(surf: Surface) -> Any:
     """The surface's Bézier form as an OCCT Geom_BezierSurface (3D; 2D nets at z = 0)."""
     _optional("OCP", "cadquery-ocp-novtk (OCP)", "occt_bezier_surface")
+    from OCP.collections import Array2_gp_Pnt
     from OCP.Geom import Geom_BezierSurface
     from OCP.gp import gp_Pnt
-    from OCP.collections import Array2_gp_Pnt
 
     net = surf.to_bezier().net
     if net.shape[2] not in (2, 3):
@@ -106,7 +105,9 @@ def mesh(surf: Surface, tolerance: float) -> SurfaceMesh:
     if not isinstance(surf, Surface):
         raise TypeError(f"surf must be a lambda_bezier surface, got {type(surf).__name__}")
     if surf.dimension not in (2, 3):
-        raise ValueError(f"a triangle mesh needs a surface in 2D or 3D, got dimension {surf.dimension}")
+        raise ValueError(
+            f"a triangle mesh needs a surface in 2D or 3D, got dimension {surf.dimension}"
+        )
     net = surf.to_bezier().net
     muu, muv, mvv = (_hull_bound(_derivative_net(net, a, b)) for a, b in ((2, 0), (1, 1), (0, 2)))
     hu = math.sqrt(2 * tol / (3 * muu)) if muu else 1.0
@@ -167,22 +168,38 @@ def surface_from_json(text: str, *, check_range: bool = True) -> Surface:
         doc = json.loads(text)
     except (TypeError, json.JSONDecodeError) as exc:
         raise ValueError(f"not valid JSON: {exc}") from None
-    if not isinstance(doc, dict) or doc.get("lambda_bezier") != FORMAT_VERSION or doc.get("kind") != "surface":
-        raise ValueError(f'not a lambda-bezier surface document: expected "lambda_bezier": '
-                         f'{FORMAT_VERSION} and "kind": "surface"')
+    if (
+        not isinstance(doc, dict)
+        or doc.get("lambda_bezier") != FORMAT_VERSION
+        or doc.get("kind") != "surface"
+    ):
+        raise ValueError(
+            f'not a lambda-bezier surface document: expected "lambda_bezier": '
+            f'{FORMAT_VERSION} and "kind": "surface"'
+        )
     fams, lams, net = doc.get("family"), doc.get("lambda"), doc.get("net")
     if not (isinstance(fams, list) and len(fams) == 2 and all(f in FAMILIES for f in fams)):
-        raise ValueError(f"surface.family must be a pair of names from {sorted(FAMILIES)}, got {fams!r}")
+        raise ValueError(
+            f"surface.family must be a pair of names from {sorted(FAMILIES)}, got {fams!r}"
+        )
     if not (isinstance(lams, list) and len(lams) == 2):
         raise ValueError("surface.lambda must be a pair (null for a Bézier direction)")
-    if not (isinstance(net, list) and net and all(isinstance(r, list) and all(isinstance(p, list) for p in r) for r in net)):
+    if not (
+        isinstance(net, list)
+        and net
+        and all(isinstance(r, list) and all(isinstance(p, list) for p in r) for r in net)
+    ):
         raise ValueError("surface.net must be a list of rows of points")
-    rows = [[[_number_in(c, f"net[{i}][{j}][{k}]") for k, c in enumerate(p)] for j, p in enumerate(r)]
-            for i, r in enumerate(net)]
+    rows = [
+        [[_number_in(c, f"net[{i}][{j}][{k}]") for k, c in enumerate(p)] for j, p in enumerate(r)]
+        for i, r in enumerate(net)
+    ]
     if not all(isinstance(c, Fraction) for r in rows for p in r for c in p):
         rows = [[[float(c) for c in p] for p in r] for r in rows]
     lu, lv = (None if x is None else _number_in(x, "surface.lambda") for x in lams)
-    return Surface(rows, lu, lv, family=(FAMILIES[fams[0]], FAMILIES[fams[1]]), check_range=check_range)
+    return Surface(
+        rows, lu, lv, family=(FAMILIES[fams[0]], FAMILIES[fams[1]]), check_range=check_range
+    )
 
 
 def bezier_net_bounds(surf: Surface) -> tuple[float, float, float]:
@@ -191,6 +208,12 @@ def bezier_net_bounds(surf: Surface) -> tuple[float, float, float]:
     return tuple(_hull_bound(_derivative_net(net, a, b)) for a, b in ((2, 0), (1, 1), (0, 2)))  # type: ignore[return-value]
 
 
-__all__ = ["SurfaceMesh", "mesh", "occt_bezier_surface", "surface_from_json", "surface_to_json",
-           "to_mesh_file", "to_step_surface"]
-
+__all__ = [
+    "SurfaceMesh",
+    "mesh",
+    "occt_bezier_surface",
+    "surface_from_json",
+    "surface_to_json",
+    "to_mesh_file",
+    "to_step_surface",
+]

@@ -71,7 +71,8 @@ def join_surface(
     side = val.choice(side, "side", SIDES)
     continuity = val.choice(
         continuity.upper() if isinstance(continuity, str) else continuity,
-        "continuity", SURFACE_CONTINUITIES,
+        "continuity",
+        SURFACE_CONTINUITIES,
     )
     if not isinstance(patch, Surface):
         raise TypeError(f"patch must be a lambda_bezier surface, got {type(patch).__name__}")
@@ -82,11 +83,15 @@ def join_surface(
     along_lam = patch.lam_v if axis == 0 else patch.lam_u
     new_family = across_cls if family is None else family
     count = patch.net.shape[1 - axis]
-    rest_arr = np.asarray(val.real_array(rest, "rest"), dtype=float) if len(rest) else None
-    exact_rest = _exact_net(rest) if len(rest) else ()
+    given = np.size(np.asarray(val.real_array(rest, "rest"), dtype=float)) > 0
+    rest_arr = np.asarray(val.real_array(rest, "rest"), dtype=float) if given else None
+    exact_rest = _exact_net(rest) if given else ()
     if rest_arr is not None:
         if rest_arr.ndim != 3:
-            raise ValueError(f"rest must be a grid of control points (rows, points, d), got shape {rest_arr.shape}")
+            raise ValueError(
+                "rest must be a grid of control points (rows, points, d), got shape "
+                f"{rest_arr.shape}"
+            )
         want = count
         got = rest_arr.shape[1] if axis == 0 else rest_arr.shape[0]
         if got != want:
@@ -98,11 +103,23 @@ def join_surface(
         rest_cols = _transpose(rest_rows) if axis == 0 else [list(r) for r in rest_rows]
     new_columns = []
     for j in range(count):
-        curve = across_cls(columns[j], across_lam, check_range=False) if across_cls._has_lambda else across_cls(columns[j])
-        nxt = join(curve, continuity, degree, lam, alpha=alpha if continuity == "G1" else 1,
-                   rest=rest_cols[j], family=new_family, check_range=check_range)
+        curve = (
+            across_cls(columns[j], across_lam, check_range=False)
+            if across_cls._has_lambda
+            else across_cls(columns[j])
+        )
+        nxt = join(
+            curve,
+            continuity,
+            degree,
+            lam,
+            alpha=alpha if continuity == "G1" else 1,
+            rest=rest_cols[j],
+            family=new_family,
+            check_range=check_range,
+        )
         new_columns.append(list(nxt.control_points()))
-    net = _transpose(new_columns) if axis == 0 else new_columns
+    net: Any = _transpose(new_columns) if axis == 0 else new_columns
     fam = (type(nxt), along_cls) if axis == 0 else (along_cls, type(nxt))
     lams = (nxt.lam, along_lam) if axis == 0 else (along_lam, nxt.lam)
     return Surface(net, lams[0], lams[1], family=fam, check_range=False)
@@ -134,8 +151,10 @@ def _apply(weights: Any, points: list[Any]) -> list[Any]:
     """weights @ points, in the points' arithmetic (Fractions stay exact)."""
     dim = len(points[0])
     return [
-        tuple(sum((w * p[c] for w, p in zip(row, points, strict=True)), 0 * points[0][c])
-              for c in range(dim))
+        tuple(
+            sum((w * p[c] for w, p in zip(row, points, strict=True)), 0 * points[0][c])
+            for c in range(dim)
+        )
         for row in weights
     ]
 
@@ -149,7 +168,9 @@ def _elevate_to(points: list[Any], degree: int) -> list[Any]:
 def _same(a: list[Any], b: list[Any], tol: float) -> bool:
     size = max(len(a), len(b)) - 1
     a, b = _elevate_to(a, size), _elevate_to(b, size)
-    return all(abs(x - y) <= tol for p, q in zip(a, b, strict=True) for x, y in zip(p, q, strict=True))
+    return all(
+        abs(x - y) <= tol for p, q in zip(a, b, strict=True) for x, y in zip(p, q, strict=True)
+    )
 
 
 def _proportional(a: list[Any], b: list[Any], tol: float) -> bool:
@@ -185,7 +206,9 @@ class CompositeSurface:
         for row in grid:
             for p in row:
                 if not isinstance(p, Surface):
-                    raise TypeError(f"every patch must be a lambda_bezier surface, got {type(p).__name__}")
+                    raise TypeError(
+                        f"every patch must be a lambda_bezier surface, got {type(p).__name__}"
+                    )
         if len({p.dimension for row in grid for p in row}) != 1:
             raise ValueError("all patches must have the same dimension")
         self.patches = grid
@@ -199,13 +222,24 @@ class CompositeSurface:
             for c in range(cols):
                 for side, (r2, c2) in (("u", (r + 1, c)), ("v", (r, c + 1))):
                     if r2 < rows and c2 < cols:
-                        out.append(BoundaryReport((r, c), side, self._continuity(
-                            self.patches[r][c], self.patches[r2][c2], 0 if side == "u" else 1)))
+                        out.append(
+                            BoundaryReport(
+                                (r, c),
+                                side,
+                                self._continuity(
+                                    self.patches[r][c],
+                                    self.patches[r2][c2],
+                                    0 if side == "u" else 1,
+                                ),
+                            )
+                        )
         return out
 
     def _continuity(self, a: Surface, b: Surface, axis: int) -> str:
         exact = a.is_exact and b.is_exact
-        size = max(float(np.abs(a.to_bezier().net).max()), float(np.abs(b.to_bezier().net).max()), 1.0)
+        size = max(
+            float(np.abs(a.to_bezier().net).max()), float(np.abs(b.to_bezier().net).max()), 1.0
+        )
         tol = 0.0 if exact else self.tol * size
         da = _boundary_derivatives(a, axis, True, 2)
         db = _boundary_derivatives(b, axis, False, 2)

@@ -45,7 +45,9 @@ def plot_surface(
     if not isinstance(surf, Surface):
         raise TypeError(f"surf must be a lambda_bezier surface, got {type(surf).__name__}")
     if surf.dimension != 3:
-        raise ValueError(f"plot_surface draws surfaces in 3D, this one has dimension {surf.dimension}")
+        raise ValueError(
+            f"plot_surface draws surfaces in 3D, this one has dimension {surf.dimension}"
+        )
     curvature = val.choice(curvature, "curvature", COLOURINGS)
     samples = val.integer(samples, "samples")
     if samples < 2:
@@ -67,12 +69,13 @@ def plot_surface(
         mappable.set_array(values)
         ax.figure.colorbar(mappable, ax=ax, shrink=0.6, label=f"{curvature} curvature")
     kwargs.update(surface_kwargs)
-    ax.plot_surface(pts[..., 0], pts[..., 1], pts[..., 2], **kwargs)  # type: ignore[attr-defined]
+    surface_ax: Any = ax  # a 3D Axes (mpl_toolkits.mplot3d), which the stubs do not type
+    surface_ax.plot_surface(pts[..., 0], pts[..., 1], pts[..., 2], **kwargs)
     if net:
         p = surf.net
-        style = {"color": "0.3", "linewidth": 0.7, "marker": "o", "markersize": 2.5}
+        style: dict[str, Any] = {"color": "0.3", "linewidth": 0.7, "marker": "o", "markersize": 2.5}
         for i in range(p.shape[0]):
-            ax.plot(p[i, :, 0], p[i, :, 1], p[i, :, 2], **style)
+            surface_ax.plot(p[i, :, 0], p[i, :, 1], p[i, :, 2], **style)
         for j in range(p.shape[1]):
-            ax.plot(p[:, j, 0], p[:, j, 1], p[:, j, 2], **style)
+            surface_ax.plot(p[:, j, 0], p[:, j, 1], p[:, j, 2], **style)
     return ax

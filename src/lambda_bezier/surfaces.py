@@ -54,8 +54,10 @@ def combine(split: tuple[Matrix, ...], lam: Fraction | float | None) -> Matrix |
         x = Fraction(0) if lam is None else lam
         rows, cols = len(split[0]), len(split[0][0])
         return tuple(
-            tuple(sum((Fraction(m[r][c]) * x**p for p, m in enumerate(split)), Fraction(0))
-                  for c in range(cols))
+            tuple(
+                sum((Fraction(m[r][c]) * x**p for p, m in enumerate(split)), Fraction(0))
+                for c in range(cols)
+            )
             for r in range(rows)
         )
     out = np.zeros((len(split[0]), len(split[0][0])))
@@ -172,7 +174,11 @@ class Surface:
         self._u_cls, self._v_cls = _as_family_pair(family)
         self.net = _as_net(net)
         self._exact = _exact_net(net)
-        if self._exact is not None and self.net.ndim == 3 and len(self._exact[0][0]) != self.net.shape[2]:
+        if (
+            self._exact is not None
+            and self.net.ndim == 3
+            and len(self._exact[0][0]) != self.net.shape[2]
+        ):
             self._exact = None  # a 2-D grid of numbers (d = 1) given without inner tuples
         check_range = val.flag(check_range, "check_range")
         _check_degree(self._u_cls, self.net.shape[0] - 1, "u")
@@ -197,8 +203,10 @@ class Surface:
 
     @property
     def is_exact(self) -> bool:
-        return self._exact is not None and not isinstance(self.lam_u, float) and not isinstance(
-            self.lam_v, float
+        return (
+            self._exact is not None
+            and not isinstance(self.lam_u, float)
+            and not isinstance(self.lam_v, float)
         )
 
     def control_net(self) -> ExactNet | tuple[tuple[tuple[float, ...], ...], ...]:
@@ -210,7 +218,8 @@ class Surface:
     def __repr__(self) -> str:
         m, n = self.degrees
         lams = "".join(
-            f", {name}={lam}" for name, lam in (("lam_u", self.lam_u), ("lam_v", self.lam_v))
+            f", {name}={lam}"
+            for name, lam in (("lam_u", self.lam_u), ("lam_v", self.lam_v))
             if lam is not None
         )
         return f"{type(self).__name__}(degrees=({m}, {n}), dimension={self.dimension}{lams})"
@@ -228,8 +237,13 @@ class Surface:
             assert self._exact is not None
             return BezierSurface(ker.exact_transform(bu, self._exact, bv))  # type: ignore[arg-type]
         with val.overflow_allowed():
-            net = np.einsum("ia,ijd,jb->abd", np.asarray(bu, dtype=float), self.net,
-                            np.asarray(bv, dtype=float), optimize=True)
+            net = np.einsum(
+                "ia,ijd,jb->abd",
+                np.asarray(bu, dtype=float),
+                self.net,
+                np.asarray(bv, dtype=float),
+                optimize=True,
+            )
         return BezierSurface(val.finite_result(net, "the Bézier control net"))
 
     @cached_property
@@ -337,9 +351,9 @@ class Surface:
     # ------------------------------------------------------------------ isoparametric curves
     def _basis_values(self, axis: int, t: object) -> tuple[Any, ...]:
         name = "u" if axis == 0 else "v"
-        exact = val.is_exact_scalar(t)
-        if exact:
-            x: Fraction | float = Fraction(t)  # type: ignore[arg-type]
+        x: Fraction | float
+        if val.is_exact_scalar(t):
+            x = Fraction(int(t.numerator), int(t.denominator))
             if not 0 <= x <= 1:
                 raise ValueError(f"{name} = {x} is outside [0, 1]")
         else:
@@ -360,10 +374,12 @@ class Surface:
         count = self.net.shape[1 - axis]
         if exact:
             assert self._exact is not None
-            pick = (lambda i, j: self._exact[i][j]) if axis == 0 else (lambda i, j: self._exact[j][i])  # noqa: E731
+            net: ExactNet = self._exact if axis == 0 else tuple(zip(*self._exact, strict=True))
             pts: Any = [
-                tuple(sum((w * pick(i, j)[c] for i, w in enumerate(weights)), Fraction(0))
-                      for c in range(self.dimension))
+                tuple(
+                    sum((w * net[i][j][c] for i, w in enumerate(weights)), Fraction(0))
+                    for c in range(self.dimension)
+                )
                 for j in range(count)
             ]
         else:
@@ -406,8 +422,11 @@ class Surface:
                 scalar = sign * net[:, :, c]
                 coeffs = sign * self._coefficients[:, :, c : c + 1]
                 grad = (ker.differentiate(coeffs, 1, 0), ker.differentiate(coeffs, 0, 1))
-                hess = (ker.differentiate(coeffs, 2, 0), ker.differentiate(coeffs, 1, 1),
-                        ker.differentiate(coeffs, 0, 2))
+                hess = (
+                    ker.differentiate(coeffs, 2, 0),
+                    ker.differentiate(coeffs, 1, 1),
+                    ker.differentiate(coeffs, 0, 2),
+                )
                 value = _scalar_value(coeffs)
                 polish = _newton_polish(grad, hess)
                 _, _, _, bound = ker.minimise_scalar_net(scalar, value, polish, tol * size)
@@ -425,11 +444,16 @@ class Surface:
         tol = val.tolerance(tol)
         net = self._bezier_net - point
         size = float(np.abs(self._bezier_net).max()) + float(np.abs(point).max()) or 1.0
-        f_net = sum(ker.bernstein_product(net[:, :, c], net[:, :, c]) for c in range(self.dimension))
+        f_net = sum(
+            ker.bernstein_product(net[:, :, c], net[:, :, c]) for c in range(self.dimension)
+        )
         coeffs = ker.centred_coefficients(np.asarray(f_net)[:, :, None])
         grad = (ker.differentiate(coeffs, 1, 0), ker.differentiate(coeffs, 0, 1))
-        hess = (ker.differentiate(coeffs, 2, 0), ker.differentiate(coeffs, 1, 1),
-                ker.differentiate(coeffs, 0, 2))
+        hess = (
+            ker.differentiate(coeffs, 2, 0),
+            ker.differentiate(coeffs, 1, 1),
+            ker.differentiate(coeffs, 0, 2),
+        )
 
         def value(u: float, v: float) -> float:
             diff = ker.evaluate_points(self._coefficients, np.array([u]), np.array([v]))[0] - point
@@ -507,8 +531,9 @@ class BezierSurface(Surface):
 
     def _split(self, t: object, axis: int) -> tuple[BezierSurface, BezierSurface]:
         name = "u" if axis == 0 else "v"
+        x: Fraction | float
         if val.is_exact_scalar(t) and self._exact is not None:
-            x: Fraction | float = Fraction(t)  # type: ignore[arg-type]
+            x = Fraction(int(t.numerator), int(t.denominator))
             rows = self._exact
         else:
             tt, scalar = val.as_parameters(t, extrapolate=False, name=name)
@@ -526,12 +551,16 @@ class BezierSurface(Surface):
         size = self.degrees[axis]
         weights = elevation_matrix(size)  # (size + 2, size + 1)
         ident = _identity(self.degrees[1 - axis] + 1)
-        left, right = (tuple(zip(*weights, strict=True)), ident) if axis == 0 else (
-            ident, tuple(zip(*weights, strict=True)))
+        left, right = (
+            (tuple(zip(*weights, strict=True)), ident)
+            if axis == 0
+            else (ident, tuple(zip(*weights, strict=True)))
+        )
         if self._exact is not None:
-            return BezierSurface(ker.exact_transform(left, self._exact, right))  # type: ignore[arg-type]
-        net = np.einsum("ia,ijd,jb->abd", np.array(left, dtype=float), self.net,
-                        np.array(right, dtype=float))
+            return BezierSurface(ker.exact_transform(left, self._exact, right))
+        net = np.einsum(
+            "ia,ijd,jb->abd", np.array(left, dtype=float), self.net, np.array(right, dtype=float)
+        )
         return BezierSurface(net)
 
     def elevate_u(self) -> BezierSurface:
@@ -545,8 +574,12 @@ class SameDegreeSurface(Surface):
     """The tensor-product surface of the same-degree family (000) in both directions."""
 
     def __init__(
-        self, net: NetLike, lam_u: Fraction | float, lam_v: Fraction | float, *,
-        check_range: bool = True
+        self,
+        net: NetLike,
+        lam_u: Fraction | float,
+        lam_v: Fraction | float,
+        *,
+        check_range: bool = True,
     ) -> None:
         super().__init__(net, lam_u, lam_v, family="same_degree", check_range=check_range)
 
@@ -555,8 +588,12 @@ class BernsteinLikeSurface(Surface):
     """The tensor-product surface of the Bernstein-like family (001) in both directions."""
 
     def __init__(
-        self, net: NetLike, lam_u: Fraction | float, lam_v: Fraction | float, *,
-        check_range: bool = True
+        self,
+        net: NetLike,
+        lam_u: Fraction | float,
+        lam_v: Fraction | float,
+        *,
+        check_range: bool = True,
     ) -> None:
         super().__init__(net, lam_u, lam_v, family="bernstein_like", check_range=check_range)
 

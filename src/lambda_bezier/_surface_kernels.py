@@ -98,24 +98,22 @@ def evaluate_points(coeffs: np.ndarray, u: np.ndarray, v: np.ndarray) -> np.ndar
 
 
 def evaluate_grid(coeffs: np.ndarray, us: np.ndarray, vs: np.ndarray) -> np.ndarray:
-    """S(us[a], vs[b]) for every pair: (len(us), len(vs), d).
+    """S(us[a], vs[b]) for every pair: (len(us), len(vs), d), a transposed view of a
+    coordinate-major (d, len(us), len(vs)) array.
 
-    One small contraction along u, then one matrix product whose output is written once in
-    its final layout: (len(us), (N+1)·d) @ ((N+1)·d, len(vs)·d) with the v powers placed on a
-    block diagonal over the coordinates. The product's inner size is (N+1)·d (12 for a bicubic
-    in 3D), so its cost is near that of writing the output.
+    One small contraction along u, then per coordinate one matrix product
+    (len(us), N+1) @ (N+1, len(vs)) written straight into its contiguous slab of the output:
+    the inner size is N+1 (4 for a bicubic), so the products cost little more than writing the
+    output once.
     """
     big_m, big_n, dim = coeffs.shape
     pu = _powers(us, big_m)
-    pv = _powers(vs, big_n)
-    left = (pu @ coeffs.reshape(big_m, big_n * dim)).reshape(us.size, big_n * dim)
-    # right[(j, c), (b, c')] = pv[b, j] δ(c, c')
-    right = np.zeros((big_n, dim, vs.size, dim))
+    pv_t = np.ascontiguousarray(_powers(vs, big_n).T)  # (N+1, len(vs))
+    left = np.einsum("ai,ijd->daj", pu, coeffs)  # (d, len(us), N+1)
+    out = np.empty((dim, us.size, vs.size))
     for c in range(dim):
-        right[:, c, :, c] = pv.T
-    out = np.empty((us.size, vs.size, dim))
-    np.matmul(left, right.reshape(big_n * dim, vs.size * dim), out=out.reshape(us.size, -1))
-    return out
+        np.matmul(left[c], pv_t, out=out[c])
+    return out.transpose(1, 2, 0)
 
 
 # ---------------------------------------------------------------------- exact net algebra

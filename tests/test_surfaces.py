@@ -250,7 +250,7 @@ def test_energy_matrices_equal_the_direct_bezier_gram_form(fam):
     """The Kronecker-product matrices against the energy of the Bézier form computed with the
     Bernstein Gram matrices directly (no λ split, no Kronecker products)."""
     from lambda_bezier._bezier_forms import hodograph_matrix
-    from lambda_bezier.surface_energy import _gram
+    from lambda_bezier.surface_energies import _gram
 
     net = [[(i, j, (i * 3 + j) % 4) for j in range(4)] for i in range(5)]
     s = Surface(net, F(2, 5), F(-1, 3), family=fam)

@@ -28,7 +28,7 @@ if TYPE_CHECKING:
     from .family import Family, load_family
     from .joins import Joint, join
     from .properties import IsolatedRoot, singular_parameters
-    from .surface_energy import (
+    from .surface_energies import (
         OptimalParameters,
         optimal_parameters,
         surface_energy,
@@ -61,10 +61,10 @@ _EXPORTS = {
     "join": "joins",
     "IsolatedRoot": "properties",
     "singular_parameters": "properties",
-    "OptimalParameters": "surface_energy",
-    "optimal_parameters": "surface_energy",
-    "surface_energy": "surface_energy",
-    "surface_energy_matrices": "surface_energy",
+    "OptimalParameters": "surface_energies",
+    "optimal_parameters": "surface_energies",
+    "surface_energy": "surface_energies",
+    "surface_energy_matrices": "surface_energies",
     "CompositeSurface": "surface_joins",
     "join_surface": "surface_joins",
     "BernsteinLikeSurface": "surfaces",

@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from .surface_energy import (
+from .surface_energies import (
     OptimalParameters,
     _box,
     _exact_optimum,

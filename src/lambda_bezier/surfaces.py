@@ -11,9 +11,9 @@ bernstein_like): ``to_bezier`` is exact for exact input, and the numeric kernels
 >>> net = [[(i, j, (i * j) % 2) for j in range(4)] for i in range(4)]
 >>> s = SameDegreeSurface(net, Fraction(1, 2), Fraction(-1, 2))
 >>> s.evaluate(0.5, 0.5).round(6).tolist()
-[1.5, 1.5, 0.4375]
->>> s.to_bezier().control_net()[0][1]
-(Fraction(0, 1), Fraction(5, 6), Fraction(0, 1))
+[1.5, 1.5, 0.25]
+>>> s.to_bezier().control_net()[1][1]
+(Fraction(5, 6), Fraction(1, 2), Fraction(5, 12))
 """
 
 from __future__ import annotations

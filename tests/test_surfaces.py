@@ -562,3 +562,18 @@ def test_random_exact_nets_bernstein_like(m, n, values, lu, lv, u, v):
     )
     iso = s.curve_at_u(u).to_bezier().control_points()
     assert exact_bernstein([[p] for p in iso], v, F(0)) == exact
+
+
+def test_plot_surface_draws_the_surface_and_its_net():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from lambda_bezier.surface_plot import plot_surface
+
+    s = lb.SameDegreeSurface([[(i, j, (i * j) % 2) for j in range(4)] for i in range(4)], 0.5, 0.5)
+    ax = plot_surface(s, curvature="mean", samples=12)
+    assert len(ax.collections) == 1 and len(ax.lines) == 8  # the surface; 4 + 4 net lines
+    with pytest.raises(ValueError, match="curvature"):
+        plot_surface(s, curvature="sectional")
+    with pytest.raises(ValueError, match="dimension 2"):
+        plot_surface(lb.BezierSurface([[(0, 0), (1, 0)], [(0, 1), (1, 1)]]))

@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from .batch import evaluate_many
     from .builtin_curves import BernsteinLikeCurve, SameDegreeCurve
+    from .builtin_surfaces import BernsteinLikeSurface, SameDegreeSurface
     from .composite import CompositeCurve, JointReport
     from .curves import FAMILIES, BezierCurve, Curve
     from .energy import OptimalLambda, energy_coefficients, energy_matrices, optimal_lambda
@@ -35,7 +36,7 @@ if TYPE_CHECKING:
         surface_energy_matrices,
     )
     from .surface_joins import CompositeSurface, join_surface
-    from .surfaces import BernsteinLikeSurface, BezierSurface, SameDegreeSurface, Surface
+    from .surfaces import BezierSurface, Surface
 
 __version__ = "0.1.0"
 
@@ -67,9 +68,9 @@ _EXPORTS = {
     "surface_energy_matrices": "surface_energies",
     "CompositeSurface": "surface_joins",
     "join_surface": "surface_joins",
-    "BernsteinLikeSurface": "surfaces",
+    "BernsteinLikeSurface": "builtin_surfaces",
     "BezierSurface": "surfaces",
-    "SameDegreeSurface": "surfaces",
+    "SameDegreeSurface": "builtin_surfaces",
     "Surface": "surfaces",
 }
 __all__ = [

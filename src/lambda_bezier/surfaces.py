@@ -293,9 +293,12 @@ class Surface:
         du, dv = val.as_order(du), val.as_order(dv)
         uu, _ = val.as_parameters(us, extrapolate=extrapolate, name="us")
         vv, _ = val.as_parameters(vs, extrapolate=extrapolate, name="vs")
+        coeffs = self._derivative_coefficients(du, dv)
         with val.overflow_allowed():
-            out = ker.evaluate_grid(self._derivative_coefficients(du, dv), uu, vv)
-        if self.net.size and float(np.abs(self._coefficients).max()) > 1e300 or extrapolate:
+            out = ker.evaluate_grid(coeffs, uu, vv)
+        # |value| <= Σ|A_ij| on the unit square: the output is checked only when that bound
+        # (or extrapolation) allows an overflow, so the common case costs no extra pass
+        if extrapolate or not float(np.abs(coeffs).sum()) <= 1e300:
             val.finite_result(out, "the surface value")
         return out
 
@@ -568,34 +571,6 @@ class BezierSurface(Surface):
 
     def elevate_v(self) -> BezierSurface:
         return self._elevate(1)
-
-
-class SameDegreeSurface(Surface):
-    """The tensor-product surface of the same-degree family (000) in both directions."""
-
-    def __init__(
-        self,
-        net: NetLike,
-        lam_u: Fraction | float,
-        lam_v: Fraction | float,
-        *,
-        check_range: bool = True,
-    ) -> None:
-        super().__init__(net, lam_u, lam_v, family="same_degree", check_range=check_range)
-
-
-class BernsteinLikeSurface(Surface):
-    """The tensor-product surface of the Bernstein-like family (001) in both directions."""
-
-    def __init__(
-        self,
-        net: NetLike,
-        lam_u: Fraction | float,
-        lam_v: Fraction | float,
-        *,
-        check_range: bool = True,
-    ) -> None:
-        super().__init__(net, lam_u, lam_v, family="bernstein_like", check_range=check_range)
 
 
 def surface(

@@ -325,7 +325,7 @@ class Surface:
         return uu, vv, su, sv, cross / size[:, None], np.array(scalar)
 
     def normal(self, u: ParamLike, v: ParamLike) -> np.ndarray:
-        """The unit normal S_u x S_v / |S_u x S_v| (3D); a ValueError where it vanishes."""
+        """The unit normal S_u × S_v / ‖S_u × S_v‖ (3D); a ValueError where it vanishes."""
         *_, n, scalar = self._frame(u, v)
         return n[0] if scalar else n
 

@@ -218,6 +218,11 @@ def test_closest_point_against_dense_sampling():
         assert res.distance - res.lower_bound <= 1e-11 * (np.abs(s.to_bezier().net).max() + 3)
         np.testing.assert_allclose(np.linalg.norm(res.point - q), res.distance, rtol=1e-12)
         assert dense - res.distance < 1e-2  # the grid's spacing
+    queries = rng.normal(size=(3, 3))
+    batch = s.closest_point(queries)
+    assert batch.u.shape == (3,) and batch.point.shape == (3, 3)
+    for k, q in enumerate(queries):
+        assert batch.distance[k] == s.closest_point(q).distance
 
 
 # ---------------------------------------------------------------------- energies

@@ -145,13 +145,13 @@ def _parameter_pair(u: object, v: object, extrapolate: bool) -> tuple[np.ndarray
 @dataclass(frozen=True)
 class SurfaceClosestPoint:
     """The nearest point of a surface to q: parameters, point, distance and a certified lower
-    bound of the distance (``distance - lower_bound`` <= 1e-12 of the net's size)."""
+    bound of the distance (see `Surface.closest_point`); arrays over a batch of queries."""
 
-    u: float
-    v: float
+    u: float | np.ndarray
+    v: float | np.ndarray
     point: np.ndarray
-    distance: float
-    lower_bound: float
+    distance: float | np.ndarray
+    lower_bound: float | np.ndarray
 
 
 class Surface:
@@ -442,9 +442,22 @@ class Surface:
         bound, which stops when the best attained distance is within `tol` times the net's
         size of the bound (``lower_bound``). Within about 1e-7 of the net's size from the
         surface, float rounding of the squared distance limits that gap to about
-        sqrt(256 eps) times the size; ``lower_bound`` always says what was certified."""
-        point = val.as_point(q, self.dimension)
+        sqrt(256 eps) times the size; ``lower_bound`` always says what was certified.
+        q is one point (d,) or a batch (k, d) (then every field is an array over the batch)."""
         tol = val.tolerance(tol)
+        arr = np.asarray(val.real_array(q, "q"), dtype=float)
+        if arr.ndim == 2:
+            found = [self._closest(row, tol) for row in arr]
+            return SurfaceClosestPoint(
+                *(
+                    np.array([getattr(r, f) for r in found])
+                    for f in ("u", "v", "point", "distance", "lower_bound")
+                )
+            )
+        return self._closest(q, tol)
+
+    def _closest(self, q: object, tol: float) -> SurfaceClosestPoint:
+        point = val.as_point(q, self.dimension)
         net = self._bezier_net - point
         size = float(np.abs(self._bezier_net).max()) + float(np.abs(point).max()) or 1.0
         f_net = sum(

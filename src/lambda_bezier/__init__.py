@@ -29,13 +29,9 @@ if TYPE_CHECKING:
     from .family import Family, load_family
     from .joins import Joint, join
     from .properties import IsolatedRoot, singular_parameters
-    from .surface_energies import (
-        OptimalParameters,
-        optimal_parameters,
-        surface_energy,
-        surface_energy_matrices,
-    )
+    from .surface_energies import OptimalParameters, surface_energy, surface_energy_matrices
     from .surface_joins import CompositeSurface, join_surface
+    from .surface_optimum import optimal_parameters
     from .surfaces import BezierSurface, Surface
 
 __version__ = "0.1.0"
@@ -63,7 +59,7 @@ _EXPORTS = {
     "IsolatedRoot": "properties",
     "singular_parameters": "properties",
     "OptimalParameters": "surface_energies",
-    "optimal_parameters": "surface_energies",
+    "optimal_parameters": "surface_optimum",
     "surface_energy": "surface_energies",
     "surface_energy_matrices": "surface_energies",
     "CompositeSurface": "surface_joins",

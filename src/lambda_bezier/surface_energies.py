@@ -11,7 +11,7 @@ row-major vector of the net. Its entries are polynomials in (λ_u, λ_v): the co
 For a given net the energy is a polynomial E(λ_u, λ_v) of degree 2 in each parameter (for
 families affine in λ). `optimal_parameters` minimises it over the parameter box: exactly for
 exact input (critical points by resultants and Sturm isolation, then the edges and corners),
-or vectorised over a batch of float nets.
+or vectorised over a batch of float nets (surface_optimum).
 """
 
 from __future__ import annotations
@@ -477,33 +477,3 @@ def _exact_optimum(
         free_u,
         free_v,
     )
-
-
-def optimal_parameters(
-    net: NetLike, energy: str = "thin_plate", family: object = "same_degree"
-) -> OptimalParameters:
-    """The (λ_u, λ_v) minimising a surface energy over the closed parameter box.
-
-    `net` is one net (m+1, n+1, d): exact input gives the exact global minimum; or a batch of
-    float nets (k, m+1, n+1, d), solved vectorised (see `optimal_parameters_batch`).
-    """
-    energy = val.choice(energy, "energy", tuple(ENERGIES))
-    u_cls, v_cls = _as_family_pair(family)
-    u_box, v_box = _box(u_cls), _box(v_cls)
-    if u_box is None and v_box is None:
-        raise ValueError("neither direction of a classical Bézier surface has a shape parameter")
-    arr = np.asarray(val.real_array(net, "net"), dtype=float)
-    if arr.ndim == 4:
-        from .surface_batch import optimal_parameters_batch
-
-        return optimal_parameters_batch(arr, energy, family)
-    from .surfaces import _as_net, _exact_net
-
-    grid = _as_net(net)
-    m, n = grid.shape[0] - 1, grid.shape[1] - 1
-    mats = surface_energy_matrices((m, n), energy, (u_cls, v_cls))
-    exact = _exact_net(net)
-    if exact is None or len(exact[0][0]) != grid.shape[2]:
-        exact = tuple(tuple(tuple(Fraction(float(c)) for c in p) for p in row) for row in grid)
-    poly = mats.polynomial(exact)
-    return _exact_optimum({k: Fraction(v) for k, v in poly.items()}, u_box, v_box, u_cls, v_cls)

@@ -1,4 +1,5 @@
-"""Energy-optimal (λ_u, λ_v) for a batch of float nets, vectorised.
+"""Energy-optimal (λ_u, λ_v): `optimal_parameters` for one net (exact, through
+surface_energies) or for a batch of float nets, vectorised.
 
 For families affine in λ the energy of one net is E(x, y) = Σ_{a,b<=2} e_ab x^a y^b. Over the
 box its minimum is at a corner, on an edge (a quadratic in one variable: closed form), or at an
@@ -23,14 +24,16 @@ from typing import Any
 
 import numpy as np
 
+from . import _validate as val
 from .surface_energies import (
+    ENERGIES,
     OptimalParameters,
     _box,
     _exact_optimum,
     _float_polynomial,
     surface_energy_matrices,
 )
-from .surfaces import _as_family_pair
+from .surfaces import NetLike, _as_family_pair, _as_net, _exact_net
 
 STEP_TOLERANCE = 1e-13
 
@@ -232,3 +235,29 @@ def _all_exact(
         free_v,
         int(indices.size),
     )
+
+
+def optimal_parameters(
+    net: NetLike, energy: str = "thin_plate", family: object = "same_degree"
+) -> OptimalParameters:
+    """The (λ_u, λ_v) minimising a surface energy over the closed parameter box.
+
+    `net` is one net (m+1, n+1, d): exact input gives the exact global minimum; or a batch of
+    float nets (k, m+1, n+1, d), solved vectorised (see `optimal_parameters_batch`).
+    """
+    energy = val.choice(energy, "energy", tuple(ENERGIES))
+    u_cls, v_cls = _as_family_pair(family)
+    u_box, v_box = _box(u_cls), _box(v_cls)
+    if u_box is None and v_box is None:
+        raise ValueError("neither direction of a classical Bézier surface has a shape parameter")
+    arr = np.asarray(val.real_array(net, "net"), dtype=float)
+    if arr.ndim == 4:
+        return optimal_parameters_batch(arr, energy, family)
+    grid = _as_net(net)
+    m, n = grid.shape[0] - 1, grid.shape[1] - 1
+    mats = surface_energy_matrices((m, n), energy, (u_cls, v_cls))
+    exact = _exact_net(net)
+    if exact is None or len(exact[0][0]) != grid.shape[2]:
+        exact = tuple(tuple(tuple(Fraction(float(c)) for c in p) for p in row) for row in grid)
+    poly = mats.polynomial(exact)
+    return _exact_optimum({k: Fraction(v) for k, v in poly.items()}, u_box, v_box, u_cls, v_cls)

@@ -157,6 +157,64 @@ def bench_optimal_lambda(m: int) -> None:
     )
 
 
+def bench_surfaces(grid: int, nets: int, occt_points: int) -> None:
+    """A bicubic surface on a grid x grid parameter grid against the I/O floor (filling the
+    (grid, grid, 3) output in one pass) and against OCCT's Geom_BezierSurface point by point;
+    batch optimal (λ_u, λ_v) against one read pass of the nets."""
+    import lambda_bezier as lb
+
+    rng = np.random.default_rng(4)
+    surf = lb.SameDegreeSurface(rng.normal(size=(4, 4, 3)), 0.5, -0.5)
+    ts = np.linspace(0.0, 1.0, grid)
+    surf.evaluate_grid(ts[:2], ts[:2])  # the Taylor tensor, computed once per surface
+
+    def floor():
+        out = np.empty((grid, grid, 3))
+        out.fill(1.0)
+
+    ours = best_of(lambda: surf.evaluate_grid(ts, ts))
+    io = best_of(floor)
+    name = f"bicubic surface on a {grid}x{grid} grid"
+    record(name, ours, "I/O floor: fill the output once", io, "<= 1.5x", ours / io <= 1.5)
+    try:
+        from lambda_bezier.surface_export import occt_bezier_surface
+    except ImportError:  # pragma: no cover - the cad extra
+        occt_bezier_surface = None
+    if occt_bezier_surface is not None:
+        occ = occt_bezier_surface(surf)
+        sub = ts[:: max(1, grid // int(np.sqrt(occt_points)))]
+
+        def occt_loop():
+            for u in sub:
+                for v in sub:
+                    occ.Value(u, v)
+
+        per_point_occt = best_of(occt_loop, repeat=1) / sub.size**2
+        per_point_ours = ours / grid**2
+        record(
+            f"bicubic surface, per point ({sub.size ** 2:,} points timed for OCCT)",
+            per_point_ours,
+            "OCCT Geom_BezierSurface.Value point by point",
+            per_point_occt,
+            "faster",
+            per_point_ours < per_point_occt,
+        )
+    batch = rng.normal(size=(nets, 4, 4, 3))
+    batch[..., 0] += np.arange(4)[:, None]
+    batch[..., 1] += np.arange(4)[None, :]
+    lb.optimal_parameters(batch[:10], "thin_plate")  # the energy matrices, once
+    ours = best_of(lambda: lb.optimal_parameters(batch, "thin_plate"), repeat=3)
+    read = best_of(lambda: batch.sum())
+    record(
+        f"optimal (λ_u, λ_v), thin plate: {nets:,} bicubic nets",
+        ours,
+        "one read pass (arr.sum())",
+        read,
+        "<= 10x",
+        ours / read <= 10,
+    )
+
+
 def bench_arc_length(count: int) -> None:
     """Arc length of random degree-5 curves to 1e-12 against QUADPACK on the same speed
     |p'(t)|, twice: through the public derivative (what a caller would pass to quad) and as a
@@ -430,6 +488,7 @@ def main() -> None:
         "lambda",
         "geometry",
         "intersection",
+        "surfaces",
         "derive",
         "verify",
         "import",
@@ -453,6 +512,9 @@ def main() -> None:
         "lambda": lambda: bench_optimal_lambda(m_lambda),
         "geometry": lambda: bench_arc_length(20 if args.quick else 100),
         "intersection": bench_intersection,
+        "surfaces": lambda: bench_surfaces(
+            300 if args.quick else 1000, 1000 if args.quick else 10_000, 10_000
+        ),
         "derive": bench_derive,
         "verify": bench_verify,
         "import": bench_import,

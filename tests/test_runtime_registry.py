@@ -30,7 +30,7 @@ ROOT = Path(__file__).resolve().parents[1]
 SRC = ROOT / "src" / "lambda_bezier"
 # modules that may name the built-in families: the public export list, and the one module
 # holding the classes of families with code of their own
-FAMILY_SPECIFIC = {"__init__.py", "builtin_curves.py"}
+FAMILY_SPECIFIC = {"__init__.py", "builtin_curves.py", "builtin_surfaces.py"}
 FAMILY_NAME = re.compile(r"same_?degree|bernstein_?like", re.IGNORECASE)
 
 

@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from .batch import evaluate_many
     from .builtin_curves import BernsteinLikeCurve, SameDegreeCurve
+    from .builtin_surfaces import BernsteinLikeSurface, SameDegreeSurface
     from .composite import CompositeCurve, JointReport
     from .curves import FAMILIES, BezierCurve, Curve
     from .energy import OptimalLambda, energy_coefficients, energy_matrices, optimal_lambda
@@ -29,6 +30,10 @@ if TYPE_CHECKING:
     from .intersection import intersect_many
     from .joins import Joint, join
     from .properties import IsolatedRoot, singular_parameters
+    from .surface_energies import OptimalParameters, surface_energy, surface_energy_matrices
+    from .surface_joins import CompositeSurface, join_surface
+    from .surface_optimum import optimal_parameters
+    from .surfaces import BezierSurface, Surface
 
 __version__ = "0.1.0"
 
@@ -55,27 +60,47 @@ _EXPORTS = {
     "join": "joins",
     "IsolatedRoot": "properties",
     "singular_parameters": "properties",
+    "OptimalParameters": "surface_energies",
+    "optimal_parameters": "surface_optimum",
+    "surface_energy": "surface_energies",
+    "surface_energy_matrices": "surface_energies",
+    "CompositeSurface": "surface_joins",
+    "join_surface": "surface_joins",
+    "BernsteinLikeSurface": "builtin_surfaces",
+    "BezierSurface": "surfaces",
+    "SameDegreeSurface": "builtin_surfaces",
+    "Surface": "surfaces",
 }
 __all__ = [
     "FAMILIES",
     "BernsteinLikeCurve",
+    "BernsteinLikeSurface",
     "BezierCurve",
+    "BezierSurface",
     "CompositeCurve",
+    "CompositeSurface",
     "Curve",
     "Family",
     "IsolatedRoot",
     "Joint",
     "JointReport",
     "OptimalLambda",
+    "OptimalParameters",
     "SameDegreeCurve",
+    "SameDegreeSurface",
+    "Surface",
     "energy_coefficients",
     "energy_matrices",
     "evaluate_many",
     "intersect_many",
     "join",
+    "join_surface",
     "load_family",
     "optimal_lambda",
+    "optimal_parameters",
     "singular_parameters",
+    "surface_energy",
+    "surface_energy_matrices",
 ]
 
 

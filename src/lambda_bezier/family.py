@@ -26,6 +26,7 @@ from .curves import BezierCurve, Curve, Matrix, data_curve_class
 
 if TYPE_CHECKING:
     from .energy import Form
+    from .surfaces import NetLike, Surface
 
 FORMAT = 2  # the derived document's format this runtime reads
 MAX_DOCUMENT_BYTES = 50_000_000
@@ -153,6 +154,20 @@ class Family:
     ) -> Curve:
         """Σ P_i b_i(t; lam) with the family's degree-n basis (n + 1 points)."""
         return self.curve_class(points, lam, check_range=check_range)
+
+    def surface(
+        self,
+        net: NetLike,
+        lam_u: Fraction | float,
+        lam_v: Fraction | float,
+        *,
+        check_range: bool = True,
+    ) -> Surface:
+        """The tensor-product surface Σ P_ij b_i(u; lam_u) b_j(v; lam_v) of this family on a
+        net of (m+1) x (n+1) control points (lambda_bezier.surfaces)."""
+        from .surfaces import Surface
+
+        return Surface(net, lam_u, lam_v, family=self, check_range=check_range)
 
     def from_bezier(self, bezier: BezierCurve, lam: Fraction | float) -> Curve:
         """A classical Bézier curve written in this family (Curve.from_bezier)."""

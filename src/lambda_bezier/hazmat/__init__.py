@@ -15,7 +15,9 @@ calling these directly with bad arrays gives numpy's errors, not ours (the name 
 - `intersect`: curve/curve intersection, self-intersection and point location;
 - `reduce`: degree reduction, exact or least squares;
 - `implicit`: implicitization (imports SymPy when called, never at import);
-- `numbers`: the exact-number grammar of the command line and of export files.
+- `numbers`: the exact-number grammar of the command line and of export files;
+- `surface_kernels`: tensor-product evaluation, boxes and closest points of control nets;
+- `exact_poly`: exact polynomials over the rationals (Sturm sequences, resultants).
 
 The submodules are imported on use: ``from lambda_bezier.hazmat import kernels``.
 """
@@ -24,6 +26,7 @@ from __future__ import annotations
 
 __all__ = [
     "arclength",
+    "exact_poly",
     "extremes",
     "forms",
     "implicit",
@@ -32,4 +35,5 @@ __all__ = [
     "numbers",
     "reduce",
     "roots",
+    "surface_kernels",
 ]

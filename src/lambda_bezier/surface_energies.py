@@ -1,0 +1,479 @@
+"""Surface energies and the energy-optimal (λ_u, λ_v).
+
+The membrane energy ∫∫ |S_u|² + |S_v|² and the thin-plate energy ∫∫ |S_uu|² + 2|S_uv|² + |S_vv|²
+over the unit square are quadratic forms in the control net. With the curves' Gram-type
+matrices A^k(λ) = B(λ) Hᵀ G H B(λ)ᵀ (B the family's basis in the Bernstein basis, H the
+hodograph matrices down k degrees, G the Bernstein Gram matrix of generated/energy.py), the
+form of ∫∫ |∂^(a+b) S / ∂u^a ∂v^b|² is the Kronecker product A^a_u(λ_u) ⊗ A^b_v(λ_v) on the
+row-major vector of the net. Its entries are polynomials in (λ_u, λ_v): the coefficient of
+λ_u^a λ_v^b is returned by `surface_energy_matrices` as an integer matrix with a scale.
+
+For a given net the energy is a polynomial E(λ_u, λ_v) of degree 2 in each parameter (for
+families affine in λ). `optimal_parameters` minimises it over the parameter box: exactly for
+exact input (critical points by resultants and Sturm isolation, then the edges and corners),
+or vectorised over a batch of float nets (surface_optimum).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass, field
+from fractions import Fraction
+from functools import cache
+from math import lcm
+from typing import Any
+
+import numpy as np
+
+from .hazmat import exact_poly as xp
+from . import _validate as val
+from .hazmat.forms import hodograph_matrix
+from ._lazy import generated
+from .curves import Curve, Matrix
+from ._singular import IsolatedRoot
+from .surfaces import NetLike, Surface, _as_family_pair, _check_degree, basis_to_bernstein_split
+
+_energy = generated("energy")
+
+# (a, b, weight): the energy is Σ weight ∫∫ |∂^(a+b) S / ∂u^a ∂v^b|²
+ENERGIES: dict[str, tuple[tuple[int, int, int], ...]] = {
+    "membrane": ((1, 0, 1), (0, 1, 1)),
+    "thin_plate": ((2, 0, 1), (1, 1, 2), (0, 2, 1)),
+}
+Algebraic = Fraction | IsolatedRoot
+
+
+# ---------------------------------------------------------------------- the matrices
+def _gram(degree: int) -> list[list[Fraction]]:
+    """∫ B_a B_b over [0, 1] for the Bernstein basis of `degree`, full and exact."""
+    if degree not in _energy.GRAM:
+        raise ValueError(
+            f"no generated Gram matrix for degree {degree} (they cover degrees "
+            f"{min(_energy.GRAM)}..{max(_energy.GRAM)})"
+        )
+    scale, upper = _energy.GRAM[degree]
+    size = degree + 1
+    return [
+        [
+            Fraction(scale)
+            * (upper[min(a, b)][max(a, b)] if a == b else Fraction(upper[min(a, b)][max(a, b)], 2))
+            for b in range(size)
+        ]
+        for a in range(size)
+    ]
+
+
+def _matmul(a: Any, b: Any) -> list[list[Fraction]]:
+    cols = list(zip(*b, strict=True))
+    return [
+        [sum((x * y for x, y in zip(row, col, strict=True)), Fraction(0)) for col in cols]
+        for row in a
+    ]
+
+
+@cache
+def direction_forms(cls: Any, degree: int, k: int) -> tuple[Matrix, ...]:
+    """(A_0, A_1, …): ∫ |p^(k)|² = Dᵀ (Σ_a λ^a A_a) D summed over coordinates, for the
+    family's degree-`degree` curve with control points D; exact, symmetric."""
+    split = basis_to_bernstein_split(cls, degree)
+    big = len(split[0][0]) - 1
+    if k > big:
+        zero = tuple(tuple(Fraction(0) for _ in range(degree + 1)) for _ in range(degree + 1))
+        return (zero,)
+    h: list[list[Fraction]] = [
+        [Fraction(int(r == c)) for c in range(big + 1)] for r in range(big + 1)
+    ]
+    for d in range(big, big - k, -1):
+        h = _matmul(hodograph_matrix(d), h)
+    inner = _matmul(_matmul(list(zip(*h, strict=True)), _gram(big - k)), h)  # Hᵀ G H
+    out: list[list[list[Fraction]]] = []
+    for p, bp in enumerate(split):
+        left = _matmul(bp, inner)
+        for q, bq in enumerate(split):
+            term = _matmul(left, list(zip(*bq, strict=True)))
+            while len(out) <= p + q:
+                out.append([[Fraction(0)] * (degree + 1) for _ in range(degree + 1)])
+            acc = out[p + q]
+            for r in range(degree + 1):
+                for c in range(degree + 1):
+                    acc[r][c] += term[r][c]
+    while len(out) > 1 and not any(any(row) for row in out[-1]):
+        out.pop()
+    return tuple(tuple(tuple(row) for row in mat) for mat in out)
+
+
+@dataclass(frozen=True, eq=False)  # hashed by identity: one object per (families, degrees)
+class SurfaceEnergyMatrices:
+    """The energy as Σ_{a,b} λ_u^a λ_v^b vec(P)ᵀ Q_ab vec(P), summed over coordinates, with
+    vec(P) the net read row by row (P_00, P_01, …, P_0n, P_10, …).
+
+    ``terms[(a, b)] = (scale, U)``: U upper-triangular integers in the curves' convention,
+    vec(P)ᵀ Q_ab vec(P) = scale · Σ_{r <= c} U[r][c] P_r · P_c.
+    """
+
+    energy: str
+    degrees: tuple[int, int]
+    terms: dict[tuple[int, int], tuple[Fraction, tuple[tuple[int, ...], ...]]]
+    full: dict[tuple[int, int], tuple[tuple[Fraction, ...], ...]] = field(repr=False)
+
+    def polynomial(self, net: NetLike) -> dict[tuple[int, int], Fraction | float]:
+        """{(a, b): e_ab} with E(λ_u, λ_v) = Σ e_ab λ_u^a λ_v^b for one net (exact for an
+        exact net)."""
+        exact = _exact_vector(net, self.degrees)
+        if exact is not None:
+            return {key: _quadratic(mat, exact) for key, mat in self.full.items()}
+        flat = _float_vectors(net, self.degrees)[None]
+        coeffs = _float_polynomial(self, flat)
+        return {key: float(v[0]) for key, v in coeffs.items()}
+
+
+def _integer_form(
+    mat: tuple[tuple[Fraction, ...], ...],
+) -> tuple[Fraction, tuple[tuple[int, ...], ...]]:
+    size = len(mat)
+    upper = [
+        [mat[r][c] * (1 if r == c else 2) if c >= r else Fraction(0) for c in range(size)]
+        for r in range(size)
+    ]
+    den = lcm(*(v.denominator for row in upper for v in row))
+    ints = [[int(v * den) for v in row] for row in upper]
+    from math import gcd
+
+    g = 0
+    for row in ints:
+        for v in row:
+            g = gcd(g, v)
+    g = g or 1
+    return Fraction(g, den), tuple(tuple(v // g for v in row) for row in ints)
+
+
+@cache
+def _cached_matrices(u_cls: Any, v_cls: Any, m: int, n: int, energy: str) -> SurfaceEnergyMatrices:
+    full: dict[tuple[int, int], list[list[Fraction]]] = {}
+    size = (m + 1) * (n + 1)
+    for ku, kv, weight in ENERGIES[energy]:
+        au, av = direction_forms(u_cls, m, ku), direction_forms(v_cls, n, kv)
+        for a, ma in enumerate(au):
+            for b, mb in enumerate(av):
+                acc = full.setdefault((a, b), [[Fraction(0)] * size for _ in range(size)])
+                for i in range(m + 1):
+                    for k in range(m + 1):
+                        w = weight * ma[i][k]
+                        if not w:
+                            continue
+                        for j in range(n + 1):
+                            row = acc[i * (n + 1) + j]
+                            for l_ in range(n + 1):
+                                if mb[j][l_]:
+                                    row[k * (n + 1) + l_] += w * mb[j][l_]
+    frozen = {
+        key: tuple(tuple(r) for r in mat)
+        for key, mat in sorted(full.items())
+        if any(any(r) for r in mat)
+    }
+    return SurfaceEnergyMatrices(
+        energy, (m, n), {key: _integer_form(mat) for key, mat in frozen.items()}, frozen
+    )
+
+
+def surface_energy_matrices(
+    degrees: tuple[int, int], energy: str = "thin_plate", family: object = "same_degree"
+) -> SurfaceEnergyMatrices:
+    """The exact quadratic forms of a surface energy for nets of (m+1) x (n+1) points.
+
+    >>> mats = surface_energy_matrices((3, 3), "membrane")
+    >>> sorted(mats.terms)[:3]
+    [(0, 0), (0, 1), (0, 2)]
+    """
+    energy = val.choice(energy, "energy", tuple(ENERGIES))
+    if not isinstance(degrees, tuple | list) or len(degrees) != 2:
+        raise ValueError(f"degrees must be a pair (m, n), got {val.describe(degrees)}")
+    m, n = (val.integer(d, "degrees") for d in degrees)
+    u_cls, v_cls = _as_family_pair(family)
+    _check_degree(u_cls, m, "u")
+    _check_degree(v_cls, n, "v")
+    classes: tuple[Any, Any] = (u_cls, v_cls)  # hashable: classes hash by identity
+    return _cached_matrices(*classes, m, n, energy)
+
+
+def surface_energy(surf: Surface, energy: str = "thin_plate") -> Fraction | float:
+    """The energy of a surface (exact for an exact surface)."""
+    mats = surface_energy_matrices(surf.degrees, energy, (surf._u_cls, surf._v_cls))
+    poly = mats.polynomial(surf._exact if surf._exact is not None and surf.is_exact else surf.net)
+    lu = Fraction(0) if surf.lam_u is None else surf.lam_u
+    lv = Fraction(0) if surf.lam_v is None else surf.lam_v
+    total = sum(
+        (c * lu**a * lv**b for (a, b), c in poly.items()), Fraction(0) if surf.is_exact else 0.0
+    )
+    return total
+
+
+# ---------------------------------------------------------------------- net vectors
+def _exact_vector(net: object, degrees: tuple[int, int]) -> list[tuple[Fraction, ...]] | None:
+    from .surfaces import _as_net, _exact_net
+
+    arr = _as_net(net)
+    if arr.shape[:2] != (degrees[0] + 1, degrees[1] + 1):
+        raise ValueError(
+            f"net has {arr.shape[0]} x {arr.shape[1]} points, the matrices are for "
+            f"{degrees[0] + 1} x {degrees[1] + 1}"
+        )
+    exact = _exact_net(net)
+    if exact is None or len(exact[0][0]) != arr.shape[2]:
+        return None
+    return [p for row in exact for p in row]
+
+
+def _float_vectors(net: object, degrees: tuple[int, int]) -> np.ndarray:
+    from .surfaces import _as_net
+
+    arr = _as_net(net)
+    if arr.shape[:2] != (degrees[0] + 1, degrees[1] + 1):
+        raise ValueError(
+            f"net has {arr.shape[0]} x {arr.shape[1]} points, the matrices are for "
+            f"{degrees[0] + 1} x {degrees[1] + 1}"
+        )
+    return arr.reshape(-1, arr.shape[2])
+
+
+def _quadratic(mat: tuple[tuple[Fraction, ...], ...], vec: list[tuple[Fraction, ...]]) -> Fraction:
+    total = Fraction(0)
+    for r, row in enumerate(mat):
+        for c, w in enumerate(row):
+            if w:
+                total += w * sum((x * y for x, y in zip(vec[r], vec[c], strict=True)), Fraction(0))
+    return total
+
+
+@cache
+def _float_full(mats: SurfaceEnergyMatrices) -> dict[tuple[int, int], np.ndarray]:
+    return {key: np.array(mat, dtype=float) for key, mat in mats.full.items()}
+
+
+def _float_polynomial(
+    mats: SurfaceEnergyMatrices, flat: np.ndarray
+) -> dict[tuple[int, int], np.ndarray]:
+    """{(a, b): e_ab over the batch} for nets flattened to (batch, (m+1)(n+1), d)."""
+    out = {}
+    for key, q in _float_full(mats).items():
+        qp = np.matmul(q, flat)  # (batch, size, d)
+        out[key] = np.einsum("brd,brd->b", flat, qp)
+    return out
+
+
+# ---------------------------------------------------------------------- the optimum
+@dataclass(frozen=True)
+class OptimalParameters(Mapping[str, Any]):
+    """The energy-optimal (λ_u, λ_v); read by name: ``result["lam_u"]``, ``result["lam_v"]``.
+
+    For exact input ``lam_u``/``lam_v`` are Fractions or IsolatedRoot (an irrational algebraic
+    number: its integer polynomial and an isolating interval), ``lam_u_float``/``lam_v_float``
+    their floats, ``energy`` the minimum (a Fraction when both are rational, else a float) and
+    ``where`` "interior", "edge" or "corner". For a batch every field is an array.
+    ``admissible`` is False where the minimum over the closed box sits on an excluded end of a
+    family's range (λ = −2 for same_degree); ``free_u``/``free_v`` mark a parameter the energy
+    does not depend on (then the family's Bézier value is returned).
+    """
+
+    lam_u: Any
+    lam_v: Any
+    lam_u_float: Any
+    lam_v_float: Any
+    energy: Any
+    where: Any
+    admissible: Any
+    free_u: Any = False
+    free_v: Any = False
+    exact_fallbacks: int = 0
+
+    def __getitem__(self, key: str) -> Any:
+        if key not in self.__dataclass_fields__:
+            raise KeyError(key)
+        return getattr(self, key)
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self.__dataclass_fields__)
+
+    def __len__(self) -> int:
+        return len(self.__dataclass_fields__)
+
+
+def _box(cls: type[Curve]) -> tuple[Fraction, Fraction, tuple[bool, bool]] | None:
+    if not cls._has_lambda:
+        return None
+    lo, hi = cls._data.LAMBDA_RANGE
+    lo_closed, hi_closed = cls._data.LAMBDA_CLOSED
+    return Fraction(lo), Fraction(hi), (bool(lo_closed), bool(hi_closed))
+
+
+def _default(cls: type[Curve], box: tuple[Fraction, Fraction, Any]) -> Fraction:
+    at = getattr(cls._data, "BERNSTEIN_LAMBDA", None)
+    if at is not None and box[0] <= at <= box[1]:
+        return Fraction(at)
+    return (box[0] + box[1]) / 2
+
+
+Point = tuple[Fraction | tuple[Fraction, Fraction], Fraction | tuple[Fraction, Fraction]]
+
+
+def _interval(r: Fraction | tuple[Fraction, Fraction]) -> tuple[Fraction, Fraction]:
+    return (r, r) if isinstance(r, Fraction) else r
+
+
+def _roots(
+    p: list[Fraction], lo: Fraction, hi: Fraction
+) -> list[Fraction | tuple[Fraction, Fraction]]:
+    """The roots of p in the open interval (lo, hi) (none for the zero polynomial: handled by
+    the caller as a free parameter)."""
+    p = xp.trim(p)
+    if not p:
+        return []
+    return [r for r in xp.real_roots(p, lo, hi) if not (isinstance(r, Fraction) and r in (lo, hi))]
+
+
+def _refine_all(
+    poly: list[Fraction], r: Fraction | tuple[Fraction, Fraction], width: Fraction
+) -> Fraction | tuple[Fraction, Fraction]:
+    if isinstance(r, Fraction):
+        return r
+    return xp.refine(xp.squarefree(poly), r, width)
+
+
+def minimise_polynomial(
+    e: dict[tuple[int, int], Fraction],
+    box_x: tuple[Fraction, Fraction],
+    box_y: tuple[Fraction, Fraction],
+) -> tuple[Algebraic, Algebraic, str]:
+    """The global minimiser of Σ e_ab x^a y^b over the closed box, exactly."""
+    (xlo, xhi), (ylo, yhi) = box_x, box_y
+    cands: list[tuple[Any, Any, list[Fraction] | None, list[Fraction] | None, str]] = []
+    for x0 in (xlo, xhi):
+        for y0 in (ylo, yhi):
+            cands.append((x0, y0, None, None, "corner"))
+    fx, fy = xp.partial(e, 0), xp.partial(e, 1)
+    for x0 in (xlo, xhi):
+        g = xp.substitute(fy, 0, x0)
+        for r in _roots(g, ylo, yhi):
+            cands.append((x0, r, None, g, "edge"))
+    for y0 in (ylo, yhi):
+        g = xp.substitute(fx, 1, y0)
+        for r in _roots(g, xlo, xhi):
+            cands.append((r, y0, g, None, "edge"))
+    fx = {k: c for k, c in fx.items() if c}
+    fy = {k: c for k, c in fy.items() if c}
+    if fx and fy:
+        ry = xp.resultant(fx, fy, 0)
+        rx = xp.resultant(fx, fy, 1)
+        if not ry or not rx:
+            raise ValueError(
+                "the energy's critical points form a curve for this net (the derivatives share "
+                "a factor); optimal_parameters cannot isolate them"
+            )
+        ys, xs = _roots(ry, ylo, yhi), _roots(rx, xlo, xhi)
+        for xr in xs:
+            for yr in ys:
+                if _pair(fx, fy, rx, ry, xr, yr) is not None:
+                    cands.append((xr, yr, rx, ry, "interior"))
+    return _least(e, cands)
+
+
+def _pair(
+    fx: xp.Bivariate, fy: xp.Bivariate, rx: list[Fraction], ry: list[Fraction], xr: Any, yr: Any
+) -> tuple[Any, Any] | None:
+    """(xr, yr) refined, when ∇E may vanish there: interval evaluation excludes the pairs that
+    are not common roots; a pair is kept once its intervals are 2^-120 wide and still enclose
+    a zero of both derivatives."""
+    width = Fraction(1, 2**8)
+    while True:
+        xr, yr = _refine_all(rx, xr, width), _refine_all(ry, yr, width)
+        ix, iy = _interval(xr), _interval(yr)
+        for f in (fx, fy):
+            lo, hi = xp.interval_evaluate2(f, ix, iy)
+            if lo > 0 or hi < 0:
+                return None
+        if width < Fraction(1, 2**120):
+            return xr, yr
+        width /= 2**16
+
+
+def _least(e: xp.Bivariate, cands: list[Any]) -> tuple[Algebraic, Algebraic, str]:
+    """The candidate of least energy, its parameters given by their isolating intervals as
+    found (refined copies decide the comparison)."""
+    width = Fraction(1, 2**20)
+    work = list(cands)
+    while True:
+        encl = []
+        for i, (x, y, px, py, where) in enumerate(work):
+            if px is not None:
+                x = _refine_all(px, x, width)
+            if py is not None:
+                y = _refine_all(py, y, width)
+            work[i] = (x, y, px, py, where)
+            encl.append(xp.interval_evaluate2(e, _interval(x), _interval(y)))
+        best = min(range(len(work)), key=lambda i: encl[i][1])
+        rivals = [i for i in range(len(work)) if i != best and encl[i][0] < encl[best][1]]
+        if not rivals or width < Fraction(1, 2**200):
+            x, y, px, py, where = cands[best]
+            # a refined end met the root exactly: that root is rational
+            rx, ry = work[best][0], work[best][1]
+            x = rx if isinstance(rx, Fraction) else x
+            y = ry if isinstance(ry, Fraction) else y
+            return _algebraic(x, px), _algebraic(y, py), where
+        width /= 2**20
+
+
+def _algebraic(r: Any, poly: list[Fraction] | None) -> Algebraic:
+    if isinstance(r, Fraction):
+        return r
+    assert poly is not None
+    return IsolatedRoot(r[0], r[1], xp.integer_coefficients(xp.squarefree(poly)))
+
+
+def _float(x: Algebraic) -> float:
+    return float(x)
+
+
+def _exact_optimum(
+    e: dict[tuple[int, int], Fraction],
+    u_box: Any,
+    v_box: Any,
+    u_cls: type[Curve],
+    v_cls: type[Curve],
+) -> OptimalParameters:
+    free_u = u_box is None or not any(a for (a, _), c in e.items() if c)
+    free_v = v_box is None or not any(b for (_, b), c in e.items() if c)
+    pin_u = None if u_box is None else _default(u_cls, u_box)
+    pin_v = None if v_box is None else _default(v_cls, v_box)
+    bx = (
+        (pin_u, pin_u)
+        if free_u and pin_u is not None
+        else ((Fraction(0), Fraction(0)) if u_box is None else (u_box[0], u_box[1]))
+    )
+    by = (
+        (pin_v, pin_v)
+        if free_v and pin_v is not None
+        else ((Fraction(0), Fraction(0)) if v_box is None else (v_box[0], v_box[1]))
+    )
+    x, y, where = minimise_polynomial(e, bx, by)
+    energy: Fraction | float
+    if isinstance(x, Fraction) and isinstance(y, Fraction):
+        energy = xp.evaluate2(e, x, y)
+    else:
+        energy = sum(float(c) * float(x) ** a * float(y) ** b for (a, b), c in e.items())
+    admissible = all(
+        box is None
+        or free
+        or not ((val_ == box[0] and not box[2][0]) or (val_ == box[1] and not box[2][1]))
+        for box, val_, free in ((u_box, x, free_u), (v_box, y, free_v))
+    )
+    return OptimalParameters(
+        None if u_box is None else x,
+        None if v_box is None else y,
+        None if u_box is None else float(x),
+        None if v_box is None else float(y),
+        energy,
+        where,
+        admissible,
+        free_u,
+        free_v,
+    )

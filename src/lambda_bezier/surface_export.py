@@ -1,0 +1,219 @@
+"""Surfaces out and back in: STEP (a B-spline surface, through OCCT's OCP), a triangle mesh
+with a guaranteed deviation (OBJ, STL or PLY, written by trimesh) and JSON (exact numbers as
+strings, read back exactly).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass
+from fractions import Fraction
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from . import _validate as val
+from .export import FORMAT_VERSION, _number_in, _number_out, _optional, _quiet_occt
+from .surfaces import Surface
+
+# ---------------------------------------------------------------------- STEP (OCCT)
+
+
+def occt_bezier_surface(surf: Surface) -> Any:
+    """The surface's Bézier form as an OCCT Geom_BezierSurface (3D; 2D nets at z = 0)."""
+    _optional("OCP", "cadquery-ocp-novtk (OCP)", "occt_bezier_surface")
+    from OCP.collections import Array2_gp_Pnt
+    from OCP.Geom import Geom_BezierSurface
+    from OCP.gp import gp_Pnt
+
+    net = surf.to_bezier().net
+    if net.shape[2] not in (2, 3):
+        raise ValueError(f"OCCT surfaces live in 3D: this surface has dimension {net.shape[2]}")
+    if net.shape[0] > 26 or net.shape[1] > 26:  # Geom_BezierSurface::MaxDegree() is 25
+        raise ValueError("OCCT's Bézier surfaces have degree at most 25 in each direction")
+    poles = Array2_gp_Pnt(1, net.shape[0], 1, net.shape[1])
+    for i in range(net.shape[0]):
+        for j in range(net.shape[1]):
+            x, y, *z = (float(c) for c in net[i, j])
+            poles.SetValue(i + 1, j + 1, gp_Pnt(x, y, z[0] if z else 0.0))
+    return Geom_BezierSurface(poles)
+
+
+def to_step_surface(surf: Surface, path: str | Path) -> Path:
+    """Write the surface as one face on a B-spline surface (B_SPLINE_SURFACE_WITH_KNOTS, its
+    Bézier form with clamped knots) to a STEP file through OCCT."""
+    _optional("OCP", "cadquery-ocp-novtk (OCP)", "to_step_surface")
+    from OCP import Message
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
+    from OCP.GeomConvert import GeomConvert
+    from OCP.IFSelect import IFSelect_ReturnStatus
+    from OCP.STEPControl import STEPControl_StepModelType, STEPControl_Writer
+
+    if not isinstance(surf, Surface):
+        raise TypeError(f"surf must be a lambda_bezier surface, got {type(surf).__name__}")
+    _quiet_occt(Message)
+    spline = GeomConvert.SurfaceToBSplineSurface_s(occt_bezier_surface(surf))
+    face = BRepBuilderAPI_MakeFace(spline, 1e-9).Face()
+    writer = STEPControl_Writer()
+    done = IFSelect_ReturnStatus.IFSelect_RetDone
+    if writer.Transfer(face, STEPControl_StepModelType.STEPControl_AsIs) != done:
+        raise RuntimeError("OCCT could not transfer the B-spline face to STEP")
+    target = Path(path)
+    if writer.Write(str(target)) != done:
+        raise OSError(f"OCCT could not write the STEP file {target}")
+    return target
+
+
+# ---------------------------------------------------------------------- triangle mesh
+@dataclass(frozen=True)
+class SurfaceMesh:
+    """Vertices (k, 3), their parameters (k, 2), triangles (t, 3) of vertex indices, and a
+    bound on the distance from any point of a triangle to the surface point of the same
+    (linearly interpolated) parameters."""
+
+    vertices: np.ndarray
+    parameters: np.ndarray
+    faces: np.ndarray
+    deviation_bound: float
+
+
+def _hull_bound(coeffs_net: np.ndarray) -> float:
+    """max |control point|: bounds the polynomial on the unit square (convex hull)."""
+    return float(np.linalg.norm(coeffs_net, axis=-1).max()) if coeffs_net.size else 0.0
+
+
+def _derivative_net(net: np.ndarray, du: int, dv: int) -> np.ndarray:
+    """The Bézier net of ∂^(du+dv) S / ∂u^du ∂v^dv (forward differences times the degrees)."""
+    out = net
+    for axis, k in ((0, du), (1, dv)):
+        for _ in range(k):
+            degree = out.shape[axis] - 1
+            if degree == 0:
+                return np.zeros((1, 1, net.shape[2]))
+            out = degree * np.diff(out, axis=axis)
+    return out
+
+
+def mesh(surf: Surface, tolerance: float) -> SurfaceMesh:
+    """A uniform triangulation whose triangles deviate from the surface by at most
+    `tolerance`: on a triangle of legs h_u, h_v linear interpolation errs by at most
+    (M_uu h_u² + 2 M_uv h_u h_v + M_vv h_v²) / 2, with M the bounds of the second derivatives
+    from their Bézier nets."""
+    tol = val.tolerance(tolerance, "tolerance")
+    if not isinstance(surf, Surface):
+        raise TypeError(f"surf must be a lambda_bezier surface, got {type(surf).__name__}")
+    if surf.dimension not in (2, 3):
+        raise ValueError(
+            f"a triangle mesh needs a surface in 2D or 3D, got dimension {surf.dimension}"
+        )
+    net = surf.to_bezier().net
+    muu, muv, mvv = (_hull_bound(_derivative_net(net, a, b)) for a, b in ((2, 0), (1, 1), (0, 2)))
+    hu = math.sqrt(2 * tol / (3 * muu)) if muu else 1.0
+    hv = math.sqrt(2 * tol / (3 * mvv)) if mvv else 1.0
+    if muv and muv * hu * hv > tol / 3:
+        shrink = math.sqrt(tol / (3 * muv * hu * hv))
+        hu, hv = hu * shrink, hv * shrink
+    nu, nv = max(1, math.ceil(1 / hu)), max(1, math.ceil(1 / hv))
+    if nu * nv > 25_000_000:
+        raise ValueError(f"tolerance {tol} needs {nu} x {nv} cells; choose a larger tolerance")
+    us, vs = np.linspace(0, 1, nu + 1), np.linspace(0, 1, nv + 1)
+    pts = surf.evaluate_grid(us, vs).reshape(-1, surf.dimension)
+    if surf.dimension == 2:
+        pts = np.column_stack([pts, np.zeros(len(pts))])
+    idx = np.arange((nu + 1) * (nv + 1)).reshape(nu + 1, nv + 1)
+    a, b = idx[:-1, :-1].ravel(), idx[1:, :-1].ravel()
+    c, d = idx[1:, 1:].ravel(), idx[:-1, 1:].ravel()
+    faces = np.concatenate([np.stack([a, b, c], 1), np.stack([a, c, d], 1)])
+    h1, h2 = 1 / nu, 1 / nv
+    bound = (muu * h1 * h1 + 2 * muv * h1 * h2 + mvv * h2 * h2) / 2
+    params = np.stack(np.meshgrid(us, vs, indexing="ij"), axis=-1).reshape(-1, 2)
+    return SurfaceMesh(pts, params, faces, bound)
+
+
+def to_mesh_file(surf: Surface, path: str | Path, tolerance: float) -> Path:
+    """Write `mesh(surf, tolerance)` to an OBJ, STL or PLY file (by the suffix) with trimesh."""
+    target = Path(path)
+    kind = target.suffix.lower().lstrip(".")
+    if kind not in ("obj", "stl", "ply"):
+        raise ValueError(f"path must end in .obj, .stl or .ply, got {target.name!r}")
+    trimesh = _optional("trimesh", "trimesh", "to_mesh_file")
+    m = mesh(surf, tolerance)
+    tri = trimesh.Trimesh(vertices=m.vertices, faces=m.faces, process=False)
+    tri.export(str(target), file_type=kind)
+    return target
+
+
+# ---------------------------------------------------------------------- JSON
+def surface_to_json(surf: Surface, *, indent: int | None = 2) -> str:
+    """The JSON form of a surface of built-in families: exact numbers as strings."""
+    if not isinstance(surf, Surface):
+        raise TypeError(f"surf must be a lambda_bezier surface, got {type(surf).__name__}")
+    doc = {
+        "lambda_bezier": FORMAT_VERSION,
+        "kind": "surface",
+        "family": [surf._u_cls.family, surf._v_cls.family],
+        "lambda": [None if x is None else _number_out(x) for x in (surf.lam_u, surf.lam_v)],
+        "net": [[[_number_out(c) for c in p] for p in row] for row in surf.control_net()],
+    }
+    return json.dumps(doc, indent=indent, ensure_ascii=False)
+
+
+def surface_from_json(text: str, *, check_range: bool = True) -> Surface:
+    """A surface from its JSON form."""
+    from .curves import FAMILIES
+
+    try:
+        doc = json.loads(text)
+    except (TypeError, json.JSONDecodeError) as exc:
+        raise ValueError(f"not valid JSON: {exc}") from None
+    if (
+        not isinstance(doc, dict)
+        or doc.get("lambda_bezier") != FORMAT_VERSION
+        or doc.get("kind") != "surface"
+    ):
+        raise ValueError(
+            f'not a lambda-bezier surface document: expected "lambda_bezier": '
+            f'{FORMAT_VERSION} and "kind": "surface"'
+        )
+    fams, lams, net = doc.get("family"), doc.get("lambda"), doc.get("net")
+    if not (isinstance(fams, list) and len(fams) == 2 and all(f in FAMILIES for f in fams)):
+        raise ValueError(
+            f"surface.family must be a pair of names from {sorted(FAMILIES)}, got {fams!r}"
+        )
+    if not (isinstance(lams, list) and len(lams) == 2):
+        raise ValueError("surface.lambda must be a pair (null for a Bézier direction)")
+    if not (
+        isinstance(net, list)
+        and net
+        and all(isinstance(r, list) and all(isinstance(p, list) for p in r) for r in net)
+    ):
+        raise ValueError("surface.net must be a list of rows of points")
+    rows = [
+        [[_number_in(c, f"net[{i}][{j}][{k}]") for k, c in enumerate(p)] for j, p in enumerate(r)]
+        for i, r in enumerate(net)
+    ]
+    if not all(isinstance(c, Fraction) for r in rows for p in r for c in p):
+        rows = [[[float(c) for c in p] for p in r] for r in rows]
+    lu, lv = (None if x is None else _number_in(x, "surface.lambda") for x in lams)
+    return Surface(
+        rows, lu, lv, family=(FAMILIES[fams[0]], FAMILIES[fams[1]]), check_range=check_range
+    )
+
+
+def bezier_net_bounds(surf: Surface) -> tuple[float, float, float]:
+    """(M_uu, M_uv, M_vv): the second-derivative bounds the mesh uses (for tests and docs)."""
+    net = surf.to_bezier().net
+    return tuple(_hull_bound(_derivative_net(net, a, b)) for a, b in ((2, 0), (1, 1), (0, 2)))  # type: ignore[return-value]
+
+
+__all__ = [
+    "SurfaceMesh",
+    "mesh",
+    "occt_bezier_surface",
+    "surface_from_json",
+    "surface_to_json",
+    "to_mesh_file",
+    "to_step_surface",
+]

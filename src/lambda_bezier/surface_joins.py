@@ -1,0 +1,260 @@
+"""Joining surface patches along a common boundary, and grids of patches.
+
+When the next patch B continues A across A's boundary u = 1 and has A's family, degree and λ
+in v, both sides of every condition are combinations of the same v-basis functions, so the
+conditions hold for every v exactly when they hold for the coefficient of each basis
+function: column j of B's net (the u-curve through B's points P_{·,j}) must join column j of
+A's net as a curve does. `join_surface` therefore solves the rows of B next to the boundary
+column by column with the curves' `join` (its generated vertex formulas, any ordered pair of
+families); G1 here has one constant α along the boundary (A_u(1, v) = α B_u(0, v)).
+
+`CompositeSurface` holds a grid of patches and reports, for every interior boundary, the
+continuity achieved, found exactly on the Bézier forms (Fractions for exact patches).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from . import _validate as val
+from .hazmat.forms import elevation_matrix, hodograph_matrix
+from .joins import join
+from .surfaces import Surface, _exact_net
+
+SIDES = ("u", "v")
+SURFACE_CONTINUITIES = ("C1", "G1", "C2")
+
+
+def _transpose(rows: Any) -> Any:
+    return [[rows[i][j] for i in range(len(rows))] for j in range(len(rows[0]))]
+
+
+def _columns(surf: Surface, axis: int) -> list[Any]:
+    """The u-curves' control points (axis 0) or v-curves' (axis 1), exact when possible."""
+    rows: Any = surf.control_net()
+    return _transpose(rows) if axis == 0 else [list(r) for r in rows]
+
+
+def join_surface(
+    patch: Surface,
+    side: str,
+    continuity: str,
+    degree: int,
+    lam: Fraction | float | None = None,
+    rest: npt.ArrayLike | Sequence[Any] = (),
+    *,
+    alpha: Fraction | float = 1,
+    family: object = None,
+    check_range: bool = True,
+) -> Surface:
+    """The next patch across `patch`'s boundary u = 1 (side "u") or v = 1 (side "v").
+
+    The new patch has `degree` and `lam` (and `family`, default the patch's) across the
+    boundary, and the patch's family, degree and λ along it. Its rows of control points next to
+    the boundary are solved for `continuity` ("C1", "G1" with a constant `alpha` > 0, "C2");
+    `rest` gives the rows after them: an array (k, n+1, d) for side "u" ((m+1, k, d) for side
+    "v"). Exact input gives an exact patch.
+
+    >>> from lambda_bezier import SameDegreeSurface
+    >>> from lambda_bezier.surface_joins import join_surface
+    >>> a = SameDegreeSurface([[(i, j, i * j) for j in range(4)] for i in range(4)], 1, 0)
+    >>> b = join_surface(a, "u", "C1", 3, 1, rest=[[(5, j, 0) for j in range(4)]] * 2)
+    >>> b.control_net()[1][2]
+    (Fraction(4, 1), Fraction(2, 1), Fraction(8, 1))
+    """
+    side = val.choice(side, "side", SIDES)
+    continuity = val.choice(
+        continuity.upper() if isinstance(continuity, str) else continuity,
+        "continuity",
+        SURFACE_CONTINUITIES,
+    )
+    if not isinstance(patch, Surface):
+        raise TypeError(f"patch must be a lambda_bezier surface, got {type(patch).__name__}")
+    axis = 0 if side == "u" else 1
+    across_cls = patch._u_cls if axis == 0 else patch._v_cls
+    along_cls = patch._v_cls if axis == 0 else patch._u_cls
+    across_lam = patch.lam_u if axis == 0 else patch.lam_v
+    along_lam = patch.lam_v if axis == 0 else patch.lam_u
+    new_family = across_cls if family is None else family
+    count = patch.net.shape[1 - axis]
+    given = np.size(np.asarray(val.real_array(rest, "rest"), dtype=float)) > 0
+    rest_arr = np.asarray(val.real_array(rest, "rest"), dtype=float) if given else None
+    exact_rest = _exact_net(rest) if given else ()
+    if rest_arr is not None:
+        if rest_arr.ndim != 3:
+            raise ValueError(
+                "rest must be a grid of control points (rows, points, d), got shape "
+                f"{rest_arr.shape}"
+            )
+        want = count
+        got = rest_arr.shape[1] if axis == 0 else rest_arr.shape[0]
+        if got != want:
+            raise ValueError(f"rest must have {want} points along the boundary, got {got}")
+    columns = _columns(patch, axis)
+    rest_cols: list[Any] = [()] * count
+    if rest_arr is not None:
+        rest_rows: Any = exact_rest if exact_rest is not None else rest_arr.tolist()
+        rest_cols = _transpose(rest_rows) if axis == 0 else [list(r) for r in rest_rows]
+    new_columns = []
+    for j in range(count):
+        curve = (
+            across_cls(columns[j], across_lam, check_range=False)
+            if across_cls._has_lambda
+            else across_cls(columns[j])
+        )
+        nxt = join(
+            curve,
+            continuity,
+            degree,
+            lam,
+            alpha=alpha if continuity == "G1" else 1,
+            rest=rest_cols[j],
+            family=new_family,
+            check_range=check_range,
+        )
+        new_columns.append(list(nxt.control_points()))
+    net: Any = _transpose(new_columns) if axis == 0 else new_columns
+    fam = (type(nxt), along_cls) if axis == 0 else (along_cls, type(nxt))
+    lams = (nxt.lam, along_lam) if axis == 0 else (along_lam, nxt.lam)
+    return Surface(net, lams[0], lams[1], family=fam, check_range=False)
+
+
+# ---------------------------------------------------------------------- grids of patches
+def _boundary_derivatives(surf: Surface, axis: int, at_end: bool, order: int) -> list[Any]:
+    """The Bézier control points (along the boundary) of ∂^r S/∂(across)^r on the boundary
+    (across = 1 if at_end else 0), r = 0..order, in the net's arithmetic."""
+    bez = surf.to_bezier()
+    rows: Any = bez.control_net()
+    lines = _transpose(rows) if axis == 0 else [list(r) for r in rows]  # lines across
+    out = []
+    for r in range(order + 1):
+        coeffs = []
+        for line in lines:
+            pts = list(line)
+            for d in range(len(pts) - 1, len(pts) - 1 - r, -1):
+                if d < 1:
+                    pts = [tuple(0 * c for c in pts[0])]
+                    break
+                pts = _apply(hodograph_matrix(d), pts)
+            coeffs.append(pts[-1] if at_end else pts[0])
+        out.append(coeffs)
+    return out
+
+
+def _apply(weights: Any, points: list[Any]) -> list[Any]:
+    """weights @ points, in the points' arithmetic (Fractions stay exact)."""
+    dim = len(points[0])
+    return [
+        tuple(
+            sum((w * p[c] for w, p in zip(row, points, strict=True)), 0 * points[0][c])
+            for c in range(dim)
+        )
+        for row in weights
+    ]
+
+
+def _elevate_to(points: list[Any], degree: int) -> list[Any]:
+    while len(points) - 1 < degree:
+        points = _apply(elevation_matrix(len(points) - 1), points)
+    return points
+
+
+def _same(a: list[Any], b: list[Any], tol: float) -> bool:
+    size = max(len(a), len(b)) - 1
+    a, b = _elevate_to(a, size), _elevate_to(b, size)
+    return all(
+        abs(x - y) <= tol for p, q in zip(a, b, strict=True) for x, y in zip(p, q, strict=True)
+    )
+
+
+def _proportional(a: list[Any], b: list[Any], tol: float) -> bool:
+    """a = α b with one α > 0."""
+    size = max(len(a), len(b)) - 1
+    a, b = _elevate_to(a, size), _elevate_to(b, size)
+    flat_a = [x for p in a for x in p]
+    flat_b = [x for p in b for x in p]
+    k = max(range(len(flat_b)), key=lambda i: abs(flat_b[i]))
+    if not flat_b[k] or not flat_a[k]:
+        return False
+    alpha = flat_a[k] / flat_b[k]
+    return alpha > 0 and all(abs(x - alpha * y) <= tol for x, y in zip(flat_a, flat_b, strict=True))
+
+
+@dataclass(frozen=True)
+class BoundaryReport:
+    """The boundary between patch `first` and the next patch in direction `side`."""
+
+    first: tuple[int, int]
+    side: str
+    continuity: str  # "none", "C0", "G1", "C1" or "C2"
+
+
+class CompositeSurface:
+    """A grid of patches: patches[r][c] meets patches[r + 1][c] along its boundary u = 1 and
+    patches[r][c + 1] along v = 1 (each patch on its own unit square)."""
+
+    def __init__(self, patches: Sequence[Sequence[Surface]], *, tol: float = 1e-12) -> None:
+        grid = [list(row) for row in patches]
+        if not grid or not grid[0] or any(len(row) != len(grid[0]) for row in grid):
+            raise ValueError("patches must be a non-empty rectangular grid (a list of equal rows)")
+        for row in grid:
+            for p in row:
+                if not isinstance(p, Surface):
+                    raise TypeError(
+                        f"every patch must be a lambda_bezier surface, got {type(p).__name__}"
+                    )
+        if len({p.dimension for row in grid for p in row}) != 1:
+            raise ValueError("all patches must have the same dimension")
+        self.patches = grid
+        self.tol = val.tolerance(tol)
+
+    def report(self) -> list[BoundaryReport]:
+        """The continuity achieved at every interior boundary (exact patches: exactly)."""
+        out = []
+        rows, cols = len(self.patches), len(self.patches[0])
+        for r in range(rows):
+            for c in range(cols):
+                for side, (r2, c2) in (("u", (r + 1, c)), ("v", (r, c + 1))):
+                    if r2 < rows and c2 < cols:
+                        out.append(
+                            BoundaryReport(
+                                (r, c),
+                                side,
+                                self._continuity(
+                                    self.patches[r][c],
+                                    self.patches[r2][c2],
+                                    0 if side == "u" else 1,
+                                ),
+                            )
+                        )
+        return out
+
+    def _continuity(self, a: Surface, b: Surface, axis: int) -> str:
+        exact = a.is_exact and b.is_exact
+        size = max(
+            float(np.abs(a.to_bezier().net).max()), float(np.abs(b.to_bezier().net).max()), 1.0
+        )
+        tol = 0.0 if exact else self.tol * size
+        da = _boundary_derivatives(a, axis, True, 2)
+        db = _boundary_derivatives(b, axis, False, 2)
+        if not _same(da[0], db[0], tol):
+            return "none"
+        if not _same(da[1], db[1], tol * 10):
+            return "G1" if _proportional(da[1], db[1], tol * 10) else "C0"
+        return "C2" if _same(da[2], db[2], tol * 100) else "C1"
+
+    def evaluate(self, u: float, v: float) -> np.ndarray:
+        """S at global parameters u in [0, rows], v in [0, cols]."""
+        rows, cols = len(self.patches), len(self.patches[0])
+        uu = val.real_number(u, "u")
+        vv = val.real_number(v, "v")
+        if not (0 <= uu <= rows and 0 <= vv <= cols):
+            raise ValueError(f"(u, v) = ({uu}, {vv}) is outside [0, {rows}] x [0, {cols}]")
+        r, c = min(int(uu), rows - 1), min(int(vv), cols - 1)
+        return self.patches[r][c].evaluate(float(uu) - r, float(vv) - c)

@@ -1,0 +1,81 @@
+"""Plotting surfaces (optional extra: pip install "lambda-bezier[plot]").
+
+``plot_surface`` draws a 3D surface on a matplotlib 3D Axes (a new one when none is given),
+optionally with its control net and coloured by Gaussian or mean curvature, and returns it.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from . import _validate as val
+
+try:
+    import matplotlib.pyplot as plt
+    from matplotlib import cm, colors
+except ImportError as exc:  # pragma: no cover - exercised only without the extra
+    raise ImportError(
+        "lambda_bezier.surface_plot needs matplotlib: pip install 'lambda-bezier[plot]'"
+    ) from exc
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
+    from .surfaces import Surface
+
+COLOURINGS = ("gaussian", "mean", "none")
+
+
+def plot_surface(
+    surf: Surface,
+    ax: Axes | None = None,
+    *,
+    net: bool = True,
+    curvature: str = "gaussian",
+    samples: int = 40,
+    cmap: str = "coolwarm",
+    **surface_kwargs: Any,  # matplotlib's plot_surface properties
+) -> Axes:
+    """The surface over a samples x samples grid, coloured by its Gaussian or mean curvature
+    (a colour map centred on zero; "none" for one colour), with its control net."""
+    from .surfaces import Surface
+
+    if not isinstance(surf, Surface):
+        raise TypeError(f"surf must be a lambda_bezier surface, got {type(surf).__name__}")
+    if surf.dimension != 3:
+        raise ValueError(
+            f"plot_surface draws surfaces in 3D, this one has dimension {surf.dimension}"
+        )
+    curvature = val.choice(curvature, "curvature", COLOURINGS)
+    samples = val.integer(samples, "samples")
+    if samples < 2:
+        raise ValueError(f"samples must be at least 2, got {samples}")
+    if ax is None:
+        ax = plt.figure().add_subplot(projection="3d")
+    t = np.linspace(0.0, 1.0, samples)
+    pts = surf.evaluate_grid(t, t)
+    kwargs: dict[str, Any] = {"linewidth": 0, "antialiased": True, "alpha": 0.9}
+    if curvature != "none":
+        uu, vv = np.meshgrid(t, t, indexing="ij")
+        gauss, mean = surf.curvatures(uu.ravel(), vv.ravel())
+        values = (gauss if curvature == "gaussian" else mean).reshape(samples, samples)
+        # the colour of a quad is that of its first corner: centre the map on zero
+        top = float(np.abs(values).max()) or 1.0
+        norm = colors.Normalize(-top, top)
+        kwargs["facecolors"] = plt.get_cmap(cmap)(norm(values))
+        mappable = cm.ScalarMappable(norm=norm, cmap=cmap)
+        mappable.set_array(values)
+        ax.figure.colorbar(mappable, ax=ax, shrink=0.6, label=f"{curvature} curvature")
+    kwargs.update(surface_kwargs)
+    surface_ax: Any = ax  # a 3D Axes (mpl_toolkits.mplot3d), which the stubs do not type
+    surface_ax.plot_surface(pts[..., 0], pts[..., 1], pts[..., 2], **kwargs)
+    if net:
+        p = surf.net
+        style: dict[str, Any] = {"color": "0.3", "linewidth": 0.7, "marker": "o", "markersize": 2.5}
+        for i in range(p.shape[0]):
+            surface_ax.plot(p[i, :, 0], p[i, :, 1], p[i, :, 2], **style)
+        for j in range(p.shape[1]):
+            surface_ax.plot(p[:, j, 0], p[:, j, 1], p[:, j, 2], **style)
+    return ax

@@ -1,0 +1,122 @@
+"""Issue #28: each robustness item, pinned by a test that fails without its fix."""
+
+from __future__ import annotations
+
+import importlib
+import os
+import subprocess
+import sys
+from fractions import Fraction
+from pathlib import Path
+
+import pytest
+from conftest import ROOT
+
+import lambda_bezier as lb
+from lambda_bezier import _derive_runner
+
+HAS_DERIVE = (ROOT / "derive" / "family_engine.py").is_file()
+needs_derive = pytest.mark.skipif(not HAS_DERIVE, reason="needs the source checkout")
+
+
+@pytest.fixture(scope="module")
+def engine():
+    derive = _derive_runner.load_derive(ROOT)
+    return importlib.import_module(f"{derive.__name__}.family_engine")
+
+
+def _cli(*args: str, cwd: Path = ROOT) -> subprocess.CompletedProcess:
+    return subprocess.run(
+        [sys.executable, "-m", "lambda_bezier", *args],
+        capture_output=True,
+        text=True,
+        cwd=cwd,
+        env=dict(os.environ, PYTHONHASHSEED="0"),
+        timeout=300,
+    )
+
+
+# --------------------------------------------------------------------------- item 1
+
+# A basis from degree 2 whose λ-part is the quadratic t(1 - t) moved between the end functions:
+# its third derivative vanishes, so E_3 does not depend on λ at any degree, and at degree 2 the
+# whole of E_3 vanishes identically.
+QUADRATIC_FAMILY = """\
+[family]
+name = "from_two"
+title = "a family whose degrees start at 2"
+parameter = "lam"
+range = "[0, 1]"
+degrees = "2..4"
+bernstein_at = "0"
+degree_offset = 0
+basis = "binomial(n, i)*t**i*(1 - t)**(n - i) + lam*(binomial(0, i) - binomial(0, n - i))*t*(1 - t)"
+"""
+
+QUADRATIC_RECORDS = """\
+schema_version = 2
+source = "test"
+title = "records about from_two"
+family = "from_two"
+
+[[record]]
+id = "two.y3"
+claim = "energy_matrix"
+location = "E_3 at n = 2: Y = 0"
+expect = "match"
+name = "Y"
+k = 3
+n = 2
+scale = "1"
+matrix = [[0, 0, 0], [0, 0, 0], [0, 0, 0]]
+
+[[record]]
+id = "two.lambda3"
+claim = "energy_lambda_nk"
+location = "a lambda* printed for E_3, which does not depend on lambda"
+expect = "mismatch"
+k = 3
+n = 2
+scale = "1"
+numerator = "two.y3"
+denominator = "two.y3"
+vector = ["P(0)", "P(1)", "P(2)"]
+[record.erratum]
+origin = "paper"
+explanation = "E_3 does not depend on lambda"
+equations = []
+"""
+
+
+@needs_derive
+def test_family_from_degree_two_derives_and_flows(engine, tmp_path):
+    fam_file = tmp_path / "from_two.toml"
+    fam_file.write_text(QUADRATIC_FAMILY, encoding="utf-8")
+    defn = engine.read_definition(fam_file)
+    engine.derived_path(fam_file, defn.name).write_text(engine.render(defn), encoding="utf-8")
+    fam = lb.load_family(fam_file)
+    pts = [(0, 0), (1, 2), (3, 1)]
+    # E_3 ≡ 0 at degree 2: a curve has it, energy_matrices and optimal_lambda say λ has no effect
+    assert fam.curve(pts, lam=Fraction(1, 3)).energy(3) == 0
+    with pytest.raises(ValueError, match="no effect on E_3.*degree 2"):
+        lb.energy_matrices(2, 3, family=fam)
+    with pytest.raises(ValueError, match="no effect on E_3"):
+        lb.optimal_lambda(pts, 3, family=fam)
+    # E_2 depends on λ: the minimiser agrees with the quadratic fitted through three exact energies
+    e = [fam.curve(pts, lam=Fraction(x, 2)).energy(2) for x in (0, 1, 2)]
+    # E(λ) = a0 + a1 λ + a2 λ² sampled at λ = 0, 1/2, 1
+    a2 = 2 * (e[2] - 2 * e[1] + e[0])
+    a1 = e[2] - e[0] - a2
+    assert lb.optimal_lambda(pts, 2, family=fam).unconstrained == -a1 / (2 * a2)
+
+
+@needs_derive
+def test_verify_handles_an_energy_that_does_not_depend_on_lambda(tmp_path):
+    fam_file = tmp_path / "from_two.toml"
+    fam_file.write_text(QUADRATIC_FAMILY, encoding="utf-8")
+    rec = tmp_path / "records.toml"
+    rec.write_text(QUADRATIC_RECORDS, encoding="utf-8")
+    res = _cli("verify", str(fam_file), str(rec))
+    out = res.stdout + res.stderr
+    assert "checker error" not in out and "Traceback" not in out, out
+    assert "two.y3" in out and "no λ minimises E_3" in out, out

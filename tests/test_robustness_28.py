@@ -120,3 +120,66 @@ def test_verify_handles_an_energy_that_does_not_depend_on_lambda(tmp_path):
     out = res.stdout + res.stderr
     assert "checker error" not in out and "Traceback" not in out, out
     assert "two.y3" in out and "no λ minimises E_3" in out, out
+
+
+# --------------------------------------------------------------------------- item 2
+
+FOREIGN_POINTS = """\
+schema_version = 2
+source = "test"
+title = "same_degree records written with P(i)"
+family = "same_degree"
+{point_function}
+[[record]]
+id = "sd.ends"
+claim = "endpoint_curve"
+location = "ends"
+equations = [
+  {{ lhs = "p(0)", rhs = "P(0)" }},
+  {{ lhs = "Subs(Derivative(p(t), t), t, 0)", rhs = "(n - 1 + lam)*(P(1) - P(0))" }},
+]
+"""
+
+
+@needs_derive
+def test_foreign_control_point_name_is_one_error_naming_point_function(tmp_path):
+    rec = tmp_path / "records.toml"
+    rec.write_text(FOREIGN_POINTS.format(point_function=""), encoding="utf-8")
+    res = _cli("verify", str(rec))
+    assert res.returncode == 2, res.stdout + res.stderr
+    assert "record 'sd.ends'" in res.stderr and "point_function = 'P'" in res.stderr
+    assert "Traceback" not in res.stderr
+    # naming them makes both passes (symbolic and per degree) read P as the points: true
+    rec.write_text(FOREIGN_POINTS.format(point_function='point_function = "P"'), encoding="utf-8")
+    res = _cli("verify", str(rec))
+    assert res.returncode == 0, res.stdout + res.stderr
+    assert "1 match" in res.stdout
+
+
+BASIS_LIST = """\
+schema_version = 2
+source = "test"
+title = "a misprinted basis list"
+
+[[record]]
+id = "bl.cubic0"
+claim = "same_degree.basis_list"
+location = "eq. (1)"
+expect = "mismatch"
+variable = "t"
+n = 3
+equations = [{ lhs = "b(0, 3, t)", rhs = "(1 - t)**3" }]
+[record.erratum]
+origin = "paper"
+explanation = "b(0, 3, t) has a lam term"
+equations = [{ lhs = "b(0, 3, t)", rhs = "(1 - t)**2*(1 - lam*t)" }]
+"""
+
+
+@needs_derive
+def test_basis_list_mismatch_has_a_location(tmp_path):
+    rec = tmp_path / "records.toml"
+    rec.write_text(BASIS_LIST, encoding="utf-8")
+    res = _cli("verify", str(rec))
+    assert res.returncode == 0, res.stdout + res.stderr
+    assert "at n=3: printed" in res.stdout and "at :" not in res.stdout, res.stdout

@@ -183,3 +183,67 @@ def test_basis_list_mismatch_has_a_location(tmp_path):
     res = _cli("verify", str(rec))
     assert res.returncode == 0, res.stdout + res.stderr
     assert "at n=3: printed" in res.stdout and "at :" not in res.stdout, res.stdout
+
+
+# --------------------------------------------------------------------------- item 3
+
+
+def test_optimal_lambda_with_a_4000_digit_coordinate_prints_the_exact_result():
+    import json
+
+    big = "1" * 4000
+    res = _cli("optimal-lambda", "--json", "0,0", f"1,{big}", "2,1", "3,0")
+    assert res.returncode == 0, res.stderr
+    got = json.loads(res.stdout)
+    limit = sys.get_int_max_str_digits()
+    sys.set_int_max_str_digits(0)
+    try:
+        pts = [(0, 0), (1, int(big)), (2, 1), (3, 0)]
+        want = lb.optimal_lambda(pts, 2)
+        assert got["lambda"] == str(want.unconstrained)
+        assert got["energy"] == str(want.unconstrained_energy)
+    finally:
+        sys.set_int_max_str_digits(limit)
+    # beyond Python's own limit on a number's text: refused, named, exit 2
+    res = _cli("optimal-lambda", "0,0", "1," + "1" * 5000, "2,1", "3,0")
+    assert res.returncode == 2 and "5000 digits" in res.stderr and "Traceback" not in res.stderr
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ("derive", "--root", "/nonexistent", "--check"),
+        ("derive", "--root", "/nonexistent"),
+        ("derive", "--root", "/tmp", "--check"),
+        ("derive", "--root", "/tmp"),
+        ("derive", "--root", str(ROOT / "pyproject.toml")),
+        ("verify", "--root", "/nonexistent"),
+        ("verify", "--root", "/tmp"),
+        ("verify", "/nonexistent.toml"),
+        ("verify", "/tmp"),
+        ("derive", "--family", "/nonexistent.toml"),
+        ("derive", "--family", "/tmp"),
+        (
+            "derive",
+            "--family",
+            str(ROOT / "tests/data/families/nouri_saeidian.toml"),
+            "--out",
+            "/nonexistent",
+        ),
+        ("export", "--format", "svg", "/nonexistent.json", "out.svg"),
+        ("export", "--format", "svg", "/tmp", "out.svg"),
+        ("export", "--format", "svg", "--tolerance", "nan", "/tmp", "out.svg"),
+        ("export", "--format", "svg", "--tolerance", "-1", "/tmp", "out.svg"),
+        ("export", "--format", "svg", "--tolerance", "abc", "/tmp", "out.svg"),
+        ("optimal-lambda", "0,0", "1,1e400", "2,0", "3,1"),
+        ("optimal-lambda", "0,0", "1,1/0", "2,0", "3,1"),
+        ("optimal-lambda", "--energy", "99999999999999999999", "0,0", "1,1", "2,0", "3,1"),
+        ("optimal-lambda", "--energy", "x", "0,0", "1,1", "2,0", "3,1"),
+    ],
+)
+def test_cli_paths_and_numbers_are_named_with_exit_2(args, tmp_path):
+    if args[0] == "derive" and not HAS_DERIVE:
+        pytest.skip("needs the source checkout")
+    res = _cli(*args, cwd=tmp_path if args[0] == "export" else ROOT)
+    assert res.returncode == 2, (res.returncode, res.stderr)
+    assert "Traceback" not in res.stderr and res.stderr.strip(), res.stderr

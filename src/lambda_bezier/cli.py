@@ -8,7 +8,10 @@ import sys
 from collections.abc import Iterator
 from fractions import Fraction
 from pathlib import Path
-from typing import SupportsFloat, cast
+from typing import TYPE_CHECKING, SupportsFloat, cast
+
+if TYPE_CHECKING:
+    from .energy import OptimalLambda
 
 
 def _energy_order(text: str) -> int:
@@ -207,10 +210,8 @@ def _export(args: argparse.Namespace) -> int:
 
 
 def _optimal_lambda(args: argparse.Namespace) -> int:
-    import json
-
     from ._numbers import parse_point
-    from .energy import ENERGY_NAMES, optimal_lambda
+    from .energy import optimal_lambda
 
     try:
         points = [parse_point(p.lstrip(" ")) for p in args.points]
@@ -222,6 +223,22 @@ def _optimal_lambda(args: argparse.Namespace) -> int:
     except ValueError as exc:
         print(f"lambda-bezier optimal-lambda: error: {exc}", file=sys.stderr)
         return 2
+    # An exact result has a few times the digits of its input (a 4000-digit coordinate gives
+    # a λ of about 16000), past Python's 4300-digit guard on int/str conversion, a guard
+    # against untrusted text and not our own results (each input number is held within it).
+    limit = sys.get_int_max_str_digits()
+    sys.set_int_max_str_digits(0)
+    try:
+        return _print_optimal_lambda(args, result)
+    finally:
+        sys.set_int_max_str_digits(limit)
+
+
+def _print_optimal_lambda(args: argparse.Namespace, result: OptimalLambda) -> int:
+    import json
+
+    from .energy import ENERGY_NAMES
+
     k = args.energy
     report = {
         "family": args.family,

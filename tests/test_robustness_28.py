@@ -9,6 +9,7 @@ import sys
 from fractions import Fraction
 from pathlib import Path
 
+import numpy as np
 import pytest
 from conftest import ROOT
 
@@ -247,3 +248,128 @@ def test_cli_paths_and_numbers_are_named_with_exit_2(args, tmp_path):
     res = _cli(*args, cwd=tmp_path if args[0] == "export" else ROOT)
     assert res.returncode == 2, (res.returncode, res.stderr)
     assert "Traceback" not in res.stderr and res.stderr.strip(), res.stderr
+
+
+# --------------------------------------------------------------------------- item 4
+
+
+def _exact_bezier(points, t: Fraction) -> list[Fraction]:
+    """de Casteljau in Fractions: the independent reference."""
+    work = [[Fraction(x) for x in p] for p in points]
+    while len(work) > 1:
+        work = [
+            [(1 - t) * a + t * b for a, b in zip(p, q, strict=True)]
+            for p, q in zip(work, work[1:], strict=False)
+        ]
+    return work[0]
+
+
+def test_degree_zero_curve_has_zero_length_and_evaluates_in_batches():
+    c = lb.BezierCurve([(0, 0)])
+    assert c.arc_length() == 0.0 and c.arc_length(0.25, 0.5) == 0.0
+    got = lb.evaluate_many(np.array([[(1.0, 2.0)], [(3.0, -1.0)]]), [0.0, 0.5, 1.0])
+    assert got.shape == (2, 3, 2)
+    assert (got[0] == (1.0, 2.0)).all() and (got[1] == (3.0, -1.0)).all()
+    assert (lb.evaluate_many(np.array([[(1.0, 2.0)]]), [0.3], k=1) == 0).all()
+
+
+def test_centred_expansion_equals_the_generated_tables():
+    from lambda_bezier import _bezier_forms as forms
+    from lambda_bezier._lazy import generated
+
+    tables = generated("bernstein")
+    for degree in tables.DEGREES:
+        want = tuple(tuple(Fraction(v) for v in row) for row in tables.CENTRED[degree])
+        assert forms.centred_expansion(degree) == want
+
+
+@pytest.mark.parametrize("degree", [15, 20, 27])
+def test_classical_curves_past_the_tables(degree):
+    import mpmath as mp
+
+    rng = np.random.default_rng(degree)
+    # a monotone polygon: the speed has no zero, so plain quadrature is exact to its precision
+    pts = np.cumsum(rng.uniform(0.2, 1.0, size=(degree + 1, 2)), axis=0)
+    exact = [[Fraction(float(x)) for x in p] for p in pts]
+    c = lb.BezierCurve(pts)
+    mp.mp.dps = 30
+
+    def speed(t):
+        w = [
+            [
+                mp.mpf((d := degree * (b - a)).numerator) / d.denominator
+                for a, b in zip(p, q, strict=True)
+            ]
+            for p, q in zip(exact, exact[1:], strict=False)
+        ]
+        while len(w) > 1:
+            w = [
+                [(1 - t) * a + t * b for a, b in zip(p, q, strict=True)]
+                for p, q in zip(w, w[1:], strict=False)
+            ]
+        return mp.sqrt(sum(x * x for x in w[0]))
+
+    for t0, t1 in ((0, 1), (0.2, 0.7)):
+        ref = mp.quad(speed, [t0, (t0 + t1) / 2, t1])
+        assert abs(c.arc_length(t0, t1) - ref) <= 1e-12 * ref
+    s = c.arc_length()
+    t_half = c.parameter_at_length(s / 2)
+    assert abs(c.arc_length(0, t_half) - s / 2) <= 1e-12 * s
+    lo, hi = c.bounding_box()
+    samples = np.array(
+        [[float(v) for v in _exact_bezier(exact, Fraction(k, 64))] for k in range(65)]
+    )
+    assert (samples >= lo - 1e-12 * abs(lo)).all() and (samples <= hi + 1e-12 * abs(hi)).all()
+    q = samples[20] + np.array([0.01, -0.01])
+    assert c.closest_point(q).distance <= np.linalg.norm(q - samples[20]) + 1e-12
+    many = lb.evaluate_many(pts[None], [0.0, 0.3, 1.0])[0]
+    want = [[float(v) for v in _exact_bezier(exact, Fraction(x))] for x in (0, Fraction(3, 10), 1)]
+    np.testing.assert_allclose(many, want, rtol=1e-13, atol=0)
+
+
+@pytest.mark.parametrize("name", ["same_degree", "bernstein_like"])
+def test_lambda_families_refuse_degrees_past_their_tables(name):
+    cls = lb.FAMILIES[name]
+    lo, hi = cls._data.DEGREES[0], cls._data.DEGREES[-1]
+    for degree in (lo - 1, hi + 1):
+        with pytest.raises(ValueError, match=f"{name}"):
+            cls([(k, k % 2) for k in range(degree + 1)], 0.5)
+    with pytest.raises(ValueError, match="not supported|at least"):
+        lb.evaluate_many(np.zeros((1, hi + 2, 2)), [0.5], name, lam=0.5)
+
+
+# --------------------------------------------------------------------------- item 5
+
+
+@pytest.mark.parametrize("name", ["bezier", "same_degree", "bernstein_like"])
+def test_implicitize_takes_floats_exactly(name):
+    import sympy as sp
+
+    pts = [(0.1, 0.0), (0.7, 1.3), (1.9, -0.2), (2.5, 0.4)]
+    cls = lb.FAMILIES[name]
+    curve = cls(pts) if name == "bezier" else cls(pts, 0.3)
+    f = curve.implicitize()
+    # the same curve in Fractions: f vanishes exactly on its points
+    exact = [[Fraction(x) for x in p] for p in pts]
+    ecurve = cls(exact) if name == "bezier" else cls(exact, Fraction(0.3))
+    bez = ecurve.to_bezier().control_points()
+    x, y = f.gens
+    for t in (Fraction(1, 3), Fraction(5, 7)):
+        px, py = _exact_bezier(bez, t)
+        assert f.as_expr().subs({x: sp.Rational(px), y: sp.Rational(py)}) == 0
+    assert f == ecurve.implicitize()
+
+
+# --------------------------------------------------------------------------- item 8
+
+
+@pytest.mark.parametrize("exponent", [600, 1000, 1020, -600, -1000])
+def test_closest_point_at_huge_and_tiny_scales(exponent):
+    base = np.array([(0, 0), (1, 2), (3, 1), (4, 0)], dtype=float)
+    queries = np.array([(2.0, 3.0), (-1.0, 0.5), (4.5, -0.25)])
+    want = lb.BezierCurve(base).closest_point(queries)
+    s = 2.0**exponent
+    got = lb.BezierCurve(base * s).closest_point(queries * s)
+    np.testing.assert_allclose(got.t, want.t, rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(got.point / s, want.point, rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(got.distance / s, want.distance, rtol=1e-12)

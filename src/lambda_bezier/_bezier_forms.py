@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from fractions import Fraction
+from functools import cache
+from math import comb
 
 import numpy as np
 
@@ -36,6 +38,35 @@ def hodograph_matrix(degree: int) -> tuple[tuple[Fraction, ...], ...]:
         )
         for r in range(degree)
     )
+
+
+@cache
+def centred_matrix(degree: int) -> tuple[tuple[Fraction, ...], ...]:
+    """(n+1, n+1): row i holds the Taylor coefficients of B_i^n about t = 1/2: the generated
+    table where it exists, the same expansion beyond (and for degree 0), exactly."""
+    if degree in _bernstein.DEGREES:
+        table: tuple[tuple[Fraction, ...], ...] = _bernstein.CENTRED[degree]
+        return table
+    return centred_expansion(degree)
+
+
+def centred_expansion(degree: int) -> tuple[tuple[Fraction, ...], ...]:
+    """centred_matrix computed: with u = t - 1/2, B_i^n = C(n, i) (1/2 + u)^i (1/2 - u)^(n-i),
+    a product of two binomial expansions."""
+    half = Fraction(1, 2)
+    rows = []
+    for i in range(degree + 1):
+        rise = [comb(i, e) * half ** (i - e) for e in range(i + 1)]  # (1/2 + u)^i
+        fall = [
+            comb(degree - i, e) * half ** (degree - i - e) * (-1) ** e
+            for e in range(degree - i + 1)
+        ]  # (1/2 - u)^(n-i)
+        row = [Fraction(0)] * (degree + 1)
+        for a, x in enumerate(rise):
+            for b, y in enumerate(fall):
+                row[a + b] += comb(degree, i) * x * y
+        rows.append(tuple(row))
+    return tuple(rows)
 
 
 def elevation_matrix(degree: int) -> tuple[tuple[Fraction, ...], ...]:

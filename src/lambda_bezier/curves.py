@@ -400,14 +400,23 @@ class Curve:
     def implicitize(self) -> Poly:
         """The algebraic curve f(x, y) = 0 containing this planar curve, as an exact
         sympy.Poly in x and y with coprime integer coefficients (SymPy is imported here).
-        Needs exact control points (and an exact lam)."""
+        Float control points (and a float lam) are taken at their exact binary values
+        (``Fraction(x)`` is exact), so the result is the implicit form of exactly the curve
+        the floats describe."""
         if self.dimension != 2:
             raise ValueError(f"implicitize needs a planar curve, got dimension {self.dimension}")
-        if not self.is_exact:
-            raise ValueError("implicitize needs exact control points (ints or Fractions)")
         from ._implicit import implicitize
 
-        rows = self.to_bezier()._exact_points
+        curve = self
+        if not self.is_exact:  # every float is a binary rational: the same curve, exactly
+            exact = [[Fraction(float(x)) for x in row] for row in self.points]
+            cls = type(self)
+            curve = (
+                cls(exact, Fraction(float(self.lam)), check_range=False)
+                if self.lam is not None
+                else cls(exact)
+            )
+        rows = curve.to_bezier()._exact_points
         assert rows is not None  # checked above: the curve is exact
         return implicitize(rows)
 

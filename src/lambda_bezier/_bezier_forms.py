@@ -69,6 +69,48 @@ def centred_expansion(degree: int) -> tuple[tuple[Fraction, ...], ...]:
     return tuple(rows)
 
 
+def basis_matrix(kind: str, degree: int) -> tuple[tuple[Fraction, ...], ...]:
+    """The classical basis's table of `kind` ("power", "centred" or "bernstein") at any
+    degree: row i holds B_i^n's coefficients (power: C(n, i) C(n − i, k − i) (−1)^(k − i) for
+    t^k; centred: centred_matrix; bernstein: the identity)."""
+    if kind == "centred":
+        return centred_matrix(degree)
+    if kind == "bernstein":
+        return tuple(
+            tuple(Fraction(int(r == c)) for c in range(degree + 1)) for r in range(degree + 1)
+        )
+    if kind != "power":
+        raise ValueError(f"no basis table of kind {kind!r}")
+    return tuple(
+        tuple(
+            Fraction(comb(degree, i) * comb(degree - i, k - i) * (-1) ** (k - i))
+            if k >= i
+            else Fraction(0)
+            for k in range(degree + 1)
+        )
+        for i in range(degree + 1)
+    )
+
+
+def gram_form(degree: int) -> tuple[Fraction, tuple[tuple[Fraction, ...], ...]]:
+    """(s, U) as generated/energy.py's GRAM[m] (∫_0^1 B_a^m B_b^m dt = s·U[a][b] for a = b,
+    s·U[a][b]/2 for a < b), computed for a degree past that table:
+    ∫ B_a^m B_b^m = C(m, a) C(m, b) / (C(2m, a + b) (2m + 1)), from B_a^m B_b^m =
+    C(m, a) C(m, b) / C(2m, a + b) · B_{a+b}^{2m} and ∫ B_c^N = 1 / (N + 1)."""
+    m = degree
+    return Fraction(1), tuple(
+        tuple(
+            Fraction(
+                comb(m, a) * comb(m, b) * (2 if b > a else 1), comb(2 * m, a + b) * (2 * m + 1)
+            )
+            if b >= a
+            else Fraction(0)
+            for b in range(m + 1)
+        )
+        for a in range(m + 1)
+    )
+
+
 def elevation_matrix(degree: int) -> tuple[tuple[Fraction, ...], ...]:
     """(n+2, n+1) weights of one degree elevation, Q_i = i/(n+1) P_{i-1} + (1 - i/(n+1)) P_i:
     the generated table where it exists, the same formula beyond."""

@@ -160,6 +160,8 @@ class Curve:
 
     # ------------------------------------------------------------------ basis matrices
     def _matrices(self, kind: str) -> tuple[Matrix, ...]:
+        if not self._tabulated and self._any_degree:  # the classical basis: computed
+            return (forms.basis_matrix(kind, self.degree),)
         if not self._tabulated:
             raise ValueError(
                 f"no generated basis matrices for degree {self.degree} (they cover degrees "
@@ -169,6 +171,8 @@ class Curve:
 
     def _combined(self, kind: str) -> np.ndarray:
         mats = self._matrices(kind)
+        if not self._tabulated:  # a classical curve past the tables: no λ, one matrix
+            return np.array(mats[0], dtype=float)
         out = np.array(_float_matrix(self._data, kind, self.degree, 0))
         lam = 0.0 if self.lam is None else float(self.lam)
         for p in range(1, len(mats)):
@@ -292,12 +296,8 @@ class Curve:
         big = self.polynomial_degree
         if k > big:
             return Fraction(0) if self.is_exact else 0.0
-        if big - k not in GRAM:
-            raise ValueError(
-                f"energy: no generated Gram matrix for degree {big - k} (they cover degrees "
-                f"{min(GRAM)}..{max(GRAM)})"
-            )
-        scale, upper = GRAM[big - k]
+        # past the generated Gram matrices: the same form, computed (_bezier_forms.gram_form)
+        scale, upper = GRAM[big - k] if big - k in GRAM else forms.gram_form(big - k)
         if self.is_exact:
             h = self.to_bezier()._exact_points
             assert h is not None  # an exact curve has an exact Bézier form

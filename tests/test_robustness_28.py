@@ -373,3 +373,31 @@ def test_closest_point_at_huge_and_tiny_scales(exponent):
     np.testing.assert_allclose(got.t, want.t, rtol=1e-12, atol=1e-15)
     np.testing.assert_allclose(got.point / s, want.point, rtol=1e-12, atol=1e-15)
     np.testing.assert_allclose(got.distance / s, want.distance, rtol=1e-12)
+
+
+# --------------------------------------------------------------------------- item 7
+
+
+@pytest.mark.parametrize("degree", [10, 11])
+def test_dxf_writes_only_what_ezdxf_reads_back_and_evaluates(degree, tmp_path):
+    ezdxf = pytest.importorskip("ezdxf")
+    from lambda_bezier import export
+
+    pts = [(i, (-1) ** i * (1 + i % 3)) for i in range(degree + 1)]
+    curve = lb.BezierCurve(pts)
+    target = tmp_path / "x.dxf"
+    if degree > export.DXF_MAX_DEGREE:
+        with pytest.raises(ValueError, match="up to 10"):
+            export.to_dxf(curve, target)
+        # the limit is ezdxf's: its construction tool cannot evaluate a degree-11 spline
+        from ezdxf.math import BSpline
+
+        spline = export.to_bspline(curve)
+        with pytest.raises(ValueError, match="invalid order"):
+            BSpline(spline.control_points, order=degree + 1, knots=spline.knots).point(0.5)
+        return
+    export.to_dxf(curve, target)
+    tool = next(iter(ezdxf.readfile(target).modelspace().query("SPLINE"))).construction_tool()
+    u = np.linspace(0, 1, 41)
+    got = np.array([tuple(tool.point(x)) for x in u])[:, :2]
+    np.testing.assert_allclose(got, curve.evaluate(u), atol=1e-12)

@@ -371,8 +371,11 @@ def test_implicitize_families_and_bad_input():
     rows = control_rows("4")
     same = family_curve("same_degree", rows).implicitize()
     assert same == lb.BezierCurve(rows).implicitize()
-    with pytest.raises(ValueError, match="exact"):
+    # floats are binary rationals, taken exactly (issue #28)
+    assert (
         lb.BezierCurve([(0.5, 0.0), (1.0, 1.0)]).implicitize()
+        == lb.BezierCurve([(Fraction(1, 2), 0), (1, 1)]).implicitize()
+    )
     with pytest.raises(ValueError, match="planar"):
         lb.BezierCurve([(0, 0, 0), (1, 1, 1)]).implicitize()
 

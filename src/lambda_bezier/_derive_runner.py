@@ -66,13 +66,6 @@ def installed_generated_dir() -> Path:
 
 
 def run(check: bool, root: Path | None, quiet: bool = False) -> int:
-    if root is not None and find_checkout(root) != root:  # as verify --root: named, exit 2
-        print(
-            f"lambda-bezier derive: --root {root} is not a lambda-bezier source checkout "
-            "(a directory with derive/ and this project's pyproject.toml)",
-            file=sys.stderr,
-        )
-        return 2
     checkout = root if root is not None else find_checkout(Path.cwd())
     if checkout is None and not check:
         print(

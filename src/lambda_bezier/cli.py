@@ -175,9 +175,16 @@ def main(argv: list[str] | None = None) -> int:
 
         return run_family(args.family, args.out, check=args.check, quiet=args.quiet)
     if args.command == "derive":
-        from ._derive_runner import run
+        from ._derive_runner import find_checkout, run
 
         root = args.root.resolve() if args.root else None
+        if root is not None and find_checkout(root) != root:  # as verify --root: exit 2
+            print(
+                f"lambda-bezier derive: --root {args.root} is not a lambda-bezier source "
+                "checkout (a directory with derive/ and this project's pyproject.toml)",
+                file=sys.stderr,
+            )
+            return 2
         return run(check=args.check, root=root, quiet=args.quiet)
     if args.command == "optimal-lambda":
         return _optimal_lambda(args)

@@ -17,8 +17,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import lambda_bezier as lb
-from lambda_bezier.hazmat import kernels as alg
 from lambda_bezier.cli import main
+from lambda_bezier.hazmat import kernels as alg
 
 pytestmark = pytest.mark.filterwarnings("error")  # a RuntimeWarning is an escape too
 

@@ -18,8 +18,8 @@ from reference import FAMILIES
 from scipy.optimize import minimize_scalar
 
 import lambda_bezier as lb
-from lambda_bezier.hazmat.numbers import parse_number, parse_point
 from lambda_bezier.cli import main
+from lambda_bezier.hazmat.numbers import parse_number, parse_point
 
 LAMBDA_FAMILIES = ["same_degree", "bernstein_like"]
 EXAMPLE = [(0, 6), (0, 2), (5, 2), (7, 0), (2, 0), (6, 8)]  # 000, section 4.2

@@ -82,7 +82,11 @@ def gram(m: int) -> Matrix:
 @cache
 def stiffness(degree: int, k: int) -> flint.fmpq_mat:
     """K with ∫|p^(k)|² = Σ_coords cᵀ K c for Bézier control points c of degree `degree`
-    (a FLINT matrix: energy_forms multiplies it on both sides)."""
+    (a FLINT matrix: energy_forms multiplies it on both sides). For k > degree the k-th
+    derivative vanishes identically, so K = 0: E_k ≡ 0 is a result, and there is no hodograph
+    of negative degree to build."""
+    if k > degree:
+        return flint.fmpq_mat(degree + 1, degree + 1)
     h = flint.fmpq_mat(degree + 1, degree + 1)
     for r in range(degree + 1):
         h[r, r] = 1

@@ -21,8 +21,11 @@ import sys
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 
+from sympy import preorder_traversal
+
 from ..families.definition import REFERENCE, DefinitionError, definition_from_table
 from ..grammar import Interval, ParseError
+from .expr_parse import fn_name
 from .expr_parse import parse as parse_formula  # cached: the checkers reuse each parse
 from .registry import FAMILIES, claim_kind, kind_problem, register_defined_family
 
@@ -338,6 +341,7 @@ def load_file(path: Path, data: dict | None = None) -> list[dict]:
             except ValueError as exc:
                 raise RecordsError(f"{_where(path, rec, 'parameter_range')}: {exc}") from None
         _parse_formulas(path, rec)
+        _check_point_names(path, rec)
         out.append(rec)
     return out
 
@@ -387,6 +391,36 @@ def _parse_formulas(path: Path, rec: dict) -> None:
                     parse_formula(part)
                 except ParseError as exc:
                     raise RecordsError(f"{_where(path, rec, key)}: {exc}") from None
+
+
+# The names a record may give control points: one-argument applications P(i), V(i). One rule
+# for every pass (the symbolic closed-form comparison and the per-degree realiser would read a
+# foreign name differently: as the points, or as an unknown function), so a name that is not
+# the family's is refused here, before either runs.
+POINT_NAMES = ("P", "V")
+
+
+def _check_point_names(path: Path, rec: dict) -> None:
+    points = rec.get("point_function") or FAMILIES[rec["family"]].points
+    allowed = {points}
+    for piece in ("first", "second"):  # a join record names its curves' points itself
+        if isinstance(rec.get(piece), dict) and isinstance(rec[piece].get("points"), str):
+            allowed.add(rec[piece]["points"])
+    # the formulas the checkers realise (an energy_lambda_nk `vector` is the paper's D = (P_0
+    # … P_n) whatever the family calls its points, and is compared with exactly that)
+    for name in ("equations", "conventions", "convention", "cases"):
+        for key, text in _strings(rec.get(name) or [], name):
+            if key.endswith(".index") or ".where." in key or ".given." in key:
+                continue  # index ranges and values, no points
+            for app in preorder_traversal(parse_formula(text)):
+                found = fn_name(app)
+                if found in POINT_NAMES and found not in allowed and len(app.args) == 1:
+                    raise RecordsError(
+                        f"{_where(path, rec, key)}: {app} names control points {found!r}, but "
+                        f"the {rec['family']} family's control points are {points!r} here; "
+                        f"set point_function = {found!r} in the file or the record to call "
+                        f"them {found}"
+                    )
 
 
 def load_paths(paths: Iterable[Path]) -> list[dict]:

@@ -184,6 +184,8 @@ class Curve:
 
     # ------------------------------------------------------------------ basis matrices
     def _matrices(self, kind: str) -> tuple[Matrix, ...]:
+        if not self._tabulated and self._any_degree:  # the classical basis: computed
+            return (forms.basis_matrix(kind, self.degree),)
         if not self._tabulated:
             raise ValueError(
                 f"no generated basis matrices for degree {self.degree} (they cover degrees "
@@ -193,6 +195,8 @@ class Curve:
 
     def _combined(self, kind: str) -> np.ndarray:
         mats = self._matrices(kind)
+        if not self._tabulated:  # a classical curve past the tables: no λ, one matrix
+            return np.array(mats[0], dtype=float)
         out = np.array(_float_matrix(self._data, kind, self.degree, 0))
         lam = 0.0 if self.lam is None else float(self.lam)
         for p in range(1, len(mats)):
@@ -316,12 +320,8 @@ class Curve:
         big = self.polynomial_degree
         if k > big:
             return Fraction(0) if self.is_exact else 0.0
-        if big - k not in GRAM:
-            raise ValueError(
-                f"energy: no generated Gram matrix for degree {big - k} (they cover degrees "
-                f"{min(GRAM)}..{max(GRAM)})"
-            )
-        scale, upper = GRAM[big - k]
+        # past the generated Gram matrices: the same form, computed (hazmat.forms.gram_form)
+        scale, upper = GRAM[big - k] if big - k in GRAM else forms.gram_form(big - k)
         if self.is_exact:
             h = self.to_bezier()._exact_points
             assert h is not None  # an exact curve has an exact Bézier form
@@ -422,14 +422,23 @@ class Curve:
     def implicitize(self) -> Poly:
         """The algebraic curve f(x, y) = 0 containing this planar curve, as an exact
         sympy.Poly in x and y with coprime integer coefficients (SymPy is imported here).
-        Needs exact control points (and an exact lam)."""
+        Float control points (and a float lam) are taken at their exact binary values
+        (``Fraction(x)`` is exact), so the result is the implicit form of exactly the curve
+        the floats describe."""
         if self.dimension != 2:
             raise ValueError(f"implicitize needs a planar curve, got dimension {self.dimension}")
-        if not self.is_exact:
-            raise ValueError("implicitize needs exact control points (ints or Fractions)")
         from .hazmat.implicit import implicitize
 
-        rows = self.to_bezier()._exact_points
+        curve = self
+        if not self.is_exact:  # every float is a binary rational: the same curve, exactly
+            exact = [[Fraction(float(x)) for x in row] for row in self.points]
+            cls = type(self)
+            curve = (
+                cls(exact, Fraction(float(self.lam)), check_range=False)
+                if self.lam is not None
+                else cls(exact)
+            )
+        rows = curve.to_bezier()._exact_points
         assert rows is not None  # checked above: the curve is exact
         return implicitize(rows)
 

@@ -68,10 +68,12 @@ def installed_generated_dir() -> Path:
 def run(check: bool, root: Path | None, quiet: bool = False) -> int:
     checkout = root if root is not None else find_checkout(Path.cwd())
     if checkout is None and not check:
-        raise SystemExit(
+        print(
             "lambda-bezier derive writes into a source checkout's generated/: run it inside "
-            "the checkout or pass --root PATH (use --check to compare an installed copy)"
+            "the checkout or pass --root PATH (use --check to compare an installed copy)",
+            file=sys.stderr,
         )
+        return 2
     derive = load_derive(checkout)  # exits with an install hint when SymPy is missing
     import sympy
 

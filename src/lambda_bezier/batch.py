@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import sys
+
 import numpy as np
 import numpy.typing as npt
 
 from . import _validate as val
 from .curves import FAMILIES, Curve, _float_matrix, _tables, family_class
+from .hazmat import kernels as alg
 
 
 def _lambdas(lam: npt.ArrayLike, cls: type[Curve], m: int, check_range: bool) -> np.ndarray:
@@ -84,7 +87,9 @@ def evaluate_many(
     if arr.ndim != 3:
         raise ValueError(f"control points must have shape (m, n+1, d), got shape {arr.shape}")
     m, size, dim = arr.shape
-    degrees = tuple(cls._data.DEGREES)
+    # the classical curve takes any degree (as BezierCurve does); past its tables (and at
+    # degree 0) it is evaluated by de Casteljau below
+    degrees = (0, sys.maxsize) if cls._any_degree else tuple(cls._data.DEGREES)
     val.check_point_shape((size, dim), family=family, degrees=degrees)
     big = float(np.abs(arr).max()) if arr.size else 0.0  # NaN and inf propagate into this
     if not np.isfinite(big):
@@ -93,6 +98,10 @@ def evaluate_many(
     k = val.as_order(k)
     tt, scalar = val.as_parameters(t, extrapolate=extrapolate)
     n = size - 1
+    if n not in cls._data.DEGREES:
+        if lam is not None:
+            raise ValueError("a classical Bézier curve takes no shape parameter")
+        return _de_casteljau_many(arr, tt, k, scalar)
     mats = _tables(cls._data, "centred")[n]
     if not cls._has_lambda:
         if lam is not None:
@@ -130,5 +139,31 @@ def evaluate_many(
             out = out * scale
     if scale != 1.0 or extrapolate or not check_range:  # otherwise nothing can overflow
         val.finite_result(out, "p(t)" if k == 0 else f"the derivative of order {k}")
+    values: np.ndarray = out[:, 0] if scalar else out
+    return values
+
+
+def _de_casteljau_many(arr: np.ndarray, tt: np.ndarray, k: int, scalar: bool) -> np.ndarray:
+    """evaluate_many for classical curves past the generated tables (and degree 0): de
+    Casteljau on the k-th hodograph of every curve at once (the centred monomials are
+    ill-conditioned at high degree; de Casteljau is not). No overflow scaling is needed:
+    every step is a convex combination, and the differences of the hodograph are formed on
+    points scaled by a power of two."""
+    m, size, dim = arr.shape
+    n = size - 1
+    scale = val.scale_for_magnitude(float(np.abs(arr).max()) if arr.size else 0.0)
+    work = arr / scale if scale != 1.0 else arr
+    for order in range(k):  # p^(r+1) has the points (n - r)(P_{i+1} - P_i) of p^(r)
+        if work.shape[1] == 1:
+            work = np.zeros_like(work)
+            break
+        work = (n - order) * (work[:, 1:] - work[:, :-1])
+    pts = np.ascontiguousarray(work.transpose(1, 0, 2)).reshape(work.shape[1], m * dim)
+    with val.overflow_allowed():
+        out = alg.de_casteljau_steps(pts, tt, pts.shape[0] - 1)[:, 0]  # (T, m·d)
+        out = out.reshape(tt.size, m, dim).transpose(1, 0, 2)
+        if scale != 1.0:
+            out = out * scale
+    val.finite_result(out, "p(t)" if k == 0 else f"the derivative of order {k}")
     values: np.ndarray = out[:, 0] if scalar else out
     return values

@@ -8,7 +8,10 @@ import sys
 from collections.abc import Iterator
 from fractions import Fraction
 from pathlib import Path
-from typing import SupportsFloat, cast
+from typing import TYPE_CHECKING, SupportsFloat, cast
+
+if TYPE_CHECKING:
+    from .energy import OptimalLambda
 
 
 def _energy_order(text: str) -> int:
@@ -172,9 +175,16 @@ def main(argv: list[str] | None = None) -> int:
 
         return run_family(args.family, args.out, check=args.check, quiet=args.quiet)
     if args.command == "derive":
-        from ._derive_runner import run
+        from ._derive_runner import find_checkout, run
 
         root = args.root.resolve() if args.root else None
+        if root is not None and find_checkout(root) != root:  # as verify --root: exit 2
+            print(
+                f"lambda-bezier derive: --root {args.root} is not a lambda-bezier source "
+                "checkout (a directory with derive/ and this project's pyproject.toml)",
+                file=sys.stderr,
+            )
+            return 2
         return run(check=args.check, root=root, quiet=args.quiet)
     if args.command == "optimal-lambda":
         return _optimal_lambda(args)
@@ -207,9 +217,7 @@ def _export(args: argparse.Namespace) -> int:
 
 
 def _optimal_lambda(args: argparse.Namespace) -> int:
-    import json
-
-    from .energy import ENERGY_NAMES, optimal_lambda
+    from .energy import optimal_lambda
     from .hazmat.numbers import parse_point
 
     try:
@@ -222,6 +230,22 @@ def _optimal_lambda(args: argparse.Namespace) -> int:
     except ValueError as exc:
         print(f"lambda-bezier optimal-lambda: error: {exc}", file=sys.stderr)
         return 2
+    # An exact result has a few times the digits of its input (a 4000-digit coordinate gives
+    # a λ of about 16000), past Python's 4300-digit guard on int/str conversion, a guard
+    # against untrusted text and not our own results (each input number is held within it).
+    limit = sys.get_int_max_str_digits()
+    sys.set_int_max_str_digits(0)
+    try:
+        return _print_optimal_lambda(args, result)
+    finally:
+        sys.set_int_max_str_digits(limit)
+
+
+def _print_optimal_lambda(args: argparse.Namespace, result: OptimalLambda) -> int:
+    import json
+
+    from .energy import ENERGY_NAMES
+
     k = args.energy
     report = {
         "family": args.family,

@@ -149,6 +149,12 @@ def energy_matrices(
         ``(c, X, Y)``: the scale c as a Fraction, and :math:`X_n^k`, :math:`Y_n^k` as
         upper-triangular tuples of tuples of ints.
 
+    Raises
+    ------
+    ValueError
+        For a degree outside the family's range, or when E_k does not depend on λ at that
+        degree (:math:`Y_n^k = 0`), and for bad input.
+
     Examples
     --------
     >>> scale, X, Y = energy_matrices(3, 1)
@@ -164,6 +170,11 @@ def energy_matrices(
             f"degrees {data.DEGREES[0]}..{data.DEGREES[-1]}"
         )
     _, (s_fg, x), (s_gg, y) = _energy_table(family)[(n, k)]
+    if s_gg == 0:  # Y_n^k = 0 (e.g. E_3 of a quadratic basis, which vanishes identically)
+        raise ValueError(
+            f"λ has no effect on E_{k} for {_name(family)} of degree {n} (Y = 0: E_{k} does not "
+            "depend on λ for any control polygon), so eq. 20 has no optimal λ"
+        )
     return Fraction(s_fg) / Fraction(s_gg), x, y
 
 

@@ -56,7 +56,11 @@ if TYPE_CHECKING:
 
 FORMAT_VERSION = 1
 CAD_HINT = 'pip install "lambda-bezier[cad]"'
-DXF_MAX_DEGREE = 11  # AutoCAD's limit for SPLINE entities (ezdxf's documentation)
+# The highest degree whose SPLINE ezdxf's own construction_tool() reads back and evaluates:
+# its accelerated B-spline basis (ezdxf/acc/bspline.pyx, Basis.__cinit__) refuses an order
+# >= MAX_SPLINE_ORDER = 12 (ezdxf/acc/constants.h, ezdxf 1.4.5) with "invalid order", so
+# order 11, degree 10. (A degree-11 file was written before and could not be evaluated.)
+DXF_MAX_DEGREE = 10
 
 
 def _optional(module: str, package: str, feature: str) -> ModuleType:
@@ -354,12 +358,14 @@ def to_step(obj: Shape, path: str | Path) -> Path:
 # ---------------------------------------------------------------------- DXF (ezdxf)
 def to_dxf(obj: Shape, path: str | Path) -> Path:
     """Write the curve or composite as one DXF SPLINE entity (DXF R2010) through ezdxf;
-    2D curves lie in the plane z = 0. AutoCAD takes SPLINE degrees up to 11."""
+    2D curves lie in the plane z = 0. Degrees up to 10: ezdxf's own construction_tool()
+    evaluates no higher (order 12 and above is refused by its B-spline basis)."""
     ezdxf = _optional("ezdxf", "ezdxf", "to_dxf")
     spline = to_bspline(obj)
     if spline.degree > DXF_MAX_DEGREE:
         raise ValueError(
-            f"a DXF SPLINE holds degrees up to {DXF_MAX_DEGREE} (AutoCAD's limit); this curve "
+            f"a DXF SPLINE is written for degrees up to {DXF_MAX_DEGREE} (the highest ezdxf reads "
+            "back and evaluates: its B-spline basis refuses order 12 and above); this curve "
             f"is a polynomial of degree {spline.degree}: export it with to_step instead"
         )
     doc = ezdxf.new("R2010")

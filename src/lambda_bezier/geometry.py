@@ -29,9 +29,10 @@ from typing import TYPE_CHECKING, cast
 import numpy as np
 import numpy.typing as npt
 
+from . import _validate as val
 from ._lazy import generated
 from .hazmat import arclength as _arclength
-from .hazmat import extremes
+from .hazmat import extremes, forms
 from .hazmat import kernels as alg
 
 if TYPE_CHECKING:
@@ -70,18 +71,16 @@ def _centred_coefficients(curve: Curve) -> tuple[np.ndarray, float]:
     (Curve._derivative_coeffs[0], from the same generated centred matrices, filled in
     exactly at the tabulated degrees), for its points divided by Curve._scale."""
     base = curve._derivative_coeffs.get(0)
-    if base is None:  # a classical curve of degree 0 or past the tables
-        raise ValueError(
-            f"this uses the generated Taylor tables, which cover degrees "
-            f"{_bernstein.DEGREES[0]}..{_bernstein.DEGREES[-1]}; the curve has degree "
-            f"{curve.degree}"
-        )
     if not curve.is_exact:
+        if base is None:  # a classical curve of degree 0 or past the tables: the same
+            # expansion, computed (hazmat.forms.centred_matrix), for the same scaled points
+            unit = curve.points / curve._scale
+            base = (np.array(forms.centred_matrix(curve.degree), dtype=float).T @ unit).T
         return base, curve._scale
     bez = curve.to_bezier()
     rows = bez._exact_points
     assert rows is not None  # an exact curve has an exact Bézier form
-    cols = tuple(zip(*_bernstein.CENTRED[bez.degree], strict=True))  # row i: B_i about 1/2
+    cols = tuple(zip(*forms.centred_matrix(bez.degree), strict=True))  # row i: B_i about 1/2
     exact = alg.exact_matmul(cols, rows)  # (N+1, d)
     return np.array([[float(v) for v in row] for row in exact]).T.copy(), 1.0
 
@@ -288,8 +287,18 @@ def _queries(q: npt.ArrayLike, dimension: int) -> tuple[np.ndarray, bool]:
 
 
 def _curve_closest(curve: Curve, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Parameters, points and squared distances of the nearest points to each row of q."""
-    return extremes.closest(_poly(curve)[0], q)
+    """Parameters, points and distances of the nearest points to each row of q."""
+    poly = _poly(curve)
+    # (p − q)·p′ squares coordinates: at 2^600 that overflows, at 2^-600 it underflows. The
+    # coefficients and the queries are divided by one power of two (exact), so that the
+    # larger of them is near 1; distances are scaled back at the end.
+    unit_q = q / poly.scale
+    big = float(max(np.abs(poly[0]).max(), np.abs(unit_q).max()))
+    norm = math.ldexp(1.0, math.frexp(big)[1]) if big > 0 and math.isfinite(big) else 1.0
+    t, pts, dist2 = extremes.closest(poly[0] / norm, unit_q / norm)
+    factor = poly.scale * norm  # a power of two: exact
+    with val.overflow_allowed():
+        return t, pts * factor, np.sqrt(dist2) * factor
 
 
 def closest_point(obj: Curve | CompositeCurve, q: npt.ArrayLike) -> ClosestPoint:
@@ -298,14 +307,13 @@ def closest_point(obj: Curve | CompositeCurve, q: npt.ArrayLike) -> ClosestPoint
     (d,) or a batch (m, d)."""
     segs = _segments(obj)
     queries, single = _queries(q, segs[0].dimension)
-    best_t, best_pt, best_d2 = _curve_closest(segs[0], queries)
+    best_t, best_pt, dist = _curve_closest(segs[0], queries)
     for i, seg in enumerate(segs[1:], start=1):
-        t, pt, d2 = _curve_closest(seg, queries)
-        better = d2 < best_d2  # a tie (a joint) keeps the earlier segment
+        t, pt, d = _curve_closest(seg, queries)
+        better = d < dist  # a tie (a joint) keeps the earlier segment
         best_t = np.where(better, t + i, best_t)
         best_pt = np.where(better[:, None], pt, best_pt)
-        best_d2 = np.where(better, d2, best_d2)
-    dist = np.sqrt(best_d2)
+        dist = np.where(better, d, dist)
     if single:
         return ClosestPoint(float(best_t[0]), best_pt[0], float(dist[0]))
     return ClosestPoint(best_t, best_pt, dist)

@@ -25,12 +25,12 @@ from typing import Any
 
 import numpy as np
 
-from .hazmat import exact_poly as xp
 from . import _validate as val
-from .hazmat.forms import hodograph_matrix
 from ._lazy import generated
-from .curves import Curve, Matrix
 from ._singular import IsolatedRoot
+from .curves import Curve, Matrix
+from .hazmat import exact_poly as xp
+from .hazmat.forms import hodograph_matrix
 from .surfaces import NetLike, Surface, _as_family_pair, _check_degree, basis_to_bernstein_split
 
 _energy = generated("energy")

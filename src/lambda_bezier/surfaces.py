@@ -27,10 +27,10 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from .hazmat import surface_kernels as ker
 from . import _validate as val
 from ._validate import ParamLike
 from .curves import BezierCurve, Curve, Matrix, _identity, _tables, family_class
+from .hazmat import surface_kernels as ker
 
 ExactNet = ker.ExactNet
 NetLike = npt.ArrayLike | Sequence[Sequence[Sequence[Fraction | float]]]

@@ -10,6 +10,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from fractions import Fraction
 from functools import cache
+from math import comb
 
 import numpy as np
 
@@ -30,6 +31,74 @@ def hodograph_matrix(degree: int) -> tuple[tuple[Fraction, ...], ...]:
             for c in range(degree + 1)
         )
         for r in range(degree)
+    )
+
+
+@cache
+def centred_matrix(degree: int) -> tuple[tuple[Fraction, ...], ...]:
+    """(n+1, n+1): row i holds the Taylor coefficients of B_i^n about t = 1/2, exactly, at
+    any degree (equal to generated/bernstein.py's CENTRED where that exists: a test checks)."""
+    return centred_expansion(degree)
+
+
+def centred_expansion(degree: int) -> tuple[tuple[Fraction, ...], ...]:
+    """centred_matrix computed: with u = t - 1/2, B_i^n = C(n, i) (1/2 + u)^i (1/2 - u)^(n-i),
+    a product of two binomial expansions."""
+    half = Fraction(1, 2)
+    rows = []
+    for i in range(degree + 1):
+        rise = [comb(i, e) * half ** (i - e) for e in range(i + 1)]  # (1/2 + u)^i
+        fall = [
+            comb(degree - i, e) * half ** (degree - i - e) * (-1) ** e
+            for e in range(degree - i + 1)
+        ]  # (1/2 - u)^(n-i)
+        row = [Fraction(0)] * (degree + 1)
+        for a, x in enumerate(rise):
+            for b, y in enumerate(fall):
+                row[a + b] += comb(degree, i) * x * y
+        rows.append(tuple(row))
+    return tuple(rows)
+
+
+def basis_matrix(kind: str, degree: int) -> tuple[tuple[Fraction, ...], ...]:
+    """The classical basis's table of `kind` ("power", "centred" or "bernstein") at any
+    degree: row i holds B_i^n's coefficients (power: C(n, i) C(n − i, k − i) (−1)^(k − i) for
+    t^k; centred: centred_matrix; bernstein: the identity)."""
+    if kind == "centred":
+        return centred_matrix(degree)
+    if kind == "bernstein":
+        return tuple(
+            tuple(Fraction(int(r == c)) for c in range(degree + 1)) for r in range(degree + 1)
+        )
+    if kind != "power":
+        raise ValueError(f"no basis table of kind {kind!r}")
+    return tuple(
+        tuple(
+            Fraction(comb(degree, i) * comb(degree - i, k - i) * (-1) ** (k - i))
+            if k >= i
+            else Fraction(0)
+            for k in range(degree + 1)
+        )
+        for i in range(degree + 1)
+    )
+
+
+def gram_form(degree: int) -> tuple[Fraction, tuple[tuple[Fraction, ...], ...]]:
+    """(s, U) as generated/energy.py's GRAM[m] (∫_0^1 B_a^m B_b^m dt = s·U[a][b] for a = b,
+    s·U[a][b]/2 for a < b), computed for a degree past that table:
+    ∫ B_a^m B_b^m = C(m, a) C(m, b) / (C(2m, a + b) (2m + 1)), from B_a^m B_b^m =
+    C(m, a) C(m, b) / C(2m, a + b) · B_{a+b}^{2m} and ∫ B_c^N = 1 / (N + 1)."""
+    m = degree
+    return Fraction(1), tuple(
+        tuple(
+            Fraction(
+                comb(m, a) * comb(m, b) * (2 if b > a else 1), comb(2 * m, a + b) * (2 * m + 1)
+            )
+            if b >= a
+            else Fraction(0)
+            for b in range(m + 1)
+        )
+        for a in range(m + 1)
     )
 
 

@@ -8,6 +8,7 @@ full-width and other Unicode digits), surrounding spaces and tabs only.
 from __future__ import annotations
 
 import re
+import sys
 from fractions import Fraction
 
 _NUMBER = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:/[+-]?[0-9]+)?")
@@ -23,6 +24,13 @@ def parse_number(text: str) -> Fraction:
     if not _NUMBER.fullmatch(s) or ("/" in s and not _RATIO.fullmatch(s)):
         raise ValueError(
             f"not a number: {text!r} (use an integer, a decimal such as -0.25, or p/q such as 3/4)"
+        )
+    digits = sum(c.isdigit() for c in s)
+    limit = sys.get_int_max_str_digits()
+    if limit and digits > limit:  # int() would raise its own message, naming a sys function
+        raise ValueError(
+            f"not a number: a coordinate of {digits} digits (at most {limit}, Python's limit "
+            "for converting text to an integer)"
         )
     if "/" in s:
         p, q = s.split("/")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib
+import types
 import os
 import subprocess
 import sys
@@ -16,14 +17,21 @@ from conftest import ROOT
 import lambda_bezier as lb
 from lambda_bezier import _derive_runner
 
-HAS_DERIVE = (ROOT / "derive" / "family_engine.py").is_file()
+HAS_DERIVE = (ROOT / "derive" / "__init__.py").is_file()
 needs_derive = pytest.mark.skipif(not HAS_DERIVE, reason="needs the source checkout")
 
 
 @pytest.fixture(scope="module")
 def engine():
+    """derive's definition reader and the derived document's writer, as one namespace."""
     derive = _derive_runner.load_derive(ROOT)
-    return importlib.import_module(f"{derive.__name__}.family_engine")
+    definition = importlib.import_module(f"{derive.__name__}.families.definition")
+    document = importlib.import_module(f"{derive.__name__}.emit.document")
+    return types.SimpleNamespace(
+        read_definition=definition.read_definition,
+        derived_path=document.derived_path,
+        render=document.render,
+    )
 
 
 def _cli(*args: str, cwd: Path = ROOT) -> subprocess.CompletedProcess:
@@ -274,7 +282,7 @@ def test_degree_zero_curve_has_zero_length_and_evaluates_in_batches():
 
 
 def test_centred_expansion_equals_the_generated_tables():
-    from lambda_bezier import _bezier_forms as forms
+    from lambda_bezier.hazmat import forms
     from lambda_bezier._lazy import generated
 
     tables = generated("bernstein")

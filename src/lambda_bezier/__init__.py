@@ -28,6 +28,7 @@ if TYPE_CHECKING:
     from .family import Family, load_family
     from .joins import Joint, join
     from .properties import IsolatedRoot, singular_parameters
+    from .rational import RationalBezierCurve
 
 __version__ = "0.1.0"
 
@@ -53,6 +54,7 @@ _EXPORTS = {
     "join": "joins",
     "IsolatedRoot": "properties",
     "singular_parameters": "properties",
+    "RationalBezierCurve": "rational",
 }
 __all__ = [
     "FAMILIES",
@@ -65,6 +67,7 @@ __all__ = [
     "Joint",
     "JointReport",
     "OptimalLambda",
+    "RationalBezierCurve",
     "SameDegreeCurve",
     "energy_coefficients",
     "energy_matrices",

@@ -37,6 +37,7 @@ def test_the_guide_has_examples():
         "guide/energy.md",
         "guide/joins.md",
         "guide/verify.md",
+        "guide/rational.md",
     } <= with_examples
 
 

@@ -302,6 +302,9 @@ def adaptive_table(
     Returns the accepted partition's edges (K+1,) and cumulative integrals (K+1,)."""
     edges = np.unique(np.concatenate([np.linspace(0.0, 1.0, 17), np.asarray(breaks, float)]))
     edges = edges[(edges >= 0) & (edges <= 1)]
+    # breaks within rounding of each other (a double root found twice) are one
+    edges = edges[np.concatenate([[True], np.diff(edges) > 1e-12])]
+    edges[-1] = 1.0
     lo, hi = edges[:-1], edges[1:]
     accepted_lo: list[np.ndarray] = []
     accepted_hi: list[np.ndarray] = []
@@ -329,8 +332,9 @@ def adaptive_table(
     else:
         raise ArithmeticError("arc length: the adaptive quadrature did not converge")
     los = np.concatenate(accepted_lo)
+    his = np.concatenate(accepted_hi)
     vals = np.concatenate(accepted_val)
-    order = np.argsort(los, kind="stable")
+    order = np.lexsort((his, los))  # a zero-width piece before the piece it starts
     out_edges = np.append(los[order], 1.0)
     cum = np.concatenate([[0.0], np.cumsum(vals[order])])
     return out_edges, cum

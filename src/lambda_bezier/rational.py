@@ -40,6 +40,7 @@ from typing import TYPE_CHECKING, NoReturn
 import numpy as np
 import numpy.typing as npt
 
+from . import _algorithms as alg
 from . import _rational_kernels as rk
 from . import _validate as val
 from ._validate import ParamLike, PointsLike
@@ -204,10 +205,43 @@ class RationalBezierCurve:
         """C(t): shape (d,) for a scalar t, (len(t), d) for an array."""
         if self._polynomial is not None:
             return self._polynomial.evaluate(t, extrapolate=extrapolate)
+        coeffs = self._centred_coefficients()
+        if coeffs is not None and not val.flag(extrapolate, "extrapolate"):
+            # on [0, 1] w(t) >= the smallest weight > 0: no pole, and no overflow (the rows
+            # are scaled to size 1, see _centred_coefficients)
+            tt, scalar = val.as_parameters(t, extrapolate=False)
+            h = alg.centred_horner(coeffs, tt).T  # (d+1, len(t)), coordinate-major, ours
+            np.divide(h[:-1], h[-1], out=h[:-1])  # in place: no new (d, len(t)) array
+            out: np.ndarray = h[:-1].T
+            return out[0] if scalar else out
         h = self._homogeneous.evaluate(t, extrapolate=extrapolate)
         with val.overflow_allowed(), np.errstate(divide="ignore"):
-            out = rk.project(h)
-        return self._checked(out, t, "C(t)")
+            projected = rk.project(h)
+        return self._checked(projected, t, "C(t)")
+
+    def _centred_coefficients(self) -> np.ndarray | None:
+        """(d+1, n+1): the homogeneous form's Taylor coefficients about t = 1/2 (computed in
+        Fractions from the exact or float rows, rounded once), for rows scaled by a power of
+        two to size about 1 (the projection does not see a common factor); filled on first
+        use. None past degree 14, where monomials lose accuracy (de Casteljau then), or
+        where the weights span too many binades for the scaled rows."""
+        cached: np.ndarray | None = self.__dict__.get("_centred")
+        if cached is None and "_centred" not in self.__dict__:
+            rows = self._homogeneous.points
+            big, small = float(np.abs(rows).max()), float(self.weights.min())
+            if self.degree <= 14 and big / small < 2.0**900:
+                scale = 2.0 ** -np.frexp(big)[1]
+                exact = np.array(
+                    [[Fraction(float(v) * scale) for v in row] for row in rows], dtype=object
+                )
+                if self.is_exact:  # from the exact rows: one rounding in all
+                    exact = np.array(self._homogeneous.control_points(), dtype=object) * Fraction(
+                        scale
+                    )
+                cached = np.array(rk.bernstein_to_centred(exact).T, dtype=float, order="C")
+                cached.setflags(write=False)
+            self.__dict__["_centred"] = cached
+        return cached
 
     def _checked(self, out: np.ndarray, t: ParamLike, what: str) -> np.ndarray:
         if not np.isfinite(out).all():  # w(t) = 0 can only happen outside [0, 1]
@@ -360,7 +394,7 @@ class RationalBezierCurve:
 
     # ------------------------------------------------------------------ geometry
     def arc_length(self, t0: Fraction | float = 0, t1: Fraction | float = 1) -> float:
-        """∫ |C'(t)| dt from t0 to t1 (0 <= t0 <= t1 <= 1), to a relative accuracy of 1e-12."""
+        """∫ ‖C'(t)‖ dt from t0 to t1 (0 <= t0 <= t1 <= 1), to a relative accuracy of 1e-12."""
         from . import _rational_geometry as rg
 
         return rg.arc_length(self, t0, t1)
@@ -380,7 +414,7 @@ class RationalBezierCurve:
 
     def closest_point(self, q: npt.ArrayLike) -> ClosestPoint:
         """The global nearest point to q, (d,) or a batch (m, d): `t`, `point`,
-        `distance`; certified by the Bernstein form of |A − q w|² − D² w² (see
+        `distance`; certified by the Bernstein form of ‖A − q w‖² − D² w² (see
         _rational_geometry)."""
         from . import _rational_geometry as rg
 

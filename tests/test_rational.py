@@ -442,3 +442,84 @@ def test_bezier_api_is_covered():
     implemented, or raising NotImplementedError with the reason, tested above)."""
     public = {n for n in dir(lb.BezierCurve) if not n.startswith("_")}
     assert public - set(dir(RationalBezierCurve)) == set()
+
+
+# ---------------------------------------------------------------------- extremes
+def test_huge_and_tiny_coordinates():
+    for size in (1e300, 1e-300):
+        curve = RationalBezierCurve([(size, 0), (size, size), (0, size)], [1, 1, 2])
+        assert curve.arc_length() == pytest.approx(size * math.pi / 2, rel=1e-13)
+        assert curve.parameter_at_length(curve.arc_length() / 2) == pytest.approx(
+            math.sqrt(2) - 1, abs=1e-12
+        )
+        lo, hi = curve.bounding_box()
+        np.testing.assert_allclose(hi, [size, size], rtol=1e-15)
+        r = curve.closest_point([2 * size, 2 * size])
+        assert r.distance == pytest.approx((2 * math.sqrt(2) - 1) * size, rel=1e-13)
+        assert float(curve.curvature(0.5)) == pytest.approx(1 / size, rel=1e-13)
+
+
+def test_weights_of_very_different_size():
+    """Weights 1e-200, 1, 1e200 crowd the whole curve into t < 1e-100: geometry goes through
+    the standard form (a Möbius map), where it is the parabola with equal weights."""
+    wide = RationalBezierCurve([(0, 0), (1, 1), (2, 0)], [1e-200, 1, 1e200])
+    parabola = lb.BezierCurve([(0, 0), (1, 1), (2, 0)])
+    assert wide.arc_length() == pytest.approx(parabola.arc_length(), rel=1e-12)
+    np.testing.assert_allclose(wide.evaluate([0, 1]), [[0, 0], [2, 0]], atol=1e-300)
+    lo, hi = wide.bounding_box()
+    np.testing.assert_allclose(hi, parabola.bounding_box()[1], rtol=1e-14)
+    assert wide.closest_point([1, 2]).distance == pytest.approx(1.5, rel=1e-12)
+    s = wide.parameter_at_length(wide.arc_length() / 2)  # the top, in wide's own t
+    np.testing.assert_allclose(wide.evaluate(s), [1, 0.5], atol=1e-9)
+
+
+def test_a_sharp_corner_against_scipy():
+    from scipy.integrate import quad
+
+    corner = RationalBezierCurve([(0, 0), (1, 1), (2, 0)], [1, 1e6, 1])
+    want, err = quad(
+        lambda t: np.linalg.norm(corner.derivative(t, 1)),
+        0,
+        1,
+        points=[1e-6, 1e-5, 0.5, 1 - 1e-5, 1 - 1e-6],
+        limit=1000,
+        epsabs=0,
+        epsrel=1e-13,
+    )
+    assert corner.arc_length() == pytest.approx(want, rel=1e-11)
+
+
+def test_a_point_curve():
+    point = RationalBezierCurve([(1, 2)], [3])
+    (hit,) = point.intersect(lb.BezierCurve([(0, 0), (2, 4)]))
+    assert hit.t == pytest.approx(0.5, abs=1e-12)
+    assert point.intersect(lb.BezierCurve([(0, 0), (2, 5)])) == []
+    assert point.arc_length() == 0 and point.self_intersections() == []
+    assert point.closest_point([1, 3]).distance == pytest.approx(1)
+    with pytest.raises(ValueError, match="overflow|float range"):
+        RationalBezierCurve([(0, 0), (1, 1), (2, 0)], [1, 2, 1]).reparameterize(1e200)
+
+
+@given(st.data())
+def test_fuzz_constructor_refuses_cleanly(data):
+    junk = st.one_of(
+        st.none(),
+        st.text(max_size=3),
+        st.booleans(),
+        st.floats(),
+        st.integers(-(10**400), 10**400),
+        st.complex_numbers(),
+        st.lists(st.floats(), max_size=4),
+    )
+    points = data.draw(st.one_of(junk, st.lists(st.lists(junk, max_size=3), max_size=4)))
+    weights = data.draw(st.one_of(junk, st.lists(junk, max_size=4)))
+    try:
+        curve = RationalBezierCurve(points, weights)
+    except (ValueError, TypeError):
+        return
+    t = data.draw(st.one_of(junk, st.lists(st.floats(0, 1), max_size=3)))
+    try:
+        out = curve.evaluate(t)
+    except (ValueError, TypeError):
+        return
+    assert np.isfinite(out).all()

@@ -23,6 +23,7 @@ So the questions that reduce to roots reduce to roots of polynomials:
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from fractions import Fraction
 from typing import TYPE_CHECKING
 
@@ -51,6 +52,45 @@ def _float_rows(curve: RationalBezierCurve) -> np.ndarray:
     return out
 
 
+def _unit(curve: RationalBezierCurve) -> tuple[RationalBezierCurve, float, float]:
+    """(unit, f, ρ): the same curve in standard form (w_0 = w_n = 1, by the Möbius map of
+    `normalized`: unit(s) = curve(t) with t = ρ s / ((1 − s) + ρ s)) with its points
+    divided by f. The standard form spreads the parameter as evenly as such a map can (weights
+    of very different size crowd the whole curve into a tiny interval of t, which no
+    quadrature or root finder would see); f is a power of two bringing coordinates beyond
+    2^±400 near 1, so that |C'|² neither overflows nor underflows (1.0 otherwise). Lengths,
+    boxes and distances do not depend on the parameterisation; they scale by f."""
+    cached: tuple[RationalBezierCurve, float, float] | None = curve.__dict__.get("_unit")
+    if cached is None:
+        unit, rho = curve.normalized() if curve.degree else (curve, 1)
+        big = float(np.abs(curve.points).max())
+        factor = 1.0
+        if big != 0.0 and not 2.0**-400 <= big <= 2.0**400:
+            factor = math.ldexp(1.0, math.frexp(big)[1])
+            rows = unit.control_points()
+            points = (
+                [[v / Fraction(factor) for v in row] for row in rows]
+                if unit.is_exact
+                else unit.points / factor
+            )
+            unit = type(curve)(points, unit.control_weights())
+        cached = (unit, factor, float(rho))
+        curve.__dict__["_unit"] = cached
+    return cached
+
+
+def _to_unit(rho: float, t: np.ndarray | float) -> np.ndarray:
+    """The unit curve's parameter s at the curve's t (the inverse Möbius map)."""
+    out: np.ndarray = np.clip(rk.mobius(1 / rho, np.asarray(t, dtype=float)), 0.0, 1.0)
+    return out
+
+
+def _from_unit(rho: float, s: np.ndarray) -> np.ndarray:
+    """The curve's t at the unit curve's parameter s."""
+    out: np.ndarray = np.clip(rk.mobius(rho, s), 0.0, 1.0)
+    return out
+
+
 def _exact_or_float_rows(curve: RationalBezierCurve) -> np.ndarray:
     if curve.is_exact:
         return np.array(curve.to_homogeneous().control_points(), dtype=object)
@@ -72,6 +112,15 @@ def _parameter(value: object, name: str) -> float:
 
 
 # ---------------------------------------------------------------------- arc length
+def _table(
+    f: Callable[[np.ndarray], np.ndarray], kinks: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    try:
+        return rk.adaptive_table(f, RTOL / 4, kinks)
+    except ArithmeticError as exc:
+        raise ValueError(f"arc length to 1e-12 failed: {exc}") from None
+
+
 def _speed(curve: RationalBezierCurve):  # type: ignore[no-untyped-def]
     def speed(t: np.ndarray) -> np.ndarray:
         out: np.ndarray = np.linalg.norm(curve.derivative(np.clip(t, 0.0, 1.0), 1), axis=-1)
@@ -97,6 +146,10 @@ def arc_length(curve: RationalBezierCurve, t0: Fraction | float, t1: Fraction | 
         return 0.0
     if a == 0.0 and b == 1.0:
         return float(_length_table(curve)[1][-1])
+    curve, factor, rho = _unit(curve)
+    a, b = float(_to_unit(rho, a)), float(_to_unit(rho, b))
+    if a >= b:
+        return 0.0
     speed = _speed(curve)
     kinks = (_kinks(curve) - a) / (b - a)
 
@@ -104,13 +157,16 @@ def arc_length(curve: RationalBezierCurve, t0: Fraction | float, t1: Fraction | 
         out: np.ndarray = speed(a + (b - a) * u) * (b - a)
         return out
 
-    return float(rk.adaptive_table(scaled, RTOL / 4, kinks)[1][-1])
+    return factor * float(_table(scaled, kinks)[1][-1])
 
 
 def _length_table(curve: RationalBezierCurve) -> tuple[np.ndarray, np.ndarray]:
+    """The accepted partition of [0, 1] and cumulative lengths (cached on the curve)."""
     cached: tuple[np.ndarray, np.ndarray] | None = curve.__dict__.get("_length_table")
     if cached is None:
-        cached = rk.adaptive_table(_speed(curve), RTOL / 4, _kinks(curve))
+        unit, factor, _ = _unit(curve)  # the table is in the unit curve's parameter
+        edges, cum = _table(_speed(unit), _kinks(unit))
+        cached = (edges, cum * factor)
         curve.__dict__["_length_table"] = cached
     return cached
 
@@ -132,7 +188,8 @@ def parameter_at_length(curve: RationalBezierCurve, s: npt.ArrayLike) -> np.ndar
         bad = arr[(arr < -slack) | (arr > total + slack)][0]
         raise ValueError(f"s = {bad} is outside [0, {total!r}] (the total arc length)")
     arr = np.clip(arr, 0.0, total)
-    speed = _speed(curve)
+    unit, factor, rho = _unit(curve)
+    speed = _speed(unit)
     k = np.clip(np.searchsorted(cum, arr, side="right") - 1, 0, edges.size - 2)
     base, lo, hi, start = cum[k], edges[k].copy(), edges[k + 1].copy(), edges[k]
     span = cum[k + 1] - base
@@ -141,32 +198,33 @@ def parameter_at_length(curve: RationalBezierCurve, s: npt.ArrayLike) -> np.ndar
     t = lo + np.clip(frac, 0, 1) * (hi - lo)
     goal = RTOL * total / 16
     for _ in range(100):  # safeguarded Newton inside the accepted piece holding s
-        f = base + rk.gauss_pieces(speed, start, t) - arr
+        f = base + factor * rk.gauss_pieces(speed, start, t) - arr
         done = np.abs(f) <= goal
         if done.all():
             break
         lo = np.where(f < 0, t, lo)
         hi = np.where(f > 0, t, hi)
         with np.errstate(divide="ignore", invalid="ignore"):
-            step = t - f / speed(t)
+            step = t - f / (factor * speed(t))
         inside = np.isfinite(step) & (step > lo) & (step < hi)
         nxt = np.where(done, t, np.where(inside, step, (lo + hi) / 2))
         if np.array_equal(nxt, t):
             break
         t = nxt
+    t = _from_unit(rho, t)
     return float(t[0]) if scalar else t
 
 
 # ---------------------------------------------------------------------- bounding box
 def bounding_box(curve: RationalBezierCurve) -> tuple[np.ndarray, np.ndarray]:
-    rows = _exact_or_float_rows(curve)
     ends = curve.points[[0, -1]]
     if curve.degree == 0:
         return ends.min(axis=0), ends.max(axis=0)
-    num = rk.derivative_numerator(rows)
-    t = np.concatenate([np.empty(0), *(_roots(num[:, c]) for c in range(curve.dimension))])
-    t = t[(t > 1e-12) & (t < 1 - 1e-12)]
-    values = np.vstack([ends, curve.evaluate(t)]) if t.size else ends
+    unit, factor, _ = _unit(curve)
+    num = rk.derivative_numerator(_exact_or_float_rows(unit))
+    s = np.concatenate([np.empty(0), *(_roots(num[:, c]) for c in range(curve.dimension))])
+    s = s[(s > 1e-12) & (s < 1 - 1e-12)]
+    values = np.vstack([ends, unit.evaluate(s) * factor]) if s.size else ends
     return values.min(axis=0), values.max(axis=0)
 
 
@@ -185,6 +243,8 @@ def _queries(q: npt.ArrayLike, dimension: int) -> tuple[np.ndarray, bool]:
 
 def closest_point(curve: RationalBezierCurve, q: npt.ArrayLike) -> ClosestPoint:
     queries, single = _queries(q, curve.dimension)
+    curve, factor, rho = _unit(curve)
+    queries = queries / factor
     rows = _float_rows(curve)
     a, w = rows[:, :-1], rows[:, -1:]
     m = queries.shape[0]
@@ -211,8 +271,9 @@ def closest_point(curve: RationalBezierCurve, q: npt.ArrayLike) -> ClosestPoint:
                 again = True
         if again:
             best_t, best_d2 = _best(curve, queries, cands, per_query)
-    points = curve.evaluate(best_t)
-    dist = np.sqrt(best_d2)
+    points = curve.evaluate(best_t) * factor
+    dist = np.sqrt(best_d2) * factor
+    best_t = _from_unit(rho, best_t)
     if single:
         return ClosestPoint(float(best_t[0]), points[0], float(dist[0]))
     return ClosestPoint(best_t, points, dist)

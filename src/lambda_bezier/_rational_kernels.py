@@ -74,12 +74,25 @@ def curvature_from_derivatives(d1: np.ndarray, d2: np.ndarray) -> np.ndarray:
 
 # ---------------------------------------------------------------------- Bernstein algebra
 def de_casteljau(rows: np.ndarray, t: np.ndarray) -> np.ndarray:
-    """Σ rows_i B_i(t) at every t: rows (n+1, …) -> (len(t), …) (floats)."""
+    """Σ rows_i B_i(t) at every t: rows (n+1, …) -> (len(t), …) (floats). In the form
+    (1 − t) a + t b, whose rounding is relative to the positive combination at both ends
+    (a + t (b − a) is not near t = 1 when |a| >> |b|): w(t) keeps its relative accuracy."""
     tt = t.reshape(-1, *([1] * rows.ndim))
+    ss = 1 - tt
     work = np.broadcast_to(rows, (t.size, *rows.shape))
     for _ in range(rows.shape[0] - 1):
-        work = work[:, :-1] + tt * (work[:, 1:] - work[:, :-1])
+        work = ss * work[:, :-1] + tt * work[:, 1:]
     out: np.ndarray = work[:, 0]
+    return out
+
+
+def homogeneous_derivatives(rows: np.ndarray, t: np.ndarray, order: int) -> list[np.ndarray]:
+    """H, H', …, H^(order) at every t, (len(t), d+1) each, by de Casteljau on the
+    hodographs (floats)."""
+    out = []
+    for _ in range(order + 1):
+        out.append(de_casteljau(rows, t))
+        rows = hodograph(rows)
     return out
 
 
@@ -273,6 +286,7 @@ def mobius(rho: float, s: np.ndarray) -> np.ndarray:
 
 # ---------------------------------------------------------------------- quadrature
 _GAUSS = 16  # points of the Gauss–Legendre rule on each piece
+_MAX_PIECES = 20000  # pieces of one level beyond which adaptive_table gives up
 
 
 @cache
@@ -296,9 +310,9 @@ def adaptive_table(
     f: Callable[[np.ndarray], np.ndarray], rtol: float, breaks: npt.ArrayLike = ()
 ) -> tuple[np.ndarray, np.ndarray]:
     """∫_0^1 f for a smooth non-negative f, adaptively: each piece's Gauss value is compared
-    with the sum over its halves, and a piece is accepted (with the halves' sum, far more
-    accurate than the difference that tested it) when the difference is within its share,
-    by width, of rtol · total. `breaks` are points where pieces must end (kinks of f).
+    with the sum over its halves, and pieces are accepted (with the halves' sum, far more
+    accurate than the difference that tested it) while their differences fit in the error
+    budget rtol · total (see below). `breaks` are points where pieces must end (kinks of f).
     Returns the accepted partition's edges (K+1,) and cumulative integrals (K+1,)."""
     edges = np.unique(np.concatenate([np.linspace(0.0, 1.0, 17), np.asarray(breaks, float)]))
     edges = edges[(edges >= 0) & (edges <= 1)]
@@ -310,15 +324,32 @@ def adaptive_table(
     accepted_hi: list[np.ndarray] = []
     accepted_val: list[np.ndarray] = []
     whole = gauss_pieces(f, lo, hi)
+    peak = 0.0  # the largest mean of f over a piece so far: f's size
+    spent = 0.0  # the error estimates of the accepted pieces
     for _ in range(60):
         mid = (lo + hi) / 2
         left, right = gauss_pieces(f, lo, mid), gauss_pieces(f, mid, hi)
         halves = left + right
         total = sum(float(v.sum()) for v in accepted_val) + float(halves.sum())
         err = np.abs(halves - whole)
-        ok = err <= rtol * max(total, 1e-300) * (hi - lo) / 4
+        # the error budget left, rtol · total less what accepted pieces spent: all pieces
+        # are accepted when their errors fit in it; otherwise those with the smallest
+        # errors, up to half of it, and the rest are halved
+        budget = rtol * max(total, 1e-300) - spent
+        if float(err.sum()) <= budget:
+            ok = np.ones(err.size, dtype=bool)
+        else:
+            order = np.argsort(err)
+            ok = np.zeros(err.size, dtype=bool)
+            ok[order[np.cumsum(err[order]) <= budget / 2]] = True
+        # or within the rounding of the values themselves: f is computed with an absolute
+        # error of a few ulps of its largest size (a quotient-rule derivative cancels where
+        # the speed is small against it), which no refinement removes
+        peak = max(peak, float((np.abs(halves) / (hi - lo)).max()))
+        ok |= err <= 1e3 * np.finfo(float).eps * peak * (hi - lo)
         # pieces too narrow to refine in floats are accepted as they stand
         ok |= (hi - lo) < 1e-14
+        spent += float(err[ok].sum())
         for side_lo, side_hi, val in ((lo, mid, left), (mid, hi, right)):
             accepted_lo.append(side_lo[ok])
             accepted_hi.append(side_hi[ok])
@@ -326,6 +357,11 @@ def adaptive_table(
         if ok.all():
             break
         bad = ~ok
+        if 2 * int(bad.sum()) > _MAX_PIECES:
+            raise ArithmeticError(
+                f"the adaptive quadrature needs more than {_MAX_PIECES} pieces (f spikes "
+                "sharply, e.g. weights of very different size)"
+            )
         lo = np.concatenate([lo[bad], mid[bad]])
         hi = np.concatenate([mid[bad], hi[bad]])
         whole = np.concatenate([left[bad], right[bad]])
@@ -392,31 +428,38 @@ def overlap_starts(
     than `max_pairs` pairs means the curves share a stretch: ValueError."""
     pa, pb = ha[None], hb[None]
     lo = np.zeros((1, 2))
-    width = 1.0
     slack = 1e-9 * size
-    for _ in range(40):
+    wa = wb = 1.0  # the pieces' parameter widths on each curve
+    for _ in range(80):
         alo, ahi = _boxes(pa)
         blo, bhi = _boxes(pb)
         keep = np.all((alo <= bhi + slack) & (blo <= ahi + slack), axis=1)
         pa, pb, lo = pa[keep], pb[keep], lo[keep]
         if not keep.any():
             return np.empty((0, 2))
-        big = max(float((ahi - alo)[keep].max()), float((bhi - blo)[keep].max()))
-        if big <= stop * size:
+        # a side whose boxes are small already (or a point) is not cut further
+        cut_a = float((ahi - alo)[keep].max()) > stop * size and wa > 2.0**-40
+        cut_b = float((bhi - blo)[keep].max()) > stop * size and wb > 2.0**-40
+        if not (cut_a or cut_b):
             break
-        if pa.shape[0] * 4 > max_pairs:
+        if pa.shape[0] * (1 + cut_a) * (1 + cut_b) > max_pairs:
             raise ValueError(
                 "the curves appear to share a stretch (coincident pieces): rational curves "
                 "report isolated intersections only"
             )
-        a0, a1 = split_halves(pa)
-        b0, b1 = split_halves(pb)
-        width /= 2
-        pa = np.concatenate([a0, a0, a1, a1])
-        pb = np.concatenate([b0, b1, b0, b1])
-        shift = np.array([[0, 0], [0, width], [width, 0], [width, width]])
-        lo = np.concatenate([lo + s for s in shift])
-    starts: np.ndarray = lo + width / 2
+        if cut_a:
+            a0, a1 = split_halves(pa)
+            wa /= 2
+            pb = np.concatenate([pb, pb])
+            pa = np.concatenate([a0, a1])
+            lo = np.concatenate([lo, lo + [wa, 0.0]])
+        if cut_b:
+            b0, b1 = split_halves(pb)
+            wb /= 2
+            pa = np.concatenate([pa, pa])
+            pb = np.concatenate([b0, b1])
+            lo = np.concatenate([lo, lo + [0.0, wb]])
+    starts: np.ndarray = lo + [wa / 2, wb / 2]
     return starts
 
 

@@ -52,6 +52,7 @@ if TYPE_CHECKING:
     from ._intersect import Intersection
     from .geometry import ClosestPoint
 
+WIDE_WEIGHTS = 2.0**10  # a larger ratio of the weights is evaluated by de Casteljau
 RTOL = 1e-12  # the relative accuracy arc_length and parameter_at_length aim for
 ON_CURVE = 1e-10  # relative distance below which locate counts a point as on the curve
 SAME_ROOT = 1e-7  # intersection parameters closer than this are one intersection
@@ -214,10 +215,21 @@ class RationalBezierCurve:
             np.divide(h[:-1], h[-1], out=h[:-1])  # in place: no new (d, len(t)) array
             out: np.ndarray = h[:-1].T
             return out[0] if scalar else out
-        h = self._homogeneous.evaluate(t, extrapolate=extrapolate)
+        if self._wide_weights and not extrapolate:  # de Casteljau: w(t) to full accuracy
+            h = self._homogeneous.de_casteljau(t)
+        else:
+            h = self._homogeneous.evaluate(t, extrapolate=extrapolate)
         with val.overflow_allowed(), np.errstate(divide="ignore"):
             projected = rk.project(h)
         return self._checked(projected, t, "C(t)")
+
+    @property
+    def _wide_weights(self) -> bool:
+        """Whether the weights span more than WIDE_WEIGHTS: the monomial (Horner) form of w(t)
+        then cancels badly near an end (a term of size max w gives a value of size min w),
+        and evaluation goes by de Casteljau, whose positive combinations keep w(t)'s
+        relative accuracy."""
+        return float(self.weights.max()) > WIDE_WEIGHTS * float(self.weights.min())
 
     def _centred_coefficients(self) -> np.ndarray | None:
         """(d+1, n+1): the homogeneous form's Taylor coefficients about t = 1/2 (computed in
@@ -228,8 +240,8 @@ class RationalBezierCurve:
         cached: np.ndarray | None = self.__dict__.get("_centred")
         if cached is None and "_centred" not in self.__dict__:
             rows = self._homogeneous.points
-            big, small = float(np.abs(rows).max()), float(self.weights.min())
-            if self.degree <= 14 and big / small < 2.0**900:
+            big = float(np.abs(rows).max())
+            if self.degree <= 14 and not self._wide_weights:
                 scale = 2.0 ** -np.frexp(big)[1]
                 exact = np.array(
                     [[Fraction(float(v) * scale) for v in row] for row in rows], dtype=object
@@ -259,10 +271,13 @@ class RationalBezierCurve:
             return self._polynomial.derivative(t, order, extrapolate=extrapolate)
         tt, scalar = val.as_parameters(t, extrapolate=extrapolate)
         with val.overflow_allowed(), np.errstate(divide="ignore"):
-            h = [
-                self._homogeneous.derivative(tt, j, extrapolate=extrapolate)
-                for j in range(order + 1)
-            ]
+            if self._wide_weights and not extrapolate:
+                h = rk.homogeneous_derivatives(self._homogeneous.points, tt, order)
+            else:
+                h = [
+                    self._homogeneous.derivative(tt, j, extrapolate=extrapolate)
+                    for j in range(order + 1)
+                ]
             out = rk.quotient_derivatives(h)[order]
         out = self._checked(out, t, "the derivative" if order else "C(t)")
         return out[0] if scalar else out
@@ -347,31 +362,41 @@ class RationalBezierCurve:
         if self.is_exact and isinstance(value, Fraction):
             weights = rk.reweight(np.array(self.control_weights(), dtype=object), value)
             return RationalBezierCurve(self.control_points(), tuple(weights.tolist()))
-        return RationalBezierCurve(self.points, rk.reweight(self.weights, float(value)))
+        with np.errstate(over="ignore"):
+            try:
+                weights = rk.reweight(self.weights, float(value))
+            except OverflowError:
+                weights = np.array([np.inf])
+        if not np.isfinite(weights).all() or not (weights > 0).all():
+            raise ValueError(
+                f"rho = {rho}: the weights w_i rho^i leave the float range for degree {self.degree}"
+            )
+        return RationalBezierCurve(self.points, weights)
 
     def normalized(self) -> tuple[RationalBezierCurve, Fraction | float]:
         """(curve, ρ): the same curve in standard form, w_0 = w_n = 1, and the ρ of the
         reparameterisation that gives it (its s maps to this curve's t = ρ s / ((1 − s) +
         ρ s)). Exact when the curve is exact and (w_0 / w_n)^(1/n) is rational."""
         n = self.degree
-        weights = self.control_weights()
-        scaled = [w / weights[0] for w in weights]
-        ratio = scaled[0] / scaled[-1]
-        rho: Fraction | float
         if n == 0:
-            rho = Fraction(1) if self.is_exact else 1.0
-        elif isinstance(ratio, Fraction):
+            one = Fraction(1) if self.is_exact else 1.0
+            return RationalBezierCurve(self.control_points(), [one]), one
+        exact = self._exact_weights
+        if exact is not None:
+            ratio = exact[0] / exact[-1]
             num, den = _integer_root(ratio.numerator, n), _integer_root(ratio.denominator, n)
-            rho = Fraction(num, den) if num and den else float(ratio) ** (1 / n)
-        else:
-            rho = float(ratio) ** (1 / n)
-        unit = RationalBezierCurve(self.control_points(), scaled)
-        out = unit.reparameterize(rho)
-        if n and not isinstance(rho, Fraction):  # w_n is 1 up to rounding: make it 1
-            pinned = [float(w) for w in out.control_weights()]
-            pinned[-1] = 1.0
-            out = RationalBezierCurve(out.points, pinned)
-        return out, rho
+            if num and den:
+                rho = Fraction(num, den)
+                scaled = tuple(w / exact[0] * rho**i for i, w in enumerate(exact))
+                return RationalBezierCurve(self.control_points(), scaled), rho
+        # in logarithms: w_i ρ^i / w_0 stays in range where ρ^i or w_i / w_0 alone would not
+        logs = np.log(self.weights)
+        log_rho = (logs[0] - logs[-1]) / n
+        scaled_floats = np.exp(logs - logs[0] + log_rho * np.arange(n + 1))
+        scaled_floats[0] = scaled_floats[-1] = 1.0  # 1 up to rounding: make them 1
+        if not np.isfinite(scaled_floats).all() or not (scaled_floats > 0).all():
+            raise ValueError("normalized: the standard-form weights leave the float range")
+        return RationalBezierCurve(self.points, scaled_floats), float(np.exp(log_rho))
 
     def hodograph(self) -> RationalBezierCurve:
         """C'(t) as a rational Bézier curve of degree 2n: C' = (A' w − A w') / w², whose

@@ -52,18 +52,24 @@ def _float_rows(curve: RationalBezierCurve) -> np.ndarray:
     return out
 
 
-def _unit(curve: RationalBezierCurve) -> tuple[RationalBezierCurve, float, float]:
+def _unit(
+    curve: RationalBezierCurve, big: float | None = None
+) -> tuple[RationalBezierCurve, float, float]:
     """(unit, f, ρ): the same curve in standard form (w_0 = w_n = 1, by the Möbius map of
     `normalized`: unit(s) = curve(t) with t = ρ s / ((1 − s) + ρ s)) with its points
     divided by f. The standard form spreads the parameter as evenly as such a map can (weights
     of very different size crowd the whole curve into a tiny interval of t, which no
     quadrature or root finder would see); f is a power of two bringing coordinates beyond
     2^±400 near 1, so that |C'|² neither overflows nor underflows (1.0 otherwise). Lengths,
-    boxes and distances do not depend on the parameterisation; they scale by f."""
-    cached: tuple[RationalBezierCurve, float, float] | None = curve.__dict__.get("_unit")
+    boxes and distances do not depend on the parameterisation; they scale by f. `big`: the
+    magnitude f is chosen for, when other coordinates than the curve's matter (queries)."""
+    cached: tuple[RationalBezierCurve, float, float] | None = (
+        curve.__dict__.get("_unit") if big is None else None
+    )
     if cached is None:
         unit, rho = curve.normalized() if curve.degree else (curve, 1)
-        big = float(np.abs(curve.points).max())
+        own = big is None
+        big = float(np.abs(curve.points).max()) if big is None else big
         factor = 1.0
         if big != 0.0 and not 2.0**-400 <= big <= 2.0**400:
             factor = math.ldexp(1.0, math.frexp(big)[1])
@@ -75,7 +81,8 @@ def _unit(curve: RationalBezierCurve) -> tuple[RationalBezierCurve, float, float
             )
             unit = type(curve)(points, unit.control_weights())
         cached = (unit, factor, float(rho))
-        curve.__dict__["_unit"] = cached
+        if own:
+            curve.__dict__["_unit"] = cached
     return cached
 
 
@@ -243,7 +250,8 @@ def _queries(q: npt.ArrayLike, dimension: int) -> tuple[np.ndarray, bool]:
 
 def closest_point(curve: RationalBezierCurve, q: npt.ArrayLike) -> ClosestPoint:
     queries, single = _queries(q, curve.dimension)
-    curve, factor, rho = _unit(curve)
+    big = max(float(np.abs(curve.points).max()), float(np.abs(queries).max()))
+    curve, factor, rho = _unit(curve, big)
     queries = queries / factor
     rows = _float_rows(curve)
     a, w = rows[:, :-1], rows[:, -1:]

@@ -226,7 +226,7 @@ def roots_in_unit(centred: np.ndarray) -> np.ndarray:
     polished by Newton steps on the full polynomial."""
     c = np.asarray(centred, dtype=float)
     size = np.abs(c) * 0.5 ** np.arange(c.size)
-    if size.max(initial=0.0) == 0.0:
+    if not np.isfinite(size).all() or size.max(initial=0.0) == 0.0:
         return np.empty(0)
     keep = np.nonzero(size > 1e-13 * size.max())[0][-1]
     trimmed = c[: keep + 1]

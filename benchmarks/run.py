@@ -115,6 +115,23 @@ def bench_evaluation(size: int) -> None:
             record(name, ours, "bound: 2N in-place passes", floor, "<= 1.5x", ours / floor <= 1.5)
 
 
+def bench_rational_evaluation(size: int) -> None:
+    """RationalBezierCurve.evaluate (the homogeneous form's Horner passes, one more
+    coordinate, and a division) against our polynomial BezierCurve of the same degree."""
+    import lambda_bezier as lb
+
+    t = np.random.default_rng(0).random(size)
+    for n in (2, 3, 5, 8):
+        pts = np.random.default_rng(n).normal(size=(n + 1, 2))
+        weights = np.random.default_rng(n + 100).uniform(0.5, 2.0, n + 1)
+        rational = lb.RationalBezierCurve(pts, weights)
+        polynomial = lb.BezierCurve(pts)
+        ours = best_of(lambda rational=rational: rational.evaluate(t))
+        ref = best_of(lambda polynomial=polynomial: polynomial.evaluate(t))
+        name = f"evaluate rational_bezier n={n}, {size:,} t"
+        record(name, ours, f"BezierCurve.evaluate n={n}", ref, "<= 2x", ours / ref <= 2)
+
+
 def bench_batch_evaluation(m: int) -> None:
     import bezier
 
@@ -484,6 +501,7 @@ def main() -> None:
     parser.add_argument("--json", type=Path, help="also write the rows as JSON here")
     groups = (
         "evaluation",
+        "rational",
         "batch",
         "lambda",
         "geometry",
@@ -508,6 +526,7 @@ def main() -> None:
     size, m_batch, m_lambda = (10**5, 10**4, 10**4) if args.quick else (10**6, 10**5, 10**5)
     runs = {
         "evaluation": lambda: bench_evaluation(size),
+        "rational": lambda: bench_rational_evaluation(size),
         "batch": lambda: bench_batch_evaluation(m_batch),
         "lambda": lambda: bench_optimal_lambda(m_lambda),
         "geometry": lambda: bench_arc_length(20 if args.quick else 100),

@@ -38,6 +38,7 @@ def test_the_guide_has_examples():
         "guide/joins.md",
         "guide/verify.md",
         "guide/surfaces.md",
+        "guide/rational.md",
     } <= with_examples
 
 

@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 import importlib
-import types
 import os
 import subprocess
 import sys
+import types
 from fractions import Fraction
 from pathlib import Path
 
@@ -282,8 +282,8 @@ def test_degree_zero_curve_has_zero_length_and_evaluates_in_batches():
 
 
 def test_centred_expansion_equals_the_generated_tables():
-    from lambda_bezier.hazmat import forms
     from lambda_bezier._lazy import generated
+    from lambda_bezier.hazmat import forms
 
     tables = generated("bernstein")
     for degree in tables.DEGREES:

@@ -30,6 +30,7 @@ if TYPE_CHECKING:
     from .intersection import intersect_many
     from .joins import Joint, join
     from .properties import IsolatedRoot, singular_parameters
+    from .rational import RationalBezierCurve
     from .surface_energies import OptimalParameters, surface_energy, surface_energy_matrices
     from .surface_joins import CompositeSurface, join_surface
     from .surface_optimum import optimal_parameters
@@ -70,6 +71,7 @@ _EXPORTS = {
     "BezierSurface": "surfaces",
     "SameDegreeSurface": "builtin_surfaces",
     "Surface": "surfaces",
+    "RationalBezierCurve": "rational",
 }
 __all__ = [
     "FAMILIES",
@@ -86,6 +88,7 @@ __all__ = [
     "JointReport",
     "OptimalLambda",
     "OptimalParameters",
+    "RationalBezierCurve",
     "SameDegreeCurve",
     "SameDegreeSurface",
     "Surface",

@@ -9,6 +9,11 @@ reproduces every piece (p + 1 values per piece: exact equality for exact input) 
 back to full multiplicity, which is always exact, if not. G1/G2 joints with α ≠ 1 are not C1
 in u, so their knots stay at multiplicity p.
 
+A RationalBezierCurve (lambda_bezier.rational) is one rational B-spline (a NURBS with a
+single Bézier span, its weights kept): STEP, DXF and JSON hold it exactly (STEP and DXF in
+floats); SVG paths have no rational segments, so it becomes polynomial cubics within a given
+tolerance (a certified bound, see hazmat.rational_kernels.cubics) unless its weights are all equal.
+
 STEP (through OCCT's Python binding, OCP) and DXF (through ezdxf) need the optional extra
 `cad`: pip install "lambda-bezier[cad]". They store the B-spline in floats (the exact
 Fractions rounded once).
@@ -20,6 +25,9 @@ string "p/q" or "n", a float is a JSON number (shortest repr, so it round-trips 
      "family": "same_degree" | "bernstein_like" | "bezier",
      "lambda": "1/2" | 0.5 | null,                 (null for "bezier")
      "points": [["0", "0"], ["1", "2"], ...]}      (2 or 3 coordinates each)
+
+    {"lambda_bezier": 1, "kind": "curve", "family": "rational_bezier", "lambda": null,
+     "points": [...], "weights": ["1", "1/2", ...]}   (one positive weight per point)
 
     {"lambda_bezier": 1, "kind": "composite",
      "segments": [{"family": ..., "lambda": ..., "points": ...}, ...],
@@ -51,8 +59,9 @@ if TYPE_CHECKING:
 
     from .composite import CompositeCurve
     from .curves import Curve
+    from .rational import RationalBezierCurve
 
-    Shape = Curve | CompositeCurve  # what the exporters take
+    Shape = Curve | CompositeCurve | RationalBezierCurve  # what the exporters take
 
 FORMAT_VERSION = 1
 CAD_HINT = 'pip install "lambda-bezier[cad]"'
@@ -71,6 +80,13 @@ def _optional(module: str, package: str, feature: str) -> ModuleType:
         raise ImportError(f"{feature} needs the optional package {package}: {CAD_HINT}") from None
 
 
+def _rational(obj: object) -> RationalBezierCurve | None:
+    """obj when it is a rational Bézier curve (exported as one rational span)."""
+    from .rational import RationalBezierCurve
+
+    return obj if isinstance(obj, RationalBezierCurve) else None
+
+
 def _segments(obj: object) -> tuple[Curve, ...]:
     from .composite import CompositeCurve
     from .curves import Curve
@@ -79,7 +95,10 @@ def _segments(obj: object) -> tuple[Curve, ...]:
         return obj.segments
     if isinstance(obj, Curve):
         return (obj,)
-    raise TypeError(f"expected a lambda_bezier curve or CompositeCurve, got {type(obj).__name__}")
+    raise TypeError(
+        "expected a lambda_bezier curve, RationalBezierCurve or CompositeCurve, got "
+        f"{type(obj).__name__}"
+    )
 
 
 # ---------------------------------------------------------------------- B-spline
@@ -87,12 +106,14 @@ def _segments(obj: object) -> tuple[Curve, ...]:
 class BSpline:
     """A clamped B-spline: `degree` p, the full knot vector `knots` (first and last values
     repeated p + 1 times) and `control_points` (len(knots) − p − 1 rows), in Fractions when
-    `exact`. Its parameter is the composite's u ∈ [0, N] (a curve: t ∈ [0, 1])."""
+    `exact`. Its parameter is the composite's u ∈ [0, N] (a curve: t ∈ [0, 1]). `weights`
+    (one per control point) make it a rational B-spline (NURBS); None: polynomial."""
 
     degree: int
     knots: tuple[Scalar, ...]
     control_points: Rows
     exact: bool
+    weights: tuple[Scalar, ...] | None = None
 
     @property
     def dimension(self) -> int:
@@ -117,6 +138,10 @@ class BSpline:
         span = _span(knots, p, len(self.control_points) - 1, u)
         basis = _basis(knots, p, span, u)
         rows = self.control_points[span - p : span + 1]
+        if self.weights is not None:  # Σ b_i w_i P_i / Σ b_i w_i
+            basis = [b * w for b, w in zip(basis, self.weights[span - p : span + 1], strict=True)]
+            total = sum(basis[1:], basis[0])
+            basis = [b / total for b in basis]
         return tuple(
             sum((b * row[c] for b, row in zip(basis, rows, strict=True)), 0 * basis[0])
             for c in range(self.dimension)
@@ -129,7 +154,8 @@ class BSpline:
         if arr.size and not (knots[0] <= arr.min() and arr.max() <= knots[-1]):
             raise ValueError(f"u must lie in [{knots[0]}, {knots[-1]}] (the knot range)")
         pts = [tuple(float(v) for v in row) for row in self.control_points]
-        flt = BSpline(self.degree, tuple(knots), tuple(pts), False)
+        weights = None if self.weights is None else tuple(float(w) for w in self.weights)
+        flt = BSpline(self.degree, tuple(knots), tuple(pts), False, weights)
         out = np.array([flt.point(float(x)) for x in arr])
         values: np.ndarray = out[0] if np.ndim(u) == 0 else out
         return values
@@ -289,7 +315,16 @@ def to_bspline(obj: Shape, *, tol: float = 1e-9) -> BSpline:
     the Bernstein pieces at a common degree p, the knot at each joint repeated p − k times
     where the joint is C^k in u (exactly, for exact input; within the relative tolerance
     `tol` otherwise). Exact (Fractions) when every segment is exact. A composite with a
-    gap at a joint raises ValueError."""
+    gap at a joint raises ValueError. A RationalBezierCurve is one rational span with its
+    weights."""
+    rational = _rational(obj)
+    if rational is not None:
+        n = rational.degree
+        exact = rational.is_exact
+        zero, one = (Fraction(0), Fraction(1)) if exact else (0.0, 1.0)
+        points = rational.control_points()
+        weights = rational.control_weights()
+        return BSpline(n, (zero,) * (n + 1) + (one,) * (n + 1), points, exact, weights)
     segs = _segments(obj)
     degree, rows, exact = _pieces(segs)
     size = max(1.0, max(abs(float(v)) for piece in rows for row in piece for v in row))
@@ -343,7 +378,13 @@ def to_step(obj: Shape, path: str | Path) -> Path:
     for i, (v, m) in enumerate(zip(values, mults, strict=True), start=1):
         knots.SetValue(i, float(v))
         multiplicities.SetValue(i, m)
-    curve = Geom_BSplineCurve(poles, knots, multiplicities, spline.degree)
+    if spline.weights is None:
+        curve = Geom_BSplineCurve(poles, knots, multiplicities, spline.degree)
+    else:  # a rational B-spline: OCCT writes it as a rational B_SPLINE_CURVE_WITH_KNOTS
+        weights = Array1_double(1, len(spline.weights))
+        for i, w in enumerate(spline.weights, start=1):
+            weights.SetValue(i, float(w))
+        curve = Geom_BSplineCurve(poles, weights, knots, multiplicities, spline.degree)
     edge = BRepBuilderAPI_MakeEdge(curve).Edge()
     writer = STEPControl_Writer()
     done = IFSelect_ReturnStatus.IFSelect_RetDone
@@ -370,9 +411,12 @@ def to_dxf(obj: Shape, path: str | Path) -> Path:
         )
     doc = ezdxf.new("R2010")
     points = [tuple(float(v) for v in row) for row in spline.control_points]
-    doc.modelspace().add_open_spline(
-        points, degree=spline.degree, knots=[float(k) for k in spline.knots]
-    )
+    knots = [float(k) for k in spline.knots]
+    if spline.weights is None:
+        doc.modelspace().add_open_spline(points, degree=spline.degree, knots=knots)
+    else:
+        weights = [float(w) for w in spline.weights]
+        doc.modelspace().add_rational_spline(points, weights, degree=spline.degree, knots=knots)
     target = Path(path)
     doc.saveas(target)
     return target
@@ -423,7 +467,16 @@ def to_svg(obj: Shape, *, tolerance: float | None = None, stroke_width: float | 
     coordinates (the group flips y so that y points up on screen). Pieces of degree <= 3 are
     exact (L, Q, C commands; coordinates as shortest float repr). Higher-degree pieces need
     `tolerance`: they become cubics within that distance of the curve at every parameter
-    (checked on the Bernstein form of the difference), else ValueError."""
+    (checked on the Bernstein form of the difference), else ValueError. A rational curve
+    whose weights differ always needs `tolerance` (SVG has no rational segments)."""
+    rational = _rational(obj)
+    if rational is not None:
+        if rational.dimension != 2:
+            raise ValueError(f"SVG paths are 2D; this curve is {rational.dimension}D")
+        if len(set(rational.control_weights())) == 1:
+            obj = rational.to_bezier()  # a polynomial curve after all: exact up to cubics
+        else:
+            return _rational_svg(rational, tolerance, stroke_width)
     segs = _segments(obj)
     if segs[0].dimension != 2:
         raise ValueError(f"SVG paths are 2D; this curve is {segs[0].dimension}D")
@@ -453,7 +506,13 @@ def to_svg(obj: Shape, *, tolerance: float | None = None, stroke_width: float | 
             coords = " ".join(f"{_num(x)} {_num(y)}" for x, y in piece[1:])
             commands.append(f"{letter} {coords}")
         previous = rows[-1]
-    lo, hi = _svg_box(obj)
+    return _svg_document(commands, _svg_box(obj), stroke_width)
+
+
+def _svg_document(
+    commands: list[str], box: tuple[np.ndarray, np.ndarray], stroke_width: float | None
+) -> str:
+    lo, hi = box
     span = max(hi[0] - lo[0], hi[1] - lo[1], 1e-12)
     pad = 0.02 * span
     width = stroke_width if stroke_width is not None else span / 200
@@ -469,10 +528,31 @@ def to_svg(obj: Shape, *, tolerance: float | None = None, stroke_width: float | 
     )
 
 
+def _rational_svg(
+    curve: RationalBezierCurve, tolerance: float | None, stroke_width: float | None
+) -> str:
+    from .hazmat import rational_kernels as rk
+
+    if tolerance is None:
+        raise ValueError(
+            "a rational curve (weights not all equal) has no exact SVG path: pass tolerance= "
+            "(a distance in the curve's units) to approximate it by cubics within it"
+        )
+    tolerance = float(tolerance)
+    if not math.isfinite(tolerance) or tolerance <= 0:
+        raise ValueError(f"tolerance must be a positive distance, got {tolerance}")
+    rows = np.array(curve.to_homogeneous().points, dtype=float)
+    pieces = rk.cubics(rows / rows[:, -1].max(), tolerance)
+    commands = [f"M {_num(pieces[0][0][0])} {_num(pieces[0][0][1])}"]
+    for piece in pieces:
+        commands.append("C " + " ".join(f"{_num(x)} {_num(y)}" for x, y in piece[1:]))
+    return _svg_document(commands, curve.bounding_box(), stroke_width)
+
+
 def _svg_box(obj: Shape) -> tuple[np.ndarray, np.ndarray]:
     from .geometry import bounding_box
 
-    return bounding_box(obj)
+    return bounding_box(obj)  # type: ignore[arg-type]
 
 
 # ---------------------------------------------------------------------- JSON
@@ -499,12 +579,16 @@ def _number_in(x: object, where: str) -> Fraction | float:
     return x
 
 
-def _curve_dict(curve: Curve) -> dict[str, Any]:  # JSON values
-    return {
+def _curve_dict(curve: Curve | RationalBezierCurve) -> dict[str, Any]:  # JSON values
+    out: dict[str, Any] = {
         "family": curve.family,
         "lambda": None if curve.lam is None else _number_out(curve.lam),
         "points": [[_number_out(v) for v in row] for row in curve.control_points()],
     }
+    rational = _rational(curve)
+    if rational is not None:
+        out["weights"] = [_number_out(w) for w in rational.control_weights()]
+    return out
 
 
 def to_json(obj: Shape, *, indent: int | None = 2) -> str:
@@ -512,7 +596,8 @@ def to_json(obj: Shape, *, indent: int | None = 2) -> str:
     strings, floats as JSON numbers; from_json reads it back exactly."""
     from .composite import CompositeCurve
 
-    _segments(obj)  # type check
+    if _rational(obj) is None:
+        _segments(obj)  # type check
     if isinstance(obj, CompositeCurve):
         joints = [
             None
@@ -535,14 +620,20 @@ def to_json(obj: Shape, *, indent: int | None = 2) -> str:
     return re.sub(r"\[\s+([^\[\]{}]*?)\s+\]", lambda m: "[" + " ".join(m[1].split()) + "]", text)
 
 
-def _curve_from(data: object, where: str, check_range: bool) -> Curve:
+def _curve_from(
+    data: object, where: str, check_range: bool, rational: bool = False
+) -> Curve | RationalBezierCurve:
+    """A curve from its JSON object; a rational one only where `rational` (composites hold
+    polynomial curves)."""
     from .curves import FAMILIES
+    from .rational import RationalBezierCurve
 
     if not isinstance(data, dict):
         raise ValueError(f"{where}: expected an object with family, lambda and points")
     family = data.get("family")
-    if family not in FAMILIES:
-        raise ValueError(f"{where}.family must be one of {sorted(FAMILIES)}, got {family!r}")
+    names = sorted(FAMILIES) + ([RationalBezierCurve.family] if rational else [])
+    if family not in names:
+        raise ValueError(f"{where}.family must be one of {names}, got {family!r}")
     points = data.get("points")
     if not isinstance(points, list) or not all(isinstance(r, list) for r in points):
         raise ValueError(f"{where}.points must be a list of [x, y] or [x, y, z] lists")
@@ -553,6 +644,16 @@ def _curve_from(data: object, where: str, check_range: bool) -> Curve:
     # one arithmetic per curve: exact only when every coordinate is
     if not all(isinstance(v, Fraction) for row in rows for v in row):
         rows = [[float(v) for v in row] for row in rows]
+    if family == RationalBezierCurve.family:
+        weights = data.get("weights")
+        if not isinstance(weights, list):
+            raise ValueError(f"{where}.weights must be a list of numbers, one per point")
+        if data.get("lambda") is not None:
+            raise ValueError(f"{where}.lambda must be null for a {family} curve")
+        ws = [_number_in(w, f"{where}.weights[{i}]") for i, w in enumerate(weights)]
+        if not all(isinstance(w, Fraction) for w in ws):
+            ws = [float(w) for w in ws]
+        return RationalBezierCurve(rows, ws)
     cls = FAMILIES[family]
     lam = data.get("lambda")
     if not cls._has_lambda:  # the classical Bézier curve
@@ -562,6 +663,14 @@ def _curve_from(data: object, where: str, check_range: bool) -> Curve:
     if lam is None:
         raise ValueError(f"{where}.lambda is required for a {family} curve")
     return cls(rows, _number_in(lam, f"{where}.lambda"), check_range=check_range)
+
+
+def _segment_from(data: object, where: str, check_range: bool) -> Curve:
+    from .curves import Curve
+
+    curve = _curve_from(data, where, check_range)
+    assert isinstance(curve, Curve)  # _curve_from offers no rational curve here
+    return curve
 
 
 def from_json(text: str, *, check_range: bool = True) -> Shape:
@@ -579,13 +688,13 @@ def from_json(text: str, *, check_range: bool = True) -> Shape:
         )
     kind = doc.get("kind")
     if kind == "curve":
-        return _curve_from(doc, "curve", check_range)
+        return _curve_from(doc, "curve", check_range, rational=True)
     if kind != "composite":
         raise ValueError(f'"kind" must be "curve" or "composite", got {kind!r}')
     segs = doc.get("segments")
     if not isinstance(segs, list) or not segs:
         raise ValueError("composite.segments must be a non-empty list")
-    curves = [_curve_from(s, f"segments[{i}]", check_range) for i, s in enumerate(segs)]
+    curves = [_segment_from(s, f"segments[{i}]", check_range) for i, s in enumerate(segs)]
     joints_in = doc.get("joints", [None] * (len(curves) - 1))
     if not isinstance(joints_in, list):
         raise ValueError("composite.joints must be a list (null for a joint not built by join)")

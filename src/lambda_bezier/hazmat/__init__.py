@@ -17,6 +17,8 @@ calling these directly with bad arrays gives numpy's errors, not ours (the name 
 - `reduce`: degree reduction, exact or least squares;
 - `implicit`: implicitization (imports SymPy when called, never at import);
 - `numbers`: the exact-number grammar of the command line and of export files;
+- `rational_kernels`: rational Bézier curves on their homogeneous form (evaluation, derivatives
+  by the quotient rule, subdivision, Möbius maps);
 - `surface_kernels`: tensor-product evaluation, boxes and closest points of control nets;
 - `exact_poly`: exact polynomials over the rationals (Sturm sequences, resultants).
 
@@ -35,6 +37,7 @@ __all__ = [
     "intersect_subdivide",
     "kernels",
     "numbers",
+    "rational_kernels",
     "reduce",
     "roots",
     "surface_kernels",

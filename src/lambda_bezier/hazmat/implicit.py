@@ -17,8 +17,10 @@ if TYPE_CHECKING:
     import sympy
 
 
-def implicitize(rows: tuple[tuple[Fraction, ...], ...]) -> sympy.Poly:
-    """The implicit polynomial of a planar curve as a sympy.Poly in x, y over the integers."""
+def implicitize(rows: tuple[tuple[Fraction, ...], ...], homogeneous: bool = False) -> sympy.Poly:
+    """The implicit polynomial of a planar curve as a sympy.Poly in x, y over the integers.
+    With homogeneous=True the rows are (w X, w Y, w) of a rational curve: the resultant is
+    then that of X(t) - x w(t) and Y(t) - y w(t)."""
     try:
         import sympy
     except ImportError:  # SymPy comes with the derive extra, not with the runtime
@@ -31,8 +33,11 @@ def implicitize(rows: tuple[tuple[Fraction, ...], ...]) -> sympy.Poly:
     yt = sympy.Poly(sum(sympy.Rational(r[1]) * b for r, b in zip(rows, bern, strict=True)), t)
     if xt.degree() <= 0 and yt.degree() <= 0:
         raise ValueError("implicitize: the curve is a single point, not a curve")
-    px = sympy.Poly(xt.as_expr() - x, t, x, y)
-    py = sympy.Poly(yt.as_expr() - y, t, x, y)
+    wt = sympy.Integer(1)
+    if homogeneous:
+        wt = sum(sympy.Rational(r[2]) * b for r, b in zip(rows, bern, strict=True))
+    px = sympy.Poly(xt.as_expr() - x * wt, t, x, y)
+    py = sympy.Poly(yt.as_expr() - y * wt, t, x, y)
     res = sympy.resultant(px.as_expr(), py.as_expr(), t)
     poly = sympy.Poly(sympy.sqf_part(sympy.Poly(res, x, y)), x, y)
     _, poly = poly.clear_denoms(convert=True)

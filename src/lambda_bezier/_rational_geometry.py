@@ -1,0 +1,442 @@
+"""Geometry of rational Bézier curves: arc length and its inverse, bounding boxes, closest
+points and intersections (the methods of lambda_bezier.rational.RationalBezierCurve).
+
+With A(t) the numerator and w(t) > 0 the denominator of C = A / w (Bernstein coefficients:
+the homogeneous rows), C' = N / w² with N = A' w − A w' a polynomial of degree <= 2n − 2.
+So the questions that reduce to roots reduce to roots of polynomials:
+
+- bounding box: the extremes of coordinate c are at the ends and at the roots of N_c;
+- closest point to q: the critical points of |C − q|² are the roots of (A − q w) · N, a
+  polynomial of degree <= 3n − 2. The best candidate is then certified: with D its distance,
+  |A − q w|² − D² w² (degree 2n) is checked >= 0 on [0, 1] through its Bernstein
+  coefficients, subdividing where they are not (convex hull property); any piece that stays
+  below yields a new candidate, so a missed root cannot go unnoticed;
+- arc length: the speed |N| / w² is smooth (w > 0), integrated adaptively (Gauss–Legendre on
+  each piece against the sum over its halves), with pieces ending at the local minima of
+  |N|² (near-cusps, where the speed has a kink or nearly so);
+- intersections: subdivision of both homogeneous forms until the boxes of the surviving
+  pairs of pieces are small (with positive weights a piece lies in the convex hull of its
+  projected control points, so a pair whose boxes are apart holds no intersection), then
+  Newton (Gauss–Newton in 3D) from each pair, deduplicated.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from fractions import Fraction
+from typing import TYPE_CHECKING
+
+import numpy as np
+import numpy.typing as npt
+
+from . import _validate as val
+from .geometry import ClosestPoint
+from .hazmat import rational_kernels as rk
+from .hazmat.intersect import Intersection
+
+if TYPE_CHECKING:
+    from .rational import RationalBezierCurve
+
+RTOL = 1e-12
+SAME_ROOT = 1e-7  # intersection parameters closer than this are one intersection
+TANGENT_SINE = 1e-5  # below this sine of the angle between tangents an intersection is tangent
+ON_CURVE = 1e-10  # Newton's residual must be below this times the curves' size
+
+
+def _float_rows(curve: RationalBezierCurve) -> np.ndarray:
+    """The homogeneous rows in floats with the largest weight 1 (the curve is unchanged by a
+    common factor of the weights; w² then stays near 1)."""
+    rows = np.array(curve.to_homogeneous().points, dtype=float)
+    out: np.ndarray = rows / rows[:, -1].max()
+    return out
+
+
+def _unit(
+    curve: RationalBezierCurve, big: float | None = None
+) -> tuple[RationalBezierCurve, float, float]:
+    """(unit, f, ρ): the same curve in standard form (w_0 = w_n = 1, by the Möbius map of
+    `normalized`: unit(s) = curve(t) with t = ρ s / ((1 − s) + ρ s)) with its points
+    divided by f. The standard form spreads the parameter as evenly as such a map can (weights
+    of very different size crowd the whole curve into a tiny interval of t, which no
+    quadrature or root finder would see); f is a power of two bringing coordinates beyond
+    2^±400 near 1, so that |C'|² neither overflows nor underflows (1.0 otherwise). Lengths,
+    boxes and distances do not depend on the parameterisation; they scale by f. `big`: the
+    magnitude f is chosen for, when other coordinates than the curve's matter (queries)."""
+    cached: tuple[RationalBezierCurve, float, float] | None = (
+        curve.__dict__.get("_unit") if big is None else None
+    )
+    if cached is None:
+        unit, rho = curve.normalized() if curve.degree else (curve, 1)
+        own = big is None
+        big = float(np.abs(curve.points).max()) if big is None else big
+        factor = 1.0
+        if big != 0.0 and not 2.0**-400 <= big <= 2.0**400:
+            factor = math.ldexp(1.0, math.frexp(big)[1])
+            rows = unit.control_points()
+            points = (
+                [[v / Fraction(factor) for v in row] for row in rows]
+                if unit.is_exact
+                else unit.points / factor
+            )
+            unit = type(curve)(points, unit.control_weights())
+        cached = (unit, factor, float(rho))
+        if own:
+            curve.__dict__["_unit"] = cached
+    return cached
+
+
+def _to_unit(rho: float, t: np.ndarray | float) -> np.ndarray:
+    """The unit curve's parameter s at the curve's t (the inverse Möbius map)."""
+    out: np.ndarray = np.clip(rk.mobius(1 / rho, np.asarray(t, dtype=float)), 0.0, 1.0)
+    return out
+
+
+def _from_unit(rho: float, s: np.ndarray) -> np.ndarray:
+    """The curve's t at the unit curve's parameter s."""
+    out: np.ndarray = np.clip(rk.mobius(rho, s), 0.0, 1.0)
+    return out
+
+
+def _exact_or_float_rows(curve: RationalBezierCurve) -> np.ndarray:
+    if curve.is_exact:
+        return np.array(curve.to_homogeneous().control_points(), dtype=object)
+    return _float_rows(curve)
+
+
+def _roots(coeffs: np.ndarray) -> np.ndarray:
+    """Candidate roots in [0, 1] of a scalar polynomial given by Bernstein coefficients
+    (Fractions: converted exactly to the centred power form, then rounded once)."""
+    centred = rk.bernstein_to_centred(coeffs)
+    return rk.roots_in_unit(np.array([float(v) for v in centred]))
+
+
+def _parameter(value: object, name: str) -> float:
+    x = float(val.real_number(value, name, keep_exact=False))
+    if not 0 <= x <= 1:
+        raise ValueError(f"{name} = {value} is outside [0, 1]")
+    return x
+
+
+# ---------------------------------------------------------------------- arc length
+def _table(
+    f: Callable[[np.ndarray], np.ndarray], kinks: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    try:
+        return rk.adaptive_table(f, RTOL / 4, kinks)
+    except ArithmeticError as exc:
+        raise ValueError(f"arc length to 1e-12 failed: {exc}") from None
+
+
+def _speed(curve: RationalBezierCurve):  # type: ignore[no-untyped-def]
+    def speed(t: np.ndarray) -> np.ndarray:
+        out: np.ndarray = np.linalg.norm(curve.derivative(np.clip(t, 0.0, 1.0), 1), axis=-1)
+        return out
+
+    return speed
+
+
+def _kinks(curve: RationalBezierCurve) -> np.ndarray:
+    """The local minima of |N|² in [0, 1] (roots of N · N'): where the speed can bend sharply."""
+    if curve.degree < 2:
+        return np.empty(0)
+    num = rk.derivative_numerator(_float_rows(curve))
+    dot = rk.product(num, rk.hodograph(num)).sum(axis=1)
+    return _roots(dot)
+
+
+def arc_length(curve: RationalBezierCurve, t0: Fraction | float, t1: Fraction | float) -> float:
+    a, b = _parameter(t0, "t0"), _parameter(t1, "t1")
+    if a > b:
+        raise ValueError(f"arc_length needs t0 <= t1, got t0={t0}, t1={t1}")
+    if a == b:
+        return 0.0
+    if a == 0.0 and b == 1.0:
+        return float(_length_table(curve)[1][-1])
+    curve, factor, rho = _unit(curve)
+    a, b = float(_to_unit(rho, a)), float(_to_unit(rho, b))
+    if a >= b:
+        return 0.0
+    speed = _speed(curve)
+    kinks = (_kinks(curve) - a) / (b - a)
+
+    def scaled(u: np.ndarray) -> np.ndarray:
+        out: np.ndarray = speed(a + (b - a) * u) * (b - a)
+        return out
+
+    return factor * float(_table(scaled, kinks)[1][-1])
+
+
+def _length_table(curve: RationalBezierCurve) -> tuple[np.ndarray, np.ndarray]:
+    """The accepted partition of [0, 1] and cumulative lengths (cached on the curve)."""
+    cached: tuple[np.ndarray, np.ndarray] | None = curve.__dict__.get("_length_table")
+    if cached is None:
+        unit, factor, _ = _unit(curve)  # the table is in the unit curve's parameter
+        edges, cum = _table(_speed(unit), _kinks(unit))
+        cached = (edges, cum * factor)
+        curve.__dict__["_length_table"] = cached
+    return cached
+
+
+def parameter_at_length(curve: RationalBezierCurve, s: npt.ArrayLike) -> np.ndarray | float:
+    arr = val.real_array(s, "s")
+    if arr.ndim > 1:
+        raise ValueError(f"s must be a number or a 1-D array, got shape {arr.shape}")
+    scalar = arr.ndim == 0
+    arr = np.atleast_1d(arr)
+    if not np.isfinite(arr).all():
+        raise ValueError("s contains NaN or infinity")
+    edges, cum = _length_table(curve)
+    total = float(cum[-1])
+    if total == 0:
+        raise ValueError("the curve has zero length: no parameter belongs to a given length")
+    slack = 4 * RTOL * total
+    if arr.size and (arr.min() < -slack or arr.max() > total + slack):
+        bad = arr[(arr < -slack) | (arr > total + slack)][0]
+        raise ValueError(f"s = {bad} is outside [0, {total!r}] (the total arc length)")
+    arr = np.clip(arr, 0.0, total)
+    unit, factor, rho = _unit(curve)
+    speed = _speed(unit)
+    k = np.clip(np.searchsorted(cum, arr, side="right") - 1, 0, edges.size - 2)
+    base, lo, hi, start = cum[k], edges[k].copy(), edges[k + 1].copy(), edges[k]
+    span = cum[k + 1] - base
+    with np.errstate(divide="ignore", invalid="ignore"):
+        frac = np.where(span > 0, (arr - base) / span, 0.0)
+    t = lo + np.clip(frac, 0, 1) * (hi - lo)
+    goal = RTOL * total / 16
+    for _ in range(100):  # safeguarded Newton inside the accepted piece holding s
+        f = base + factor * rk.gauss_pieces(speed, start, t) - arr
+        done = np.abs(f) <= goal
+        if done.all():
+            break
+        lo = np.where(f < 0, t, lo)
+        hi = np.where(f > 0, t, hi)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = t - f / (factor * speed(t))
+        inside = np.isfinite(step) & (step > lo) & (step < hi)
+        nxt = np.where(done, t, np.where(inside, step, (lo + hi) / 2))
+        if np.array_equal(nxt, t):
+            break
+        t = nxt
+    t = _from_unit(rho, t)
+    return float(t[0]) if scalar else t
+
+
+# ---------------------------------------------------------------------- bounding box
+def bounding_box(curve: RationalBezierCurve) -> tuple[np.ndarray, np.ndarray]:
+    ends = curve.points[[0, -1]]
+    if curve.degree == 0:
+        return ends.min(axis=0), ends.max(axis=0)
+    unit, factor, _ = _unit(curve)
+    num = rk.derivative_numerator(_exact_or_float_rows(unit))
+    s = np.concatenate([np.empty(0), *(_roots(num[:, c]) for c in range(curve.dimension))])
+    s = s[(s > 1e-12) & (s < 1 - 1e-12)]
+    values = np.vstack([ends, unit.evaluate(s) * factor]) if s.size else ends
+    return values.min(axis=0), values.max(axis=0)
+
+
+# ---------------------------------------------------------------------- closest point
+def _queries(q: npt.ArrayLike, dimension: int) -> tuple[np.ndarray, bool]:
+    arr = val.real_array(q, "q")
+    if arr.ndim not in (1, 2) or arr.shape[-1] != dimension:
+        raise ValueError(
+            f"q must have shape ({dimension},) or (m, {dimension}) for this {dimension}D curve, "
+            f"got shape {arr.shape}"
+        )
+    if not np.isfinite(arr).all():
+        raise ValueError("q contains NaN or infinity")
+    return np.atleast_2d(arr), arr.ndim == 1
+
+
+def closest_point(curve: RationalBezierCurve, q: npt.ArrayLike) -> ClosestPoint:
+    queries, single = _queries(q, curve.dimension)
+    big = max(float(np.abs(curve.points).max()), float(np.abs(queries).max()))
+    curve, factor, rho = _unit(curve, big)
+    queries = queries / factor
+    rows = _float_rows(curve)
+    a, w = rows[:, :-1], rows[:, -1:]
+    m = queries.shape[0]
+    diff = a[:, None, :] - queries[None, :, :] * w[:, :, None]  # (n+1, m, d): A − q w
+    cands = [np.zeros(m), np.ones(m)]
+    per_query: list[list[np.ndarray]] = [[] for _ in range(m)]
+    if curve.degree >= 1:
+        num = rk.derivative_numerator(rows)  # (2n, d)
+        g = rk.product(diff, num[:, None, :]).sum(axis=-1)  # (3n, m): (A − q w) · N
+        centred = rk.bernstein_to_centred(g)
+        for j in range(m):
+            per_query[j].append(rk.roots_in_unit(centred[:, j]))
+    best_t, best_d2 = _best(curve, queries, cands, per_query)
+    if curve.degree >= 1:  # the certificate: |A − q w|² − D² w² >= 0 on [0, 1]
+        square = rk.product(diff, diff).sum(axis=-1)  # (2n+1, m)
+        w2 = rk.product(w, w)[:, 0]
+        again = False
+        for j in range(m):
+            f = square[:, j] - best_d2[j] * w2
+            floor = -1e-12 * max(float(np.abs(square[:, j]).max()), 1e-300)
+            witnesses = rk.negative_intervals(f, floor)
+            if witnesses:
+                per_query[j].append(_polish(curve, queries[j], np.array(witnesses)))
+                again = True
+        if again:
+            best_t, best_d2 = _best(curve, queries, cands, per_query)
+    points = curve.evaluate(best_t) * factor
+    dist = np.sqrt(best_d2) * factor
+    best_t = _from_unit(rho, best_t)
+    if single:
+        return ClosestPoint(float(best_t[0]), points[0], float(dist[0]))
+    return ClosestPoint(best_t, points, dist)
+
+
+def _best(
+    curve: RationalBezierCurve,
+    queries: np.ndarray,
+    cands: list[np.ndarray],
+    per_query: list[list[np.ndarray]],
+) -> tuple[np.ndarray, np.ndarray]:
+    m = queries.shape[0]
+    best_t = np.empty(m)
+    best_d2 = np.empty(m)
+    for j in range(m):
+        t = np.concatenate([np.array([c[j] for c in cands]), *per_query[j]])
+        d2 = np.square(curve.evaluate(t) - queries[j]).sum(axis=-1)
+        k = int(np.argmin(d2))
+        best_t[j], best_d2[j] = t[k], d2[k]
+    return best_t, best_d2
+
+
+def _polish(curve: RationalBezierCurve, q: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """Newton steps on (C − q) · C' = 0 from each t (kept in [0, 1]); the start too."""
+    out = [t]
+    for _ in range(8):
+        c, d1, d2 = (curve.derivative(t, k) for k in range(3))
+        g = ((c - q) * d1).sum(-1)
+        dg = (d1 * d1).sum(-1) + ((c - q) * d2).sum(-1)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = g / dg
+        t = np.where(np.isfinite(step), np.clip(t - step, 0.0, 1.0), t)
+        out.append(t)
+    return np.concatenate(out)
+
+
+# ---------------------------------------------------------------------- intersections
+def _newton(
+    p: RationalBezierCurve, q: RationalBezierCurve, s: np.ndarray, t: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Gauss–Newton on p(s) − q(t) = 0 from every (s, t) at once: (s, t, residual)."""
+    for _ in range(80):
+        f = p.evaluate(s) - q.evaluate(t)
+        jac = np.stack([p.derivative(s, 1), -q.derivative(t, 1)], axis=-1)  # (k, d, 2)
+        step = np.einsum("kij,kj->ki", np.linalg.pinv(jac), f)
+        s_new = np.clip(s - step[:, 0], 0.0, 1.0)
+        t_new = np.clip(t - step[:, 1], 0.0, 1.0)
+        if np.array_equal(s_new, s) and np.array_equal(t_new, t):
+            break
+        s, t = s_new, t_new
+    res = np.linalg.norm(p.evaluate(s) - q.evaluate(t), axis=-1)
+    return s, t, res
+
+
+def _kind(p: RationalBezierCurve, q: RationalBezierCurve, s: float, t: float) -> str:
+    u, v = p.derivative(s, 1), q.derivative(t, 1)
+    nu, nv = float(np.linalg.norm(u)), float(np.linalg.norm(v))
+    if nu == 0 or nv == 0:
+        return "tangent"
+    cross = abs(u[0] * v[1] - u[1] * v[0]) if u.size == 2 else float(np.linalg.norm(np.cross(u, v)))
+    return "tangent" if cross / (nu * nv) < TANGENT_SINE else "transversal"
+
+
+def _size(*curves: RationalBezierCurve) -> float:
+    pts = np.vstack([c.points for c in curves])
+    return max(float(np.abs(pts).max()), float(np.ptp(pts, axis=0).max()), 1e-300)
+
+
+def _collect(
+    p: RationalBezierCurve,
+    q: RationalBezierCurve,
+    starts: np.ndarray,
+    size: float,
+    keep: object = None,
+) -> list[Intersection]:
+    if not starts.size:
+        return []
+    s, t, res = _newton(p, q, starts[:, 0], starts[:, 1])
+    good = res <= ON_CURVE * size
+    if callable(keep):
+        good &= keep(s, t)
+    order = np.lexsort((res, s))
+    found: list[tuple[float, float]] = []
+    for i in order[good[order]]:
+        si, ti = float(s[i]), float(t[i])
+        if any(abs(si - a) <= SAME_ROOT and abs(ti - b) <= SAME_ROOT for a, b in found):
+            continue
+        found.append((si, ti))
+    found.sort()
+    return [Intersection(a, b, _kind(p, q, a, b)) for a, b in found]
+
+
+def _check_dimension(curve: RationalBezierCurve) -> None:
+    if curve.dimension not in (2, 3):
+        raise ValueError(
+            f"intersections are computed for planar and space curves (dimension 2 or 3), "
+            f"this curve has dimension {curve.dimension}"
+        )
+
+
+def intersect(p: RationalBezierCurve, q: RationalBezierCurve) -> list[Intersection]:
+    _check_dimension(p)
+    size = _size(p, q)
+    starts = rk.overlap_starts(_float_rows(p), _float_rows(q), size)
+    return _collect(p, q, starts, size)
+
+
+def _monotone_pieces(curve: RationalBezierCurve) -> list[tuple[float, float, np.ndarray]]:
+    """[0, 1] cut in halves until on every piece C' keeps a direction (then the piece cannot
+    meet itself): (lo, hi, homogeneous rows) each."""
+    todo = [(0.0, 1.0, _float_rows(curve))]
+    done = []
+    while todo:
+        lo, hi, rows = todo.pop()
+        if rk.monotone(rk.derivative_numerator(rows)):
+            done.append((lo, hi, rows))
+            continue
+        if hi - lo < 2.0**-16:
+            raise ValueError(
+                f"self_intersections: C'(t) vanishes or nearly so near t = {lo:.6g} (a cusp); "
+                "such curves are not supported"
+            )
+        left, right = rk.split_halves(rows[None])
+        mid = (lo + hi) / 2
+        todo += [(lo, mid, left[0]), (mid, hi, right[0])]
+    return sorted(done, key=lambda piece: piece[0])
+
+
+def self_intersections(curve: RationalBezierCurve) -> list[Intersection]:
+    _check_dimension(curve)
+    if curve.degree < 2:
+        return []
+    pieces = _monotone_pieces(curve)
+    size = _size(curve)
+    starts = []
+    for i, (alo, ahi, arows) in enumerate(pieces):
+        for blo, bhi, brows in pieces[i + 1 :]:
+            local = rk.overlap_starts(arows, brows, size)
+            if local.size:
+                starts.append(
+                    np.column_stack(
+                        [alo + local[:, 0] * (ahi - alo), blo + local[:, 1] * (bhi - blo)]
+                    )
+                )
+    if not starts:
+        return []
+
+    def apart(s: np.ndarray, t: np.ndarray) -> np.ndarray:
+        out: np.ndarray = np.abs(s - t) > math.sqrt(SAME_ROOT)
+        return out
+
+    hits = _collect(curve, curve, np.vstack(starts), size, apart)
+    pairs = sorted({(min(h.s, h.t), max(h.s, h.t)) for h in hits})
+    merged: list[tuple[float, float]] = []
+    for a, b in pairs:
+        if not any(abs(a - x) <= SAME_ROOT and abs(b - y) <= SAME_ROOT for x, y in merged):
+            merged.append((a, b))
+    return [Intersection(a, b, _kind(curve, curve, a, b)) for a, b in merged]

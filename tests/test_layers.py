@@ -13,6 +13,7 @@ from pathlib import Path
 
 import pytest
 from conftest import ROOT
+from import_graph import describe, edges_of, strongly_connected
 
 grimp = pytest.importorskip("grimp")
 
@@ -23,67 +24,6 @@ pytestmark = pytest.mark.skipif(
 MAX_LINES = 800
 # Hand-written Python: derive/, the runtime, the tests and their helpers (generated/ is emitted).
 HAND_WRITTEN = ("derive", "src", "tests")
-
-
-def strongly_connected(graph: grimp.ImportGraph) -> list[list[str]]:
-    """The import cycles of `graph`: its strongly connected components of more than one
-    module (Tarjan's algorithm, iterative so that a deep chain cannot overflow the stack)."""
-    edges = {m: sorted(graph.find_modules_directly_imported_by(m)) for m in sorted(graph.modules)}
-    index: dict[str, int] = {}
-    low: dict[str, int] = {}
-    stack: list[str] = []
-    on_stack: set[str] = set()
-    out: list[list[str]] = []
-    for root in edges:
-        if root in index:
-            continue
-        work = [(root, iter(edges[root]))]
-        index[root] = low[root] = len(index)
-        stack.append(root)
-        on_stack.add(root)
-        while work:
-            node, children = work[-1]
-            child = next(children, None)
-            if child is not None:
-                if child not in edges:  # outside the graph's packages
-                    continue
-                if child not in index:
-                    index[child] = low[child] = len(index)
-                    stack.append(child)
-                    on_stack.add(child)
-                    work.append((child, iter(edges[child])))
-                elif child in on_stack:
-                    low[node] = min(low[node], index[child])
-                continue
-            work.pop()
-            if work:
-                parent = work[-1][0]
-                low[parent] = min(low[parent], low[node])
-            if low[node] == index[node]:
-                component = []
-                while True:
-                    member = stack.pop()
-                    on_stack.discard(member)
-                    component.append(member)
-                    if member == node:
-                        break
-                if len(component) > 1:
-                    out.append(sorted(component))
-    return out
-
-
-def _describe(graph: grimp.ImportGraph, component: list[str]) -> str:
-    """One cycle of the component, import by import, with the lines that make it."""
-    members = set(component)
-    lines = []
-    for importer in component:
-        for imported in sorted(graph.find_modules_directly_imported_by(importer) & members):
-            for detail in graph.get_import_details(importer=importer, imported=imported):
-                lines.append(
-                    f"  {importer} -> {imported} (line {detail['line_number']}: "
-                    f"{detail['line_contents']})"
-                )
-    return "\n".join(lines)
 
 
 def _derive_graph() -> grimp.ImportGraph:
@@ -98,9 +38,9 @@ def _derive_graph() -> grimp.ImportGraph:
 def test_derive_has_no_import_cycle():
     graph = _derive_graph()
     assert len(graph.modules) > 20  # the graph is derive's, not an empty one
-    cycles = strongly_connected(graph)
+    cycles = strongly_connected(edges_of(graph))
     assert not cycles, "import cycles in derive/:\n" + "\n\n".join(
-        _describe(graph, c) for c in cycles
+        describe(graph, c) for c in cycles
     )
 
 
@@ -112,10 +52,10 @@ def test_the_cycle_check_sees_a_cycle():
     graph.add_import(importer="pkg.b", imported="pkg.c", line_number=3, line_contents="import c")
     graph.add_import(importer="pkg.c", imported="pkg.a", line_number=7, line_contents="import a")
     graph.add_import(importer="pkg.d", imported="pkg.a", line_number=1, line_contents="import a")
-    assert strongly_connected(graph) == [["pkg.a", "pkg.b", "pkg.c"]]
-    assert "pkg.c -> pkg.a (line 7: import a)" in _describe(graph, ["pkg.a", "pkg.b", "pkg.c"])
+    assert strongly_connected(edges_of(graph)) == [["pkg.a", "pkg.b", "pkg.c"]]
+    assert "pkg.c -> pkg.a (line 7: import a)" in describe(graph, ["pkg.a", "pkg.b", "pkg.c"])
     graph.remove_import(importer="pkg.c", imported="pkg.a")
-    assert strongly_connected(graph) == []
+    assert strongly_connected(edges_of(graph)) == []
 
 
 def test_a_function_level_import_counts():

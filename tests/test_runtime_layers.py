@@ -11,6 +11,7 @@ import textwrap
 from pathlib import Path
 
 import grimp
+from import_graph import describe, edges_of, strongly_connected
 
 ROOT = Path(__file__).resolve().parents[1]
 # generated/ and derive/ are installed inside the package (lambda_bezier._generated, ._derive
@@ -22,68 +23,11 @@ def _graph(package: str) -> grimp.ImportGraph:
     return grimp.build_graph(package, exclude_type_checking_imports=True, cache_dir=None)
 
 
-def _edges(graph: grimp.ImportGraph, skip: tuple[str, ...] = ()) -> dict[str, set[str]]:
-    def kept(module: str) -> bool:
-        return not any(module == s or module.startswith(s + ".") for s in skip)
-
-    return {
-        m: {i for i in graph.find_modules_directly_imported_by(m) if kept(i)}
-        for m in graph.modules
-        if kept(m)
-    }
-
-
-def cycles(edges: dict[str, set[str]]) -> list[list[str]]:
-    """The strongly connected components with more than one module (Tarjan), each sorted."""
-    index: dict[str, int] = {}
-    low: dict[str, int] = {}
-    stack: list[str] = []
-    on_stack: set[str] = set()
-    found: list[list[str]] = []
-
-    def visit(v: str) -> None:
-        index[v] = low[v] = len(index)
-        stack.append(v)
-        on_stack.add(v)
-        for w in sorted(edges.get(v, ())):
-            if w not in index:
-                visit(w)
-                low[v] = min(low[v], low[w])
-            elif w in on_stack:
-                low[v] = min(low[v], index[w])
-        if low[v] == index[v]:
-            component = []
-            while True:
-                w = stack.pop()
-                on_stack.discard(w)
-                component.append(w)
-                if w == v:
-                    break
-            if len(component) > 1:
-                found.append(sorted(component))
-
-    for v in sorted(edges):
-        if v not in index:
-            visit(v)
-    return found
-
-
-def _describe(graph: grimp.ImportGraph, component: list[str]) -> str:
-    members = set(component)
-    lines = []
-    for m in component:
-        for i in sorted(graph.find_modules_directly_imported_by(m) & members):
-            details = graph.get_import_details(importer=m, imported=i)
-            where = ", ".join(f"l.{d['line_number']}" for d in details)
-            lines.append(f"  {m} -> {i} ({where})")
-    return "\n".join(lines)
-
-
 def test_no_import_cycle_in_the_runtime():
     graph = _graph("lambda_bezier")
-    found = cycles(_edges(graph, NOT_RUNTIME))
+    found = strongly_connected(edges_of(graph, NOT_RUNTIME))
     assert not found, "import cycles in lambda_bezier:\n" + "\n\n".join(
-        _describe(graph, c) for c in found
+        describe(graph, c) for c in found
     )
 
 
@@ -107,8 +51,8 @@ def test_a_cycle_through_a_function_level_import_is_found(tmp_path, monkeypatch)
     )
     monkeypatch.syspath_prepend(str(tmp_path))
     graph = _graph("cyclepkg")
-    assert cycles(_edges(graph)) == [["cyclepkg.high", "cyclepkg.low"]]
-    assert "cyclepkg.low -> cyclepkg.high (l.3)" in _describe(
+    assert strongly_connected(edges_of(graph)) == [["cyclepkg.high", "cyclepkg.low"]]
+    assert "cyclepkg.low -> cyclepkg.high (line 3" in describe(
         graph, ["cyclepkg.high", "cyclepkg.low"]
     )
 

@@ -31,7 +31,10 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _validate as val
-from .geometry import ClosestPoint
+from .geometry import (
+    ClosestPoint,
+    _queries,  # the same query validation as every curve
+)
 from .hazmat import rational_kernels as rk
 from .hazmat.intersect import Intersection
 
@@ -236,18 +239,6 @@ def bounding_box(curve: RationalBezierCurve) -> tuple[np.ndarray, np.ndarray]:
 
 
 # ---------------------------------------------------------------------- closest point
-def _queries(q: npt.ArrayLike, dimension: int) -> tuple[np.ndarray, bool]:
-    arr = val.real_array(q, "q")
-    if arr.ndim not in (1, 2) or arr.shape[-1] != dimension:
-        raise ValueError(
-            f"q must have shape ({dimension},) or (m, {dimension}) for this {dimension}D curve, "
-            f"got shape {arr.shape}"
-        )
-    if not np.isfinite(arr).all():
-        raise ValueError("q contains NaN or infinity")
-    return np.atleast_2d(arr), arr.ndim == 1
-
-
 def closest_point(curve: RationalBezierCurve, q: npt.ArrayLike) -> ClosestPoint:
     queries, single = _queries(q, curve.dimension)
     big = max(float(np.abs(curve.points).max()), float(np.abs(queries).max()))

@@ -272,10 +272,8 @@ class ClosestPoint:
 
 
 def _queries(q: npt.ArrayLike, dimension: int) -> tuple[np.ndarray, bool]:
-    try:
-        arr = np.asarray(q, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError(f"q must be a point or an (m, d) array of points, got {q!r}") from None
+    """q as an (m, d) float array of query points, and whether it was one point (d,)."""
+    arr = val.real_array(q, "q")
     if arr.ndim not in (1, 2) or arr.shape[-1] != dimension:
         raise ValueError(
             f"q must have shape ({dimension},) or (m, {dimension}) for this {dimension}D curve, "

@@ -87,8 +87,12 @@ def build_parser() -> argparse.ArgumentParser:
     opt.add_argument("points", nargs="+", metavar="POINT", help="control point x,y or x,y,z")
     opt.add_argument(
         "--family",
-        choices=_ShapeFamilies(),
-        help="curve family: %(choices)s (default: the first)",
+        metavar="NAME|FILE",
+        # the built-in names are not listed here: the parser is built for every command, and
+        # `lambda-bezier derive` must run where generated/ is missing
+        help="curve family: a built-in shape-parameter family's name (default: the first, "
+        "same_degree) or a family file of your own, derived with `lambda-bezier derive "
+        "--family FILE`",
     )
     opt.add_argument(
         "--energy",
@@ -110,7 +114,22 @@ def build_parser() -> argparse.ArgumentParser:
         "write it as one exact B-spline (STEP through OCCT, DXF SPLINE through ezdxf; both "
         'need pip install "lambda-bezier[cad]"), an SVG path, or normalised JSON.',
     )
-    exp.add_argument("--format", required=True, choices=["step", "dxf", "svg", "json"])
+    exp.add_argument(
+        "--format",
+        required=True,
+        choices=["step", "dxf", "svg", "json", "family"],
+        help="family: write the definition of the own family INPUT.json embeds as a TOML "
+        "family file (for `lambda-bezier derive --family`)",
+    )
+    exp.add_argument(
+        "--family",
+        action="append",
+        type=Path,
+        metavar="FILE",
+        help="a family of your own that INPUT.json uses: its definition file (derived with "
+        "`lambda-bezier derive --family FILE`) or its NAME.derived.json; repeatable. Default: "
+        "a NAME.derived.json beside INPUT.json",
+    )
     exp.add_argument(
         "--tolerance",
         type=float,
@@ -193,7 +212,13 @@ def _export(args: argparse.Namespace) -> int:
     try:
         if args.tolerance is not None and args.format != "svg":
             raise ValueError("--tolerance applies to --format svg only")
-        obj = export.from_json(args.input.read_text(encoding="utf-8"))
+        text = args.input.read_text(encoding="utf-8")
+        if args.format == "family":
+            if args.family:
+                raise ValueError("--family does not apply to --format family")
+            args.output.write_text(export.family_definition(text), encoding="utf-8")
+            return 0
+        obj = export.from_json(text, family=args.family or _derived_beside(args.input, text))
         if args.format == "json":
             args.output.write_text(export.to_json(obj) + "\n", encoding="utf-8")
         elif args.format == "svg":
@@ -206,6 +231,35 @@ def _export(args: argparse.Namespace) -> int:
     return 0
 
 
+def _derived_beside(path: Path, text: str) -> list[Path]:
+    """The derived documents beside a JSON form of the own families it embeds."""
+    import json
+
+    try:
+        definitions = json.loads(text).get("definitions", {})
+    except (json.JSONDecodeError, AttributeError):
+        return []  # from_json says what is wrong
+    if not isinstance(definitions, dict):
+        return []
+    beside = [path.parent / f"{name}.derived.json" for name in definitions if isinstance(name, str)]
+    return [p for p in beside if p.is_file()]
+
+
+def _family_argument(text: str | None) -> object:
+    """--family of optimal-lambda: a built-in family's name, or a family file of the user's
+    own (a Family from load_family)."""
+    names = _ShapeFamilies().names()
+    if text is None:
+        return names[0]
+    if text in names:
+        return text
+    if "/" in text or "\\" in text or text.endswith(".toml") or Path(text).is_file():
+        from .family import load_family
+
+        return load_family(text)
+    raise ValueError(f"--family must be one of {', '.join(names)} or a family file, got {text!r}")
+
+
 def _optimal_lambda(args: argparse.Namespace) -> int:
     import json
 
@@ -216,15 +270,15 @@ def _optimal_lambda(args: argparse.Namespace) -> int:
         points = [parse_point(p.lstrip(" ")) for p in args.points]
         if len({len(p) for p in points}) != 1:
             raise ValueError("all points must have the same dimension (2 or 3 coordinates)")
-        if args.family is None:
-            args.family = _ShapeFamilies().names()[0]
-        result = optimal_lambda(points, args.energy, args.family, clamp=args.clamp)
+        family = _family_argument(args.family)
+        result = optimal_lambda(points, args.energy, family, clamp=args.clamp)
     except ValueError as exc:
         print(f"lambda-bezier optimal-lambda: error: {exc}", file=sys.stderr)
         return 2
     k = args.energy
+    family_name = family if isinstance(family, str) else getattr(family, "name", str(family))
     report = {
-        "family": args.family,
+        "family": family_name,
         "range": result.range_text,
         "energy_order": k,
         "energy_name": ENERGY_NAMES[k],
@@ -259,7 +313,7 @@ def _optimal_lambda(args: argparse.Namespace) -> int:
 
     verdict = "yes" if report["admissible"] else f"no: outside {result.range_text}"
     lines = [
-        f"family          {args.family}  (λ ∈ {result.range_text})",
+        f"family          {family_name}  (λ ∈ {result.range_text})",
         f"energy          E_{k} ({ENERGY_NAMES[k]})",
         f"optimal λ       {both('lambda')}",
         f"E_{k} at λ        {both('energy')}",

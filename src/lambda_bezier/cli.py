@@ -139,6 +139,17 @@ def build_parser() -> argparse.ArgumentParser:
     exp.add_argument("input", type=Path, metavar="INPUT.json")
     exp.add_argument("output", type=Path, metavar="OUTPUT")
 
+    ex = sub.add_parser(
+        "example",
+        help="copy the example family or records files shipped with the package into DIR",
+        description="Copy the example files shipped with lambda-bezier into DIR, to use them "
+        "anywhere: `family` (nouri_saeidian.toml, a family of your own with records about it, "
+        "and its derived document), `records` (user_paper.toml, records about the built-in "
+        "families); `list` prints every example file's installed path.",
+    )
+    ex.add_argument("kind", choices=["family", "records", "list"])
+    ex.add_argument("directory", type=Path, nargs="?", metavar="DIR", help="(not for list)")
+
     from ._verify_runner import add_arguments
 
     add_arguments(
@@ -199,6 +210,8 @@ def main(argv: list[str] | None = None) -> int:
         return _optimal_lambda(args)
     if args.command == "export":
         return _export(args)
+    if args.command == "example":
+        return _example(args)
     if args.command == "verify":
         from ._verify_runner import run_from_args
 
@@ -227,6 +240,26 @@ def _export(args: argparse.Namespace) -> int:
             getattr(export, f"to_{args.format}")(obj, args.output)
     except (OSError, ValueError, ImportError) as exc:
         print(f"lambda-bezier export: error: {exc}", file=sys.stderr)
+        return 2
+    return 0
+
+
+def _example(args: argparse.Namespace) -> int:
+    from . import examples
+
+    try:
+        if args.kind == "list":
+            if args.directory is not None:
+                raise ValueError("`example list` takes no DIR")
+            for name in examples.names():
+                print(examples.path(name))
+            return 0
+        if args.directory is None:
+            raise ValueError(f"`example {args.kind}` needs a DIR to copy into")
+        for path in examples.copy(args.kind, args.directory):
+            print(path)
+    except (OSError, ValueError) as exc:
+        print(f"lambda-bezier example: error: {exc}", file=sys.stderr)
         return 2
     return 0
 

@@ -1,0 +1,253 @@
+"""Issue 32: a family of the user's own works wherever a built-in family's name does.
+
+Every public function and method of the package with a parameter named `family`, and every
+subcommand of `lambda-bezier` with a `--family` option, is found by introspection; each must
+have a call here with a loaded family (and, from the command line, with a family file), checked
+against an independent result. A new one fails `test_every_family_parameter_is_covered` until
+a call is added.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import inspect
+import json
+import pkgutil
+from fractions import Fraction
+
+import numpy as np
+import pytest
+
+import lambda_bezier as lb
+from lambda_bezier import examples
+from lambda_bezier.cli import build_parser, main
+
+NS_FILE = examples.path("nouri_saeidian.toml")
+POINTS = [(0, 0), (1, 2), (3, 2), (4, 0)]
+
+
+@pytest.fixture(scope="module")
+def fam():
+    return lb.load_family(NS_FILE)
+
+
+def _public_callables_with_family():
+    """'module.function' and 'module.Class.method' of every public callable whose signature
+    has a parameter named `family` (private modules and names skipped; the derive copy
+    installed as lambda_bezier._derive is not the runtime)."""
+    found = set()
+    for info in pkgutil.walk_packages(lb.__path__, "lambda_bezier."):
+        if any(part.startswith("_") for part in info.name.split(".")[1:]):
+            continue
+        module = importlib.import_module(info.name)
+        for name, obj in vars(module).items():
+            if name.startswith("_") or getattr(obj, "__module__", None) != module.__name__:
+                continue
+            members = [(name, obj)]
+            if inspect.isclass(obj):
+                members = [
+                    (f"{name}.{m}", f)
+                    for m, f in vars(obj).items()
+                    if not m.startswith("_") and callable(f)
+                ]
+            for qual, f in members:
+                try:
+                    params = inspect.signature(f).parameters
+                except (TypeError, ValueError):
+                    continue
+                if "family" in params:
+                    found.add(f"{info.name.split('.', 1)[1]}.{qual}")
+    return found
+
+
+def _own_curve(fam):
+    return fam.curve(POINTS, lam=Fraction(1, 2))
+
+
+def _call_optimal_lambda(fam):
+    r = lb.optimal_lambda(POINTS, 2, family=fam)
+    # independent: the minimiser of E_2(λ) = ∫|p''|² from the curve's own exact energy
+    e = [fam.curve(POINTS, lam=Fraction(x, 7)).energy(2) for x in (3, 4, 5)]
+    assert e[1] < e[0] and e[1] < e[2] and r.lam == Fraction(4, 7)
+
+
+def _call_energy_coefficients(fam):
+    c = lb.energy_coefficients(POINTS, 2, family=fam)
+    # E_2(λ) = a + bλ + cλ² against the curve's own energy at three λ
+    for lam in (Fraction(0), Fraction(1, 3), Fraction(1)):
+        coeffs = [Fraction(x) for x in c] if not hasattr(c, "c0") else [c.c0, c.c1, c.c2]
+        value = sum(a * lam**i for i, a in enumerate(coeffs))
+        assert value == fam.curve(POINTS, lam=lam).energy(2)
+
+
+def _call_energy_matrices(fam):
+    scale, x, y = lb.energy_matrices(3, 2, family=fam)
+    assert len(x) == len(y) == 4 and all(len(row) == 4 for row in (*x, *y)) and scale != 0
+    assert all(isinstance(v, int) for row in (*x, *y) for v in row)
+    assert (scale, x, y) != lb.energy_matrices(3, 2), "the family's own, not same_degree's"
+
+
+def _call_join(fam):
+    first = lb.BezierCurve([(0, 0), (1, 1), (2, 0)])
+    nxt = lb.join(first, "C1", 3, lam=Fraction(1, 2), rest=[(5, 5), (6, 0)], family=fam)
+    assert type(nxt) is fam.curve_class
+    assert np.allclose(first.derivative(1.0), nxt.derivative(0.0))
+
+
+def _call_composite_join(fam):
+    comp = lb.CompositeCurve([lb.BezierCurve([(0, 0), (1, 1), (2, 0)])]).join(
+        "C1", 3, Fraction(1, 2), rest=[(5, 5), (6, 0)], family=fam
+    )
+    assert type(comp.segments[1]) is fam.curve_class and comp.report()[0].kept
+
+
+def _call_evaluate_many(fam):
+    pts = np.array([POINTS] * 2, dtype=float)
+    ts = np.linspace(0, 1, 7)
+    got = lb.evaluate_many(pts, ts, fam, lam=[0.5, 0.25])
+    want = [fam.curve(POINTS, lam=lam).evaluate(ts) for lam in (0.5, 0.25)]
+    assert np.allclose(got, want, rtol=0, atol=1e-12)
+
+
+def _call_singular_parameters(fam):
+    assert lb.singular_parameters(fam, 3) == (Fraction(0),)
+
+
+def _call_is_singular(fam):
+    from lambda_bezier.properties import is_singular
+
+    assert is_singular(fam, 3, 0) and not is_singular(fam, 3, Fraction(1, 2))
+
+
+def _call_family_class(fam):
+    from lambda_bezier.curves import family_class
+
+    assert family_class(fam) is fam.curve_class
+
+
+def _call_from_json(fam):
+    from lambda_bezier.export import from_json, to_json
+
+    c = _own_curve(fam)
+    back = from_json(to_json(c), family=fam)
+    assert type(back) is fam.curve_class and back.lam == c.lam
+    assert back.control_points() == c.control_points()
+
+
+def _call_leading_weights(fam):
+    from lambda_bezier.joins import Joint, leading_weights
+
+    first = lb.BezierCurve([(0, 0), (1, 1), (2, 0)])
+    w = leading_weights(first, Joint("C1", 1, 0), fam, 3, Fraction(1, 2))
+    nxt = lb.join(first, "C1", 3, lam=Fraction(1, 2), rest=[(5, 5), (6, 0)], family=fam)
+    # P_{1,2} = Σ weight · X, X a point of the first curve (P_{n-j}) or a given one (P_{j,2})
+    given = {j: nxt.control_points()[j] for j in range(4)}
+    row1 = [
+        sum(
+            Fraction(wt) * (first.control_points()[2 - j][c] if src == "first" else given[j][c])
+            for (row, src, j), wt in w.items()
+            if row == 1
+        )
+        for c in range(2)
+    ]
+    assert tuple(row1) == nxt.control_points()[1]
+
+
+# parameters named `family` that name something else
+NOT_A_FAMILY = {"curves.data_curve_class": "the new class's family name, not one to look up"}
+
+CALLS = {
+    "joins.leading_weights": _call_leading_weights,
+    "energy.optimal_lambda": _call_optimal_lambda,
+    "energy.energy_coefficients": _call_energy_coefficients,
+    "energy.energy_matrices": _call_energy_matrices,
+    "joins.join": _call_join,
+    "composite.CompositeCurve.join": _call_composite_join,
+    "batch.evaluate_many": _call_evaluate_many,
+    "properties.singular_parameters": _call_singular_parameters,
+    "properties.is_singular": _call_is_singular,
+    "curves.family_class": _call_family_class,
+    "export.from_json": _call_from_json,
+}
+
+
+def test_every_family_parameter_is_covered():
+    found = _public_callables_with_family()
+    assert found, "introspection found nothing: the walk is broken"
+    found -= set(NOT_A_FAMILY)
+    assert found == set(CALLS), (
+        f"without a call here: {sorted(found - set(CALLS))}; gone: {sorted(set(CALLS) - found)}"
+    )
+
+
+@pytest.mark.parametrize("name", sorted(CALLS))
+def test_accepts_a_loaded_family(name, fam):
+    CALLS[name](fam)
+
+
+# ------------------------------------------------------------------------- the command line
+
+
+def _subcommands_with_family():
+    parser = build_parser()
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    return {
+        name
+        for name, p in sub.choices.items()
+        if any("--family" in a.option_strings for a in p._actions)
+    }
+
+
+def _cli_derive(tmp_path, capsys):
+    # a copy of the example (derive --family writes nothing into the installed package)
+    files = examples.copy("family", tmp_path)
+    (tmp_path / "nouri_saeidian.derived.json").unlink()
+    assert main(["derive", "-q", "--family", str(files[0])]) == 0
+    written = (tmp_path / "nouri_saeidian.derived.json").read_text()
+    assert written == examples.path("nouri_saeidian.derived.json").read_text()
+    assert main(["derive", "-q", "--family", str(files[0]), "--check"]) == 0
+
+
+def _cli_optimal_lambda(tmp_path, capsys):
+    assert (
+        main(["optimal-lambda", "--json", "--family", str(NS_FILE), "0,0", "1,2", "3,2", "4,0"])
+        == 0
+    )
+    report = json.loads(capsys.readouterr().out)
+    assert report["family"] == "nouri_saeidian" and report["lambda"] == "4/7"
+    assert report["range"] == "[0, 1]"
+
+
+def _cli_export(tmp_path, capsys):
+    from lambda_bezier.export import from_json, to_json
+
+    fam = lb.load_family(NS_FILE)
+    c = _own_curve(fam)
+    src = tmp_path / "curve.json"
+    src.write_text(to_json(c))
+    out = tmp_path / "out.json"
+    assert main(["export", "--format", "json", "--family", str(NS_FILE), str(src), str(out)]) == 0
+    assert from_json(out.read_text(), family=fam).control_points() == c.control_points()
+    # without the family: refused, saying how
+    assert main(["export", "--format", "json", str(src), str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "'nouri_saeidian' is not built in" in err and "--family FILE" in err
+    # the embedded definition written out is the definition (same fingerprint)
+    toml = tmp_path / "ns.toml"
+    assert main(["export", "--format", "family", str(src), str(toml)]) == 0
+    from lambda_bezier.family import definition_digest, read_family_table
+
+    assert definition_digest(read_family_table(toml)) == fam.digest
+
+
+CLI = {"derive": _cli_derive, "optimal-lambda": _cli_optimal_lambda, "export": _cli_export}
+
+
+def test_every_family_option_is_covered():
+    assert _subcommands_with_family() == set(CLI)
+
+
+@pytest.mark.parametrize("command", sorted(CLI))
+def test_cli_accepts_a_family_file(command, tmp_path, capsys):
+    CLI[command](tmp_path, capsys)

@@ -684,17 +684,22 @@ def _own_classes(doc: dict[str, Any], family: object) -> dict[str, type[Curve]]:
     out: dict[str, type[Curve]] = {}
     for name in sorted(n for n in names if isinstance(n, str) and n not in FAMILIES):
         digest = embedded[name][0] if name in embedded else None
-        if name not in given:
-            has = (
-                f"the document embeds its definition (fingerprint {digest[:12]}): pass "
-                f"family={name}.derived.json (its derived document) or the family's definition "
-                f"file or Family; from the shell, --family FILE. Without either, write the "
-                f"definition out with `lambda-bezier export --format family INPUT.json "
-                f"{name}.toml` and run `lambda-bezier derive --family {name}.toml`"
-                if digest is not None
-                else "pass its definition file or Family as family= (from the shell, --family FILE)"
+        if name not in given and digest is None:
+            raise ValueError(
+                f"family must be one of {sorted(FAMILIES)} or a family of your own passed as "
+                f"family= (its definition file or Family; from the shell, --family FILE), "
+                f"got {name!r}"
             )
-            raise ValueError(f"the family {name!r} is not built in: {has}")
+        if name not in given:
+            assert digest is not None  # the case without one is refused above
+            raise ValueError(
+                f"the family {name!r} is not built in: the document embeds its definition "
+                f"(fingerprint {digest[:12]}): pass family={name}.derived.json (its derived "
+                "document) or the family's definition file or Family; from the shell, --family "
+                f"FILE. Without either, write the definition out with `lambda-bezier export "
+                f"--format family INPUT.json {name}.toml` and run `lambda-bezier derive "
+                f"--family {name}.toml`"
+            )
         fam = given[name]
         if digest is not None and fam.digest != digest:
             origin = fam.definition if fam.definition is not None else "the given family"

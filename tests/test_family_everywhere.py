@@ -22,6 +22,7 @@ import pytest
 import lambda_bezier as lb
 from lambda_bezier import examples
 from lambda_bezier.cli import build_parser, main
+from lambda_bezier.family import definition_digest
 
 NS_FILE = examples.path("nouri_saeidian.toml")
 POINTS = [(0, 0), (1, 2), (3, 2), (4, 0)]
@@ -251,3 +252,105 @@ def test_every_family_option_is_covered():
 @pytest.mark.parametrize("command", sorted(CLI))
 def test_cli_accepts_a_family_file(command, tmp_path, capsys):
     CLI[command](tmp_path, capsys)
+
+
+# ------------------------------------------------------------------- the JSON form, in detail
+
+
+def test_json_composite_of_own_and_built_in_families_round_trips_exactly(fam, tmp_path):
+    from lambda_bezier.export import from_json, to_json
+
+    comp = lb.CompositeCurve([_own_curve(fam)]).join(
+        "C1", 3, Fraction(1, 4), rest=[(7, 1), (8, 0)], family="bernstein_like"
+    )
+    text = to_json(comp)
+    doc = json.loads(text)
+    assert set(doc["definitions"]) == {"nouri_saeidian"}
+    assert doc["definitions"]["nouri_saeidian"]["definition_digest"] == fam.digest
+    # the derived document alone, copied away from any definition file
+    derived = tmp_path / "nouri_saeidian.derived.json"
+    derived.write_text(examples.path("nouri_saeidian.derived.json").read_text())
+    for given in (fam, NS_FILE, derived, [derived]):
+        back = from_json(text, family=given)
+        assert [s.control_points() for s in back.segments] == [
+            s.control_points() for s in comp.segments
+        ]
+        assert [s.lam for s in back.segments] == [s.lam for s in comp.segments]
+        assert to_json(back) == text
+
+
+def test_json_refuses_another_version_of_the_family(fam, tmp_path):
+    from lambda_bezier.export import from_json, to_json
+
+    text = to_json(_own_curve(fam))
+    other = tmp_path / "nouri_saeidian.toml"
+    other.write_text(NS_FILE.read_text().replace('degrees = "3..12"', 'degrees = "3..11"'))
+    with pytest.raises(ValueError, match="another version of the family 'nouri_saeidian'"):
+        from_json(
+            text, family=lb.Family(fam.data, other, "", "sigma", dict(fam.table, degrees="3..11"))
+        )
+    # an edited embedded definition no longer matches its own fingerprint
+    doc = json.loads(text)
+    doc["definitions"]["nouri_saeidian"]["definition"]["range"] = "[0, 2]"
+    with pytest.raises(ValueError, match=r"does not match its definition_digest"):
+        from_json(json.dumps(doc), family=fam)
+    # a derived document of another definition
+    with pytest.raises(ValueError, match="derived from another version"):
+        from_json(
+            json.dumps(
+                {
+                    **json.loads(text),
+                    "definitions": {
+                        "nouri_saeidian": {
+                            "definition": dict(fam.table, title="x"),
+                            "definition_digest": definition_digest(dict(fam.table, title="x")),
+                        }
+                    },
+                }
+            ),
+            family=examples.path("nouri_saeidian.derived.json"),
+        )
+    with pytest.raises(TypeError, match="family must be a Family"):
+        from_json(text, family=3)
+
+
+def test_embedded_definition_written_out_is_a_family_file(fam):
+    from lambda_bezier.export import family_definition, to_json
+    from lambda_bezier.family import definition_toml
+
+    text = family_definition(to_json(_own_curve(fam)))
+    import tomllib
+
+    assert tomllib.loads(text)["family"] == fam.table
+    hostile = dict(fam.table, title='quote " backslash \\ newline \n del \x7f tab \t é')
+    assert tomllib.loads(definition_toml(hostile))["family"] == hostile
+    with pytest.raises(ValueError, match="embeds no family definition"):
+        family_definition(to_json(lb.BezierCurve([(0, 0), (1, 1)])))
+
+
+# ------------------------------------------------------------------------------- the examples
+
+
+def test_examples_copy_and_refuse_to_overwrite(tmp_path):
+    copied = examples.copy("records", tmp_path)
+    assert [p.name for p in copied] == ["user_paper.toml"]
+    assert copied[0].read_text() == examples.path("user_paper.toml").read_text()
+    with pytest.raises(ValueError, match="not overwritten"):
+        examples.copy("records", tmp_path)
+    with pytest.raises(ValueError, match="kind must be one of family, records"):
+        examples.copy("figures", tmp_path)
+    with pytest.raises(ValueError, match="name must be one of"):
+        examples.path("../family.py")
+    assert main(["example", "list"]) == 0
+
+
+def test_derive_family_refuses_to_write_into_an_installation(tmp_path, monkeypatch):
+    from lambda_bezier import _family_runner
+
+    site = tmp_path / "site-packages"
+    (site / "pkg").mkdir(parents=True)
+    monkeypatch.setattr(
+        _family_runner.sysconfig, "get_paths", lambda: {"purelib": str(site), "platlib": str(site)}
+    )
+    assert _family_runner._installed_location(site / "pkg" / "x.derived.json") == site
+    assert _family_runner._installed_location(tmp_path / "x.derived.json") is None

@@ -13,6 +13,7 @@ import difflib
 import importlib
 import os
 import sys
+import sysconfig
 import tempfile
 from pathlib import Path
 
@@ -40,8 +41,6 @@ def _installed_location(target: Path) -> Path | None:
     """The installed-package directory (this package, or site-packages) that would hold
     `target`, or None: derive --family without --out never writes into an installation
     (a source checkout, where an editable install's files live, is not one)."""
-    import sysconfig
-
     import lambda_bezier
 
     roots = [Path(lambda_bezier.__file__).parent] + [

@@ -508,7 +508,7 @@ def _number_in(x: object, where: str) -> Fraction | float:
 
 def _own_family(curve: Curve) -> Family | None:
     """The Family of a curve of a family defined by data (None for a built-in family)."""
-    family: Family | None = getattr(curve._data, "FAMILY_OBJECT", None)
+    family: Family | None = getattr(type(curve), "family_object", None)
     return family
 
 

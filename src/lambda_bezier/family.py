@@ -109,7 +109,6 @@ class FamilyData:
                 )
                 for r in roots
             )
-        self.FAMILY_OBJECT: Family | None = None  # set by Family
         for n in self.DEGREES:
             for table in (self.POWER, self.CENTRED, self.BERNSTEIN):
                 if n not in table:
@@ -137,13 +136,14 @@ class Family:
         # the [family] table and its fingerprint: what a curve's JSON form names
         self.table: dict[str, Any] = dict(table or {})
         self.digest = definition_digest(self.table)
-        data.FAMILY_OBJECT = self  # what a curve's JSON form reads its definition from
         camel = "".join(part.capitalize() for part in data.FAMILY.split("_"))
         origin = definition if definition is not None else "an embedded definition"
         doc = f"A curve of the family {data.FAMILY!r} ({title}), from {origin}."
         self.curve_class: type[Curve] = data_curve_class(
             data.FAMILY, f"{camel}Curve", data, doc, __name__
         )
+        # what a curve's JSON form reads the definition from (one class per Family object)
+        setattr(self.curve_class, "family_object", self)  # noqa: B010
 
     @property
     def name(self) -> str:

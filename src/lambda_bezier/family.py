@@ -8,8 +8,10 @@ file is run: the definition is only fingerprinted, the derived document is data 
 rationals as strings).
 
 >>> import lambda_bezier as lb
->>> fam = lb.load_family("tests/data/families/q_bernstein_like.toml")   # doctest: +SKIP
->>> c = fam.curve([(0, 0), (1, 2), (3, 2), (4, 0)], lam=0.5)             # doctest: +SKIP
+>>> from lambda_bezier import examples
+>>> fam = lb.load_family(examples.path("nouri_saeidian.toml"))   # shipped, already derived
+>>> fam.curve([(0, 0), (1, 2), (3, 2), (4, 0)], lam=0.5).evaluate(0.5)
+array([2.  , 0.75])
 """
 
 from __future__ import annotations

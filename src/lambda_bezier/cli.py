@@ -90,8 +90,8 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="NAME|FILE",
         # the built-in names are not listed here: the parser is built for every command, and
         # `lambda-bezier derive` must run where generated/ is missing
-        help="curve family: a built-in shape-parameter family's name (default: the first, "
-        "same_degree) or a family file of your own, derived with `lambda-bezier derive "
+        help="curve family: a built-in shape-parameter family's name (default: the first "
+        "built-in one) or a family file of your own, derived with `lambda-bezier derive "
         "--family FILE`",
     )
     opt.add_argument(

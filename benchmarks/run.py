@@ -385,9 +385,9 @@ def bench_verify() -> None:
         "a few seconds",
         full <= 5.0,
     )
-    # a user's records file (tests/data/records/user_paper.toml: records about all three
+    # a user's records file (src/lambda_bezier/examples/user_paper.toml: records about all three
     # families, joins and energies among them); the target is 20 records in under 5 s
-    user = command("verify", "tests/data/records/user_paper.toml", repeat=3)
+    user = command("verify", "src/lambda_bezier/examples/user_paper.toml", repeat=3)
     record(
         "lambda-bezier verify FILE (a user's records file)",
         user,

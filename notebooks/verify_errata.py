@@ -17,26 +17,43 @@
 # `lambda-bezier verify` checks every transcribed formula against the derivation. This
 # notebook runs it on the records it finds wrong, prints each erratum (printed form,
 # corrected form, the verifier's diff) and draws two of them, so the size of each misprint is
-# visible. Needs the source checkout (derive/ and derive/published/) and SymPy.
+# visible. Needs SymPy (the `derive` extra); uses the checkout's derive/ when run inside one.
 
 # %%
+import importlib
 import os
 import sys
 from pathlib import Path
 
+try:
+    import sympy as sp
+except ImportError:
+    raise SystemExit(
+        "this tutorial re-derives formulas with SymPy: pip install 'lambda-bezier[derive]'"
+    ) from None
 import matplotlib.pyplot as plt
 import numpy as np
-import sympy as sp
 
-# the checkout: the first of the working directory and its parents that holds derive/ (the
-# notebook runs from notebooks/, and from docs/tutorials/ when the docs are built)
-ROOT = next(
-    p for p in (Path.cwd().resolve(), *Path.cwd().resolve().parents) if (p / "derive").is_dir()
+import lambda_bezier as lb
+
+# derive/ from the checkout when there is one (the first of the working directory and its
+# parents that holds derive/: the notebook runs from notebooks/, and from docs/tutorials/
+# when the docs are built), else the copy installed with the package, with its records
+CHECKOUT = next(
+    (
+        p
+        for p in (Path.cwd().resolve(), *Path.cwd().resolve().parents)
+        if (p / "derive" / "__init__.py").is_file()
+    ),
+    None,
 )
-sys.path.insert(0, str(ROOT))
-import derive.verify.report as verify  # noqa: E402
-import lambda_bezier as lb  # noqa: E402
-from derive.verify.expr_parse import parse  # noqa: E402
+if CHECKOUT is not None:
+    sys.path.insert(0, str(CHECKOUT))
+    DERIVE = "derive"
+else:
+    DERIVE = "lambda_bezier._derive"
+verify = importlib.import_module(f"{DERIVE}.verify.report")
+parse = importlib.import_module(f"{DERIVE}.verify.expr_parse").parse
 
 FIGURES = Path(os.environ.get("LAMBDA_BEZIER_FIGURES", Path.cwd() / "figures"))
 FIGURES.mkdir(parents=True, exist_ok=True)

@@ -1,7 +1,7 @@
 """A family from its definition: derive --family, load_family, and the whole toolkit for it.
 
 The published family used here is neither of ours: Nouri and Saeidian's enhanced basis
-(arXiv:2405.07086, tests/data/families/nouri_saeidian.toml). Its derived artifacts are
+(arXiv:2405.07086, src/lambda_bezier/examples/nouri_saeidian.toml). Its derived artifacts are
 checked against independent numerics written from the paper's construction (direct
 evaluation, finite differences, quadrature energies, numeric minimisation), and the built-in
 families, defined as data in derive/families/*.toml, must come out of the same engine exactly
@@ -30,7 +30,7 @@ pytestmark = pytest.mark.skipif(
     not (ROOT / "derive" / "families" / "engine.py").is_file(), reason="needs the source checkout"
 )
 
-NS_FILE = ROOT / "tests" / "data" / "families" / "nouri_saeidian.toml"
+NS_FILE = ROOT / "src" / "lambda_bezier" / "examples" / "nouri_saeidian.toml"
 
 
 def _derive_module(name: str):

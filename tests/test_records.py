@@ -1,7 +1,7 @@
 """`lambda-bezier verify PATH`: a user's records files, validated and read by our own grammar.
 
-The user file tests/data/records/user_paper.toml holds true and misprinted records about each
-built-in family; its verdicts are asserted here, and the true values it states are recomputed
+The user file src/lambda_bezier/examples/user_paper.toml holds true and misprinted records
+about each built-in family; its verdicts are asserted here, and the true values it states are recomputed
 with independent numerics (the runtime, finite differences, quadrature). Hostile and malformed
 files must end in a clear error (exit 2) naming file, record and key, and nothing in a file is
 ever run.
@@ -35,7 +35,7 @@ pytestmark = pytest.mark.skipif(
     reason="needs the source checkout (derive/)",
 )
 
-USER_FILE = ROOT / "tests" / "data" / "records" / "user_paper.toml"
+USER_FILE = ROOT / "src" / "lambda_bezier" / "examples" / "user_paper.toml"
 FORMAT_DOC = ROOT / "derive" / "published" / "README.md"
 
 
@@ -542,7 +542,7 @@ def test_family_in_a_file_of_its_own(tmp_path):
     """A [family] table alone in a file defines the family for the run; the records file
     names it, and the two files may come in either order. Without the family file, the error
     says how to give it."""
-    ns = (ROOT / "tests" / "data" / "families" / "nouri_saeidian.toml").read_text()
+    ns = (ROOT / "src" / "lambda_bezier" / "examples" / "nouri_saeidian.toml").read_text()
     family = tmp_path / "my_family.toml"
     family.write_text(ns[ns.index("[family]") : ns.index("[[record]]")])
     records = tmp_path / "my_records.toml"

@@ -2,7 +2,9 @@
 
 The derivation (derive/families/engine.py) needs SymPy, imported only when the command runs.
 The result is one JSON document written beside FILE (or into DIR) as `<name>.derived.json`,
-atomically; `--check` compares instead and prints a unified diff when it drifted.
+atomically; `--check` compares instead and prints a unified diff when it drifted. Nothing is
+written into an installed package (the shipped examples included): the command says to copy
+the file out (`lambda-bezier example family DIR`) or to pass --out.
 """
 
 from __future__ import annotations
@@ -11,6 +13,7 @@ import difflib
 import importlib
 import os
 import sys
+import sysconfig
 import tempfile
 from pathlib import Path
 
@@ -34,6 +37,24 @@ def _write_atomically(path: Path, text: str) -> None:
         raise
 
 
+def _installed_location(target: Path) -> Path | None:
+    """The installed-package directory (this package, or site-packages) that would hold
+    `target`, or None: derive --family without --out never writes into an installation
+    (a source checkout, where an editable install's files live, is not one)."""
+    import lambda_bezier
+
+    roots = [Path(lambda_bezier.__file__).parent] + [
+        Path(sysconfig.get_paths()[key]) for key in ("purelib", "platlib")
+    ]
+    where = target.resolve().parent
+    if find_checkout(where) is not None:  # a source checkout (an editable install's files)
+        return None
+    for root in roots:
+        if where == root.resolve() or root.resolve() in where.parents:
+            return root
+    return None
+
+
 def run(path: Path, out_dir: Path | None, check: bool, quiet: bool = False) -> int:
     derive = load_derive(find_checkout(Path.cwd()))  # exits with a hint without SymPy
     definition = importlib.import_module(f"{derive.__name__}.families.definition")
@@ -49,6 +70,15 @@ def run(path: Path, out_dir: Path | None, check: bool, quiet: bool = False) -> i
         print(f"lambda-bezier derive: {exc}", file=sys.stderr)
         return 2
     target = document.derived_path(path, defn.name, out_dir)
+    installed = _installed_location(target) if out_dir is None else None
+    if installed is not None and not check:
+        print(
+            f"lambda-bezier derive: {path} is inside the installed package ({installed}); "
+            f"nothing is written there. Copy it out first (`lambda-bezier example family DIR` "
+            f"for the shipped example) or pass --out DIR",
+            file=sys.stderr,
+        )
+        return 2
     if check:
         old = target.read_text(encoding="utf-8") if target.is_file() else ""
         if old == text:

@@ -90,8 +90,12 @@ def build_parser() -> argparse.ArgumentParser:
     opt.add_argument("points", nargs="+", metavar="POINT", help="control point x,y or x,y,z")
     opt.add_argument(
         "--family",
-        choices=_ShapeFamilies(),
-        help="curve family: %(choices)s (default: the first)",
+        metavar="NAME|FILE",
+        # the built-in names are not listed here: the parser is built for every command, and
+        # `lambda-bezier derive` must run where generated/ is missing
+        help="curve family: a built-in shape-parameter family's name (default: the first "
+        "built-in one) or a family file of your own, derived with `lambda-bezier derive "
+        "--family FILE`",
     )
     opt.add_argument(
         "--energy",
@@ -113,7 +117,22 @@ def build_parser() -> argparse.ArgumentParser:
         "write it as one exact B-spline (STEP through OCCT, DXF SPLINE through ezdxf; both "
         'need pip install "lambda-bezier[cad]"), an SVG path, or normalised JSON.',
     )
-    exp.add_argument("--format", required=True, choices=["step", "dxf", "svg", "json"])
+    exp.add_argument(
+        "--format",
+        required=True,
+        choices=["step", "dxf", "svg", "json", "family"],
+        help="family: write the definition of the own family INPUT.json embeds as a TOML "
+        "family file (for `lambda-bezier derive --family`)",
+    )
+    exp.add_argument(
+        "--family",
+        action="append",
+        type=Path,
+        metavar="FILE",
+        help="a family of your own that INPUT.json uses: its definition file (derived with "
+        "`lambda-bezier derive --family FILE`) or its NAME.derived.json; repeatable. Default: "
+        "a NAME.derived.json beside INPUT.json",
+    )
     exp.add_argument(
         "--tolerance",
         type=float,
@@ -122,6 +141,17 @@ def build_parser() -> argparse.ArgumentParser:
     )
     exp.add_argument("input", type=Path, metavar="INPUT.json")
     exp.add_argument("output", type=Path, metavar="OUTPUT")
+
+    ex = sub.add_parser(
+        "example",
+        help="copy the example family or records files shipped with the package into DIR",
+        description="Copy the example files shipped with lambda-bezier into DIR, to use them "
+        "anywhere: `family` (nouri_saeidian.toml, a family of your own with records about it, "
+        "and its derived document), `records` (user_paper.toml, records about the built-in "
+        "families); `list` prints every example file's installed path.",
+    )
+    ex.add_argument("kind", choices=["family", "records", "list"])
+    ex.add_argument("directory", type=Path, nargs="?", metavar="DIR", help="(not for list)")
 
     from ._verify_runner import add_arguments
 
@@ -190,6 +220,8 @@ def main(argv: list[str] | None = None) -> int:
         return _optimal_lambda(args)
     if args.command == "export":
         return _export(args)
+    if args.command == "example":
+        return _example(args)
     if args.command == "verify":
         from ._verify_runner import run_from_args
 
@@ -203,7 +235,13 @@ def _export(args: argparse.Namespace) -> int:
     try:
         if args.tolerance is not None and args.format != "svg":
             raise ValueError("--tolerance applies to --format svg only")
-        obj = export.from_json(args.input.read_text(encoding="utf-8"))
+        text = args.input.read_text(encoding="utf-8")
+        if args.format == "family":
+            if args.family:
+                raise ValueError("--family does not apply to --format family")
+            args.output.write_text(export.family_definition(text), encoding="utf-8")
+            return 0
+        obj = export.from_json(text, family=args.family or _derived_beside(args.input, text))
         if args.format == "json":
             args.output.write_text(export.to_json(obj) + "\n", encoding="utf-8")
         elif args.format == "svg":
@@ -216,6 +254,55 @@ def _export(args: argparse.Namespace) -> int:
     return 0
 
 
+def _example(args: argparse.Namespace) -> int:
+    from . import examples
+
+    try:
+        if args.kind == "list":
+            if args.directory is not None:
+                raise ValueError("`example list` takes no DIR")
+            for name in examples.names():
+                print(examples.path(name))
+            return 0
+        if args.directory is None:
+            raise ValueError(f"`example {args.kind}` needs a DIR to copy into")
+        for path in examples.copy(args.kind, args.directory):
+            print(path)
+    except (OSError, ValueError) as exc:
+        print(f"lambda-bezier example: error: {exc}", file=sys.stderr)
+        return 2
+    return 0
+
+
+def _derived_beside(path: Path, text: str) -> list[Path]:
+    """The derived documents beside a JSON form of the own families it embeds."""
+    import json
+
+    try:
+        definitions = json.loads(text).get("definitions", {})
+    except (json.JSONDecodeError, AttributeError):
+        return []  # from_json says what is wrong
+    if not isinstance(definitions, dict):
+        return []
+    beside = [path.parent / f"{name}.derived.json" for name in definitions if isinstance(name, str)]
+    return [p for p in beside if p.is_file()]
+
+
+def _family_argument(text: str | None) -> object:
+    """--family of optimal-lambda: a built-in family's name, or a family file of the user's
+    own (a Family from load_family)."""
+    names = _ShapeFamilies().names()
+    if text is None:
+        return names[0]
+    if text in names:
+        return text
+    if "/" in text or "\\" in text or text.endswith(".toml") or Path(text).is_file():
+        from .family import load_family
+
+        return load_family(text)
+    raise ValueError(f"--family must be one of {', '.join(names)} or a family file, got {text!r}")
+
+
 def _optimal_lambda(args: argparse.Namespace) -> int:
     from .energy import optimal_lambda
     from .hazmat.numbers import parse_point
@@ -224,9 +311,8 @@ def _optimal_lambda(args: argparse.Namespace) -> int:
         points = [parse_point(p.lstrip(" ")) for p in args.points]
         if len({len(p) for p in points}) != 1:
             raise ValueError("all points must have the same dimension (2 or 3 coordinates)")
-        if args.family is None:
-            args.family = _ShapeFamilies().names()[0]
-        result = optimal_lambda(points, args.energy, args.family, clamp=args.clamp)
+        family = _family_argument(args.family)
+        result = optimal_lambda(points, args.energy, family, clamp=args.clamp)
     except ValueError as exc:
         print(f"lambda-bezier optimal-lambda: error: {exc}", file=sys.stderr)
         return 2
@@ -236,19 +322,20 @@ def _optimal_lambda(args: argparse.Namespace) -> int:
     limit = sys.get_int_max_str_digits()
     sys.set_int_max_str_digits(0)
     try:
-        return _print_optimal_lambda(args, result)
+        return _print_optimal_lambda(args, family, result)
     finally:
         sys.set_int_max_str_digits(limit)
 
 
-def _print_optimal_lambda(args: argparse.Namespace, result: OptimalLambda) -> int:
+def _print_optimal_lambda(args: argparse.Namespace, family: object, result: OptimalLambda) -> int:
     import json
 
     from .energy import ENERGY_NAMES
 
     k = args.energy
+    family_name = family if isinstance(family, str) else getattr(family, "name", str(family))
     report = {
-        "family": args.family,
+        "family": family_name,
         "range": result.range_text,
         "energy_order": k,
         "energy_name": ENERGY_NAMES[k],
@@ -283,7 +370,7 @@ def _print_optimal_lambda(args: argparse.Namespace, result: OptimalLambda) -> in
 
     verdict = "yes" if report["admissible"] else f"no: outside {result.range_text}"
     lines = [
-        f"family          {args.family}  (λ ∈ {result.range_text})",
+        f"family          {family_name}  (λ ∈ {result.range_text})",
         f"energy          E_{k} ({ENERGY_NAMES[k]})",
         f"optimal λ       {both('lambda')}",
         f"E_{k} at λ        {both('energy')}",

@@ -33,6 +33,18 @@ string "p/q" or "n", a float is a JSON number (shortest repr, so it round-trips 
      "segments": [{"family": ..., "lambda": ..., "points": ...}, ...],
      "joints": [null | {"continuity": "C1" | "C2" | "G1" | "G2",
                         "alpha": "2", "d": "1"}, ...]}   (one per joint, as built)
+
+A curve of a family of the user's own (`lambda_bezier.load_family`) is written under its name,
+and the document then also holds that family's definition and fingerprint::
+
+     "definitions": {"nouri_saeidian": {"definition_digest": "<sha256>",
+                                        "definition": {<the [family] table>}}}
+
+Reading it back needs the family's derived tables, which `from_json(text, family=...)` takes
+as a Family, a definition file (its derived document beside it) or the derived document itself
+(then no definition file is needed: the embedded definition is used); each must carry the
+fingerprint the document records. From the shell: `lambda-bezier export --family FILE`;
+`lambda-bezier export --format family INPUT.json NAME.toml` writes an embedded definition out.
 """
 
 from __future__ import annotations
@@ -59,6 +71,7 @@ if TYPE_CHECKING:
 
     from .composite import CompositeCurve
     from .curves import Curve
+    from .family import Family
     from .rational import RationalBezierCurve
 
     Shape = Curve | CompositeCurve | RationalBezierCurve  # what the exporters take
@@ -579,6 +592,27 @@ def _number_in(x: object, where: str) -> Fraction | float:
     return x
 
 
+def _own_family(curve: Curve) -> Family | None:
+    """The Family of a curve of a family defined by data (None for a built-in family)."""
+    family: Family | None = getattr(type(curve), "family_object", None)
+    return family
+
+
+def _definitions(curves: Sequence[Curve]) -> dict[str, Any]:
+    """{name: {definition_digest, definition}} of the own families among `curves`."""
+    out: dict[str, Any] = {}
+    for curve in curves:
+        family = _own_family(curve)
+        if family is None:
+            continue
+        entry = {"definition_digest": family.digest, "definition": family.table}
+        if out.setdefault(family.name, entry) != entry:
+            raise ValueError(
+                f"two different definitions of the family {family.name!r} in one document"
+            )
+    return out
+
+
 def _curve_dict(curve: Curve | RationalBezierCurve) -> dict[str, Any]:  # JSON values
     out: dict[str, Any] = {
         "family": curve.family,
@@ -596,8 +630,8 @@ def to_json(obj: Shape, *, indent: int | None = 2) -> str:
     strings, floats as JSON numbers; from_json reads it back exactly."""
     from .composite import CompositeCurve
 
-    if _rational(obj) is None:
-        _segments(obj)  # type check
+    doc: dict[str, Any]
+    definitions = {} if _rational(obj) is not None else _definitions(_segments(obj))
     if isinstance(obj, CompositeCurve):
         joints = [
             None
@@ -613,6 +647,8 @@ def to_json(obj: Shape, *, indent: int | None = 2) -> str:
         }
     else:
         doc = {"lambda_bezier": FORMAT_VERSION, "kind": "curve", **_curve_dict(obj)}
+    if definitions:
+        doc["definitions"] = definitions
     text = json.dumps(doc, indent=indent, ensure_ascii=False)
     if indent is None:
         return text
@@ -621,10 +657,14 @@ def to_json(obj: Shape, *, indent: int | None = 2) -> str:
 
 
 def _curve_from(
-    data: object, where: str, check_range: bool, rational: bool = False
+    data: object,
+    where: str,
+    check_range: bool,
+    own: dict[str, type[Curve]],
+    rational: bool = False,
 ) -> Curve | RationalBezierCurve:
-    """A curve from its JSON object; a rational one only where `rational` (composites hold
-    polynomial curves)."""
+    """A curve from its JSON object: a built-in family, one of `own` (the document's own
+    families), or a rational one only where `rational` (composites hold polynomial curves)."""
     from .curves import FAMILIES
     from .rational import RationalBezierCurve
 
@@ -632,8 +672,11 @@ def _curve_from(
         raise ValueError(f"{where}: expected an object with family, lambda and points")
     family = data.get("family")
     names = sorted(FAMILIES) + ([RationalBezierCurve.family] if rational else [])
-    if family not in names:
-        raise ValueError(f"{where}.family must be one of {names}, got {family!r}")
+    if family not in names and family not in own:
+        raise ValueError(
+            f"{where}.family must be one of {names} or a family of your own "
+            f"passed as family= (from the shell: --family FILE), got {family!r}"
+        )
     points = data.get("points")
     if not isinstance(points, list) or not all(isinstance(r, list) for r in points):
         raise ValueError(f"{where}.points must be a list of [x, y] or [x, y, z] lists")
@@ -654,7 +697,7 @@ def _curve_from(
         if not all(isinstance(w, Fraction) for w in ws):
             ws = [float(w) for w in ws]
         return RationalBezierCurve(rows, ws)
-    cls = FAMILIES[family]
+    cls = own[family] if family in own else FAMILIES[family]
     lam = data.get("lambda")
     if not cls._has_lambda:  # the classical Bézier curve
         if lam is not None:
@@ -665,19 +708,17 @@ def _curve_from(
     return cls(rows, _number_in(lam, f"{where}.lambda"), check_range=check_range)
 
 
-def _segment_from(data: object, where: str, check_range: bool) -> Curve:
+def _segment_from(
+    data: object, where: str, check_range: bool, own: dict[str, type[Curve]]
+) -> Curve:
     from .curves import Curve
 
-    curve = _curve_from(data, where, check_range)
+    curve = _curve_from(data, where, check_range, own)
     assert isinstance(curve, Curve)  # _curve_from offers no rational curve here
     return curve
 
 
-def from_json(text: str, *, check_range: bool = True) -> Shape:
-    """A curve or CompositeCurve from its JSON form (see the module docstring)."""
-    from .composite import CompositeCurve
-    from .joins import Joint
-
+def _load_document(text: str) -> dict[str, Any]:
     try:
         doc = json.loads(text)
     except (TypeError, json.JSONDecodeError) as exc:
@@ -686,15 +727,150 @@ def from_json(text: str, *, check_range: bool = True) -> Shape:
         raise ValueError(
             f'not a lambda-bezier JSON document: expected "lambda_bezier": {FORMAT_VERSION}'
         )
+    return doc
+
+
+def _embedded(doc: dict[str, Any]) -> dict[str, tuple[str, dict[str, Any]]]:
+    """{name: (digest, table)} of the definitions a document embeds, each checked against
+    its own fingerprint."""
+    from .family import definition_digest
+
+    definitions = doc.get("definitions", {})
+    if not isinstance(definitions, dict):
+        raise ValueError("definitions must be an object {name: {definition_digest, definition}}")
+    out = {}
+    for name, entry in definitions.items():
+        where = f"definitions[{name!r}]"
+        if not isinstance(entry, dict) or not isinstance(entry.get("definition"), dict):
+            raise ValueError(f"{where}: expected an object with definition_digest and definition")
+        table, digest = entry["definition"], entry.get("definition_digest")
+        if table.get("name") != name:
+            raise ValueError(f"{where}.definition names the family {table.get('name')!r}")
+        if digest != definition_digest(table):
+            raise ValueError(
+                f"{where}: the definition does not match its definition_digest (edited?)"
+            )
+        out[name] = (digest, table)
+    return out
+
+
+def _given_families(
+    family: object, embedded: dict[str, tuple[str, dict[str, Any]]]
+) -> dict[str, Family]:
+    """The families passed as family=, by name: Family objects, definition files (their
+    derived document beside them) or derived documents (with the embedded definition)."""
+    from .family import Family, family_from_definition, load_family
+
+    if family is None:
+        return {}
+    items = list(family) if isinstance(family, list | tuple) else [family]
+    out: dict[str, Family] = {}
+    for item in items:
+        if isinstance(item, Family):
+            fam = item
+        elif isinstance(item, str | Path):
+            path = Path(item)
+            if path.name.endswith(".derived.json"):
+                name = path.name[: -len(".derived.json")]
+                if name not in embedded:
+                    raise ValueError(
+                        f"family={str(item)!r}: the document embeds no definition of {name!r} "
+                        "(pass the definition file instead)"
+                    )
+                fam = family_from_definition(embedded[name][1], path)
+            else:
+                fam = load_family(path)
+        else:
+            raise TypeError(
+                "family must be a Family (lambda_bezier.load_family), a definition file, its "
+                f"derived document, or a list of them; got {type(item).__name__}"
+            )
+        out[fam.name] = fam
+    return out
+
+
+def _own_classes(doc: dict[str, Any], family: object) -> dict[str, type[Curve]]:
+    """The curve classes of the document's own families, each checked against the
+    fingerprint the document records; a family neither given nor built in is refused,
+    saying how to load it."""
+    from .curves import FAMILIES
+
+    embedded = _embedded(doc)
+    given = _given_families(family, embedded)
+    from .rational import RationalBezierCurve
+
+    segs = doc.get("segments") if doc.get("kind") == "composite" else [doc]
+    names = (
+        {s.get("family") for s in segs if isinstance(s, dict)} if isinstance(segs, list) else set()
+    )
+    known = {*FAMILIES, RationalBezierCurve.family}  # _curve_from decides where each may stand
+    out: dict[str, type[Curve]] = {}
+    for name in sorted(n for n in names if isinstance(n, str) and n not in known):
+        digest = embedded[name][0] if name in embedded else None
+        if name not in given and digest is None:
+            raise ValueError(
+                f"family must be one of {sorted(FAMILIES)} or a family of your own passed as "
+                f"family= (its definition file or Family; from the shell, --family FILE), "
+                f"got {name!r}"
+            )
+        if name not in given:
+            assert digest is not None  # the case without one is refused above
+            raise ValueError(
+                f"the family {name!r} is not built in: the document embeds its definition "
+                f"(fingerprint {digest[:12]}): pass family={name}.derived.json (its derived "
+                "document) or the family's definition file or Family; from the shell, --family "
+                f"FILE. Without either, write the definition out with `lambda-bezier export "
+                f"--format family INPUT.json {name}.toml` and run `lambda-bezier derive "
+                f"--family {name}.toml`"
+            )
+        fam = given[name]
+        if digest is not None and fam.digest != digest:
+            origin = fam.definition if fam.definition is not None else "the given family"
+            raise ValueError(
+                f"{origin} defines another version of the family {name!r} (fingerprint "
+                f"{fam.digest[:12]}) than the one this document was written with ({digest[:12]})"
+            )
+        out[name] = fam.curve_class
+    return out
+
+
+def family_definition(text: str, name: str | None = None) -> str:
+    """The definition of an own family a JSON form embeds, as the text of a TOML family file
+    (for `lambda-bezier derive --family`). `name` may be omitted when there is one."""
+    from .family import definition_toml
+
+    embedded = _embedded(_load_document(text))
+    if not embedded:
+        raise ValueError("the document embeds no family definition (only built-in families)")
+    if name is None:
+        if len(embedded) > 1:
+            raise ValueError(f"name must be one of {sorted(embedded)}")
+        name = next(iter(embedded))
+    if name not in embedded:
+        raise ValueError(f"name must be one of {sorted(embedded)}, got {name!r}")
+    return definition_toml(embedded[name][1])
+
+
+def from_json(text: str, *, check_range: bool = True, family: object = None) -> Shape:
+    """A curve or CompositeCurve from its JSON form (see the module docstring).
+
+    `family` names the families of the user's own the document uses: a Family from
+    `load_family`, a definition file, its derived document, or a list of them. A built-in
+    family needs nothing."""
+    from .composite import CompositeCurve
+    from .joins import Joint
+
+    doc = _load_document(text)
+    own = _own_classes(doc, family)
     kind = doc.get("kind")
     if kind == "curve":
-        return _curve_from(doc, "curve", check_range, rational=True)
+        return _curve_from(doc, "curve", check_range, own, rational=True)
     if kind != "composite":
         raise ValueError(f'"kind" must be "curve" or "composite", got {kind!r}')
     segs = doc.get("segments")
     if not isinstance(segs, list) or not segs:
         raise ValueError("composite.segments must be a non-empty list")
-    curves = [_segment_from(s, f"segments[{i}]", check_range) for i, s in enumerate(segs)]
+    curves = [_segment_from(s, f"segments[{i}]", check_range, own) for i, s in enumerate(segs)]
     joints_in = doc.get("joints", [None] * (len(curves) - 1))
     if not isinstance(joints_in, list):
         raise ValueError("composite.joints must be a list (null for a joint not built by join)")

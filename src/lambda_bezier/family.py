@@ -8,8 +8,10 @@ file is run: the definition is only fingerprinted, the derived document is data 
 rationals as strings).
 
 >>> import lambda_bezier as lb
->>> fam = lb.load_family("tests/data/families/q_bernstein_like.toml")   # doctest: +SKIP
->>> c = fam.curve([(0, 0), (1, 2), (3, 2), (4, 0)], lam=0.5)             # doctest: +SKIP
+>>> from lambda_bezier import examples
+>>> fam = lb.load_family(examples.path("nouri_saeidian.toml"))   # shipped, already derived
+>>> fam.curve([(0, 0), (1, 2), (3, 2), (4, 0)], lam=0.5).evaluate(0.5)
+array([2.  , 0.75])
 """
 
 from __future__ import annotations
@@ -122,16 +124,29 @@ class Family:
     ``join``, ``CompositeCurve`` and ``evaluate_many`` take the family object wherever they
     take a family name."""
 
-    def __init__(self, data: FamilyData, definition: Path, title: str, parameter: str):
+    def __init__(
+        self,
+        data: FamilyData,
+        definition: Path | None,
+        title: str,
+        parameter: str,
+        table: dict[str, Any] | None = None,
+    ):
         self.data = data
-        self.definition = definition
+        self.definition = definition  # the definition file, or None (embedded in a JSON form)
         self.title = title
         self.parameter = parameter
+        # the [family] table and its fingerprint: what a curve's JSON form names
+        self.table: dict[str, Any] = dict(table or {})
+        self.digest = definition_digest(self.table)
         camel = "".join(part.capitalize() for part in data.FAMILY.split("_"))
-        doc = f"A curve of the family {data.FAMILY!r} ({title}), from {definition}."
+        origin = definition if definition is not None else "an embedded definition"
+        doc = f"A curve of the family {data.FAMILY!r} ({title}), from {origin}."
         self.curve_class: type[Curve] = data_curve_class(
             data.FAMILY, f"{camel}Curve", data, doc, __name__
         )
+        # what a curve's JSON form reads the definition from (one class per Family object)
+        setattr(self.curve_class, "family_object", self)  # noqa: B010
 
     @property
     def name(self) -> str:
@@ -180,6 +195,38 @@ class Family:
         )
 
 
+def definition_toml(table: dict[str, Any]) -> str:
+    """The ``[family]`` table as the text of a TOML file (a definition embedded in a curve's
+    JSON form, written out for ``lambda-bezier derive --family``). The table's values are
+    strings, integers and lists of strings (definition.py's schema); the text is read back
+    and compared before it is returned."""
+    import json
+
+    if sys.version_info >= (3, 11):
+        import tomllib
+    else:  # pragma: no cover - Python 3.10
+        import tomli as tomllib
+
+    def value(v: object, key: str) -> str:
+        if isinstance(v, str):  # a JSON string is a TOML basic string, but for DEL
+            return json.dumps(v, ensure_ascii=False).replace("\x7f", "\\u007f")
+        if isinstance(v, int) and not isinstance(v, bool):
+            return str(v)
+        if isinstance(v, list):
+            return "[" + ", ".join(value(x, key) for x in v) + "]"
+        raise FamilyFileError(f"definition key {key!r}: unexpected value {v!r}")
+
+    lines = ["[family]"]
+    for key, v in table.items():
+        if not isinstance(key, str) or not re.match(r"^[A-Za-z0-9_-]{1,64}$", key):
+            raise FamilyFileError(f"definition key {key!r} is not a plain TOML key")
+        lines.append(f"{key} = {value(v, key)}")
+    text = "\n".join(lines) + "\n"
+    if tomllib.loads(text).get("family") != table:
+        raise FamilyFileError("the definition does not survive a TOML round trip")
+    return text
+
+
 def read_family_table(path: str | Path) -> dict[str, Any]:
     """The [family] table of a TOML file (a family file, or a records file that defines one);
     derive/family_engine.py reads definitions through this too, so both fingerprint the same
@@ -203,28 +250,26 @@ def read_family_table(path: str | Path) -> dict[str, Any]:
     return table
 
 
-def load_family(path: str | Path, derived: str | Path | None = None) -> Family:
-    """The family defined in `path` (a TOML file with a ``[family]`` table), with the tables
-    of its derived document (default: ``<name>.derived.json`` beside `path`).
+def _family_name(table: dict[str, Any], where: str) -> str:
+    name = table.get("name")
+    if not isinstance(name, str):
+        raise FamilyFileError(f"{where}: the [family] table has no name")
+    if not re.match(r"^[a-z][a-z0-9_]{0,39}$", name):
+        raise FamilyFileError(f"{where}: [family] name {name!r} is not a lowercase identifier")
+    return name
 
-    Refuses, naming the command to run, when the derived document is missing or was derived
-    from another version of the definition."""
+
+def _derived_family(
+    table: dict[str, Any], where: str, doc_path: Path, command: str, definition: Path | None
+) -> Family:
+    """The Family of the definition `table` with the tables of the derived document at
+    `doc_path`, which must have been derived from exactly this table (its fingerprint)."""
     import json  # imported here: `import lambda_bezier` stays light
 
-    path = Path(path)
-    table = read_family_table(path)
-    if not isinstance(table.get("name"), str):
-        raise FamilyFileError(f"{path}: the [family] table has no name")
-    name = table["name"]
-    if not re.match(r"^[a-z][a-z0-9_]{0,39}$", name):
-        raise FamilyFileError(f"{path}: [family] name {name!r} is not a lowercase identifier")
-    doc_path = (
-        Path(derived) if derived is not None else path.resolve().parent / (f"{name}.derived.json")
-    )
-    command = f"lambda-bezier derive --family {path}"
+    name = _family_name(table, where)
     if not doc_path.is_file():
         raise FamilyFileError(
-            f"{path}: the family {name!r} has not been derived ({doc_path} is missing); "
+            f"{where}: the family {name!r} has not been derived ({doc_path} is missing); "
             f"run `{command}`"
         )
     if doc_path.stat().st_size > MAX_DOCUMENT_BYTES:
@@ -241,7 +286,44 @@ def load_family(path: str | Path, derived: str | Path | None = None) -> Family:
         )
     if doc.get("definition_sha256") != definition_digest(table) or doc.get("family") != name:
         raise FamilyFileError(
-            f"{doc_path} was derived from another version of the definition in {path}; "
+            f"{doc_path} was derived from another version of the definition in {where}; "
             f"run `{command}`"
         )
-    return Family(FamilyData(doc, str(doc_path)), path, table.get("title", ""), doc["parameter"])
+    title = table.get("title", "")
+    return Family(
+        FamilyData(doc, str(doc_path)),
+        definition,
+        title if isinstance(title, str) else "",
+        doc["parameter"],
+        table,
+    )
+
+
+def load_family(path: str | Path, derived: str | Path | None = None) -> Family:
+    """The family defined in `path` (a TOML file with a ``[family]`` table), with the tables
+    of its derived document (default: ``<name>.derived.json`` beside `path`).
+
+    Refuses, naming the command to run, when the derived document is missing or was derived
+    from another version of the definition."""
+    path = Path(path)
+    table = read_family_table(path)
+    name = _family_name(table, str(path))
+    doc_path = (
+        Path(derived) if derived is not None else path.resolve().parent / f"{name}.derived.json"
+    )
+    command = f"lambda-bezier derive --family {path}"
+    return _derived_family(table, str(path), doc_path, command, path)
+
+
+def family_from_definition(table: dict[str, Any], derived: str | Path) -> Family:
+    """The family a ``[family]`` table defines (e.g. the one a curve's JSON form embeds), with
+    the tables of the derived document `derived`, which must have been derived from exactly
+    this table. No definition file is needed."""
+    if not isinstance(table, dict):
+        raise TypeError(f"table must be a [family] table (a dict), got {type(table).__name__}")
+    derived = Path(derived)
+    name = _family_name(table, "the embedded definition")
+    command = (
+        f"save the definition as {name}.toml and run `lambda-bezier derive --family {name}.toml`"
+    )
+    return _derived_family(table, f"the definition of {name!r}", derived, command, None)

@@ -216,7 +216,6 @@ def _call_optimal_parameters_batch(fam):
     for k in range(2):  # each against the exact solve of the same net
         exact = [[tuple(map(Fraction, p)) for p in row] for row in nets[k].tolist()]
         one = lb.optimal_parameters(exact, "membrane", family=fam)
-        )
         assert math.isclose(float(got["lam_u"][k]), one["lam_u_float"], abs_tol=1e-9)
         assert math.isclose(float(got["lam_v"][k]), one["lam_v_float"], abs_tol=1e-9)
 

@@ -370,6 +370,25 @@ def test_reparameterised_copy_is_coincident():
     ] == want
 
 
+def test_stretch_on_a_line_that_folds_back():
+    """q runs along the x axis (x(t) = 1 - 3t^2 + 3t^3) from 1 down to its turning point and
+    back to 1; p = q(3/5 s^2) covers q's first stretch [0, 3/5], and so also the stretch
+    [t*, 1] of q's way back with the same image: x(t*) = x(3/5), t* = (1 + sqrt 7) / 5. Two
+    coincident stretches. The stretch [0, t*] of q, which reaches past the turning point, is
+    not one (it used to be reported, with a spurious tangent at (0, 0))."""
+    q = lb.BezierCurve([(1, 0), (1, 0), (0, 0), (1, 0)])
+    p = reparameterised(q, [F(0), F(0), F(3, 5)])
+    t_star = (1 + math.sqrt(7)) / 5
+    got = p.intersect(q)
+    assert [h.kind for h in got] == ["coincident"] * 4, got
+    assert [(h.s, h.t) for h in got] == [
+        (0.0, 0.0),
+        (0.0, 1.0),
+        (1.0, pytest.approx(0.6, abs=1e-15)),
+        (1.0, pytest.approx(t_star, abs=1e-15)),
+    ]
+
+
 @settings(max_examples=25, deadline=None)
 @given(
     points=st.lists(st.tuples(small_ints, small_ints), min_size=4, max_size=4),

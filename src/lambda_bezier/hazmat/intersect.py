@@ -50,6 +50,8 @@ MERGE_RADIUS = 1e-3  # hits closer than this are compared for being one (see _ad
 MERGE_GAP = 64 * float(np.finfo(float).eps)
 # relative, per degree: how far from zero a refined root's exact residual may be
 ROOT_RESIDUAL = 64 * float(np.finfo(float).eps)
+# a piece locate_all is left with that is wider than this is flat, not unresolved at depth
+WIDE_PIECE = 1e-6
 NEAR_FOUND = 1e-6  # float Newton this close to a refined root has found that root
 TANGENT_SINE = 1e-6  # below this sine of the angle between tangents, refine as tangent
 
@@ -406,7 +408,19 @@ def locate_all(
     # candidates from the subdivision engine: Newton roots on one-to-one pieces, and the
     # middles of pieces that stay flat around the point (a zero of the speed there)
     iso = sub.isolate_points(p.pts[None], point[None], np.array([tol]))
-    starts = iso.root_s.tolist() + [s for s, _ in _starts(iso.left_s0, iso.left_t0, iso.left_width)]
+    # a wide piece left over is flat to rounding and runs forward along its chord (a curve
+    # on a line, say): one Newton start in its middle can overshoot out of the domain, so
+    # bracket the point's projection on the chord, which is monotone along such a piece
+    wide = iso.left_width > WIDE_PIECE
+    starts = iso.root_s.tolist()
+    starts += [
+        _chord_bracket(p, point, s0, s0 + w)
+        for s0, w in zip(iso.left_s0[wide].tolist(), iso.left_width[wide].tolist(), strict=True)
+    ]
+    narrow = ~wide
+    starts += [
+        s for s, _ in _starts(iso.left_s0[narrow], iso.left_t0[narrow], iso.left_width[narrow])
+    ]
     exact_target = _integer_point(target)
     for start in starts:
         t = _locate_newton(p, point, exact_target, start)
@@ -432,6 +446,19 @@ def locate_all(
         elif _exact_distance(p, t, exact_target) < _exact_distance(p, found[same[0]], exact_target):
             found[same[0]] = float(t)
     return sorted(found)
+
+
+def _chord_bracket(p: Prepared, point: np.ndarray, s0: float, s1: float) -> float:
+    """A start for the foot point on a piece [s0, s1] that runs forward along its chord c:
+    bisection on (p(s) - point)·c, nondecreasing there, down to width WIDE_PIECE."""
+    chord = p.at(s1) - p.at(s0)
+    while s1 - s0 > WIDE_PIECE:
+        middle = 0.5 * (s0 + s1)
+        if float((p.at(middle) - point) @ chord) < 0.0:
+            s0 = middle
+        else:
+            s1 = middle
+    return 0.5 * (s0 + s1)
 
 
 def _exact_distance(p: Prepared, t: float, target: tuple[list[int], int]) -> float:
@@ -475,11 +502,17 @@ def _same_piece(p: Prepared, q: Prepared, s0: float, s1: float, t0: float, t1: f
 
 
 def _same_image(p: Prepared, q: Prepared, s0: float, s1: float, t0: float, t1: float) -> bool:
-    """p over [s0, s1] runs along q over [t0, t1] under some parameterisation (not only an
-    affine one, which _same_piece checks): degree(p) degree(q) + 1 points of p's stretch lie
-    on q's stretch, each at exactly one t, in the same order. By Bezout, that many common
-    points put p's stretch on q's algebraic curve; the order rules out a stretch that
-    folds back over q."""
+    """p over [s0, s1] and q over [t0, t1] trace one arc under some parameterisation (not
+    only an affine one, which _same_piece checks): each stretch runs along the other."""
+    return _runs_along(p, q, s0, s1, t0, t1) and _runs_along(q, p, t0, t1, s0, s1)
+
+
+def _runs_along(p: Prepared, q: Prepared, s0: float, s1: float, t0: float, t1: float) -> bool:
+    """degree(p) degree(q) + 1 points of p's stretch lie on q's stretch, each at exactly one
+    t, in the same order. By Bezout, that many common points put p's stretch on q's
+    algebraic curve; the order rules out a stretch that folds back over q. It does not rule
+    out q's stretch reaching beyond p's (on a line that q folds back along, q's stretch can
+    cover p's and more): _same_image asks both ways."""
     count = max(p.degree * q.degree + 1, 3)
     fractions = (np.arange(count) + 0.5) / count
     middle_first = [count // 2] + [k for k in range(count) if k != count // 2]

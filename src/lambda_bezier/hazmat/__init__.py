@@ -13,6 +13,7 @@ calling these directly with bad arrays gives numpy's errors, not ours (the name 
 - `roots`: real roots in [0, 1] of polynomials about t = 1/2 (companion matrix, Newton);
 - `extremes`: tight bounding boxes and closest points from those roots;
 - `intersect`: curve/curve intersection, self-intersection and point location;
+- `intersect_subdivide`: the candidate isolation `intersect` runs on (subdivision on arrays);
 - `reduce`: degree reduction, exact or least squares;
 - `implicit`: implicitization (imports SymPy when called, never at import);
 - `numbers`: the exact-number grammar of the command line and of export files.
@@ -28,6 +29,7 @@ __all__ = [
     "forms",
     "implicit",
     "intersect",
+    "intersect_subdivide",
     "kernels",
     "numbers",
     "reduce",

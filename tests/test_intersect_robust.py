@@ -19,6 +19,9 @@ from hypothesis import strategies as st
 import lambda_bezier as lb
 from lambda_bezier.hazmat import intersect as _intersect
 
+# every test here runs on both subdivision paths (numpy and numba; conftest.py)
+pytestmark = pytest.mark.usefixtures("intersect_engine")
+
 F = Fraction
 
 
@@ -489,3 +492,45 @@ def test_intersect_many_bad_input():
     with pytest.raises(ValueError, match="mode must be"):
         lb.intersect_many([c], [c], mode="some")
     assert lb.intersect_many([], []) == []
+
+
+# ---------------------------------------------------------------------------- the two paths
+def test_compiled_subdivision_matches_numpy():
+    """intersect_subdivide's numpy loop and its numba-compiled twin give the same isolated
+    roots (to rounding: sums run in another order) and the same unresolved pieces, for
+    pairs of curves, a curve against itself, and curves against points."""
+    from lambda_bezier.hazmat import intersect_subdivide as sub
+
+    if not sub.importlib.util.find_spec("numba"):
+        pytest.skip("numba is not installed (pip install '.[fast]'): nothing to compare")
+    rng = np.random.default_rng(29)
+
+    def both(call):
+        saved = sub.USE_COMPILED
+        try:
+            sub.USE_COMPILED = False
+            slow = call()
+            sub.USE_COMPILED = True
+            fast = call()
+        finally:
+            sub.USE_COMPILED = saved
+        return slow, fast
+
+    compared = 0
+    for n, m, d in [(2, 3, 2), (3, 3, 2), (5, 4, 2), (3, 2, 3), (7, 7, 2)]:
+        a = rng.normal(size=(40, n + 1, d))
+        b = rng.normal(size=(40, m + 1, d))
+        slack = np.full(40, 1e-13)
+        calls = [lambda a=a, b=b, s=slack: sub.isolate(a, b, s)]
+        if n == m:
+            calls.append(lambda a=a, s=slack: sub.isolate(a, None, s))
+        calls.append(lambda a=a, b=b, s=slack: sub.isolate_points(a, b[:, 0], s))
+        for call in calls:
+            slow, fast = both(call)
+            assert np.array_equal(slow.root_pair, fast.root_pair)
+            assert slow.root_s == pytest.approx(fast.root_s, abs=1e-12)
+            assert slow.root_t == pytest.approx(fast.root_t, abs=1e-12)
+            for name in ("left_pair", "left_s0", "left_t0", "left_width"):
+                assert np.array_equal(getattr(slow, name), getattr(fast, name)), name
+            compared += slow.root_pair.size
+    assert compared > 100  # the random pairs do cross

@@ -392,6 +392,20 @@ def test_stretch_on_a_line_that_folds_back():
     ]
 
 
+def test_locate_on_a_piece_that_curves_round():
+    """p = q(4/5 (2s - s^2)); the point q(t), t = 54/95, is p(s) at s = 1 - sqrt(1 - 5t/4).
+    The subdivision used to take a one-to-one piece's foot point (a local minimum of the
+    distance at s = 0.1456, half a unit away) for the point, and lose it; with it the
+    stretch [0, 4/5] of q was not recognised as p's image (seven "tangent" points)."""
+    q = lb.BezierCurve([(0, 0), (3, 6), (0, 2), (4, -2)])
+    p = reparameterised(q, [F(0), F(8, 5), F(-4, 5)])
+    t = F(54, 95)
+    point = [float(v) for v in q.evaluate(float(t))]
+    assert p.locate(point) == pytest.approx(1 - math.sqrt(1 - 5 * float(t) / 4), abs=1e-12)
+    hits = [(h.s, h.t, h.kind) for h in p.intersect(q)]
+    assert hits == [(0.0, 0.0, "coincident"), (1.0, pytest.approx(0.8, abs=1e-15), "coincident")]
+
+
 @settings(max_examples=25, deadline=None)
 @given(
     points=st.lists(st.tuples(small_ints, small_ints), min_size=4, max_size=4),

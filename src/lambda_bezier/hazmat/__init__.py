@@ -1,11 +1,11 @@
 """lambda_bezier.hazmat: pure functions on coefficient and point arrays.
 
 The rule: a module here imports numpy, the standard library and other hazmat modules
-(and numba, optionally, in intersect_compiled), nothing else from lambda_bezier (import-linter checks it in CI, and
-tests/test_runtime_layers.py). A kernel that needs a generated table takes it as an
-argument. Inputs are not validated here: the curve classes above check them first, so
-calling these directly with bad arrays gives numpy's errors, not ours (the name follows the
-`bezier` package's `hazmat`).
+(and numba, optionally, in intersect_compiled), nothing else from lambda_bezier
+(import-linter checks it in CI, and tests/test_runtime_layers.py). A kernel that needs a
+generated table takes it as an argument. Inputs are not validated here: the curve classes
+above check them first, so calling these directly with bad arrays gives numpy's errors, not
+ours (the name follows the `bezier` package's `hazmat`).
 
 - `kernels`: de Casteljau, subdivision, blocked Horner, exact matrix products;
 - `forms`: classical Bézier hodograph, elevation and blossoming at any degree;

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Sequence
 from fractions import Fraction
 from typing import NamedTuple
 
@@ -71,12 +72,18 @@ class Prepared:
 
     def __init__(self, points: np.ndarray, rows: tuple[tuple[Fraction, ...], ...] | None) -> None:
         self.pts = np.asarray(points, dtype=float)
-        self.rows = rows if rows is not None else tuple(tuple(map(Fraction, r)) for r in points)
+        self._given_rows = rows
         self.degree = self.pts.shape[0] - 1
         self.dim = self.pts.shape[1]
-        # exact values as integer numerators over one denominator per curve: p, p', p''
-        den = math.lcm(*(Fraction(v).denominator for row in self.rows for v in row))
-        ints = [[int(Fraction(v) * den) for v in row] for row in self.rows]
+        # exact values as integer numerators over one denominator per curve: p, p', p''.
+        # Each float or Fraction is an exact ratio of integers (as_integer_ratio: no Fraction
+        # objects, which cost most of this setup when built for every float)
+        source: Sequence[Sequence[Fraction | int | float]] = (
+            rows if rows is not None else self.pts.tolist()
+        )
+        ratios = [[_ratio(v) for v in row] for row in source]
+        den = math.lcm(*(d for row in ratios for _, d in row))
+        ints = [[n * (den // d) for n, d in row] for row in ratios]
         h1 = _integer_hodograph(ints)
         h2 = _integer_hodograph(h1)
         self._integer_rows = [(ints, den), (h1, den), (h2, den)]
@@ -85,6 +92,13 @@ class Prepared:
         span = float(np.ptp(self.pts, axis=0).max())
         self.is_point = span == 0.0  # every t gives the same point
         self.scale = float(max(span, np.abs(self.pts).max(), 1e-300))
+
+    def exact_row(self, k: int) -> Sequence[Fraction | int | float]:
+        """Control point k exactly: the given Fractions, or the floats (exact as they are)."""
+        if self._given_rows is not None:
+            return self._given_rows[k]
+        row: list[float] = self.pts[k].tolist()
+        return row
 
     @functools.cached_property
     def size(self) -> float:
@@ -132,18 +146,35 @@ def _exact_difference(a: tuple[list[int], int], b: tuple[list[int], int]) -> np.
     return np.array([(x * db - y * da) / (da * db) for x, y in zip(na, nb, strict=True)])
 
 
-def _integer_point(point: tuple[Fraction, ...]) -> tuple[list[int], int]:
-    den = math.lcm(*(Fraction(v).denominator for v in point))
-    return [int(Fraction(v) * den) for v in point], den
+def _integer_point(point: Sequence[Fraction | int | float]) -> tuple[list[int], int]:
+    ratios = [_ratio(v) for v in point]
+    den = math.lcm(*(d for _, d in ratios))
+    return [n * (den // d) for n, d in ratios], den
+
+
+def _ratio(v: Fraction | int | float) -> tuple[int, int]:
+    """(numerator, denominator) of an int, float or Fraction, exactly."""
+    if isinstance(v, Fraction):
+        return v.numerator, v.denominator
+    if isinstance(v, int):
+        return v, 1
+    return float(v).as_integer_ratio()
+
+
+@functools.cache
+def _hodograph_weights(degree: int) -> tuple[tuple[tuple[int, int], ...], ...]:
+    """The hodograph matrix's nonzero entries, row by row: (column, integer weight)."""
+    return tuple(
+        tuple((k, int(w)) for k, w in enumerate(row) if w) for row in forms.hodograph_matrix(degree)
+    )
 
 
 def _integer_hodograph(ints: list[list[int]]) -> list[list[int]]:
     """The hodograph's numerators (same denominator), from the hodograph matrix, whose
     entries are integers (n times 0 or ±1)."""
-    weights = [[int(w) for w in row] for row in forms.hodograph_matrix(len(ints) - 1)]
     return [
-        [sum(w * r[c] for w, r in zip(wrow, ints, strict=True)) for c in range(len(ints[0]))]
-        for wrow in weights
+        [sum(w * ints[k][c] for k, w in row) for c in range(len(ints[0]))]
+        for row in _hodograph_weights(len(ints) - 1)
     ]
 
 
@@ -389,11 +420,11 @@ def _solve_from(
 
 # ---------------------------------------------------------------------------- locate
 def locate_all(
-    p: Prepared, point: np.ndarray, exact_point: tuple[Fraction, ...] | None = None
+    p: Prepared, point: np.ndarray, exact_point: Sequence[Fraction | int | float] | None = None
 ) -> list[float]:
     """Every t in [0, 1] with p(t) = point (within ON_CURVE of the curve's scale)."""
     point = np.asarray(point, dtype=float)
-    target = exact_point if exact_point is not None else tuple(map(Fraction, point.tolist()))
+    exact_target = _integer_point(exact_point if exact_point is not None else point.tolist())
     scale = max(p.scale, float(np.abs(point).max(initial=0.0)))
     tol = ON_CURVE * scale
     on_curve = ON_CURVE * max(p.size, float(np.abs(point).max(initial=0.0)))
@@ -402,8 +433,8 @@ def locate_all(
         if np.linalg.norm(p.pts[0] - point) <= tol:
             raise ValueError("the curve is a single point: every t gives it")
         return found
-    for end in (0, 1):
-        if tuple(p.rows[-1 if end else 0]) == tuple(target):
+    for end in (0, 1):  # (numerators, lcm of reduced denominators) is canonical
+        if _integer_point(p.exact_row(-1 if end else 0)) == exact_target:
             found.append(float(end))
     # candidates from the subdivision engine: Newton roots on one-to-one pieces, and the
     # middles of pieces that stay flat around the point (a zero of the speed there)
@@ -421,7 +452,6 @@ def locate_all(
     starts += [
         s for s, _ in _starts(iso.left_s0[narrow], iso.left_t0[narrow], iso.left_width[narrow])
     ]
-    exact_target = _integer_point(target)
     for start in starts:
         t = _locate_newton(p, point, exact_target, start)
         if t is None or any(abs(t - u) < SAME_ROOT for u in found):
@@ -589,12 +619,12 @@ def _pair_setup(p: Prepared, q: Prepared) -> tuple[list[Intersection], list[Box]
             raise ValueError(f"{name} curve is a single point: use locate() on the other")
     ends: list[Intersection] = []
     for s_end in (0, 1):
-        for t in locate_all(q, p.pts[-1 if s_end else 0], p.rows[-1 if s_end else 0]):
+        for t in locate_all(q, p.pts[-1 if s_end else 0], p.exact_row(-1 if s_end else 0)):
             cand = Intersection(float(s_end), t, "transversal")
             if not _dedupe(ends, cand):
                 ends.append(cand)
     for t_end in (0, 1):
-        for s in locate_all(p, q.pts[-1 if t_end else 0], q.rows[-1 if t_end else 0]):
+        for s in locate_all(p, q.pts[-1 if t_end else 0], q.exact_row(-1 if t_end else 0)):
             cand = Intersection(s, float(t_end), "transversal")
             if not _dedupe(ends, cand):
                 ends.append(cand)

@@ -338,7 +338,7 @@ def isolate(
 
 @numba.njit(**_JIT)
 def _local_foot_newton(
-    piece: np.ndarray, point: np.ndarray, steps: int, inside: float
+    piece: np.ndarray, point: np.ndarray, steps: int, inside: float, slack: float
 ) -> tuple[float, bool]:
     dim = piece.shape[1]
     value, slope = np.empty(dim), np.empty(dim)
@@ -350,7 +350,11 @@ def _local_foot_newton(
         step = abs(du)
         if not step > 1e-15:
             break
-    return u, math.isfinite(step) and step < 1e-12 and -inside <= u <= 1 + inside
+    ok = math.isfinite(step) and step < 1e-12 and -inside <= u <= 1 + inside
+    if ok:  # the point itself, not a foot point off it (see intersect_subdivide)
+        _eval(piece, u, value, slope)
+        ok = math.sqrt(float(np.sum((value - point) ** 2))) <= slack
+    return u, ok
 
 
 @numba.njit(**_JIT)
@@ -401,7 +405,9 @@ def isolate_points(
         rest = np.ones(count, dtype=np.bool_)
         for k in range(count):
             if _pointed(_cone(pieces[k], axis), margin):
-                u, ok = _local_foot_newton(pieces[k], points[pid[k]], newton_steps, inside)
+                u, ok = _local_foot_newton(
+                    pieces[k], points[pid[k]], newton_steps, inside, slack[pid[k]]
+                )
                 if ok:
                     root_pair.append(pid[k])
                     root_s.append((index[k] + min(max(u, 0.0), 1.0)) * width)

@@ -350,10 +350,14 @@ def isolate(
     return Isolated(root_pair, root_s, root_t, *parts)
 
 
-def _local_foot_newton(pieces: np.ndarray, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _local_foot_newton(
+    pieces: np.ndarray, points: np.ndarray, slack: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
     """Newton on |p(u) - x|^2 / 2 restricted to the pieces' own u (Gauss-Newton: the step
     -(p - x)·p' / p'·p'), from u = 1/2: (u, converged), converged where the step fell below
-    1e-12 inside the piece."""
+    1e-12 inside the piece and p(u) is within slack of x. A foot point farther off is not
+    the point: a one-to-one piece can curve round so that its box holds x while the foot
+    point Newton finds is a local minimum of the distance, with x on the piece elsewhere."""
     u = np.full(pieces.shape[0], 0.5)
     step = np.full(pieces.shape[0], np.inf)
     with np.errstate(all="ignore"):
@@ -365,6 +369,9 @@ def _local_foot_newton(pieces: np.ndarray, points: np.ndarray) -> tuple[np.ndarr
             if not np.any(step > 1e-15):
                 break
     converged = np.isfinite(step) & (step < 1e-12) & (u >= -INSIDE) & (u <= 1 + INSIDE)
+    with np.errstate(all="ignore"):
+        value, _ = _eval_with_derivative(pieces, u)
+    converged &= np.linalg.norm(value - points, axis=1) <= slack
     return u, converged
 
 
@@ -423,7 +430,7 @@ def isolate_points(
         one_to_one = _pointed(half)
         if one_to_one.any():
             idx = np.flatnonzero(one_to_one)
-            u, ok = _local_foot_newton(pieces[idx], target[idx])
+            u, ok = _local_foot_newton(pieces[idx], target[idx], slack[pid[idx]])
             hit = idx[ok]
             roots.append((pid[hit], (index[hit] + np.clip(u[ok], 0, 1)) * width))
             rest = np.ones(pid.size, dtype=bool)

@@ -41,3 +41,20 @@ def curves(draw, fam: Family, dims=(2, 3), max_degree: int | None = None):
     pts = draw(st.lists(st.lists(coord, min_size=d, max_size=d), min_size=n + 1, max_size=n + 1))
     lam = None if fam.name == "bezier" else draw(st.floats(*fam.lam_range))
     return make_curve(fam, pts, lam), pts, lam
+
+
+@pytest.fixture(scope="module", params=["numpy", "numba"])
+def intersect_engine(request):
+    """Runs a module's tests on each path of the intersection subdivision: the numpy loop and
+    the numba-compiled one (the `fast` extra, which the test extra installs). Module-scoped,
+    so that hypothesis tests run under it too; the flag is restored afterwards."""
+    from importlib.util import find_spec
+
+    from lambda_bezier.hazmat import intersect_subdivide
+
+    if request.param == "numba" and find_spec("numba") is None:
+        pytest.skip("numba is not installed (pip install '.[fast]'): the compiled path")
+    before = intersect_subdivide.USE_COMPILED
+    intersect_subdivide.USE_COMPILED = request.param == "numba"
+    yield request.param
+    intersect_subdivide.USE_COMPILED = before

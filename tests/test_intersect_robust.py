@@ -19,6 +19,9 @@ from hypothesis import strategies as st
 import lambda_bezier as lb
 from lambda_bezier.hazmat import intersect as _intersect
 
+# every test here runs on both subdivision paths (numpy and numba; conftest.py)
+pytestmark = pytest.mark.usefixtures("intersect_engine")
+
 F = Fraction
 
 
@@ -370,6 +373,39 @@ def test_reparameterised_copy_is_coincident():
     ] == want
 
 
+def test_stretch_on_a_line_that_folds_back():
+    """q runs along the x axis (x(t) = 1 - 3t^2 + 3t^3) from 1 down to its turning point and
+    back to 1; p = q(3/5 s^2) covers q's first stretch [0, 3/5], and so also the stretch
+    [t*, 1] of q's way back with the same image: x(t*) = x(3/5), t* = (1 + sqrt 7) / 5. Two
+    coincident stretches. The stretch [0, t*] of q, which reaches past the turning point, is
+    not one (it used to be reported, with a spurious tangent at (0, 0))."""
+    q = lb.BezierCurve([(1, 0), (1, 0), (0, 0), (1, 0)])
+    p = reparameterised(q, [F(0), F(0), F(3, 5)])
+    t_star = (1 + math.sqrt(7)) / 5
+    got = p.intersect(q)
+    assert [h.kind for h in got] == ["coincident"] * 4, got
+    assert [(h.s, h.t) for h in got] == [
+        (0.0, 0.0),
+        (0.0, 1.0),
+        (1.0, pytest.approx(0.6, abs=1e-15)),
+        (1.0, pytest.approx(t_star, abs=1e-15)),
+    ]
+
+
+def test_locate_on_a_piece_that_curves_round():
+    """p = q(4/5 (2s - s^2)); the point q(t), t = 54/95, is p(s) at s = 1 - sqrt(1 - 5t/4).
+    The subdivision used to take a one-to-one piece's foot point (a local minimum of the
+    distance at s = 0.1456, half a unit away) for the point, and lose it; with it the
+    stretch [0, 4/5] of q was not recognised as p's image (seven "tangent" points)."""
+    q = lb.BezierCurve([(0, 0), (3, 6), (0, 2), (4, -2)])
+    p = reparameterised(q, [F(0), F(8, 5), F(-4, 5)])
+    t = F(54, 95)
+    point = [float(v) for v in q.evaluate(float(t))]
+    assert p.locate(point) == pytest.approx(1 - math.sqrt(1 - 5 * float(t) / 4), abs=1e-12)
+    hits = [(h.s, h.t, h.kind) for h in p.intersect(q)]
+    assert hits == [(0.0, 0.0, "coincident"), (1.0, pytest.approx(0.8, abs=1e-15), "coincident")]
+
+
 @settings(max_examples=25, deadline=None)
 @given(
     points=st.lists(st.tuples(small_ints, small_ints), min_size=4, max_size=4),
@@ -470,3 +506,45 @@ def test_intersect_many_bad_input():
     with pytest.raises(ValueError, match="mode must be"):
         lb.intersect_many([c], [c], mode="some")
     assert lb.intersect_many([], []) == []
+
+
+# ---------------------------------------------------------------------------- the two paths
+def test_compiled_subdivision_matches_numpy():
+    """intersect_subdivide's numpy loop and its numba-compiled twin give the same isolated
+    roots (to rounding: sums run in another order) and the same unresolved pieces, for
+    pairs of curves, a curve against itself, and curves against points."""
+    from lambda_bezier.hazmat import intersect_subdivide as sub
+
+    if not sub.importlib.util.find_spec("numba"):
+        pytest.skip("numba is not installed (pip install '.[fast]'): nothing to compare")
+    rng = np.random.default_rng(29)
+
+    def both(call):
+        saved = sub.USE_COMPILED
+        try:
+            sub.USE_COMPILED = False
+            slow = call()
+            sub.USE_COMPILED = True
+            fast = call()
+        finally:
+            sub.USE_COMPILED = saved
+        return slow, fast
+
+    compared = 0
+    for n, m, d in [(2, 3, 2), (3, 3, 2), (5, 4, 2), (3, 2, 3), (7, 7, 2)]:
+        a = rng.normal(size=(40, n + 1, d))
+        b = rng.normal(size=(40, m + 1, d))
+        slack = np.full(40, 1e-13)
+        calls = [lambda a=a, b=b, s=slack: sub.isolate(a, b, s)]
+        if n == m:
+            calls.append(lambda a=a, s=slack: sub.isolate(a, None, s))
+        calls.append(lambda a=a, b=b, s=slack: sub.isolate_points(a, b[:, 0], s))
+        for call in calls:
+            slow, fast = both(call)
+            assert np.array_equal(slow.root_pair, fast.root_pair)
+            assert slow.root_s == pytest.approx(fast.root_s, abs=1e-12)
+            assert slow.root_t == pytest.approx(fast.root_t, abs=1e-12)
+            for name in ("left_pair", "left_s0", "left_t0", "left_width"):
+                assert np.array_equal(getattr(slow, name), getattr(fast, name)), name
+            compared += slow.root_pair.size
+    assert compared > 100  # the random pairs do cross

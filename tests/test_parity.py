@@ -16,6 +16,9 @@ from hypothesis import strategies as st
 
 import lambda_bezier as lb
 
+# every test here runs on both subdivision paths (numpy and numba; conftest.py)
+pytestmark = pytest.mark.usefixtures("intersect_engine")
+
 DATA = Path(__file__).parent / "data" / "bezier"
 CURVES = json.loads((DATA / "curves.json").read_text())
 CASES = json.loads((DATA / "curve_intersections.json").read_text())

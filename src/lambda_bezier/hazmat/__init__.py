@@ -1,11 +1,11 @@
 """lambda_bezier.hazmat: pure functions on coefficient and point arrays.
 
-The rule: a module here imports numpy, the standard library and other hazmat modules,
-nothing else from lambda_bezier (import-linter checks it in CI, and
-tests/test_runtime_layers.py). A kernel that needs a generated table takes it as an
-argument. Inputs are not validated here: the curve classes above check them first, so
-calling these directly with bad arrays gives numpy's errors, not ours (the name follows the
-`bezier` package's `hazmat`).
+The rule: a module here imports numpy, the standard library and other hazmat modules
+(and numba, optionally, in intersect_compiled), nothing else from lambda_bezier
+(import-linter checks it in CI, and tests/test_runtime_layers.py). A kernel that needs a
+generated table takes it as an argument. Inputs are not validated here: the curve classes
+above check them first, so calling these directly with bad arrays gives numpy's errors, not
+ours (the name follows the `bezier` package's `hazmat`).
 
 - `kernels`: de Casteljau, subdivision, blocked Horner, exact matrix products;
 - `forms`: classical Bézier hodograph, elevation and blossoming at any degree;
@@ -13,7 +13,8 @@ calling these directly with bad arrays gives numpy's errors, not ours (the name 
 - `roots`: real roots in [0, 1] of polynomials about t = 1/2 (companion matrix, Newton);
 - `extremes`: tight bounding boxes and closest points from those roots;
 - `intersect`: curve/curve intersection, self-intersection and point location;
-- `intersect_subdivide`: their subdivision, many pairs of pieces at once;
+- `intersect_subdivide`: the candidate isolation `intersect` runs on (subdivision on arrays);
+- `intersect_compiled`: the same loop compiled with numba (the `fast` extra; imported on use);
 - `reduce`: degree reduction, exact or least squares;
 - `implicit`: implicitization (imports SymPy when called, never at import);
 - `numbers`: the exact-number grammar of the command line and of export files;
@@ -34,6 +35,7 @@ __all__ = [
     "forms",
     "implicit",
     "intersect",
+    "intersect_compiled",
     "intersect_subdivide",
     "kernels",
     "numbers",

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Sequence
 from fractions import Fraction
 from typing import NamedTuple
 
@@ -50,6 +51,8 @@ MERGE_RADIUS = 1e-3  # hits closer than this are compared for being one (see _ad
 MERGE_GAP = 64 * float(np.finfo(float).eps)
 # relative, per degree: how far from zero a refined root's exact residual may be
 ROOT_RESIDUAL = 64 * float(np.finfo(float).eps)
+# a piece locate_all is left with that is wider than this is flat, not unresolved at depth
+WIDE_PIECE = 1e-6
 NEAR_FOUND = 1e-6  # float Newton this close to a refined root has found that root
 TANGENT_SINE = 1e-6  # below this sine of the angle between tangents, refine as tangent
 
@@ -69,12 +72,18 @@ class Prepared:
 
     def __init__(self, points: np.ndarray, rows: tuple[tuple[Fraction, ...], ...] | None) -> None:
         self.pts = np.asarray(points, dtype=float)
-        self.rows = rows if rows is not None else tuple(tuple(map(Fraction, r)) for r in points)
+        self._given_rows = rows
         self.degree = self.pts.shape[0] - 1
         self.dim = self.pts.shape[1]
-        # exact values as integer numerators over one denominator per curve: p, p', p''
-        den = math.lcm(*(Fraction(v).denominator for row in self.rows for v in row))
-        ints = [[int(Fraction(v) * den) for v in row] for row in self.rows]
+        # exact values as integer numerators over one denominator per curve: p, p', p''.
+        # Each float or Fraction is an exact ratio of integers (as_integer_ratio: no Fraction
+        # objects, which cost most of this setup when built for every float)
+        source: Sequence[Sequence[Fraction | int | float]] = (
+            rows if rows is not None else self.pts.tolist()
+        )
+        ratios = [[_ratio(v) for v in row] for row in source]
+        den = math.lcm(*(d for row in ratios for _, d in row))
+        ints = [[n * (den // d) for n, d in row] for row in ratios]
         h1 = _integer_hodograph(ints)
         h2 = _integer_hodograph(h1)
         self._integer_rows = [(ints, den), (h1, den), (h2, den)]
@@ -83,6 +92,13 @@ class Prepared:
         span = float(np.ptp(self.pts, axis=0).max())
         self.is_point = span == 0.0  # every t gives the same point
         self.scale = float(max(span, np.abs(self.pts).max(), 1e-300))
+
+    def exact_row(self, k: int) -> Sequence[Fraction | int | float]:
+        """Control point k exactly: the given Fractions, or the floats (exact as they are)."""
+        if self._given_rows is not None:
+            return self._given_rows[k]
+        row: list[float] = self.pts[k].tolist()
+        return row
 
     @functools.cached_property
     def size(self) -> float:
@@ -130,18 +146,35 @@ def _exact_difference(a: tuple[list[int], int], b: tuple[list[int], int]) -> np.
     return np.array([(x * db - y * da) / (da * db) for x, y in zip(na, nb, strict=True)])
 
 
-def _integer_point(point: tuple[Fraction, ...]) -> tuple[list[int], int]:
-    den = math.lcm(*(Fraction(v).denominator for v in point))
-    return [int(Fraction(v) * den) for v in point], den
+def _integer_point(point: Sequence[Fraction | int | float]) -> tuple[list[int], int]:
+    ratios = [_ratio(v) for v in point]
+    den = math.lcm(*(d for _, d in ratios))
+    return [n * (den // d) for n, d in ratios], den
+
+
+def _ratio(v: Fraction | int | float) -> tuple[int, int]:
+    """(numerator, denominator) of an int, float or Fraction, exactly."""
+    if isinstance(v, Fraction):
+        return v.numerator, v.denominator
+    if isinstance(v, int):
+        return v, 1
+    return float(v).as_integer_ratio()
+
+
+@functools.cache
+def _hodograph_weights(degree: int) -> tuple[tuple[tuple[int, int], ...], ...]:
+    """The hodograph matrix's nonzero entries, row by row: (column, integer weight)."""
+    return tuple(
+        tuple((k, int(w)) for k, w in enumerate(row) if w) for row in forms.hodograph_matrix(degree)
+    )
 
 
 def _integer_hodograph(ints: list[list[int]]) -> list[list[int]]:
     """The hodograph's numerators (same denominator), from the hodograph matrix, whose
     entries are integers (n times 0 or ±1)."""
-    weights = [[int(w) for w in row] for row in forms.hodograph_matrix(len(ints) - 1)]
     return [
-        [sum(w * r[c] for w, r in zip(wrow, ints, strict=True)) for c in range(len(ints[0]))]
-        for wrow in weights
+        [sum(w * ints[k][c] for k, w in row) for c in range(len(ints[0]))]
+        for row in _hodograph_weights(len(ints) - 1)
     ]
 
 
@@ -387,11 +420,11 @@ def _solve_from(
 
 # ---------------------------------------------------------------------------- locate
 def locate_all(
-    p: Prepared, point: np.ndarray, exact_point: tuple[Fraction, ...] | None = None
+    p: Prepared, point: np.ndarray, exact_point: Sequence[Fraction | int | float] | None = None
 ) -> list[float]:
     """Every t in [0, 1] with p(t) = point (within ON_CURVE of the curve's scale)."""
     point = np.asarray(point, dtype=float)
-    target = exact_point if exact_point is not None else tuple(map(Fraction, point.tolist()))
+    exact_target = _integer_point(exact_point if exact_point is not None else point.tolist())
     scale = max(p.scale, float(np.abs(point).max(initial=0.0)))
     tol = ON_CURVE * scale
     on_curve = ON_CURVE * max(p.size, float(np.abs(point).max(initial=0.0)))
@@ -400,14 +433,25 @@ def locate_all(
         if np.linalg.norm(p.pts[0] - point) <= tol:
             raise ValueError("the curve is a single point: every t gives it")
         return found
-    for end in (0, 1):
-        if tuple(p.rows[-1 if end else 0]) == tuple(target):
+    for end in (0, 1):  # (numerators, lcm of reduced denominators) is canonical
+        if _integer_point(p.exact_row(-1 if end else 0)) == exact_target:
             found.append(float(end))
     # candidates from the subdivision engine: Newton roots on one-to-one pieces, and the
     # middles of pieces that stay flat around the point (a zero of the speed there)
     iso = sub.isolate_points(p.pts[None], point[None], np.array([tol]))
-    starts = iso.root_s.tolist() + [s for s, _ in _starts(iso.left_s0, iso.left_t0, iso.left_width)]
-    exact_target = _integer_point(target)
+    # a wide piece left over is flat to rounding and runs forward along its chord (a curve
+    # on a line, say): one Newton start in its middle can overshoot out of the domain, so
+    # bracket the point's projection on the chord, which is monotone along such a piece
+    wide = iso.left_width > WIDE_PIECE
+    starts = iso.root_s.tolist()
+    starts += [
+        _chord_bracket(p, point, s0, s0 + w)
+        for s0, w in zip(iso.left_s0[wide].tolist(), iso.left_width[wide].tolist(), strict=True)
+    ]
+    narrow = ~wide
+    starts += [
+        s for s, _ in _starts(iso.left_s0[narrow], iso.left_t0[narrow], iso.left_width[narrow])
+    ]
     for start in starts:
         t = _locate_newton(p, point, exact_target, start)
         if t is None or any(abs(t - u) < SAME_ROOT for u in found):
@@ -432,6 +476,19 @@ def locate_all(
         elif _exact_distance(p, t, exact_target) < _exact_distance(p, found[same[0]], exact_target):
             found[same[0]] = float(t)
     return sorted(found)
+
+
+def _chord_bracket(p: Prepared, point: np.ndarray, s0: float, s1: float) -> float:
+    """A start for the foot point on a piece [s0, s1] that runs forward along its chord c:
+    bisection on (p(s) - point)·c, nondecreasing there, down to width WIDE_PIECE."""
+    chord = p.at(s1) - p.at(s0)
+    while s1 - s0 > WIDE_PIECE:
+        middle = 0.5 * (s0 + s1)
+        if float((p.at(middle) - point) @ chord) < 0.0:
+            s0 = middle
+        else:
+            s1 = middle
+    return 0.5 * (s0 + s1)
 
 
 def _exact_distance(p: Prepared, t: float, target: tuple[list[int], int]) -> float:
@@ -475,11 +532,17 @@ def _same_piece(p: Prepared, q: Prepared, s0: float, s1: float, t0: float, t1: f
 
 
 def _same_image(p: Prepared, q: Prepared, s0: float, s1: float, t0: float, t1: float) -> bool:
-    """p over [s0, s1] runs along q over [t0, t1] under some parameterisation (not only an
-    affine one, which _same_piece checks): degree(p) degree(q) + 1 points of p's stretch lie
-    on q's stretch, each at exactly one t, in the same order. By Bezout, that many common
-    points put p's stretch on q's algebraic curve; the order rules out a stretch that
-    folds back over q."""
+    """p over [s0, s1] and q over [t0, t1] trace one arc under some parameterisation (not
+    only an affine one, which _same_piece checks): each stretch runs along the other."""
+    return _runs_along(p, q, s0, s1, t0, t1) and _runs_along(q, p, t0, t1, s0, s1)
+
+
+def _runs_along(p: Prepared, q: Prepared, s0: float, s1: float, t0: float, t1: float) -> bool:
+    """degree(p) degree(q) + 1 points of p's stretch lie on q's stretch, each at exactly one
+    t, in the same order. By Bezout, that many common points put p's stretch on q's
+    algebraic curve; the order rules out a stretch that folds back over q. It does not rule
+    out q's stretch reaching beyond p's (on a line that q folds back along, q's stretch can
+    cover p's and more): _same_image asks both ways."""
     count = max(p.degree * q.degree + 1, 3)
     fractions = (np.arange(count) + 0.5) / count
     middle_first = [count // 2] + [k for k in range(count) if k != count // 2]
@@ -556,12 +619,12 @@ def _pair_setup(p: Prepared, q: Prepared) -> tuple[list[Intersection], list[Box]
             raise ValueError(f"{name} curve is a single point: use locate() on the other")
     ends: list[Intersection] = []
     for s_end in (0, 1):
-        for t in locate_all(q, p.pts[-1 if s_end else 0], p.rows[-1 if s_end else 0]):
+        for t in locate_all(q, p.pts[-1 if s_end else 0], p.exact_row(-1 if s_end else 0)):
             cand = Intersection(float(s_end), t, "transversal")
             if not _dedupe(ends, cand):
                 ends.append(cand)
     for t_end in (0, 1):
-        for s in locate_all(p, q.pts[-1 if t_end else 0], q.rows[-1 if t_end else 0]):
+        for s in locate_all(p, q.pts[-1 if t_end else 0], q.exact_row(-1 if t_end else 0)):
             cand = Intersection(s, float(t_end), "transversal")
             if not _dedupe(ends, cand):
                 ends.append(cand)

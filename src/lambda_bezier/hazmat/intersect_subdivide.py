@@ -23,10 +23,17 @@ pairs of all curve pairs in one array per level. A pair of pieces is
 Two crossings a distance delta apart in parameter are therefore separated as soon as the
 pieces are narrower than about delta (the cones of pieces on either side of the turning point
 between them share no line), whatever delta is above 2^-depth.
+
+With numba installed (the `fast` extra), `isolate` and `isolate_points` run the same loop
+compiled (intersect_compiled); set LAMBDA_BEZIER_NO_NUMBA=1 in the environment, or
+`USE_COMPILED = False` here, for the numpy version. Both are tested.
 """
 
 from __future__ import annotations
 
+import importlib.util
+import os
+from types import ModuleType
 from typing import NamedTuple
 
 import numpy as np
@@ -36,6 +43,19 @@ MAX_ROWS = 200_000  # pairs of pieces alive at one level, a guard against runawa
 NEWTON_STEPS = 10  # local Newton iterations on an isolated pair (quadratic from its middle)
 INSIDE = 1e-9  # a Newton root this far (in the pieces' local parameter) outside still counts
 CONE_MARGIN = 1e-9  # radians: cones closer than this are treated as sharing a line
+
+# the compiled loop when numba is there and not switched off (module flag, read per call)
+USE_COMPILED = importlib.util.find_spec("numba") is not None and not os.environ.get(
+    "LAMBDA_BEZIER_NO_NUMBA"
+)
+
+
+def _compiled() -> ModuleType | None:
+    if not USE_COMPILED:
+        return None
+    from . import intersect_compiled  # numba compiles (or loads its cache) on first use
+
+    return intersect_compiled
 
 
 class Isolated(NamedTuple):
@@ -205,6 +225,24 @@ def isolate(
     rectangles of a shared stretch, whose pairs of pieces are dropped."""
     same = b is None
     bb_all = a if b is None else b
+    compiled = _compiled()
+    if compiled is not None:
+        return Isolated(
+            *compiled.isolate(
+                np.ascontiguousarray(a, dtype=float),
+                np.ascontiguousarray(bb_all, dtype=float),
+                same,
+                np.ascontiguousarray(slack, dtype=float),
+                np.array(skip or [], dtype=float).reshape(-1, 5),
+                depth,
+                MAX_ROWS,
+                NEWTON_STEPS,
+                INSIDE,
+                CONE_MARGIN,
+                half_matrices(a.shape[1] - 1),
+                half_matrices(bb_all.shape[1] - 1),
+            )
+        )
     planar = a.shape[2] == 2
     left_a, right_a = half_matrices(a.shape[1] - 1)
     left_b, right_b = half_matrices(bb_all.shape[1] - 1)
@@ -312,10 +350,14 @@ def isolate(
     return Isolated(root_pair, root_s, root_t, *parts)
 
 
-def _local_foot_newton(pieces: np.ndarray, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _local_foot_newton(
+    pieces: np.ndarray, points: np.ndarray, slack: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
     """Newton on |p(u) - x|^2 / 2 restricted to the pieces' own u (Gauss-Newton: the step
     -(p - x)·p' / p'·p'), from u = 1/2: (u, converged), converged where the step fell below
-    1e-12 inside the piece."""
+    1e-12 inside the piece and p(u) is within slack of x. A foot point farther off is not
+    the point: a one-to-one piece can curve round so that its box holds x while the foot
+    point Newton finds is a local minimum of the distance, with x on the piece elsewhere."""
     u = np.full(pieces.shape[0], 0.5)
     step = np.full(pieces.shape[0], np.inf)
     with np.errstate(all="ignore"):
@@ -327,6 +369,9 @@ def _local_foot_newton(pieces: np.ndarray, points: np.ndarray) -> tuple[np.ndarr
             if not np.any(step > 1e-15):
                 break
     converged = np.isfinite(step) & (step < 1e-12) & (u >= -INSIDE) & (u <= 1 + INSIDE)
+    with np.errstate(all="ignore"):
+        value, _ = _eval_with_derivative(pieces, u)
+    converged &= np.linalg.norm(value - points, axis=1) <= slack
     return u, converged
 
 
@@ -337,6 +382,28 @@ def isolate_points(
     boxes (and, in the plane, fat lines) hold the point survive; a one-to-one piece (pointed
     hodograph cone) passes the point at most once, so Newton on it is run and a root inside
     it reported. root_t is unused (zeros); left_t0 likewise."""
+    compiled = _compiled()
+    if compiled is not None:
+        root_pair, root_s, left_pair, left_s0, left_width = compiled.isolate_points(
+            np.ascontiguousarray(curves, dtype=float),
+            np.ascontiguousarray(points, dtype=float),
+            np.ascontiguousarray(slack, dtype=float),
+            depth,
+            MAX_ROWS,
+            NEWTON_STEPS,
+            INSIDE,
+            CONE_MARGIN,
+            half_matrices(curves.shape[1] - 1),
+        )
+        return Isolated(
+            root_pair,
+            root_s,
+            np.zeros_like(root_s),
+            left_pair,
+            left_s0,
+            np.zeros_like(left_s0),
+            left_width,
+        )
     planar = curves.shape[2] == 2
     left_m, right_m = half_matrices(curves.shape[1] - 1)
     pieces, pid = curves, np.arange(curves.shape[0])
@@ -363,7 +430,7 @@ def isolate_points(
         one_to_one = _pointed(half)
         if one_to_one.any():
             idx = np.flatnonzero(one_to_one)
-            u, ok = _local_foot_newton(pieces[idx], target[idx])
+            u, ok = _local_foot_newton(pieces[idx], target[idx], slack[pid[idx]])
             hit = idx[ok]
             roots.append((pid[hit], (index[hit] + np.clip(u[ok], 0, 1)) * width))
             rest = np.ones(pid.size, dtype=bool)

@@ -1,0 +1,435 @@
+"""The subdivision of intersect_subdivide, compiled with numba (the `fast` extra).
+
+The same algorithm, test for test and in the same order: per level, drop pairs of pieces
+whose boxes or (in the plane) fat lines are apart and, for a curve against itself, the
+neighbouring pieces that are one-to-one; stop at the depth or the row guard; isolate pairs
+whose pointed hodograph cones share no line and run local Newton on them; set aside pieces
+flat to the slack; halve the rest with the same half matrices, children in the same block
+order. Only the per-row loops are compiled, so a level costs a pass over its rows instead of
+some forty numpy calls on a handful of them (which is what the fallback pays). The results
+agree with the numpy version to rounding (loops sum in a fixed order where numpy's matmul and
+einsum may not), and tests/test_intersect_robust.py runs both.
+
+Imported only by intersect_subdivide, and only when numba is installed and not disabled;
+numba compiles on first use and caches the machine code next to this file.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numba
+import numpy as np
+from numba.typed import List
+
+_JIT: dict[str, Any] = {"cache": True, "error_model": "numpy"}
+
+
+@numba.njit(**_JIT)
+def _ints() -> List:
+    return List.empty_list(numba.int64)
+
+
+@numba.njit(**_JIT)
+def _floats() -> List:
+    return List.empty_list(numba.float64)
+
+
+@numba.njit(**_JIT)
+def _int_array(values: List) -> np.ndarray:
+    out = np.empty(len(values), dtype=np.int64)
+    for k in range(len(values)):
+        out[k] = values[k]
+    return out
+
+
+@numba.njit(**_JIT)
+def _float_array(values: List) -> np.ndarray:
+    out = np.empty(len(values))
+    for k in range(len(values)):
+        out[k] = values[k]
+    return out
+
+
+@numba.njit(**_JIT)
+def _cone(points: np.ndarray, axis: np.ndarray) -> float:
+    """Half-angle of the circular cone about `axis` (written) holding every hodograph
+    control point of `points`; pi where it is not pointed this way."""
+    count, dim = points.shape[0] - 1, points.shape[1]
+    good = True
+    for j in range(dim):
+        axis[j] = 0.0
+    for i in range(count):
+        norm = 0.0
+        for j in range(dim):
+            h = points[i + 1, j] - points[i, j]
+            norm += h * h
+        norm = math.sqrt(norm)
+        if norm > 0.0:
+            for j in range(dim):
+                axis[j] += (points[i + 1, j] - points[i, j]) / norm
+        else:
+            good = False
+    axis_norm = 0.0
+    for j in range(dim):
+        axis_norm += axis[j] * axis[j]
+    axis_norm = math.sqrt(axis_norm)
+    if axis_norm > 0.0:
+        for j in range(dim):
+            axis[j] /= axis_norm
+    else:
+        good = False
+    if not good:
+        return math.pi
+    cos = np.inf
+    for i in range(count):
+        norm = 0.0
+        dot = 0.0
+        for j in range(dim):
+            h = points[i + 1, j] - points[i, j]
+            norm += h * h
+            dot += h * axis[j]
+        c = dot / math.sqrt(norm)
+        cos = min(cos, c)
+    if not cos > 0.0:
+        return math.pi
+    return math.acos(min(max(cos, -1.0), 1.0))
+
+
+@numba.njit(**_JIT)
+def _pointed(half: float, margin: float) -> bool:
+    return half < math.pi / 2 - margin
+
+
+@numba.njit(**_JIT)
+def _boxes_apart(a: np.ndarray, b: np.ndarray, slack: float) -> bool:
+    for j in range(a.shape[1]):
+        a_lo, a_hi = a[:, j].min(), a[:, j].max()
+        b_lo, b_hi = b[:, j].min(), b[:, j].max()
+        if a_lo > b_hi + slack or b_lo > a_hi + slack:
+            return True
+    return False
+
+
+@numba.njit(**_JIT)
+def _fat_line_apart(a: np.ndarray, b: np.ndarray, slack: float) -> bool:
+    """Planar: a's control points lie beyond b's fat line, on one side."""
+    cx, cy = b[-1, 0] - b[0, 0], b[-1, 1] - b[0, 1]
+    length = math.hypot(cx, cy)
+    if not length > 0.0:
+        return False
+    nx, ny = -cy / length, cx / length
+    b_lo, b_hi = np.inf, -np.inf
+    for i in range(b.shape[0]):
+        dist = (b[i, 0] - b[0, 0]) * nx + (b[i, 1] - b[0, 1]) * ny
+        b_lo, b_hi = min(b_lo, dist), max(b_hi, dist)
+    a_lo, a_hi = np.inf, -np.inf
+    for i in range(a.shape[0]):
+        dist = (a[i, 0] - b[0, 0]) * nx + (a[i, 1] - b[0, 1]) * ny
+        a_lo, a_hi = min(a_lo, dist), max(a_hi, dist)
+    return a_lo > b_hi + slack or a_hi < b_lo - slack
+
+
+@numba.njit(**_JIT)
+def _flat_forward(piece: np.ndarray, slack: float) -> bool:
+    """Thickness (largest distance from the chord) within slack, and runs forward along it."""
+    dim = piece.shape[1]
+    chord = piece[-1] - piece[0]
+    length = math.sqrt(float(np.sum(chord * chord)))
+    if not length > 0.0:
+        return False
+    unit = chord / length
+    for i in range(piece.shape[0]):
+        rel = piece[i] - piece[0]
+        along = float(np.sum(rel * unit))
+        off = 0.0
+        for j in range(dim):
+            r = rel[j] - along * unit[j]
+            off += r * r
+        if math.sqrt(off) > slack:
+            return False
+    for i in range(piece.shape[0] - 1):
+        if float(np.sum((piece[i + 1] - piece[i]) * chord)) < 0.0:
+            return False
+    return True
+
+
+@numba.njit(**_JIT)
+def _eval(piece: np.ndarray, u: float, value: np.ndarray, slope: np.ndarray) -> None:
+    work = piece.copy()
+    degree = piece.shape[0] - 1
+    top = degree
+    while top > 1:
+        for i in range(top):
+            work[i] = work[i] + u * (work[i + 1] - work[i])
+        top -= 1
+    if degree == 0:
+        value[:] = work[0]
+        slope[:] = 0.0
+        return
+    value[:] = work[0] + u * (work[1] - work[0])
+    slope[:] = degree * (work[1] - work[0])
+
+
+@numba.njit(**_JIT)
+def _local_newton(
+    a: np.ndarray, b: np.ndarray, steps: int, inside: float
+) -> tuple[float, float, bool]:
+    dim = a.shape[1]
+    pa, da = np.empty(dim), np.empty(dim)
+    pb, db = np.empty(dim), np.empty(dim)
+    u, v, step = 0.5, 0.5, np.inf
+    for _ in range(steps):
+        _eval(a, u, pa, da)
+        _eval(b, v, pb, db)
+        aa = ab = bb = ga = gb = 0.0
+        for j in range(dim):
+            f = pa[j] - pb[j]
+            aa += da[j] * da[j]
+            ab -= da[j] * db[j]
+            bb += db[j] * db[j]
+            ga -= da[j] * f
+            gb += db[j] * f
+        det = aa * bb - ab * ab
+        du = (bb * ga - ab * gb) / det
+        dv = (aa * gb - ab * ga) / det
+        u, v = u + du, v + dv
+        step = abs(du) + abs(dv)
+        if not step > 1e-15:
+            break
+    ok = math.isfinite(step) and step < 1e-12
+    ok = ok and -inside <= u <= 1 + inside and -inside <= v <= 1 + inside
+    return u, v, ok
+
+
+@numba.njit(**_JIT)
+def _halve(pieces: np.ndarray, matrix: np.ndarray) -> np.ndarray:
+    count, size, dim = pieces.shape
+    out = np.zeros((count, size, dim))
+    for k in range(count):
+        for i in range(size):
+            for m in range(size):
+                w = matrix[i, m]
+                if w != 0.0:
+                    for j in range(dim):
+                        out[k, i, j] += w * pieces[k, m, j]
+    return out
+
+
+@numba.njit(**_JIT)
+def isolate(
+    a: np.ndarray,
+    b: np.ndarray,
+    same: bool,
+    slack: np.ndarray,
+    skip: np.ndarray,
+    depth: int,
+    max_rows: int,
+    newton_steps: int,
+    inside: float,
+    margin: float,
+    halves_a: tuple[np.ndarray, np.ndarray],
+    halves_b: tuple[np.ndarray, np.ndarray],
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """intersect_subdivide.isolate's loop; skip is (m, 5): pair, s0, s1, t0, t1."""
+    planar = a.shape[2] == 2
+    dim = a.shape[2]
+    pa, pb = a.copy(), b.copy()
+    pid = np.arange(a.shape[0])
+    ia = np.zeros(a.shape[0], dtype=np.int64)
+    ib = np.zeros(a.shape[0], dtype=np.int64)
+    root_pair, root_s, root_t = _ints(), _floats(), _floats()
+    left_pair, left_s, left_t, left_w = _ints(), _floats(), _floats(), _floats()
+    axis_a, axis_b = np.empty(dim), np.empty(dim)
+    union = np.empty((pa.shape[1] + pb.shape[1] - 1, dim))
+    level = 0
+    while True:
+        width = 0.5**level
+        count = pid.size
+        keep = np.ones(count, dtype=np.bool_)
+        for k in range(count):
+            sl = slack[pid[k]]
+            if _boxes_apart(pa[k], pb[k], sl):
+                keep[k] = False
+                continue
+            if planar and (_fat_line_apart(pa[k], pb[k], sl) or _fat_line_apart(pb[k], pa[k], sl)):
+                keep[k] = False
+                continue
+            for r in range(skip.shape[0]):
+                if (
+                    pid[k] == int(skip[r, 0])
+                    and ia[k] * width >= skip[r, 1]
+                    and (ia[k] + 1) * width <= skip[r, 2]
+                    and ib[k] * width >= skip[r, 3]
+                    and (ib[k] + 1) * width <= skip[r, 4]
+                ):
+                    keep[k] = False
+            if keep[k] and same and abs(ia[k] - ib[k]) <= 1:
+                if ia[k] == ib[k]:
+                    keep[k] = not _pointed(_cone(pa[k], axis_a), margin)
+                else:
+                    size = pa.shape[1]
+                    union[:size] = pa[k]
+                    union[size:] = pb[k, 1:]
+                    keep[k] = not _pointed(_cone(union, axis_a), margin)
+        pa, pb, pid, ia, ib = pa[keep], pb[keep], pid[keep], ia[keep], ib[keep]
+        count = pid.size
+        if count == 0:
+            break
+        if level == depth or 4 * count > max_rows:
+            for k in range(count):
+                left_pair.append(pid[k])
+                left_s.append(ia[k] * width)
+                left_t.append(ib[k] * width)
+                left_w.append(width)
+            break
+        rest = np.ones(count, dtype=np.bool_)
+        for k in range(count):
+            if same and abs(ia[k] - ib[k]) <= 1:
+                continue
+            half_a = _cone(pa[k], axis_a)
+            half_b = _cone(pb[k], axis_b)
+            if not (_pointed(half_a, margin) and _pointed(half_b, margin)):
+                continue
+            dot = abs(float(np.sum(axis_a * axis_b)))
+            between = math.acos(min(max(dot, 0.0), 1.0))
+            if not between > half_a + half_b + margin:
+                continue
+            u, v, ok = _local_newton(pa[k], pb[k], newton_steps, inside)
+            if ok:
+                root_pair.append(pid[k])
+                root_s.append((ia[k] + min(max(u, 0.0), 1.0)) * width)
+                root_t.append((ib[k] + min(max(v, 0.0), 1.0)) * width)
+                rest[k] = False
+        for k in range(count):
+            if not rest[k] or (same and abs(ia[k] - ib[k]) <= 1):
+                continue
+            sl = slack[pid[k]]
+            if _flat_forward(pa[k], sl) and _flat_forward(pb[k], sl):
+                left_pair.append(pid[k])
+                left_s.append(ia[k] * width)
+                left_t.append(ib[k] * width)
+                left_w.append(width)
+                rest[k] = False
+        pa, pb, pid, ia, ib = pa[rest], pb[rest], pid[rest], ia[rest], ib[rest]
+        if pid.size == 0:
+            break
+        al, ar = _halve(pa, halves_a[0]), _halve(pa, halves_a[1])
+        bl, br = _halve(pb, halves_b[0]), _halve(pb, halves_b[1])
+        pa = np.concatenate((al, al, ar, ar))
+        pb = np.concatenate((bl, br, bl, br))
+        pid = np.concatenate((pid, pid, pid, pid))
+        ia = np.concatenate((2 * ia, 2 * ia, 2 * ia + 1, 2 * ia + 1))
+        ib = np.concatenate((2 * ib, 2 * ib + 1, 2 * ib, 2 * ib + 1))
+        if same:
+            order = ia <= ib
+            pa, pb, pid, ia, ib = pa[order], pb[order], pid[order], ia[order], ib[order]
+        level += 1
+    return (
+        _int_array(root_pair),
+        _float_array(root_s),
+        _float_array(root_t),
+        _int_array(left_pair),
+        _float_array(left_s),
+        _float_array(left_t),
+        _float_array(left_w),
+    )
+
+
+@numba.njit(**_JIT)
+def _local_foot_newton(
+    piece: np.ndarray, point: np.ndarray, steps: int, inside: float, slack: float
+) -> tuple[float, bool]:
+    dim = piece.shape[1]
+    value, slope = np.empty(dim), np.empty(dim)
+    u, step = 0.5, np.inf
+    for _ in range(steps):
+        _eval(piece, u, value, slope)
+        du = -float(np.sum((value - point) * slope)) / float(np.sum(slope * slope))
+        u += du
+        step = abs(du)
+        if not step > 1e-15:
+            break
+    ok = math.isfinite(step) and step < 1e-12 and -inside <= u <= 1 + inside
+    if ok:  # the point itself, not a foot point off it (see intersect_subdivide)
+        _eval(piece, u, value, slope)
+        ok = math.sqrt(float(np.sum((value - point) ** 2))) <= slack
+    return u, ok
+
+
+@numba.njit(**_JIT)
+def isolate_points(
+    curves: np.ndarray,
+    points: np.ndarray,
+    slack: np.ndarray,
+    depth: int,
+    max_rows: int,
+    newton_steps: int,
+    inside: float,
+    margin: float,
+    halves: tuple[np.ndarray, np.ndarray],
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """intersect_subdivide.isolate_points' loop: (root pair, root s, left pair, left s0,
+    left width)."""
+    planar = curves.shape[2] == 2
+    dim = curves.shape[2]
+    pieces, pid = curves.copy(), np.arange(curves.shape[0])
+    index = np.zeros(curves.shape[0], dtype=np.int64)
+    root_pair, root_s = _ints(), _floats()
+    left_pair, left_s, left_w = _ints(), _floats(), _floats()
+    axis = np.empty(dim)
+    level = 0
+    while pid.size:
+        count = pid.size
+        keep = np.ones(count, dtype=np.bool_)
+        for k in range(count):
+            sl = slack[pid[k]]
+            target = points[pid[k]]
+            for j in range(dim):
+                lo, hi = pieces[k, :, j].min(), pieces[k, :, j].max()
+                if not (lo <= target[j] + sl and target[j] - sl <= hi):
+                    keep[k] = False
+            if keep[k] and planar and _fat_line_apart(target.reshape(1, dim), pieces[k], sl):
+                keep[k] = False
+        pieces, pid, index = pieces[keep], pid[keep], index[keep]
+        count = pid.size
+        if count == 0:
+            break
+        width = 0.5**level
+        if level == depth or 2 * count > max_rows:
+            for k in range(count):
+                left_pair.append(pid[k])
+                left_s.append(index[k] * width)
+                left_w.append(width)
+            break
+        rest = np.ones(count, dtype=np.bool_)
+        for k in range(count):
+            if _pointed(_cone(pieces[k], axis), margin):
+                u, ok = _local_foot_newton(
+                    pieces[k], points[pid[k]], newton_steps, inside, slack[pid[k]]
+                )
+                if ok:
+                    root_pair.append(pid[k])
+                    root_s.append((index[k] + min(max(u, 0.0), 1.0)) * width)
+                    rest[k] = False
+        for k in range(count):
+            if rest[k] and _flat_forward(pieces[k], slack[pid[k]]):
+                left_pair.append(pid[k])
+                left_s.append(index[k] * width)
+                left_w.append(width)
+                rest[k] = False
+        pieces, pid, index = pieces[rest], pid[rest], index[rest]
+        if pid.size == 0:
+            break
+        pieces = np.concatenate((_halve(pieces, halves[0]), _halve(pieces, halves[1])))
+        pid = np.concatenate((pid, pid))
+        index = np.concatenate((2 * index, 2 * index + 1))
+        level += 1
+    return (
+        _int_array(root_pair),
+        _float_array(root_s),
+        _int_array(left_pair),
+        _float_array(left_s),
+        _float_array(left_w),
+    )

@@ -235,7 +235,7 @@ def test_optimal_lambda_with_a_4000_digit_coordinate_prints_the_exact_result():
         (
             "derive",
             "--family",
-            str(ROOT / "tests/data/families/nouri_saeidian.toml"),
+            str(ROOT / "src/lambda_bezier/examples/nouri_saeidian.toml"),
             "--out",
             "/nonexistent",
         ),

@@ -509,7 +509,9 @@ def test_json_round_trip_is_exact():
 
 # ---------------------------------------------------------------------- families, bad input
 def test_user_family_surface():
-    fam = lb.load_family("tests/data/families/nouri_saeidian.toml")
+    from lambda_bezier import examples
+
+    fam = lb.load_family(examples.path("nouri_saeidian.toml"))
     net = [[(i, j, (i * j) % 2) for j in range(4)] for i in range(4)]
     s = fam.surface(net, F(1, 2), F(1, 4))
     assert s.family == "nouri_saeidian" and s.is_exact

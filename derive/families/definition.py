@@ -16,7 +16,7 @@ from pathlib import Path
 
 import sympy as sp
 
-from ..grammar import FUNCTIONS, SYMBOLS, Interval, ParseError, parse_formula, tokenize
+from ..grammar import BUILTINS, FUNCTIONS, SYMBOLS, Interval, ParseError, parse_formula, tokenize
 
 FORMAT = 2  # version of the derived JSON document (2: with singular_parameters)
 MAX_DEGREE = 20
@@ -46,6 +46,9 @@ SCHEMA = {
         "range": {"type": "string", "maxLength": 200},
         "degrees": {"type": "string", "maxLength": 20},
         "bernstein_at": {"type": "string", "maxLength": 200},
+        # the name records give the control points (P(i) by default; #32 item 3)
+        # (the records grammar's point functions: P or V)
+        "points": {"enum": ["P", "V"]},
         "degree_offset": {"type": "integer", "minimum": 0, "maximum": MAX_OFFSET},
         "basis": {"type": "string", "maxLength": 10_000},
         # or a recursion from a seed: the functions of the lowest degree, then b(i, n, t) in
@@ -64,8 +67,8 @@ SCHEMA = {
     "additionalProperties": False,
 }
 
-# basis formulas are in i, n, t and the parameter (renamed to `lam` while reading)
-_BASIS_SYMBOLS = {name: SYMBOLS[name] for name in ("i", "n", "t", "lam")}
+# basis formulas are in i, n, t and the parameter, which is read as the symbol `lam` (the
+# engine's internal name); what the user reads shows the family's own name (Definition.show)
 _I, _N = SYMBOLS["i"], SYMBOLS["n"]
 _T, _LAM = SYMBOLS["t"], SYMBOLS["lam"]
 
@@ -82,6 +85,7 @@ class Definition:
     hi_closed: bool
     degrees: range
     bernstein_at: Fraction | None
+    points: str  # the control points' name in records (P unless the table says `points`)
     offset: int
     basis_text: str | None  # the closed formula, or
     seed_texts: tuple[str, ...] | None  # the lowest degree's functions, and
@@ -98,6 +102,12 @@ class Definition:
     @property
     def domain(self) -> Interval:
         return Interval(Fraction(0), Fraction(1))
+
+    def show(self, expr: sp.Basic) -> str:
+        """An expression as the user reads it: in the family's own parameter name."""
+        if self.parameter == "lam":
+            return str(expr)
+        return str(expr.xreplace({_LAM: sp.Symbol(self.parameter)}))
 
     @property
     def basis(self) -> sp.Expr:
@@ -123,9 +133,11 @@ def digest(table: dict) -> str:
     return definition_digest(table)
 
 
-def rename_parameter(text: str, parameter: str) -> str:
+def rename_parameter(text: str, parameter: str, *, lam_too: bool = False) -> str:
     """The formula with the parameter's name replaced by `lam`, token by token (a name is
-    a whole token, so `mu` in `mu2` is left alone)."""
+    a whole token, so `mu` in `mu2` is left alone): how verify reads a records formula about
+    a family whose parameter has a name of its own. `lam_too`: `lam` may also stand for it
+    (records written before families had their own names)."""
     if parameter == "lam":
         return text
     out, last = [], 0
@@ -133,15 +145,17 @@ def rename_parameter(text: str, parameter: str) -> str:
         if tok.kind == "name" and tok.text == parameter:
             out += [text[last : tok.pos], "lam"]
             last = tok.pos + len(tok.text)
-        elif tok.kind == "name" and tok.text == "lam":
+        elif tok.kind == "name" and tok.text == "lam" and not lam_too:
             raise ParseError(f"`lam` is not this family's parameter ({parameter!r}): {text!r}")
     return "".join(out) + text[last:]
 
 
 @cache
 def _parse_basis(text: str, parameter: str, recursive: bool = False) -> sp.Expr:
+    # the parameter's own name maps to the engine's symbol: a parse error quotes the user's text
+    symbols = {"i": _I, "n": _N, "t": _T, parameter: _LAM}
     functions = {"b": FUNCTIONS["b"]} if recursive else {}
-    return parse_formula(rename_parameter(text, parameter), _BASIS_SYMBOLS, functions)
+    return parse_formula(text, symbols, functions)
 
 
 def _number(text: str, key: str) -> Fraction:
@@ -186,7 +200,8 @@ def definition_from_table(table: object, where: str = "", *, builtin: bool = Fal
 
     if not builtin and table["name"] in _builtin_file_names():
         raise fail("name", f"{table['name']!r} is a built-in family; choose another name")
-    if table["parameter"] in SYMBOLS and table["parameter"] != "lam":
+    taken = (*SYMBOLS, *FUNCTIONS, *BUILTINS)
+    if table["parameter"] in taken and table["parameter"] != "lam":
         raise fail("parameter", f"{table['parameter']!r} is taken by the formula language")
     m = _RANGE.match(table["range"])
     if not m:
@@ -229,6 +244,7 @@ def definition_from_table(table: object, where: str = "", *, builtin: bool = Fal
         hi_closed=hi_closed,
         degrees=range(dlo, dhi + 1),
         bernstein_at=at,
+        points=table.get("points", "P"),
         offset=int(table["degree_offset"]),
         basis_text=table.get("basis"),
         seed_texts=tuple(table["seed"]) if "seed" in table else None,

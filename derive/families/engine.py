@@ -18,6 +18,7 @@ Everything is exact (SymPy/FLINT rationals).
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from functools import cache
 from math import comb
@@ -132,10 +133,21 @@ def basis_polys(defn: Definition, degree: int) -> list[sp.Poly]:
     return list(_basis_polys(defn, degree))
 
 
-@cache
 def _basis_values(defn: Definition, degree: int) -> tuple:
     """The degree-`degree` functions as elements of Q(t, lam): the closed formula per index,
     or the seed at the lowest degree and the recursion above it."""
+    try:
+        return _basis_values_lam(defn, degree)
+    except DefinitionError as exc:
+        if defn.parameter == "lam":
+            raise
+        # the evaluator's messages quote the formula in the engine's `lam`: the user wrote
+        # their own name (a whole word, never part of another)
+        raise DefinitionError(re.sub(r"\blam\b", defn.parameter, str(exc))) from None
+
+
+@cache
+def _basis_values_lam(defn: Definition, degree: int) -> tuple:
     field = _field()
     if defn.basis_text is not None:
         basis = defn.basis
@@ -166,7 +178,7 @@ def _basis_polys(defn: Definition, degree: int) -> tuple[sp.Poly, ...]:
         if not value.denom.is_ground:
             raise DefinitionError(
                 f"[family] basis: b({idx}, {degree}, t) is not a polynomial: "
-                f"{sp.factor(value.as_expr())} (a negative power that does not cancel)"
+                f"{defn.show(sp.factor(value.as_expr()))} (a negative power that does not cancel)"
             )
         numer = value.numer.quo_ground(value.denom.LC)  # the denominator is a number
         p = sp.Poly.from_dict(dict(numer), t, lam, domain="QQ")  # same t, lam symbols
@@ -190,7 +202,7 @@ def check(defn: Definition) -> list[str]:
         if total != one:
             raise DefinitionError(
                 f"[family] basis: no partition of unity at n = {deg}: the functions sum to "
-                f"{sp.factor(total.as_expr())}"
+                f"{defn.show(sp.factor(total.as_expr()))}"
             )
         if defn.bernstein_at is not None:
             x = sp.Rational(defn.bernstein_at.numerator, defn.bernstein_at.denominator)

@@ -21,8 +21,13 @@ import sys
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 
-from ..families.definition import REFERENCE, DefinitionError, definition_from_table
-from ..grammar import Interval, ParseError
+from ..families.definition import (
+    REFERENCE,
+    DefinitionError,
+    definition_from_table,
+    rename_parameter,
+)
+from ..grammar import Interval, ParseError, tokenize
 from .expr_parse import parse as parse_formula  # cached: the checkers reuse each parse
 from .registry import FAMILIES, claim_kind, kind_problem, register_defined_family
 
@@ -297,7 +302,7 @@ def load_file(path: Path, data: dict | None = None) -> list[dict]:
     """The records of one file, each with its family, file, source and variable filled in."""
     data = read_file(path, data)
     if isinstance(data.get("family"), dict):
-        data["family"] = _define_family(path, data["family"], data.get("point_function", "P"))
+        data["family"] = _define_family(path, data["family"], data.get("point_function"))
     out = []
     for rec in data["record"]:
         rec = dict(rec)
@@ -337,12 +342,15 @@ def load_file(path: Path, data: dict | None = None) -> list[dict]:
                 Interval.parse(rec["parameter_range"])
             except ValueError as exc:
                 raise RecordsError(f"{_where(path, rec, 'parameter_range')}: {exc}") from None
-        _parse_formulas(path, rec)
+        fam = FAMILIES.get(family)
+        _parse_formulas(path, rec, getattr(fam, "parameter", "lam"))
+        if getattr(fam, "defined_by_data", False):
+            _check_point_names(path, rec, fam)
         out.append(rec)
     return out
 
 
-def _define_family(path: Path, table: dict, points: str) -> str:
+def _define_family(path: Path, table: dict, points: str | None) -> str:
     """Derive the family a records file defines and make it known to this run's checkers."""
     try:
         defn = definition_from_table(table, str(path))
@@ -367,7 +375,71 @@ def _strings(value, key: str) -> Iterator[tuple[str, str]]:
                 yield from _strings(item, f"{key}.{name}")
 
 
-def _parse_formulas(path: Path, rec: dict) -> None:
+def _formula_texts(rec: dict) -> Iterator[tuple[str, str]]:
+    """(key path, formula text) for every formula of a record."""
+    for name, value in rec.items():
+        if name in TEXT_KEYS or name == "file":
+            continue
+        if name == "points" and isinstance(value, str):
+            continue
+        for key, text in _strings(value, name):
+            if key.endswith(".points") or key.endswith(".curve"):
+                continue  # names of the functions of a join's curves
+            yield key, text
+
+
+def renamed_record(rec: dict, parameter: str) -> dict:
+    """The record with its formulas in the checkers' names: a family's own parameter name
+    read as `lam` (token by token; the report shows the record as written)."""
+    if parameter == "lam":
+        return rec
+
+    def walk(value, key: str):
+        if isinstance(value, str):
+            return rename_parameter(value, parameter, lam_too=True)
+        if isinstance(value, list):
+            return [walk(item, key) for item in value]
+        if isinstance(value, dict):
+            return {
+                k: (v if k in TEXT_KEYS or k in ("points", "curve") else walk(v, k))
+                for k, v in value.items()
+            }
+        return value
+
+    return {
+        name: value
+        if name in TEXT_KEYS or name == "file" or (name == "points" and isinstance(value, str))
+        else walk(value, name)
+        for name, value in rec.items()
+    }
+
+
+_POINT_CALL_NAMES = ("P", "V")  # the grammar's control-point functions of one curve
+
+
+def _check_point_names(path: Path, rec: dict, fam) -> None:
+    """A records formula about a family defined by data writes its control points by the
+    family's name (or the records file's `point_function`); another point name would be read
+    as other, unknown points and give a false mismatch, so it is refused here."""
+    points = rec.get("point_function") or fam.points
+    for key, text in _formula_texts(rec):
+        try:
+            tokens = tokenize(text)
+        except ParseError:
+            continue  # _parse_formulas has reported it
+        for tok, nxt in zip(tokens, tokens[1:], strict=False):
+            if tok.kind != "name" or tok.text not in _POINT_CALL_NAMES or tok.text == points:
+                continue
+            if nxt.kind == "op" and nxt.text == "(":
+                raise RecordsError(
+                    f"{_where(path, rec, key)}: {tok.text}(...) is not a control point of the "
+                    f"{fam.name} family: its control points are {points}(i). Write "
+                    f'{points}(i), or set point_function = "{tok.text}" in the records file '
+                    "(or the record) to name them otherwise"
+                )
+
+
+def _parse_formulas(path: Path, rec: dict, parameter: str = "lam") -> None:
     for name, value in rec.items():
         if name in TEXT_KEYS or name == "file":
             continue
@@ -384,9 +456,14 @@ def _parse_formulas(path: Path, rec: dict) -> None:
                 continue  # names of the functions of a join's curves
             for part in parts:
                 try:
-                    parse_formula(part)
+                    parse_formula(rename_parameter(part, parameter, lam_too=True))
                 except ParseError as exc:
-                    raise RecordsError(f"{_where(path, rec, key)}: {exc}") from None
+                    hint = (
+                        f" (the {rec['family']} family's shape parameter is {parameter})"
+                        if parameter != "lam" and "unknown name" in str(exc)
+                        else ""
+                    )
+                    raise RecordsError(f"{_where(path, rec, key)}: {exc}{hint}") from None
 
 
 def load_paths(paths: Iterable[Path]) -> list[dict]:
@@ -396,7 +473,7 @@ def load_paths(paths: Iterable[Path]) -> list[dict]:
     # family definitions in files of their own first: a records file names them by `family`
     for path, data in texts:
         if is_family_file(data):
-            _define_family(path, data["family"], "P")
+            _define_family(path, data["family"], None)
     for path, data in texts:
         if not is_family_file(data):
             records += load_file(path, data)

@@ -24,7 +24,14 @@ if TYPE_CHECKING:
     from .builtin_curves import BernsteinLikeCurve, SameDegreeCurve
     from .composite import CompositeCurve, JointReport
     from .curves import FAMILIES, BezierCurve, Curve
-    from .energy import OptimalLambda, energy_coefficients, energy_matrices, optimal_lambda
+    from .energy import (
+        OptimalLambda,
+        OptimalParameters,
+        energy_coefficients,
+        energy_matrices,
+        optimal_lambda,
+        optimal_parameters,
+    )
     from .family import Family, load_family
     from .joins import Joint, join
     from .properties import IsolatedRoot, singular_parameters
@@ -47,6 +54,8 @@ _EXPORTS = {
     "energy_coefficients": "energy",
     "energy_matrices": "energy",
     "optimal_lambda": "energy",
+    "OptimalParameters": "energy",
+    "optimal_parameters": "energy",
     "Family": "family",
     "load_family": "family",
     "Joint": "joins",
@@ -65,6 +74,7 @@ __all__ = [
     "Joint",
     "JointReport",
     "OptimalLambda",
+    "OptimalParameters",
     "SameDegreeCurve",
     "energy_coefficients",
     "energy_matrices",
@@ -72,6 +82,7 @@ __all__ = [
     "join",
     "load_family",
     "optimal_lambda",
+    "optimal_parameters",
     "singular_parameters",
 ]
 

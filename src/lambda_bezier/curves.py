@@ -64,14 +64,26 @@ def _families_by_name() -> dict[str, type[Curve]]:
 
 
 def data_curve_class(
-    family: str, class_name: str, data: object, doc: str, module: str = __name__
+    family: str,
+    class_name: str,
+    data: object,
+    doc: str,
+    module: str = __name__,
+    parameter_name: str = "lam",
 ) -> type[Curve]:
     """The curve class of a family that is data only: its name and its tables (a generated
-    module, or a derived document read by lambda_bezier.family); the engine is Curve."""
+    module, or a derived document read by lambda_bezier.family); the engine is Curve.
+    `parameter_name`: the shape parameter's own name (what repr and messages show)."""
     return type(
         class_name,
         (Curve,),
-        {"family": family, "_data": data, "__doc__": doc, "__module__": module},
+        {
+            "family": family,
+            "_data": data,
+            "__doc__": doc,
+            "__module__": module,
+            "parameter_name": parameter_name,
+        },
     )
 
 

@@ -81,6 +81,47 @@ class OptimalLambda:
     clamped: bool
 
 
+@dataclass(frozen=True)
+class OptimalParameters:
+    """The parameters minimising E_k over the family's parameter box, by name, as returned
+    by `optimal_parameters`: ``result["mu"]`` for a family whose parameter is ``mu``.
+
+    Attributes
+    ----------
+    values : dict
+        {parameter name: value}, every parameter of the family.
+    energy : Fraction or float
+        E_k there.
+    free : dict
+        The minimiser over all real parameters (the free optimum).
+    free_inside : bool
+        Whether the free optimum lies in the parameter box (then `values` is it).
+    boundary : str
+        Empty when the free optimum is the answer; otherwise where on the box's boundary the
+        minimum lies, e.g. ``"mu = 1 (upper end)"``.
+    k : int
+        The energy order.
+    family : str
+        The family name.
+    """
+
+    values: dict[str, Fraction | float]
+    energy: Fraction | float
+    free: dict[str, Fraction | float]
+    free_inside: bool
+    boundary: str
+    k: int
+    family: str
+
+    def __getitem__(self, name: str) -> Fraction | float:
+        if name not in self.values:
+            raise KeyError(
+                f"{name!r} is not a parameter of {self.family!r} "
+                f"(its parameters: {', '.join(self.values)})"
+            )
+        return self.values[name]
+
+
 def _family_cls(family: object) -> type[Curve]:
     """A family with a shape parameter: a built-in name, or a family from load_family."""
     if isinstance(family, str):
@@ -450,6 +491,46 @@ def optimal_lambda(
         family=_name(family),
         range_text=data.LAMBDA_RANGE_TEXT,
         clamped=clamp,
+    )
+
+
+def optimal_parameters(
+    points: PointsLike, k: int, family: object = "same_degree"
+) -> OptimalParameters:
+    r"""Every shape parameter of `family`, by its own name, minimising the energy
+    :math:`E_k` of one control polygon over the family's (closed) parameter box.
+
+    :math:`E_k` is a convex quadratic in the parameter of a family whose basis is affine in
+    it, so the free optimum is exact (Fractions for exact points); when it lies outside the
+    box the minimum is at the nearer end, and `boundary` says so.
+
+    Examples
+    --------
+    >>> r = optimal_parameters([(0, 6), (0, 2), (5, 2), (7, 0), (2, 0), (6, 8)], k=2)
+    >>> r["lam"], r.free_inside, r.boundary
+    (Fraction(-2, 1), False, 'lam = -2 (lower end, excluded: not attained)')
+    """
+    one = optimal_lambda(points, k, family, clamp=True)
+    if isinstance(one.lam, np.ndarray):  # pragma: no cover - a polygon batch
+        raise ValueError("points: optimal_parameters takes one control polygon")
+    name = _family_cls(family).parameter_name
+    data = _family_data(family)
+    lo, hi = data.LAMBDA_RANGE
+    boundary = ""
+    if one.lam != one.unconstrained:
+        lower = one.lam == lo
+        end = "lower" if lower else "upper"
+        closed = data.LAMBDA_CLOSED[0 if lower else 1]
+        # an open end is the infimum over the range, not attained in it
+        boundary = f"{name} = {one.lam} ({end} end{'' if closed else ', excluded: not attained'})"
+    return OptimalParameters(
+        values={name: one.lam},
+        energy=one.energy,  # type: ignore[arg-type]
+        free={name: one.unconstrained},  # type: ignore[dict-item]
+        free_inside=bool(one.unconstrained_admissible),
+        boundary=boundary,
+        k=one.k,
+        family=one.family,
     )
 
 

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import re
 import sys
+from collections.abc import Mapping
 from fractions import Fraction
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -129,7 +130,7 @@ class Family:
         camel = "".join(part.capitalize() for part in data.FAMILY.split("_"))
         doc = f"A curve of the family {data.FAMILY!r} ({title}), from {definition}."
         self.curve_class: type[Curve] = data_curve_class(
-            data.FAMILY, f"{camel}Curve", data, doc, __name__
+            data.FAMILY, f"{camel}Curve", data, doc, __name__, parameter
         )
 
     @property
@@ -148,15 +149,99 @@ class Family:
     def degree_offset(self) -> int:
         return self.data.DEGREE_OFFSET
 
-    def curve(
-        self, points: PointsLike, lam: Fraction | float, *, check_range: bool = True
-    ) -> Curve:
-        """Σ P_i b_i(t; lam) with the family's degree-n basis (n + 1 points)."""
-        return self.curve_class(points, lam, check_range=check_range)
+    @property
+    def parameters(self) -> tuple[str, ...]:
+        """The shape parameters' names, in the definition's order."""
+        return (self.parameter,)
 
-    def from_bezier(self, bezier: BezierCurve, lam: Fraction | float) -> Curve:
-        """A classical Bézier curve written in this family (Curve.from_bezier)."""
-        return self.curve_class.from_bezier(bezier, lam)
+    def parameter_values(
+        self,
+        value: object = None,
+        params: object = None,
+        named: Mapping[str, object] | None = None,
+    ) -> dict[str, object]:
+        """{name: value} for every parameter, from a positional value, a `params` mapping or
+        keyword arguments in the family's own names (``lam=`` too, for one parameter).
+        TypeError naming the argument for a name the family does not have, a missing or a
+        doubly given parameter."""
+        names = self.parameters
+        given: dict[str, object] = {}
+        sources: dict[str, str] = {}
+
+        def put(name: str, v: object, source: str) -> None:
+            if name in given:
+                raise TypeError(
+                    f"{name} is given twice ({sources[name]} and {source}); give it once"
+                )
+            given[name], sources[name] = v, source
+
+        if params is not None:
+            if not isinstance(params, dict):
+                raise TypeError(
+                    f"params must be a dict {{name: value}}, not {type(params).__name__}"
+                )
+            for key, v in params.items():
+                if key not in names:
+                    raise TypeError(
+                        f"params: {key!r} is not a parameter of {self.name!r} "
+                        f"(its parameters: {', '.join(names)})"
+                    )
+                put(key, v, "params")
+        for given_as, v in (named or {}).items():
+            key = given_as
+            if key == "lam" and "lam" not in names and len(names) == 1:
+                key = names[0]  # `lam=` keeps working for one-parameter families
+            elif key not in names:
+                raise TypeError(
+                    f"{key!r} is not a parameter of {self.name!r} (its parameters: "
+                    f"{', '.join(names)}; or pass params={{name: value}})"
+                )
+            put(key, v, f"{given_as}=")
+        if value is not None:
+            if len(names) != 1:
+                raise TypeError(
+                    f"{self.name!r} has {len(names)} parameters: name them "
+                    f"({', '.join(f'{x}=...' for x in names)}) or pass params={{...}}"
+                )
+            put(names[0], value, "the positional argument")
+        missing = [x for x in names if x not in given]
+        if missing:
+            raise TypeError(
+                f"a {self.name} curve needs its shape parameter"
+                f"{'s' if len(missing) > 1 else ''} {', '.join(missing)} (as {missing[0]}=...)"
+            )
+        return {x: given[x] for x in names}
+
+    def curve(
+        self,
+        points: PointsLike,
+        value: Fraction | float | None = None,
+        *,
+        params: dict[str, Fraction | float] | None = None,
+        check_range: bool = True,
+        **named: Fraction | float,
+    ) -> Curve:
+        """Σ P_i b_i(t; parameters) with the family's degree-n basis (n + 1 points).
+
+        The parameter by its own name (``fam.curve(points, mu=...)``), by ``params={"mu":
+        ...}``, positionally, or as ``lam=`` (one-parameter families)."""
+        values = self.parameter_values(value, params, named)
+        (lam,) = values.values()
+        return self.curve_class(points, lam, check_range=check_range)  # type: ignore[arg-type]
+
+    def from_bezier(
+        self,
+        bezier: BezierCurve,
+        value: Fraction | float | None = None,
+        *,
+        params: dict[str, Fraction | float] | None = None,
+        **named: Fraction | float,
+    ) -> Curve:
+        """A classical Bézier curve written in this family (Curve.from_bezier); the
+        parameters as for `curve`."""
+        values = self.parameter_values(value, params, named)
+        (lam,) = values.values()
+        return self.curve_class.from_bezier(bezier, lam)  # type: ignore[arg-type]
 
     def __repr__(self) -> str:
         return (

@@ -279,7 +279,7 @@ ILL_DEFINED = {
     ),
     "basis and recursion": (
         {"seed": ["(1 - t)**2", "2*t*(1 - t)", "t**2"], "recursion": "b(i, n - 1, t)"},
-        "one of the two",
+        "one of these",
     ),
     "function in a closed formula": ({"basis": "b(i, n, t)"}, "unknown name 'b'"),
 }

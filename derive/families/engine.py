@@ -125,8 +125,8 @@ def _integer(x, what: str) -> int:
 
 
 @cache
-def _field():
-    return sp.polys.fields.field([_T, _LAM], sp.QQ)[0]
+def _field(symbols: tuple[sp.Symbol, ...] = (_LAM,)):
+    return sp.polys.fields.field([_T, *symbols], sp.QQ)[0]
 
 
 def basis_polys(defn: Definition, degree: int) -> list[sp.Poly]:
@@ -148,7 +148,9 @@ def _basis_values(defn: Definition, degree: int) -> tuple:
 
 @cache
 def _basis_values_lam(defn: Definition, degree: int) -> tuple:
-    field = _field()
+    field = _field(defn.symbols)
+    if defn.functions_texts is not None:
+        return tuple(_instantiate(f, {_N: degree}, field) for f in defn.functions)
     if defn.basis_text is not None:
         basis = defn.basis
         return tuple(_instantiate(basis, {_N: degree, _I: idx}, field) for idx in range(degree + 1))
@@ -181,7 +183,7 @@ def _basis_polys(defn: Definition, degree: int) -> tuple[sp.Poly, ...]:
                 f"{defn.show(sp.factor(value.as_expr()))} (a negative power that does not cancel)"
             )
         numer = value.numer.quo_ground(value.denom.LC)  # the denominator is a number
-        p = sp.Poly.from_dict(dict(numer), t, lam, domain="QQ")  # same t, lam symbols
+        p = sp.Poly.from_dict(dict(numer), t, *defn.symbols, domain="QQ")  # same symbols
         if p.degree(t) > big:
             raise DefinitionError(
                 f"[family] basis: b({idx}, {degree}, t) has degree {p.degree(t)} in t, more "
@@ -194,7 +196,7 @@ def _basis_polys(defn: Definition, degree: int) -> tuple[sp.Poly, ...]:
 def check(defn: Definition) -> list[str]:
     """The definition's own claims, for every degree: what was checked (raises on failure)."""
     done = []
-    one = sp.Poly(1, t, lam, domain="QQ")
+    one = sp.Poly(1, t, *defn.symbols, domain="QQ")
     for deg in defn.degrees:
         polys = basis_polys(defn, deg)
         big = deg + defn.offset
@@ -205,13 +207,20 @@ def check(defn: Definition) -> list[str]:
                 f"{defn.show(sp.factor(total.as_expr()))}"
             )
         if defn.bernstein_at is not None:
-            x = sp.Rational(defn.bernstein_at.numerator, defn.bernstein_at.denominator)
+            at = {
+                sym: sp.Rational(q.bernstein_at.numerator, q.bernstein_at.denominator)
+                for sym, q in zip(defn.symbols, defn.params or (defn,), strict=True)
+                if q.bernstein_at is not None
+            }
+            where = ", ".join(
+                f"{name} = {v}" for name, v in zip(defn.parameters, at.values(), strict=True)
+            )
             for idx, p in enumerate(polys):
                 want = sp.Poly(comb(deg, idx) * t**idx * (1 - t) ** (deg - idx), t, domain="QQ")
-                got = sp.Poly(p.eval(lam, x).as_expr(), t, domain="QQ")
+                got = sp.Poly(p.as_expr().xreplace(at), t, domain="QQ")
                 if got != want:
                     raise DefinitionError(
-                        f"[family] bernstein_at: at {defn.parameter} = {x}, b({idx}, {deg}, t) "
+                        f"[family] bernstein_at: at {where}, b({idx}, {deg}, t) "
                         f"= {sp.factor(got.as_expr())}, not the Bernstein function "
                         f"{sp.factor(want.as_expr())}"
                     )
@@ -226,16 +235,22 @@ def check(defn: Definition) -> list[str]:
         f"{defn.degrees.stop - 1}"
     )
     done.append("partition of unity, every degree")
-    if defn.bernstein_at is not None:
+    if defn.bernstein_at is not None and not defn.several:
         done.append(f"Bernstein basis at {defn.parameter} = {defn.bernstein_at}, every degree")
+    elif defn.bernstein_at is not None:
+        at = ", ".join(f"{q.name} = {q.bernstein_at}" for q in defn.params)
+        done.append(f"Bernstein basis at {at}, every degree")
     return done
 
 
 # --------------------------------------------------------------------------- artifacts
 
 
-def _lam_coeffs(p: sp.Poly) -> list[str]:
-    """A polynomial in lam as its coefficients, constant first, exact strings."""
+def _lam_coeffs(p: sp.Poly) -> list[str] | dict[str, str]:
+    """A polynomial in lam as its coefficients, constant first, exact strings; in several
+    parameters, {"e_1,...,e_k": coefficient} by monomial (exponent tuple), sorted."""
+    if len(p.gens) > 1:
+        return {",".join(map(str, m)): str(c) for m, c in sorted(p.terms())}
     return [str(c) for c in reversed(p.all_coeffs())]
 
 
@@ -282,6 +297,8 @@ def closed_endpoint_order(defn: Definition) -> int:
 
 @cache
 def _closed_endpoint_forms(defn: Definition) -> tuple[dict[tuple[str, int, int], sp.Expr], int]:
+    if defn.several:  # closed forms in n are fitted per power of one parameter only
+        return {}, -1
     table = endpoint_table(defn)
     keys = sorted({k for row in table.values() for k in row})
     nn = n
@@ -359,3 +376,43 @@ class GenericDerivation:
 @cache
 def _generic_derivation(defn: Definition) -> GenericDerivation:
     return GenericDerivation(defn)
+
+
+# --------------------------------------------------------------------------- several parameters
+
+
+def monomial_split(defn: Definition, degree: int) -> dict[tuple[int, ...], list[sp.Poly]]:
+    """{exponent tuple of the parameters: the degree-`degree` functions' coefficients of that
+    monomial, as Polys in t (and lam, of degree 0: the tables' shape)}, sorted by monomial."""
+    polys = basis_polys(defn, degree)
+    monomials = sorted({m[1:] for p in polys for m in p.monoms()})
+    out = {}
+    for mono in monomials:
+        row = []
+        for p in polys:
+            coeffs = {(m[0], 0): c for m, c in p.terms() if m[1:] == mono}
+            row.append(sp.Poly.from_dict(coeffs or {(0, 0): 0}, t, lam, domain="QQ"))
+        out[mono] = row
+    return out
+
+
+def symmetry(defn: Definition) -> tuple[str, ...] | None:
+    """The parameter permutation s (as the names in their new order) with
+    b_i(t; x) = b_{n-i}(1 - t; s(x)) for every degree and i, trying the identity first and
+    then every transposition of two parameters; None when there is none."""
+    syms = defn.symbols
+    perms = [tuple(range(len(syms)))]
+    for a in range(len(syms)):
+        for b in range(a + 1, len(syms)):
+            perm = list(range(len(syms)))
+            perm[a], perm[b] = b, a
+            perms.append(tuple(perm))
+    for perm in perms:
+        swap = {syms[k]: syms[perm[k]] for k in range(len(syms))}
+        if all(
+            sp.expand(p.as_expr().subs({**swap, t: 1 - t}, simultaneous=True) - q.as_expr()) == 0
+            for deg in defn.degrees
+            for p, q in zip(basis_polys(defn, deg), reversed(basis_polys(defn, deg)), strict=True)
+        ):
+            return tuple(defn.parameters[k] for k in perm)
+    return None

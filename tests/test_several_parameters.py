@@ -162,3 +162,42 @@ def test_ill_defined_several_parameter_families(change, needle):
     with pytest.raises(definition.DefinitionError) as info:
         engine.check(definition.definition_from_table(table, "fam.toml"))
     assert needle in str(info.value), str(info.value)
+
+
+@pytest.mark.parametrize("cont", ["C1", "C2", "G1", "G2"])
+def test_joins_into_out_of_and_within_the_family(fam, cont):
+    """The runtime's per-degree solve, checked on the curves' own derivatives at the joint
+    (exact: the end derivatives are compared as exact Bézier differences)."""
+    alpha = Fraction(3, 2) if cont[0] == "G" else Fraction(1)
+    d = Fraction(1, 5) if cont == "G2" else Fraction(0)
+    order = 1 if cont[1] == "1" else 2
+    first = fam.curve(PTS, lam=Fraction(1, 2), mu=-1)
+    cases = [
+        (first, {"lam": Fraction(-1, 3), "mu": Fraction(1, 4)}, None, 3),
+        (first, {"lam": Fraction(1, 3)}, "bernstein_like", 4),
+        (lb.SameDegreeCurve([(0, 0), (1, 3), (2, 1), (4, 0)], lam=Fraction(1, 2)), {}, fam, 3),
+    ]
+    for c, kwargs, family, m in cases:
+        if family is fam:
+            kwargs = {"lam": Fraction(-1), "mu": Fraction(1, 2)}
+        rest = [(9 + j, (-1) ** j) for j in range(m - order)]
+        nxt = lb.join(c, cont, m, alpha=alpha, d=d, rest=rest, family=family, **kwargs)
+        ends = [np.array(c.derivative(1.0, r)) for r in range(3)]
+        starts = [np.array(nxt.derivative(0.0, r)) for r in range(3)]
+        np.testing.assert_allclose(starts[0], ends[0], atol=1e-12)
+        np.testing.assert_allclose(float(alpha) * starts[1], ends[1], atol=1e-9)
+        if order == 2:
+            want = float(alpha) ** 2 * starts[2] + float(d) * starts[1]
+            np.testing.assert_allclose(want, ends[2], atol=1e-9)
+
+
+def test_evaluate_many_matches_the_curves(fam):
+    rng = np.random.default_rng(7)
+    pts = rng.normal(size=(6, 4, 3))
+    ts = np.linspace(0, 1, 9)
+    got = lb.evaluate_many(pts, ts, fam, params={"lam": 0.5, "mu": -1.0}, k=1)
+    for i in range(6):
+        want = fam.curve(pts[i], lam=0.5, mu=-1.0).derivative(ts)
+        np.testing.assert_allclose(got[i], want, atol=1e-12)
+    with pytest.raises(TypeError, match="needs its shape parameter mu"):
+        lb.evaluate_many(pts, ts, fam, params={"lam": 0.5})

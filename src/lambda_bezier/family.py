@@ -358,6 +358,7 @@ class Family:
                 self.name, self.curve_class.__name__, data, self.curve_class.__doc__ or ""
             )
             cls._has_lambda = False
+            cls.several_family = self  # type: ignore[attr-defined]  # joins continue in it
             cls.parameter_values = dict(zip(self.parameters, key, strict=True))  # type: ignore[attr-defined]
 
             def shown_repr(c: Curve, shown: str = shown) -> str:

@@ -327,7 +327,17 @@ def join(
             f"from lambda_bezier.load_family), got {type(curve).__name__}"
         )
     spec = Joint(continuity, alpha, d)
-    cls = type(curve) if family is None else _family_class(family)
+    # a family in several parameters: the new segment's class is the family at its values
+    target = family if family is not None else getattr(type(curve), "several_family", None)
+    cls: type[Curve]
+    if getattr(target, "several", None) is not None:
+        if lam is not None and "lam" in target.parameters:  # type: ignore[union-attr]
+            named, lam = {**named, "lam": lam}, None  # join's own `lam` is this parameter
+        values = target.parameter_values(lam, params, named)  # type: ignore[union-attr]
+        cls = target._fixed_class(values, check_range)  # type: ignore[union-attr]
+        lam, params, named = None, None, {}
+    else:
+        cls = type(curve) if family is None else _family_class(family)
     fam = cls.family
     data = cls._data
     degrees = tuple(data.DEGREES)
@@ -341,7 +351,8 @@ def join(
             f"a {spec.continuity} join solves P_{{0,2}}..P_{{{spec.order},2}}: the new curve "
             f"needs degree >= {spec.order}, got {degree}"
         )
-    lam = _own_parameter(cls, lam, params, named)
+    if cls._has_lambda:
+        lam = _own_parameter(cls, lam, params, named)
     name = cls.parameter_name
     if cls._has_lambda:
         if lam is None:

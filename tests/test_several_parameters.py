@@ -201,3 +201,56 @@ def test_evaluate_many_matches_the_curves(fam):
         np.testing.assert_allclose(got[i], want, atol=1e-12)
     with pytest.raises(TypeError, match="needs its shape parameter mu"):
         lb.evaluate_many(pts, ts, fam, params={"lam": 0.5})
+
+
+# --------------------------------------------------------------------------- one per leg
+
+LEGS = ROOT / "tests" / "data" / "families" / "per_leg_cubic.toml"
+
+
+def leg_basis(t, s0, s1, s2):
+    """The file's construction: b_i -= s_i psi_i, b_{i+1} += s_i psi_i."""
+    b = [(1 - t) ** 3, 3 * t * (1 - t) ** 2, 3 * t**2 * (1 - t), t**3]
+    for i, s in enumerate((s0, s1, s2)):
+        psi = t ** (i + 1) * (1 - t) ** (3 - i)
+        b[i] -= s * psi
+        b[i + 1] += s * psi
+    return b
+
+
+def test_per_leg_family_derived_and_evaluated():
+    doc_path = LEGS.with_name("per_leg_cubic.derived.json")
+    defn = _derive("families.definition").read_definition(LEGS)
+    assert _derive("emit.document").render(defn) == doc_path.read_text(encoding="utf-8")
+    doc = json.loads(doc_path.read_text())
+    assert doc["symmetry"]["swap"] == ["-s2", "-s1", "-s0"]
+    fam = lb.load_family(LEGS)
+    two = lb.load_family(FILE)
+    s = (Fraction(1, 2), Fraction(-1, 4), Fraction(1, 3))
+    c = fam.curve(PTS, s0=s[0], s1=s[1], s2=s[2])
+    ts = np.linspace(0, 1, 11)
+    want = np.array(
+        [
+            [sum(b * p[d] for b, p in zip(leg_basis(t, *map(float, s)), PTS, strict=True)) for d in (0, 1)]
+            for t in ts
+        ]
+    )
+    np.testing.assert_allclose(c.evaluate(ts), want, atol=1e-13)
+    # at s1 = 0, s2 = -mu: the two-parameter cubic with lam = s0, exactly
+    a = fam.curve(PTS, s0=Fraction(1, 2), s1=0, s2=Fraction(1, 3))
+    b = two.curve(PTS, lam=Fraction(1, 2), mu=Fraction(-1, 3))
+    assert a.to_bezier().control_points() == b.to_bezier().control_points()
+
+
+def test_per_leg_optimum_over_the_box():
+    fam = lb.load_family(LEGS)
+    pts = [(0, 0), (1, 5), (3, -4), (4, 0)]
+    r = lb.optimal_parameters(pts, 2, family=fam)
+    assert not r.free_inside and "s0 = -1 (lower end)" in r.boundary
+    grid = [Fraction(k, 4) - 1 for k in range(9)]
+    sampled = min(
+        fam.curve(pts, s0=a, s1=b, s2=c).energy(2)
+        for a, b, c in itertools.product(grid, grid, grid)
+    )
+    assert r.energy <= sampled
+    assert fam.curve(pts, params=dict(r.values)).energy(2) == r.energy

@@ -397,22 +397,34 @@ def monomial_split(defn: Definition, degree: int) -> dict[tuple[int, ...], list[
 
 
 def symmetry(defn: Definition) -> tuple[str, ...] | None:
-    """The parameter permutation s (as the names in their new order) with
-    b_i(t; x) = b_{n-i}(1 - t; s(x)) for every degree and i, trying the identity first and
-    then every transposition of two parameters; None when there is none."""
+    """The parameter substitution s (the new value of each parameter, as text) with
+    b_i(t; x) = b_{n-i}(1 - t; s(x)) for every degree and i: the identity, a transposition
+    of two parameters, or either with signs flipped (a parameter per leg maps to minus the
+    mirrored leg's); None when none of these is."""
+    import itertools
+
     syms = defn.symbols
-    perms = [tuple(range(len(syms)))]
-    for a in range(len(syms)):
-        for b in range(a + 1, len(syms)):
-            perm = list(range(len(syms)))
+    count = len(syms)
+    perms = [tuple(range(count))]
+    for a in range(count):
+        for b in range(a + 1, count):
+            perm = list(range(count))
             perm[a], perm[b] = b, a
             perms.append(tuple(perm))
+    if count > 1:  # the reversal of the parameter order (per-leg families)
+        perms.append(tuple(reversed(range(count))))
+    signs = list(itertools.product((1, -1), repeat=count)) if count <= 4 else [(1,) * count]
+    names = defn.parameters
     for perm in perms:
-        swap = {syms[k]: syms[perm[k]] for k in range(len(syms))}
-        if all(
-            sp.expand(p.as_expr().subs({**swap, t: 1 - t}, simultaneous=True) - q.as_expr()) == 0
-            for deg in defn.degrees
-            for p, q in zip(basis_polys(defn, deg), reversed(basis_polys(defn, deg)), strict=True)
-        ):
-            return tuple(defn.parameters[k] for k in perm)
+        for sign in signs:
+            swap = {syms[k]: sign[k] * syms[perm[k]] for k in range(count)}
+            if all(
+                sp.expand(p.as_expr().subs({**swap, t: 1 - t}, simultaneous=True) - q.as_expr())
+                == 0
+                for deg in defn.degrees
+                for p, q in zip(
+                    basis_polys(defn, deg), reversed(basis_polys(defn, deg)), strict=True
+                )
+            ):
+                return tuple(("-" if sign[k] < 0 else "") + names[perm[k]] for k in range(count))
     return None

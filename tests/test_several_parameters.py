@@ -231,7 +231,10 @@ def test_per_leg_family_derived_and_evaluated():
     ts = np.linspace(0, 1, 11)
     want = np.array(
         [
-            [sum(b * p[d] for b, p in zip(leg_basis(t, *map(float, s)), PTS, strict=True)) for d in (0, 1)]
+            [
+                sum(b * p[d] for b, p in zip(leg_basis(t, *map(float, s)), PTS, strict=True))
+                for d in (0, 1)
+            ]
             for t in ts
         ]
     )

@@ -257,3 +257,9 @@ def test_per_leg_optimum_over_the_box():
     )
     assert r.energy <= sampled
     assert fam.curve(pts, params=dict(r.values)).energy(2) == r.energy
+
+
+def test_verify_refuses_several_parameter_records_clearly():
+    records = _derive("verify.records")
+    with pytest.raises(records.RecordsError, match="several parameters"):
+        records.load_paths([FILE])

@@ -354,6 +354,12 @@ def _define_family(path: Path, table: dict, points: str | None) -> str:
     """Derive the family a records file defines and make it known to this run's checkers."""
     try:
         defn = definition_from_table(table, str(path))
+        if defn.several:
+            raise RecordsError(
+                f"{path}: [family] {defn.name!r} has several parameters "
+                f"({', '.join(defn.parameters)}); verify checks records about families with "
+                "one parameter only in this version (derive --family and load_family take it)"
+            )
         register_defined_family(defn, points)
     except DefinitionError as exc:
         raise RecordsError(

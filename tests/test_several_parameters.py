@@ -263,3 +263,12 @@ def test_verify_refuses_several_parameter_records_clearly():
     records = _derive("verify.records")
     with pytest.raises(records.RecordsError, match="several parameters"):
         records.load_paths([FILE])
+
+
+def test_one_parameter_entry_points_refuse_clearly(fam):
+    for call in (
+        lambda: lb.optimal_lambda(PTS, 2, family=fam),
+        lambda: lb.singular_parameters(fam, 3),
+    ):
+        with pytest.raises(TypeError, match="several parameters"):
+            call()

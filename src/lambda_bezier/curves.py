@@ -116,6 +116,15 @@ def family_class(family: object) -> type[Curve]:
             f"unknown family {family!r}: choose one of {', '.join(map(repr, families))}, or "
             "pass a family from lambda_bezier.load_family"
         )
+    several = getattr(family, "several", None)
+    if several is not None:
+        names = ", ".join(several.NAMES)
+        raise TypeError(
+            f"the family {several.FAMILY!r} has several parameters ({names}): one curve class "
+            f"per parameter values; use fam.curve(points, {names.replace(', ', '=..., ')}=...), "
+            "optimal_parameters, evaluate_many(..., params={...}) or join(..., "
+            f"{names.replace(', ', '=..., ')}=...)"
+        )
     cls = getattr(family, "curve_class", family)
     if isinstance(cls, type) and issubclass(cls, Curve) and cls is not Curve:
         return cls

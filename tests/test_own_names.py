@@ -196,3 +196,22 @@ def test_records_use_the_family_names(mu_file, tmp_path):
     path.write_text(RECORDS.format(p0="V(0) + 0*nu"))
     with pytest.raises(records.RecordsError, match="shape parameter is mu"):
         records.load_paths([mu_file, path])
+
+
+def test_old_documents_load_or_name_the_command(tmp_path):
+    """Format 2 (one parameter, the same layout) still loads; another format is refused with
+    the command that re-derives it."""
+    import json
+
+    src = ROOT / "tests" / "data" / "families"
+    (tmp_path / "nouri_saeidian.toml").write_text((src / "nouri_saeidian.toml").read_text())
+    doc = json.loads((src / "nouri_saeidian.derived.json").read_text())
+    assert doc["format"] == 3
+    for fmt, ok in ((2, True), (1, False)):
+        (tmp_path / "nouri_saeidian.derived.json").write_text(json.dumps(dict(doc, format=fmt)))
+        if ok:
+            fam = lb.load_family(tmp_path / "nouri_saeidian.toml")
+            assert fam.curve(PTS, sigma=Fraction(1, 2)).evaluate(0.5).tolist() == [2.0, 0.75]
+        else:
+            with pytest.raises(lb.family.FamilyFileError, match="run `lambda-bezier derive"):
+                lb.load_family(tmp_path / "nouri_saeidian.toml")

@@ -272,3 +272,23 @@ def test_one_parameter_entry_points_refuse_clearly(fam):
     ):
         with pytest.raises(TypeError, match="several parameters"):
             call()
+
+
+def test_nonnegativity_over_the_box_exact_or_a_counterexample():
+    import tomllib
+
+    definition, engine = _derive("families.definition"), _derive("families.engine")
+    table = tomllib.loads(FILE.read_text())["family"]
+    assert engine.nonnegative_over_box(definition.definition_from_table(table)) == {
+        "nonnegative": True
+    }
+    # the claim on a grid of the box, by the formulas
+    grid = np.linspace(-3, 1, 9)
+    ts = np.linspace(0, 1, 101)
+    assert min(min(basis(ts, a, b)[i].min() for i in range(4)) for a in grid for b in grid) >= 0
+    wide = dict(table, range={"lam": "[-4, 1]", "mu": "[-3, 1]"})
+    got = engine.nonnegative_over_box(definition.definition_from_table(wide))
+    assert got["nonnegative"] is False
+    ce = got["counterexample"]
+    value = basis(Fraction(ce["t"]), Fraction(ce["lam"]), Fraction(ce["mu"]))[ce["i"]]
+    assert value < 0 and value == Fraction(ce["value"])

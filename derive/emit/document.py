@@ -18,6 +18,7 @@ from ..families.engine import (
     closed_endpoint_order,
     endpoint_table,
     monomial_split,
+    nonnegative_over_box,
     symmetry,
 )
 from ..formulas.family import energy_artifacts, join_artifacts, singular_artifacts
@@ -86,6 +87,7 @@ def _several(defn: Definition, checked: list[str]) -> dict:
         "endpoint_closed_orders": -1,
         "endpoint_closed_forms": None,
         "energy": energy_artifacts(defn),
+        "nonnegative_over_box": nonnegative_over_box(defn),
         "singular_parameters": {
             "reason": "linear independence over a box of several parameters is not decided "
             "by this version"

@@ -428,3 +428,63 @@ def symmetry(defn: Definition) -> tuple[str, ...] | None:
             ):
                 return tuple(("-" if sign[k] < 0 else "") + names[perm[k]] for k in range(count))
     return None
+
+
+def _negative_point(p: sp.Poly) -> sp.Rational | None:
+    """A rational t in [0, 1] where the polynomial p(t) is negative, or None when p >= 0 on
+    [0, 1]. Exact: between consecutive real roots p keeps its sign, so p is evaluated at both
+    ends, at the ends of small isolating intervals of its roots in [0, 1] (sorted, disjoint)
+    and at a point between each two of them: every gap between roots holds one of these."""
+    if p.is_zero:
+        return None
+    ivs = sorted(
+        (sp.Rational(a), sp.Rational(b))
+        for (a, b), _ in p.sqf_part().intervals(inf=0, sup=1, eps=sp.Rational(1, 10**9))
+    )
+    points = {sp.Integer(0), sp.Integer(1)}
+    for (a, b), (c, _) in zip(ivs, [*ivs[1:], (sp.Integer(1), None)], strict=True):
+        points.update((a, b, (b + c) / 2))
+    if ivs:
+        points.add(ivs[0][0] / 2)
+    for x in sorted(points):
+        if 0 <= x <= 1 and p.eval(x) < 0:
+            return x
+    return None
+
+
+def nonnegative_over_box(defn: Definition) -> dict:
+    """Whether every basis function is >= 0 for t in [0, 1] and every parameter value of the
+    box, decided exactly for a basis affine in the parameters jointly: for fixed t a function
+    is affine in them, so its least value over the box is at a vertex (an open end by
+    continuity), and each vertex leaves a polynomial in t. {"nonnegative": true} or a
+    counterexample; a reason when the basis is not affine."""
+    import itertools
+
+    for deg in defn.degrees:
+        if any(sum(m[1:]) > 1 for p in basis_polys(defn, deg) for m in p.monoms()):
+            return {"reason": f"not affine in the parameters jointly at n = {deg}: not decided"}
+    corners = [(q.lo, q.hi) for q in defn.params]
+    for deg in defn.degrees:
+        for vertex in itertools.product(*corners):
+            at = {
+                s: sp.Rational(v.numerator, v.denominator)
+                for s, v in zip(defn.symbols, vertex, strict=True)
+            }
+            for idx, p in enumerate(basis_polys(defn, deg)):
+                q = sp.Poly(p.as_expr().xreplace(at), t)
+                x = _negative_point(q)
+                if x is not None:
+                    return {
+                        "nonnegative": False,
+                        "counterexample": {
+                            "n": deg,
+                            "i": idx,
+                            "t": str(x),
+                            **{
+                                name: str(v)
+                                for name, v in zip(defn.parameters, vertex, strict=True)
+                            },
+                            "value": str(q.eval(x)),
+                        },
+                    }
+    return {"nonnegative": True}

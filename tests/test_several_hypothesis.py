@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 from lambda_bezier import _derive_runner
@@ -65,6 +65,16 @@ def tables(draw):
 
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(tables())
+@example(  # found by hypothesis: basis functions without a root in [0, 1]
+    {
+        "name": "random_family",
+        "parameters": ["lam", "mu"],
+        "range": {"lam": "[-1, 1]", "mu": "[-1, 1]"},
+        "degrees": "1",
+        "degree_offset": 3,
+        "functions": ["(1)*t**0*lam**0*mu**0 + t**4", "1 - ((1)*t**0*lam**0*mu**0 + t**4)"],
+    }
+)
 def test_random_several_parameter_definitions(table):
     definition, document = _derive("families.definition"), _derive("emit.document")
     try:

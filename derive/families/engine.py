@@ -442,9 +442,10 @@ def _negative_point(p: sp.Poly) -> sp.Rational | None:
         for (a, b), _ in p.sqf_part().intervals(inf=0, sup=1, eps=sp.Rational(1, 10**9))
     )
     points = {sp.Integer(0), sp.Integer(1)}
-    for (a, b), (c, _) in zip(ivs, [*ivs[1:], (sp.Integer(1), None)], strict=True):
-        points.update((a, b, (b + c) / 2))
-    if ivs:
+    if ivs:  # no root in [0, 1]: the ends decide the sign
+        following = [c for c, _ in ivs[1:]] + [sp.Integer(1)]
+        for (a, b), c in zip(ivs, following, strict=True):
+            points.update((a, b, (b + c) / 2))
         points.add(ivs[0][0] / 2)
     for x in sorted(points):
         if 0 <= x <= 1 and p.eval(x) < 0:

@@ -17,6 +17,9 @@ from ..families.engine import (
     closed_endpoint_forms,
     closed_endpoint_order,
     endpoint_table,
+    monomial_split,
+    nonnegative_over_box,
+    symmetry,
 )
 from ..formulas.family import energy_artifacts, join_artifacts, singular_artifacts
 
@@ -27,9 +30,77 @@ def _matrices(mats) -> list:
     return [[[str(Fraction(v)) for v in row] for row in mat] for mat in mats]
 
 
+def _several(defn: Definition, checked: list[str]) -> dict:
+    """The document of a family in several parameters: the tables split by parameter
+    monomials ("e_1,...,e_k" -> matrix), the end values and derivatives per degree by
+    monomial, the symmetry with the parameter permutation it needs, and E_k as Gram
+    matrices of the affine parts (derive/formulas/family.py)."""
+    tables: dict[str, dict] = {"power": {}, "bernstein": {}, "centred": {}}
+    for deg in defn.degrees:
+        split = monomial_split(defn, deg)
+        for kind in tables:
+            tables[kind][str(deg)] = {}
+        for mono, polys in split.items():
+            got = expansion_tables(lambda _d, polys=polys: polys, (deg,), defn.offset)
+            for kind in tables:
+                tables[kind][str(deg)][",".join(map(str, mono))] = _matrices(got[kind][deg])[0]
+    swap = symmetry(defn)
+    return {
+        "generated_by": "lambda-bezier derive --family -- DO NOT EDIT; regenerate with "
+        "`lambda-bezier derive --family FILE`",
+        "format": FORMAT,
+        "definition_sha256": defn.digest,
+        "family": defn.name,
+        "title": defn.title,
+        "parameters": [
+            {
+                "name": q.name,
+                "range": {
+                    "text": q.range_text,
+                    "lo": str(q.lo),
+                    "hi": str(q.hi),
+                    "closed": [q.lo_closed, q.hi_closed],
+                },
+                "bernstein_at": None if q.bernstein_at is None else str(q.bernstein_at),
+            }
+            for q in defn.params
+        ],
+        "domain": {"lo": str(defn.domain.lo), "hi": str(defn.domain.hi)},
+        "degrees": [defn.degrees.start, defn.degrees.stop - 1],
+        "degree_offset": defn.offset,
+        "checked": checked,
+        "symmetry": None
+        if swap is None
+        else {
+            "swap": list(swap),
+            "text": "b_i(t; "
+            + ", ".join(defn.parameters)
+            + ") = b_{n-i}(1 - t; "
+            + ", ".join(swap)
+            + ")",
+        },
+        "basis": {
+            str(deg): [str(p.as_expr()) for p in basis_polys(defn, deg)] for deg in defn.degrees
+        },
+        **tables,
+        "endpoints": endpoint_table(defn),
+        "endpoint_closed_orders": -1,
+        "endpoint_closed_forms": None,
+        "energy": energy_artifacts(defn),
+        "nonnegative_over_box": nonnegative_over_box(defn),
+        "singular_parameters": {
+            "reason": "linear independence over a box of several parameters is not decided "
+            "by this version"
+        },
+        "joins": {"reason": "several parameters: the runtime joins per degree"},
+    }
+
+
 def derive(defn: Definition, *, with_joins: bool = True) -> dict:
     """Every artifact of the family, as one JSON-able document (exact numbers as strings)."""
     checked = check(defn)
+    if defn.several:
+        return _several(defn, checked)
     tables = expansion_tables(lambda deg: basis_polys(defn, deg), tuple(defn.degrees), defn.offset)
     closed = closed_endpoint_forms(defn)
     doc = {

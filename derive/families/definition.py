@@ -16,11 +16,14 @@ from pathlib import Path
 
 import sympy as sp
 
-from ..grammar import FUNCTIONS, SYMBOLS, Interval, ParseError, parse_formula, tokenize
+from ..grammar import BUILTINS, FUNCTIONS, SYMBOLS, Interval, ParseError, parse_formula, tokenize
 
-FORMAT = 2  # version of the derived JSON document (2: with singular_parameters)
+# version of the derived JSON document (2: with singular_parameters; 3: several parameters,
+# tables by parameter monomials; a one-parameter document is laid out as in 2)
+FORMAT = 3
 MAX_DEGREE = 20
 MAX_OFFSET = 6
+MAX_PARAMETERS = 8
 # The classical Bernstein basis (derive/algebra/bernstein.py) is every family's reference
 # (to_bezier, bernstein_at), not a family defined by data; the built-in families are
 # derive/families/*.toml.
@@ -37,15 +40,34 @@ class DefinitionError(ValueError):
 # --------------------------------------------------------------------------- the definition
 
 _NAME = r"^[a-z][a-z0-9_]{0,39}$"
+_PARAM_NAME = {"type": "string", "pattern": r"^[A-Za-z][A-Za-z0-9_]{0,19}$"}
+_INTERVAL = {"type": "string", "maxLength": 200}
 SCHEMA = {
     "type": "object",
     "properties": {
         "name": {"type": "string", "pattern": _NAME},
         "title": {"type": "string", "maxLength": 500},
-        "parameter": {"type": "string", "pattern": r"^[A-Za-z][A-Za-z0-9_]{0,19}$"},
-        "range": {"type": "string", "maxLength": 200},
+        "parameter": _PARAM_NAME,
+        # several shape parameters (issue #30); `parameter` is the one-parameter form
+        "parameters": {
+            "type": "array",
+            "items": _PARAM_NAME,
+            "minItems": 1,
+            "maxItems": MAX_PARAMETERS,
+            "uniqueItems": True,
+        },
+        # an interval, or a table {parameter: interval} (required with several parameters)
+        "range": {
+            "oneOf": [_INTERVAL, {"type": "object", "additionalProperties": _INTERVAL}],
+        },
+        "domain": _INTERVAL,  # the interval of t
         "degrees": {"type": "string", "maxLength": 20},
-        "bernstein_at": {"type": "string", "maxLength": 200},
+        "bernstein_at": {
+            "oneOf": [_INTERVAL, {"type": "object", "additionalProperties": _INTERVAL}],
+        },
+        # the name records give the control points (P(i) by default; #32 item 3)
+        # (the records grammar's point functions: P or V)
+        "points": {"enum": ["P", "V"]},
         "degree_offset": {"type": "integer", "minimum": 0, "maximum": MAX_OFFSET},
         "basis": {"type": "string", "maxLength": 10_000},
         # or a recursion from a seed: the functions of the lowest degree, then b(i, n, t) in
@@ -57,24 +79,44 @@ SCHEMA = {
             "maxItems": MAX_DEGREE + 1,
         },
         "recursion": {"type": "string", "maxLength": 10_000},
+        # or the functions b_0 .. b_n of a single order, each a formula in t and the parameters
+        "functions": {
+            "type": "array",
+            "items": {"type": "string", "maxLength": 10_000},
+            "minItems": 2,
+            "maxItems": MAX_DEGREE + 1,
+        },
         "source": {"type": "string"},
         "note": {"type": "string"},
     },
-    "required": ["name", "parameter", "range", "degrees", "degree_offset"],
+    "required": ["name", "range", "degrees"],
     "additionalProperties": False,
 }
 
-# basis formulas are in i, n, t and the parameter (renamed to `lam` while reading)
-_BASIS_SYMBOLS = {name: SYMBOLS[name] for name in ("i", "n", "t", "lam")}
+# basis formulas are in i, n, t and the parameter, which is read as the symbol `lam` (the
+# engine's internal name); what the user reads shows the family's own name (Definition.show)
 _I, _N = SYMBOLS["i"], SYMBOLS["n"]
 _T, _LAM = SYMBOLS["t"], SYMBOLS["lam"]
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One shape parameter: its name and its admissible interval."""
+
+    name: str
+    range_text: str
+    lo: Fraction
+    hi: Fraction
+    lo_closed: bool
+    hi_closed: bool
+    bernstein_at: Fraction | None
 
 
 @dataclass(frozen=True)
 class Definition:
     name: str
     title: str
-    parameter: str
+    parameter: str  # the first (with one parameter: the) parameter's name
     range_text: str
     lo: Fraction
     hi: Fraction
@@ -82,37 +124,61 @@ class Definition:
     hi_closed: bool
     degrees: range
     bernstein_at: Fraction | None
+    points: str  # the control points' name in records (P unless the table says `points`)
     offset: int
     basis_text: str | None  # the closed formula, or
     seed_texts: tuple[str, ...] | None  # the lowest degree's functions, and
-    recursion_text: str | None  # b(i, n, t) from the degree below
+    recursion_text: str | None  # b(i, n, t) from the degree below, or
     digest: str  # of the [family] table: a derived file names the definition it came from
+    # every parameter with its interval (one for a `parameter = ...` table)
+    params: tuple[Parameter, ...] = ()
+    functions_texts: tuple[str, ...] | None = None  # b_0 .. b_n of the single order
 
-    # The interface names the parameters as a tuple and the domain as an interval, so that
-    # families with several parameters or another domain (issue #30) fit without a new
-    # interface; today every family has one parameter and the domain [0, 1].
     @property
     def parameters(self) -> tuple[str, ...]:
-        return (self.parameter,)
+        return tuple(p.name for p in self.params) or (self.parameter,)
+
+    @property
+    def several(self) -> bool:
+        return len(self.parameters) > 1
+
+    @property
+    def symbols(self) -> tuple[sp.Symbol, ...]:
+        """The engine's symbols of the parameters: `lam` for a one-parameter family (the
+        formula tables' name), the family's own names for several."""
+        if not self.several:
+            return (_LAM,)
+        return tuple(sp.Symbol(name) for name in self.parameters)
 
     @property
     def domain(self) -> Interval:
         return Interval(Fraction(0), Fraction(1))
 
+    def show(self, expr: sp.Basic) -> str:
+        """An expression as the user reads it: in the family's own parameter names."""
+        if self.parameter == "lam" or self.several:
+            return str(expr)
+        return str(expr.xreplace({_LAM: sp.Symbol(self.parameter)}))
+
     @property
     def basis(self) -> sp.Expr:
         assert self.basis_text is not None, "a family defined by a recursion"
-        return _parse_basis(self.basis_text, self.parameter)
+        return _parse_basis(self.basis_text, self.parameters)
 
     @property
     def seed(self) -> tuple[sp.Expr, ...]:
         assert self.seed_texts is not None
-        return tuple(_parse_basis(text, self.parameter) for text in self.seed_texts)
+        return tuple(_parse_basis(text, self.parameters) for text in self.seed_texts)
 
     @property
     def recursion(self) -> sp.Expr:
         assert self.recursion_text is not None
-        return _parse_basis(self.recursion_text, self.parameter, recursive=True)
+        return _parse_basis(self.recursion_text, self.parameters, recursive=True)
+
+    @property
+    def functions(self) -> tuple[sp.Expr, ...]:
+        assert self.functions_texts is not None
+        return tuple(_parse_basis(text, self.parameters) for text in self.functions_texts)
 
 
 def digest(table: dict) -> str:
@@ -123,9 +189,11 @@ def digest(table: dict) -> str:
     return definition_digest(table)
 
 
-def rename_parameter(text: str, parameter: str) -> str:
+def rename_parameter(text: str, parameter: str, *, lam_too: bool = False) -> str:
     """The formula with the parameter's name replaced by `lam`, token by token (a name is
-    a whole token, so `mu` in `mu2` is left alone)."""
+    a whole token, so `mu` in `mu2` is left alone): how verify reads a records formula about
+    a family whose parameter has a name of its own. `lam_too`: `lam` may also stand for it
+    (records written before families had their own names)."""
     if parameter == "lam":
         return text
     out, last = [], 0
@@ -133,15 +201,22 @@ def rename_parameter(text: str, parameter: str) -> str:
         if tok.kind == "name" and tok.text == parameter:
             out += [text[last : tok.pos], "lam"]
             last = tok.pos + len(tok.text)
-        elif tok.kind == "name" and tok.text == "lam":
+        elif tok.kind == "name" and tok.text == "lam" and not lam_too:
             raise ParseError(f"`lam` is not this family's parameter ({parameter!r}): {text!r}")
     return "".join(out) + text[last:]
 
 
 @cache
-def _parse_basis(text: str, parameter: str, recursive: bool = False) -> sp.Expr:
+def _parse_basis(text: str, parameters: tuple[str, ...], recursive: bool = False) -> sp.Expr:
+    # one parameter's own name maps to the engine's symbol `lam`, several keep their names: a
+    # parse error quotes the user's text
+    symbols = {"i": _I, "n": _N, "t": _T}
+    if len(parameters) == 1:
+        symbols[parameters[0]] = _LAM
+    else:
+        symbols.update({name: sp.Symbol(name) for name in parameters})
     functions = {"b": FUNCTIONS["b"]} if recursive else {}
-    return parse_formula(rename_parameter(text, parameter), _BASIS_SYMBOLS, functions)
+    return parse_formula(text, symbols, functions)
 
 
 def _number(text: str, key: str) -> Fraction:
@@ -156,6 +231,50 @@ def _number(text: str, key: str) -> Fraction:
 
 _RANGE = re.compile(r"^\s*([\[(])([^,\[\]()]+),([^,\[\]()]+)([\])])\s*$")
 _DEGREES = re.compile(r"^\s*([0-9]{1,3})\s*\.\.\s*([0-9]{1,3})\s*$")
+
+
+def _interval(text: str, key: str, fail) -> tuple[Fraction, Fraction, bool, bool]:
+    m = _RANGE.match(text)
+    if not m:
+        raise fail(key, f'{text!r} is not an interval such as "(-2, 1]"')
+    lo, hi = (_number(x.strip(), key) for x in (m.group(2), m.group(3)))
+    lo_closed, hi_closed = m.group(1) == "[", m.group(4) == "]"
+    if lo > hi or (lo == hi and not (lo_closed and hi_closed)):
+        raise fail(key, f"the interval {text} is empty")
+    return lo, hi, lo_closed, hi_closed
+
+
+def _per_parameter(table: dict, key: str, names: list[str], fail) -> dict[str, str]:
+    """A key that is a plain string (one parameter) or a table {parameter: text}."""
+    value = table[key]
+    if isinstance(value, str):
+        if len(names) != 1:
+            raise fail(
+                key,
+                f"with several parameters ({', '.join(names)}), `{key}` is a table "
+                f'{{ {names[0]} = "..." , ... }}',
+            )
+        return {names[0]: value}
+    unknown = sorted(set(value) - set(names))
+    if unknown:
+        raise fail(f"{key}.{unknown[0]}", f"{unknown[0]!r} is not a parameter ({', '.join(names)})")
+    return dict(value)
+
+
+def _parameter_names(table: dict, fail) -> list[str]:
+    if ("parameter" in table) == ("parameters" in table):
+        raise fail(
+            "parameters" if "parameters" in table else "parameter",
+            'a family names its shape parameter with `parameter = "lam"` or its '
+            'parameters with `parameters = ["lam", "mu"]`, one of the two',
+        )
+    names = [table["parameter"]] if "parameter" in table else list(table["parameters"])
+    taken = (*SYMBOLS, *FUNCTIONS, *BUILTINS)
+    key = "parameter" if "parameter" in table else "parameters"
+    for name in names:
+        if name in taken and name != "lam":
+            raise fail(key, f"{name!r} is taken by the formula language")
+    return names
 
 
 def definition_from_table(table: object, where: str = "", *, builtin: bool = False) -> Definition:
@@ -174,81 +293,118 @@ def definition_from_table(table: object, where: str = "", *, builtin: bool = Fal
     def fail(key: str, message: str) -> DefinitionError:
         return DefinitionError(f"{prefix}, key {key}: {message}")
 
-    given = [key for key in ("basis", "seed", "recursion") if key in table]
-    if given not in (["basis"], ["seed", "recursion"]):
+    given = [key for key in ("basis", "seed", "recursion", "functions") if key in table]
+    if given not in (["basis"], ["seed", "recursion"], ["functions"]):
         raise fail(
             "basis"
             if "basis" in given or not given
             else ("recursion" if "seed" in given else "seed"),
-            "a family is defined by `basis` (a closed formula in i, n, t and the parameter) or "
-            f"by `seed` and `recursion`, one of the two; this table has {given or 'neither'}",
+            "a family is defined by `basis` (a closed formula in i, n, t and the parameters), "
+            "by `seed` and `recursion`, or by `functions` (b_0 .. b_n of one order), one of "
+            f"these; this table has {given or 'neither'}",
         )
 
     if not builtin and table["name"] in _builtin_file_names():
         raise fail("name", f"{table['name']!r} is a built-in family; choose another name")
-    if table["parameter"] in SYMBOLS and table["parameter"] != "lam":
-        raise fail("parameter", f"{table['parameter']!r} is taken by the formula language")
-    m = _RANGE.match(table["range"])
-    if not m:
-        raise fail("range", f'{table["range"]!r} is not an interval such as "(-2, 1]"')
-    lo, hi = (_number(x.strip(), "range") for x in (m.group(2), m.group(3)))
-    lo_closed, hi_closed = m.group(1) == "[", m.group(4) == "]"
-    if lo > hi or (lo == hi and not (lo_closed and hi_closed)):
-        raise fail("range", f"the interval {table['range']} is empty")
+    names = _parameter_names(table, fail)
+    ranges = _per_parameter(table, "range", names, fail)
+    missing = [name for name in names if name not in ranges]
+    if missing:
+        raise fail("range", f"no interval for the parameter {missing[0]!r}")
+    ats = _per_parameter(table, "bernstein_at", names, fail) if "bernstein_at" in table else {}
+    if ats and len(ats) != len(names):
+        raise fail(
+            "bernstein_at",
+            "the Bernstein basis is at a value of every parameter: "
+            f"{', '.join(x for x in names if x not in ats)} missing",
+        )
+    params = []
+    for name in names:
+        key = "range" if len(names) == 1 else f"range.{name}"
+        lo, hi, lo_closed, hi_closed = _interval(ranges[name], key, fail)
+        at = None
+        if name in ats:
+            at = _number(ats[name], "bernstein_at" if len(names) == 1 else f"bernstein_at.{name}")
+        params.append(Parameter(name, ranges[name].strip(), lo, hi, lo_closed, hi_closed, at))
+    if "domain" in table:
+        dom = _RANGE.match(table["domain"])
+        if (
+            not dom
+            or _number(dom.group(2).strip(), "domain") != 0
+            or (_number(dom.group(3).strip(), "domain") != 1)
+        ):
+            raise fail(
+                "domain",
+                f"{table['domain']!r}: this version derives polynomial bases on [0, 1] only "
+                "(trigonometric and hyperbolic bases on another domain are not implemented)",
+            )
     d = _DEGREES.match(table["degrees"])
-    if not d:
-        raise fail("degrees", f'{table["degrees"]!r} is not a degree range such as "3..12"')
-    dlo, dhi = int(d.group(1)), int(d.group(2))
+    single = re.match(r"^\s*([0-9]{1,3})\s*$", table["degrees"])
+    if not d and not single:
+        raise fail(
+            "degrees", f'{table["degrees"]!r} is not a degree or a degree range such as "3..12"'
+        )
+    dlo, dhi = (int(d.group(1)), int(d.group(2))) if d else (int(single.group(1)),) * 2
     if not 1 <= dlo <= dhi <= MAX_DEGREE:
         raise fail("degrees", f"degrees must satisfy 1 <= lo <= hi <= {MAX_DEGREE}")
-    at = None
-    if "bernstein_at" in table:
-        at = _number(table["bernstein_at"], "bernstein_at")
+    if "functions" in table:
+        if dlo != dhi:
+            raise fail("functions", 'an explicit list of functions is one order: degrees = "n"')
+        if len(table["functions"]) != dlo + 1:
+            raise fail(
+                "functions",
+                f"the basis of degree {dlo} has {dlo + 1} functions, got {len(table['functions'])}",
+            )
     formulas = (
         [("basis", table["basis"], False)]
         if "basis" in table
+        else [(f"functions[{k}]", text, False) for k, text in enumerate(table["functions"])]
+        if "functions" in table
         else [(f"seed[{k}]", text, False) for k, text in enumerate(table["seed"])]
         + [("recursion", table["recursion"], True)]
     )
     for key, text, recursive in formulas:
-        _check_formula(fail, key, text, table["parameter"], recursive)
+        _check_formula(fail, key, text, tuple(names), recursive)
     if "seed" in table and len(table["seed"]) != dlo + 1:
         raise fail(
             "seed",
             f"the seed is the basis of the lowest degree {dlo}: {dlo + 1} functions, "
             f"got {len(table['seed'])}",
         )
+    first = params[0]
     return Definition(
         name=table["name"],
         title=table.get("title", ""),
-        parameter=table["parameter"],
-        range_text=table["range"].strip(),
-        lo=lo,
-        hi=hi,
-        lo_closed=lo_closed,
-        hi_closed=hi_closed,
+        parameter=first.name,
+        range_text=first.range_text,
+        lo=first.lo,
+        hi=first.hi,
+        lo_closed=first.lo_closed,
+        hi_closed=first.hi_closed,
         degrees=range(dlo, dhi + 1),
-        bernstein_at=at,
-        offset=int(table["degree_offset"]),
+        bernstein_at=first.bernstein_at,
+        points=table.get("points", "P"),
+        offset=int(table.get("degree_offset", 0)),
         basis_text=table.get("basis"),
         seed_texts=tuple(table["seed"]) if "seed" in table else None,
         recursion_text=table.get("recursion"),
         digest=digest(table),
+        params=tuple(params),
+        functions_texts=tuple(table["functions"]) if "functions" in table else None,
     )
 
 
-def _check_formula(fail, key: str, text: str, parameter: str, recursive: bool) -> None:
+def _check_formula(fail, key: str, text: str, names: tuple[str, ...], recursive: bool) -> None:
+    shown = " and ".join([", ".join(("i", "n", "t", *names[:-1])), names[-1]])
     try:
-        expr = _parse_basis(text, parameter, recursive)
+        expr = _parse_basis(text, names, recursive)
     except ParseError as exc:
-        hint = f" (a basis is a formula in i, n, t and {parameter})"
+        hint = f" (a basis is a formula in {shown})"
         raise fail(key, str(exc) + (hint if "unknown name" in str(exc) else "")) from None
-    extra = sorted(s.name for s in expr.free_symbols if s not in (_I, _N, _T, _LAM))
+    own = {_LAM} if len(names) == 1 else {sp.Symbol(x) for x in names}
+    extra = sorted(s.name for s in expr.free_symbols if s not in {_I, _N, _T} | own)
     if extra:
-        raise fail(
-            key,
-            f"unknown symbol {extra[0]!r} (the basis is a formula in i, n, t and {parameter})",
-        )
+        raise fail(key, f"unknown symbol {extra[0]!r} (the basis is a formula in {shown})")
     if expr.has(sp.Sum, sp.Integral, sp.Subs, sp.Derivative):
         raise fail(key, "a basis is a closed formula: no sums, integrals or derivatives")
     if not recursive and expr.atoms(sp.core.function.AppliedUndef):

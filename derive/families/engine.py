@@ -18,6 +18,7 @@ Everything is exact (SymPy/FLINT rationals).
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from functools import cache
 from math import comb
@@ -124,19 +125,32 @@ def _integer(x, what: str) -> int:
 
 
 @cache
-def _field():
-    return sp.polys.fields.field([_T, _LAM], sp.QQ)[0]
+def _field(symbols: tuple[sp.Symbol, ...] = (_LAM,)):
+    return sp.polys.fields.field([_T, *symbols], sp.QQ)[0]
 
 
 def basis_polys(defn: Definition, degree: int) -> list[sp.Poly]:
     return list(_basis_polys(defn, degree))
 
 
-@cache
 def _basis_values(defn: Definition, degree: int) -> tuple:
     """The degree-`degree` functions as elements of Q(t, lam): the closed formula per index,
     or the seed at the lowest degree and the recursion above it."""
-    field = _field()
+    try:
+        return _basis_values_lam(defn, degree)
+    except DefinitionError as exc:
+        if defn.parameter == "lam":
+            raise
+        # the evaluator's messages quote the formula in the engine's `lam`: the user wrote
+        # their own name (a whole word, never part of another)
+        raise DefinitionError(re.sub(r"\blam\b", defn.parameter, str(exc))) from None
+
+
+@cache
+def _basis_values_lam(defn: Definition, degree: int) -> tuple:
+    field = _field(defn.symbols)
+    if defn.functions_texts is not None:
+        return tuple(_instantiate(f, {_N: degree}, field) for f in defn.functions)
     if defn.basis_text is not None:
         basis = defn.basis
         return tuple(_instantiate(basis, {_N: degree, _I: idx}, field) for idx in range(degree + 1))
@@ -166,10 +180,10 @@ def _basis_polys(defn: Definition, degree: int) -> tuple[sp.Poly, ...]:
         if not value.denom.is_ground:
             raise DefinitionError(
                 f"[family] basis: b({idx}, {degree}, t) is not a polynomial: "
-                f"{sp.factor(value.as_expr())} (a negative power that does not cancel)"
+                f"{defn.show(sp.factor(value.as_expr()))} (a negative power that does not cancel)"
             )
         numer = value.numer.quo_ground(value.denom.LC)  # the denominator is a number
-        p = sp.Poly.from_dict(dict(numer), t, lam, domain="QQ")  # same t, lam symbols
+        p = sp.Poly.from_dict(dict(numer), t, *defn.symbols, domain="QQ")  # same symbols
         if p.degree(t) > big:
             raise DefinitionError(
                 f"[family] basis: b({idx}, {degree}, t) has degree {p.degree(t)} in t, more "
@@ -182,7 +196,7 @@ def _basis_polys(defn: Definition, degree: int) -> tuple[sp.Poly, ...]:
 def check(defn: Definition) -> list[str]:
     """The definition's own claims, for every degree: what was checked (raises on failure)."""
     done = []
-    one = sp.Poly(1, t, lam, domain="QQ")
+    one = sp.Poly(1, t, *defn.symbols, domain="QQ")
     for deg in defn.degrees:
         polys = basis_polys(defn, deg)
         big = deg + defn.offset
@@ -190,16 +204,23 @@ def check(defn: Definition) -> list[str]:
         if total != one:
             raise DefinitionError(
                 f"[family] basis: no partition of unity at n = {deg}: the functions sum to "
-                f"{sp.factor(total.as_expr())}"
+                f"{defn.show(sp.factor(total.as_expr()))}"
             )
         if defn.bernstein_at is not None:
-            x = sp.Rational(defn.bernstein_at.numerator, defn.bernstein_at.denominator)
+            at = {
+                sym: sp.Rational(q.bernstein_at.numerator, q.bernstein_at.denominator)
+                for sym, q in zip(defn.symbols, defn.params or (defn,), strict=True)
+                if q.bernstein_at is not None
+            }
+            where = ", ".join(
+                f"{name} = {v}" for name, v in zip(defn.parameters, at.values(), strict=True)
+            )
             for idx, p in enumerate(polys):
                 want = sp.Poly(comb(deg, idx) * t**idx * (1 - t) ** (deg - idx), t, domain="QQ")
-                got = sp.Poly(p.eval(lam, x).as_expr(), t, domain="QQ")
+                got = sp.Poly(p.as_expr().xreplace(at), t, domain="QQ")
                 if got != want:
                     raise DefinitionError(
-                        f"[family] bernstein_at: at {defn.parameter} = {x}, b({idx}, {deg}, t) "
+                        f"[family] bernstein_at: at {where}, b({idx}, {deg}, t) "
                         f"= {sp.factor(got.as_expr())}, not the Bernstein function "
                         f"{sp.factor(want.as_expr())}"
                     )
@@ -214,16 +235,22 @@ def check(defn: Definition) -> list[str]:
         f"{defn.degrees.stop - 1}"
     )
     done.append("partition of unity, every degree")
-    if defn.bernstein_at is not None:
+    if defn.bernstein_at is not None and not defn.several:
         done.append(f"Bernstein basis at {defn.parameter} = {defn.bernstein_at}, every degree")
+    elif defn.bernstein_at is not None:
+        at = ", ".join(f"{q.name} = {q.bernstein_at}" for q in defn.params)
+        done.append(f"Bernstein basis at {at}, every degree")
     return done
 
 
 # --------------------------------------------------------------------------- artifacts
 
 
-def _lam_coeffs(p: sp.Poly) -> list[str]:
-    """A polynomial in lam as its coefficients, constant first, exact strings."""
+def _lam_coeffs(p: sp.Poly) -> list[str] | dict[str, str]:
+    """A polynomial in lam as its coefficients, constant first, exact strings; in several
+    parameters, {"e_1,...,e_k": coefficient} by monomial (exponent tuple), sorted."""
+    if len(p.gens) > 1:
+        return {",".join(map(str, m)): str(c) for m, c in sorted(p.terms())}
     return [str(c) for c in reversed(p.all_coeffs())]
 
 
@@ -270,6 +297,8 @@ def closed_endpoint_order(defn: Definition) -> int:
 
 @cache
 def _closed_endpoint_forms(defn: Definition) -> tuple[dict[tuple[str, int, int], sp.Expr], int]:
+    if defn.several:  # closed forms in n are fitted per power of one parameter only
+        return {}, -1
     table = endpoint_table(defn)
     keys = sorted({k for row in table.values() for k in row})
     nn = n
@@ -347,3 +376,116 @@ class GenericDerivation:
 @cache
 def _generic_derivation(defn: Definition) -> GenericDerivation:
     return GenericDerivation(defn)
+
+
+# --------------------------------------------------------------------------- several parameters
+
+
+def monomial_split(defn: Definition, degree: int) -> dict[tuple[int, ...], list[sp.Poly]]:
+    """{exponent tuple of the parameters: the degree-`degree` functions' coefficients of that
+    monomial, as Polys in t (and lam, of degree 0: the tables' shape)}, sorted by monomial."""
+    polys = basis_polys(defn, degree)
+    monomials = sorted({m[1:] for p in polys for m in p.monoms()})
+    out = {}
+    for mono in monomials:
+        row = []
+        for p in polys:
+            coeffs = {(m[0], 0): c for m, c in p.terms() if m[1:] == mono}
+            row.append(sp.Poly.from_dict(coeffs or {(0, 0): 0}, t, lam, domain="QQ"))
+        out[mono] = row
+    return out
+
+
+def symmetry(defn: Definition) -> tuple[str, ...] | None:
+    """The parameter substitution s (the new value of each parameter, as text) with
+    b_i(t; x) = b_{n-i}(1 - t; s(x)) for every degree and i: the identity, a transposition
+    of two parameters, or either with signs flipped (a parameter per leg maps to minus the
+    mirrored leg's); None when none of these is."""
+    import itertools
+
+    syms = defn.symbols
+    count = len(syms)
+    perms = [tuple(range(count))]
+    for a in range(count):
+        for b in range(a + 1, count):
+            perm = list(range(count))
+            perm[a], perm[b] = b, a
+            perms.append(tuple(perm))
+    if count > 1:  # the reversal of the parameter order (per-leg families)
+        perms.append(tuple(reversed(range(count))))
+    signs = list(itertools.product((1, -1), repeat=count)) if count <= 4 else [(1,) * count]
+    names = defn.parameters
+    for perm in perms:
+        for sign in signs:
+            swap = {syms[k]: sign[k] * syms[perm[k]] for k in range(count)}
+            if all(
+                sp.expand(p.as_expr().subs({**swap, t: 1 - t}, simultaneous=True) - q.as_expr())
+                == 0
+                for deg in defn.degrees
+                for p, q in zip(
+                    basis_polys(defn, deg), reversed(basis_polys(defn, deg)), strict=True
+                )
+            ):
+                return tuple(("-" if sign[k] < 0 else "") + names[perm[k]] for k in range(count))
+    return None
+
+
+def _negative_point(p: sp.Poly) -> sp.Rational | None:
+    """A rational t in [0, 1] where the polynomial p(t) is negative, or None when p >= 0 on
+    [0, 1]. Exact: between consecutive real roots p keeps its sign, so p is evaluated at both
+    ends, at the ends of small isolating intervals of its roots in [0, 1] (sorted, disjoint)
+    and at a point between each two of them: every gap between roots holds one of these."""
+    if p.is_zero:
+        return None
+    ivs = sorted(
+        (sp.Rational(a), sp.Rational(b))
+        for (a, b), _ in p.sqf_part().intervals(inf=0, sup=1, eps=sp.Rational(1, 10**9))
+    )
+    points = {sp.Integer(0), sp.Integer(1)}
+    if ivs:  # no root in [0, 1]: the ends decide the sign
+        following = [c for c, _ in ivs[1:]] + [sp.Integer(1)]
+        for (a, b), c in zip(ivs, following, strict=True):
+            points.update((a, b, (b + c) / 2))
+        points.add(ivs[0][0] / 2)
+    for x in sorted(points):
+        if 0 <= x <= 1 and p.eval(x) < 0:
+            return x
+    return None
+
+
+def nonnegative_over_box(defn: Definition) -> dict:
+    """Whether every basis function is >= 0 for t in [0, 1] and every parameter value of the
+    box, decided exactly for a basis affine in the parameters jointly: for fixed t a function
+    is affine in them, so its least value over the box is at a vertex (an open end by
+    continuity), and each vertex leaves a polynomial in t. {"nonnegative": true} or a
+    counterexample; a reason when the basis is not affine."""
+    import itertools
+
+    for deg in defn.degrees:
+        if any(sum(m[1:]) > 1 for p in basis_polys(defn, deg) for m in p.monoms()):
+            return {"reason": f"not affine in the parameters jointly at n = {deg}: not decided"}
+    corners = [(q.lo, q.hi) for q in defn.params]
+    for deg in defn.degrees:
+        for vertex in itertools.product(*corners):
+            at = {
+                s: sp.Rational(v.numerator, v.denominator)
+                for s, v in zip(defn.symbols, vertex, strict=True)
+            }
+            for idx, p in enumerate(basis_polys(defn, deg)):
+                q = sp.Poly(p.as_expr().xreplace(at), t)
+                x = _negative_point(q)
+                if x is not None:
+                    return {
+                        "nonnegative": False,
+                        "counterexample": {
+                            "n": deg,
+                            "i": idx,
+                            "t": str(x),
+                            **{
+                                name: str(v)
+                                for name, v in zip(defn.parameters, vertex, strict=True)
+                            },
+                            "value": str(q.eval(x)),
+                        },
+                    }
+    return {"nonnegative": True}

@@ -17,6 +17,8 @@ from . import energy, joins, properties
 def energy_artifacts(defn: Definition) -> dict:
     """{"n,k": {"ff": [scale, U], "fg": [...], "gg": [...]}} and the published (c, X, Y), or a
     reason when the basis is not linear in the parameter."""
+    if defn.several:
+        return _energy_several(defn)
     out: dict = {}
     for deg in defn.degrees:
         polys = basis_polys(defn, deg)
@@ -35,6 +37,55 @@ def energy_artifacts(defn: Definition) -> dict:
                 entry["published"] = [str(s_fg / s_gg), [list(r) for r in x], [list(r) for r in y]]
             out[f"{deg},{k}"] = entry
     return out
+
+
+def _energy_several(defn: Definition) -> dict:
+    """E_k of a family in several parameters x_1..x_J whose basis is affine in them jointly,
+    b = c_0 + sum_j x_j c_j: {"n,k": {"a,b": G}} with G[i][l] = int_0^1 c_a,i^(k) c_b,l^(k) dt
+    (a <= b in 0..J, part 0 the constant one), exact; E_k = sum_ab w_a w_b tr(P^T G_ab P)
+    with w_0 = 1, w_j = x_j (the off-diagonal pairs counted twice). A reason otherwise."""
+    from ..families.engine import monomial_split
+
+    names = defn.parameters
+    units = [tuple(int(j == k) for j in range(len(names))) for k in range(len(names))]
+    zero = tuple(0 for _ in names)
+    out: dict = {}
+    for deg in defn.degrees:
+        split = monomial_split(defn, deg)
+        higher = [m for m in split if sum(m) > 1]
+        if higher:
+            mono = "*".join(
+                f"{x}**{e}" if e > 1 else x for x, e in zip(names, higher[0], strict=True) if e
+            )
+            return {
+                "reason": f"the basis is not affine in the parameters jointly at n = {deg} "
+                f"(it has a term in {mono}): E_k is not a quadratic in them"
+            }
+        t = sp.Symbol("t")
+        parts = []
+        for mono in (zero, *units):
+            polys = split.get(mono)
+            parts.append(
+                [sp.Integer(0)] * (deg + 1)
+                if polys is None
+                else [sp.Poly(p.as_expr(), t) for p in polys]
+            )
+        for k in ENERGY_ORDERS:
+            entry = {}
+            for a in range(len(parts)):
+                for b in range(a, len(parts)):
+                    gram = [[str(_inner(pa, pb, k, t)) for pb in parts[b]] for pa in parts[a]]
+                    entry[f"{a},{b}"] = gram
+            out[f"{deg},{k}"] = entry
+    return out
+
+
+def _inner(p, q, k: int, t: sp.Symbol) -> sp.Rational:
+    """int_0^1 p^(k)(t) q^(k)(t) dt, exact."""
+    if not isinstance(p, sp.Poly) or not isinstance(q, sp.Poly):
+        return sp.Integer(0)
+    prod = (p.diff((t, k)) * q.diff((t, k))).integrate()
+    return prod.eval(1) - prod.eval(0)
 
 
 def join_artifacts(defn: Definition, closed: dict) -> dict:

@@ -50,6 +50,10 @@ class Family:
     # degree symbols of p1, p2 in a join record that does not name its curves (the paper's)
     join_degrees: tuple[str, str] = ("n", "m")
     closed_order: int = 2  # closed end forms exist for derivative orders 0..closed_order
+    # a family defined by data names its parameter and its control points itself (#32 item 3):
+    # records write them; the checkers read the parameter as `lam`
+    parameter: str = "lam"
+    defined_by_data: bool = False
 
 
 def _builtin_family(b) -> Family:

@@ -23,7 +23,12 @@ from pathlib import Path
 
 from sympy import preorder_traversal
 
-from ..families.definition import REFERENCE, DefinitionError, definition_from_table
+from ..families.definition import (
+    REFERENCE,
+    DefinitionError,
+    definition_from_table,
+    rename_parameter,
+)
 from ..grammar import Interval, ParseError
 from .expr_parse import fn_name
 from .expr_parse import parse as parse_formula  # cached: the checkers reuse each parse
@@ -300,7 +305,7 @@ def load_file(path: Path, data: dict | None = None) -> list[dict]:
     """The records of one file, each with its family, file, source and variable filled in."""
     data = read_file(path, data)
     if isinstance(data.get("family"), dict):
-        data["family"] = _define_family(path, data["family"], data.get("point_function", "P"))
+        data["family"] = _define_family(path, data["family"], data.get("point_function"))
     out = []
     for rec in data["record"]:
         rec = dict(rec)
@@ -340,16 +345,24 @@ def load_file(path: Path, data: dict | None = None) -> list[dict]:
                 Interval.parse(rec["parameter_range"])
             except ValueError as exc:
                 raise RecordsError(f"{_where(path, rec, 'parameter_range')}: {exc}") from None
-        _parse_formulas(path, rec)
-        _check_point_names(path, rec)
+        fam = FAMILIES.get(family)
+        parameter = getattr(fam, "parameter", "lam")
+        _parse_formulas(path, rec, parameter)
+        _check_point_names(path, rec, parameter)
         out.append(rec)
     return out
 
 
-def _define_family(path: Path, table: dict, points: str) -> str:
+def _define_family(path: Path, table: dict, points: str | None) -> str:
     """Derive the family a records file defines and make it known to this run's checkers."""
     try:
         defn = definition_from_table(table, str(path))
+        if defn.several:
+            raise RecordsError(
+                f"{path}: [family] {defn.name!r} has several parameters "
+                f"({', '.join(defn.parameters)}); verify checks records about families with "
+                "one parameter only in this version (derive --family and load_family take it)"
+            )
         register_defined_family(defn, points)
     except DefinitionError as exc:
         raise RecordsError(
@@ -371,7 +384,49 @@ def _strings(value, key: str) -> Iterator[tuple[str, str]]:
                 yield from _strings(item, f"{key}.{name}")
 
 
-def _parse_formulas(path: Path, rec: dict) -> None:
+def _formula_texts(rec: dict) -> Iterator[tuple[str, str]]:
+    """(key path, formula text) for every formula of a record."""
+    for name, value in rec.items():
+        if name in TEXT_KEYS or name == "file":
+            continue
+        if name == "points" and isinstance(value, str):
+            continue
+        for key, text in _strings(value, name):
+            if key.endswith(".points") or key.endswith(".curve"):
+                continue  # names of the functions of a join's curves
+            yield key, text
+
+
+def renamed_record(rec: dict, parameter: str) -> dict:
+    """The record with its formulas in the checkers' names: a family's own parameter name
+    read as `lam` (token by token; the report shows the record as written)."""
+    if parameter == "lam":
+        return rec
+
+    def walk(value, key: str):
+        if isinstance(value, str):
+            return rename_parameter(value, parameter, lam_too=True)
+        if isinstance(value, list):
+            return [walk(item, key) for item in value]
+        if isinstance(value, dict):
+            return {
+                k: (v if k in TEXT_KEYS or k in ("points", "curve") else walk(v, k))
+                for k, v in value.items()
+            }
+        return value
+
+    return {
+        name: value
+        if name in TEXT_KEYS or name == "file" or (name == "points" and isinstance(value, str))
+        else walk(value, name)
+        for name, value in rec.items()
+    }
+
+
+_POINT_CALL_NAMES = ("P", "V")  # the grammar's control-point functions of one curve
+
+
+def _parse_formulas(path: Path, rec: dict, parameter: str = "lam") -> None:
     for name, value in rec.items():
         if name in TEXT_KEYS or name == "file":
             continue
@@ -388,9 +443,14 @@ def _parse_formulas(path: Path, rec: dict) -> None:
                 continue  # names of the functions of a join's curves
             for part in parts:
                 try:
-                    parse_formula(part)
+                    parse_formula(rename_parameter(part, parameter, lam_too=True))
                 except ParseError as exc:
-                    raise RecordsError(f"{_where(path, rec, key)}: {exc}") from None
+                    hint = (
+                        f" (the {rec['family']} family's shape parameter is {parameter})"
+                        if parameter != "lam" and "unknown name" in str(exc)
+                        else ""
+                    )
+                    raise RecordsError(f"{_where(path, rec, key)}: {exc}{hint}") from None
 
 
 # The names a record may give control points: one-argument applications P(i), V(i). One rule
@@ -400,7 +460,7 @@ def _parse_formulas(path: Path, rec: dict) -> None:
 POINT_NAMES = ("P", "V")
 
 
-def _check_point_names(path: Path, rec: dict) -> None:
+def _check_point_names(path: Path, rec: dict, parameter: str = "lam") -> None:
     points = rec.get("point_function") or FAMILIES[rec["family"]].points
     allowed = {points}
     for piece in ("first", "second"):  # a join record names its curves' points itself
@@ -412,7 +472,9 @@ def _check_point_names(path: Path, rec: dict) -> None:
         for key, text in _strings(rec.get(name) or [], name):
             if key.endswith(".index") or ".where." in key or ".given." in key:
                 continue  # index ranges and values, no points
-            for app in preorder_traversal(parse_formula(text)):
+            for app in preorder_traversal(
+                parse_formula(rename_parameter(text, parameter, lam_too=True))
+            ):
                 found = fn_name(app)
                 if found in POINT_NAMES and found not in allowed and len(app.args) == 1:
                     raise RecordsError(
@@ -430,7 +492,7 @@ def load_paths(paths: Iterable[Path]) -> list[dict]:
     # family definitions in files of their own first: a records file names them by `family`
     for path, data in texts:
         if is_family_file(data):
-            _define_family(path, data["family"], "P")
+            _define_family(path, data["family"], None)
     for path, data in texts:
         if not is_family_file(data):
             records += load_file(path, data)

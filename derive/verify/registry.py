@@ -62,7 +62,7 @@ def run_checker(record: dict) -> Outcome:
         return Outcome("pending", [str(exc)])
 
 
-def register_defined_family(defn: Definition, points: str = "P") -> None:
+def register_defined_family(defn: Definition, points: str | None = None) -> None:
     """Make a family a records file defines known to verify for this process: its records are
     checked by the same checkers as a built-in family's (per degree always; symbolically in n
     where the engine found closed end forms; energies where the basis is linear in the
@@ -73,11 +73,13 @@ def register_defined_family(defn: Definition, points: str = "P") -> None:
         Family(
             defn.name,
             defn.degrees,
-            points,
+            points or defn.points,
             lambda degree: basis_polys(defn, degree),
             defn.offset,
             lambda: closed,
             closed_order=closed_endpoint_order(defn),
+            parameter=defn.parameter,
+            defined_by_data=True,
         )
     )
     register_formulas(defn)

@@ -31,6 +31,7 @@ from __future__ import annotations
 import json
 import multiprocessing
 import os
+import re
 import time
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
@@ -39,8 +40,8 @@ from pathlib import Path
 from ..families.registry import REFERENCE, builtin_families
 from . import index as record_index
 from .index import records_by_id as records_by_id  # the run's records, for cross-references
-from .records import RecordsError, load_paths
-from .registry import Outcome, run_checker
+from .records import RecordsError, load_paths, renamed_record
+from .registry import FAMILIES, Outcome, run_checker
 
 __all__ = ["RecordsError", "load_records", "verify"]
 
@@ -161,14 +162,39 @@ class Report:
         return strict and any(r.verdict != "match" for r in self.results)
 
 
+def _in_own_names(outcome: Outcome | None, parameter: str) -> Outcome | None:
+    """The checker's texts in the family's own parameter name (the checkers say lam or λ)."""
+    if outcome is None or parameter == "lam":
+        return outcome
+    return Outcome(
+        outcome.verdict,
+        [own_names(d, parameter) for d in outcome.diffs],
+        [own_names(c, parameter) for c in outcome.checked],
+    )
+
+
+def own_names(text: str, parameter: str) -> str:
+    if parameter == "lam":
+        return text
+    return re.sub(r"\blam\b|λ", parameter, text)
+
+
 def check_record(record: dict) -> Result:
     start = time.perf_counter()
+    fam = FAMILIES.get(record.get("family", ""))
+    parameter = getattr(fam, "parameter", "lam")
+    inner = renamed_record(record, parameter)  # the checkers read the parameter as lam
     try:
-        outcome = run_checker(record)
-        fixed = run_checker(corrected(record)) if record.get("erratum") else None
+        outcome = _in_own_names(run_checker(inner), parameter)
+        fixed = (
+            _in_own_names(run_checker(corrected(inner)), parameter)
+            if record.get("erratum")
+            else None
+        )
         res = Result(record, outcome, fixed)
     except Exception as exc:  # noqa: BLE001 - a checker failure is reported, never a verdict
-        res = Result(record, Outcome("mismatch"), error=f"{type(exc).__name__}: {exc}")
+        error = own_names(f"{type(exc).__name__}: {exc}", parameter)
+        res = Result(record, Outcome("mismatch"), error=error)
     res.seconds = time.perf_counter() - start
     return res
 

@@ -25,13 +25,23 @@ if TYPE_CHECKING:
     from .builtin_surfaces import BernsteinLikeSurface, SameDegreeSurface
     from .composite import CompositeCurve, JointReport
     from .curves import FAMILIES, BezierCurve, Curve
-    from .energy import OptimalLambda, energy_coefficients, energy_matrices, optimal_lambda
+    from .energy import (
+        OptimalLambda,
+        OptimalParameters,
+        energy_coefficients,
+        energy_matrices,
+        optimal_lambda,
+    )
     from .family import Family, load_family
     from .intersection import intersect_many
     from .joins import Joint, join
     from .properties import IsolatedRoot, singular_parameters
     from .rational import RationalBezierCurve
-    from .surface_energies import OptimalParameters, surface_energy, surface_energy_matrices
+    from .surface_energies import (
+        SurfaceOptimalParameters,
+        surface_energy,
+        surface_energy_matrices,
+    )
     from .surface_joins import CompositeSurface, join_surface
     from .surface_optimum import optimal_parameters
     from .surfaces import BezierSurface, Surface
@@ -54,6 +64,7 @@ _EXPORTS = {
     "energy_coefficients": "energy",
     "energy_matrices": "energy",
     "optimal_lambda": "energy",
+    "OptimalParameters": "energy",
     "Family": "family",
     "load_family": "family",
     "intersect_many": "intersection",
@@ -61,8 +72,8 @@ _EXPORTS = {
     "join": "joins",
     "IsolatedRoot": "properties",
     "singular_parameters": "properties",
-    "OptimalParameters": "surface_energies",
-    "optimal_parameters": "surface_optimum",
+    "SurfaceOptimalParameters": "surface_energies",
+    "optimal_parameters": "surface_optimum",  # curves (k an int) and surfaces
     "surface_energy": "surface_energies",
     "surface_energy_matrices": "surface_energies",
     "CompositeSurface": "surface_joins",
@@ -92,6 +103,7 @@ __all__ = [
     "SameDegreeCurve",
     "SameDegreeSurface",
     "Surface",
+    "SurfaceOptimalParameters",
     "energy_coefficients",
     "energy_matrices",
     "evaluate_many",

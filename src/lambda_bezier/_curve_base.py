@@ -117,6 +117,9 @@ class Curve:
     family: ClassVar[str]
     _data: ClassVar[TableSource]
     _has_lambda: ClassVar[bool] = True
+    # the shape parameter's name where the user reads it (repr, messages): a family defined
+    # by data names its own (``parameter = "mu"``); the attribute stays ``lam``
+    parameter_name: ClassVar[str] = "lam"
     _any_degree: ClassVar[bool] = False  # True: degrees past the generated tables are allowed
 
     def __init__(
@@ -127,9 +130,11 @@ class Curve:
         self._exact_points = val.exact_rows(points)
         if self._has_lambda:
             if lam is None:
-                raise ValueError(f"a {self.family} curve needs a shape parameter lam")
+                raise ValueError(
+                    f"a {self.family} curve needs a shape parameter {self.parameter_name}"
+                )
             self.lam: Fraction | float | None = val.as_lambda(
-                lam, self._data, check_range=check_range
+                lam, self._data, check_range=check_range, name=self.parameter_name
             )
         else:
             if lam is not None:
@@ -175,7 +180,7 @@ class Curve:
         return self._exact_points is not None and not isinstance(self.lam, float)
 
     def __repr__(self) -> str:
-        lam = "" if self.lam is None else f", lam={self.lam}"
+        lam = "" if self.lam is None else f", {self.parameter_name}={self.lam}"
         return f"{type(self).__name__}(degree={self.degree}, dimension={self.dimension}{lam})"
 
     @classmethod
@@ -575,9 +580,11 @@ def from_bezier(
         if lam is not None:
             raise ValueError("lam: a classical Bézier curve takes no shape parameter")
         return BezierCurve(bezier.control_points())
+    name = cls.parameter_name
+    shown = "λ" if name == "lam" else name  # the papers' letter for the built-in families
     if lam is None:
-        raise ValueError(f"lam: a {cls.family} curve needs a shape parameter")
-    lam = val.as_lambda(lam, cls._data, check_range=True)
+        raise ValueError(f"{name}: a {cls.family} curve needs a shape parameter")
+    lam = val.as_lambda(lam, cls._data, check_range=True, name=name)
     offset = cls._data_offset()
     exact = bezier.is_exact and not isinstance(lam, float)
     n_bez = bezier.degree
@@ -588,7 +595,8 @@ def from_bezier(
         if _singular.is_root(singular, lam):
             roots = [str(r) if isinstance(r, Fraction) else float(r) for r in singular]
             raise ValueError(
-                f"lam: the degree-{m} {cls.family} basis is linearly dependent at λ = {lam} "
+                f"{name}: the degree-{m} {cls.family} basis is linearly dependent at "
+                f"{shown} = {lam} "
                 f"(singular_parameters({cls.family!r}, {m}) = {roots}): the control points "
                 "of a curve are not unique there"
             )
@@ -605,7 +613,8 @@ def from_bezier(
                 sol = alg.solve_exact(a, b)
             except ArithmeticError:
                 raise ValueError(
-                    f"lam: the degree-{m} {cls.family} basis is linearly dependent at λ = {lam}"
+                    f"{name}: the degree-{m} {cls.family} basis is linearly dependent at "
+                    f"{shown} = {lam}"
                 ) from None
             if sol is not None:
                 return cls([tuple(row) for row in sol], lam)
@@ -619,7 +628,7 @@ def from_bezier(
             return cls(sol_f, lam)
     raise ValueError(
         f"bezier: this degree-{n_bez} Bézier curve is no {cls.family} curve of degree "
-        f"{start}..{degrees[-1]} at λ = {lam} (the basis does not span it; see "
+        f"{start}..{degrees[-1]} at {shown} = {lam} (the basis does not span it; see "
         "lambda_bezier.conversion)"
     )
 

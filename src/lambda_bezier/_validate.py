@@ -240,13 +240,16 @@ def in_range(value: Fraction | float, family: TableSource) -> bool:
     return not (below or above)
 
 
-def as_lambda(lam: object, family: TableSource, *, check_range: bool) -> Fraction | float:
-    """λ as a Fraction (exact input) or a float; inside the family's range unless told not."""
+def as_lambda(
+    lam: object, family: TableSource, *, check_range: bool, name: str = "lam"
+) -> Fraction | float:
+    """λ as a Fraction (exact input) or a float; inside the family's range unless told not.
+    `name`: the parameter's name in the family's own words (messages)."""
     check_range = flag(check_range, "check_range")
-    value = real_number(lam, "lam")
+    value = real_number(lam, name)
     if check_range and not in_range(value, family):
         raise ValueError(
-            f"lam = {describe(lam) if not isinstance(lam, float) else lam} is outside the "
+            f"{name} = {describe(lam) if not isinstance(lam, float) else lam} is outside the "
             f"{family.FAMILY} range {family.LAMBDA_RANGE_TEXT}; pass check_range=False to use "
             "it anyway"
         )

@@ -42,6 +42,7 @@ def evaluate_many(
     k: int = 0,
     check_range: bool = True,
     extrapolate: bool = False,
+    params: dict[str, float] | None = None,
 ) -> np.ndarray:
     r"""The k-th derivative :math:`p^{(k)}(t)` of m curves of one family and degree at once.
 
@@ -61,6 +62,9 @@ def evaluate_many(
         Refuse a λ outside the family's range.
     extrapolate : bool
         Allow t outside [0, 1].
+    params : dict, optional
+        A family in several parameters (from `load_family`): one value per parameter,
+        ``{"lam": ..., "mu": ...}``, shared by every curve.
 
     Returns
     -------
@@ -75,6 +79,13 @@ def evaluate_many(
     array([[2.  , 1.5 ],
            [2.  , 1.25]])
     """
+    if getattr(family, "several", None) is not None:
+        named = {} if lam is None else {"lam": lam}  # a parameter may be called lam
+        given = family.parameter_values(None, params, named)  # type: ignore[attr-defined]
+        family = family._fixed_class(given, val.flag(check_range, "check_range"))  # type: ignore[attr-defined]
+        lam = None
+    elif params is not None:
+        raise TypeError("params: only a family in several parameters takes params (use lam)")
     # a built-in family's name, or a family from lambda_bezier.load_family
     cls = (
         FAMILIES[val.choice(family, "family", tuple(FAMILIES))]

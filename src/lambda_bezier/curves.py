@@ -64,14 +64,26 @@ def _families_by_name() -> dict[str, type[Curve]]:
 
 
 def data_curve_class(
-    family: str, class_name: str, data: object, doc: str, module: str = __name__
+    family: str,
+    class_name: str,
+    data: object,
+    doc: str,
+    module: str = __name__,
+    parameter_name: str = "lam",
 ) -> type[Curve]:
     """The curve class of a family that is data only: its name and its tables (a generated
-    module, or a derived document read by lambda_bezier.family); the engine is Curve."""
+    module, or a derived document read by lambda_bezier.family); the engine is Curve.
+    `parameter_name`: the shape parameter's own name (what repr and messages show)."""
     return type(
         class_name,
         (Curve,),
-        {"family": family, "_data": data, "__doc__": doc, "__module__": module},
+        {
+            "family": family,
+            "_data": data,
+            "__doc__": doc,
+            "__module__": module,
+            "parameter_name": parameter_name,
+        },
     )
 
 
@@ -103,6 +115,15 @@ def family_class(family: object) -> type[Curve]:
         raise ValueError(
             f"unknown family {family!r}: choose one of {', '.join(map(repr, families))}, or "
             "pass a family from lambda_bezier.load_family"
+        )
+    several = getattr(family, "several", None)
+    if several is not None:
+        names = ", ".join(several.NAMES)
+        raise TypeError(
+            f"the family {several.FAMILY!r} has several parameters ({names}): one curve class "
+            f"per parameter values; use fam.curve(points, {names.replace(', ', '=..., ')}=...), "
+            "optimal_parameters, evaluate_many(..., params={...}) or join(..., "
+            f"{names.replace(', ', '=..., ')}=...)"
         )
     cls = getattr(family, "curve_class", family)
     if isinstance(cls, type) and issubclass(cls, Curve) and cls is not Curve:

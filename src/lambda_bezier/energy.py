@@ -81,6 +81,47 @@ class OptimalLambda:
     clamped: bool
 
 
+@dataclass(frozen=True)
+class OptimalParameters:
+    """The parameters minimising E_k over the family's parameter box, by name, as returned
+    by `optimal_parameters`: ``result["mu"]`` for a family whose parameter is ``mu``.
+
+    Attributes
+    ----------
+    values : dict
+        {parameter name: value}, every parameter of the family.
+    energy : Fraction or float
+        E_k there.
+    free : dict
+        The minimiser over all real parameters (the free optimum).
+    free_inside : bool
+        Whether the free optimum lies in the parameter box (then `values` is it).
+    boundary : str
+        Empty when the free optimum is the answer; otherwise where on the box's boundary the
+        minimum lies, e.g. ``"mu = 1 (upper end)"``.
+    k : int
+        The energy order.
+    family : str
+        The family name.
+    """
+
+    values: dict[str, Fraction | float]
+    energy: Fraction | float
+    free: dict[str, Fraction | float]
+    free_inside: bool
+    boundary: str
+    k: int
+    family: str
+
+    def __getitem__(self, name: str) -> Fraction | float:
+        if name not in self.values:
+            raise KeyError(
+                f"{name!r} is not a parameter of {self.family!r} "
+                f"(its parameters: {', '.join(self.values)})"
+            )
+        return self.values[name]
+
+
 def _family_cls(family: object) -> type[Curve]:
     """A family with a shape parameter: a built-in name, or a family from load_family."""
     if isinstance(family, str):
@@ -461,6 +502,178 @@ def optimal_lambda(
         family=_name(family),
         range_text=data.LAMBDA_RANGE_TEXT,
         clamped=clamp,
+    )
+
+
+def optimal_parameters(
+    points: PointsLike, k: int, family: object = "same_degree"
+) -> OptimalParameters:
+    r"""Every shape parameter of `family`, by its own name, minimising the energy
+    :math:`E_k` of one control polygon over the family's (closed) parameter box.
+
+    :math:`E_k` is a convex quadratic in the parameter of a family whose basis is affine in
+    it, so the free optimum is exact (Fractions for exact points); when it lies outside the
+    box the minimum is at the nearer end, and `boundary` says so.
+
+    Examples
+    --------
+    >>> r = optimal_parameters([(0, 6), (0, 2), (5, 2), (7, 0), (2, 0), (6, 8)], k=2)
+    >>> r["lam"], r.free_inside, r.boundary
+    (Fraction(-2, 1), False, 'lam = -2 (lower end, excluded: not attained)')
+    """
+    several = getattr(family, "several", None)
+    if several is not None:
+        return _optimal_several(points, k, family, several)
+    one = optimal_lambda(points, k, family, clamp=True)
+    if isinstance(one.lam, np.ndarray):  # pragma: no cover - a polygon batch
+        raise ValueError("points: optimal_parameters takes one control polygon")
+    name = _family_cls(family).parameter_name
+    data = _family_data(family)
+    lo, hi = data.LAMBDA_RANGE
+    boundary = ""
+    if one.lam != one.unconstrained:
+        lower = one.lam == lo
+        end = "lower" if lower else "upper"
+        closed = data.LAMBDA_CLOSED[0 if lower else 1]
+        # an open end is the infimum over the range, not attained in it
+        boundary = f"{name} = {one.lam} ({end} end{'' if closed else ', excluded: not attained'})"
+    return OptimalParameters(
+        values={name: one.lam},
+        energy=one.energy,  # type: ignore[arg-type]
+        free={name: one.unconstrained},  # type: ignore[dict-item]
+        free_inside=bool(one.unconstrained_admissible),
+        boundary=boundary,
+        k=one.k,
+        family=one.family,
+    )
+
+
+def _solve(a: list[list[Fraction]], b: list[Fraction]) -> list[Fraction] | None:
+    """a x = b by exact elimination; None when a is singular."""
+    size = len(b)
+    m = [[*row, rhs] for row, rhs in zip(a, b, strict=True)]
+    for col in range(size):
+        piv = next((r for r in range(col, size) if m[r][col] != 0), None)
+        if piv is None:
+            return None
+        m[col], m[piv] = m[piv], m[col]
+        for r in range(size):
+            if r != col and m[r][col] != 0:
+                f = m[r][col] / m[col][col]
+                m[r] = [x - f * y for x, y in zip(m[r], m[col], strict=True)]
+    return [m[r][size] / m[r][r] for r in range(size)]
+
+
+def _optimal_several(points: PointsLike, k: int, family: Any, several: Any) -> OptimalParameters:
+    """E_k = w^T S w with w = (1, x_1..x_J) for a family affine in its parameters jointly
+    (S from the derived Gram matrices, exact); its minimum over the closed box is the least
+    of the free minima on the box's faces (each a linear system) that lie in the face:
+    every face is tried, 3^J of them."""
+    import itertools
+
+    k = _check_order(k)
+    names = several.NAMES
+    if several.ENERGY_REASON is not None:
+        raise ValueError(f"optimal_parameters: {several.ENERGY_REASON}")
+    given = val.exact_rows(points)
+    exact = given is not None
+    rows: list[tuple[Fraction, ...]]
+    if given is None:
+        arr = np.asarray(val.as_points(points, family=several.FAMILY, degrees=several.DEGREES))
+        rows = [tuple(Fraction(float(v)) for v in row) for row in arr]
+    else:
+        rows = [tuple(Fraction(v) for v in row) for row in given]
+    n = len(rows) - 1
+    if (n, k) not in several.GRAM:
+        raise ValueError(
+            f"points: {n + 1} control points: no derived E_{k} of {several.FAMILY} for degree "
+            f"{n} (degrees {several.DEGREES[0]}..{several.DEGREES[-1]}; k = 1, 2, 3)"
+        )
+    size = len(names) + 1
+    s_mat = [[Fraction(0)] * size for _ in range(size)]
+    for (a, b), gram in several.GRAM[(n, k)].items():
+        total = Fraction(0)
+        for dim in range(len(rows[0])):
+            for i, row in enumerate(gram):
+                pi = rows[i][dim]
+                if pi == 0:
+                    continue
+                total += pi * sum((g * rows[j][dim] for j, g in enumerate(row)), Fraction(0))
+        s_mat[a][b] = s_mat[b][a] = total
+
+    def energy_at(x: list[Fraction]) -> Fraction:
+        w = [Fraction(1), *x]
+        return sum(
+            (w[a] * w[b] * s_mat[a][b] for a in range(size) for b in range(size)), Fraction(0)
+        )
+
+    def face_minimum(state: tuple[int, ...]) -> list[Fraction] | None:
+        # state[j]: 0 free, 1 at lo, 2 at hi
+        x: list[Fraction | None] = [
+            None if st == 0 else several.RANGES[name][st - 1]
+            for name, st in zip(names, state, strict=True)
+        ]
+        free = [j for j, v in enumerate(x) if v is None]
+        a = [[s_mat[1 + r][1 + c] for c in free] for r in free]
+        b = [
+            -(
+                s_mat[0][1 + r]
+                + sum(
+                    (s_mat[1 + r][1 + j] * v for j, v in enumerate(x) if v is not None), Fraction(0)
+                )
+            )
+            for r in free
+        ]
+        sol = _solve(a, b) if free else []
+        if sol is None:
+            return None
+        for j, v in zip(free, sol, strict=True):
+            x[j] = v
+        return [v for v in x if v is not None]
+
+    free_opt = face_minimum((0,) * len(names))
+    best: tuple[Fraction, list[Fraction], tuple[int, ...]] | None = None
+    for state in itertools.product((0, 1, 2), repeat=len(names)):
+        x = face_minimum(state)
+        if x is None:
+            continue
+        if not all(
+            several.RANGES[name][0] <= v <= several.RANGES[name][1]
+            for name, v in zip(names, x, strict=True)
+        ):
+            continue
+        e = energy_at(x)
+        if best is None or e < best[0]:
+            best = (e, x, state)
+    if best is None:  # pragma: no cover - every vertex of the box is a face of dimension 0
+        raise AssertionError("no face of the box has a minimum")
+    energy, x, state = best
+    inside = free_opt is not None and all(
+        several.RANGES[name][0] <= v <= several.RANGES[name][1]
+        for name, v in zip(names, free_opt, strict=True)
+    )
+    boundary = []
+    for name, v, st in zip(names, x, state, strict=True):
+        lo, hi, lo_closed, hi_closed, _ = several.RANGES[name]
+        if st == 0 and lo < v < hi:
+            continue
+        end = "lower" if v == lo else "upper"
+        closed = lo_closed if v == lo else hi_closed
+        if st != 0 or v in (lo, hi):
+            boundary.append(
+                f"{name} = {v} ({end} end{'' if closed else ', excluded: not attained'})"
+            )
+    out: Any = (lambda v: v) if exact else float
+    return OptimalParameters(
+        values={name: out(v) for name, v in zip(names, x, strict=True)},
+        energy=out(energy),
+        free={}
+        if free_opt is None
+        else {name: out(v) for name, v in zip(names, free_opt, strict=True)},
+        free_inside=inside,
+        boundary="" if inside else "; ".join(boundary),
+        k=k,
+        family=several.FAMILY,
     )
 
 

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import re
 import sys
+from collections.abc import Mapping
 from fractions import Fraction
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -30,7 +31,8 @@ if TYPE_CHECKING:
     from .energy import Form
     from .surfaces import NetLike, Surface
 
-FORMAT = 2  # the derived document's format this runtime reads
+FORMAT = 3  # the derived document's format this runtime writes and reads
+READS = (2, 3)  # 2: one parameter, laid out as in 3
 MAX_DOCUMENT_BYTES = 50_000_000
 _EXACT = re.compile(r"^-?[0-9]{1,400}(/[0-9]{1,400})?$")
 
@@ -118,6 +120,94 @@ class FamilyData:
                     raise FamilyFileError(f"{where}: no table for degree {n}")
 
 
+def _monomial(key: str, size: int, where: str) -> tuple[int, ...]:
+    parts = key.split(",")
+    if len(parts) != size or not all(x.isdigit() for x in parts):
+        raise FamilyFileError(f"{where}: {key!r} is not a monomial of {size} parameters")
+    return tuple(int(x) for x in parts)
+
+
+class SeveralData:
+    """The tables of a family in several parameters: per degree, a matrix per parameter
+    monomial (exponent tuple); E_k as Gram matrices of the affine parts."""
+
+    def __init__(self, doc: dict[str, Any], where: str):
+        try:
+            self.FAMILY: str = doc["family"]
+            lo, hi = doc["degrees"]
+            self.DEGREES = tuple(range(int(lo), int(hi) + 1))
+            self.DEGREE_OFFSET = int(doc["degree_offset"])
+            params = doc["parameters"]
+            self.NAMES: tuple[str, ...] = tuple(str(q["name"]) for q in params)
+            self.RANGES = {
+                str(q["name"]): (
+                    _fraction(q["range"]["lo"], where),
+                    _fraction(q["range"]["hi"], where),
+                    bool(q["range"]["closed"][0]),
+                    bool(q["range"]["closed"][1]),
+                    str(q["range"]["text"]),
+                )
+                for q in params
+            }
+            size = len(self.NAMES)
+            self.TABLES: dict[str, dict[int, dict[tuple[int, ...], Matrix]]] = {
+                kind: {
+                    int(deg): {
+                        _monomial(key, size, where): _matrices([mat], where)[0]
+                        for key, mat in by_mono.items()
+                    }
+                    for deg, by_mono in doc[kind].items()
+                }
+                for kind in ("power", "centred", "bernstein")
+            }
+            energy = doc["energy"]
+            self.ENERGY_REASON: str | None = energy.get("reason")
+            self.GRAM: dict[tuple[int, int], dict[tuple[int, int], Matrix]] = {}
+            for key, entry in energy.items():
+                if key == "reason":
+                    continue
+                n, k = (int(x) for x in key.split(","))
+                self.GRAM[(n, k)] = {
+                    _monomial(pair, 2, where): _matrices([mat], where)[0]  # type: ignore[misc]
+                    for pair, mat in entry.items()
+                }
+        except (KeyError, TypeError, ValueError, AttributeError) as exc:
+            if isinstance(exc, FamilyFileError):
+                raise
+            raise FamilyFileError(f"{where}: not a derived family document ({exc!r})") from None
+        for n in self.DEGREES:
+            for kind, table in self.TABLES.items():
+                if n not in table:
+                    raise FamilyFileError(f"{where}: no {kind} table for degree {n}")
+
+
+class _FixedData:
+    """A family in several parameters at fixed parameter values: the tables of one basis
+    (what the Curve engine reads of a family without a parameter)."""
+
+    def __init__(self, several: SeveralData, values: tuple[Fraction, ...]):
+        self.FAMILY = several.FAMILY
+        self.DEGREES = several.DEGREES
+        self.DEGREE_OFFSET = several.DEGREE_OFFSET
+        self.SINGULAR: dict[int, tuple[Fraction, ...]] = {}
+        for kind, table in several.TABLES.items():
+            combined = {}
+            for deg, by_mono in table.items():
+                acc: list[list[Fraction]] | None = None
+                for mono, mat in by_mono.items():
+                    w = Fraction(1)
+                    for v, e in zip(values, mono, strict=True):
+                        w *= v**e
+                    if acc is None:
+                        acc = [[Fraction(0)] * len(mat[0]) for _ in mat]
+                    for r, row in enumerate(mat):
+                        for c, x in enumerate(row):
+                            acc[r][c] += w * x
+                assert acc is not None
+                combined[deg] = (tuple(tuple(row) for row in acc),)
+            setattr(self, kind.upper(), combined)
+
+
 class Family:
     """A shape-parameter family defined by data, with the toolkit of the built-in ones:
     ``curve(points, lam)`` gives a curve with the built-in classes' API; ``optimal_lambda``,
@@ -126,13 +216,16 @@ class Family:
 
     def __init__(
         self,
-        data: FamilyData,
+        data: FamilyData | SeveralData,
         definition: Path | None,
         title: str,
         parameter: str,
         table: dict[str, Any] | None = None,
+        several: SeveralData | None = None,
     ):
         self.data = data
+        self.several = several  # the tables of a family in several parameters
+        self._classes: dict[tuple[Fraction, ...], type[Curve]] = {}
         self.definition = definition  # the definition file, or None (embedded in a JSON form)
         self.title = title
         self.parameter = parameter
@@ -143,7 +236,7 @@ class Family:
         origin = definition if definition is not None else "an embedded definition"
         doc = f"A curve of the family {data.FAMILY!r} ({title}), from {origin}."
         self.curve_class: type[Curve] = data_curve_class(
-            data.FAMILY, f"{camel}Curve", data, doc, __name__
+            data.FAMILY, f"{camel}Curve", data, doc, __name__, parameter
         )
         # what a curve's JSON form reads the definition from (one class per Family object)
         setattr(self.curve_class, "family_object", self)  # noqa: B010
@@ -158,17 +251,20 @@ class Family:
 
     @property
     def range_text(self) -> str:
-        return self.data.LAMBDA_RANGE_TEXT
+        if self.several is not None:
+            return ", ".join(f"{x} in {r[4]}" for x, r in self.several.RANGES.items())
+        return self.data.LAMBDA_RANGE_TEXT  # type: ignore[union-attr]
 
     @property
     def degree_offset(self) -> int:
         return self.data.DEGREE_OFFSET
 
-    def curve(
-        self, points: PointsLike, lam: Fraction | float, *, check_range: bool = True
-    ) -> Curve:
-        """Σ P_i b_i(t; lam) with the family's degree-n basis (n + 1 points)."""
-        return self.curve_class(points, lam, check_range=check_range)
+    @property
+    def parameters(self) -> tuple[str, ...]:
+        """The shape parameters' names, in the definition's order."""
+        if self.several is not None:
+            return self.several.NAMES
+        return (self.parameter,)
 
     def surface(
         self,
@@ -184,15 +280,137 @@ class Family:
 
         return Surface(net, lam_u, lam_v, family=self, check_range=check_range)
 
-    def from_bezier(self, bezier: BezierCurve, lam: Fraction | float) -> Curve:
-        """A classical Bézier curve written in this family (Curve.from_bezier)."""
-        return self.curve_class.from_bezier(bezier, lam)
+    def parameter_values(
+        self,
+        value: object = None,
+        params: object = None,
+        named: Mapping[str, object] | None = None,
+    ) -> dict[str, object]:
+        """{name: value} for every parameter, from a positional value, a `params` mapping or
+        keyword arguments in the family's own names (``lam=`` too, for one parameter).
+        TypeError naming the argument for a name the family does not have, a missing or a
+        doubly given parameter."""
+        names = self.parameters
+        given: dict[str, object] = {}
+        sources: dict[str, str] = {}
+
+        def put(name: str, v: object, source: str) -> None:
+            if name in given:
+                raise TypeError(
+                    f"{name} is given twice ({sources[name]} and {source}); give it once"
+                )
+            given[name], sources[name] = v, source
+
+        if params is not None:
+            if not isinstance(params, dict):
+                raise TypeError(
+                    f"params must be a dict {{name: value}}, not {type(params).__name__}"
+                )
+            for key, v in params.items():
+                if key not in names:
+                    raise TypeError(
+                        f"params: {key!r} is not a parameter of {self.name!r} "
+                        f"(its parameters: {', '.join(names)})"
+                    )
+                put(key, v, "params")
+        for given_as, v in (named or {}).items():
+            key = given_as
+            if key == "lam" and "lam" not in names and len(names) == 1:
+                key = names[0]  # `lam=` keeps working for one-parameter families
+            elif key not in names:
+                raise TypeError(
+                    f"{key!r} is not a parameter of {self.name!r} (its parameters: "
+                    f"{', '.join(names)}; or pass params={{name: value}})"
+                )
+            put(key, v, f"{given_as}=")
+        if value is not None:
+            if len(names) != 1:
+                raise TypeError(
+                    f"{self.name!r} has {len(names)} parameters: name them "
+                    f"({', '.join(f'{x}=...' for x in names)}) or pass params={{...}}"
+                )
+            put(names[0], value, "the positional argument")
+        missing = [x for x in names if x not in given]
+        if missing:
+            raise TypeError(
+                f"a {self.name} curve needs its shape parameter"
+                f"{'s' if len(missing) > 1 else ''} {', '.join(missing)} (as {missing[0]}=...)"
+            )
+        return {x: given[x] for x in names}
+
+    def curve(
+        self,
+        points: PointsLike,
+        value: Fraction | float | None = None,
+        *,
+        params: dict[str, Fraction | float] | None = None,
+        check_range: bool = True,
+        **named: Fraction | float,
+    ) -> Curve:
+        """Σ P_i b_i(t; parameters) with the family's degree-n basis (n + 1 points).
+
+        The parameter by its own name (``fam.curve(points, mu=...)``), by ``params={"mu":
+        ...}``, positionally, or as ``lam=`` (one-parameter families)."""
+        values = self.parameter_values(value, params, named)
+        if self.several is not None:
+            return self._fixed_class(values, check_range)(points)
+        (lam,) = values.values()
+        return self.curve_class(points, lam, check_range=check_range)  # type: ignore[arg-type]
+
+    def _fixed_class(self, values: dict[str, object], check_range: bool) -> type[Curve]:
+        """The curve class of this family at these parameter values (exact: a float is
+        taken at its exact binary value), cached per values."""
+        from . import _validate as val
+
+        assert self.several is not None
+        exact = []
+        for name, v in values.items():
+            x = val.real_number(v, name)
+            lo, hi, lo_closed, hi_closed, text = self.several.RANGES[name]
+            inside = (lo < x or (lo == x and lo_closed)) and (x < hi or (x == hi and hi_closed))
+            if check_range and not inside:
+                raise ValueError(
+                    f"{name} = {v} is outside the {self.name} range {text}; pass "
+                    "check_range=False to use it anyway"
+                )
+            exact.append(Fraction(x))
+        key = tuple(exact)
+        if key not in self._classes:
+            shown = ", ".join(f"{n}={v}" for n, v in values.items())
+            data = _FixedData(self.several, key)
+            cls = data_curve_class(
+                self.name, self.curve_class.__name__, data, self.curve_class.__doc__ or ""
+            )
+            cls._has_lambda = False
+            cls.several_family = self  # type: ignore[attr-defined]  # joins continue in it
+            cls.parameter_values = dict(zip(self.parameters, key, strict=True))  # type: ignore[attr-defined]
+
+            def shown_repr(c: Curve, shown: str = shown) -> str:
+                return f"{type(c).__name__}(degree={c.degree}, dimension={c.dimension}, {shown})"
+
+            cls.__repr__ = shown_repr  # type: ignore[method-assign]
+            self._classes[key] = cls
+        return self._classes[key]
+
+    def from_bezier(
+        self,
+        bezier: BezierCurve,
+        value: Fraction | float | None = None,
+        *,
+        params: dict[str, Fraction | float] | None = None,
+        **named: Fraction | float,
+    ) -> Curve:
+        """A classical Bézier curve written in this family (Curve.from_bezier); the
+        parameters as for `curve`."""
+        values = self.parameter_values(value, params, named)
+        if self.several is not None:
+            return self._fixed_class(values, True).from_bezier(bezier)
+        (lam,) = values.values()
+        return self.curve_class.from_bezier(bezier, lam)  # type: ignore[arg-type]
 
     def __repr__(self) -> str:
-        return (
-            f"Family({self.name!r}, degrees {self.degrees[0]}..{self.degrees[-1]}, "
-            f"{self.parameter} in {self.range_text})"
-        )
+        ranges = self.range_text if self.several else f"{self.parameter} in {self.range_text}"
+        return f"Family({self.name!r}, degrees {self.degrees[0]}..{self.degrees[-1]}, {ranges})"
 
 
 def definition_toml(table: dict[str, Any]) -> str:
@@ -278,7 +496,7 @@ def _derived_family(
         doc = json.loads(doc_path.read_text(encoding="utf-8"))
     except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
         raise FamilyFileError(f"{doc_path}: not a derived family document ({exc})") from None
-    if not isinstance(doc, dict) or doc.get("format") != FORMAT:
+    if not isinstance(doc, dict) or doc.get("format") not in READS:
         raise FamilyFileError(
             f"{doc_path}: derived by another version of lambda-bezier (format "
             f"{doc.get('format') if isinstance(doc, dict) else '?'}, this one reads {FORMAT}); "
@@ -290,13 +508,11 @@ def _derived_family(
             f"run `{command}`"
         )
     title = table.get("title", "")
-    return Family(
-        FamilyData(doc, str(doc_path)),
-        definition,
-        title if isinstance(title, str) else "",
-        doc["parameter"],
-        table,
-    )
+    title = title if isinstance(title, str) else ""
+    if "parameters" in doc:
+        several = SeveralData(doc, str(doc_path))
+        return Family(several, definition, title, several.NAMES[0], table, several)
+    return Family(FamilyData(doc, str(doc_path)), definition, title, doc["parameter"], table)
 
 
 def load_family(path: str | Path, derived: str | Path | None = None) -> Family:

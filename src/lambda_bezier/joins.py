@@ -23,7 +23,7 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from types import ModuleType
-from typing import TypeVar, cast
+from typing import Any, TypeVar, cast
 
 import numpy as np
 
@@ -228,6 +228,36 @@ def _too_extreme(joint: Joint) -> str:
     )
 
 
+def _own_parameter(
+    cls: type[Curve], lam: object, params: object, named: Mapping[str, object]
+) -> Any:
+    """The new segment's parameter given as `lam`, in `params` or by its own name."""
+    name = cls.parameter_name
+    given: list[tuple[str, object]] = [] if lam is None else [("lam", lam)]
+    if params is not None:
+        if not isinstance(params, dict):
+            raise TypeError(f"params must be a dict {{name: value}}, not {type(params).__name__}")
+        given += [(f"params[{k!r}]", v) for k, v in params.items() if k == name]
+        wrong = [k for k in params if k != name]
+        if wrong:
+            raise TypeError(
+                f"params: {wrong[0]!r} is not a parameter of the {cls.family} family "
+                f"(its parameter: {name})"
+            )
+    for key, v in named.items():
+        if key != name:
+            raise TypeError(
+                f"join() got an unexpected keyword argument {key!r} (the {cls.family} "
+                f"family's parameter is {name})"
+            )
+        given.append((f"{key}=", v))
+    if len(given) > 1:
+        raise TypeError(
+            f"the parameter {name} is given twice ({given[0][0]} and {given[1][0]}); give it once"
+        )
+    return given[0][1] if given else None
+
+
 def join(
     curve: Curve,
     continuity: str,
@@ -239,6 +269,8 @@ def join(
     family: object = None,
     *,
     check_range: bool = True,
+    params: dict[str, Fraction | float] | None = None,
+    **named: Fraction | float,
 ) -> Curve:
     r"""The next segment after `curve`: a curve of `family` (default: `curve`'s own) and
     `degree` whose leading control points make the joint `continuity` ("C1", "C2", "G1",
@@ -270,6 +302,10 @@ def join(
         The new segment's family; default that of `curve`.
     check_range : bool
         Refuse a λ outside the new family's range.
+    params, **named : optional
+        The new segment's shape parameter by its family's own name (``mu=...`` or
+        ``params={"mu": ...}`` for a family defined with ``parameter = "mu"``), instead of
+        `lam`.
 
     Returns
     -------
@@ -291,7 +327,17 @@ def join(
             f"from lambda_bezier.load_family), got {type(curve).__name__}"
         )
     spec = Joint(continuity, alpha, d)
-    cls = type(curve) if family is None else _family_class(family)
+    # a family in several parameters: the new segment's class is the family at its values
+    target = family if family is not None else getattr(type(curve), "several_family", None)
+    cls: type[Curve]
+    if getattr(target, "several", None) is not None:
+        if lam is not None and "lam" in target.parameters:  # type: ignore[union-attr]
+            named, lam = {**named, "lam": lam}, None  # join's own `lam` is this parameter
+        values = target.parameter_values(lam, params, named)  # type: ignore[union-attr]
+        cls = target._fixed_class(values, check_range)  # type: ignore[union-attr]
+        lam, params, named = None, None, {}
+    else:
+        cls = type(curve) if family is None else _family_class(family)
     fam = cls.family
     data = cls._data
     degrees = tuple(data.DEGREES)
@@ -306,9 +352,12 @@ def join(
             f"needs degree >= {spec.order}, got {degree}"
         )
     if cls._has_lambda:
+        lam = _own_parameter(cls, lam, params, named)
+    name = cls.parameter_name
+    if cls._has_lambda:
         if lam is None:
-            raise ValueError(f"a {fam} segment needs a shape parameter lam")
-        lam = val.as_lambda(lam, data, check_range=check_range)
+            raise ValueError(f"a {fam} segment needs a shape parameter {name}")
+        lam = val.as_lambda(lam, data, check_range=check_range, name=name)
     elif lam is not None:
         raise ValueError("a classical Bézier segment takes no shape parameter lam")
     rest_rows = _rest(rest, curve, spec, cls, degree)

@@ -263,7 +263,7 @@ def _float_polynomial(
 
 # ---------------------------------------------------------------------- the optimum
 @dataclass(frozen=True)
-class OptimalParameters(Mapping[str, Any]):
+class SurfaceOptimalParameters(Mapping[str, Any]):
     """The energy-optimal (λ_u, λ_v); read by name: ``result["lam_u"]``, ``result["lam_v"]``.
 
     For exact input ``lam_u``/``lam_v`` are Fractions or IsolatedRoot (an irrational algebraic
@@ -439,7 +439,7 @@ def _exact_optimum(
     v_box: Any,
     u_cls: type[Curve],
     v_cls: type[Curve],
-) -> OptimalParameters:
+) -> SurfaceOptimalParameters:
     free_u = u_box is None or not any(a for (a, _), c in e.items() if c)
     free_v = v_box is None or not any(b for (_, b), c in e.items() if c)
     pin_u = None if u_box is None else _default(u_cls, u_box)
@@ -466,7 +466,7 @@ def _exact_optimum(
         or not ((val_ == box[0] and not box[2][0]) or (val_ == box[1] and not box[2][1]))
         for box, val_, free in ((u_box, x, free_u), (v_box, y, free_v))
     )
-    return OptimalParameters(
+    return SurfaceOptimalParameters(
         None if u_box is None else x,
         None if v_box is None else y,
         None if u_box is None else float(x),

@@ -20,14 +20,16 @@ values; ``exact_fallbacks`` counts them.
 from __future__ import annotations
 
 from fractions import Fraction
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
 from . import _validate as val
+from .energy import OptimalParameters as CurveOptimalParameters
+from .energy import optimal_parameters as curve_optimal_parameters
 from .surface_energies import (
     ENERGIES,
-    OptimalParameters,
+    SurfaceOptimalParameters,
     _box,
     _exact_optimum,
     _float_polynomial,
@@ -64,7 +66,9 @@ def _edge_minima(
     return out
 
 
-def optimal_parameters_batch(nets: np.ndarray, energy: str, family: object) -> OptimalParameters:
+def optimal_parameters_batch(
+    nets: np.ndarray, energy: str, family: object
+) -> SurfaceOptimalParameters:
     """optimal_parameters for (k, m+1, n+1, d) float nets; arrays of length k in every field."""
     u_cls, v_cls = _as_family_pair(family)
     u_box, v_box = _box(u_cls), _box(v_cls)
@@ -198,7 +202,7 @@ def _all_exact(
     v_box: Any,
     u_cls: Any,
     v_cls: Any,
-) -> OptimalParameters:
+) -> SurfaceOptimalParameters:
     """Fill the nets marked `which` from the exact method on their exact rational values."""
     count, m1, n1, _ = nets.shape
     if result is None:
@@ -223,7 +227,7 @@ def _all_exact(
         result["where"][i] = r["where"]
         result["admissible"][i] = r["admissible"]
         free_u[i], free_v[i] = r["free_u"], r["free_v"]
-    return OptimalParameters(
+    return SurfaceOptimalParameters(
         result["lam_u"],
         result["lam_v"],
         result["lam_u"],
@@ -238,13 +242,29 @@ def _all_exact(
 
 
 def optimal_parameters(
-    net: NetLike, energy: str = "thin_plate", family: object = "same_degree"
-) -> OptimalParameters:
-    """The (λ_u, λ_v) minimising a surface energy over the closed parameter box.
+    net: NetLike,
+    energy: str | int = "thin_plate",
+    family: object = "same_degree",
+    *,
+    k: int | None = None,
+) -> SurfaceOptimalParameters | CurveOptimalParameters:
+    """The energy-optimal shape parameters, by name, over the closed parameter box: of a
+    surface, or of a curve.
 
-    `net` is one net (m+1, n+1, d): exact input gives the exact global minimum; or a batch of
-    float nets (k, m+1, n+1, d), solved vectorised (see `optimal_parameters_batch`).
+    A surface: `net` is one net (m+1, n+1, d) and `energy` "thin_plate" or "membrane"; exact
+    input gives the exact global minimum; a batch of float nets (k, m+1, n+1, d) is solved
+    vectorised (see `optimal_parameters_batch`). The result is read as ``r["lam_u"]``,
+    ``r["lam_v"]``.
+
+    A curve: `net` is its control polygon (n+1, d) and `energy` (or ``k=``) the order k of
+    the energy E_k (an int); every parameter of `family` comes back by its own name
+    (lambda_bezier.energy.optimal_parameters).
     """
+    if k is not None or (isinstance(energy, int) and not isinstance(energy, bool)):
+        order = energy if k is None else k
+        if k is not None and energy != "thin_plate":
+            raise TypeError("give the curve energy's order once: as energy or as k")
+        return curve_optimal_parameters(net, cast(int, order), family)  # type: ignore[arg-type]
     energy = val.choice(energy, "energy", tuple(ENERGIES))
     u_cls, v_cls = _as_family_pair(family)
     u_box, v_box = _box(u_cls), _box(v_cls)

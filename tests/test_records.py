@@ -2,9 +2,9 @@
 
 The user file src/lambda_bezier/examples/user_paper.toml holds true and misprinted
 records about each built-in family; its verdicts are asserted here, and the true values it
-states are recomputed with independent numerics (the runtime, finite differences, quadrature). Hostile and malformed
-files must end in a clear error (exit 2) naming file, record and key, and nothing in a file is
-ever run.
+states are recomputed with independent numerics (the runtime, finite differences,
+quadrature). Hostile and malformed files must end in a clear error (exit 2) naming file,
+record and key, and nothing in a file is ever run.
 """
 
 from __future__ import annotations

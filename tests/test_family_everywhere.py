@@ -74,6 +74,13 @@ def _call_optimal_lambda(fam):
     assert e[1] < e[0] and e[1] < e[2] and r.lam == Fraction(4, 7)
 
 
+def _call_curve_optimal_parameters(fam):
+    r = lb.optimal_parameters(POINTS, 2, family=fam)
+    # by the family's own name; the minimiser of the curve's own exact E_2 (as above)
+    e = [fam.curve(POINTS, sigma=Fraction(x, 7)).energy(2) for x in (3, 4, 5)]
+    assert e[1] < e[0] and e[1] < e[2] and r["sigma"] == Fraction(4, 7)
+
+
 def _call_energy_coefficients(fam):
     c = lb.energy_coefficients(POINTS, 2, family=fam)
     # E_2(λ) = a + bλ + cλ² against the curve's own energy at three λ
@@ -239,6 +246,7 @@ NOT_A_FAMILY = {"curves.data_curve_class": "the new class's family name, not one
 CALLS = {
     "joins.leading_weights": _call_leading_weights,
     "energy.optimal_lambda": _call_optimal_lambda,
+    "energy.optimal_parameters": _call_curve_optimal_parameters,
     "energy.energy_coefficients": _call_energy_coefficients,
     "energy.energy_matrices": _call_energy_matrices,
     "joins.join": _call_join,

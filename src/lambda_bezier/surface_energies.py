@@ -6,7 +6,10 @@ matrices A^k(λ) = B(λ) Hᵀ G H B(λ)ᵀ (B the family's basis in the Bernstei
 hodograph matrices down k degrees, G the Bernstein Gram matrix of generated/energy.py), the
 form of ∫∫ |∂^(a+b) S / ∂u^a ∂v^b|² is the Kronecker product A^a_u(λ_u) ⊗ A^b_v(λ_v) on the
 row-major vector of the net. Its entries are polynomials in (λ_u, λ_v): the coefficient of
-λ_u^a λ_v^b is returned by `surface_energy_matrices` as an integer matrix with a scale.
+λ_u^a λ_v^b is returned by `surface_energy_matrices` as an integer matrix with a scale. For a
+built-in family in both directions at the degrees derive emits (generated/surface_energy.py,
+derived by integrating the tensor-product basis itself) the emitted matrices are read; other
+degrees and families are built here by the Kronecker products.
 
 For a given net the energy is a polynomial E(λ_u, λ_v) of degree 2 in each parameter (for
 families affine in λ). `optimal_parameters` minimises it over the parameter box: exactly for
@@ -25,15 +28,16 @@ from typing import Any
 
 import numpy as np
 
-from .hazmat import exact_poly as xp
 from . import _validate as val
-from .hazmat.forms import hodograph_matrix
 from ._lazy import generated
-from .curves import Curve, Matrix
 from ._singular import IsolatedRoot
+from .curves import Curve, Matrix, family_class
+from .hazmat import exact_poly as xp
+from .hazmat.forms import hodograph_matrix
 from .surfaces import NetLike, Surface, _as_family_pair, _check_degree, basis_to_bernstein_split
 
 _energy = generated("energy")
+_surface_energy = generated("surface_energy")
 
 # (a, b, weight): the energy is Σ weight ∫∫ |∂^(a+b) S / ∂u^a ∂v^b|²
 ENERGIES: dict[str, tuple[tuple[int, int, int], ...]] = {
@@ -147,8 +151,45 @@ def _integer_form(
     return Fraction(g, den), tuple(tuple(v // g for v in row) for row in ints)
 
 
+def _emitted_matrices(
+    u_cls: Any, v_cls: Any, m: int, n: int, energy: str
+) -> SurfaceEnergyMatrices | None:
+    """The matrices derive emitted (generated/surface_energy.py) for a built-in family in both
+    directions at small degrees, or None (then they are built by Kronecker products)."""
+    name = u_cls.family
+    if v_cls is not u_cls or family_class(name) is not u_cls:
+        return None  # mixed directions, or a family defined at run time under a built-in name
+    table = _surface_energy.SURFACE_ENERGY.get(name, {}).get((m, n, energy))
+    if table is None:
+        return None
+    size = (m + 1) * (n + 1)
+    full = {
+        key: tuple(
+            tuple(
+                Fraction(scale) * Fraction(upper[min(r, c)][max(r, c)], 1 if r == c else 2)
+                for c in range(size)
+            )
+            for r in range(size)
+        )
+        for key, (scale, upper) in sorted(table.items())
+    }
+    terms = {key: (Fraction(scale), upper) for key, (scale, upper) in sorted(table.items())}
+    return SurfaceEnergyMatrices(energy, (m, n), terms, full)
+
+
 @cache
 def _cached_matrices(u_cls: Any, v_cls: Any, m: int, n: int, energy: str) -> SurfaceEnergyMatrices:
+    return _emitted_matrices(u_cls, v_cls, m, n, energy) or kronecker_matrices(
+        u_cls, v_cls, m, n, energy
+    )
+
+
+@cache
+def kronecker_matrices(
+    u_cls: Any, v_cls: Any, m: int, n: int, energy: str
+) -> SurfaceEnergyMatrices:
+    """The matrices as Kronecker products of the curves' forms A^a_u ⊗ A^b_v (any families and
+    degrees; tests check them against the emitted ones)."""
     full: dict[tuple[int, int], list[list[Fraction]]] = {}
     size = (m + 1) * (n + 1)
     for ku, kv, weight in ENERGIES[energy]:

@@ -601,6 +601,7 @@ def test_emitted_energy_matrices_equal_the_kronecker_construction(fam, kind):
         assert se.surface_energy_matrices((m, n), kind, fam).full == read.full
         kron = se.kronecker_matrices(cls, cls, m, n, kind)
         assert read.full == kron.full, (fam, kind, m, n)
+        assert read.terms == kron.terms, (fam, kind, m, n)  # one normalisation of (s, U)
 
 
 def test_mixed_families_fall_back_to_the_kronecker_form():

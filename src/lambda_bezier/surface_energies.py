@@ -148,6 +148,11 @@ def _integer_form(
         for v in row:
             g = gcd(g, v)
     g = g or 1
+    # the sign rule of the curves' X and Y (and of generated/surface_energy.py): the first
+    # nonzero diagonal entry positive, else the first nonzero entry
+    entries = [v for row in ints for v in row if v]
+    lead = next((ints[r][r] for r in range(size) if ints[r][r]), entries[0] if entries else 1)
+    g = -g if lead < 0 else g
     return Fraction(g, den), tuple(tuple(v // g for v in row) for row in ints)
 
 
@@ -157,9 +162,11 @@ def _emitted_matrices(
     """The matrices derive emitted (generated/surface_energy.py) for a built-in family in both
     directions at small degrees, or None (then they are built by Kronecker products)."""
     name = u_cls.family
-    if v_cls is not u_cls or family_class(name) is not u_cls:
-        return None  # mixed directions, or a family defined at run time under a built-in name
-    table = _surface_energy.SURFACE_ENERGY.get(name, {}).get((m, n, energy))
+    if v_cls is not u_cls or name not in _surface_energy.SURFACE_ENERGY:
+        return None  # mixed directions, or a family defined at run time
+    if family_class(name) is not u_cls:
+        return None  # a family defined at run time under a built-in name
+    table = _surface_energy.SURFACE_ENERGY[name].get((m, n, energy))
     if table is None:
         return None
     size = (m + 1) * (n + 1)

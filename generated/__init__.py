@@ -2,6 +2,6 @@
 # Regenerate with `lambda-bezier derive`; `lambda-bezier derive --check` reports any drift.
 """Exact data and evaluation code derived by derive/ (one module per formula group)."""
 
-GROUPS = ('bernstein', 'same_degree', 'bernstein_like', 'energy', 'joins', 'properties',)
+GROUPS = ('bernstein', 'same_degree', 'bernstein_like', 'energy', 'joins', 'properties', 'surface_energy',)
 # the built-in families (derive/families/*.toml), in order: module -> curve class
 FAMILIES = {'same_degree': 'SameDegreeCurve', 'bernstein_like': 'BernsteinLikeCurve'}

@@ -584,3 +584,33 @@ def test_plot_surface_draws_the_surface_and_its_net():
         plot_surface(s, curvature="sectional")
     with pytest.raises(ValueError, match="dimension 2"):
         plot_surface(lb.BezierSurface([[(0, 0), (1, 0)], [(0, 1), (1, 1)]]))
+
+
+# ---------------------------------------------------------------------- emitted vs Kronecker
+@pytest.mark.parametrize("fam", ["bezier", "same_degree", "bernstein_like"])
+@pytest.mark.parametrize("kind", ["membrane", "thin_plate"])
+def test_emitted_energy_matrices_equal_the_kronecker_construction(fam, kind):
+    from lambda_bezier import surface_energies as se
+    from lambda_bezier._lazy import generated
+
+    table = generated("surface_energy").SURFACE_ENERGY[fam]
+    cls = se.family_class(fam)
+    degrees = sorted({(m, n) for (m, n, e) in table if e == kind})
+    assert degrees, f"no emitted {kind} matrices for {fam}"
+    for m, n in degrees:
+        read = se._emitted_matrices(cls, cls, m, n, kind)
+        assert read is not None
+        assert se.surface_energy_matrices((m, n), kind, fam).full == read.full
+        kron = se.kronecker_matrices(cls, cls, m, n, kind)
+        assert read.full == kron.full, (fam, kind, m, n)
+        assert read.terms == kron.terms, (fam, kind, m, n)  # one normalisation of (s, U)
+
+
+def test_mixed_families_fall_back_to_the_kronecker_form():
+    from lambda_bezier import surface_energies as se
+
+    u, v = se.family_class("same_degree"), se.family_class("bezier")
+    assert se._emitted_matrices(u, v, 3, 3, "membrane") is None
+    assert se.surface_energy_matrices((3, 3), "membrane", (u, v)).full == (
+        se.kronecker_matrices(u, v, 3, 3, "membrane").full
+    )

@@ -5,10 +5,15 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from ..families.registry import builtin_families
-from . import bernstein, energy, families, joins, printing, properties
+from . import bernstein, energy, families, joins, printing, properties, surface_energy
 
 # The groups over every family, after the reference basis and the built-in families.
-_SHARED = {"energy": energy, "joins": joins, "properties": properties}
+_SHARED = {
+    "energy": energy,
+    "joins": joins,
+    "properties": properties,
+    "surface_energy": surface_energy,
+}
 
 
 def groups() -> tuple[str, ...]:

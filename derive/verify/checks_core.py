@@ -91,6 +91,14 @@ REQUIREMENTS = {
         ("solve",),
         "needs the join derivation derive/formulas/joins.py (C1/C2/G1/G2 vertex formulas; issue 4)",
     ),
+    "surface_energy": (
+        ("tensor_basis", "surface_forms"),
+        "needs the surface derivation derive/formulas/surface_energy.py (issue 31)",
+    ),
+    "surface_joins": (
+        ("conditions", "check_columnwise"),
+        "needs the surface join derivation derive/formulas/surface_joins.py (issue 31)",
+    ),
 }
 
 

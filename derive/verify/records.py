@@ -80,6 +80,12 @@ _RATIO = _table(
     {"point": _STR, "start": _STR, "end": _STR, "ratio": {**_STRS, "minItems": 2, "maxItems": 2}},
     ["point", "start", "end", "ratio"],
 )
+_SMALL_DEGREE = {"type": "integer", "minimum": 0, "maximum": 12}
+# one printed weight of a surface join: P2(row, j) = Σ weight · P1(n - k, j) (source "first")
+_WEIGHT = _table(
+    {"row": _INT, "source": {"enum": ["first", "second"]}, "k": _INT, "weight": _STR},
+    ["row", "source", "k", "weight"],
+)
 _STEP = _table(
     {
         "parameter": _STR,
@@ -148,6 +154,24 @@ PAYLOAD = {
     "continuity": {"enum": ["C0", "C1", "C2", "G1", "G2"]},
     "expression": _STR,
     "sign": {"enum": ["positive", "nonnegative", "nonzero"]},
+    # surface claims (derive/verify/checks_surfaces.py)
+    "degrees": {"type": "array", "items": _SMALL_DEGREE, "minItems": 2, "maxItems": 2},
+    "family_v": {"type": "string", "pattern": r"^[a-z][a-z0-9_]*$"},
+    "second_family": {"type": "string", "pattern": r"^[a-z][a-z0-9_]*$"},
+    "lam_u": _STR,
+    "lam_v": _STR,
+    "uv": {**_STRS, "minItems": 2, "maxItems": 2},
+    "values": _POINTS,
+    "sums_to_one": {"type": "boolean"},
+    "side": {"enum": ["u=0", "u=1", "v=0", "v=1"]},
+    "line": {"type": "string", "pattern": r"^(row|column) (\d{1,2}|m|n)$"},
+    "corners": {
+        "type": "array",
+        "items": {"type": "array", "items": _INT, "minItems": 4, "maxItems": 4},
+    },
+    "weights": {"type": "array", "items": _WEIGHT},
+    "energy": {"enum": ["membrane", "thin_plate"]},
+    "term": {"type": "array", "items": _INT, "minItems": 2, "maxItems": 2},
 }
 
 _RECORD = _table(
@@ -232,6 +256,11 @@ TEXT_KEYS = frozenset(
         "parameter_range",
         "continuity",
         "sign",
+        "family_v",
+        "second_family",
+        "side",
+        "line",
+        "energy",
     }
 )
 

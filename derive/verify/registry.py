@@ -22,6 +22,7 @@ from . import (  # noqa: F401 - imported for their registrations
     checks_examples,
     checks_joins,
     checks_properties,
+    checks_surfaces,
 )
 from .checks_core import CHECKERS, Outcome, Pending, claim_kind, missing_requirement
 from .claim_families import (

@@ -6,7 +6,10 @@ matrices A^k(λ) = B(λ) Hᵀ G H B(λ)ᵀ (B the family's basis in the Bernstei
 hodograph matrices down k degrees, G the Bernstein Gram matrix of generated/energy.py), the
 form of ∫∫ |∂^(a+b) S / ∂u^a ∂v^b|² is the Kronecker product A^a_u(λ_u) ⊗ A^b_v(λ_v) on the
 row-major vector of the net. Its entries are polynomials in (λ_u, λ_v): the coefficient of
-λ_u^a λ_v^b is returned by `surface_energy_matrices` as an integer matrix with a scale.
+λ_u^a λ_v^b is returned by `surface_energy_matrices` as an integer matrix with a scale. For a
+built-in family in both directions at the degrees derive emits (generated/surface_energy.py,
+derived by integrating the tensor-product basis itself) the emitted matrices are read; other
+degrees and families are built here by the Kronecker products.
 
 For a given net the energy is a polynomial E(λ_u, λ_v) of degree 2 in each parameter (for
 families affine in λ). `optimal_parameters` minimises it over the parameter box: exactly for
@@ -28,12 +31,13 @@ import numpy as np
 from . import _validate as val
 from ._lazy import generated
 from ._singular import IsolatedRoot
-from .curves import Curve, Matrix
+from .curves import Curve, Matrix, family_class
 from .hazmat import exact_poly as xp
 from .hazmat.forms import hodograph_matrix
 from .surfaces import NetLike, Surface, _as_family_pair, _check_degree, basis_to_bernstein_split
 
 _energy = generated("energy")
+_surface_energy = generated("surface_energy")
 
 # (a, b, weight): the energy is Σ weight ∫∫ |∂^(a+b) S / ∂u^a ∂v^b|²
 ENERGIES: dict[str, tuple[tuple[int, int, int], ...]] = {
@@ -144,11 +148,55 @@ def _integer_form(
         for v in row:
             g = gcd(g, v)
     g = g or 1
+    # the sign rule of the curves' X and Y (and of generated/surface_energy.py): the first
+    # nonzero diagonal entry positive, else the first nonzero entry
+    entries = [v for row in ints for v in row if v]
+    lead = next((ints[r][r] for r in range(size) if ints[r][r]), entries[0] if entries else 1)
+    g = -g if lead < 0 else g
     return Fraction(g, den), tuple(tuple(v // g for v in row) for row in ints)
+
+
+def _emitted_matrices(
+    u_cls: Any, v_cls: Any, m: int, n: int, energy: str
+) -> SurfaceEnergyMatrices | None:
+    """The matrices derive emitted (generated/surface_energy.py) for a built-in family in both
+    directions at small degrees, or None (then they are built by Kronecker products)."""
+    name = u_cls.family
+    if v_cls is not u_cls or name not in _surface_energy.SURFACE_ENERGY:
+        return None  # mixed directions, or a family defined at run time
+    if family_class(name) is not u_cls:
+        return None  # a family defined at run time under a built-in name
+    table = _surface_energy.SURFACE_ENERGY[name].get((m, n, energy))
+    if table is None:
+        return None
+    size = (m + 1) * (n + 1)
+    full = {
+        key: tuple(
+            tuple(
+                Fraction(scale) * Fraction(upper[min(r, c)][max(r, c)], 1 if r == c else 2)
+                for c in range(size)
+            )
+            for r in range(size)
+        )
+        for key, (scale, upper) in sorted(table.items())
+    }
+    terms = {key: (Fraction(scale), upper) for key, (scale, upper) in sorted(table.items())}
+    return SurfaceEnergyMatrices(energy, (m, n), terms, full)
 
 
 @cache
 def _cached_matrices(u_cls: Any, v_cls: Any, m: int, n: int, energy: str) -> SurfaceEnergyMatrices:
+    return _emitted_matrices(u_cls, v_cls, m, n, energy) or kronecker_matrices(
+        u_cls, v_cls, m, n, energy
+    )
+
+
+@cache
+def kronecker_matrices(
+    u_cls: Any, v_cls: Any, m: int, n: int, energy: str
+) -> SurfaceEnergyMatrices:
+    """The matrices as Kronecker products of the curves' forms A^a_u ⊗ A^b_v (any families and
+    degrees; tests check them against the emitted ones)."""
     full: dict[tuple[int, int], list[list[Fraction]]] = {}
     size = (m + 1) * (n + 1)
     for ku, kv, weight in ENERGIES[energy]:

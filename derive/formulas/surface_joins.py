@@ -1,0 +1,137 @@
+"""Joining two tensor-product patches along a common boundary: C1, G1 and C2 (issue #31).
+
+Patch 1 has the family F1 (degree n, shape λ1) across the boundary u = 1 and G (degree l,
+shape μ) along it; patch 2 has F2 (degree m, shape λ2) across, starting at its u = 0, and the
+same G, l and μ along. With b_i, c_i the across bases and g_j the along basis,
+
+    ∂^r S1/∂u^r (1, v) = Σ_j [Σ_i P1_ij b_i^(r)(1)] g_j(v),
+    ∂^r S2/∂u^r (0, v) = Σ_j [Σ_i P2_ij c_i^(r)(0)] g_j(v).
+
+The g_j are linearly independent (derive/formulas/properties.py), so the surface conditions
+
+    C1:  S1 = S2 and S1_u = S2_u on the boundary
+    G1:  S1 = S2 and S1_u = α S2_u on the boundary, α > 0 constant along it
+    C2:  C1 and S1_uu = S2_uu on the boundary
+
+hold for every v exactly when, for every column j, the curve with points P1_0j … P1_nj and the
+curve with points P2_0j … P2_mj meet the curve condition of the same name (joins.py). So the
+conditions ARE the curve join weights, applied column by column:
+
+    P2_rj = Σ_k w_{r,k}(n, m, λ1, λ2, α) P1_{n-k, j}      (r = 0..order, every j)
+
+with the weights of joins.joins()[(F1, F2, continuity)]. They are not emitted a second time:
+the runtime's join_surface applies the emitted curve join column by column.
+
+`check_columnwise` proves the reduction exactly on sample degrees, shapes and nets: it applies
+the weights to each column, builds both patches from the tensor-product basis
+(surface_energy.tensor_basis) and compares the cross-boundary derivatives of the two surfaces
+as polynomials in v. The join records of verify (surface_continuity) are checked against
+`conditions`.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from functools import cache
+
+import flint
+import sympy as sp
+
+from . import joins as curve_joins
+from .surface_energy import tensor_basis
+
+CONTINUITIES = ("C1", "G1", "C2")
+ORDER = {"C1": 1, "G1": 1, "C2": 2}
+# the along-direction family and degree of the check (any: the reduction does not use it)
+_ALONG = ("bezier", 2)
+_SAMPLE = {"lam1": Fraction(1, 3), "lam2": Fraction(-2, 5), "alpha": Fraction(3, 2)}
+
+
+def conditions(first: str, second: str, continuity: str) -> dict[tuple[int, str, int], sp.Expr]:
+    """{(row, source, k): weight}: P2_{row, j} = Σ weight · X for every column j, X = P1_{n-k, j}
+    (source "first") or P2_{k, j} (source "second", a row given); n, m the degrees across."""
+    if continuity not in CONTINUITIES:
+        raise ValueError(f"continuity must be one of {CONTINUITIES}, got {continuity!r}")
+    return _curve_joins()[(first, second, continuity)]
+
+
+@cache
+def _curve_joins() -> dict:
+    return curve_joins.joins()  # recomputed on each call there: read once here
+
+
+def apply(
+    first: str, second: str, continuity: str, net1, n: int, m: int, values: dict, given=None
+) -> list:
+    """The rows 0..order of patch 2 (scalar nets, exact) from patch 1's net by `conditions`,
+    at the values of lam1, lam2, alpha; `given` = {row: points} holds the rows of patch 2 a
+    weight refers to (P2_3 in 000's C2)."""
+    subs = {curve_joins.n: n, curve_joins.m: m}
+    subs |= {getattr(curve_joins, name): sp.Rational(str(v)) for name, v in values.items()}
+    rows: dict[int, list[Fraction]] = {}
+    for (row, source, k), weight in conditions(first, second, continuity).items():
+        w = sp.Rational(weight.subs(subs))
+        points = net1[n - k] if source == "first" else (given or {})[k]
+        acc = rows.setdefault(row, [Fraction(0)] * len(net1[0]))
+        for j, p in enumerate(points):
+            acc[j] += Fraction(int(w.p), int(w.q)) * p
+    return [rows[r] for r in sorted(rows)]
+
+
+def _surface(basis, net) -> flint.fmpq_mpoly:
+    flat = [p for row in net for p in row]
+    out = basis[0] * 0
+    for b, p in zip(basis, flat, strict=True):
+        out += b * flint.fmpq(p.numerator, p.denominator)
+    return out
+
+
+def _across(p: flint.fmpq_mpoly, r: int, at: int, lam: Fraction) -> flint.fmpq_mpoly:
+    for _ in range(r):
+        p = p.derivative(0)
+    return p.subs({"u": at, "lam_u": flint.fmpq(lam.numerator, lam.denominator)})
+
+
+@cache
+def check_columnwise(first: str, second: str, continuity: str) -> None:
+    """Raise unless the column-wise weights make the two patches meet with `continuity`
+    along the whole boundary (exactly, on sample degrees and a sample net)."""
+    along, l_deg = _ALONG
+    n = curve_joins.DEGREES[first][0]
+    m = (
+        curve_joins.DEGREES[second][-1]
+        if len(curve_joins.DEGREES[second]) < 3
+        else (curve_joins.DEGREES[second][2])
+    )
+    lam1 = _SAMPLE["lam1"] if curve_joins.HAS_LAMBDA[first] else Fraction(0)
+    lam2 = _SAMPLE["lam2"] if curve_joins.HAS_LAMBDA[second] else Fraction(0)
+    alpha = _SAMPLE["alpha"] if continuity == "G1" else Fraction(1)
+    net1 = [
+        [Fraction((7 * i + 3 * j * j + i * j) % 11 - 5, 1 + j) for j in range(l_deg + 1)]
+        for i in range(n + 1)
+    ]
+    rest = {
+        i: [Fraction(i * j - 2, 3) for j in range(l_deg + 1)]
+        for i in range(ORDER[continuity] + 1, m + 1)
+    }
+    values = {"lam1": lam1, "lam2": lam2, "alpha": alpha}
+    head = apply(first, second, continuity, net1, n, m, values, rest)
+    net2 = head + [rest[i] for i in sorted(rest)]
+    s1 = _surface(tensor_basis(first, along, n, l_deg), net1)
+    s2 = _surface(tensor_basis(second, along, m, l_deg), net2)
+    for r in range(ORDER[continuity] + 1):
+        left = _across(s1, r, 1, lam1)
+        right = _across(s2, r, 0, lam2) * flint.fmpq(alpha.numerator, alpha.denominator) ** r
+        if left != right:
+            raise AssertionError(
+                f"{continuity} join of a {first} patch to a {second} patch: the column-wise "
+                f"weights do not match the derivative of order {r} along the boundary"
+            )
+
+
+def check_all() -> None:
+    """check_columnwise for every ordered pair of families and every continuity."""
+    for first in curve_joins.FAMILIES:
+        for second in curve_joins.FAMILIES:
+            for continuity in CONTINUITIES:
+                check_columnwise(first, second, continuity)

@@ -1,0 +1,241 @@
+"""Checkers of tensor-product surface claims (issue #31), against derive/formulas/surface_energy.py
+(the tensor-product basis, the energy matrices) and derive/formulas/surface_joins.py.
+
+A surface record names its degrees `[m, n]`; its family is the record's family in the u
+direction and `family_v` (default: the same) in the v direction. Claim kinds:
+
+- ``surface_basis``: the tensor-product basis B_ij(u, v) = b_i(u; λ_u) b_j(v; λ_v): `values`
+  printed at `uv` (with `lam_u`, `lam_v`), and/or `sums_to_one` (identically in u, v, λ_u, λ_v);
+- ``surface_boundary``: the boundary curve on `side` ("u=0", …) is the family's curve of the net
+  `line` ("row 0", "row m", "column 0", "column n"), identically in the free variable and λ;
+- ``surface_corners``: S(u, v) = P_ij at the corners listed as [u, v, i, j] (u, v in {0, 1});
+- ``surface_continuity``: the printed `weights` of the second patch's rows for `continuity`
+  (C1, G1, C2) across u = 1, patch 2 of `second_family` (default: the record's family); each
+  compared with the derived conditions, whose column-wise reduction is re-proved exactly;
+- ``surface_energy_matrix``: the printed `scale` and upper-triangular integer `matrix` of the
+  coefficient of λ_u^a λ_v^b (`term` = [a, b]) of the `energy` ("membrane", "thin_plate").
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import flint
+import sympy as sp
+
+from ..grammar import SYMBOLS
+from .checks_core import Outcome, checker, derive_module
+from .checks_examples import _frac
+from .claim_families import FAMILIES
+from .context import Context
+from .expr_parse import parse
+
+
+def _surface_energy():
+    return derive_module("surface_energy")
+
+
+def _families(record: dict, ctx: Context) -> tuple[str, str]:
+    fam_u = ctx.family.name
+    fam_v = record.get("family_v", fam_u)
+    for name in (fam_u, fam_v):
+        if name not in _surface_energy().FAMILIES:
+            raise ValueError(f"surface claims know the built-in families only, not {name!r}")
+    return fam_u, fam_v
+
+
+def _degrees(record: dict, fams: tuple[str, str]) -> tuple[int, int]:
+    m, n = (int(d) for d in record["degrees"])
+    for fam, deg in zip(fams, (m, n), strict=True):
+        if deg not in FAMILIES[fam].degrees:
+            raise ValueError(f"degree {deg} is outside the {fam} range {FAMILIES[fam].degrees}")
+    return m, n
+
+
+def _basis(record: dict, ctx: Context):
+    fams = _families(record, ctx)
+    m, n = _degrees(record, fams)
+    return fams, m, n, _surface_energy().tensor_basis(*fams, m, n)
+
+
+def _fmpq(x: Fraction) -> flint.fmpq:
+    return flint.fmpq(x.numerator, x.denominator)
+
+
+def _mismatch_or_match(diffs: list[str], checked: list[str]) -> Outcome:
+    return Outcome("mismatch" if diffs else "match", diffs, checked)
+
+
+def _guard(fn):
+    """A record outside what the derivation covers is a mismatch with the reason, not a crash."""
+
+    def run(record: dict, ctx: Context) -> Outcome:
+        try:
+            return fn(record, ctx)
+        except ValueError as exc:
+            return Outcome("mismatch", [str(exc)])
+
+    run.__doc__ = fn.__doc__
+    return run
+
+
+@checker("surface_basis", requires=("surface_energy",))
+@_guard
+def check_surface_basis(record: dict, ctx: Context) -> Outcome:
+    """Printed values of the tensor-product basis at a point; its partition of unity (at the
+    record's `degrees`, or at every degree pair derive emits when it gives none)."""
+    fu, fv = _families(record, ctx)
+    diffs, checked = [], []
+    if record.get("sums_to_one"):
+        if "degrees" in record:
+            pairs = [_degrees(record, (fu, fv))]
+        else:
+            se = _surface_energy()
+            pairs = [(m, n) for m in se.degrees(fu) for n in se.degrees(fv)]
+        for m, n in pairs:
+            basis = _surface_energy().tensor_basis(fu, fv, m, n)
+            total = sum(basis[1:], basis[0])
+            if total != 1:
+                diffs.append(f"degrees ({m}, {n}): the derived basis sums to {total}, not 1")
+        checked.append(f"Σ B_ij = 1 for {fu} x {fv}, degrees {pairs}, every λ_u, λ_v")
+    if "values" in record:
+        (fu, fv), m, n, basis = _basis(record, ctx)
+        if "uv" not in record:
+            raise ValueError("printed `values` need the point `uv`")
+        u, v = (_frac(x) for x in record["uv"])
+        subs = {"u": _fmpq(u), "v": _fmpq(v)}
+        for name in ("lam_u", "lam_v"):
+            subs[name] = _fmpq(_frac(record.get(name, "0")))
+        printed = [[_frac(x) for x in row] for row in record["values"]]
+        if len(printed) != m + 1 or any(len(row) != n + 1 for row in printed):
+            return Outcome("mismatch", [f"printed values are not {m + 1} x {n + 1}"])
+        for i in range(m + 1):
+            for j in range(n + 1):
+                got = basis[i * (n + 1) + j].subs(subs)
+                if got != _fmpq(printed[i][j]):
+                    diffs.append(
+                        f"B_{i}{j}{tuple(record['uv'])}: printed {printed[i][j]}, derived {got}"
+                    )
+        checked.append(f"values at (u, v) = ({u}, {v})")
+    if not checked:
+        raise ValueError("a surface_basis record states `values` (with `uv`) or `sums_to_one`")
+    return _mismatch_or_match(diffs, checked)
+
+
+_SIDES = {"u=0": ("u", 0), "u=1": ("u", 1), "v=0": ("v", 0), "v=1": ("v", 1)}
+
+
+def _line(text: str, m: int, n: int) -> tuple[str, int]:
+    kind, idx = text.split()
+    top = m if kind == "row" else n
+    index = {"m": m, "n": n}.get(idx)
+    return kind, int(idx) if index is None else index if index <= top else -1
+
+
+@checker("surface_boundary", requires=("surface_energy",))
+@_guard
+def check_surface_boundary(record: dict, ctx: Context) -> Outcome:
+    """On a side of the square the surface is the curve of one row (or column) of the net."""
+    (fu, fv), m, n, basis = _basis(record, ctx)
+    var, at = _SIDES[record["side"]]
+    want_kind = "row" if var == "u" else "column"
+    want_index = (m if var == "u" else n) if at else 0
+    kind, index = _line(record["line"], m, n)
+    diffs = []
+    if (kind, index) != (want_kind, want_index):
+        diffs.append(
+            f"on {record['side']} the surface is the curve of {want_kind} {want_index}, "
+            f"printed {record['line']}"
+        )
+    # the derived side of the claim: B_ij restricted to the side is δ · (the other basis)
+    for i in range(m + 1):
+        for j in range(n + 1):
+            got = basis[i * (n + 1) + j].subs({var: at})
+            on_line = (i if var == "u" else j) == want_index
+            along = _curve(fv, n, j, "v") if var == "u" else _curve(fu, m, i, "u")
+            if got != (along if on_line else 0 * along):
+                diffs.append(f"derived B_{i}{j} on {record['side']} is not as stated")
+    return _mismatch_or_match(
+        diffs, [f"B_ij on {record['side']} for {fu} x {fv}, degrees ({m}, {n}), every λ"]
+    )
+
+
+def _curve(family: str, degree: int, index: int, var: str) -> flint.fmpq_mpoly:
+    """The curve basis function b_index of `family` in the variable `var` (u or v)."""
+    se = _surface_energy()
+    # a tensor basis with the trivial degree-0 Bézier factor is the curve basis itself
+    if var == "u":
+        return se.tensor_basis(family, "bezier", degree, 0)[index]
+    return se.tensor_basis("bezier", family, 0, degree)[index]
+
+
+@checker("surface_corners", requires=("surface_energy",))
+@_guard
+def check_surface_corners(record: dict, ctx: Context) -> Outcome:
+    """S(u, v) = P_ij at the listed corners, for every λ_u, λ_v."""
+    (fu, fv), m, n, basis = _basis(record, ctx)
+    diffs = []
+    for u, v, pi, pj in record["corners"]:
+        if u not in (0, 1) or v not in (0, 1):
+            raise ValueError(f"corner ({u}, {v}) is not a corner of the unit square")
+        values = [b.subs({"u": u, "v": v}) for b in basis]
+        hot = [divmod(k, n + 1) for k, x in enumerate(values) if x != 0]
+        if hot != [(pi, pj)] or values[pi * (n + 1) + pj] != 1:
+            diffs.append(f"S({u}, {v}): printed P_{pi}{pj}, derived weights at {hot}")
+    return _mismatch_or_match(diffs, [f"corners of {fu} x {fv}, degrees ({m}, {n}), every λ"])
+
+
+@checker("surface_continuity", requires=("surface_joins",))
+@_guard
+def check_surface_continuity(record: dict, ctx: Context) -> Outcome:
+    """Printed weights of patch 2's rows next to the boundary, against the derived ones."""
+    sj = derive_module("surface_joins")
+    first = ctx.family.name
+    second = record.get("second_family", first)
+    cont = record["continuity"]
+    if cont not in sj.CONTINUITIES:
+        raise ValueError(f"surface continuity {cont} is not derived (only {sj.CONTINUITIES})")
+    sj.check_columnwise(first, second, cont)  # the reduction to column-wise curve joins
+    derived = sj.conditions(first, second, cont)
+    derived = {  # the records grammar's symbols, by name
+        key: sp.sympify(w).xreplace({s: SYMBOLS[s.name] for s in sp.sympify(w).free_symbols})
+        for key, w in derived.items()
+    }
+    printed = {(w["row"], w["source"], w["k"]): parse(w["weight"]) for w in record["weights"]}
+    diffs = []
+    for key in sorted(set(derived) | set(printed), key=str):
+        got, want = printed.get(key, sp.Integer(0)), derived.get(key, sp.Integer(0))
+        if sp.cancel(sp.together(got - want)) != 0:
+            diffs.append(f"row {key[0]}, {key[1]} point {key[2]}: printed {got}, derived {want}")
+    return _mismatch_or_match(
+        diffs,
+        [f"{cont} weights {first} -> {second}, applied column by column (checked exactly)"],
+    )
+
+
+@checker("surface_energy_matrix", requires=("surface_energy",))
+@_guard
+def check_surface_energy_matrix(record: dict, ctx: Context) -> Outcome:
+    """A printed coefficient matrix (scale · upper-triangular integers) of a surface energy."""
+    fams = _families(record, ctx)
+    m, n = _degrees(record, fams)
+    a, b = (int(x) for x in record["term"])
+    forms = _surface_energy().surface_forms(*fams, m, n, record["energy"])
+    size = (m + 1) * (n + 1)
+    printed = record["matrix"]
+    if len(printed) != size or any(len(row) != size for row in printed):
+        return Outcome("mismatch", [f"printed matrix is not {size} x {size}"])
+    scale = _frac(record["scale"])
+    got = [[scale * int(x) for x in row] for row in printed]
+    d_scale, d_upper = forms.get((a, b), (Fraction(0), [[0] * size for _ in range(size)]))
+    want = [[d_scale * int(x) for x in row] for row in d_upper]
+    diffs = [
+        f"entry [{r}][{c}]: printed {got[r][c]}, derived {want[r][c]}"
+        for r in range(size)
+        for c in range(size)
+        if got[r][c] != want[r][c]
+    ]
+    return _mismatch_or_match(
+        diffs[:10] + ([f"... {len(diffs) - 10} more"] if len(diffs) > 10 else []),
+        [f"{record['energy']} λ_u^{a} λ_v^{b} for {fams[0]} x {fams[1]}, degrees ({m}, {n})"],
+    )

@@ -189,10 +189,20 @@ def near_double_zero(x, y0, y1, degree, dim, seed):
 
 
 def test_a_near_double_zero_between_the_nodes():
-    # the case of issue #28: the dip at x (width about 1e-4) fell between the first level's
-    # nodes; both rules integrated (t − x)² |a| alike and missed up to 1.2e-12 of [0, b]
-    x = Fraction(9497, 10000)
-    curve, deriv = near_double_zero(x, Fraction(1, 10**8), Fraction(0), 6, 2, seed=11)
+    # the curve of issue #28: p' = ((t − x)² g, (t − x)² h + 1e-8), degree 12; the dip at x
+    # (width about 1e-4) fell between the first level's nodes, both rules integrated
+    # (t − x)² |(g, h)| alike and missed up to 1.16e-12 of [0, b] (measured before the fix)
+    x = Fraction(9496, 10000) + Fraction(1, 10**6)
+    g = [1, Fraction(1, 2), 0, Fraction(1, 3), 0, 0, Fraction(1, 5), 0, 0, 0]
+    h = [2, -1, Fraction(1, 4), 0, 0, 0, 0, Fraction(1, 7), 0, 0]
+    square = [x * x, -2 * x, 1]
+    deriv = [[Fraction(0)] * 12 for _ in range(2)]
+    for row, factor in zip(deriv, (g, h), strict=True):
+        for j, fj in enumerate(factor):
+            for k, sk in enumerate(square):
+                row[j + k] += fj * sk
+    deriv[1][0] += Fraction(1, 10**8)
+    curve = curve_from_derivative(deriv)
     for b in np.linspace(0.94, 0.96, 21):
         assert_close(curve.arc_length(0, b), reference_length(deriv, 0, b, x))
     assert_close(curve.arc_length(), reference_length(deriv, 0, 1, x))

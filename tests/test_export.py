@@ -333,6 +333,28 @@ def test_step_read_back_by_occt(name, tmp_path):
             assert got[2] == 0
 
 
+def test_step_holds_every_double_exactly(tmp_path):
+    # OCCT's own writer prints 12 decimals (1/3 -> 0.333333333333) or 13 significant
+    # digits; to_step writes 17, so each pole and knot reads back as the same double, at
+    # every magnitude and sign, subnormal and zero included
+    pts = [
+        (Fraction(1, 3), -Fraction(2, 7)),
+        (12345.678901234567, 1e-5),
+        (-0.1, 2.0**-1074),
+        (1e300, -(2.0**-60)),
+        (0.0, -0.0),
+    ]
+    obj = lb.CompositeCurve([lb.BezierCurve(pts), lb.BezierCurve([pts[-1], (1.5, 7 / 9)])])
+    spline = export.to_bspline(obj)
+    (curve,) = occt_curves(export.to_step(obj, tmp_path / "exact.step"))
+    poles = [curve.Pole(i) for i in range(1, curve.NbPoles() + 1)]
+    assert [(p.X(), p.Y(), p.Z()) for p in poles] == [
+        (float(x), float(y), 0.0) for x, y in spline.control_points
+    ]
+    knots = [curve.Knot(i) for i in range(1, curve.NbKnots() + 1)]
+    assert knots == [float(v) for v in spline.breakpoints()[0]]
+
+
 def test_missing_cad_packages_name_the_extra(tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "ezdxf", None)  # import ezdxf now raises ImportError
     monkeypatch.setitem(sys.modules, "OCP", None)

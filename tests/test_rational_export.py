@@ -45,10 +45,14 @@ def test_step_read_back_by_occt(name, tmp_path):
     (occ,) = occt_curves(file)
     assert occ.DynamicType().Name() == "Geom_BSplineCurve"
     assert occ.IsRational() and occ.Degree() == curve.degree
-    # (the STEP file holds 12 significant digits: 1/3 comes back as 0.333333333333)
-    assert [occ.Weight(i) for i in range(1, curve.degree + 2)] == pytest.approx(
-        [float(w) for w in curve.control_weights()], rel=1e-11
-    )
+    # (the STEP file holds 17 significant digits: each weight's double comes back unchanged)
+    assert [occ.Weight(i) for i in range(1, curve.degree + 2)] == [
+        float(w) for w in curve.control_weights()
+    ]
+    poles = [occ.Pole(i) for i in range(1, curve.degree + 2)]
+    assert [[p.X(), p.Y(), p.Z()][: curve.dimension] for p in poles] == [
+        [float(v) for v in row] for row in curve.control_points()
+    ]
     for u in np.linspace(0, 1, 41):
         p = occ.Value(float(u))
         got = np.array([p.X(), p.Y(), p.Z()])

@@ -468,6 +468,13 @@ def test_step_is_read_back_by_occt(tmp_path):
     for u, v in ((0.3, 0.7), (0.0, 1.0), (0.9, 0.15)):
         p = occ.Value(u, v)
         np.testing.assert_allclose([p.X(), p.Y(), p.Z()], s.evaluate(u, v), atol=1e-12)
+    # 17 significant digits in the file: the poles' doubles read back unchanged
+    net = s.to_bezier().control_net()
+    got = [
+        [tuple(getattr(occ.Pole(i + 1, j + 1), c)() for c in "XYZ") for j in range(len(row))]
+        for i, row in enumerate(net)
+    ]
+    assert got == [[tuple(float(v) for v in p) for p in row] for row in net]
 
 
 def test_mesh_respects_its_tolerance(tmp_path):

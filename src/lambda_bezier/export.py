@@ -16,7 +16,9 @@ tolerance (a certified bound, see hazmat.rational_kernels.cubics) unless its wei
 
 STEP (through OCCT's Python binding, OCP) and DXF (through ezdxf) need the optional extra
 `cad`: pip install "lambda-bezier[cad]". They store the B-spline in floats (the exact
-Fractions rounded once).
+Fractions rounded once). A STEP file carries each of them with 17 significant digits, which
+reads back as the same double (OCCT's own writer prints 12 decimals in [0.1, 1000) and 13
+significant digits elsewhere: `_write_step` sends the model with its own number format).
 
 JSON form (`to_json` / `from_json`), version 1; every exact number (int or Fraction) is a
 string "p/q" or "n", a float is a JSON number (shortest repr, so it round-trips exactly)::
@@ -349,9 +351,35 @@ def _quiet_occt(message_module: ModuleType) -> None:
         printer.SetTraceLevel(gravity)
 
 
+def _write_step(writer: Any, target: Path) -> Path:
+    """Write the model of an OCCT STEPControl_Writer that has its transfer done to `target`,
+    every real with 17 significant digits, so that each double reads back unchanged.
+
+    (STEPControl_Writer.Write formats reals with the Interface_FloatWriter(12) of
+    StepData_StepWriter, "%14.12f" for 0.1 <= |x| < 1000 and "%14.12E" elsewhere, trailing
+    zeros cut: 1/3 becomes 0.333333333333, and no Interface_Static parameter changes that.
+    The same writer, made here, takes another format: "%.16E" always has the point and the
+    exponent an ISO 10303-21 real may have; SetFormat's reset drops the fixed-point range and
+    the zero suppression, which scans only a number's first 16 characters.)"""
+    from OCP.StepData import StepData_StepWriter
+
+    model = writer.Model()
+    out = StepData_StepWriter(model)
+    out.FloatWriter().SetFormat("%.16E", True)
+    out.SendModel(model.Protocol(), False)
+    text = "".join(out.Line(i).ToCString() + "\n" for i in range(1, out.NbLines() + 1))
+    try:
+        target.write_text(text, encoding="utf-8")
+    except OSError as exc:
+        raise OSError(f"could not write the STEP file {target}: {exc.strerror or exc}") from exc
+    return target
+
+
 def to_step(obj: Shape, path: str | Path) -> Path:
     """Write the curve or composite as one B-spline edge (B_SPLINE_CURVE_WITH_KNOTS) to a
-    STEP file through OCCT (OCP); 2D curves lie in the plane z = 0."""
+    STEP file through OCCT (OCP); 2D curves lie in the plane z = 0. Every number is written
+    with 17 significant digits: the file holds the B-spline's floats (`to_bspline`, exact
+    Fractions rounded once) exactly, and OCCT reads back the same doubles."""
     feature = "to_step"
     _optional("OCP", "cadquery-ocp-novtk (OCP)", feature)
     from OCP import Message
@@ -386,10 +414,7 @@ def to_step(obj: Shape, path: str | Path) -> Path:
     done = IFSelect_ReturnStatus.IFSelect_RetDone
     if writer.Transfer(edge, STEPControl_StepModelType.STEPControl_AsIs) != done:
         raise RuntimeError("OCCT could not transfer the B-spline edge to STEP")
-    target = Path(path)
-    if writer.Write(str(target)) != done:
-        raise OSError(f"OCCT could not write the STEP file {target}")
-    return target
+    return _write_step(writer, Path(path))
 
 
 # ---------------------------------------------------------------------- DXF (ezdxf)

@@ -15,7 +15,14 @@ from typing import Any
 import numpy as np
 
 from . import _validate as val
-from .export import FORMAT_VERSION, _number_in, _number_out, _optional, _quiet_occt
+from .export import (
+    FORMAT_VERSION,
+    _number_in,
+    _number_out,
+    _optional,
+    _quiet_occt,
+    _write_step,
+)
 from .surfaces import Surface
 
 # ---------------------------------------------------------------------- STEP (OCCT)
@@ -43,7 +50,8 @@ def occt_bezier_surface(surf: Surface) -> Any:
 
 def to_step_surface(surf: Surface, path: str | Path) -> Path:
     """Write the surface as one face on a B-spline surface (B_SPLINE_SURFACE_WITH_KNOTS, its
-    Bézier form with clamped knots) to a STEP file through OCCT."""
+    Bézier form with clamped knots) to a STEP file through OCCT, every number with 17
+    significant digits (the doubles read back unchanged)."""
     _optional("OCP", "cadquery-ocp-novtk (OCP)", "to_step_surface")
     from OCP import Message
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
@@ -60,10 +68,7 @@ def to_step_surface(surf: Surface, path: str | Path) -> Path:
     done = IFSelect_ReturnStatus.IFSelect_RetDone
     if writer.Transfer(face, STEPControl_StepModelType.STEPControl_AsIs) != done:
         raise RuntimeError("OCCT could not transfer the B-spline face to STEP")
-    target = Path(path)
-    if writer.Write(str(target)) != done:
-        raise OSError(f"OCCT could not write the STEP file {target}")
-    return target
+    return _write_step(writer, Path(path))
 
 
 # ---------------------------------------------------------------------- triangle mesh

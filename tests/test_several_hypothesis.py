@@ -84,7 +84,7 @@ def test_random_several_parameter_definitions(table):
         assert "[family]" in str(exc)
         return
     data = SeveralData(doc, "random.derived.json")
-    fam = Family(data, Path("random.toml"), "", data.NAMES[0], data)
+    fam = Family(data, Path("random.toml"), "", data.NAMES[0], several=data)
     n = int(table["degrees"])
     values = {
         x: Fraction(1, 3) if "(" not in table["range"][x] else Fraction(1) for x in data.NAMES

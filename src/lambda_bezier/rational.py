@@ -99,6 +99,7 @@ class RationalBezierCurve:
 
     family = "rational_bezier"
     lam = None  # no shape parameter
+    parameter_name = "lam"  # the name BezierCurve shows for its (absent) parameter
 
     def __init__(self, points: PointsLike, weights: WeightsLike) -> None:
         self.points = val.as_points(points, family="rational Bézier", degrees=(0, sys.maxsize))

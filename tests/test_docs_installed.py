@@ -74,10 +74,6 @@ def installed(tmp_path_factory) -> Path:
         text=True,
         check=True,
     ).stdout.strip()
-    ours = {sysconfig.get_paths()[k] for k in ("purelib", "platlib")}
-    # appended after the venv's own site-packages, so the wheel's lambda_bezier comes first
-    # (a path line does not run the .pth files of an editable install found there)
-    (Path(site) / "_test_dependencies.pth").write_text("\n".join(sorted(ours)) + "\n")
     install = subprocess.run(
         [
             sys.executable,
@@ -95,6 +91,13 @@ def installed(tmp_path_factory) -> Path:
         timeout=600,
     )
     assert install.returncode == 0, install.stdout[-2000:] + install.stderr[-4000:]
+    # Only now the dependencies: this run's site-packages, appended after the venv's own, so
+    # the wheel's lambda_bezier comes first (a path line does not run the .pth files of an
+    # editable install found there). Written before the install, they would hold this run's
+    # own lambda-bezier (CI installs it non-editable), and pip would skip the wheel as
+    # already installed.
+    ours = {sysconfig.get_paths()[k] for k in ("purelib", "platlib")}
+    (Path(site) / "_test_dependencies.pth").write_text("\n".join(sorted(ours)) + "\n")
     where = subprocess.run(
         [str(python), "-c", "import lambda_bezier; print(lambda_bezier.__file__)"],
         cwd=base,

@@ -1,4 +1,4 @@
-"""A family in two shape parameters (tests/data/families/two_shape_cubic.toml), checked
+"""A family in two shape parameters (lambda_bezier/examples/two_shape_cubic.toml), checked
 against its definition by independent numerics: direct evaluation of the formulas, finite
 differences, mpmath quadrature, and a grid over the parameter box."""
 
@@ -18,7 +18,7 @@ import lambda_bezier as lb
 from lambda_bezier import _derive_runner
 
 ROOT = Path(__file__).resolve().parent.parent
-FILE = ROOT / "tests" / "data" / "families" / "two_shape_cubic.toml"
+FILE = ROOT / "src" / "lambda_bezier" / "examples" / "two_shape_cubic.toml"
 pytestmark = pytest.mark.skipif(
     not (ROOT / "derive" / "families" / "engine.py").is_file(), reason="needs the source checkout"
 )

@@ -34,6 +34,7 @@ from . import _validate as val
 from .geometry import (
     ClosestPoint,
     _queries,  # the same query validation as every curve
+    lengths_within,
 )
 from .hazmat import rational_kernels as rk
 from .hazmat.intersect import Intersection
@@ -191,13 +192,7 @@ def parameter_at_length(curve: RationalBezierCurve, s: npt.ArrayLike) -> np.ndar
         raise ValueError("s contains NaN or infinity")
     edges, cum = _length_table(curve)
     total = float(cum[-1])
-    if total == 0:
-        raise ValueError("the curve has zero length: no parameter belongs to a given length")
-    slack = 4 * RTOL * total
-    if arr.size and (arr.min() < -slack or arr.max() > total + slack):
-        bad = arr[(arr < -slack) | (arr > total + slack)][0]
-        raise ValueError(f"s = {bad} is outside [0, {total!r}] (the total arc length)")
-    arr = np.clip(arr, 0.0, total)
+    arr = lengths_within(arr, total)
     unit, factor, rho = _unit(curve)
     speed = _speed(unit)
     k = np.clip(np.searchsorted(cum, arr, side="right") - 1, 0, edges.size - 2)

@@ -209,6 +209,19 @@ def _curve_parameter_at_length(curve: Curve, s: np.ndarray) -> np.ndarray:
     return t
 
 
+def lengths_within(arr: np.ndarray, total: float) -> np.ndarray:
+    """Arc lengths s checked against [0, total] (rounding slack allowed) and clipped to it;
+    ValueError for a curve of zero length or an s outside."""
+    if total == 0:
+        raise ValueError("the curve has zero length: no parameter belongs to a given length")
+    slack = 4 * RTOL * total
+    if arr.size and (arr.min() < -slack or arr.max() > total + slack):
+        bad = arr[(arr < -slack) | (arr > total + slack)][0]
+        raise ValueError(f"s = {bad} is outside [0, {total!r}] (the total arc length)")
+    clipped: np.ndarray = np.clip(arr, 0.0, total)
+    return clipped
+
+
 def parameter_at_length(obj: Curve | CompositeCurve, s: npt.ArrayLike) -> np.ndarray | float:
     """The parameter (t for a curve, u for a composite) at which the arc length from the
     start equals s, for a number or an array of lengths in [0, total length]."""
@@ -225,13 +238,7 @@ def parameter_at_length(obj: Curve | CompositeCurve, s: npt.ArrayLike) -> np.nda
     segs = _segments(obj)
     lengths = np.array([_length_table(seg)[1][-1] for seg in segs])
     total = math.fsum(lengths)
-    if total == 0:
-        raise ValueError("the curve has zero length: no parameter belongs to a given length")
-    slack = 4 * RTOL * total
-    if arr.size and (arr.min() < -slack or arr.max() > total + slack):
-        bad = arr[(arr < -slack) | (arr > total + slack)][0]
-        raise ValueError(f"s = {bad} is outside [0, {total!r}] (the total arc length)")
-    arr = np.clip(arr, 0.0, total)
+    arr = lengths_within(arr, total)
     cum = np.concatenate([[0.0], np.cumsum(lengths)])
     idx = np.clip(np.searchsorted(cum, arr, side="right") - 1, 0, len(segs) - 1)
     out = np.zeros(arr.size)

@@ -96,8 +96,35 @@ def _several(defn: Definition, checked: list[str]) -> dict:
     }
 
 
+def _indexed(defn: Definition) -> dict:
+    """An indexed family (lam(i)): per degree, the several-parameter document of that
+    degree's expansion into lam_a .. lam_b (derive/families/indexed.py)."""
+    spec = defn.indexed
+    by_degree = {}
+    for deg in defn.degrees:
+        at = defn.at_degree(deg)
+        by_degree[str(deg)] = _several(at, check(at))
+    return {
+        "generated_by": "lambda-bezier derive --family -- DO NOT EDIT; regenerate with "
+        "`lambda-bezier derive --family FILE`",
+        "format": FORMAT,
+        "definition_sha256": defn.digest,
+        "family": defn.name,
+        "title": defn.title,
+        "indexed": {
+            "name": spec.name,  # type: ignore[attr-defined]
+            "symbols": {str(deg): list(defn.at_degree(deg).parameters) for deg in defn.degrees},
+        },
+        "degrees": [defn.degrees.start, defn.degrees.stop - 1],
+        "degree_offset": defn.offset,
+        "by_degree": by_degree,
+    }
+
+
 def derive(defn: Definition, *, with_joins: bool = True) -> dict:
     """Every artifact of the family, as one JSON-able document (exact numbers as strings)."""
+    if defn.indexed is not None:
+        return _indexed(defn)
     checked = check(defn)
     if defn.several:
         return _several(defn, checked)

@@ -521,6 +521,8 @@ def optimal_parameters(
     >>> r["lam"], r.free_inside, r.boundary
     (Fraction(-2, 1), False, 'lam = -2 (lower end, excluded: not attained)')
     """
+    if hasattr(family, "by_degree"):  # an indexed family (lam(i)): its degree's parameters
+        return _optimal_indexed(points, k, family)
     several = getattr(family, "several", None)
     if several is not None:
         return _optimal_several(points, k, family, several)
@@ -674,6 +676,25 @@ def _optimal_several(points: PointsLike, k: int, family: Any, several: Any) -> O
         boundary="" if inside else "; ".join(boundary),
         k=k,
         family=several.FAMILY,
+    )
+
+
+def _optimal_indexed(points: PointsLike, k: int, family: Any) -> OptimalParameters:
+    """The several-parameter optimum of the degree the points give, with the parameters
+    lam_a .. lam_b of that degree returned as one tuple under the family's own name."""
+    rows = val.as_points(points, family=family.name, degrees=family.degrees)
+    fam = family.at_degree(len(rows) - 1)
+    r = _optimal_several(points, k, fam, fam.several)
+    name = family.index_name
+    free: dict[str, Any] = {name: tuple(r.free.values())} if r.free else {}
+    return OptimalParameters(
+        values={name: tuple(r.values.values())},  # type: ignore[dict-item]
+        energy=r.energy,
+        free=free,
+        free_inside=r.free_inside,
+        boundary=r.boundary,
+        k=r.k,
+        family=r.family,
     )
 
 

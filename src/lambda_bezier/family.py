@@ -171,6 +171,17 @@ class SeveralData:
                     _monomial(pair, 2, where): _matrices([mat], where)[0]  # type: ignore[misc]
                     for pair, mat in entry.items()
                 }
+            # E_k of a basis not affine in the parameters: Gram matrices per monomial pair
+            self.MONOMIAL_GRAM: dict[tuple[int, int], dict[tuple[tuple[int, ...], ...], Matrix]]
+            self.MONOMIAL_GRAM = {}
+            for key, entry in doc.get("energy_monomials", {}).items():
+                n, k = (int(x) for x in key.split(","))
+                self.MONOMIAL_GRAM[(n, k)] = {
+                    tuple(_monomial(m, size, where) for m in pair.split(";")): _matrices(
+                        [mat], where
+                    )[0]
+                    for pair, mat in entry.items()
+                }
         except (KeyError, TypeError, ValueError, AttributeError) as exc:
             if isinstance(exc, FamilyFileError):
                 raise
@@ -448,6 +459,9 @@ class IndexedFamily:
         self.table: dict[str, Any] = dict(table)
         self.digest = definition_digest(self.table)
         self.several = None  # one Family per degree: `at_degree`
+        # what a curve's JSON form is read with (from_json): the lowest degree's class, whose
+        # family_object leads back here through `indexed_family`
+        self.curve_class = self.by_degree[min(self.by_degree)].curve_class
 
     @property
     def name(self) -> str:

@@ -222,7 +222,7 @@ def _several_curve_from(
             values[name] = _number_in(v, f"{where}.parameters.{name}")
     try:
         curve: Curve = target.curve(rows, params=values, check_range=check_range)
-    except TypeError as exc:
+    except (TypeError, ValueError) as exc:  # the message names the parameter
         raise ValueError(f"{where}.parameters: {exc}") from None
     return curve
 

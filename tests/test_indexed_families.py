@@ -462,3 +462,41 @@ def test_good_indexed_definition_derives():
     doc = document.derive(definition_from_table(dict(GOOD), "test"))
     assert sorted(doc["by_degree"]) == ["2", "3"]
     assert doc["indexed"]["symbols"]["3"] == ["lam_1", "lam_2", "lam_3"]
+
+
+def test_evaluate_many_indexed(q):
+    pts = np.array([[(0, 0), (1, 2), (3, 2), (4, 0)], [(0, 1), (2, 2), (3, 0), (5, 1)]], float)
+    lam = [1, Fraction(1, 2), -1]
+    got = lb.evaluate_many(pts, [0.0, 0.3, 1.0], q, params={"lam": lam})
+    for row, p in zip(got, pts, strict=True):
+        assert np.allclose(row, q.curve(p, lam=lam).evaluate(np.array([0.0, 0.3, 1.0])))
+    with pytest.raises(TypeError, match="takes one sequence"):
+        lb.evaluate_many(pts, [0.5], q, params={"mu": lam})
+
+
+def test_box_bernstein_kernel_directly():
+    from lambda_bezier.hazmat import box_bernstein as bb
+
+    def dense(coeffs):  # {(i, j): c} -> object array
+        shape = tuple(max(k[a] for k in coeffs) + 1 for a in range(2))
+        out = np.empty(shape, dtype=object)
+        out.fill(Fraction(0))
+        for k, c in coeffs.items():
+            out[k] = Fraction(c)
+        return out
+
+    one = Fraction(1)
+    unit = [(Fraction(0), one), (-one, one)]
+    # (x - 1/2)^2 + y^2: >= 0 proved, not > 0 (zero at the centre, exactly)
+    p = dense({(2, 0): 1, (1, 0): -1, (0, 0): Fraction(1, 4), (0, 2): 1})
+    assert bb.sign_search(p, unit, strict=False, budget=100) == {"holds": True}
+    found = bb.sign_search(p, unit, strict=True, budget=100)
+    assert found["holds"] is False and found["value"] == 0
+    # x^2 + y^2 - 1/2 changes sign: a zero is found; x + 2 has none
+    q2 = dense({(2, 0): 1, (0, 2): 1, (0, 0): Fraction(-1, 2)})
+    assert bb.zero_search(q2, unit, 100)["zero"] is True
+    assert bb.zero_search(dense({(1, 0): 1, (0, 0): 2}), unit, 100) == {"zero": False}
+    # min of (x - 1/3)^2 + y^2 + 1 is 1 at (1/3, 0): certified within 1e-12
+    r = dense({(2, 0): 1, (1, 0): Fraction(-2, 3), (0, 0): Fraction(10, 9), (0, 2): 1})
+    got = bb.minimum(r, unit, Fraction(1, 10**12), 10_000)
+    assert got["certified"] and got["lower"] <= 1 <= got["value"] <= 1 + Fraction(1, 10**12)

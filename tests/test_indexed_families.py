@@ -22,6 +22,8 @@ import mpmath
 import numpy as np
 import pytest
 import sympy as sp
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 import lambda_bezier as lb
 from lambda_bezier import examples
@@ -500,3 +502,70 @@ def test_box_bernstein_kernel_directly():
     r = dense({(2, 0): 1, (1, 0): Fraction(-2, 3), (0, 0): Fraction(10, 9), (0, 2): 1})
     got = bb.minimum(r, unit, Fraction(1, 10**12), 10_000)
     assert got["certified"] and got["lower"] <= 1 <= got["value"] <= 1 + Fraction(1, 10**12)
+
+
+@st.composite
+def indexed_tables(draw):
+    """Random indexed definitions whose functions sum to one by construction: the Bernstein
+    basis plus c (lam(i) psi_i - lam(i + 1) psi_(i+1)), psi_j = t^j (1 - t)^(n - j + 1)
+    (a telescoping sum, lam(0) = lam(n + 1) = 0), sometimes broken."""
+    c = draw(st.sampled_from(["1", "-2", "1/3"]))
+    first = draw(st.integers(0, 1))
+    lo = draw(st.integers(2, 3))
+    table = {
+        "name": "random_indexed",
+        "parameters": ["lam(i)"],
+        "indices": {"lam": f"{first}..n"},
+        "range": {"lam": draw(st.sampled_from(["[-1, 1]", "[-binomial(n, i), 1]", "(0, i]"]))},
+        "degrees": f"{lo}..{lo + draw(st.integers(0, 1))}",
+        "degree_offset": 1,
+        "basis": f"binomial(n, i)*t**i*(1 - t)**(n - i) + ({c})*(lam(i)*t**i*(1 - t)**(n - i + 1)"
+        " - lam(i + 1)*t**(i + 1)*(1 - t)**(n - i))",
+    }
+    broken = draw(st.sampled_from([None, None, "sum", "index", "range", "name"]))
+    if broken == "sum":
+        table["basis"] += " + lam(i)*t"
+    elif broken == "index":
+        table["basis"] += " + 0*lam(t)"
+    elif broken == "range":
+        table["range"] = {"lam": "[i, -i]"}
+    elif broken == "name":
+        table["parameters"] = ["b(i)"]
+    return table
+
+
+@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(indexed_tables())
+def test_random_indexed_definitions(table):
+    """derive either succeeds or names the key (DefinitionError); what it derives evaluates
+    in the runtime as the formula does. Never a traceback."""
+    from derive.emit import document
+    from derive.families.definition import DefinitionError, definition_from_table
+
+    try:
+        defn = definition_from_table(table, "random.toml")
+        doc = json.loads(json.dumps(document.derive(defn)))
+    except DefinitionError as exc:
+        assert "[family]" in str(exc)
+        return
+    from lambda_bezier.family import IndexedFamily
+
+    fam = IndexedFamily(doc, None, "", table, "random.derived.json")
+    n = fam.degrees[0]
+    names = fam.at_degree(n).parameters
+    lam = [Fraction(1, 2)] * len(names)
+    t = 0.4
+    # the basis formula, evaluated directly at this degree (lam(k) = 0 outside the indices)
+    first = int(table["indices"]["lam"][0])
+    value = dict(zip(range(first, n + 1), lam, strict=True))
+    c = Fraction(sp.Rational(table["basis"].split("+ (")[1].split(")")[0]))
+
+    def b(i):
+        psi = lambda j: t**j * (1 - t) ** (n - j + 1)  # noqa: E731
+        return comb(n, i) * t**i * (1 - t) ** (n - i) + float(c) * (
+            float(value.get(i, 0)) * psi(i) - float(value.get(i + 1, 0)) * psi(i + 1)
+        )
+
+    want = [b(i) for i in range(n + 1)]
+    got = fam.curve(np.eye(n + 1), lam=lam, check_range=False).evaluate(t)
+    np.testing.assert_allclose(got, want, atol=1e-12)

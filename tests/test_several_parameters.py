@@ -259,10 +259,18 @@ def test_per_leg_optimum_over_the_box():
     assert fam.curve(pts, params=dict(r.values)).energy(2) == r.energy
 
 
-def test_verify_refuses_several_parameter_records_clearly():
+def test_verify_takes_the_family_and_refuses_one_parameter_kinds_clearly(tmp_path):
+    """verify reads a family in several parameters (its records: the several_* kinds of
+    tests/test_several_verify.py); a one-parameter claim kind about it is refused by name."""
     records = _derive("verify.records")
-    with pytest.raises(records.RecordsError, match="several parameters"):
-        records.load_paths([FILE])
+    assert records.load_paths([FILE]) == []  # the family file alone: defined, no records
+    bad = tmp_path / "r.toml"
+    bad.write_text(
+        'schema_version = 2\nfamily = "two_shape_cubic"\n[[record]]\nid = "x"\n'
+        'claim = "endpoint_d1"\nequations = [{ lhs = "p(0)", rhs = "P(0)" }]\n'
+    )
+    with pytest.raises(records.RecordsError, match="'two_shape_cubic' has several"):
+        records.load_paths([FILE, bad])
 
 
 def test_one_parameter_entry_points_refuse_clearly(fam):

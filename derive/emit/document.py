@@ -18,10 +18,11 @@ from ..families.engine import (
     closed_endpoint_order,
     endpoint_table,
     monomial_split,
-    nonnegative_over_box,
     symmetry,
 )
+from ..formulas.energy_several import monomial_grams
 from ..formulas.family import energy_artifacts, join_artifacts, singular_artifacts
+from ..formulas.several_box import independence_over_box, nonnegativity
 
 # --------------------------------------------------------------------------- the document
 
@@ -45,6 +46,7 @@ def _several(defn: Definition, checked: list[str]) -> dict:
             for kind in tables:
                 tables[kind][str(deg)][",".join(map(str, mono))] = _matrices(got[kind][deg])[0]
     swap = symmetry(defn)
+    energy = energy_artifacts(defn)
     return {
         "generated_by": "lambda-bezier derive --family -- DO NOT EDIT; regenerate with "
         "`lambda-bezier derive --family FILE`",
@@ -86,18 +88,43 @@ def _several(defn: Definition, checked: list[str]) -> dict:
         "endpoints": endpoint_table(defn),
         "endpoint_closed_orders": -1,
         "endpoint_closed_forms": None,
-        "energy": energy_artifacts(defn),
-        "nonnegative_over_box": nonnegative_over_box(defn),
-        "singular_parameters": {
-            "reason": "linear independence over a box of several parameters is not decided "
-            "by this version"
-        },
+        "energy": energy,
+        **({"energy_monomials": monomial_grams(defn)} if "reason" in energy else {}),
+        "nonnegative_over_box": nonnegativity(defn),
+        "singular_parameters": independence_over_box(defn),
         "joins": {"reason": "several parameters: the runtime joins per degree"},
+    }
+
+
+def _indexed(defn: Definition) -> dict:
+    """An indexed family (lam(i)): per degree, the several-parameter document of that
+    degree's expansion into lam_a .. lam_b (derive/families/indexed.py)."""
+    spec = defn.indexed
+    by_degree = {}
+    for deg in defn.degrees:
+        at = defn.at_degree(deg)
+        by_degree[str(deg)] = _several(at, check(at))
+    return {
+        "generated_by": "lambda-bezier derive --family -- DO NOT EDIT; regenerate with "
+        "`lambda-bezier derive --family FILE`",
+        "format": FORMAT,
+        "definition_sha256": defn.digest,
+        "family": defn.name,
+        "title": defn.title,
+        "indexed": {
+            "name": spec.name,  # type: ignore[attr-defined]
+            "symbols": {str(deg): list(defn.at_degree(deg).parameters) for deg in defn.degrees},
+        },
+        "degrees": [defn.degrees.start, defn.degrees.stop - 1],
+        "degree_offset": defn.offset,
+        "by_degree": by_degree,
     }
 
 
 def derive(defn: Definition, *, with_joins: bool = True) -> dict:
     """Every artifact of the family, as one JSON-able document (exact numbers as strings)."""
+    if defn.indexed is not None:
+        return _indexed(defn)
     checked = check(defn)
     if defn.several:
         return _several(defn, checked)

@@ -17,6 +17,7 @@ from pathlib import Path
 import sympy as sp
 
 from ..grammar import BUILTINS, FUNCTIONS, SYMBOLS, Interval, ParseError, parse_formula, tokenize
+from . import indexed
 
 # version of the derived JSON document (2: with singular_parameters; 3: several parameters,
 # tables by parameter monomials; a one-parameter document is laid out as in 2)
@@ -133,6 +134,9 @@ class Definition:
     # every parameter with its interval (one for a `parameter = ...` table)
     params: tuple[Parameter, ...] = ()
     functions_texts: tuple[str, ...] | None = None  # b_0 .. b_n of the single order
+    # an indexed parameter lam(i) (derive/families/indexed.py: `expand` gives each degree's
+    # family in plain parameters); None for every other family
+    indexed: object | None = None
 
     @property
     def parameters(self) -> tuple[str, ...]:
@@ -140,7 +144,7 @@ class Definition:
 
     @property
     def several(self) -> bool:
-        return len(self.parameters) > 1
+        return len(self.parameters) > 1 or self.indexed is not None
 
     @property
     def symbols(self) -> tuple[sp.Symbol, ...]:
@@ -153,6 +157,13 @@ class Definition:
     @property
     def domain(self) -> Interval:
         return Interval(Fraction(0), Fraction(1))
+
+    def at_degree(self, degree: int) -> Definition:
+        """An indexed family's degree-n family, in the plain parameters name_a .. name_b of
+        that degree (derive/families/indexed.py); any other family is itself."""
+        if self.indexed is None:
+            return self
+        return _at_degree(self, degree)
 
     def show(self, expr: sp.Basic) -> str:
         """An expression as the user reads it: in the family's own parameter names."""
@@ -283,6 +294,9 @@ def definition_from_table(table: object, where: str = "", *, builtin: bool = Fal
     import jsonschema
 
     prefix = f"{where}: [family]" if where else "[family]"
+    if indexed.is_indexed(table):
+        assert isinstance(table, dict)
+        return _indexed_definition(table, prefix, builtin)
     errors = list(jsonschema.Draft202012Validator(SCHEMA).iter_errors(table))
     if errors:
         err = errors[0]
@@ -391,6 +405,72 @@ def definition_from_table(table: object, where: str = "", *, builtin: bool = Fal
         digest=digest(table),
         params=tuple(params),
         functions_texts=tuple(table["functions"]) if "functions" in table else None,
+    )
+
+
+def _indexed_definition(table: dict, prefix: str, builtin: bool) -> Definition:
+    def fail(key: str, message: str) -> DefinitionError:
+        return DefinitionError(f"{prefix}, key {key}: {message}")
+
+    taken = () if builtin else _builtin_file_names()
+    spec, dlo, dhi = indexed.read_indexed(table, fail, SCHEMA, taken)
+    defn = Definition(
+        name=table["name"],
+        title=table.get("title", ""),
+        parameter=spec.name,
+        range_text=spec.range_text,
+        lo=Fraction(0),
+        hi=Fraction(0),
+        lo_closed=True,
+        hi_closed=True,
+        degrees=range(dlo, dhi + 1),
+        bernstein_at=None,
+        points=table.get("points", "P"),
+        offset=int(table.get("degree_offset", 0)),
+        basis_text=table.get("basis"),
+        seed_texts=None,
+        recursion_text=None,
+        digest=digest(table),
+        functions_texts=tuple(table["functions"]) if "functions" in table else None,
+        indexed=spec,
+    )
+    for deg in defn.degrees:  # every degree's ranges and functions, errors naming the key
+        _expand(defn, deg, fail)
+    return defn
+
+
+@cache
+def _at_degree(defn: Definition, degree: int) -> Definition:
+    def fail(key: str, message: str) -> DefinitionError:
+        return DefinitionError(f"[family] {defn.name}, key {key}: {message}")
+
+    if degree not in defn.degrees:
+        raise DefinitionError(f"{defn.name}: no degree {degree} (degrees {defn.degrees})")
+    return _expand(defn, degree, fail)
+
+
+def _expand(defn: Definition, degree: int, fail) -> Definition:
+    from dataclasses import replace
+
+    spec = defn.indexed
+    assert isinstance(spec, indexed.Indexed)
+    raw, texts = indexed.degree_parts(spec, defn.basis_text, defn.functions_texts, degree, fail)
+    params = tuple(Parameter(*row) for row in raw)
+    first = params[0]
+    return replace(
+        defn,
+        parameter=first.name,
+        range_text=first.range_text,
+        lo=first.lo,
+        hi=first.hi,
+        lo_closed=first.lo_closed,
+        hi_closed=first.hi_closed,
+        degrees=range(degree, degree + 1),
+        bernstein_at=first.bernstein_at,
+        basis_text=None,
+        functions_texts=texts,
+        params=params,
+        indexed=None,
     )
 
 

@@ -75,6 +75,11 @@ FAMILIES = {b.name: _builtin_family(b) for b in builtin_families()}
 FAMILIES[REFERENCE] = Family(REFERENCE, reference_degrees(), "b")
 
 
+# Families in several shape parameters (plain or indexed) that a records file defines, by name:
+# their Definition. Their records use the claim kinds of checks_several.py only.
+SEVERAL_FAMILIES: dict[str, object] = {}
+
+
 def register_family(family: Family) -> None:
     """A family defined by data (derive/families/engine.py) joins the built-in ones for this run:
     its records are checked with the same checkers (the derivations it has: no closed form of
@@ -234,6 +239,9 @@ def _nonzero_at_sample(e) -> bool:
     return bool(value.is_Rational) and value != 0
 
 
+_SEVERAL = ("(families in several parameters)",)  # checks_several.py's kinds' families
+
+
 def kinds() -> dict[str, tuple[str, ...]]:
     """Every claim kind with the families it is defined for."""
     out = {}
@@ -254,6 +262,14 @@ def _allowed(kind: str) -> tuple[str, ...]:
 
 def kind_problem(family: str, kind: str) -> str | None:
     """Why `family.kind` cannot be checked (None when it can)."""
+    if family in SEVERAL_FAMILIES:
+        several = sorted(k for k, (fams, _) in KIND_FAMILIES.items() if fams == _SEVERAL)
+        if kind not in several:
+            return (
+                f"claim kind {kind!r} is about a family with one shape parameter; {family!r} "
+                f"has several: its claim kinds are {', '.join(several)}"
+            )
+        return None
     if family not in FAMILIES:
         return (
             f"unknown family {family!r} (known: {', '.join(FAMILIES)}; a family defined in a "

@@ -22,11 +22,13 @@ from . import (  # noqa: F401 - imported for their registrations
     checks_examples,
     checks_joins,
     checks_properties,
+    checks_several,
     checks_surfaces,
 )
 from .checks_core import CHECKERS, Outcome, Pending, claim_kind, missing_requirement
 from .claim_families import (
     FAMILIES,
+    SEVERAL_FAMILIES,
     Family,
     kind_problem,
     kinds,
@@ -43,6 +45,7 @@ __all__ = [
     "kind_problem",
     "kinds",
     "register_defined_family",
+    "register_several_family",
     "run_checker",
 ]
 
@@ -58,6 +61,8 @@ def run_checker(record: dict) -> Outcome:
     if reason is not None:
         return Outcome("pending", [reason])
     try:
+        if record["family"] in SEVERAL_FAMILIES:  # no one-parameter context: checks_several
+            return entry.fn(record, None)
         return entry.fn(record, Context.of(record))
     except Pending as exc:
         return Outcome("pending", [str(exc)])
@@ -84,3 +89,11 @@ def register_defined_family(defn: Definition, points: str | None = None) -> None
         )
     )
     register_formulas(defn)
+
+
+def register_several_family(defn: Definition) -> None:
+    """A family in several parameters (plain or indexed) that a records file defines: its
+    records are checked by checks_several.py's claim kinds (each definition checked first)."""
+    for degree in defn.degrees:
+        check(defn.at_degree(degree))
+    SEVERAL_FAMILIES[defn.name] = defn

@@ -17,7 +17,7 @@ if TYPE_CHECKING:
 
     from .composite import CompositeCurve
     from .curves import Curve
-    from .family import Family
+    from .family import Family, IndexedFamily
     from .rational import RationalBezierCurve
 
     Shape = Curve | CompositeCurve | RationalBezierCurve  # what the exporters take
@@ -72,7 +72,21 @@ def _number_in(x: object, where: str) -> Fraction | float:
 def _own_family(curve: Curve) -> Family | None:
     """The Family of a curve of a family defined by data (None for a built-in family)."""
     family: Family | None = getattr(type(curve), "family_object", None)
+    if family is None:  # a curve of a family in several parameters, at fixed values
+        family = getattr(type(curve), "several_family", None)
     return family
+
+
+def _parameters_out(curve: Curve) -> dict[str, Any] | None:
+    """{name: value} of a curve of a family in several parameters; an indexed family's
+    (lam(i)) as {name: [value per index]}; None for every other curve."""
+    values = getattr(type(curve), "parameter_values", None)
+    if not isinstance(values, dict):
+        return None
+    indexed = getattr(_own_family(curve), "indexed_family", None)
+    if indexed is not None:
+        return {indexed.index_name: [_number_out(v) for v in values.values()]}
+    return {name: _number_out(v) for name, v in values.items()}
 
 
 def _definitions(curves: Sequence[Curve]) -> dict[str, Any]:
@@ -96,6 +110,9 @@ def _curve_dict(curve: Curve | RationalBezierCurve) -> dict[str, Any]:  # JSON v
         "lambda": None if curve.lam is None else _number_out(curve.lam),
         "points": [[_number_out(v) for v in row] for row in curve.control_points()],
     }
+    params = _parameters_out(curve) if _rational(curve) is None else None  # type: ignore[arg-type]
+    if params is not None:
+        out["parameters"] = params
     rational = _rational(curve)
     if rational is not None:
         out["weights"] = [_number_out(w) for w in rational.control_weights()]
@@ -176,6 +193,8 @@ def _curve_from(
         return RationalBezierCurve(rows, ws)
     cls = own[family] if family in own else FAMILIES[family]
     lam = data.get("lambda")
+    if "parameters" in data and family in own:
+        return _several_curve_from(data["parameters"], rows, cls, where, check_range)
     if not cls._has_lambda:  # the classical Bézier curve
         if lam is not None:
             raise ValueError(f"{where}.lambda must be null for a {family} curve")
@@ -183,6 +202,29 @@ def _curve_from(
     if lam is None:
         raise ValueError(f"{where}.lambda is required for a {family} curve")
     return cls(rows, _number_in(lam, f"{where}.lambda"), check_range=check_range)
+
+
+def _several_curve_from(
+    given: object, rows: list[Any], cls: type[Curve], where: str, check_range: bool
+) -> Curve:
+    """A curve of a family in several parameters (or an indexed one) from its parameters."""
+    fam = getattr(cls, "family_object", None)
+    target: Any = getattr(fam, "indexed_family", None) or fam
+    if target is None or not isinstance(given, dict):
+        raise ValueError(f"{where}.parameters must be an object {{name: value}}")
+    values: dict[str, Any] = {}
+    for name, v in given.items():
+        if isinstance(v, list):
+            values[name] = [
+                _number_in(x, f"{where}.parameters.{name}[{i}]") for i, x in enumerate(v)
+            ]
+        else:
+            values[name] = _number_in(v, f"{where}.parameters.{name}")
+    try:
+        curve: Curve = target.curve(rows, params=values, check_range=check_range)
+    except (TypeError, ValueError) as exc:  # the message names the parameter
+        raise ValueError(f"{where}.parameters: {exc}") from None
+    return curve
 
 
 def _segment_from(
@@ -233,17 +275,17 @@ def _embedded(doc: dict[str, Any]) -> dict[str, tuple[str, dict[str, Any]]]:
 
 def _given_families(
     family: object, embedded: dict[str, tuple[str, dict[str, Any]]]
-) -> dict[str, Family]:
+) -> dict[str, Family | IndexedFamily]:
     """The families passed as family=, by name: Family objects, definition files (their
     derived document beside them) or derived documents (with the embedded definition)."""
-    from .family import Family, family_from_definition, load_family
+    from .family import Family, IndexedFamily, family_from_definition, load_family
 
     if family is None:
         return {}
     items = list(family) if isinstance(family, list | tuple) else [family]
-    out: dict[str, Family] = {}
+    out: dict[str, Family | IndexedFamily] = {}
     for item in items:
-        if isinstance(item, Family):
+        if isinstance(item, Family | IndexedFamily):
             fam = item
         elif isinstance(item, str | Path):
             path = Path(item)

@@ -64,7 +64,8 @@ def evaluate_many(
         Allow t outside [0, 1].
     params : dict, optional
         A family in several parameters (from `load_family`): one value per parameter,
-        ``{"lam": ..., "mu": ...}``, shared by every curve.
+        ``{"lam": ..., "mu": ...}``, shared by every curve; an indexed family (``lam(i)``)
+        takes ``{"lam": [one value per index]}`` (or ``lam=[...]``).
 
     Returns
     -------
@@ -79,6 +80,16 @@ def evaluate_many(
     array([[2.  , 1.5 ],
            [2.  , 1.25]])
     """
+    if hasattr(family, "by_degree"):  # an indexed family (lam(i)): its degree's own Family
+        shape = np.shape(val.real_array(points, "control points"))
+        if len(shape) != 3:
+            raise ValueError(f"control points must have shape (m, n+1, d), got shape {shape}")
+        name = family.index_name  # type: ignore[attr-defined]
+        given = dict(params or {}) if lam is None else {name: lam, **(params or {})}
+        if set(given) != {name}:
+            raise TypeError(f"params: {family.name!r} takes one sequence, {name}=[...]")  # type: ignore[attr-defined]
+        params = family.index_values(shape[1] - 1, given[name])  # type: ignore[attr-defined]
+        family, lam = family.at_degree(shape[1] - 1), None  # type: ignore[attr-defined]
     if getattr(family, "several", None) is not None:
         named = {} if lam is None else {"lam": lam}  # a parameter may be called lam
         given = family.parameter_values(None, params, named)  # type: ignore[attr-defined]

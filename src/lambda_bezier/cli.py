@@ -8,7 +8,7 @@ import sys
 from collections.abc import Iterator
 from fractions import Fraction
 from pathlib import Path
-from typing import TYPE_CHECKING, SupportsFloat, cast
+from typing import TYPE_CHECKING, Any, SupportsFloat, cast
 
 if TYPE_CHECKING:
     from .energy import OptimalLambda
@@ -312,6 +312,8 @@ def _optimal_lambda(args: argparse.Namespace) -> int:
         if len({len(p) for p in points}) != 1:
             raise ValueError("all points must have the same dimension (2 or 3 coordinates)")
         family = _family_argument(args.family)
+        if getattr(family, "several", None) is not None or hasattr(family, "by_degree"):
+            return _optimal_parameters(args, points, family)
         result = optimal_lambda(points, args.energy, family, clamp=args.clamp)
     except ValueError as exc:
         print(f"lambda-bezier optimal-lambda: error: {exc}", file=sys.stderr)
@@ -382,6 +384,48 @@ def _print_optimal_lambda(args: argparse.Namespace, family: object, result: Opti
             f"clamped λ       {both('clamped_lambda')}{note}",
             f"E_{k} at clamped  {both('clamped_energy')}",
         ]
+    print("\n".join(lines))
+    return 0
+
+
+def _optimal_parameters(args: argparse.Namespace, points: list[Any], family: Any) -> int:
+    """optimal-lambda for a family file in several (or indexed) parameters: every parameter
+    by name over the closed box (lambda_bezier.optimal_parameters); --clamp changes nothing,
+    the box is always respected."""
+    import json
+
+    from .energy import ENERGY_NAMES, optimal_parameters
+
+    r = optimal_parameters(points, args.energy, family=family)
+
+    def text(v: Any) -> Any:
+        return [str(x) for x in v] if isinstance(v, tuple) else str(v)
+
+    report = {
+        "family": family.name,
+        "energy_order": args.energy,
+        "energy_name": ENERGY_NAMES[args.energy],
+        "parameters": {name: text(v) for name, v in r.values.items()},
+        "energy": str(r.energy),
+        "free_inside": r.free_inside,
+        "boundary": r.boundary,
+        "lower_bound": None if r.lower_bound is None else str(r.lower_bound),
+    }
+    if args.json:
+        print(json.dumps(report, indent=2, ensure_ascii=False))
+        return 0
+    lines = [
+        f"family          {family.name}  (every parameter over its closed range)",
+        f"energy          E_{args.energy} ({ENERGY_NAMES[args.energy]})",
+        *(f"optimal {name:<8} {text(v)}" for name, v in r.values.items()),
+        f"E_{args.energy} there      {r.energy}  ≈ {_decimal(Fraction(r.energy))}",
+    ]
+    if r.boundary:
+        lines.append(f"on the boundary {r.boundary}")
+    if r.lower_bound is not None:
+        lines.append(
+            f"proven bound    E_{args.energy} >= {_decimal(Fraction(r.lower_bound))} on the box"
+        )
     print("\n".join(lines))
     return 0
 

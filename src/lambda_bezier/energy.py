@@ -103,6 +103,9 @@ class OptimalParameters:
         The energy order.
     family : str
         The family name.
+    lower_bound : Fraction or float or None
+        For a family not affine in its parameters: a proven lower bound of E_k over the box,
+        within 1e-12 (relative) of `energy`, which is E_k at `values` exactly; None otherwise.
     """
 
     values: dict[str, Fraction | float]
@@ -112,6 +115,9 @@ class OptimalParameters:
     boundary: str
     k: int
     family: str
+    # a proven lower bound of E_k over the box when the minimum was found by certified branch
+    # and bound (a basis not affine in the parameters); None when it is exact
+    lower_bound: Fraction | float | None = None
 
     def __getitem__(self, name: str) -> Fraction | float:
         if name not in self.values:
@@ -513,7 +519,11 @@ def optimal_parameters(
 
     :math:`E_k` is a convex quadratic in the parameter of a family whose basis is affine in
     it, so the free optimum is exact (Fractions for exact points); when it lies outside the
-    box the minimum is at the nearer end, and `boundary` says so.
+    box the minimum is at the nearer end, and `boundary` says so. For a family whose basis is
+    not affine in its parameters, the minimum over the closed box is certified by exact
+    Bernstein branch and bound: `energy` is E_k at `values` exactly, and `lower_bound` is a
+    proven lower bound over the box within 1e-12 (relative) of it. An indexed family
+    (``lam(i)``) returns the parameters of the points' degree as one tuple, ``result["lam"]``.
 
     Examples
     --------
@@ -521,6 +531,8 @@ def optimal_parameters(
     >>> r["lam"], r.free_inside, r.boundary
     (Fraction(-2, 1), False, 'lam = -2 (lower end, excluded: not attained)')
     """
+    if hasattr(family, "by_degree"):  # an indexed family (lam(i)): its degree's parameters
+        return _optimal_indexed(points, k, family)
     several = getattr(family, "several", None)
     if several is not None:
         return _optimal_several(points, k, family, several)
@@ -573,7 +585,7 @@ def _optimal_several(points: PointsLike, k: int, family: Any, several: Any) -> O
 
     k = _check_order(k)
     names = several.NAMES
-    if several.ENERGY_REASON is not None:
+    if several.ENERGY_REASON is not None and not several.MONOMIAL_GRAM:
         raise ValueError(f"optimal_parameters: {several.ENERGY_REASON}")
     given = val.exact_rows(points)
     exact = given is not None
@@ -584,11 +596,13 @@ def _optimal_several(points: PointsLike, k: int, family: Any, several: Any) -> O
     else:
         rows = [tuple(Fraction(v) for v in row) for row in given]
     n = len(rows) - 1
-    if (n, k) not in several.GRAM:
+    if (n, k) not in several.GRAM and (n, k) not in several.MONOMIAL_GRAM:
         raise ValueError(
             f"points: {n + 1} control points: no derived E_{k} of {several.FAMILY} for degree "
             f"{n} (degrees {several.DEGREES[0]}..{several.DEGREES[-1]}; k = 1, 2, 3)"
         )
+    if several.ENERGY_REASON is not None:  # not affine: E_k a polynomial, certified minimum
+        return _certified_several(rows, n, k, several, exact)
     size = len(names) + 1
     s_mat = [[Fraction(0)] * size for _ in range(size)]
     for (a, b), gram in several.GRAM[(n, k)].items():
@@ -674,6 +688,58 @@ def _optimal_several(points: PointsLike, k: int, family: Any, several: Any) -> O
         boundary="" if inside else "; ".join(boundary),
         k=k,
         family=several.FAMILY,
+    )
+
+
+def _certified_several(
+    rows: list[tuple[Fraction, ...]], n: int, k: int, several: Any, exact: bool
+) -> OptimalParameters:
+    """The certified minimum of E_k over the box of a family not affine in its parameters
+    (_optimal_box). No free optimum is computed: `free` is empty and `free_inside` False."""
+    from ._optimal_box import certified_minimum
+
+    got = certified_minimum(rows, n, k, several)
+    if not got["certified"]:  # pragma: no cover - the budget is far above the test families'
+        raise ValueError(
+            f"optimal_parameters: the minimum of E_{k} over the box was not certified within "
+            f"the budget (best {float(got['value'])}, proven lower bound {float(got['lower'])})"
+        )
+    out: Any = (lambda v: v) if exact else float
+    where = []
+    for name, v in zip(several.NAMES, got["point"], strict=True):
+        lo, hi, lo_closed, hi_closed, _ = several.RANGES[name]
+        if v in (lo, hi):
+            closed = lo_closed if v == lo else hi_closed
+            end = "lower" if v == lo else "upper"
+            where.append(f"{name} = {v} ({end} end{'' if closed else ', excluded: not attained'})")
+    return OptimalParameters(
+        values={name: out(v) for name, v in zip(several.NAMES, got["point"], strict=True)},
+        energy=out(got["value"]),
+        free={},
+        free_inside=False,
+        boundary="; ".join(where),
+        k=k,
+        family=several.FAMILY,
+        lower_bound=out(got["lower"]),
+    )
+
+
+def _optimal_indexed(points: PointsLike, k: int, family: Any) -> OptimalParameters:
+    """The several-parameter optimum of the degree the points give, with the parameters
+    lam_a .. lam_b of that degree returned as one tuple under the family's own name."""
+    rows = val.as_points(points, family=family.name, degrees=family.degrees)
+    fam = family.at_degree(len(rows) - 1)
+    r = _optimal_several(points, k, fam, fam.several)
+    name = family.index_name
+    free: dict[str, Any] = {name: tuple(r.free.values())} if r.free else {}
+    return OptimalParameters(
+        values={name: tuple(r.values.values())},  # type: ignore[dict-item]
+        energy=r.energy,
+        free=free,
+        free_inside=r.free_inside,
+        boundary=r.boundary,
+        k=r.k,
+        family=r.family,
     )
 
 

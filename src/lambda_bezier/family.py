@@ -171,6 +171,17 @@ class SeveralData:
                     _monomial(pair, 2, where): _matrices([mat], where)[0]  # type: ignore[misc]
                     for pair, mat in entry.items()
                 }
+            # E_k of a basis not affine in the parameters: Gram matrices per monomial pair
+            self.MONOMIAL_GRAM: dict[tuple[int, int], dict[tuple[tuple[int, ...], ...], Matrix]]
+            self.MONOMIAL_GRAM = {}
+            for key, entry in doc.get("energy_monomials", {}).items():
+                n, k = (int(x) for x in key.split(","))
+                self.MONOMIAL_GRAM[(n, k)] = {
+                    tuple(_monomial(m, size, where) for m in pair.split(";")): _matrices(
+                        [mat], where
+                    )[0]
+                    for pair, mat in entry.items()
+                }
         except (KeyError, TypeError, ValueError, AttributeError) as exc:
             if isinstance(exc, FamilyFileError):
                 raise
@@ -413,6 +424,130 @@ class Family:
         return f"Family({self.name!r}, degrees {self.degrees[0]}..{self.degrees[-1]}, {ranges})"
 
 
+class IndexedFamily:
+    """A family with one shape parameter per index, ``lam(i)`` (its number depends on the
+    degree): per degree, the Family of that degree's parameters lam_a .. lam_b. A curve takes
+    them as one sequence, ``fam.curve(points, lam=[...])``; ``optimal_parameters`` gives
+    ``result["lam"]`` as a tuple."""
+
+    def __init__(
+        self,
+        doc: dict[str, Any],
+        definition: Path | None,
+        title: str,
+        table: dict[str, Any],
+        where: str,
+    ):
+        try:
+            self.index_name: str = str(doc["indexed"]["name"])
+            by_degree = doc["by_degree"]
+            self.by_degree: dict[int, Family] = {}
+            for key, sub in by_degree.items():
+                several = SeveralData(sub, f"{where}, degree {key}")
+                self.by_degree[int(key)] = Family(
+                    several, definition, title, several.NAMES[0], table, several
+                )
+                self.by_degree[int(key)].indexed_family = self  # type: ignore[attr-defined]
+        except (KeyError, TypeError, ValueError, AttributeError) as exc:
+            if isinstance(exc, FamilyFileError):
+                raise
+            raise FamilyFileError(f"{where}: not a derived family document ({exc!r})") from None
+        if not self.by_degree:
+            raise FamilyFileError(f"{where}: no degree")
+        self.definition = definition
+        self.title = title
+        self.table: dict[str, Any] = dict(table)
+        self.digest = definition_digest(self.table)
+        self.several = None  # one Family per degree: `at_degree`
+        # what a curve's JSON form is read with (from_json): the lowest degree's class, whose
+        # family_object leads back here through `indexed_family`
+        self.curve_class = self.by_degree[min(self.by_degree)].curve_class
+
+    @property
+    def name(self) -> str:
+        return next(iter(self.by_degree.values())).name
+
+    @property
+    def degrees(self) -> tuple[int, ...]:
+        return tuple(sorted(self.by_degree))
+
+    @property
+    def parameters(self) -> tuple[str, ...]:
+        return (self.index_name,)
+
+    def at_degree(self, degree: int) -> Family:
+        """The Family of degree n, in the plain parameters lam_a .. lam_b of that degree."""
+        if degree not in self.by_degree:
+            raise ValueError(
+                f"points: {degree + 1} control points make degree {degree}; the family "
+                f"{self.name!r} has degrees {self.degrees[0]}..{self.degrees[-1]}"
+            )
+        return self.by_degree[degree]
+
+    def index_values(self, degree: int, values: object) -> dict[str, object]:
+        """{lam_k: value} of degree n from a sequence of one value per index."""
+        names = self.at_degree(degree).parameters
+        if isinstance(values, str | bytes) or not hasattr(values, "__len__"):
+            raise TypeError(
+                f"{self.index_name} must be a sequence of {len(names)} numbers (one per index "
+                f"of degree {degree}: {', '.join(names)}), not {type(values).__name__}"
+            )
+        seq = list(values)  # type: ignore[call-overload]
+        if len(seq) != len(names):
+            raise ValueError(
+                f"{self.index_name}: degree {degree} has {len(names)} parameters "
+                f"({', '.join(names)}), got {len(seq)} values"
+            )
+        return dict(zip(names, seq, strict=True))
+
+    def curve(
+        self,
+        points: PointsLike,
+        values: object = None,
+        *,
+        params: dict[str, object] | None = None,
+        check_range: bool = True,
+        **named: object,
+    ) -> Curve:
+        """Σ P_i b_i(t; lam_a..lam_b) of degree n = len(points) - 1: ``lam=[...]`` (the
+        family's own name), one value per index of that degree, or ``params={"lam": [...]}``."""
+        from . import _validate as val
+
+        given = dict(params or {})
+        for key, v in named.items():
+            if key != self.index_name:
+                raise TypeError(
+                    f"{key!r} is not a parameter of {self.name!r} (its parameter: "
+                    f"{self.index_name}, one value per index)"
+                )
+            if key in given:
+                raise TypeError(f"{key} is given twice; give it once")
+            given[key] = v
+        if values is not None:
+            if self.index_name in given:
+                raise TypeError(f"{self.index_name} is given twice; give it once")
+            given[self.index_name] = values
+        unknown = sorted(set(given) - {self.index_name})
+        if unknown:
+            raise TypeError(f"params: {unknown[0]!r} is not a parameter of {self.name!r}")
+        if self.index_name not in given:
+            raise TypeError(
+                f"a {self.name} curve needs its shape parameters {self.index_name}=[...]"
+            )
+        rows = val.as_points(points, family=self.name, degrees=self.degrees)
+        degree = len(rows) - 1
+        fam = self.at_degree(degree)
+        return fam.curve(
+            points,
+            params=self.index_values(degree, given[self.index_name]),  # type: ignore[arg-type]
+            check_range=check_range,
+        )
+
+    def __repr__(self) -> str:
+        lo, hi = self.degrees[0], self.degrees[-1]
+        return f"IndexedFamily({self.name!r}, degrees {lo}..{hi}, {self.index_name}(i) per index)"
+
+
 def definition_toml(table: dict[str, Any]) -> str:
     """The ``[family]`` table as the text of a TOML file (a definition embedded in a curve's
     JSON form, written out for ``lambda-bezier derive --family``). The table's values are
@@ -479,7 +614,7 @@ def _family_name(table: dict[str, Any], where: str) -> str:
 
 def _derived_family(
     table: dict[str, Any], where: str, doc_path: Path, command: str, definition: Path | None
-) -> Family:
+) -> Family | IndexedFamily:
     """The Family of the definition `table` with the tables of the derived document at
     `doc_path`, which must have been derived from exactly this table (its fingerprint)."""
     import json  # imported here: `import lambda_bezier` stays light
@@ -509,13 +644,15 @@ def _derived_family(
         )
     title = table.get("title", "")
     title = title if isinstance(title, str) else ""
+    if "indexed" in doc:
+        return IndexedFamily(doc, definition, title, table, str(doc_path))
     if "parameters" in doc:
         several = SeveralData(doc, str(doc_path))
         return Family(several, definition, title, several.NAMES[0], table, several)
     return Family(FamilyData(doc, str(doc_path)), definition, title, doc["parameter"], table)
 
 
-def load_family(path: str | Path, derived: str | Path | None = None) -> Family:
+def load_family(path: str | Path, derived: str | Path | None = None) -> Family | IndexedFamily:
     """The family defined in `path` (a TOML file with a ``[family]`` table), with the tables
     of its derived document (default: ``<name>.derived.json`` beside `path`).
 
@@ -531,7 +668,7 @@ def load_family(path: str | Path, derived: str | Path | None = None) -> Family:
     return _derived_family(table, str(path), doc_path, command, path)
 
 
-def family_from_definition(table: dict[str, Any], derived: str | Path) -> Family:
+def family_from_definition(table: dict[str, Any], derived: str | Path) -> Family | IndexedFamily:
     """The family a ``[family]`` table defines (e.g. the one a curve's JSON form embeds), with
     the tables of the derived document `derived`, which must have been derived from exactly
     this table. No definition file is needed."""

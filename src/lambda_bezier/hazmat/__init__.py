@@ -21,7 +21,9 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `rational_kernels`: rational Bézier curves on their homogeneous form (evaluation, derivatives
   by the quotient rule, subdivision, Möbius maps);
 - `surface_kernels`: tensor-product evaluation, boxes and closest points of control nets;
-- `exact_poly`: exact polynomials over the rationals (Sturm sequences, resultants).
+- `exact_poly`: exact polynomials over the rationals (Sturm sequences, resultants);
+- `box_bernstein`: exact Bernstein bounds of a polynomial in several variables over a box
+  (branch and bound: signs, zeros, the certified minimum).
 
 The submodules are imported on use: ``from lambda_bezier.hazmat import kernels``.
 """
@@ -30,6 +32,7 @@ from __future__ import annotations
 
 __all__ = [
     "arclength",
+    "box_bernstein",
     "exact_poly",
     "extremes",
     "forms",

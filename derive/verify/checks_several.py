@@ -1,0 +1,346 @@
+"""Claims about a family in several shape parameters, plain or indexed (lam(i)) (issue #30).
+
+Records about such a family use the claim kinds below. Their formulas are in the family's own
+names: the parameters (``lam``, ``mu``), or ``lam(k)`` for an indexed family, where an
+index outside the family's indices reads as 0. They may also use the control points
+``P(j)``, the basis ``b(j, n, x)`` and the curve ``p(x)``, with ``Derivative`` and ``Subs``.
+Each equation is instantiated at every degree of the family, and at every index i = 0..n
+when it mentions i. Both sides are then evaluated from the derived basis
+(derive/families/engine.py, at the degree's expansion for an indexed family) and compared
+exactly. The record gives the claim; nothing in it is trusted.
+
+* ``several_basis``: ``equations``, e.g. ``b(i, n, t) = ...``;
+* ``several_end_conditions``: ``equations`` about p and its derivatives at t = 0, 1;
+* ``several_symmetry``: ``swap`` = {parameter: formula} (``"lam(k)" = "lam(n + 1 - k)"``
+  for an indexed family), claiming b_i(t; x) = b_{n-i}(1 - t; swap(x));
+* ``several_energy_matrix``: ``n``, ``k`` and ``gram``, the matrix
+  G_ij = int_0^1 b_i^(k) b_j^(k) dt with entries formulas in the parameters (E_k = sum
+  G_ij P_i . P_j);
+* ``several_energy``: ``k``, ``control_points``, ``parameters`` {name: value} and
+  ``expression``, the value of E_k there;
+* ``several_optimum``: ``k``, ``control_points`` and ``parameters``, the claimed minimiser of
+  E_k over the closed box. It is checked against the certified minimum, which is exact
+  Bernstein branch and bound (derive/formulas/box.py). With ``expression``, the claimed
+  least energy is checked too.
+"""
+
+from __future__ import annotations
+
+import re
+from fractions import Fraction
+
+import sympy as sp
+
+from lambda_bezier.hazmat import box_bernstein
+
+from ..families.definition import Definition
+from ..families.engine import basis_polys
+from ..formulas import box
+from ..grammar import SYMBOLS, ParseError, parse_formula
+from .checks_core import KIND_FAMILIES, Outcome, checker
+from .claim_families import SEVERAL_FAMILIES
+
+KINDS = (
+    "several_basis",
+    "several_end_conditions",
+    "several_symmetry",
+    "several_energy_matrix",
+    "several_energy",
+    "several_optimum",
+)
+for _kind in KINDS:
+    KIND_FAMILIES[_kind] = (
+        ("(families in several parameters)",),
+        "it is about a family in several shape parameters (a records file defining one with "
+        "`parameters = [...]`)",
+    )
+
+_I, _N, _T, _K = (SYMBOLS[x] for x in ("i", "n", "t", "k"))
+_FUNCTIONS = {name: sp.Function(name) for name in ("P", "b", "p")}
+
+
+class RecordError(ValueError):
+    """A record that cannot be read as a claim about this family (names the key)."""
+
+
+def _defn(record: dict) -> Definition:
+    return SEVERAL_FAMILIES[record["family"]]  # type: ignore[return-value]
+
+
+def _parse(defn: Definition, text: str, key: str, extra: tuple[str, ...] = ()) -> sp.Basic:
+    symbols = {"i": _I, "n": _N, "t": _T, "k": _K}
+    functions = dict(_FUNCTIONS)
+    if defn.indexed is not None:
+        name = defn.indexed.name  # type: ignore[attr-defined]
+        functions[name] = sp.Function(name)
+    else:
+        symbols.update({x: sp.Symbol(x) for x in defn.parameters})
+    symbols.update({x: sp.Symbol(x) for x in extra})
+    try:
+        return parse_formula(text, symbols, functions)
+    except ParseError as exc:
+        raise RecordError(f"key {key}: {exc}") from None
+
+
+def _integer(e: sp.Basic, what: str) -> int:
+    if not e.is_Integer:
+        raise RecordError(f"{what} {e} is not an integer once n and i are set")
+    return int(e)
+
+
+def _points(degree: int) -> list[sp.Symbol]:
+    return [sp.Symbol(f"P_{j}") for j in range(degree + 1)]
+
+
+def _realise(defn: Definition, expr: sp.Basic, degree: int, idx: int | None) -> sp.Expr:
+    """expr at degree n (and index i): parameters, points, b and p from the derivation."""
+    at = defn.at_degree(degree)
+    params = at.symbols
+    env = {_N: sp.Integer(degree)}
+    if idx is not None:
+        env[_I] = sp.Integer(idx)
+    e = expr.xreplace(env)
+    polys = basis_polys(at, degree)
+    gens = polys[0].gens  # t, then the parameters
+
+    def basis(j: int, x: sp.Expr) -> sp.Expr:
+        if not 0 <= j <= degree:
+            return sp.Integer(0)
+        return polys[j].as_expr().xreplace({gens[0]: x}) if x != _T else polys[j].as_expr()
+
+    def model(call: sp.Basic) -> sp.Basic:
+        name = call.func.__name__
+        args = call.args
+        if defn.indexed is not None and name == defn.indexed.name:  # type: ignore[attr-defined]
+            k = _integer(args[0], f"the index of {name}(...)")
+            return sp.Symbol(f"{name}_{k}") if sp.Symbol(f"{name}_{k}") in params else sp.Integer(0)
+        if name == "P":
+            j = _integer(args[0], "the index of P(...)")
+            if not 0 <= j <= degree:
+                raise RecordError(f"P({j}) at n = {degree}: no such control point")
+            return sp.Symbol(f"P_{j}")
+        if name == "b":
+            j, deg = (_integer(a, "an index of b(...)") for a in args[:2])
+            if deg != degree:
+                raise RecordError(f"b({j}, {deg}, ...) at n = {degree}: one degree per claim")
+            return basis(j, args[2])
+        if name == "p":
+            return sum(
+                (s * basis(j, args[0]) for j, s in enumerate(_points(degree))), sp.Integer(0)
+            )
+        raise RecordError(f"{call}: not a function of these claims")  # pragma: no cover
+
+    e = e.replace(lambda x: isinstance(x, sp.core.function.AppliedUndef), model)
+    return sp.expand(e.doit())
+
+
+def _equations(record: dict) -> Outcome:
+    defn = _defn(record)
+    diffs, checked = [], []
+    for number, eq in enumerate(record.get("equations") or []):
+        if "given" in eq or "where" in eq:
+            raise RecordError(
+                f"equations[{number}]: `given` and `where` are not read for a family in "
+                "several parameters; the equation is checked at every degree (and index i)"
+            )
+        lhs = _parse(defn, eq["lhs"], f"equations[{number}].lhs")
+        rhs = _parse(defn, eq["rhs"], f"equations[{number}].rhs")
+        per_index = _I in (lhs.free_symbols | rhs.free_symbols)
+        count = 0
+        for degree in defn.degrees:
+            for idx in range(degree + 1) if per_index else (None,):
+                gap = sp.expand(_realise(defn, lhs, degree, idx) - _realise(defn, rhs, degree, idx))
+                count += 1
+                if gap != 0:
+                    where = f"n = {degree}" + (f", i = {idx}" if idx is not None else "")
+                    diffs.append(f"{eq['lhs']} = {eq['rhs']} fails at {where}: lhs - rhs = {gap}")
+                    break
+        checked.append(f"{eq['lhs']} = {eq['rhs']}: {count} instances, exact")
+    if not checked:
+        raise RecordError("key equations: no equation")
+    return Outcome("mismatch" if diffs else "match", diffs, checked)
+
+
+@checker("several_basis", fits=lambda rec: "equations" in rec)
+def check_several_basis(record: dict, _context: object) -> Outcome:
+    return _equations(record)
+
+
+@checker("several_end_conditions", fits=lambda rec: "equations" in rec)
+def check_several_end_conditions(record: dict, _context: object) -> Outcome:
+    return _equations(record)
+
+
+_ONE = re.compile(r"^([A-Za-z][A-Za-z0-9_]*)(?:\(k\))?$")
+
+
+@checker("several_symmetry")
+def check_several_symmetry(record: dict, _context: object) -> Outcome:
+    defn = _defn(record)
+    swap = record.get("swap")
+    if not swap:
+        raise RecordError("key swap: the parameter substitution {name: formula} is required")
+    diffs, count = [], 0
+    for degree in defn.degrees:
+        at = defn.at_degree(degree)
+        subs = {}
+        for key, text in swap.items():
+            m = _ONE.match(key)
+            name = m.group(1) if m else key
+            if defn.indexed is not None:
+                if key != f"{name}(k)" or name != defn.indexed.name:  # type: ignore[attr-defined]
+                    raise RecordError(f"key swap.{key}: write {defn.indexed.name}(k)")  # type: ignore[attr-defined]
+                expr = _parse(defn, text, f"swap.{key}")
+                for sym in at.symbols:
+                    k = int(sym.name.rsplit("_", 1)[1])
+                    subs[sym] = _realise(defn, expr.xreplace({_K: k}), degree, None)
+            else:
+                if key not in defn.parameters:
+                    raise RecordError(f"key swap.{key}: not a parameter ({defn.parameters})")
+                subs[sp.Symbol(key)] = _realise(
+                    defn, _parse(defn, text, f"swap.{key}"), degree, None
+                )
+        missing = [s.name for s in at.symbols if s not in subs]
+        if missing:
+            raise RecordError(f"key swap: no image of {missing[0]}")
+        polys = basis_polys(at, degree)
+        for j, p in enumerate(polys):
+            q = polys[degree - j].as_expr().subs({**subs, _T: 1 - _T}, simultaneous=True)
+            count += 1
+            gap = sp.expand(p.as_expr() - q)
+            if gap != 0:
+                diffs.append(f"n = {degree}, i = {j}: b_i(t; x) - b_(n-i)(1 - t; swap(x)) = {gap}")
+                break
+    checked = [f"b_i(t; x) = b_(n-i)(1 - t; swap(x)): {count} functions, exact"]
+    return Outcome("mismatch" if diffs else "match", diffs, checked)
+
+
+def _gram(at: Definition, degree: int, k: int) -> list[list[sp.Expr]]:
+    polys = [sp.Poly(p.as_expr(), _T) for p in basis_polys(at, degree)]
+    out = []
+    for p in polys:
+        row = []
+        for q in polys:
+            prim = (p.diff((_T, k)) * q.diff((_T, k))).integrate()
+            row.append(sp.expand((prim.eval(1) - prim.eval(0)).as_expr()))
+        out.append(row)
+    return out
+
+
+@checker("several_energy_matrix")
+def check_several_energy_matrix(record: dict, _context: object) -> Outcome:
+    defn = _defn(record)
+    degree, k = record.get("n"), record.get("k")
+    gram = record.get("gram")
+    if degree is None or k is None or gram is None:
+        raise RecordError("keys n, k and gram are required")
+    if degree not in defn.degrees:
+        raise RecordError(f"key n: degree {degree} is outside {defn.degrees}")
+    want = _gram(defn.at_degree(degree), degree, k)
+    if len(gram) != degree + 1 or any(len(row) != degree + 1 for row in gram):
+        raise RecordError(f"key gram: a {degree + 1} x {degree + 1} matrix")
+    diffs = []
+    for r, row in enumerate(gram):
+        for c, text in enumerate(row):
+            got = _realise(defn, _parse(defn, text, f"gram[{r}][{c}]"), degree, None)
+            if sp.expand(got - want[r][c]) != 0:
+                diffs.append(f"G[{r}][{c}]: printed {text}, derived {want[r][c]}")
+    checked = [f"the {degree + 1} x {degree + 1} Gram matrix of E_{k} at n = {degree}, exact"]
+    return Outcome("mismatch" if diffs else "match", diffs, checked)
+
+
+def _energy_setup(record: dict):
+    defn = _defn(record)
+    k, pts = record.get("k"), record.get("control_points")
+    if k is None or not pts:
+        raise RecordError("keys k and control_points are required")
+    degree = len(pts) - 1
+    if degree not in defn.degrees:
+        raise RecordError(f"key control_points: degree {degree} is outside {defn.degrees}")
+    rows = [[Fraction(_number(v, "control_points")) for v in row] for row in pts]
+    at = defn.at_degree(degree)
+    gram = _gram(at, degree, k)
+    energy = sp.Integer(0)
+    for dim in range(len(rows[0])):
+        for a, ra in enumerate(rows):
+            for c, rc in enumerate(rows):
+                energy += sp.Rational(ra[dim] * rc[dim]) * gram[a][c]
+    return defn, at, degree, sp.Poly(sp.expand(energy), *at.symbols)
+
+
+def _number(text: str, key: str) -> sp.Rational:
+    e = parse_formula(text, {}, {})
+    if not e.is_Rational:
+        raise RecordError(f"key {key}: {text!r} is not an exact number")
+    return e
+
+
+def _parameters(record: dict, defn: Definition, at: Definition, degree: int) -> dict:
+    given = record.get("parameters")
+    if not given:
+        raise RecordError("key parameters: the parameter values {name: value} are required")
+    values = {}
+    for key, text in given.items():
+        if defn.indexed is not None:
+            m = re.match(rf"^{defn.indexed.name}\((\d+)\)$", key)  # type: ignore[attr-defined]
+            name = f"{defn.indexed.name}_{m.group(1)}" if m else key  # type: ignore[attr-defined]
+        else:
+            name = key
+        sym = sp.Symbol(name)
+        if sym not in at.symbols:
+            raise RecordError(f"key parameters.{key}: not a parameter at n = {degree}")
+        values[sym] = _number(text, f"parameters.{key}")
+    missing = [s.name for s in at.symbols if s not in values]
+    if missing:
+        raise RecordError(f"key parameters: no value of {missing[0]}")
+    return values
+
+
+@checker("several_energy")
+def check_several_energy(record: dict, _context: object) -> Outcome:
+    defn, at, degree, energy = _energy_setup(record)
+    values = _parameters(record, defn, at, degree)
+    claimed = (
+        _number(record.get("expression", ""), "expression") if record.get("expression") else None
+    )
+    if claimed is None:
+        raise RecordError("key expression: the claimed value of E_k is required")
+    got = energy.as_expr().xreplace(values)
+    ok = got == claimed
+    diffs = [] if ok else [f"E_{record['k']}: printed {claimed}, derived {got}"]
+    return Outcome(
+        "match" if ok else "mismatch", diffs, [f"E_{record['k']} at n = {degree}, exact"]
+    )
+
+
+@checker("several_optimum")
+def check_several_optimum(record: dict, _context: object) -> Outcome:
+    defn, at, degree, energy = _energy_setup(record)
+    values = _parameters(record, defn, at, degree)
+    diffs = []
+    for q in at.params:
+        v = Fraction(str(values[sp.Symbol(q.name)]))
+        if not q.lo <= v <= q.hi:
+            diffs.append(f"{q.name} = {v} is outside [{q.lo}, {q.hi}]")
+    got = energy.as_expr().xreplace(values)
+    boxed = [(q.lo, q.hi) for q in at.params]
+    best = box_bernstein.minimum(box.dense(energy), boxed, Fraction(1, 10**12), 20_000)
+    if not best["certified"]:
+        raise RecordError("the minimum over the box was not certified within the budget")
+    tol = Fraction(1, 10**12) * max(Fraction(1), abs(best["value"]))
+    at_claim = Fraction(str(got))
+    if at_claim - best["lower"] > tol:
+        diffs.append(
+            f"E_{record['k']} at the printed parameters is {at_claim} ≈ {float(at_claim):.12g}; "
+            f"the certified minimum over the box is {float(best['value']):.12g} at "
+            + ", ".join(f"{q.name} = {v}" for q, v in zip(at.params, best["point"], strict=True))
+        )
+    if record.get("expression"):
+        claimed = _number(record["expression"], "expression")
+        if claimed != got:
+            diffs.append(f"E_{record['k']}: printed {claimed}, derived {got}")
+    checked = [
+        f"E_{record['k']} over the closed box at n = {degree}: certified lower bound "
+        f"{float(best['lower']):.15g} (exact Bernstein branch and bound, 1e-12)"
+    ]
+    return Outcome("mismatch" if diffs else "match", diffs, checked)

@@ -1,0 +1,156 @@
+"""Exact Bernstein bounds of a polynomial in several variables over a box.
+
+A polynomial is a dense array of exact power coefficients (``power[e_1, ..., e_m]`` is the
+coefficient of x_1^e_1 ... x_m^e_m, Fractions in an object array); a box is a list of
+(lo, hi) pairs of Fractions. Over a box the polynomial is a combination of tensor-product
+Bernstein polynomials, which are >= 0 and sum to 1: the least Bernstein coefficient is a
+lower bound of the polynomial on the box, and the coefficients at the corners are its values
+there. Boxes are split in two along the widest side (branch and bound). Everything is exact
+(Fractions): a bound here is a proof, not an estimate.
+
+Used by derive (non-negativity and linear independence over a box of shape parameters) and
+by lambda_bezier.energy (the certified global minimum of E_k over the box).
+"""
+
+from __future__ import annotations
+
+import itertools
+from fractions import Fraction
+from math import comb
+from typing import Any
+
+import numpy as np
+
+Box = list[tuple[Fraction, Fraction]]
+
+
+def _axis_matrix(degree: int, lo: Fraction, hi: Fraction) -> np.ndarray:
+    """Power coefficients in x -> Bernstein coefficients on [lo, hi] (x = lo + (hi - lo) u)."""
+    h = hi - lo
+    shift = np.empty((degree + 1, degree + 1), dtype=object)
+    to_bern = np.empty((degree + 1, degree + 1), dtype=object)
+    for j in range(degree + 1):
+        for k in range(degree + 1):
+            shift[j, k] = Fraction(comb(k, j)) * lo ** (k - j) * h**j if k >= j else Fraction(0)
+            to_bern[k, j] = Fraction(comb(k, j), comb(degree, j)) if j <= k else Fraction(0)
+    out: np.ndarray = to_bern.dot(shift)
+    return out
+
+
+def bernstein(power: np.ndarray, box: Box) -> np.ndarray:
+    """The tensor-product Bernstein coefficients of a polynomial over a box."""
+    out = power
+    for axis, (lo, hi) in enumerate(box):
+        mat = _axis_matrix(power.shape[axis] - 1, lo, hi)
+        out = np.moveaxis(np.tensordot(mat, out, axes=([1], [axis])), 0, axis)
+    return out
+
+
+def value(power: np.ndarray, point: tuple[Fraction, ...]) -> Fraction:
+    """The polynomial at an exact point (Horner along each axis, the last first)."""
+    out: object = power
+    for x in reversed(point):
+        arr = np.asarray(out, dtype=object)
+        acc = arr[..., -1]
+        for k in range(arr.shape[-1] - 2, -1, -1):
+            acc = acc * x + arr[..., k]
+        out = acc
+    return Fraction(out.item() if isinstance(out, np.ndarray) else out)  # type: ignore[arg-type]
+
+
+def samples(box: Box) -> list[tuple[Fraction, ...]]:
+    """The corners of a box and its centre."""
+    return [*itertools.product(*box), tuple((lo + hi) / 2 for lo, hi in box)]
+
+
+def split(box: Box) -> tuple[Box, Box]:
+    """The two halves of a box across its widest side (the first of equal ones)."""
+    axis = max(range(len(box)), key=lambda j: (box[j][1] - box[j][0], -j))
+    lo, hi = box[axis]
+    mid = (lo + hi) / 2
+    left, right = list(box), list(box)
+    left[axis], right[axis] = (lo, mid), (mid, hi)
+    return left, right
+
+
+def sign_search(power: np.ndarray, box: Box, *, strict: bool, budget: int) -> dict[str, Any]:
+    """Whether the polynomial is >= 0 (strict: > 0) on the closed box: {"holds": True} (every
+    sub-box's coefficients are >= 0, resp. > 0), {"holds": False, "point", "value"} at an
+    exact point where it fails, or {"holds": None, "boxes": budget} when undecided."""
+    boxes = [box]
+    for _ in range(budget):
+        if not boxes:
+            return {"holds": True}
+        current = boxes.pop()
+        least = min(bernstein(power, current).flat)
+        if least > 0 or (least == 0 and not strict):
+            continue
+        for p in samples(current):
+            v = value(power, p)
+            if v < 0 or (strict and v == 0):
+                return {"holds": False, "point": p, "value": v}
+        boxes.extend(split(current))
+    return {"holds": True} if not boxes else {"holds": None, "boxes": budget}
+
+
+def zero_search(power: np.ndarray, box: Box, budget: int) -> dict[str, Any]:
+    """Whether the polynomial vanishes on the closed box: {"zero": False} (on every sub-box
+    the coefficients have one strict sign), {"zero": True, "point"} at an exact point,
+    {"zero": True, "negative", "positive"} two exact points of opposite signs (a zero on the
+    segment between them), or {"zero": None, "boxes": budget}."""
+    boxes = [box]
+    for _ in range(budget):
+        if not boxes:
+            return {"zero": False}
+        current = boxes.pop()
+        coeffs = bernstein(power, current)
+        if min(coeffs.flat) > 0 or max(coeffs.flat) < 0:
+            continue
+        values = [(value(power, p), p) for p in samples(current)]
+        for v, p in values:
+            if v == 0:
+                return {"zero": True, "point": p}
+        pos = [p for v, p in values if v > 0]
+        neg = [p for v, p in values if v < 0]
+        if pos and neg:
+            return {"zero": True, "negative": neg[0], "positive": pos[0]}
+        boxes.extend(split(current))
+    return {"zero": False} if not boxes else {"zero": None, "boxes": budget}
+
+
+def minimum(power: np.ndarray, box: Box, tolerance: Fraction, budget: int) -> dict[str, Any]:
+    """The global minimum of the polynomial over the closed box, certified: {"point",
+    "value", "lower"} with value - lower <= tolerance * max(1, |value|), value the exact
+    polynomial value at the exact point and lower a proven lower bound over the whole box
+    (the least Bernstein coefficient over the sub-boxes still open). "certified" False when
+    the budget ran out first (lower is still a proven bound)."""
+    best_v: Fraction | None = None
+    best_p: tuple[Fraction, ...] | None = None
+
+    def consider(p: tuple[Fraction, ...]) -> None:
+        nonlocal best_v, best_p
+        v = value(power, p)
+        if best_v is None or v < best_v:
+            best_v, best_p = v, p
+
+    # open boxes with their lower bounds; the one with the least bound is split first
+    open_boxes = [(min(bernstein(power, box).flat), box)]
+    for p in samples(box):
+        consider(p)
+    for _ in range(budget):
+        open_boxes.sort(key=lambda item: item[0])
+        lower = open_boxes[0][0]
+        assert best_v is not None
+        if best_v - lower <= tolerance * max(Fraction(1), abs(best_v)):
+            return {"point": best_p, "value": best_v, "lower": lower, "certified": True}
+        _, current = open_boxes.pop(0)
+        for half in split(current):
+            for p in samples(half):
+                consider(p)
+            bound = min(bernstein(power, half).flat)
+            if bound <= best_v:
+                open_boxes.append((bound, half))
+        if not open_boxes:
+            return {"point": best_p, "value": best_v, "lower": best_v, "certified": True}
+    open_boxes.sort(key=lambda item: item[0])
+    return {"point": best_p, "value": best_v, "lower": open_boxes[0][0], "certified": False}

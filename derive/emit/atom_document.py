@@ -29,7 +29,9 @@ def derive(defn: Definition) -> dict:
     if independence.get("independent") is True:
         checked.append("linearly independent over the whole parameter box")
     names = defn.parameters
-    mirror = "lo + hi - t" if (defn.domain_lo, defn.domain_hi) != (0, 1) else "1 - t"
+    mid = defn.domain_lo + defn.domain_hi
+    mirror = f"{mid}{'*pi' if defn.domain_unit == 'pi' and mid != 1 else ''}"
+    mirror = f"{'pi' if defn.domain_unit == 'pi' and mid == 1 else mirror} - t"
     singular: dict
     if "reason" in independence:
         singular = {"reason": independence["reason"]}

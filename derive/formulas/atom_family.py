@@ -361,10 +361,12 @@ def nonnegative_over_box(defn: Definition, space: Space) -> dict:
     derive/families/engine.py's root isolation)."""
     if any(sum(key[0]) > 1 for elem in space.functions for key in elem):
         return {"reason": "not affine in the parameters jointly: not decided"}
+    if space.name == "hyperbolic":
+        return _nonnegative_hyperbolic(defn, space)
     if space.name != "trigonometric":
         return {
-            "reason": f"a {space.name} basis: non-negativity is decided here for "
-            "trigonometric bases only (through tan(t/2))"
+            "reason": f"a {space.name} basis: t with sin/cos (or sinh/cosh) has no polynomial "
+            "substitution; non-negativity is not decided by this version"
         }
     frame = space.frame
     quarters = 2 * frame.rate * (frame.hi - frame.lo)  # the domain in quarter periods
@@ -402,6 +404,88 @@ def nonnegative_over_box(defn: Definition, space: Space) -> dict:
     return {"nonnegative": True}
 
 
+def _exp_enclosure(x: Fraction) -> tuple[Fraction, Fraction]:
+    """Rationals lo <= e^x <= hi (mpmath's interval arithmetic, rigorous; exact for x = 0)."""
+    if x == 0:
+        return Fraction(1), Fraction(1)
+    import mpmath
+
+    with mpmath.workprec(256):
+        box = mpmath.iv.exp(mpmath.iv.mpf(x.numerator) / x.denominator)
+        ends = []
+        for end in (box.a, box.b):
+            man, exp_ = mpmath.mpf(end).man_exp
+            ends.append(Fraction(int(man)) * Fraction(2) ** int(exp_))
+    return ends[0], ends[1]
+
+
+def _nonnegative_hyperbolic(defn: Definition, space: Space) -> dict:
+    """At a vertex b = sum_h a_h e^(h w t) = z^(-H) P(z) with z = e^(w t) in [e^(w lo), e^(w hi)]:
+    P >= 0 there is decided from the real roots of P (exact isolation) and rational
+    enclosures of the transcendental ends (refined until no root interval meets them; an
+    algebraic root never equals e^x for a rational x != 0)."""
+    frame = space.frame
+    z = sp.Symbol("z")
+    encl = [_exp_enclosure(frame.rate * x) for x in (frame.lo, frame.hi)]
+    corners = [(q.lo, q.hi) for q in defn.params]
+    for vertex in itertools.product(*corners):
+        for idx, b in enumerate(space.functions):
+            fixed = A.at_parameters(b, vertex)
+            top = max((abs(key[3]) for key in fixed), default=0)
+            coeffs = {key[3] + top: v for key, v in fixed.items()}
+            poly = sp.Poly(
+                {(e,): sp.Rational(v.numerator, v.denominator) for e, v in coeffs.items()}, z
+            )
+            at = _negative_inside(poly, encl)
+            if at is not None:
+                return {
+                    "nonnegative": False,
+                    "counterexample": {
+                        "n": len(space.functions) - 1,
+                        "i": idx,
+                        "t": f"log({at})" + ("" if frame.rate == 1 else f"/{frame.rate}"),
+                        **{q.name: str(v) for q, v in zip(defn.params, vertex, strict=True)},
+                        "value_sign": "negative",
+                    },
+                }
+    return {"nonnegative": True}
+
+
+def _negative_inside(poly: sp.Poly, encl: list[tuple[Fraction, Fraction]]) -> Fraction | None:
+    """A rational z in [a, b] with poly(z) < 0, or None; a in encl[0], b in encl[1]."""
+    if poly.is_zero:
+        return None
+    (a_lo, a_hi), (b_lo, b_hi) = encl
+    eps = Fraction(1, 10**6)
+    for _ in range(40):
+        ivs = sorted(
+            (Fraction(str(x)), Fraction(str(y)))
+            for (x, y), _ in poly.sqf_part().intervals(
+                inf=sp.Rational(str(a_lo)), sup=sp.Rational(str(b_hi)), eps=sp.Rational(str(eps))
+            )
+        )
+        meets = any(
+            lo_ <= hi and hi_ >= lo and not (lo_ == hi_ == lo == hi)
+            for lo_, hi_ in ivs
+            for lo, hi in encl
+            if lo != hi
+        )
+        if not meets:
+            break
+        eps /= 10**6
+    else:  # pragma: no cover - roots are algebraic, the ends transcendental
+        raise DefinitionError("non-negativity: a root too close to an end of the domain")
+    inner = [(x, y) for x, y in ivs if y >= a_lo and x <= b_hi]
+    points = [a_hi, b_lo]  # beside the ends: no root between them and the ends
+    for (x, y), (u, _) in zip(inner, inner[1:], strict=False):
+        points.append((y + u) / 2)
+    points += [x for x, y in inner] + [y for x, y in inner]
+    for x in sorted(set(points)):
+        if a_hi <= x <= b_lo and poly.eval(sp.Rational(x.numerator, x.denominator)) < 0:
+            return x
+    return None
+
+
 # --------------------------------------------------------------------------- independence
 
 
@@ -415,14 +499,17 @@ def independence(defn: Definition, space: Space) -> dict:
     syms = defn.symbols
     rows = len(space.functions)
     width = len(next(iter(tables.values()))[0])
-    mat = sp.zeros(rows, width)
+    from sympy.polys.matrices import DomainMatrix
+
+    ring = sp.QQ[syms]  # exact polynomials in the parameters
+    entries = [[ring.zero for _ in range(width)] for _ in range(rows)]
     for mono, table in tables.items():
-        term = sp.Mul(*[s**e for s, e in zip(syms, mono, strict=True)])
+        term = ring.from_sympy(sp.Mul(*[s**e for s, e in zip(syms, mono, strict=True)]))
         for i in range(rows):
             for j in range(width):
                 if table[i][j]:
                     v = table[i][j]
-                    mat[i, j] += sp.Rational(v.numerator, v.denominator) * term
+                    entries[i][j] += ring.convert(sp.Rational(v.numerator, v.denominator)) * term
     if width < rows:
         return {"independent": False, "everywhere": True, "why": "fewer atoms than functions"}
     combos = list(itertools.combinations(range(width), rows))
@@ -430,9 +517,10 @@ def independence(defn: Definition, space: Space) -> dict:
         return {"reason": f"{len(combos)} maximal minors: not decided by this version"}
     minors = []
     for cols in combos:
-        d = sp.expand(mat[:, list(cols)].det(method="berkowitz"))
-        if d != 0:
-            minors.append(sp.Poly(d, *syms, domain="QQ"))
+        sub = DomainMatrix([[row[j] for j in cols] for row in entries], (rows, rows), ring)
+        d = sub.det()
+        if d:
+            minors.append(sp.Poly(ring.to_sympy(d), *syms, domain="QQ"))
     names = defn.parameters
     if not minors:
         mid = {q.name: str((q.lo + q.hi) / 2) for q in defn.params}
@@ -457,29 +545,84 @@ def independence(defn: Definition, space: Space) -> dict:
                     if _inside(a, q) and _inside(b, q):
                         roots.append([[str(a), str(b)], [int(c) for c in factor.all_coeffs()]])
         return {"independent": not roots, "singular": sorted(roots, key=str)}
+    g = minors[0]
+    for p in minors[1:]:
+        g = g.gcd(p)
+    points: list[dict] = []
+    if not g.is_ground:  # V(g h_1, g h_2, ...) = V(g) | V(h_1, h_2, ...)
+        for factor, _ in g.factor_list()[1]:
+            point = _point_on(factor, defn)
+            if point == "undecided":
+                return {
+                    "reason": f"the rank drops on {factor.as_expr()} = 0; whether that meets "
+                    "the box is decided for two parameters only"
+                }
+            if point is not None:
+                points.append({"on": f"{factor.as_expr()} = 0", **point})
+        minors = [p.exquo(g) for p in minors]
     basis = sp.groebner([p.as_expr() for p in minors], *syms, order="grevlex")
-    if list(basis.exprs) == [1]:
-        return {"independent": True, "singular": []}
-    if not basis.is_zero_dimensional:
-        return {
-            "reason": "the rank drops on a curve or surface of parameters (the minors have "
-            f"the common factor or ideal {basis.exprs[0]}); whether it meets the box is not "
-            "decided by this version"
-        }
-    points = []
-    for sol in sp.solve_poly_system(list(basis.exprs), *syms) or []:
-        if all(v.is_real for v in sol) and all(
-            v.is_Rational and _inside(Fraction(str(v)), q)
-            for v, q in zip(sol, defn.params, strict=True)
-        ):
-            points.append({name: str(v) for name, v in zip(names, sol, strict=True)})
-        elif all(v.is_real for v in sol):
-            inside = all(
-                q.lo <= float(v) <= q.hi for v, q in zip(sol, defn.params, strict=True)
-            )
-            if inside:
+    if list(basis.exprs) != [1]:
+        if not basis.is_zero_dimensional:
+            return {
+                "reason": f"the rank drops on the variety of {list(basis.exprs)}; whether it "
+                "meets the box is not decided by this version"
+            }
+        for sol in sp.solve_poly_system(list(basis.exprs), *syms) or []:
+            if all(v.is_real for v in sol) and all(
+                _inside_real(v, q) for v, q in zip(sol, defn.params, strict=True)
+            ):
                 points.append({name: str(v) for name, v in zip(names, sol, strict=True)})
     return {"independent": not points, "singular": points}
+
+
+def _inside_real(v: sp.Expr, q) -> bool:
+    """A real algebraic number in the parameter's interval (exact comparisons)."""
+    lo, hi = sp.Rational(q.lo.numerator, q.lo.denominator), sp.Rational(
+        q.hi.numerator, q.hi.denominator
+    )
+    above = bool(v >= lo) if q.lo_closed else bool(v > lo)
+    below = bool(v <= hi) if q.hi_closed else bool(v < hi)
+    return above and below
+
+
+def _point_on(factor: sp.Poly, defn: Definition) -> dict | None | str:
+    """A point of the box where the factor vanishes (exact or an algebraic number as text),
+    None when there is none, "undecided" beyond two parameters. Two parameters: a zero on an
+    edge of the box, or else a closed component inside it, which has a point where the
+    derivative in the first parameter vanishes too (finitely many, solved exactly)."""
+    syms, params = defn.symbols, defn.params
+    if len(syms) != 2:
+        return "undecided"
+    for j in range(2):
+        for end in (params[j].lo, params[j].hi):
+            other = 1 - j
+            edge = sp.Poly(
+                factor.as_expr().subs(syms[j], sp.Rational(end.numerator, end.denominator)),
+                syms[other],
+            )
+            if edge.is_zero:
+                v = (params[other].lo + params[other].hi) / 2
+                return _box_point(defn, {j: end, other: v})
+            if not _inside(end, params[j]):
+                continue
+            for root in sp.real_roots(edge):
+                if _inside_real(root, params[other]):
+                    return _box_point(defn, {j: end, other: root})
+    crit = sp.groebner([factor.as_expr(), factor.diff(syms[0]).as_expr()], *syms)
+    if list(crit.exprs) == [1]:
+        return None
+    if not crit.is_zero_dimensional:
+        return "undecided"
+    for sol in sp.solve_poly_system(list(crit.exprs), *syms) or []:
+        if all(v.is_real for v in sol) and all(
+            _inside_real(v, q) for v, q in zip(sol, params, strict=True)
+        ):
+            return _box_point(defn, dict(enumerate(sol)))
+    return None
+
+
+def _box_point(defn: Definition, values: dict) -> dict:
+    return {q.name: str(values[j]) for j, q in enumerate(defn.params)}
 
 
 def _inside(x: Fraction, q) -> bool:

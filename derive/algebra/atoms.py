@@ -198,7 +198,8 @@ def phase(frame: Frame, m: int, x: Fraction) -> tuple[Fraction, Fraction]:
     if m == 0 or x == 0:
         return Fraction(1), Fraction(0)
     if int(frame.rate_pi) + int(frame.dom_pi) != 1:
-        raise AtomError(f"cos({m * frame.rate * x}{'*pi**2' if frame.dom_pi else ''}) is not rational")
+        square = "*pi**2" if frame.dom_pi else ""
+        raise AtomError(f"cos({m * frame.rate * x}{square}) is not rational")
     quarter = 2 * m * frame.rate * x  # the phase in units of pi/2
     if quarter.denominator != 1:
         raise AtomError(f"the phase {m * frame.rate * x}*pi is not a multiple of pi/2")

@@ -134,7 +134,7 @@ def space_of(defn: Definition) -> Space:
             elem = _convert(e, frame, symbols, rate)
         except A.AtomError as exc:
             raise fail(key, str(exc)) from None
-        for mono, c, k, h, m, kind in elem:
+        for _mono, c, k, h, m, kind in elem:
             if c:
                 raise fail(key, "pi enters only in an argument (sin(pi*t)) or the domain")
             if k and (h or m):

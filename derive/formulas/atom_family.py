@@ -131,7 +131,7 @@ def show_elem(elem: A.Elem, defn: Definition, space: Space) -> str:
     terms = []
     for (mono, c, k, h, m, kind), v in sorted(elem.items()):
         parts = [str(v)]
-        parts += [f"{x}**{e}" if e > 1 else x for x, e in zip(defn.parameters, mono) if e]
+        parts += [f"{x}**{e}" if e > 1 else x for x, e in zip(defn.parameters, mono, strict=True) if e]
         if c:
             parts.append(f"{space.constant}**{c}")
         if k:
@@ -477,7 +477,7 @@ def _negative_inside(poly: sp.Poly, encl: list[tuple[Fraction, Fraction]]) -> Fr
         raise DefinitionError("non-negativity: a root too close to an end of the domain")
     inner = [(x, y) for x, y in ivs if y >= a_lo and x <= b_hi]
     points = [a_hi, b_lo]  # beside the ends: no root between them and the ends
-    for (x, y), (u, _) in zip(inner, inner[1:], strict=False):
+    for (_, y), (u, _) in zip(inner, inner[1:], strict=False):
         points.append((y + u) / 2)
     points += [x for x, y in inner] + [y for x, y in inner]
     for x in sorted(set(points)):

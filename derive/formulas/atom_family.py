@@ -131,7 +131,8 @@ def show_elem(elem: A.Elem, defn: Definition, space: Space) -> str:
     terms = []
     for (mono, c, k, h, m, kind), v in sorted(elem.items()):
         parts = [str(v)]
-        parts += [f"{x}**{e}" if e > 1 else x for x, e in zip(defn.parameters, mono, strict=True) if e]
+        names = zip(defn.parameters, mono, strict=True)
+        parts += [f"{x}**{e}" if e > 1 else x for x, e in names if e]
         if c:
             parts.append(f"{space.constant}**{c}")
         if k:
@@ -577,8 +578,9 @@ def independence(defn: Definition, space: Space) -> dict:
 
 def _inside_real(v: sp.Expr, q) -> bool:
     """A real algebraic number in the parameter's interval (exact comparisons)."""
-    lo, hi = sp.Rational(q.lo.numerator, q.lo.denominator), sp.Rational(
-        q.hi.numerator, q.hi.denominator
+    lo, hi = (
+        sp.Rational(q.lo.numerator, q.lo.denominator),
+        sp.Rational(q.hi.numerator, q.hi.denominator),
     )
     above = bool(v >= lo) if q.lo_closed else bool(v > lo)
     below = bool(v <= hi) if q.hi_closed else bool(v < hi)

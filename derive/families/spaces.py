@@ -143,9 +143,11 @@ def space_of(defn: Definition) -> Space:
                     f"{_show(k, h, m, kind, frame)} is not in a space this version decides "
                     "(t^k times a trigonometric or hyperbolic function)",
                 )
-            if max(abs(h), m) > MAX_HARMONIC:
+            if max(abs(h), m, k) > MAX_HARMONIC:
                 raise fail(
-                    key, f"a harmonic {max(abs(h), m)} times the base rate (at most {MAX_HARMONIC})"
+                    key,
+                    f"a harmonic {max(abs(h), m)} times the base rate or a power t^{k} (at "
+                    f"most {MAX_HARMONIC})",
                 )
         functions.append(elem)
     algebraic = any(key[2] for elem in functions for key in elem)
@@ -157,12 +159,12 @@ def space_of(defn: Definition) -> Space:
 
 
 def _show(k: int, h: int, m: int, kind: int, frame: A.Frame) -> str:
-    w = f"{frame.rate}{'*pi' if frame.rate_pi else ''}"
+    pi = "*pi" if frame.rate_pi else ""
     parts = [f"t**{k}" if k > 1 else "t"] if k else []
     if h:
-        parts.append(f"exp({h}*{w}*t)")
+        parts.append(f"exp({h * frame.rate}{pi}*t)")
     if m:
-        parts.append(f"{'cos' if kind == A.COS else 'sin'}({m}*{w}*t)")
+        parts.append(f"{'cos' if kind == A.COS else 'sin'}({m * frame.rate}{pi}*t)")
     return "*".join(parts)
 
 
@@ -194,6 +196,8 @@ def _convert(e: sp.Basic, frame: A.Frame, symbols: dict, rate: Fraction) -> A.El
             if not e.base.is_Rational:
                 raise A.AtomError(f"{e}: a division by a function of t or of a parameter")
             return A.constant(frame, _fraction(e))
+        if e.exp > MAX_HARMONIC and e.base.has(_T):
+            raise A.AtomError(f"{e}: a power of a function of t above {MAX_HARMONIC}")
         return A.power(_convert(e.base, frame, symbols, rate), int(e.exp), frame)
     if isinstance(e, TRIG + HYP):
         r, _ = _rate(e)

@@ -122,7 +122,7 @@ def check_partition(defn: Definition, space: Space) -> None:
     if total != A.constant(space.frame):
         shown = show_elem(total, defn, space)
         raise DefinitionError(
-            f"[family] functions: no partition of unity: the functions sum to {shown}"
+            f"[family], key functions: no partition of unity: the functions sum to {shown}"
         )
 
 

@@ -513,6 +513,15 @@ def independence(defn: Definition, space: Space) -> dict:
                     entries[i][j] += ring.convert(sp.Rational(v.numerator, v.denominator)) * term
     if width < rows:
         return {"independent": False, "everywhere": True, "why": "fewer atoms than functions"}
+    # one minor first: the columns of a basis of the row space at a point inside the box (its
+    # minor is nonzero there); the rank can drop only where it vanishes, so when it has no
+    # zero in the box the family is independent over the whole box, with no other minor
+    pivots = _pivot_columns(tables, defn)
+    if pivots is not None:
+        sub = DomainMatrix([[row[j] for j in pivots] for row in entries], (rows, rows), ring)
+        first = sp.Poly(ring.to_sympy(sub.det()), *syms, domain="QQ")
+        if first.is_ground or _no_zero_in_box(first, defn):
+            return {"independent": True, "singular": []}
     combos = list(itertools.combinations(range(width), rows))
     if len(combos) > MAX_MINORS:
         return {"reason": f"{len(combos)} maximal minors: not decided by this version"}
@@ -574,6 +583,46 @@ def independence(defn: Definition, space: Space) -> dict:
             ):
                 points.append({name: str(v) for name, v in zip(names, sol, strict=True)})
     return {"independent": not points, "singular": points}
+
+
+def _pivot_columns(tables: dict, defn: Definition) -> tuple[int, ...] | None:
+    """Columns of the atom matrix at the box's centre (exact, FLINT) that span its row
+    space, or None when the rank is not full there."""
+    import flint
+
+    point = tuple((q.lo + q.hi) / 2 for q in defn.params)
+    rows = len(next(iter(tables.values())))
+    width = len(next(iter(tables.values()))[0])
+    mat = flint.fmpq_mat(rows, width)
+    for mono, table in tables.items():
+        weight = Fraction(1)
+        for x, e in zip(point, mono, strict=True):
+            weight *= x**e
+        for i in range(rows):
+            for j in range(width):
+                if table[i][j]:
+                    v = table[i][j] * weight
+                    mat[i, j] += flint.fmpq(v.numerator, v.denominator)
+    echelon, rank = mat.rref()
+    if rank < rows:
+        return None
+    cols = []
+    for i in range(rows):
+        cols.append(next(j for j in range(width) if echelon[i, j] != 0))
+    return tuple(cols)
+
+
+def _no_zero_in_box(poly: sp.Poly, defn: Definition) -> bool:
+    """True when the polynomial provably has no zero in the parameter box (one parameter:
+    no real root in the range; two: none on an edge and none at a critical point inside)."""
+    if len(defn.params) == 1:
+        q = defn.params[0]
+        return not any(
+            _inside_real(r, q) for f, _ in poly.factor_list()[1] for r in sp.real_roots(f)
+        )
+    if len(defn.params) == 2:
+        return all(_point_on(f, defn) is None for f, _ in poly.factor_list()[1])
+    return False
 
 
 def _inside_real(v: sp.Expr, q) -> bool:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 from fractions import Fraction
+from math import comb
 
 import pytest
 from hypothesis import HealthCheck, given, settings
@@ -148,3 +149,39 @@ def test_random_valid_definitions_derive(table):
     text = json.dumps(doc)
     assert doc["format"] == 4 and "NaN" not in text
     assert doc["checked"][1].startswith("partition of unity")
+
+
+def test_independence_of_a_larger_family_is_decided():
+    """n = 6 (15 atoms, 5005 maximal minors): decided from a few pivot minors, and the
+    verdict agrees with singular values of the functions sampled at points of the box."""
+    import mpmath as mp
+
+    n = 6
+    x = "sin(t)**2"
+    funcs = [f"{comb(n, i)}*({x})**{i}*(1 - {x})**{n - i}" for i in range(n + 1)]
+    funcs[0] += " + lam*cos(t)*(1 - sin(t))"
+    funcs[1] += " - lam*cos(t)*(1 - sin(t))"
+    funcs[-1] += " + mu*sin(t)*(1 - cos(t))"
+    funcs[-2] += " - mu*sin(t)*(1 - cos(t))"
+    table = {
+        "name": "wide",
+        "parameters": ["lam", "mu"],
+        "range": {"lam": "[0, 1]", "mu": "[0, 1]"},
+        "domain": "[0, pi/2]",
+        "degrees": str(n),
+        "functions": funcs,
+    }
+    doc = derive_document(definition_from_table(table))
+    assert doc["linear_independence"] == {"independent": True, "singular": []}
+    s, c = mp.sin, mp.cos
+    for lam, mu in ((0, 0), (1, 1), (0.3, 0.8), (1, 0)):
+        rows = []
+        for i in range(n + 1):
+            row = []
+            for t in mp.linspace(0.01, mp.pi / 2 - 0.01, 2 * n + 4):
+                v = comb(n, i) * s(t) ** (2 * i) * (1 - s(t) ** 2) ** (n - i)
+                v += {0: lam, 1: -lam}.get(i, 0) * c(t) * (1 - s(t))
+                v += {n: mu, n - 1: -mu}.get(i, 0) * s(t) * (1 - c(t))
+                row.append(v)
+            rows.append(row)
+        assert min(mp.svd_r(mp.matrix(rows), compute_uv=False)) > 1e-12

@@ -522,6 +522,9 @@ def independence(defn: Definition, space: Space) -> dict:
         first = sp.Poly(ring.to_sympy(sub.det()), *syms, domain="QQ")
         if first.is_ground or _no_zero_in_box(first, defn):
             return {"independent": True, "singular": []}
+        refined = _refine(first, tables, entries, ring, defn)
+        if refined is not None:
+            return refined
     combos = list(itertools.combinations(range(width), rows))
     if len(combos) > MAX_MINORS:
         return {"reason": f"{len(combos)} maximal minors: not decided by this version"}
@@ -568,7 +571,7 @@ def independence(defn: Definition, space: Space) -> dict:
                     "the box is decided for two parameters only"
                 }
             if point is not None:
-                points.append({"on": f"{factor.as_expr()} = 0", **point})
+                points.append({"on": f"{factor.as_expr()} = 0", **_box_point(defn, point)})
         minors = [p.exquo(g) for p in minors]
     basis = sp.groebner([p.as_expr() for p in minors], *syms, order="grevlex")
     if list(basis.exprs) != [1]:
@@ -585,12 +588,13 @@ def independence(defn: Definition, space: Space) -> dict:
     return {"independent": not points, "singular": points}
 
 
-def _pivot_columns(tables: dict, defn: Definition) -> tuple[int, ...] | None:
-    """Columns of the atom matrix at the box's centre (exact, FLINT) that span its row
-    space, or None when the rank is not full there."""
+def _pivot_columns(tables: dict, defn: Definition, point: tuple | None = None):
+    """Columns of the atom matrix at a point (the box's centre by default; exact, FLINT)
+    that span its row space, or None when the rank is not full there."""
     import flint
 
-    point = tuple((q.lo + q.hi) / 2 for q in defn.params)
+    if point is None:
+        point = tuple((q.lo + q.hi) / 2 for q in defn.params)
     rows = len(next(iter(tables.values())))
     width = len(next(iter(tables.values()))[0])
     mat = flint.fmpq_mat(rows, width)
@@ -653,12 +657,12 @@ def _point_on(factor: sp.Poly, defn: Definition) -> dict | None | str:
             )
             if edge.is_zero:
                 v = (params[other].lo + params[other].hi) / 2
-                return _box_point(defn, {j: end, other: v})
+                return _values({j: end, other: v})
             if not _inside(end, params[j]):
                 continue
             for root in sp.real_roots(edge):
                 if _inside_real(root, params[other]):
-                    return _box_point(defn, {j: end, other: root})
+                    return _values({j: end, other: root})
     crit = sp.groebner([factor.as_expr(), factor.diff(syms[0]).as_expr()], *syms)
     if list(crit.exprs) == [1]:
         return None
@@ -668,12 +672,97 @@ def _point_on(factor: sp.Poly, defn: Definition) -> dict | None | str:
         if all(v.is_real for v in sol) and all(
             _inside_real(v, q) for v, q in zip(sol, params, strict=True)
         ):
-            return _box_point(defn, dict(enumerate(sol)))
+            return tuple(sol)
     return None
 
 
-def _box_point(defn: Definition, values: dict) -> dict:
-    return {q.name: str(values[j]) for j, q in enumerate(defn.params)}
+def _values(values: dict) -> tuple:
+    return tuple(
+        sp.Rational(v.numerator, v.denominator) if isinstance(v, Fraction) else v
+        for _, v in sorted(values.items())
+    )
+
+
+def _box_point(defn: Definition, values: tuple) -> dict:
+    return {q.name: str(v) for v, q in zip(values, defn.params, strict=True)}
+
+
+def _refine(first, tables, entries, ring, defn: Definition, rounds: int = 40) -> dict | None:
+    """The points of the box where the rank drops, from few minors: the candidates are the
+    zeros in the box of the minors so far (a point on each curve of zeros, the finitely many
+    other common zeros); at a rational candidate the exact rank decides: full, and the minor
+    of its pivot columns (nonzero there) joins the list; not full, and it is a point where
+    the rank drops. Done when every candidate is such a point (one parameter: that is every
+    such point). None (not decided this way) at an irrational candidate or beyond two
+    parameters."""
+    from sympy.polys.matrices import DomainMatrix
+
+    syms = defn.symbols
+    rows = len(entries)
+    minors, singular = [first], {}
+    for _ in range(rounds):
+        candidates = _candidates(minors, defn)
+        if candidates is None:
+            return None
+        grew = False
+        for point in candidates:
+            if point in singular:
+                continue
+            if not all(v.is_Rational for v in point):
+                return None
+            exact = tuple(Fraction(int(v.p), int(v.q)) for v in point)
+            pivots = _pivot_columns(tables, defn, exact)
+            if pivots is None:
+                singular[point] = True
+                continue
+            sub = DomainMatrix([[row[j] for j in pivots] for row in entries], (rows, rows), ring)
+            minors.append(sp.Poly(ring.to_sympy(sub.det()), *syms, domain="QQ"))
+            grew = True
+        if not grew:
+            points = sorted(singular, key=lambda p: tuple(float(v) for v in p))
+            if len(syms) == 1:
+                return {"independent": not points, "singular": [str(p[0]) for p in points]}
+            return {"independent": not points, "singular": [_box_point(defn, p) for p in points]}
+    return None
+
+
+def _candidates(minors: list, defn: Definition) -> list[tuple] | None:
+    """Points of the box where every minor of the list vanishes: each real zero (one
+    parameter), or a point on each curve of common zeros and the isolated ones (two)."""
+    syms = defn.symbols
+    g = minors[0]
+    for p in minors[1:]:
+        g = g.gcd(p)
+    if len(syms) == 1:
+        q = defn.params[0]
+        return sorted(
+            {(r,) for f, _ in g.factor_list()[1] for r in sp.real_roots(f) if _inside_real(r, q)},
+            key=lambda p: float(p[0]),
+        )
+    if len(syms) != 2:
+        return None
+    points = []
+    if not g.is_ground:
+        for factor, _ in g.factor_list()[1]:
+            point = _point_on(factor, defn)
+            if point == "undecided":
+                return None
+            if point is not None:
+                points.append(point)
+    rest = [p.exquo(g) for p in minors]
+    if any(p.is_ground for p in rest):
+        return points
+    basis = sp.groebner([p.as_expr() for p in rest], *syms, order="grevlex")
+    if list(basis.exprs) == [1]:
+        return points
+    if not basis.is_zero_dimensional:
+        return None
+    for sol in sp.solve_poly_system(list(basis.exprs), *syms) or []:
+        if all(v.is_real for v in sol) and all(
+            _inside_real(v, q) for v, q in zip(sol, defn.params, strict=True)
+        ):
+            points.append(tuple(sol))
+    return points
 
 
 def _inside(x: Fraction, q) -> bool:

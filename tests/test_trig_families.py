@@ -22,7 +22,13 @@ from derive.emit.document import render
 from derive.families.definition import read_definition
 
 DATA = Path(__file__).parent / "data" / "families"
-mp.mp.dps = 40
+
+
+@pytest.fixture(autouse=True)
+def _precision():
+    """40 digits in this module's tests only (mpmath's precision is global)."""
+    with mp.workdps(40):
+        yield
 
 
 # --------------------------------------------------------------------------- the constructions
@@ -60,11 +66,18 @@ def _at_pi(lam):
     return [lambda t: 1 - t - b1(t), b1, b2, lambda t: t - b2(t)]
 
 
-FAMILIES = {
-    "han_trig_cubic": (lambda p: _han(*p), (0, mp.pi / 2)),
-    "hyp_two_shape_cubic": (lambda p: _hyp(*p), (0, 1)),
-    "at_pi_cubic": (lambda p: _at_pi(*p), (0, 1)),
+CONSTRUCTIONS = {
+    "han_trig_cubic": (lambda p: _han(*p), lambda: (mp.mpf(0), mp.pi / 2)),
+    "hyp_two_shape_cubic": (lambda p: _hyp(*p), lambda: (mp.mpf(0), mp.mpf(1))),
+    "at_pi_cubic": (lambda p: _at_pi(*p), lambda: (mp.mpf(0), mp.mpf(1))),
 }
+FAMILIES = sorted(CONSTRUCTIONS)
+
+
+def _family(name: str):
+    """The construction and the domain, at the working precision of the test."""
+    build, domain = CONSTRUCTIONS[name]
+    return build, domain()
 
 
 # --------------------------------------------------------------------------- reading a document
@@ -142,17 +155,17 @@ def _points(doc: dict, count: int = 3, seed: int = 0) -> list[tuple]:
 # --------------------------------------------------------------------------- the tests
 
 
-@pytest.mark.parametrize("name", sorted(FAMILIES))
+@pytest.mark.parametrize("name", FAMILIES)
 def test_document_is_the_derivation(name):
     defn = read_definition(DATA / f"{name}.toml")
     assert (DATA / f"{name}.derived.json").read_text(encoding="utf-8") == render(defn)
     assert _doc(name)["format"] == 4
 
 
-@pytest.mark.parametrize("name", sorted(FAMILIES))
+@pytest.mark.parametrize("name", FAMILIES)
 def test_atom_table_is_the_construction(name):
     doc = _doc(name)
-    build, (lo, hi) = FAMILIES[name]
+    build, (lo, hi) = _family(name)
     for params in _points(doc):
         direct, table = build(params), _doc_basis(doc, params)
         for t in mp.linspace(lo, hi, 7):
@@ -161,10 +174,10 @@ def test_atom_table_is_the_construction(name):
             assert abs(mp.fsum(f(t) for f in direct) - 1) < mp.mpf(10) ** -30
 
 
-@pytest.mark.parametrize("name", sorted(FAMILIES))
+@pytest.mark.parametrize("name", FAMILIES)
 def test_end_derivatives_match_numerical_derivatives(name):
     doc = _doc(name)
-    build, (lo, hi) = FAMILIES[name]
+    build, (lo, hi) = _family(name)
     (n,) = doc["atoms"]
     const = _constant(doc["endpoints"]["constant"])
     for params in _points(doc, 2):
@@ -178,17 +191,16 @@ def test_end_derivatives_match_numerical_derivatives(name):
             assert abs(exact - numeric) < mp.mpf(10) ** -20 * (1 + abs(numeric)), key
 
 
-@pytest.mark.parametrize("name", sorted(FAMILIES))
+@pytest.mark.parametrize("name", FAMILIES)
 def test_energies_match_quadrature(name):
     doc = _doc(name)
-    build, (lo, hi) = FAMILIES[name]
+    build, (lo, hi) = _family(name)
     (n,) = doc["atoms"]
     rng = random.Random(1)
     control = [[mp.mpf(rng.randint(-9, 9)) for _ in range(2)] for _ in range(int(n) + 1)]
     (params,) = _points(doc, 1, seed=2)
     direct = build(params)
-    mp.mp.dps = 25
-    try:
+    with mp.workdps(25):
         for k in (1, 2, 3):
             entry = doc["energy"][f"{n},{k}"]
             const = _constant(entry["constant"])
@@ -210,8 +222,6 @@ def test_energies_match_quadrature(name):
 
             numeric = mp.quad(speed2, [lo, (lo + hi) / 2, hi])
             assert abs(exact - numeric) < mp.mpf(10) ** -12 * abs(numeric), k
-    finally:
-        mp.mp.dps = 40
 
 
 def test_han_rational_form_is_the_basis():
@@ -236,10 +246,10 @@ def test_han_rational_form_is_the_basis():
                 assert abs(num / den - f(t)) < mp.mpf(10) ** -30
 
 
-@pytest.mark.parametrize("name", sorted(FAMILIES))
+@pytest.mark.parametrize("name", FAMILIES)
 def test_symmetry_as_documented(name):
     doc = _doc(name)
-    build, (lo, hi) = FAMILIES[name]
+    build, (lo, hi) = _family(name)
     names = [q["name"] for q in doc["parameters"]]
     swap = doc["symmetry"]
     if name == "hyp_two_shape_cubic":  # x = 1 - e^(-t) has no mirror on [0, 1]
@@ -256,10 +266,10 @@ def test_symmetry_as_documented(name):
                 assert abs(direct[i](t) - mirrored[len(direct) - 1 - i](lo + hi - t)) < 1e-30
 
 
-@pytest.mark.parametrize("name", sorted(FAMILIES))
+@pytest.mark.parametrize("name", FAMILIES)
 def test_nonnegativity_and_independence_agree_with_sampling(name):
     doc = _doc(name)
-    build, (lo, hi) = FAMILIES[name]
+    build, (lo, hi) = _family(name)
     ranges = [(q["range"]["lo"], q["range"]["hi"]) for q in doc["parameters"]]
     corners = [
         tuple(_number(c[j], None) for c, j in zip(ranges, js, strict=True))

@@ -185,3 +185,21 @@ def test_independence_of_a_larger_family_is_decided():
                 row.append(v)
             rows.append(row)
         assert min(mp.svd_r(mp.matrix(rows), compute_uv=False)) > 1e-12
+
+
+def test_verify_names_what_it_does_not_check():
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    root = Path(__file__).parents[1]
+    got = subprocess.run(
+        [sys.executable, "-m", "lambda_bezier", "verify", "tests/data/families/at_pi_cubic.toml"],
+        cwd=root,
+        capture_output=True,
+        text=True,
+    )
+    assert got.returncode != 0
+    assert "uses sin, cos, sinh, cosh or exp; verify checks records about polynomial" in (
+        got.stderr
+    ), got.stderr

@@ -392,6 +392,12 @@ def _define_family(path: Path, table: dict, points: str | None) -> str:
                 f"({', '.join(defn.parameters)}); verify checks records about families with "
                 "one parameter only in this version (derive --family and load_family take it)"
             )
+        if defn.elementary:  # issue #30: derive --family only, so far
+            raise RecordsError(
+                f"{path}: [family] {defn.name!r} uses sin, cos, sinh, cosh or exp; verify "
+                "checks records about polynomial families only in this version (derive "
+                "--family derives it)"
+            )
         register_defined_family(defn, points)
     except DefinitionError as exc:
         raise RecordsError(

@@ -209,7 +209,7 @@ def bench_surfaces(grid: int, nets: int, occt_points: int) -> None:
         per_point_occt = best_of(occt_loop, repeat=1) / sub.size**2
         per_point_ours = ours / grid**2
         record(
-            f"bicubic surface, per point ({sub.size ** 2:,} points timed for OCCT)",
+            f"bicubic surface, per point ({sub.size**2:,} points timed for OCCT)",
             per_point_ours,
             "OCCT Geom_BezierSurface.Value point by point",
             per_point_occt,
@@ -365,6 +365,34 @@ def bench_derive() -> None:
         bare,
         "under 15 s",
         family <= 15.0,
+    )
+    # a two-parameter trigonometric family (issue #30): exact atoms, energies in Q[pi], the
+    # rational form, non-negativity and independence over the box, against the polynomial
+    # two-parameter cubic derived in the same run
+    with tempfile.TemporaryDirectory() as tmp:
+        trig = command(
+            "derive",
+            "--family",
+            str(ROOT / "tests/data/families/han_trig_cubic.toml"),
+            "--out",
+            tmp,
+            "-q",
+        )
+        poly = command(
+            "derive",
+            "--family",
+            str(ROOT / "src/lambda_bezier/examples/two_shape_cubic.toml"),
+            "--out",
+            tmp,
+            "-q",
+        )
+    record(
+        "lambda-bezier derive --family han_trig_cubic (two-parameter trigonometric)",
+        trig,
+        "derive --family two_shape_cubic (two-parameter polynomial)",
+        poly,
+        "under 15 s",
+        trig <= 15.0,
     )
 
 

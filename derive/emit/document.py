@@ -123,6 +123,10 @@ def _indexed(defn: Definition) -> dict:
 
 def derive(defn: Definition, *, with_joins: bool = True) -> dict:
     """Every artifact of the family, as one JSON-able document (exact numbers as strings)."""
+    if defn.elementary:  # sin, cos, sinh, cosh, exp: format 4 (issue #30)
+        from .atom_document import derive as derive_atoms
+
+        return derive_atoms(defn)
     if defn.indexed is not None:
         return _indexed(defn)
     checked = check(defn)

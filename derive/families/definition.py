@@ -16,7 +16,16 @@ from pathlib import Path
 
 import sympy as sp
 
-from ..grammar import BUILTINS, FUNCTIONS, SYMBOLS, Interval, ParseError, parse_formula, tokenize
+from ..grammar import (
+    BUILTINS,
+    ELEMENTARY,
+    FUNCTIONS,
+    SYMBOLS,
+    Interval,
+    ParseError,
+    parse_formula,
+    tokenize,
+)
 from . import indexed
 
 # version of the derived JSON document (2: with singular_parameters; 3: several parameters,
@@ -137,6 +146,13 @@ class Definition:
     # an indexed parameter lam(i) (derive/families/indexed.py: `expand` gives each degree's
     # family in plain parameters); None for every other family
     indexed: object | None = None
+    # issue #30: functions with sin, cos, sinh, cosh, exp (derive/families/spaces.py), and the
+    # interval of t, value = lo * unit .. hi * unit with unit "1" or "pi"
+    elementary: bool = False
+    domain_lo: Fraction = Fraction(0)
+    domain_hi: Fraction = Fraction(1)
+    domain_unit: str = "1"
+    domain_text: str = "[0, 1]"
 
     @property
     def parameters(self) -> tuple[str, ...]:
@@ -227,7 +243,37 @@ def _parse_basis(text: str, parameters: tuple[str, ...], recursive: bool = False
     else:
         symbols.update({name: sp.Symbol(name) for name in parameters})
     functions = {"b": FUNCTIONS["b"]} if recursive else {}
-    return parse_formula(text, symbols, functions)
+    return parse_formula(text, symbols, functions, elementary=True)
+
+
+def _is_elementary(expr: sp.Basic) -> bool:
+    return expr.has(sp.pi, *ELEMENTARY.values())
+
+
+def _domain(text: str, fail) -> tuple[Fraction, Fraction, str]:
+    """`[lo, hi]`: exact rationals, or rational multiples of pi (both ends in one unit)."""
+    m = _RANGE.match(text)
+    if not m or m.group(1) != "[" or m.group(4) != "]":
+        raise fail("domain", f'{text!r} is not a closed interval such as "[0, 1]" or "[0, pi/2]"')
+    ends, units = [], set()
+    for part in (m.group(2).strip(), m.group(3).strip()):
+        try:
+            e = parse_formula(part, {}, {}, elementary=True)
+        except ParseError as exc:
+            raise fail("domain", str(exc)) from None
+        unit = e / sp.pi if e.has(sp.pi) else e
+        if not unit.is_Rational:
+            raise fail("domain", f"{part!r} is neither an exact rational nor a rational times pi")
+        if unit != 0:
+            units.add("pi" if e.has(sp.pi) else "1")
+        ends.append(Fraction(int(unit.p), int(unit.q)))
+    if len(units) > 1:
+        raise fail(
+            "domain", f"{text!r}: both ends are rationals or both are rational multiples of pi"
+        )
+    if ends[0] >= ends[1]:
+        raise fail("domain", f"the interval {text} is empty")
+    return ends[0], ends[1], units.pop() if units else "1"
 
 
 def _number(text: str, key: str) -> Fraction:
@@ -280,7 +326,7 @@ def _parameter_names(table: dict, fail) -> list[str]:
             'parameters with `parameters = ["lam", "mu"]`, one of the two',
         )
     names = [table["parameter"]] if "parameter" in table else list(table["parameters"])
-    taken = (*SYMBOLS, *FUNCTIONS, *BUILTINS)
+    taken = (*SYMBOLS, *FUNCTIONS, *BUILTINS, *ELEMENTARY, "pi")
     key = "parameter" if "parameter" in table else "parameters"
     for name in names:
         if name in taken and name != "lam":
@@ -340,18 +386,20 @@ def definition_from_table(table: object, where: str = "", *, builtin: bool = Fal
         if name in ats:
             at = _number(ats[name], "bernstein_at" if len(names) == 1 else f"bernstein_at.{name}")
         params.append(Parameter(name, ranges[name].strip(), lo, hi, lo_closed, hi_closed, at))
-    if "domain" in table:
-        dom = _RANGE.match(table["domain"])
-        if (
-            not dom
-            or _number(dom.group(2).strip(), "domain") != 0
-            or (_number(dom.group(3).strip(), "domain") != 1)
-        ):
-            raise fail(
-                "domain",
-                f"{table['domain']!r}: this version derives polynomial bases on [0, 1] only "
-                "(trigonometric and hyperbolic bases on another domain are not implemented)",
-            )
+    dom_lo, dom_hi, dom_unit = (
+        _domain(table["domain"], fail) if "domain" in table else (Fraction(0), Fraction(1), "1")
+    )
+    elementary = "functions" in table and any(
+        _is_elementary(_parse_basis(text, tuple(names)))
+        for text in table["functions"]
+        if _parses(text, tuple(names))
+    )
+    if not elementary and (dom_lo, dom_hi, dom_unit) != (0, 1, "1"):
+        raise fail(
+            "domain",
+            f"{table['domain']!r}: a polynomial basis is derived on [0, 1] only (a basis "
+            "with sin, cos, sinh, cosh or exp may have a domain of its own)",
+        )
     d = _DEGREES.match(table["degrees"])
     single = re.match(r"^\s*([0-9]{1,3})\s*$", table["degrees"])
     if not d and not single:
@@ -379,6 +427,9 @@ def definition_from_table(table: object, where: str = "", *, builtin: bool = Fal
     )
     for key, text, recursive in formulas:
         _check_formula(fail, key, text, tuple(names), recursive)
+    for key in ("bernstein_at", "degree_offset"):
+        if elementary and key in table:
+            raise fail(key, "not used by a trigonometric or hyperbolic basis (leave it out)")
     if "seed" in table and len(table["seed"]) != dlo + 1:
         raise fail(
             "seed",
@@ -405,6 +456,11 @@ def definition_from_table(table: object, where: str = "", *, builtin: bool = Fal
         digest=digest(table),
         params=tuple(params),
         functions_texts=tuple(table["functions"]) if "functions" in table else None,
+        elementary=elementary,
+        domain_lo=dom_lo,
+        domain_hi=dom_hi,
+        domain_unit=dom_unit,
+        domain_text=table.get("domain", "[0, 1]").strip(),
     )
 
 
@@ -485,6 +541,12 @@ def _check_formula(fail, key: str, text: str, names: tuple[str, ...], recursive:
     extra = sorted(s.name for s in expr.free_symbols if s not in {_I, _N, _T} | own)
     if extra:
         raise fail(key, f"unknown symbol {extra[0]!r} (the basis is a formula in {shown})")
+    if _is_elementary(expr) and not key.startswith("functions"):
+        raise fail(
+            key,
+            "pi, sin, cos, sinh, cosh and exp belong in an explicit `functions` list (a "
+            "trigonometric or hyperbolic basis of one order)",
+        )
     if expr.has(sp.Sum, sp.Integral, sp.Subs, sp.Derivative):
         raise fail(key, "a basis is a closed formula: no sums, integrals or derivatives")
     if not recursive and expr.atoms(sp.core.function.AppliedUndef):
@@ -492,6 +554,14 @@ def _check_formula(fail, key: str, text: str, names: tuple[str, ...], recursive:
     for call in expr.atoms(sp.core.function.AppliedUndef):
         if len(call.args) != 3 or call.args[2] != _T:
             raise fail(key, f"{call} must be b(index, degree, t)")
+
+
+def _parses(text: str, names: tuple[str, ...]) -> bool:
+    try:
+        _parse_basis(text, names)
+    except ParseError:
+        return False  # reported with its key by _check_formula
+    return True
 
 
 def read_definition(path: Path, *, builtin: bool = False) -> Definition:

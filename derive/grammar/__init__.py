@@ -8,6 +8,9 @@ from .formula import (
     BUILTINS as BUILTINS,
 )
 from .formula import (
+    ELEMENTARY as ELEMENTARY,
+)
+from .formula import (
     FUNCTION_NAMES as FUNCTION_NAMES,
 )
 from .formula import (
@@ -30,6 +33,9 @@ from .formula import (
 )
 from .formula import (
     MAX_FACTORIAL as MAX_FACTORIAL,
+)
+from .formula import (
+    MAX_FREQUENCY as MAX_FREQUENCY,
 )
 from .formula import (
     MAX_TEXT as MAX_TEXT,

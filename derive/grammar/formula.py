@@ -70,6 +70,16 @@ FUNCTION_NAMES = (
 SYMBOLS: dict[str, sp.Symbol] = {name: sp.Symbol(name) for name in SYMBOL_NAMES}
 FUNCTIONS: dict[str, sp.FunctionClass] = {name: sp.Function(name) for name in FUNCTION_NAMES}
 BUILTINS = ("Sum", "Integral", "Derivative", "Subs", "binomial", "factorial")
+# the elementary functions of family definitions (issue #30), only with `elementary=True`:
+# each applied to a rational multiple of t or of pi*t, and the constant `pi`
+ELEMENTARY: dict[str, sp.FunctionClass] = {
+    "sin": sp.sin,
+    "cos": sp.cos,
+    "sinh": sp.sinh,
+    "cosh": sp.cosh,
+    "exp": sp.exp,
+}
+MAX_FREQUENCY = 1_000  # numerator and denominator of the rate w in sin(w*t)
 
 
 # --------------------------------------------------------------------------- tokens
@@ -144,7 +154,14 @@ def paper_binomial_expr(a: sp.Expr, b: sp.Expr) -> sp.Expr:
 
 
 class _Parser:
-    def __init__(self, text: str, symbols: Mapping[str, sp.Symbol], functions: Mapping):
+    def __init__(
+        self,
+        text: str,
+        symbols: Mapping[str, sp.Symbol],
+        functions: Mapping,
+        elementary: bool = False,
+    ):
+        self.elementary = elementary
         self.text = text
         self.tokens = tokenize(text)
         self.pos = 0
@@ -308,6 +325,18 @@ class _Parser:
             if called:
                 raise self.error(f"{name!r} is a symbol, not a function", tok)
             return self.symbols[name]
+        if self.elementary and name == "pi":
+            if called:
+                raise self.error("'pi' is a constant, not a function", tok)
+            return sp.pi
+        if self.elementary and name in ELEMENTARY:
+            if not called:
+                raise self.error(f"{name!r} is a function and must be called", tok)
+            self.pos += 1
+            self.enter()
+            args = self.arguments()
+            self.depth -= 1
+            return self.elementary_call(name, args, tok)
         if name in self.functions or name in BUILTINS:
             if not called:
                 raise self.error(f"{name!r} is a function and must be called", tok)
@@ -334,6 +363,28 @@ class _Parser:
             if self.accept(")"):
                 return args
             self.expect(",")
+
+    def elementary_call(self, name: str, args: list, tok: Token):
+        """sin, cos, sinh, cosh, exp of w*t with w a nonzero rational or a rational times pi:
+        anything else (sin(t**2), sin(lam*t), sin(t + 1)) is refused here, by name."""
+        if len(args) != 1 or isinstance(args[0], _Tuple) or _is_bool(args[0]):
+            raise self.error(f"{name} takes one argument, a rational multiple of t", tok)
+        arg = args[0]
+        t = self.symbols.get("t")
+        rate = sp.expand(arg / t) if t is not None and arg.has(t) else None
+        unit = rate / sp.pi if rate is not None and rate.has(sp.pi) else rate
+        if unit is None or not unit.is_Rational or unit == 0:
+            raise self.error(
+                f"{name}({arg}): the argument must be a rational multiple of t or of pi*t "
+                f"(such as {name}(2*t), {name}(t/3), {name}(pi*t/2))",
+                tok,
+            )
+        if max(abs(int(unit.p)), int(unit.q)) > MAX_FREQUENCY:
+            raise self.error(
+                f"{name}({arg}): a rate larger than {MAX_FREQUENCY} in numerator or denominator",
+                tok,
+            )
+        return ELEMENTARY[name](arg)
 
     # ---- the built-in forms
     def builtin(self, name: str, args: list, tok: Token):
@@ -430,11 +481,14 @@ def parse_formula(
     text: object,
     symbols: Mapping[str, sp.Symbol] | None = None,
     functions: Mapping | None = None,
+    *,
+    elementary: bool = False,
 ) -> sp.Basic:
     """A formula of the records grammar as a SymPy object; ParseError for anything else.
 
     `symbols` and `functions` replace the default tables (a family definition adds its own
-    parameter symbol, for instance)."""
+    parameter symbol, for instance). `elementary`: also `pi` and sin, cos, sinh, cosh, exp
+    of a rational multiple of t or of pi*t (family definitions, issue #30)."""
     if not isinstance(text, str):
         raise ParseError(f"a formula must be a string, got {type(text).__name__}")
     if len(text) > MAX_TEXT:
@@ -442,7 +496,10 @@ def parse_formula(
     if not text.strip():
         raise ParseError("an empty formula")
     parser = _Parser(
-        text, SYMBOLS if symbols is None else symbols, FUNCTIONS if functions is None else functions
+        text,
+        SYMBOLS if symbols is None else symbols,
+        FUNCTIONS if functions is None else functions,
+        elementary,
     )
     try:
         return parser.parse()

@@ -1,0 +1,99 @@
+"""The derived document of a trigonometric, hyperbolic or mixed family: ``"format": 4``
+(issue #30; the contract between derive and the runtime is in docs/guide/own-family.md).
+
+Polynomial families keep format 3 (derive/emit/document.py); this module writes only the
+families whose functions use sin, cos, sinh, cosh or exp. Every value is exact: a rational
+string, or [["coefficient", exponent], ...] in the document's constant (pi or exp(W)).
+"""
+
+from __future__ import annotations
+
+from ..families.definition import Definition
+from ..families.spaces import space_of
+from ..formulas import atom_family as F
+
+FORMAT = 4
+
+
+def derive(defn: Definition) -> dict:
+    space = space_of(defn)
+    F.check_partition(defn, space)
+    n = len(space.functions) - 1
+    atoms, tables = F.coefficient_tables(space)
+    swap = F.symmetry(defn, space)
+    independence = F.independence(defn, space)
+    checked = [
+        f"the functions lie in the {space.name} space (atoms {', '.join(atoms)})",
+        "partition of unity, exactly (atom coefficients)",
+    ]
+    if independence.get("independent") is True:
+        checked.append("linearly independent over the whole parameter box")
+    names = defn.parameters
+    mid = defn.domain_lo + defn.domain_hi
+    mirror = f"{mid}{'*pi' if defn.domain_unit == 'pi' and mid != 1 else ''}"
+    mirror = f"{'pi' if defn.domain_unit == 'pi' and mid == 1 else mirror} - t"
+    singular: dict
+    if "reason" in independence:
+        singular = {"reason": independence["reason"]}
+    else:
+        singular = {str(n): independence.get("singular", [])}
+        if independence.get("everywhere"):
+            singular = {"reason": "linearly dependent for every parameter value"}
+    endpoints = {str(n): F.endpoints(space), "constant": space.constant}
+    return {
+        "generated_by": "lambda-bezier derive --family -- DO NOT EDIT; regenerate with "
+        "`lambda-bezier derive --family FILE`",
+        "format": FORMAT,
+        "definition_sha256": defn.digest,
+        "family": defn.name,
+        "title": defn.title,
+        "space": space.name,
+        "parameters": [
+            {
+                "name": q.name,
+                "range": {
+                    "text": q.range_text,
+                    "lo": str(q.lo),
+                    "hi": str(q.hi),
+                    "closed": [q.lo_closed, q.hi_closed],
+                },
+                "bernstein_at": None,
+            }
+            for q in defn.params
+        ],
+        "domain": {
+            "lo": str(defn.domain_lo),
+            "hi": str(defn.domain_hi),
+            "unit": defn.domain_unit,
+            "text": defn.domain_text,
+        },
+        "degrees": [n, n],
+        "degree_offset": 0,
+        "checked": checked,
+        "symmetry": None
+        if swap is None
+        else {
+            "swap": list(swap),
+            "text": f"b_i(t; {', '.join(names)}) = b_{{n-i}}({mirror}; {', '.join(swap)})",
+        },
+        "basis": {str(n): [F.show_elem(b, defn, space) for b in space.functions]},
+        "atoms": {str(n): atoms},
+        "coefficients": {
+            str(n): {
+                F.mono_key(mono): [[str(v) for v in row] for row in table]
+                for mono, table in sorted(tables.items())
+            }
+        },
+        "rational": F.rational_form(space),
+        "endpoints": endpoints,
+        "endpoint_closed_orders": -1,
+        "endpoint_closed_forms": None,
+        "energy": F.energies(space),
+        "nonnegative_over_box": F.nonnegative_over_box(defn, space),
+        "linear_independence": independence,
+        "singular_parameters": singular,
+        "joins": {
+            "reason": "joins of non-polynomial families are solved by the runtime per degree "
+            "from the exact end derivatives (endpoints); no closed form in n (one order)"
+        },
+    }

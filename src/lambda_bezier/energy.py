@@ -21,6 +21,7 @@ from . import _validate as val
 from ._lazy import generated
 from ._validate import PointsLike
 from .curves import FAMILIES, Curve, family_class
+from .hazmat.kernels import chunk_ranges
 
 _energy = generated("energy")
 
@@ -357,13 +358,20 @@ def _coefficients_of(
     m, size, dim = arr.shape
     factor, rows, a2_weight = _factored_forms(family, size - 1, k, dim)
     flat_t = arr.reshape(m, size * dim).T  # a view: column j is (P_0x, P_0y, P_1x, …) of j
-    z = factor.T @ flat_t  # wide product (rows × m): BLAS is slow on the tall-skinny one
-    zf, zg = z[:rows], z[rows:]
-    a0 = np.einsum("ij,ij->j", zf, zf)
-    a1 = 2 * np.einsum("ij,ij->j", zf, zg)
-    a2 = np.einsum("ij,ij->j", zg, zg)
-    norm2 = np.einsum("ij,ij->j", flat_t, flat_t)
-    return (a0, a1, a2), 1e-12 * a2_weight * norm2
+    # rows a0, a1/2, a2 and ‖P‖², filled chunk by chunk of polygons: the products stay in
+    # cache, and the extra memory is bounded at any m (issue #29)
+    out = np.empty((4, m))
+    for lo, hi in chunk_ranges(m, factor.shape[1]):
+        x = flat_t[:, lo:hi]
+        z = factor.T @ x  # wide product (rows × c): BLAS is slow on the tall-skinny one
+        zf, zg = z[:rows], z[rows:]
+        np.einsum("ij,ij->j", zf, zf, out=out[0, lo:hi])
+        np.einsum("ij,ij->j", zf, zg, out=out[1, lo:hi])
+        np.einsum("ij,ij->j", zg, zg, out=out[2, lo:hi])
+        np.einsum("ij,ij->j", x, x, out=out[3, lo:hi])
+    out[1] *= 2
+    out[3] *= 1e-12 * a2_weight
+    return (out[0], out[1], out[2]), out[3]
 
 
 @cache
@@ -472,19 +480,24 @@ def optimal_lambda(
         lam = np.clip(best, float(lo), float(hi)) if clamp else best
 
     def inside(x: Any) -> bool | np.ndarray:
-        ok: bool | np.ndarray = ((x > lo) | ((x == lo) & lo_closed)) & (
-            (x < hi) | ((x == hi) & hi_closed)
-        )
+        above = x >= lo if lo_closed else x > lo
+        below = x <= hi if hi_closed else x < hi
+        ok: bool | np.ndarray = above & below
         return ok
 
-    energy = a0 + a1 * lam + a2 * lam * lam
-    unconstrained_energy = a0 + a1 * best + a2 * best * best
+    def energy_at(x: Any) -> Any:
+        return a0 + a1 * x + a2 * x * x
+
+    unconstrained_energy = energy_at(best)
+    # unclamped, λ is λ*: one evaluation (a batch's arrays are large)
+    energy = unconstrained_energy if lam is best else energy_at(lam)
     if exponents is not None:  # the polygons that were computed scaled (see above)
         energy, unconstrained_energy = (
             _unscale(e, exponents if not single else exponents[0], single, f"E_{k}")
             for e in (energy, unconstrained_energy)
         )
-    ok, ok_best = inside(lam), inside(best)
+    ok_best = inside(best)
+    ok = ok_best if lam is best else inside(lam)
     if exact or np.ndim(best) == 0:
         ok, ok_best = bool(ok), bool(ok_best)
     if not exact and np.ndim(best) == 0:

@@ -51,6 +51,18 @@ def split_rows(points: Sequence[Sequence[Scalar]], t: Scalar) -> tuple[list[Row]
     return [row[0] for row in tri], [row[-1] for row in reversed(tri)]
 
 
+# Elements of one chunk's working block in the batch operations (evaluate_many, optimal_lambda):
+# 2 MB of floats, inside the L2 cache, and a bound on their extra memory at any batch size.
+CHUNK_ELEMENTS = 1 << 18
+
+
+def chunk_ranges(m: int, per_item: int) -> list[tuple[int, int]]:
+    """[lo, hi) ranges covering range(m), each of about CHUNK_ELEMENTS elements when an item
+    takes `per_item` elements (at least one item per chunk)."""
+    step = max(1, CHUNK_ELEMENTS // max(per_item, 1))
+    return [(lo, min(lo + step, m)) for lo in range(0, m, step)]
+
+
 BLOCK = 65536  # parameters per block: a (d, BLOCK) accumulator stays in the L2 cache
 
 

@@ -7,6 +7,7 @@ ints, Fractions, tuples and SymPy expressions, and get back byte-stable module t
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
+from fractions import Fraction
 
 import sympy as sp
 from sympy.printing.str import StrPrinter
@@ -38,7 +39,11 @@ EXACT_HELPERS = "from ._exact import binomial, factorial, falling_factorial\n"
 
 
 def scalar(x: object) -> str:
-    q = to_fraction(x)
+    # ints and Fractions (nearly every one of the ~300,000 printed numbers) skip to_fraction
+    cls = type(x)
+    if cls is int:
+        return str(x)
+    q = x if cls is Fraction else to_fraction(x)
     return str(q.numerator) if q.denominator == 1 else f"F({q.numerator}, {q.denominator})"
 
 
@@ -71,6 +76,12 @@ def _sorted_items(m: Mapping) -> list:
 
 
 def _flat(obj: object) -> str:
+    cls = type(obj)  # the common exact types first: an isinstance on Mapping is slow
+    if cls is int or cls is Fraction:
+        return scalar(obj)
+    if cls is tuple or cls is list:
+        inner = ", ".join([_flat(v) for v in obj])  # type: ignore[attr-defined]
+        return f"({inner},)" if len(obj) == 1 else f"({inner})"  # type: ignore[arg-type]
     if isinstance(obj, str):
         return repr(obj)
     if isinstance(obj, Mapping):

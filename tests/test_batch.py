@@ -95,7 +95,47 @@ def test_chunked_de_casteljau_and_non_finite_index(tiny_chunks):
         lb.evaluate_many(pts[:, :5], t, "bezier")
 
 
-def test_chunked_optimal_lambda_matches_single(tiny_chunks):
+@pytest.fixture(params=["numba", "numpy"])
+def batch_path(request, monkeypatch):
+    """Both paths of the batch energy coefficients: the compiled kernel (the `fast` extra)
+    and the numpy fallback."""
+    from importlib.util import find_spec
+
+    from lambda_bezier.hazmat import kernels
+
+    if request.param == "numba" and find_spec("numba") is None:
+        pytest.skip("numba is not installed (pip install '.[fast]'): the compiled path")
+    monkeypatch.setattr(kernels, "USE_COMPILED", request.param == "numba")
+    return request.param
+
+
+@pytest.mark.parametrize("family", ["same_degree", "bernstein_like"])
+@pytest.mark.parametrize("dim", [1, 2, 3])
+def test_compiled_and_numpy_energy_coefficients_agree(family, dim, monkeypatch):
+    """The compiled kernel against the numpy products, term for term, on every order, with
+    large and tiny polygons (the tiny one redone scaled) in the batch."""
+    pytest.importorskip("numba")
+    from lambda_bezier.hazmat import kernels
+
+    rng = np.random.default_rng(dim)
+    batch = rng.normal(size=(40, 6, dim))
+    batch[3] *= 1e140
+    batch[4] *= 1e-200
+    for k in (1, 2, 3):
+        monkeypatch.setattr(kernels, "USE_COMPILED", True)
+        fast = lb.energy_coefficients(batch, k, family)
+        opt_fast = lb.optimal_lambda(batch, k, family, clamp=True)
+        monkeypatch.setattr(kernels, "USE_COMPILED", False)
+        slow = lb.energy_coefficients(batch, k, family)
+        opt_slow = lb.optimal_lambda(batch, k, family, clamp=True)
+        for a, b in zip(fast, slow, strict=True):
+            np.testing.assert_allclose(a, b, rtol=1e-13)
+        np.testing.assert_allclose(opt_fast.unconstrained, opt_slow.unconstrained, rtol=1e-12)
+        np.testing.assert_allclose(opt_fast.energy, opt_slow.energy, rtol=1e-12)
+        assert (opt_fast.admissible == opt_slow.admissible).all()
+
+
+def test_chunked_optimal_lambda_matches_single(tiny_chunks, batch_path):
     from lambda_bezier.hazmat import kernels
 
     rng = np.random.default_rng(8)
@@ -107,6 +147,19 @@ def test_chunked_optimal_lambda_matches_single(tiny_chunks):
             single = lb.optimal_lambda(batch[idx], k)
             np.testing.assert_allclose(result.unconstrained[idx], single.unconstrained, rtol=1e-12)
             np.testing.assert_allclose(result.energy[idx], single.energy, rtol=1e-12)
+    batch[20, 1, 0] = np.inf  # named by its place in the batch, not in its chunk
+    with pytest.raises(ValueError, match="polygon 20, control point 1 has a non-finite"):
+        lb.optimal_lambda(batch, 2)
+    batch[20] = 0.0  # no effect of λ on a point: named likewise
+    with pytest.raises(ValueError, match=r"polygon 20\)"):
+        lb.optimal_lambda(batch, 2)
+    clamped = lb.optimal_lambda(batch[:19], 2, clamp=True)
+    assert clamped.lam.shape == (19,) and clamped.lam is not clamped.unconstrained
+    for idx in (0, 7, 18):
+        one = lb.optimal_lambda(batch[idx], 2, clamp=True)
+        assert clamped.lam[idx] == pytest.approx(one.lam, rel=1e-12)
+        assert clamped.admissible[idx] == one.admissible
+        assert clamped.energy[idx] == pytest.approx(one.energy, rel=1e-12)
 
 
 def test_mixed_magnitudes_in_one_batch():

@@ -6,8 +6,11 @@ lecture notes' worked examples and exact conversions stay exact.
 
 from __future__ import annotations
 
+import importlib.util
+import os
 from collections.abc import Sequence
 from fractions import Fraction
+from types import ModuleType
 
 import numpy as np
 
@@ -49,6 +52,22 @@ def split_rows(points: Sequence[Sequence[Scalar]], t: Scalar) -> tuple[list[Row]
     triangle, and the last points in reverse order."""
     tri = de_casteljau_triangle(points, t)
     return [row[0] for row in tri], [row[-1] for row in reversed(tri)]
+
+
+# The compiled batch kernels (batch_compiled) when numba is there and not switched off
+# (LAMBDA_BEZIER_NO_NUMBA=1); a module flag, read per call, so tests can run both paths.
+USE_COMPILED = importlib.util.find_spec("numba") is not None and not os.environ.get(
+    "LAMBDA_BEZIER_NO_NUMBA"
+)
+
+
+def compiled() -> ModuleType | None:
+    """hazmat.batch_compiled when USE_COMPILED, else None (the numpy paths)."""
+    if not USE_COMPILED:
+        return None
+    from . import batch_compiled  # numba compiles (or loads its cache) on first use
+
+    return batch_compiled
 
 
 # Elements of one chunk's working block in the batch operations (evaluate_many, optimal_lambda):

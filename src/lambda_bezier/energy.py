@@ -386,7 +386,7 @@ def _coefficients_of(
 ) -> tuple[tuple[np.ndarray, np.ndarray, np.ndarray], np.ndarray]:
     m, size, dim = arr.shape
     compiled = kernels.compiled()
-    if compiled is not None:  # one pass per polygon (hazmat/batch_compiled.py)
+    if compiled is not None:  # one pass per polygon (hazmat/kernels_compiled.py)
         compact, rows, a2_weight = _compact_forms(family, size - 1, k)
         out = np.empty((4, m))
         compiled.energy_coefficients(

@@ -54,7 +54,7 @@ def split_rows(points: Sequence[Sequence[Scalar]], t: Scalar) -> tuple[list[Row]
     return [row[0] for row in tri], [row[-1] for row in reversed(tri)]
 
 
-# The compiled batch kernels (batch_compiled) when numba is there and not switched off
+# The compiled kernels (kernels_compiled) when numba is there and not switched off
 # (LAMBDA_BEZIER_NO_NUMBA=1); a module flag, read per call, so tests can run both paths.
 USE_COMPILED = importlib.util.find_spec("numba") is not None and not os.environ.get(
     "LAMBDA_BEZIER_NO_NUMBA"
@@ -62,12 +62,12 @@ USE_COMPILED = importlib.util.find_spec("numba") is not None and not os.environ.
 
 
 def compiled() -> ModuleType | None:
-    """hazmat.batch_compiled when USE_COMPILED, else None (the numpy paths)."""
+    """hazmat.kernels_compiled when USE_COMPILED, else None (the numpy paths)."""
     if not USE_COMPILED:
         return None
-    from . import batch_compiled  # numba compiles (or loads its cache) on first use
+    from . import kernels_compiled  # numba compiles (or loads its cache) on first use
 
-    return batch_compiled
+    return kernels_compiled
 
 
 # Elements of one chunk's working block in the batch operations (evaluate_many, optimal_lambda):

@@ -114,7 +114,7 @@ def evaluate_many(
     if not cls._has_lambda:
         if lam is not None:
             raise ValueError("a classical Bézier curve takes no shape parameter")
-        lams = np.zeros(m)
+        lams = np.zeros(1)  # unused: one table, no λ (not one zero per curve: memory)
     else:
         if lam is None:
             raise ValueError(f"a {family} curve needs a shape parameter lam")

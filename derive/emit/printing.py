@@ -6,14 +6,17 @@ ints, Fractions, tuples and SymPy expressions, and get back byte-stable module t
 
 from __future__ import annotations
 
-import difflib
 from collections.abc import Iterable, Mapping
-from pathlib import Path
+from fractions import Fraction
 
 import sympy as sp
 from sympy.printing.str import StrPrinter
 
 from ..algebra import to_fraction
+
+# reading, comparing and writing generated/ live in tree.py (no SymPy: `derive --check` on a
+# cached derivation never imports SymPy); the names stay importable from here
+from .tree import diff_tree, read_tree, write_tree  # noqa: F401
 
 REGENERATE = "lambda-bezier derive"
 LINE_WIDTH = 100
@@ -36,7 +39,11 @@ EXACT_HELPERS = "from ._exact import binomial, factorial, falling_factorial\n"
 
 
 def scalar(x: object) -> str:
-    q = to_fraction(x)
+    # ints and Fractions (nearly every one of the ~300,000 printed numbers) skip to_fraction
+    cls = type(x)
+    if cls is int:
+        return str(x)
+    q = x if cls is Fraction else to_fraction(x)
     return str(q.numerator) if q.denominator == 1 else f"F({q.numerator}, {q.denominator})"
 
 
@@ -69,6 +76,12 @@ def _sorted_items(m: Mapping) -> list:
 
 
 def _flat(obj: object) -> str:
+    cls = type(obj)  # the common exact types first: an isinstance on Mapping is slow
+    if cls is int or cls is Fraction:
+        return scalar(obj)
+    if cls is tuple or cls is list:
+        inner = ", ".join([_flat(v) for v in obj])  # type: ignore[attr-defined]
+        return f"({inner},)" if len(obj) == 1 else f"({inner})"  # type: ignore[arg-type]
     if isinstance(obj, str):
         return repr(obj)
     if isinstance(obj, Mapping):
@@ -120,52 +133,6 @@ def function(name: str, args: Iterable[str], doc: str, body: str) -> str:
         lines.append(f"    {', '.join(exact)} = " + ", ".join(f"F({a})" for a in exact))
     lines += ["    " + line for line in body.splitlines()]
     return "\n".join(lines) + "\n"
-
-
-# --------------------------------------------------------------------------- generated/ tree
-
-
-def _is_ours(path: Path) -> bool:
-    return "__pycache__" not in path.parts and path.suffix != ".pyc"
-
-
-def read_tree(directory: Path) -> dict[str, str]:
-    if not directory.is_dir():
-        return {}
-    return {
-        p.relative_to(directory).as_posix(): p.read_text(encoding="utf-8")
-        for p in sorted(directory.rglob("*"))
-        if p.is_file() and _is_ours(p.relative_to(directory))
-    }
-
-
-def diff_tree(wanted: Mapping[str, str], directory: Path, label: str) -> list[str]:
-    """Unified diffs (one string per drifted file): differing, missing or extra files."""
-    have = read_tree(directory)
-    out = []
-    for name in sorted(set(wanted) | set(have)):
-        old, new = have.get(name), wanted.get(name)
-        if old == new:
-            continue
-        text = "".join(
-            difflib.unified_diff(
-                (old or "").splitlines(keepends=True),
-                (new or "").splitlines(keepends=True),
-                fromfile=f"{label}/{name}" + ("" if old is not None else " (missing)"),
-                tofile=f"{label}/{name} (derived)" + ("" if new is not None else " (extra file)"),
-            )
-        )
-        out.append(text or f"--- {label}/{name}\n+++ {label}/{name} (derived)\n")
-    return out
-
-
-def write_tree(files: Mapping[str, str], directory: Path, say=None) -> None:
-    """Replace `directory` by exactly `files`, atomically (written and flushed in a sibling
-    directory, swapped in with one rename exchange), serialised by a lock, after cleaning up
-    what an interrupted earlier run left: see lambda_bezier._generated_dir."""
-    from lambda_bezier._generated_dir import replace_tree
-
-    replace_tree(files, Path(directory), *(() if say is None else (say,)))
 
 
 # --------------------------------------------------------------------------- fixed modules

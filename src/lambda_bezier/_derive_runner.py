@@ -10,6 +10,7 @@ import importlib
 import importlib.util
 import sys
 from collections.abc import Callable
+from importlib import metadata
 from pathlib import Path
 from types import ModuleType
 
@@ -32,12 +33,10 @@ def find_checkout(start: Path) -> Path | None:
 def load_derive(root: Path | None) -> ModuleType:
     """The checkout's derive/ package when there is a checkout (so edits to derive/ take effect
     without reinstalling), else the copy installed with the wheel."""
-    try:
-        import sympy  # noqa: F401
-    except ImportError:
-        raise SystemExit(
-            "lambda-bezier derive needs SymPy: pip install 'lambda-bezier[derive]'"
-        ) from None
+    # found, not imported: a derivation read back from the cache (derive/emit/cache.py)
+    # never pays for importing SymPy
+    if importlib.util.find_spec("sympy") is None:
+        raise SystemExit("lambda-bezier derive needs SymPy: pip install 'lambda-bezier[derive]'")
     if root is None:
         return importlib.import_module("lambda_bezier._derive")
     # one module name per checkout, so two roots in one process never share a package
@@ -65,7 +64,7 @@ def installed_generated_dir() -> Path:
     return Path(_generated.__file__).parent
 
 
-def run(check: bool, root: Path | None, quiet: bool = False) -> int:
+def run(check: bool, root: Path | None, quiet: bool = False, cache: bool = True) -> int:
     checkout = root if root is not None else find_checkout(Path.cwd())
     if checkout is None and not check:
         print(
@@ -75,19 +74,18 @@ def run(check: bool, root: Path | None, quiet: bool = False) -> int:
         )
         return 2
     derive = load_derive(checkout)  # exits with an install hint when SymPy is missing
-    import sympy
-
-    emit = importlib.import_module(f"{derive.__name__}.emit.printing")
     target = checkout / "generated" if checkout else installed_generated_dir()
     say: Callable[[str], None] = (
         (lambda msg: None) if quiet else (lambda msg: print(msg, file=sys.stderr, flush=True))
     )
-    if sympy.__version__ != derive.SYMPY_VERSION:
+    sympy_version = _sympy_version()
+    if sympy_version != derive.SYMPY_VERSION:
         say(
             f"warning: generated/ is printed with SymPy {derive.SYMPY_VERSION}, "
-            f"this is SymPy {sympy.__version__}; output may differ"
+            f"this is SymPy {sympy_version}; output may differ"
         )
-    files = derive.render_all(progress=lambda name: say(f"deriving {name} ..."))
+    files = _render(derive, cache, say)
+    emit = importlib.import_module(f"{derive.__name__}.emit.tree")
     if check:
         label = "generated" if checkout else str(target)
         missing = _recover_before_check(target, say)
@@ -115,6 +113,36 @@ def run(check: bool, root: Path | None, quiet: bool = False) -> int:
         return 1
     say(f"wrote {len(files)} files to {target}")
     return 0
+
+
+def _sympy_version() -> str:
+    try:
+        return metadata.version("sympy")
+    except metadata.PackageNotFoundError:  # a SymPy without installed metadata
+        import sympy
+
+        return str(sympy.__version__)
+
+
+def _render(derive: ModuleType, use_cache: bool, say: Callable[[str], None]) -> dict[str, str]:
+    """derive.render_all(), or its text read back from the content-addressed cache when the
+    same sources and libraries were derived before (derive/emit/cache.py)."""
+    derive_file: str | None = getattr(derive, "__file__", None)
+    cache = importlib.import_module(f"{derive.__name__}.emit.cache") if derive_file else None
+    key = None
+    if cache is not None and derive_file is not None and use_cache and cache.enabled():
+        key = cache.key(Path(derive_file).parent, Path(__file__).parent)
+        files: dict[str, str] | None = cache.load(key)
+        if files is not None:
+            say(
+                f"derived before from the same sources and libraries (cache {key[:12]}); "
+                "--no-cache derives again"
+            )
+            return files
+    files = derive.render_all(progress=lambda name: say(f"deriving {name} ..."))
+    if cache is not None and key is not None:
+        cache.store(key, files)
+    return files
 
 
 def _recover_before_check(target: Path, say: Callable[[str], None]) -> str | None:

@@ -10,6 +10,7 @@ import numpy.typing as npt
 from . import _validate as val
 from .curves import FAMILIES, Curve, _float_matrix, _tables, family_class
 from .hazmat import kernels as alg
+from .hazmat.kernels import chunk_ranges, differentiate_coefficients
 
 
 def _lambdas(lam: npt.ArrayLike, cls: type[Curve], m: int, check_range: bool) -> np.ndarray:
@@ -113,10 +114,6 @@ def evaluate_many(
     # degree 0) it is evaluated by de Casteljau below
     degrees = (0, sys.maxsize) if cls._any_degree else tuple(cls._data.DEGREES)
     val.check_point_shape((size, dim), family=family, degrees=degrees)
-    big = float(np.abs(arr).max()) if arr.size else 0.0  # NaN and inf propagate into this
-    if not np.isfinite(big):
-        idx = np.argwhere(~np.isfinite(arr))[0]
-        raise ValueError(f"curve {idx[0]}, control point {idx[1]} has a non-finite coordinate")
     k = val.as_order(k)
     tt, scalar = val.as_parameters(t, extrapolate=extrapolate)
     n = size - 1
@@ -128,64 +125,95 @@ def evaluate_many(
     if not cls._has_lambda:
         if lam is not None:
             raise ValueError("a classical Bézier curve takes no shape parameter")
-        lams = np.zeros(m)
+        lams = np.zeros(1)  # unused: one table, no λ (not one zero per curve: memory)
     else:
         if lam is None:
             raise ValueError(f"a {family} curve needs a shape parameter lam")
         lams = _lambdas(lam, cls, m, check_range)
-    # Coefficients of every curve in the centred monomials (t - 1/2)^e, laid out (N+1, m·d)
-    # so that both products below are wide matrix products (BLAS is slow on tall-skinny ones).
-    # coordinates beyond 2^±900: computed on points scaled by a power of two (exact), then
-    # scaled back, so a representable p(t) is not lost to an overflow in the coefficients
-    scale = val.scale_for_magnitude(big)
-    with val.overflow_allowed():
-        pt = np.ascontiguousarray(arr.transpose(1, 0, 2)).reshape(size, m * dim)
-        if scale != 1.0:
-            pt = pt / scale
-        coeffs = _float_matrix(cls._data, "centred", n, 0).T @ pt
-        for p in range(1, len(mats)):
-            part = _float_matrix(cls._data, "centred", n, p).T @ pt
-            coeffs += part * np.repeat(lams**p, dim)
-        if k:
-            from .hazmat.kernels import differentiate_coefficients
+    tables = [_float_matrix(cls._data, "centred", n, p).T for p in range(len(mats))]
+    # Every curve shares the parameter grid: its monomials (t - 1/2)^e, once.
+    size_k = max(tables[0].shape[0] - k, 1)  # the Bézier degree N + 1 - k (N ≥ n)
+    u = tt - 0.5
+    powers = np.empty((tt.size, size_k))
+    powers[:, 0] = 1.0
+    for e in range(1, size_k):
+        np.multiply(powers[:, e - 1], u, out=powers[:, e])
+    # The result is laid out (T, m·d) and returned as the (m, T, d) view: each chunk of
+    # curves is one product of the monomials with its coefficients, written by BLAS straight
+    # into its columns (a transposing copy into an (m, T, d) array costs three times as much).
+    # Chunks keep the working arrays in cache and the extra memory bounded at any m.
+    out = np.empty((tt.size, m * dim))
+    check_needed = extrapolate or not check_range  # else nothing can overflow
+    for lo, hi in chunk_ranges(m, tt.size * dim):
+        part = arr[lo:hi]
+        # a curve with coordinates beyond 2^±900 is computed on its points scaled by a power
+        # of two (exact), then scaled back, so a representable p(t) is not lost to an
+        # overflow or underflow in the coefficients (each curve by its own magnitude)
+        scales = _curve_scales(part, lo)
+        with val.overflow_allowed():
+            # coefficients in the centred monomials, laid out (N+1, c·d): wide products
+            pt = part.transpose(1, 0, 2).reshape(size, (hi - lo) * dim)
+            if scales is not None:
+                scales = np.repeat(scales, dim)
+                pt = pt / scales
+            coeffs = tables[0] @ pt
+            for p in range(1, len(tables)):
+                coeffs += (tables[p] @ pt) * np.repeat(lams[lo:hi] ** p, dim)
+            if k:
+                coeffs = differentiate_coefficients(coeffs.T, k).T
+            block = out[:, lo * dim : hi * dim]
+            np.matmul(powers, coeffs, out=block)
+            if scales is not None:
+                block *= scales
+        if scales is not None or check_needed:
+            val.finite_result(block, "p(t)" if k == 0 else f"the derivative of order {k}")
+    values: np.ndarray = out.reshape(tt.size, m, dim).transpose(1, 0, 2)
+    return values[:, 0] if scalar else values
 
-            coeffs = differentiate_coefficients(coeffs.T, k).T
-        # Every curve shares the parameter grid: one product with the monomials at the grid.
-        u = tt - 0.5
-        powers = np.empty((tt.size, coeffs.shape[0]))
-        powers[:, 0] = 1.0
-        for e in range(1, coeffs.shape[0]):
-            np.multiply(powers[:, e - 1], u, out=powers[:, e])
-        out = (powers @ coeffs).reshape(tt.size, m, dim).transpose(1, 0, 2)
-        if scale != 1.0:
-            out = out * scale
-    if scale != 1.0 or extrapolate or not check_range:  # otherwise nothing can overflow
-        val.finite_result(out, "p(t)" if k == 0 else f"the derivative of order {k}")
-    values: np.ndarray = out[:, 0] if scalar else out
-    return values
+
+def _curve_scales(part: np.ndarray, first: int) -> np.ndarray | None:
+    """None when every curve of the chunk (the first is curve `first`) has ordinary
+    coordinates, else the power of two per curve (1 for ordinary ones) that brings a curve
+    with magnitudes beyond 2^±900 near 1 (`_validate.scale_for_magnitude`'s rule, per
+    curve). A NaN or infinity is refused, named by its curve."""
+    big = np.abs(part).max(axis=(1, 2)) if part.shape[1] * part.shape[2] else np.zeros(0)
+    if not np.isfinite(big).all():  # NaN propagates into the maximum
+        idx = np.argwhere(~np.isfinite(part))[0]
+        raise ValueError(
+            f"curve {first + idx[0]}, control point {idx[1]} has a non-finite coordinate"
+        )
+    exponent = np.frexp(big)[1]
+    odd = ((exponent > 900) | (exponent < -900)) & (big > 0)
+    if not odd.any():
+        return None
+    return np.where(odd, np.ldexp(1.0, exponent - 1), 1.0)
 
 
 def _de_casteljau_many(arr: np.ndarray, tt: np.ndarray, k: int, scalar: bool) -> np.ndarray:
     """evaluate_many for classical curves past the generated tables (and degree 0): de
     Casteljau on the k-th hodograph of every curve at once (the centred monomials are
-    ill-conditioned at high degree; de Casteljau is not). No overflow scaling is needed:
-    every step is a convex combination, and the differences of the hodograph are formed on
-    points scaled by a power of two."""
+    ill-conditioned at high degree; de Casteljau is not), chunk by chunk of curves. No
+    overflow scaling is needed: every step is a convex combination, and the differences of
+    the hodograph are formed on points scaled by a power of two."""
     m, size, dim = arr.shape
     n = size - 1
-    scale = val.scale_for_magnitude(float(np.abs(arr).max()) if arr.size else 0.0)
-    work = arr / scale if scale != 1.0 else arr
-    for order in range(k):  # p^(r+1) has the points (n - r)(P_{i+1} - P_i) of p^(r)
-        if work.shape[1] == 1:
-            work = np.zeros_like(work)
-            break
-        work = (n - order) * (work[:, 1:] - work[:, :-1])
-    pts = np.ascontiguousarray(work.transpose(1, 0, 2)).reshape(work.shape[1], m * dim)
-    with val.overflow_allowed():
-        out = alg.de_casteljau_steps(pts, tt, pts.shape[0] - 1)[:, 0]  # (T, m·d)
-        out = out.reshape(tt.size, m, dim).transpose(1, 0, 2)
-        if scale != 1.0:
-            out = out * scale
-    val.finite_result(out, "p(t)" if k == 0 else f"the derivative of order {k}")
-    values: np.ndarray = out[:, 0] if scalar else out
-    return values
+    out = np.empty((tt.size, m * dim))
+    # the de Casteljau triangle holds (T, n+1, c·d) elements at its widest
+    for lo, hi in chunk_ranges(m, tt.size * size * dim):
+        part = arr[lo:hi]
+        scales = _curve_scales(part, lo)
+        work = part / scales[:, None, None] if scales is not None else part
+        for order in range(k):  # p^(r+1) has the points (n - r)(P_{i+1} - P_i) of p^(r)
+            if work.shape[1] == 1:
+                work = np.zeros_like(work)
+                break
+            work = (n - order) * (work[:, 1:] - work[:, :-1])
+        pts = np.ascontiguousarray(work.transpose(1, 0, 2)).reshape(work.shape[1], -1)
+        block = out[:, lo * dim : hi * dim]
+        with val.overflow_allowed():
+            block[...] = alg.de_casteljau_steps(pts, tt, pts.shape[0] - 1)[:, 0]  # (T, c·d)
+            if scales is not None:
+                block *= np.repeat(scales, dim)
+        val.finite_result(block, "p(t)" if k == 0 else f"the derivative of order {k}")
+    values: np.ndarray = out.reshape(tt.size, m, dim).transpose(1, 0, 2)
+    return values[:, 0] if scalar else values

@@ -70,6 +70,12 @@ def build_parser() -> argparse.ArgumentParser:
     )
     derive.add_argument("-q", "--quiet", action="store_true", help="no progress messages")
     derive.add_argument(
+        "--no-cache",
+        action="store_true",
+        help="derive afresh even when these exact sources and libraries were derived before "
+        "(the content-addressed cache; LAMBDA_BEZIER_DERIVE_CACHE=off does the same)",
+    )
+    derive.add_argument(
         "--family",
         type=Path,
         metavar="FILE",
@@ -215,7 +221,7 @@ def main(argv: list[str] | None = None) -> int:
                 file=sys.stderr,
             )
             return 2
-        return run(check=args.check, root=root, quiet=args.quiet)
+        return run(check=args.check, root=root, quiet=args.quiet, cache=not args.no_cache)
     if args.command == "optimal-lambda":
         return _optimal_lambda(args)
     if args.command == "export":

@@ -21,6 +21,8 @@ from . import _validate as val
 from ._lazy import generated
 from ._validate import PointsLike
 from .curves import FAMILIES, Curve, family_class
+from .hazmat import kernels
+from .hazmat.kernels import chunk_ranges
 
 _energy = generated("energy")
 
@@ -276,9 +278,10 @@ def _as_polygons(points: PointsLike, family: object) -> tuple[np.ndarray, bool]:
     return np.ascontiguousarray(arr), single
 
 
-def _non_finite_error(arr: np.ndarray, single: bool) -> ValueError:
+def _non_finite_error(arr: np.ndarray, single: bool, first: int = 0) -> ValueError:
+    """The first non-finite coordinate of `arr`, polygons numbered from `first`."""
     bad = np.argwhere(~np.isfinite(arr))[0]
-    where = f"polygon {bad[0]}, " if not single else ""
+    where = f"polygon {first + bad[0]}, " if not single else ""
     return ValueError(f"{where}control point {bad[-2]} has a non-finite coordinate")
 
 
@@ -314,14 +317,17 @@ def energy_coefficients(points: PointsLike, k: int, family: object = "same_degre
     return (a0[0], a1[0], a2[0]) if single else (a0, a1, a2)
 
 
-def _unscale(values: _V, exponents: np.ndarray | None, single: bool, what: str) -> _V:
-    """values · 2^exponents (the polygons' scaling undone), refused where that overflows."""
+def _unscale(
+    values: _V, exponents: np.ndarray | None, single: bool, what: str, first: int = 0
+) -> _V:
+    """values · 2^exponents (the polygons' scaling undone), refused where that overflows
+    (polygons numbered from `first`)."""
     if exponents is None:
         return values
     with np.errstate(over="ignore"):
         out: _V = np.ldexp(values, exponents)
     if not np.isfinite(out).all():
-        where = "" if single else f" (polygon {int(np.argmin(np.isfinite(out)))})"
+        where = "" if single else f" (polygon {first + int(np.argmin(np.isfinite(out)))})"
         raise ValueError(
             f"{what}: beyond the float range for these control points{where}; pass exact "
             "ints/Fractions (computed exactly) or scale the points down (λ* does not change)"
@@ -332,13 +338,37 @@ def _unscale(values: _V, exponents: np.ndarray | None, single: bool, what: str) 
 def _float_coefficients(
     points: PointsLike, k: int, family: object
 ) -> tuple[tuple[np.ndarray, np.ndarray, np.ndarray], np.ndarray, np.ndarray | None, bool]:
-    """((a0, a1, a2) arrays over the batch, a bound on a2's rounding error, single?).
+    """((a0, a1, a2) arrays over the batch, a bound on a2's rounding error, the exponents of
+    the polygons computed scaled (None when none was), single?), chunk by chunk."""
+    arr, single = _as_polygons(points, family)
+    m = arr.shape[0]
+    out = np.empty((4, m))
+    exponents: np.ndarray | None = None
+    for lo, hi in _chunks(arr, k, family):
+        (a0, a1, a2), rounding, shifts = _chunk_coefficients(arr[lo:hi], k, family, single, lo)
+        out[0, lo:hi], out[1, lo:hi], out[2, lo:hi], out[3, lo:hi] = a0, a1, a2, rounding
+        if shifts is not None:
+            if exponents is None:
+                exponents = np.zeros(m, dtype=int)
+            exponents[lo:hi] = shifts
+    return (out[0], out[1], out[2]), out[3], exponents, single
+
+
+def _chunks(arr: np.ndarray, k: int, family: object) -> list[tuple[int, int]]:
+    """Chunks of polygons whose products (rows × chunk) stay in cache."""
+    m, size, dim = arr.shape
+    return chunk_ranges(m, _factored_forms(family, size - 1, k, dim)[0].shape[1])
+
+
+def _chunk_coefficients(
+    arr: np.ndarray, k: int, family: object, single: bool, first: int
+) -> tuple[tuple[np.ndarray, np.ndarray, np.ndarray], np.ndarray, np.ndarray | None]:
+    """_float_coefficients on one chunk of polygons (the first is polygon `first`).
 
     E_k(λ) = ‖Lᵀ H (Q − λW)‖² summed over coordinates (L the Cholesky factor of the Gram
-    matrix, H the k-fold hodograph), so one matrix product per batch gives Lᵀ H Q and Lᵀ H W
+    matrix, H the k-fold hodograph), so one matrix product per chunk gives Lᵀ H Q and Lᵀ H W
     for every polygon, and three row-wise dot products give the coefficients.
     """
-    arr, single = _as_polygons(points, family)
     (a0, a1, a2), rounding = _coefficients_of(arr, k, family)
     exponents: np.ndarray | None = None
     # coordinates near the float limits overflow (or underflow) in the quadratic forms: those
@@ -347,36 +377,48 @@ def _float_coefficients(
     if redo.any():
         sub = arr[redo]
         if not np.isfinite(sub).all():  # NaN/inf in the input propagate into these
-            raise _non_finite_error(arr, single)
+            raise _non_finite_error(arr, single, first)
         big = np.abs(sub).reshape(len(sub), -1).max(axis=1)
         shift = np.where(big > 0, np.frexp(big)[1] - 1, 0)
         (b0, b1, b2), r2 = _coefficients_of(np.ldexp(sub, -shift[:, None, None]), k, family)
         a0[redo], a1[redo], a2[redo], rounding[redo] = b0, b1, b2, r2
         exponents = np.zeros(arr.shape[0], dtype=int)
         exponents[redo] = 2 * shift
-    return (a0, a1, a2), rounding, exponents, single
+    return (a0, a1, a2), rounding, exponents
 
 
 def _coefficients_of(
     arr: np.ndarray, k: int, family: object
 ) -> tuple[tuple[np.ndarray, np.ndarray, np.ndarray], np.ndarray]:
     m, size, dim = arr.shape
+    compiled = kernels.compiled()
+    if compiled is not None:  # one pass per polygon (hazmat/kernels_compiled.py)
+        compact, rows, a2_weight = _compact_forms(family, size - 1, k)
+        out = np.empty((4, m))
+        compiled.energy_coefficients(
+            np.ascontiguousarray(arr), compact, rows, 1e-12 * a2_weight, out
+        )
+        return (out[0], out[1], out[2]), out[3]
     factor, rows, a2_weight = _factored_forms(family, size - 1, k, dim)
     flat_t = arr.reshape(m, size * dim).T  # a view: column j is (P_0x, P_0y, P_1x, …) of j
-    z = factor.T @ flat_t  # wide product (rows × m): BLAS is slow on the tall-skinny one
-    zf, zg = z[:rows], z[rows:]
-    a0 = np.einsum("ij,ij->j", zf, zf)
-    a1 = 2 * np.einsum("ij,ij->j", zf, zg)
-    a2 = np.einsum("ij,ij->j", zg, zg)
-    norm2 = np.einsum("ij,ij->j", flat_t, flat_t)
-    return (a0, a1, a2), 1e-12 * a2_weight * norm2
+    # NaN, infinity and overflow are read off the results (_chunk_coefficients), not warned
+    with val.overflow_allowed():
+        z = factor.T @ flat_t  # wide product (rows × m): BLAS is slow on the tall-skinny one
+        zf, zg = z[:rows], z[rows:]
+        a0 = np.einsum("ij,ij->j", zf, zf)
+        a1 = np.einsum("ij,ij->j", zf, zg)
+        a1 *= 2
+        a2 = np.einsum("ij,ij->j", zg, zg)
+        rounding = np.einsum("ij,ij->j", flat_t, flat_t)
+        rounding *= 1e-12 * a2_weight
+    return (a0, a1, a2), rounding
 
 
 @cache
-def _factored_forms(family: object, n: int, k: int, dim: int) -> tuple[np.ndarray, int, float]:
-    """([kron((LᵀH M_0ᵀ)ᵀ, I) | kron((LᵀH M_1ᵀ)ᵀ, I)], rows, Σ|A2|) for the flattened layout,
-    from the generated Bernstein, hodograph and Gram tables (the same data the exact forms
-    were derived from). With Q = M_0ᵀD and W = −M_1ᵀD: Q − λW = (M_0ᵀ + λM_1ᵀ)D."""
+def _factors(family: object, n: int, k: int) -> tuple[np.ndarray, np.ndarray, float]:
+    """((LᵀH M_0ᵀ)ᵀ, (LᵀH M_1ᵀ)ᵀ, Σ|A2|), each (n+1, rows), from the generated Bernstein,
+    hodograph and Gram tables (the same data the exact forms were derived from). With
+    Q = M_0ᵀD and W = −M_1ᵀD: Q − λW = (M_0ᵀ + λM_1ᵀ)D."""
     from .curves import _bernstein, _float_matrix, _tables
 
     big = n + _family_cls(family)._data_offset()
@@ -392,12 +434,30 @@ def _factored_forms(family: object, n: int, k: int, dim: int) -> tuple[np.ndarra
     assert len(_tables(_family_data(family), "bernstein")[n]) == 2, (
         "E_k is quadratic in λ for these bases"
     )
+    weight = float(np.abs(_float_forms(family, n, k)[2]).sum())
+    return (lower.T @ h @ m0.T).T, (lower.T @ h @ m1.T).T, weight
+
+
+@cache
+def _factored_forms(family: object, n: int, k: int, dim: int) -> tuple[np.ndarray, int, float]:
+    """([kron(F, I) | kron(G, I)], rows, Σ|A2|) for the flattened layout, F and G from
+    `_factors`."""
+    f, g, weight = _factors(family, n, k)
     eye = np.eye(dim)
-    f_part = np.kron((lower.T @ h @ m0.T).T, eye)
-    g_part = np.kron((lower.T @ h @ m1.T).T, eye)
+    f_part = np.kron(f, eye)
+    g_part = np.kron(g, eye)
     factor = np.asfortranarray(np.hstack([f_part, g_part]))  # factor.T is C-contiguous
     factor.setflags(write=False)
-    return factor, f_part.shape[1], float(np.abs(_float_forms(family, n, k)[2]).sum())
+    return factor, f_part.shape[1], weight
+
+
+@cache
+def _compact_forms(family: object, n: int, k: int) -> tuple[np.ndarray, int, float]:
+    """([F | G], rows, Σ|A2|): `_factors` side by side, for the compiled kernel."""
+    f, g, weight = _factors(family, n, k)
+    compact = np.ascontiguousarray(np.hstack([f, g]))
+    compact.setflags(write=False)
+    return compact, f.shape[1], weight
 
 
 def optimal_lambda(
@@ -447,56 +507,16 @@ def optimal_lambda(
     k = _check_order(k)
     clamp = val.flag(clamp, "clamp")
     rows = val.exact_rows(points)
-    exact = rows is not None
-    # Fractions on the exact path, floats (or arrays over a batch) otherwise: the arithmetic
-    # below is shared, and mypy would check every pairing of a union (a Fraction with an
-    # array), which never meets at run time
-    a0: Any
-    a1: Any
-    a2: Any
-    exponents: np.ndarray | None = None
+    result: tuple[Any, ...]
     if rows is not None:
         a0, a1, a2 = energy_coefficients(rows, k, family)
-    else:
-        (a0, a1, a2), rounding, exponents, single = _float_coefficients(points, k, family)
-    lo, hi = data.LAMBDA_RANGE
-    lo_closed, hi_closed = data.LAMBDA_CLOSED
-    if exact:
         if a2 == 0:
             raise ValueError(_no_effect_message(k))
-        best = -a1 / (2 * a2)
-        lam = min(max(best, Fraction(lo)), Fraction(hi)) if clamp else best
+        lam, best, ok, ok_best, energy, unconstrained_energy = _optimum((a0, a1, a2), clamp, data)
+        result = (lam, best, bool(ok), bool(ok_best), energy, unconstrained_energy)
     else:
-        degenerate = a2 <= rounding
-        if degenerate.any():
-            where = "" if single else f" (polygon {int(np.argmax(degenerate))})"
-            raise ValueError(_no_effect_message(k) + where)
-        if single:
-            a0, a1, a2 = a0[0], a1[0], a2[0]
-        best = -a1 / (2 * a2)
-        # float bounds: a user family's range is in Fractions, which would make an object array
-        lam = np.clip(best, float(lo), float(hi)) if clamp else best
-
-    def inside(x: Any) -> bool | np.ndarray:
-        ok: bool | np.ndarray = ((x > lo) | ((x == lo) & lo_closed)) & (
-            (x < hi) | ((x == hi) & hi_closed)
-        )
-        return ok
-
-    energy = a0 + a1 * lam + a2 * lam * lam
-    unconstrained_energy = a0 + a1 * best + a2 * best * best
-    if exponents is not None:  # the polygons that were computed scaled (see above)
-        energy, unconstrained_energy = (
-            _unscale(e, exponents if not single else exponents[0], single, f"E_{k}")
-            for e in (energy, unconstrained_energy)
-        )
-    ok, ok_best = inside(lam), inside(best)
-    if exact or np.ndim(best) == 0:
-        ok, ok_best = bool(ok), bool(ok_best)
-    if not exact and np.ndim(best) == 0:
-        best, lam, energy, unconstrained_energy = (
-            float(x) for x in (best, lam, energy, unconstrained_energy)
-        )
+        result = _float_optimum(points, k, family, clamp, data)
+    lam, best, ok, ok_best, energy, unconstrained_energy = result
     return OptimalLambda(
         lam=lam,
         unconstrained=best,
@@ -509,6 +529,81 @@ def optimal_lambda(
         range_text=data.LAMBDA_RANGE_TEXT,
         clamped=clamp,
     )
+
+
+def _optimum(coefficients: tuple[Any, Any, Any], clamp: bool, data: Any) -> tuple[Any, ...]:
+    """(λ, λ*, λ admissible, λ* admissible, E_k(λ), E_k(λ*)) from E_k's coefficients, in
+    their arithmetic: Fractions (exact), or arrays over a chunk of polygons. (Any: mypy
+    would check every pairing of the union, a Fraction with an array, which never meets.)"""
+    a0, a1, a2 = coefficients
+    lo, hi = data.LAMBDA_RANGE
+    lo_closed, hi_closed = data.LAMBDA_CLOSED
+    best = -a1 / (2 * a2)
+    if not clamp:
+        lam = best
+    elif isinstance(best, Fraction):
+        lam = min(max(best, Fraction(lo)), Fraction(hi))
+    else:  # float bounds: a user family's range is in Fractions (an object array otherwise)
+        lam = np.clip(best, float(lo), float(hi))
+
+    def inside(x: Any) -> Any:
+        above = x >= lo if lo_closed else x > lo
+        below = x <= hi if hi_closed else x < hi
+        return above & below
+
+    def energy_at(x: Any) -> Any:
+        return a0 + a1 * x + a2 * x * x
+
+    unconstrained_energy = energy_at(best)
+    ok_best = inside(best)
+    if lam is best:  # unclamped: one evaluation
+        return lam, best, ok_best, ok_best, unconstrained_energy, unconstrained_energy
+    return lam, best, inside(lam), ok_best, energy_at(lam), unconstrained_energy
+
+
+def _float_optimum(
+    points: PointsLike, k: int, family: object, clamp: bool, data: Any
+) -> tuple[Any, ...]:
+    """_optimum for float polygons, chunk by chunk: nothing but the results grows with the
+    batch (issue #29: 10⁷ polygons in bounded memory), and each chunk's passes run in cache.
+    One polygon gives floats and bools, a batch arrays (unclamped, λ and λ* are one array,
+    and so are their energies and admissibility)."""
+    arr, single = _as_polygons(points, family)
+    m = arr.shape[0]
+    best, ok_best, energy_best = np.empty(m), np.empty(m, dtype=bool), np.empty(m)
+    lam, ok, energy = (
+        (np.empty(m), np.empty(m, dtype=bool), np.empty(m))
+        if clamp
+        else (
+            best,
+            ok_best,
+            energy_best,
+        )
+    )
+    for lo, hi in _chunks(arr, k, family):
+        coefficients, rounding, exponents = _chunk_coefficients(arr[lo:hi], k, family, single, lo)
+        degenerate = coefficients[2] <= rounding
+        if degenerate.any():
+            where = "" if single else f" (polygon {lo + int(np.argmax(degenerate))})"
+            raise ValueError(_no_effect_message(k) + where)
+        got = _optimum(coefficients, clamp, data)
+        e_lam, e_best = got[4], got[5]
+        if exponents is not None:  # the polygons that were computed scaled
+            e_best = _unscale(e_best, exponents, single, f"E_{k}", lo)
+            e_lam = e_best if got[4] is got[5] else _unscale(e_lam, exponents, single, f"E_{k}", lo)
+        best[lo:hi], ok_best[lo:hi], energy_best[lo:hi] = got[1], got[3], e_best
+        if clamp:
+            lam[lo:hi], ok[lo:hi], energy[lo:hi] = got[0], got[2], e_lam
+    if single:
+        return (
+            float(lam[0]),
+            float(best[0]),
+            bool(ok[0]),
+            bool(ok_best[0]),
+            float(energy[0]),
+            float(energy_best[0]),
+        )
+    return lam, best, ok, ok_best, energy, energy_best
 
 
 def optimal_parameters(

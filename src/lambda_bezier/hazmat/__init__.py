@@ -1,13 +1,16 @@
 """lambda_bezier.hazmat: pure functions on coefficient and point arrays.
 
 The rule: a module here imports numpy, the standard library and other hazmat modules
-(and numba, optionally, in intersect_compiled), nothing else from lambda_bezier
+(and numba, optionally, in intersect_compiled and kernels_compiled), nothing else from lambda_bezier
 (import-linter checks it in CI, and tests/test_runtime_layers.py). A kernel that needs a
 generated table takes it as an argument. Inputs are not validated here: the curve classes
 above check them first, so calling these directly with bad arrays gives numpy's errors, not
 ours (the name follows the `bezier` package's `hazmat`).
 
-- `kernels`: de Casteljau, subdivision, blocked Horner, exact matrix products;
+- `kernels`: de Casteljau, subdivision, blocked Horner, exact matrix products; the chunking
+  of batch operations, and the switch to their compiled kernels;
+- `kernels_compiled`: the energy coefficients of many polygons in one pass, and the first
+  level of the arc-length rule, compiled (numba, the `fast` extra; imported on use);
 - `forms`: classical Bézier hodograph, elevation and blossoming at any degree;
 - `arclength`: adaptive Gauss-Lobatto/Kronrod quadrature of the speed;
 - `roots`: real roots in [0, 1] of polynomials about t = 1/2 (companion matrix, Newton);
@@ -41,6 +44,7 @@ __all__ = [
     "intersect_compiled",
     "intersect_subdivide",
     "kernels",
+    "kernels_compiled",
     "numbers",
     "rational_kernels",
     "reduce",

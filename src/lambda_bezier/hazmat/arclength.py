@@ -61,6 +61,8 @@ from functools import cache
 
 import numpy as np
 
+from . import kernels
+
 _ORDER = 16  # m: the Lobatto test rule's points (both ends among them); 2m − 1 in all
 _PIECES = 24  # equal pieces of the first level
 _SPLIT = 16  # a rejected first-level piece is cut in this many
@@ -254,15 +256,21 @@ def unit_integral(coeffs: np.ndarray, rtol: float) -> float:
     first, weights, ones, second, second_weights = _unit_levels(size)
     # a cheap bound on _hidden_bound (the coordinates' count times the largest coefficient)
     hidden = _hidden_weights(size)[0] * float(coeffs.shape[0]) * peak * _unit_bound(size)
-    # (the .dot method: a little cheaper than np.dot, which is cheaper than @, on operands
-    # this small)
-    speed = _norms(coeffs.dot(first))
-    sums = speed.reshape(_PIECES, -1).dot(weights)
-    size = np.abs(sums)
-    spent, total = ones.dot(size).tolist()
+    compiled = kernels.compiled()
+    if compiled is not None:  # the same first level in one compiled call (kernels_compiled)
+        size = np.empty((_PIECES, 2))
+        spent, total, least = compiled.first_level(coeffs, first, weights, _PIECES, size)
+    else:
+        # (the .dot method: a little cheaper than np.dot, which is cheaper than @, on
+        # operands this small)
+        speed = _norms(coeffs.dot(first))
+        sums = speed.reshape(_PIECES, -1).dot(weights)
+        size = np.abs(sums)
+        spent, total = ones.dot(size).tolist()
+        least = speed.min()
     if not total > 0.0:  # a constant curve
         return 0.0
-    if speed.min() <= hidden / _PIECES**2:  # a near-double zero of p' may hide: the full rule
+    if least <= hidden / _PIECES**2:  # a near-double zero of p' may hide: the full rule
         return factor * _from_start(coeffs, 0.0, 1.0, rtol, None)
     if spent <= rtol * total:  # most curves: accepted at once
         return float(factor * total)

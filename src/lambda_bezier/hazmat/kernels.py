@@ -6,8 +6,11 @@ lecture notes' worked examples and exact conversions stay exact.
 
 from __future__ import annotations
 
+import importlib.util
+import os
 from collections.abc import Sequence
 from fractions import Fraction
+from types import ModuleType
 
 import numpy as np
 
@@ -49,6 +52,34 @@ def split_rows(points: Sequence[Sequence[Scalar]], t: Scalar) -> tuple[list[Row]
     triangle, and the last points in reverse order."""
     tri = de_casteljau_triangle(points, t)
     return [row[0] for row in tri], [row[-1] for row in reversed(tri)]
+
+
+# The compiled kernels (kernels_compiled) when numba is there and not switched off
+# (LAMBDA_BEZIER_NO_NUMBA=1); a module flag, read per call, so tests can run both paths.
+USE_COMPILED = importlib.util.find_spec("numba") is not None and not os.environ.get(
+    "LAMBDA_BEZIER_NO_NUMBA"
+)
+
+
+def compiled() -> ModuleType | None:
+    """hazmat.kernels_compiled when USE_COMPILED, else None (the numpy paths)."""
+    if not USE_COMPILED:
+        return None
+    from . import kernels_compiled  # numba compiles (or loads its cache) on first use
+
+    return kernels_compiled
+
+
+# Elements of one chunk's working block in the batch operations (evaluate_many, optimal_lambda):
+# 2 MB of floats, inside the L2 cache, and a bound on their extra memory at any batch size.
+CHUNK_ELEMENTS = 1 << 18
+
+
+def chunk_ranges(m: int, per_item: int) -> list[tuple[int, int]]:
+    """[lo, hi) ranges covering range(m), each of about CHUNK_ELEMENTS elements when an item
+    takes `per_item` elements (at least one item per chunk)."""
+    step = max(1, CHUNK_ELEMENTS // max(per_item, 1))
+    return [(lo, min(lo + step, m)) for lo in range(0, m, step)]
 
 
 BLOCK = 65536  # parameters per block: a (d, BLOCK) accumulator stays in the L2 cache

@@ -1,0 +1,94 @@
+"""The arc-length rule's first level compiled (numba, the `fast` extra) and in numpy: the same
+lengths, each against the independent mpmath reference of test_arclength, on the cases that
+decide the first level's branches (accepted at once, refined, a hidden dip sent to the full
+rule, a constant curve, coordinates near the float limits)."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+import pytest
+from test_arclength import assert_close, curve_from_derivative, kinked_curve, reference_length
+
+import lambda_bezier as lb
+from lambda_bezier import geometry
+from lambda_bezier.hazmat import arclength, kernels
+
+
+@pytest.fixture(params=["numba", "numpy"])
+def arc_path(request, monkeypatch):
+    if request.param == "numba":
+        pytest.importorskip("numba")
+    monkeypatch.setattr(kernels, "USE_COMPILED", request.param == "numba")
+    return request.param
+
+
+def _fresh(curve):
+    curve.__dict__.pop("_geometry_poly", None)  # nothing cached from the other path
+    return curve
+
+
+@pytest.mark.parametrize("x", [Fraction(3, 10), Fraction(5, 24), Fraction(0)])
+@pytest.mark.parametrize("y", [0, Fraction(1, 10**3), Fraction(1, 10**9)])
+def test_near_cusps_on_both_paths(arc_path, x, y):
+    curve, deriv = kinked_curve(x, y, seed=3)
+    assert_close(_fresh(curve).arc_length(), reference_length(deriv, 0, 1, x))
+
+
+def test_a_hidden_dip_on_both_paths(arc_path):
+    """A near-double zero of p' between the first level's nodes: the least speed there sends
+    the curve to the full rule (the branch the compiled level must report the same way)."""
+    x = Fraction(9496, 10000) + Fraction(1, 10**6)
+    g = [1, Fraction(1, 2), 0, Fraction(1, 3), 0, 0, Fraction(1, 5), 0, 0, 0]
+    h = [2, -1, Fraction(1, 4), 0, 0, 0, 0, Fraction(1, 7), 0, 0]
+    square = [x * x, -2 * x, 1]
+    deriv = [[Fraction(0)] * 12 for _ in range(2)]
+    for row, factor in zip(deriv, (g, h), strict=True):
+        for j, fj in enumerate(factor):
+            for k, sk in enumerate(square):
+                row[j + k] += fj * sk
+    deriv[1][0] += Fraction(1, 10**8)
+    curve = curve_from_derivative(deriv)
+    assert_close(_fresh(curve).arc_length(), reference_length(deriv, 0, 1, x))
+
+
+@pytest.mark.parametrize("scale", [2.0**600, 1e-200])
+def test_constant_and_extreme_curves_on_both_paths(arc_path, scale):
+    assert _fresh(lb.BezierCurve([(1.0, 2.0)] * 4)).arc_length() == 0.0
+    pts = np.array([(0.0, 0.0), (1.0, 2.0), (3.0, -1.0), (4.0, 0.5)])
+    want = lb.BezierCurve(pts).arc_length()
+    got = _fresh(lb.BezierCurve(pts * scale)).arc_length()
+    assert got == pytest.approx(want * scale, rel=1e-13)
+
+
+def test_compiled_and_numpy_first_levels_agree(monkeypatch):
+    """Random curves of degrees 2..12 in 1..3 dimensions: the two first levels' lengths agree
+    to rounding, and each path rejects the same pieces (but for a piece on the fence)."""
+    pytest.importorskip("numba")
+    rng = np.random.default_rng(29)
+    for _ in range(200):
+        degree, dim = int(rng.integers(2, 13)), int(rng.integers(1, 4))
+        coeffs = geometry._poly(lb.BezierCurve(rng.normal(size=(degree + 1, dim))))[0]
+        lengths, rejected = [], []
+        for compiled in (True, False):
+            monkeypatch.setattr(kernels, "USE_COMPILED", compiled)
+            lengths.append(arclength.unit_integral(coeffs, 1e-12))
+            scaled, _, _ = arclength._scaled(coeffs)
+            first, weights, ones, *_ = arclength._unit_levels(scaled.shape[1])
+            if compiled:
+                size = np.empty((arclength._PIECES, 2))
+                kernels.compiled().first_level(scaled, first, weights, arclength._PIECES, size)
+            else:
+                speed = arclength._norms(scaled.dot(first))
+                size = np.abs(speed.reshape(arclength._PIECES, -1).dot(weights))
+            rejected.append(size)
+        assert lengths[0] == pytest.approx(lengths[1], rel=1e-14, abs=0)
+        total = rejected[1][:, 1].sum()
+        # the pieces' values to rounding; their rule differences (what rejects a piece, at
+        # 1e-12 / 24 of the total) equal down to the rounding of the values, 1e-15 of it
+        np.testing.assert_allclose(rejected[0][:, 1], rejected[1][:, 1], rtol=1e-13)
+        np.testing.assert_allclose(rejected[0][:, 0], rejected[1][:, 0], atol=1e-15 * total)
+        threshold = 1e-12 * total / arclength._PIECES
+        far = np.abs(rejected[1][:, 0] - threshold) > 1e-15 * total  # not on the fence
+        assert ((rejected[0][:, 0] > threshold) == (rejected[1][:, 0] > threshold))[far].all()

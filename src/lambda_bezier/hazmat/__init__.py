@@ -1,7 +1,7 @@
 """lambda_bezier.hazmat: pure functions on coefficient and point arrays.
 
 The rule: a module here imports numpy, the standard library and other hazmat modules
-(and numba, optionally, in intersect_compiled), nothing else from lambda_bezier
+(and numba, optionally, in intersect_compiled and certify_compiled), nothing else from lambda_bezier
 (import-linter checks it in CI, and tests/test_runtime_layers.py). A kernel that needs a
 generated table takes it as an argument. Inputs are not validated here: the curve classes
 above check them first, so calling these directly with bad arrays gives numpy's errors, not
@@ -15,6 +15,9 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `intersect`: curve/curve intersection, self-intersection and point location;
 - `intersect_subdivide`: the candidate isolation `intersect` runs on (subdivision on arrays);
 - `intersect_compiled`: the same loop compiled with numba (the `fast` extra; imported on use);
+- `intersect_certify`: the certified fast path for transversal crossings away from the ends
+  (numpy, or `certify_compiled`: the whole per-pair pipeline in one numba call);
+- `intersect_prepared`: a curve as the intersection solvers use it (floats, exact rows);
 - `reduce`: degree reduction, exact or least squares;
 - `implicit`: implicitization (imports SymPy when called, never at import);
 - `numbers`: the exact-number grammar of the command line and of export files;
@@ -30,12 +33,15 @@ from __future__ import annotations
 
 __all__ = [
     "arclength",
+    "certify_compiled",
     "exact_poly",
     "extremes",
     "forms",
     "implicit",
     "intersect",
+    "intersect_certify",
     "intersect_compiled",
+    "intersect_prepared",
     "intersect_subdivide",
     "kernels",
     "numbers",

@@ -407,3 +407,73 @@ def certify(
             out_t[k],
         )
     return counts, out_s, out_t
+
+
+@numba.njit(**_JIT)
+def _size(points: np.ndarray) -> tuple[float, float]:
+    """(span, scale) as intersect_prepared.Prepared has them: the largest extent of the
+    control points, and the larger of that and their largest coordinate (at least 1e-300)."""
+    span = 0.0
+    big = 0.0
+    for j in range(points.shape[1]):
+        lo = hi = points[0, j]
+        for i in range(points.shape[0]):
+            lo, hi = min(lo, points[i, j]), max(hi, points[i, j])
+            big = max(big, abs(points[i, j]))
+        span = max(span, hi - lo)
+    return span, max(span, big, 1e-300)
+
+
+@numba.njit(**_JIT)
+def certify_one(
+    a: np.ndarray,
+    b: np.ndarray,
+    box_slack: float,
+    root_residual: float,
+    depth: int,
+    max_pieces: int,
+    newton_steps: int,
+    inside: float,
+    margin: float,
+    end_margin: float,
+    drift: float,
+    same: float,
+    sine_min: float,
+) -> tuple[int, np.ndarray, np.ndarray]:
+    """One pair, with its slack and residual bound computed here as the careful path does
+    (intersect._slack, _root_bound): (count, s, t) sorted by s, count -1 where the
+    certificate fails (or either curve is a point: the careful path says so)."""
+    span_a, scale_a = _size(a)
+    span_b, scale_b = _size(b)
+    room = 4 * a.shape[0] * b.shape[0] + 8
+    out_s = np.zeros(room)
+    out_t = np.zeros(room)
+    if span_a == 0.0 or span_b == 0.0:
+        return -1, out_s, out_t
+    degree = max(a.shape[0], b.shape[0]) - 1
+    scale = max(scale_a, scale_b)
+    count = _certify_one(
+        a,
+        b,
+        box_slack * degree * scale,
+        root_residual * degree * scale,
+        depth,
+        max_pieces,
+        newton_steps,
+        inside,
+        margin,
+        end_margin,
+        drift,
+        same,
+        sine_min,
+        out_s,
+        out_t,
+    )
+    for k in range(1, max(count, 0)):  # insertion sort by s: a handful of roots
+        s, t = out_s[k], out_t[k]
+        m = k - 1
+        while m >= 0 and out_s[m] > s:
+            out_s[m + 1], out_t[m + 1] = out_s[m], out_t[m]
+            m -= 1
+        out_s[m + 1], out_t[m + 1] = s, t
+    return count, out_s, out_t

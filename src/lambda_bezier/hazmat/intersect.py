@@ -33,7 +33,8 @@ import numpy as np
 
 from . import intersect_certify as cert
 from . import intersect_subdivide as sub
-from .intersect_prepared import Prepared, _exact_difference, _integer_point
+from .intersect_prepared import Prepared as Prepared
+from .intersect_prepared import _exact_difference, _integer_point
 
 # relative, per unit of degree: pieces whose boxes or fat lines are this close still overlap.
 # It covers the rounding of repeated halving (a few ulps of the control points' size per
@@ -451,7 +452,13 @@ Box = tuple[float, float, float, float]  # s0, s1, t0, t1 of a coincident stretc
 
 
 def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
-    """Every intersection of p and q, sorted by s."""
+    """Every intersection of p and q, sorted by s: the certified fast path when both are
+    floats exactly, else (or where it does not certify) the careful path."""
+    if p.floats_exact and q.floats_exact and p.dim == q.dim and p.dim >= 2:
+        got = cert.certify_one(p.pts, q.pts, BOX_SLACK, ROOT_RESIDUAL)
+        if got is not None:
+            s, t = got
+            return [Intersection(x, y, "transversal") for x, y in zip(s, t, strict=True)]
     return intersect_pairs([(p, q)])[0]
 
 
@@ -521,7 +528,7 @@ def _slack(p: Prepared, q: Prepared) -> float:
 
 
 def _root_bound(p: Prepared, q: Prepared) -> float:
-    return ROOT_RESIDUAL * max(p.degree, q.degree) * max(p.scale, q.scale)
+    return float(ROOT_RESIDUAL * max(p.degree, q.degree) * max(p.scale, q.scale))
 
 
 def _check_pair(p: Prepared, q: Prepared) -> None:

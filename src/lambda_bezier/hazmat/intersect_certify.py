@@ -90,6 +90,47 @@ def certify(
     return _certify_numpy(a, b, slack, bound)
 
 
+def certify_one(
+    a: np.ndarray, b: np.ndarray, box_slack: float, root_residual: float
+) -> tuple[list[float], list[float]] | None:
+    """One pair (n+1, d), (m+1, d) of float curves: its crossings (s sorted, t) when
+    certified, else None. The slack and the residual bound are the careful path's, from
+    the relative box_slack and root_residual (per unit of degree and of the curves' size)."""
+    compiled = _compiled()
+    if compiled is not None:
+        count, out_s, out_t = compiled.certify_one(
+            a,
+            b,
+            box_slack,
+            root_residual,
+            sub.DEPTH,
+            MAX_PIECES,
+            sub.NEWTON_STEPS,
+            sub.INSIDE,
+            sub.CONE_MARGIN,
+            END_MARGIN,
+            DRIFT,
+            SAME,
+            SINE_MIN,
+        )
+        if count < 0:
+            return None
+        s: list[float] = out_s[:count].tolist()
+        t: list[float] = out_t[:count].tolist()
+        return s, t
+    spans = [float(np.ptp(c, axis=0).max()) for c in (a, b)]
+    if min(spans) == 0.0:
+        return None
+    scale = max(spans + [float(np.abs(a).max()), float(np.abs(b).max()), 1e-300])
+    degree = max(a.shape[0], b.shape[0]) - 1
+    return _certify_numpy(
+        a[None],
+        b[None],
+        np.array([box_slack * degree * scale]),
+        np.array([root_residual * degree * scale]),
+    )[0]
+
+
 def _certify_numpy(
     a: np.ndarray, b: np.ndarray, slack: np.ndarray, bound: np.ndarray
 ) -> list[tuple[list[float], list[float]] | None]:

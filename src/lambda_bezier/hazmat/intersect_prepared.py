@@ -20,13 +20,24 @@ class Prepared:
     the first two hodographs of each."""
 
     def __init__(self, points: np.ndarray, rows: tuple[tuple[Fraction, ...], ...] | None) -> None:
-        self.pts = np.asarray(points, dtype=float)
+        self.pts = np.ascontiguousarray(points, dtype=float)
         self._given_rows = rows
         self.degree = self.pts.shape[0] - 1
         self.dim = self.pts.shape[1]
-        span = float(np.ptp(self.pts, axis=0).max())
-        self.is_point = span == 0.0  # every t gives the same point
-        self.scale = float(max(span, np.abs(self.pts).max(), 1e-300))
+
+    @functools.cached_property
+    def _span(self) -> float:
+        return float(np.ptp(self.pts, axis=0).max())
+
+    @property
+    def is_point(self) -> bool:
+        """Every t gives the same point."""
+        return self._span == 0.0
+
+    @functools.cached_property
+    def scale(self) -> float:
+        """The control points' extent or largest coordinate, whichever is larger."""
+        return float(max(self._span, np.abs(self.pts).max(), 1e-300))
 
     @functools.cached_property
     def _integer_rows(self) -> list[tuple[list[list[int]], int]]:

@@ -1,7 +1,7 @@
 """lambda_bezier.hazmat: pure functions on coefficient and point arrays.
 
 The rule: a module here imports numpy, the standard library and other hazmat modules
-(and numba, optionally, in intersect_compiled and certify_compiled), nothing else from lambda_bezier
+(and numba, optionally, in the *_compiled modules), nothing else from lambda_bezier
 (import-linter checks it in CI, and tests/test_runtime_layers.py). A kernel that needs a
 generated table takes it as an argument. Inputs are not validated here: the curve classes
 above check them first, so calling these directly with bad arrays gives numpy's errors, not
@@ -12,6 +12,8 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `arclength`: adaptive Gauss-Lobatto/Kronrod quadrature of the speed;
 - `roots`: real roots in [0, 1] of polynomials about t = 1/2 (companion matrix, Newton);
 - `extremes`: tight bounding boxes and closest points from those roots;
+- `closest_compiled`: closest points by a certified branch and bound on the Bernstein form of
+  the squared distance, compiled with numba (the `fast` extra; imported on use);
 - `intersect`: curve/curve intersection, self-intersection and point location;
 - `intersect_subdivide`: the candidate isolation `intersect` runs on (subdivision on arrays);
 - `intersect_compiled`: the same loop compiled with numba (the `fast` extra; imported on use);
@@ -34,6 +36,7 @@ from __future__ import annotations
 __all__ = [
     "arclength",
     "certify_compiled",
+    "closest_compiled",
     "exact_poly",
     "extremes",
     "forms",

@@ -209,3 +209,57 @@ def test_closest_point_hard_cases(closest_engine):
     big = lb.BezierCurve(np.array([(0, 0), (1, 2), (2, 0)]) * 2.0**600)
     far = big.closest_point(np.array([1, 3]) * 2.0**600)
     assert far.t == pytest.approx(0.5, abs=1e-8) and far.distance == pytest.approx(2.0**601)
+
+
+# ---------------------------------------------------------------------------- exact isolation
+def test_exact_isolation_of_the_near_double_crossing():
+    """The issue's parabola and line, exactly: two certified boxes, each holding one of the
+    exact crossings s = t = 0.5495 and 0.5505 (checked in Fractions), and apart."""
+    parabola = lb.BezierCurve([(-1, F(121, 100)), (0, F(-99, 100)), (1, F(81, 100))])
+    line = lb.BezierCurve([(-1, F(1, 10**6)), (1, F(1, 10**6))])
+    got = lb.intersect_exact(parabola, line)
+    assert [c.certified for c in got] == [True, True]
+    for box, root in zip(got, (F(5495, 10**4), F(5505, 10**4)), strict=True):
+        assert box.s[0] <= root <= box.s[1] and box.t[0] <= root <= box.t[1]
+    assert got[0].s[1] < got[1].s[0]
+
+
+@settings(max_examples=25, deadline=None)
+@given(
+    a=st.lists(st.tuples(st.integers(-6, 6), st.integers(-6, 6)), min_size=3, max_size=4),
+    b=st.lists(st.tuples(st.integers(-6, 6), st.integers(-6, 6)), min_size=2, max_size=3),
+)
+def test_exact_boxes_hold_the_float_crossings(a, b):
+    """Every transversal crossing the float engine reports lies in exactly one certified box
+    (and every certified box holds one of them), for random integer curves."""
+    p, q = lb.BezierCurve(a), lb.BezierCurve(b)
+    try:
+        boxes = lb.intersect_exact(p, q)
+        hits = p.intersect(q)
+    except ValueError:
+        return  # a shared component, a point, or a line folded on another: refused
+    if any(h.kind != "transversal" for h in hits) or not all(c.certified for c in boxes):
+        return  # tangencies: the boxes are not certified there
+    slack = 1e-12
+    for h in hits:
+        inside = [
+            c
+            for c in boxes
+            if c.s[0] - slack <= h.s <= c.s[1] + slack and c.t[0] - slack <= h.t <= c.t[1] + slack
+        ]
+        assert len(inside) == 1, (h, boxes)
+    assert len(boxes) == len(hits), (boxes, hits)
+
+
+def test_exact_isolation_bad_input():
+    exact = lb.BezierCurve([(0, 0), (1, 1)])
+    with pytest.raises(ValueError, match="not exact"):
+        lb.intersect_exact(lb.BezierCurve([(0.5, 0), (1, 1)]), exact)
+    with pytest.raises(ValueError, match="planar"):
+        lb.intersect_exact(lb.BezierCurve([(0, 0, 0), (1, 1, 1)]), exact)
+    with pytest.raises(TypeError, match="curve_b"):
+        lb.intersect_exact(exact, [(0, 0), (1, 1)])
+    with pytest.raises(ValueError, match="share a component"):
+        lb.intersect_exact(
+            lb.BezierCurve([(0, 0), (1, 2), (2, 0)]), lb.BezierCurve([(0, 0), (1, 2), (2, 0)])
+        )

@@ -19,6 +19,8 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `intersect_compiled`: the same loop compiled with numba (the `fast` extra; imported on use);
 - `intersect_certify`: the certified fast path for transversal crossings away from the ends
   (numpy, or `certify_compiled`: the whole per-pair pipeline in one numba call);
+- `intersect_exact`: exact, certified isolation of planar crossings (resultants, Sturm,
+  Krawczyk in rational interval arithmetic);
 - `intersect_prepared`: a curve as the intersection solvers use it (floats, exact rows);
 - `reduce`: degree reduction, exact or least squares;
 - `implicit`: implicitization (imports SymPy when called, never at import);
@@ -44,6 +46,7 @@ __all__ = [
     "intersect",
     "intersect_certify",
     "intersect_compiled",
+    "intersect_exact",
     "intersect_prepared",
     "intersect_subdivide",
     "kernels",

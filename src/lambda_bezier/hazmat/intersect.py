@@ -454,12 +454,15 @@ Box = tuple[float, float, float, float]  # s0, s1, t0, t1 of a coincident stretc
 def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
     """Every intersection of p and q, sorted by s: the certified fast path when both are
     floats exactly, else (or where it does not certify) the careful path."""
-    if p.floats_exact and q.floats_exact and p.dim == q.dim and p.dim >= 2:
+    if cert.in_use() and p.floats_exact and q.floats_exact and p.dim == q.dim and p.dim >= 2:
         got = cert.certify_one(p.pts, q.pts, BOX_SLACK, ROOT_RESIDUAL)
         if got is not None:
             s, t = got
             return [Intersection(x, y, "transversal") for x, y in zip(s, t, strict=True)]
-    return intersect_pairs([(p, q)])[0]
+    _check_pair(p, q)
+    results: list[list[Intersection]] = [[]]
+    _careful_pairs([(p, q)], [0], results)  # declined (or exact input): not certified again
+    return results[0]
 
 
 def intersect_pairs(pairs: list[tuple[Prepared, Prepared]]) -> list[list[Intersection]]:
@@ -475,7 +478,11 @@ def intersect_pairs(pairs: list[tuple[Prepared, Prepared]]) -> list[list[Interse
         groups.setdefault((p.degree, q.degree, p.dim), []).append(k)
     results: list[list[Intersection]] = [[] for _ in pairs]
     for members in groups.values():
-        fast = [k for k in members if pairs[k][0].floats_exact and pairs[k][1].floats_exact]
+        fast = [
+            k
+            for k in members
+            if cert.in_use() and pairs[k][0].floats_exact and pairs[k][1].floats_exact
+        ]
         careful = [k for k in members if k not in set(fast)]
         if fast:
             certified = cert.certify(

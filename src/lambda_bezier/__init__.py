@@ -33,7 +33,7 @@ if TYPE_CHECKING:
         optimal_lambda,
     )
     from .family import Family, load_family
-    from .intersection import intersect_many
+    from .intersection import intersect_exact, intersect_many
     from .joins import Joint, join
     from .properties import IsolatedRoot, singular_parameters
     from .rational import RationalBezierCurve
@@ -67,6 +67,7 @@ _EXPORTS = {
     "OptimalParameters": "energy",
     "Family": "family",
     "load_family": "family",
+    "intersect_exact": "intersection",
     "intersect_many": "intersection",
     "Joint": "joins",
     "join": "joins",
@@ -107,6 +108,7 @@ __all__ = [
     "energy_coefficients",
     "energy_matrices",
     "evaluate_many",
+    "intersect_exact",
     "intersect_many",
     "join",
     "join_surface",

@@ -144,14 +144,10 @@ class Curve:
         # the basis products although p(t) is representable: the coefficients are then kept
         # for the points scaled by a power of two (exact), and evaluation scales back.
         self._scale = val.power_of_two_scale(self.points)
-        unit = self.points if self._scale == 1.0 else self.points / self._scale
         # k -> Taylor coefficients of p^(k) about t = 1/2, coordinate-major (d, N+1 - k): what
-        # evaluation uses at the tabulated degrees; filled on demand
+        # evaluation uses at the tabulated degrees; filled on demand (_centred), so that a
+        # curve built only to be intersected or located does not pay for them (issue #29)
         self._derivative_coeffs: dict[int, np.ndarray] = {}
-        if self._tabulated:
-            centred = np.ascontiguousarray((self._combined("centred").T @ unit).T)
-            centred.setflags(write=False)
-            self._derivative_coeffs[0] = centred
         self._hodographs: list[np.ndarray] = []  # Bézier points of p, p', …, for energies
 
     # ------------------------------------------------------------------ description
@@ -252,12 +248,25 @@ class Curve:
             out = alg.de_casteljau_steps(ctrl, tt, ctrl.shape[0] - 1)[:, 0]
             return out[0] if scalar else out
         coeffs = self._derivative_coeffs.get(order)
-        if coeffs is None:
-            coeffs = alg.differentiate_coefficients(self._derivative_coeffs[0], order)
+        if coeffs is None and order == 0:
+            coeffs = self._centred()
+        elif coeffs is None:
+            coeffs = alg.differentiate_coefficients(self._centred(), order)
             coeffs.setflags(write=False)
             self._derivative_coeffs[order] = coeffs
         out = alg.centred_horner(coeffs, tt)
         return out[0] if scalar else out
+
+    def _centred(self) -> np.ndarray:
+        """The Taylor coefficients of p about t = 1/2 (d, N+1), for the points divided by
+        self._scale, from the generated centred matrices (tabulated degrees only)."""
+        centred = self._derivative_coeffs.get(0)
+        if centred is None:
+            unit = self.points if self._scale == 1.0 else self.points / self._scale
+            centred = np.ascontiguousarray((self._combined("centred").T @ unit).T)
+            centred.setflags(write=False)
+            self._derivative_coeffs[0] = centred
+        return centred
 
     def _hodograph_points(self, k: int) -> np.ndarray:
         """Bézier control points of p^(k), from the generated hodograph matrices."""

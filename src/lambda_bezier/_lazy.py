@@ -45,9 +45,15 @@ class generated:  # noqa: N801  (reads as a module reference at the use sites)
 
     def __init__(self, name: str) -> None:
         self._name = f"{_PACKAGE}.{name}"
+        self._module: ModuleType | None = None
 
     def module(self) -> ModuleType:
-        return _import_generated(self._name)
+        # kept after the first import: each table read (several per curve constructed) would
+        # otherwise run importlib.import_module (issue #29). sys.modules keeps the module
+        # object anyway, so this is the object a fresh import would return
+        if self._module is None:
+            self._module = _import_generated(self._name)
+        return self._module
 
     def __getattr__(self, attr: str) -> Any:  # a generated table: its type is the module's
         return getattr(self.module(), attr)

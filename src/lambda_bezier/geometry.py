@@ -68,9 +68,9 @@ def _centred_coefficients(curve: Curve) -> tuple[np.ndarray, float]:
     """(coeffs, scale): p = scale · Σ_e coeffs[:, e] (t − 1/2)^e, the (d, N+1) Taylor
     coefficients about t = 1/2 of the curve's Bézier form, computed in Fractions and rounded
     once when the curve is exact (scale 1). A float curve already holds them
-    (Curve._derivative_coeffs[0], from the same generated centred matrices, filled in
+    (Curve._centred(), from the same generated centred matrices, filled in
     exactly at the tabulated degrees), for its points divided by Curve._scale."""
-    base = curve._derivative_coeffs.get(0)
+    base = curve._centred() if curve._tabulated else None
     if not curve.is_exact:
         if base is None:  # a classical curve of degree 0 or past the tables: the same
             # expansion, computed (hazmat.forms.centred_matrix), for the same scaled points

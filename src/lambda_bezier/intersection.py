@@ -13,11 +13,13 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING, Literal
 
 from .hazmat import intersect as _intersect
+from .hazmat import intersect_exact as _exact
 
 if TYPE_CHECKING:
     from .curves import Curve
 
 Intersection = _intersect.Intersection
+ExactCrossing = _exact.ExactCrossing
 
 
 def _curves(curves: object, name: str) -> list[Curve]:
@@ -70,3 +72,39 @@ def intersect_many(
     if mode == "pairs":
         return found
     return [found[i * len(b) : (i + 1) * len(b)] for i in range(len(a))]
+
+
+def intersect_exact(curve_a: Curve, curve_b: Curve) -> list[ExactCrossing]:
+    """The crossings of two planar curves with exact (int or Fraction) control points and
+    shape parameter, isolated exactly: boxes s in [s0, s1], t in [t0, t1] with Fraction
+    ends, each holding exactly one crossing when ``certified`` (Krawczyk's test in rational
+    interval arithmetic on the Sturm-isolated roots of the two resultants; see
+    ``lambda_bezier.hazmat.intersect_exact``). A box left uncertified is a tangency or
+    crossings closer than 2^-60. Sorted by s.
+
+    >>> from fractions import Fraction as F
+    >>> from lambda_bezier import BezierCurve, intersect_exact
+    >>> arch = BezierCurve([(0, 0), (1, 2), (2, 0)])
+    >>> line = BezierCurve([(0, F(1, 2)), (2, F(1, 2))])
+    >>> [(float(c.s[0]), float(c.s[1]), c.certified) for c in intersect_exact(arch, line)]
+    [(0.0, 0.25, True), (0.75, 1.0, True)]
+    """
+    from .curves import Curve
+
+    rows = []
+    for name, c in (("curve_a", curve_a), ("curve_b", curve_b)):
+        if not isinstance(c, Curve):
+            raise TypeError(f"{name} must be a curve, got {type(c).__name__}")
+        if not c.is_exact:
+            raise ValueError(
+                f"{name} is not exact: intersect_exact needs int or Fraction control points "
+                "(and shape parameter); Curve.intersect handles floats"
+            )
+        if c.dimension != 2:
+            raise ValueError(
+                f"intersect_exact needs planar curves, {name} has dimension {c.dimension}"
+            )
+        exact_rows = c.to_bezier()._exact_points
+        assert exact_rows is not None  # an exact curve has an exact Bézier form
+        rows.append(exact_rows)
+    return _exact.isolate(rows[0], rows[1])

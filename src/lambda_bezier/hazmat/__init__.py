@@ -1,7 +1,7 @@
 """lambda_bezier.hazmat: pure functions on coefficient and point arrays.
 
 The rule: a module here imports numpy, the standard library and other hazmat modules
-(and numba, optionally, in intersect_compiled and kernels_compiled), nothing else from lambda_bezier
+(and numba, optionally, in the *_compiled modules), nothing else from lambda_bezier
 (import-linter checks it in CI, and tests/test_runtime_layers.py). A kernel that needs a
 generated table takes it as an argument. Inputs are not validated here: the curve classes
 above check them first, so calling these directly with bad arrays gives numpy's errors, not
@@ -15,9 +15,16 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `arclength`: adaptive Gauss-Lobatto/Kronrod quadrature of the speed;
 - `roots`: real roots in [0, 1] of polynomials about t = 1/2 (companion matrix, Newton);
 - `extremes`: tight bounding boxes and closest points from those roots;
+- `closest_compiled`: closest points by a certified branch and bound on the Bernstein form of
+  the squared distance, compiled with numba (the `fast` extra; imported on use);
 - `intersect`: curve/curve intersection, self-intersection and point location;
 - `intersect_subdivide`: the candidate isolation `intersect` runs on (subdivision on arrays);
 - `intersect_compiled`: the same loop compiled with numba (the `fast` extra; imported on use);
+- `intersect_certify`: the certified fast path for transversal crossings away from the ends
+  (numpy, or `certify_compiled`: the whole per-pair pipeline in one numba call);
+- `intersect_exact`: exact, certified isolation of planar crossings (resultants, Sturm,
+  Krawczyk in rational interval arithmetic);
+- `intersect_prepared`: a curve as the intersection solvers use it (floats, exact rows);
 - `reduce`: degree reduction, exact or least squares;
 - `implicit`: implicitization (imports SymPy when called, never at import);
 - `numbers`: the exact-number grammar of the command line and of export files;
@@ -36,12 +43,17 @@ from __future__ import annotations
 __all__ = [
     "arclength",
     "box_bernstein",
+    "certify_compiled",
+    "closest_compiled",
     "exact_poly",
     "extremes",
     "forms",
     "implicit",
     "intersect",
+    "intersect_certify",
     "intersect_compiled",
+    "intersect_exact",
+    "intersect_prepared",
     "intersect_subdivide",
     "kernels",
     "kernels_compiled",

@@ -5,6 +5,12 @@ among the candidates."""
 
 from __future__ import annotations
 
+import functools
+import importlib.util
+import os
+from math import comb
+from types import ModuleType
+
 import numpy as np
 
 from . import kernels as alg
@@ -52,10 +58,66 @@ def box(
     return values.min(axis=0), values.max(axis=0)
 
 
+# the compiled branch and bound (closest_compiled) when numba is there and not switched off;
+# set LAMBDA_BEZIER_NO_NUMBA=1, or USE_COMPILED = False here, for the companion-matrix path
+USE_COMPILED = importlib.util.find_spec("numba") is not None and not os.environ.get(
+    "LAMBDA_BEZIER_NO_NUMBA"
+)
+
+
+def _compiled() -> ModuleType | None:
+    if not USE_COMPILED:
+        return None
+    from . import closest_compiled
+
+    return closest_compiled
+
+
+@functools.cache
+def centred_to_bernstein(degree: int) -> np.ndarray:
+    """(N+1, N+1) M with M[k, e] the k-th Bernstein coefficient of (t - 1/2)^e:
+    2^-e sum_j C(e, j) (-1)^(e-j) C(N-e, k-j) / C(N, k) ((t - 1/2) = (t - (1 - t)) / 2,
+    raised to degree N by ((1 - t) + t)^(N-e))."""
+    n = degree
+    out = np.zeros((n + 1, n + 1))
+    for e in range(n + 1):
+        for k in range(n + 1):
+            total = sum(
+                comb(e, j) * (-1) ** (e - j) * comb(n - e, k - j)
+                for j in range(max(0, k - (n - e)), min(e, k) + 1)
+            )
+            out[k, e] = total / comb(n, k) / 2.0**e
+    return out
+
+
+@functools.cache
+def _product_weights(degree: int) -> np.ndarray:
+    """C(N, i) C(N, j) / C(2N, i + j): the Bernstein coefficients of a product of two
+    degree-N polynomials from theirs."""
+    n = degree
+    return np.array(
+        [[comb(n, i) * comb(n, j) / comb(2 * n, i + j) for j in range(n + 1)] for i in range(n + 1)]
+    )
+
+
 def closest(c0: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Parameters, points and squared distances of the points of the polynomial curve with
     centred coefficients c0 (d, N+1) nearest to each row of q (m, d): the best of both ends
-    and every root in [0, 1] of (p − q)·p'."""
+    and every root in [0, 1] of (p − q)·p'. With numba, closest_compiled's certified branch
+    and bound on the Bernstein form of |p − q|²; else the companion matrix's roots."""
+    compiled = _compiled()
+    if compiled is not None and c0.shape[1] >= 2:
+        degree = c0.shape[1] - 1
+        bern = np.ascontiguousarray(centred_to_bernstein(degree) @ c0.T)
+        t, pts, dist2 = compiled.closest(
+            bern, np.ascontiguousarray(q, dtype=float), _product_weights(degree)
+        )
+        return t, pts, dist2
+    return _closest_roots(c0, q)
+
+
+def _closest_roots(c0: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """closest by the companion matrix: every root in [0, 1] of (p − q)·p', polished."""
     p = significant(c0)  # (d, N'+1) with the true leading term
     m, dim = q.shape
     size = p.shape[1]

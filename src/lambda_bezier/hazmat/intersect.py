@@ -25,16 +25,16 @@ exact polynomials:
 from __future__ import annotations
 
 import functools
-import math
 from collections.abc import Sequence
 from fractions import Fraction
 from typing import NamedTuple
 
 import numpy as np
 
-from . import forms
+from . import intersect_certify as cert
 from . import intersect_subdivide as sub
-from . import kernels as alg
+from .intersect_prepared import Prepared as Prepared
+from .intersect_prepared import _exact_difference, _integer_point
 
 # relative, per unit of degree: pieces whose boxes or fat lines are this close still overlap.
 # It covers the rounding of repeated halving (a few ulps of the control points' size per
@@ -64,118 +64,6 @@ class Intersection(NamedTuple):
     s: float
     t: float
     kind: str
-
-
-class Prepared:
-    """A classical Bézier curve as the solvers use it: float and exact control points and
-    the first two hodographs of each."""
-
-    def __init__(self, points: np.ndarray, rows: tuple[tuple[Fraction, ...], ...] | None) -> None:
-        self.pts = np.asarray(points, dtype=float)
-        self._given_rows = rows
-        self.degree = self.pts.shape[0] - 1
-        self.dim = self.pts.shape[1]
-        # exact values as integer numerators over one denominator per curve: p, p', p''.
-        # Each float or Fraction is an exact ratio of integers (as_integer_ratio: no Fraction
-        # objects, which cost most of this setup when built for every float)
-        source: Sequence[Sequence[Fraction | int | float]] = (
-            rows if rows is not None else self.pts.tolist()
-        )
-        ratios = [[_ratio(v) for v in row] for row in source]
-        den = math.lcm(*(d for row in ratios for _, d in row))
-        ints = [[n * (den // d) for n, d in row] for row in ratios]
-        h1 = _integer_hodograph(ints)
-        h2 = _integer_hodograph(h1)
-        self._integer_rows = [(ints, den), (h1, den), (h2, den)]
-        self.h1 = np.array([[x / den for x in row] for row in h1])  # int / int rounds once
-        self.h2 = np.array([[x / den for x in row] for row in h2])
-        span = float(np.ptp(self.pts, axis=0).max())
-        self.is_point = span == 0.0  # every t gives the same point
-        self.scale = float(max(span, np.abs(self.pts).max(), 1e-300))
-
-    def exact_row(self, k: int) -> Sequence[Fraction | int | float]:
-        """Control point k exactly: the given Fractions, or the floats (exact as they are)."""
-        if self._given_rows is not None:
-            return self._given_rows[k]
-        row: list[float] = self.pts[k].tolist()
-        return row
-
-    @functools.cached_property
-    def size(self) -> float:
-        """The size of the curve itself (its points' extent and distance from the origin,
-        from 129 samples), which tolerances on distances to it are relative to."""
-        samples = alg.de_casteljau_steps(self.pts, np.linspace(0.0, 1.0, 129), self.degree)[:, 0]
-        return float(max(np.ptp(samples, axis=0).max(), np.abs(samples).max(), 1e-300))
-
-    def at(self, s: float, which: int = 0) -> np.ndarray:
-        work = (self.pts, self.h1, self.h2)[which]
-        while work.shape[0] > 1:
-            work = work[:-1] + s * (work[1:] - work[:-1])
-        point: np.ndarray = work[0]
-        return point
-
-    def at_with_tangent(self, s: float) -> tuple[np.ndarray, np.ndarray]:
-        """p(s) and p'(s) from one de Casteljau pass (p' = n (b_1 - b_0) of its last level)."""
-        work = self.pts
-        if work.shape[0] == 1:
-            return work[0], np.zeros(self.dim)
-        while work.shape[0] > 2:
-            work = work[:-1] + s * (work[1:] - work[:-1])
-        a, b = work[0], work[1]
-        return a + s * (b - a), self.degree * (b - a)
-
-    def exact_at(self, s: float, which: int = 0) -> tuple[list[int], int]:
-        """p(s) (which = 0), p'(s) or p''(s) exactly, for a float s: integer numerators and
-        one denominator. de Casteljau on integers (control points over their common
-        denominator, s = m / 2^e): Python's int arithmetic is exact and much faster than
-        Fractions, and int / int rounds correctly when a float is finally wanted."""
-        ints, den = self._integer_rows[which]
-        m, power_of_two = float(s).as_integer_ratio()
-        work = ints
-        for _ in range(len(ints) - 1):  # (1 - s) a + s b, scaled by 2^e
-            work = [
-                [(power_of_two - m) * a + m * b for a, b in zip(p, q, strict=True)]
-                for p, q in zip(work[:-1], work[1:], strict=True)
-            ]
-        return work[0], den * power_of_two ** (len(ints) - 1)
-
-
-def _exact_difference(a: tuple[list[int], int], b: tuple[list[int], int]) -> np.ndarray:
-    """a - b for exact values (numerators, denominator), correctly rounded to floats."""
-    (na, da), (nb, db) = a, b
-    return np.array([(x * db - y * da) / (da * db) for x, y in zip(na, nb, strict=True)])
-
-
-def _integer_point(point: Sequence[Fraction | int | float]) -> tuple[list[int], int]:
-    ratios = [_ratio(v) for v in point]
-    den = math.lcm(*(d for _, d in ratios))
-    return [n * (den // d) for n, d in ratios], den
-
-
-def _ratio(v: Fraction | int | float) -> tuple[int, int]:
-    """(numerator, denominator) of an int, float or Fraction, exactly."""
-    if isinstance(v, Fraction):
-        return v.numerator, v.denominator
-    if isinstance(v, int):
-        return v, 1
-    return float(v).as_integer_ratio()
-
-
-@functools.cache
-def _hodograph_weights(degree: int) -> tuple[tuple[tuple[int, int], ...], ...]:
-    """The hodograph matrix's nonzero entries, row by row: (column, integer weight)."""
-    return tuple(
-        tuple((k, int(w)) for k, w in enumerate(row) if w) for row in forms.hodograph_matrix(degree)
-    )
-
-
-def _integer_hodograph(ints: list[list[int]]) -> list[list[int]]:
-    """The hodograph's numerators (same denominator), from the hodograph matrix, whose
-    entries are integers (n times 0 or ±1)."""
-    return [
-        [sum(w * ints[k][c] for k, w in row) for c in range(len(ints[0]))]
-        for row in _hodograph_weights(len(ints) - 1)
-    ]
 
 
 # ---------------------------------------------------------------------------- clusters
@@ -362,8 +250,7 @@ def _near_found(s: float, t: float, found: list[Intersection]) -> bool:
 
 def _on_both(p: Prepared, q: Prepared, s: float, t: float) -> bool:
     """p(s) = q(t) to rounding: the exact residual within ROOT_RESIDUAL of the curves' size."""
-    bound = ROOT_RESIDUAL * max(p.degree, q.degree) * max(p.scale, q.scale)
-    return bool(np.linalg.norm(_residual(p, q, s, t, True)) <= bound)
+    return bool(np.linalg.norm(_residual(p, q, s, t, True)) <= _root_bound(p, q))
 
 
 def _solve_from(
@@ -565,49 +452,93 @@ Box = tuple[float, float, float, float]  # s0, s1, t0, t1 of a coincident stretc
 
 
 def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
-    """Every intersection of p and q, sorted by s."""
-    return intersect_pairs([(p, q)])[0]
+    """Every intersection of p and q, sorted by s: the certified fast path when both are
+    floats exactly, else (or where it does not certify) the careful path."""
+    if cert.in_use() and p.floats_exact and q.floats_exact and p.dim == q.dim and p.dim >= 2:
+        got = cert.certify_one(p.pts, q.pts, BOX_SLACK, ROOT_RESIDUAL)
+        if got is not None:
+            s, t = got
+            return [Intersection(x, y, "transversal") for x, y in zip(s, t, strict=True)]
+    _check_pair(p, q)
+    results: list[list[Intersection]] = [[]]
+    _careful_pairs([(p, q)], [0], results)  # declined (or exact input): not certified again
+    return results[0]
 
 
 def intersect_pairs(pairs: list[tuple[Prepared, Prepared]]) -> list[list[Intersection]]:
-    """Every intersection of each pair, sorted by s: the end points and shared stretches
-    pair by pair, then the subdivision of all pairs of equal degrees and dimension in one
-    set of arrays (intersect_subdivide.isolate), then refinement pair by pair."""
-    setups = [_pair_setup(p, q) for p, q in pairs]
+    """Every intersection of each pair, sorted by s. Pairs of equal degrees and dimension go
+    together: first the certified fast path (intersect_certify) on those whose floats are
+    the curves exactly; the rest, and those it does not certify, the careful way: the end
+    points and shared stretches pair by pair, the subdivision in one set of arrays
+    (intersect_subdivide.isolate), then refinement pair by pair."""
+    for p, q in pairs:
+        _check_pair(p, q)
     groups: dict[tuple[int, int, int], list[int]] = {}
     for k, (p, q) in enumerate(pairs):
         groups.setdefault((p.degree, q.degree, p.dim), []).append(k)
     results: list[list[Intersection]] = [[] for _ in pairs]
     for members in groups.values():
-        iso = sub.isolate(
-            np.stack([pairs[k][0].pts for k in members]),
-            np.stack([pairs[k][1].pts for k in members]),
-            np.array([_slack(*pairs[k]) for k in members]),
-            [(g, *box) for g, k in enumerate(members) for box in setups[k][1]],
-        )
-        for g, k in enumerate(members):
-            p, q = pairs[k]
-            found, skip = setups[k]
-            roots = iso.root_pair == g
-            left = iso.left_pair == g
-            results[k] = _pair_finish(
-                p,
-                q,
-                found,
-                skip,
-                list(zip(iso.root_s[roots].tolist(), iso.root_t[roots].tolist(), strict=True)),
-                _starts(iso.left_s0[left], iso.left_t0[left], iso.left_width[left]),
+        fast = [
+            k
+            for k in members
+            if cert.in_use() and pairs[k][0].floats_exact and pairs[k][1].floats_exact
+        ]
+        careful = [k for k in members if k not in set(fast)]
+        if fast:
+            certified = cert.certify(
+                np.stack([pairs[k][0].pts for k in fast]),
+                np.stack([pairs[k][1].pts for k in fast]),
+                np.array([_slack(*pairs[k]) for k in fast]),
+                np.array([_root_bound(*pairs[k]) for k in fast]),
             )
+            for k, got in zip(fast, certified, strict=True):
+                if got is None:
+                    careful.append(k)
+                else:
+                    s_list, t_list = got
+                    results[k] = [
+                        Intersection(x, y, "transversal")
+                        for x, y in zip(s_list, t_list, strict=True)
+                    ]
+        if careful:
+            _careful_pairs(pairs, sorted(careful), results)
     return results
+
+
+def _careful_pairs(
+    pairs: list[tuple[Prepared, Prepared]], members: list[int], results: list[list[Intersection]]
+) -> None:
+    setups = {k: _pair_setup(*pairs[k]) for k in members}
+    iso = sub.isolate(
+        np.stack([pairs[k][0].pts for k in members]),
+        np.stack([pairs[k][1].pts for k in members]),
+        np.array([_slack(*pairs[k]) for k in members]),
+        [(g, *box) for g, k in enumerate(members) for box in setups[k][1]],
+    )
+    for g, k in enumerate(members):
+        p, q = pairs[k]
+        found, skip = setups[k]
+        roots = iso.root_pair == g
+        left = iso.left_pair == g
+        results[k] = _pair_finish(
+            p,
+            q,
+            found,
+            skip,
+            list(zip(iso.root_s[roots].tolist(), iso.root_t[roots].tolist(), strict=True)),
+            _starts(iso.left_s0[left], iso.left_t0[left], iso.left_width[left]),
+        )
 
 
 def _slack(p: Prepared, q: Prepared) -> float:
     return float(BOX_SLACK * max(p.degree, q.degree) * max(p.scale, q.scale))
 
 
-def _pair_setup(p: Prepared, q: Prepared) -> tuple[list[Intersection], list[Box]]:
-    """Checks, then the end points located on the other curve, and the shared stretches
-    they bound: (hits so far, rectangles of shared stretches for subdivision to skip)."""
+def _root_bound(p: Prepared, q: Prepared) -> float:
+    return float(ROOT_RESIDUAL * max(p.degree, q.degree) * max(p.scale, q.scale))
+
+
+def _check_pair(p: Prepared, q: Prepared) -> None:
     if p.dim != q.dim:
         raise ValueError(f"cannot intersect curves of dimensions {p.dim} and {q.dim}")
     if p.dim < 2:
@@ -617,6 +548,11 @@ def _pair_setup(p: Prepared, q: Prepared) -> tuple[list[Intersection], list[Box]
     for name, c in (("the first", p), ("the second", q)):
         if c.is_point:
             raise ValueError(f"{name} curve is a single point: use locate() on the other")
+
+
+def _pair_setup(p: Prepared, q: Prepared) -> tuple[list[Intersection], list[Box]]:
+    """The end points located on the other curve, and the shared stretches they bound:
+    (hits so far, rectangles of shared stretches for subdivision to skip)."""
     ends: list[Intersection] = []
     for s_end in (0, 1):
         for t in locate_all(q, p.pts[-1 if s_end else 0], p.exact_row(-1 if s_end else 0)):

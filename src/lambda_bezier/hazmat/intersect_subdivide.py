@@ -217,12 +217,14 @@ def isolate(
     slack: np.ndarray,
     skip: list[tuple[int, float, float, float, float]] | None = None,
     depth: int = DEPTH,
+    max_rows: int = MAX_ROWS,
 ) -> Isolated:
     """Subdivide P pairs of curves at once. a: (P, n+1, d); b: (P, m+1, d), or None for each
     curve of a against itself (pairs of pieces ia <= ib; neighbouring pieces are dropped
     once provably one-to-one, and never isolated: they share an end point). slack: (P,),
     the distance within which boxes still count as touching. skip: (pair, s0, s1, t0, t1)
-    rectangles of a shared stretch, whose pairs of pieces are dropped."""
+    rectangles of a shared stretch, whose pairs of pieces are dropped. max_rows: the guard
+    on the pairs of pieces alive at one level (those left then are reported unresolved)."""
     same = b is None
     bb_all = a if b is None else b
     compiled = _compiled()
@@ -235,7 +237,7 @@ def isolate(
                 np.ascontiguousarray(slack, dtype=float),
                 np.array(skip or [], dtype=float).reshape(-1, 5),
                 depth,
-                MAX_ROWS,
+                max_rows,
                 NEWTON_STEPS,
                 INSIDE,
                 CONE_MARGIN,
@@ -278,7 +280,7 @@ def isolate(
         pa, pb, pid, ia, ib = pa[keep], pb[keep], pid[keep], ia[keep], ib[keep]
         if not pid.size:
             break
-        if level == depth or 4 * pid.size > MAX_ROWS:
+        if level == depth or 4 * pid.size > max_rows:
             left.append((pid, ia * 0.5**level, ib * 0.5**level, np.full(pid.size, 0.5**level)))
             break
         # isolation: one-to-one pieces whose tangent cones share no line hold one root at most

@@ -1,0 +1,479 @@
+"""The certified fast path of curve intersection (intersect_certify), compiled with numba.
+
+One call runs the whole per-pair pipeline for many pairs: subdivision depth first on a small
+stack (no arrays allocated per level), the same drop and isolation tests as
+intersect_subdivide (boxes, fat lines in the plane, disjoint hodograph cones, local Newton),
+then Newton on the whole curves with the residual p(s) - q(t) evaluated by compensated de
+Casteljau (error-free transformations: the residual as if computed in twice the working
+precision, so the parameters come out as they do with the exact residual of the careful
+path), then the checks of the certificate (intersect_certify's docstring) and the merging of
+a root found in two neighbouring pairs of pieces. A pair whose certificate fails anywhere is
+reported as such at once; the caller runs the careful path on it.
+
+Imported only by intersect_certify, and only when numba is installed and not disabled;
+numba compiles on first use and caches the machine code next to this file.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numba
+import numpy as np
+
+from .intersect_compiled import _cone, _fat_line_apart
+
+_JIT: dict[str, Any] = {"cache": True, "error_model": "numpy"}
+_SPLITTER = 134217729.0  # 2^27 + 1: Dekker's split of a double into two 26-bit halves
+
+
+@numba.njit(**_JIT)
+def _two_sum(a: float, b: float) -> tuple[float, float]:
+    s = a + b
+    v = s - a
+    return s, (a - (s - v)) + (b - v)
+
+
+@numba.njit(**_JIT)
+def _two_prod(a: float, b: float) -> tuple[float, float]:
+    p = a * b
+    c = _SPLITTER * a
+    ah = c - (c - a)
+    al = a - ah
+    c = _SPLITTER * b
+    bh = c - (c - b)
+    bl = b - bh
+    return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
+
+
+@numba.njit(**_JIT)
+def _boxes_apart(a: np.ndarray, b: np.ndarray, slack: float) -> bool:
+    """intersect_compiled._boxes_apart in scalar loops (no array reductions)."""
+    for j in range(a.shape[1]):
+        a_lo = a_hi = a[0, j]
+        for i in range(1, a.shape[0]):
+            a_lo, a_hi = min(a_lo, a[i, j]), max(a_hi, a[i, j])
+        b_lo = b_hi = b[0, j]
+        for i in range(1, b.shape[0]):
+            b_lo, b_hi = min(b_lo, b[i, j]), max(b_hi, b[i, j])
+        if a_lo > b_hi + slack or b_lo > a_hi + slack:
+            return True
+    return False
+
+
+@numba.njit(**_JIT)
+def _flat_forward(piece: np.ndarray, slack: float) -> bool:
+    """intersect_compiled._flat_forward without temporaries: every control point within slack
+    of the chord, and the control polygon running forward along it."""
+    n, dim = piece.shape[0] - 1, piece.shape[1]
+    length = 0.0
+    for j in range(dim):
+        length += (piece[n, j] - piece[0, j]) ** 2
+    length = math.sqrt(length)
+    if not length > 0.0:
+        return False
+    for i in range(n + 1):
+        along = 0.0
+        for j in range(dim):
+            along += (piece[i, j] - piece[0, j]) * (piece[n, j] - piece[0, j]) / length
+        off = 0.0
+        for j in range(dim):
+            r = piece[i, j] - piece[0, j] - along * (piece[n, j] - piece[0, j]) / length
+            off += r * r
+        if math.sqrt(off) > slack:
+            return False
+    for i in range(n):
+        dot = 0.0
+        for j in range(dim):
+            dot += (piece[i + 1, j] - piece[i, j]) * (piece[n, j] - piece[0, j])
+        if dot < 0.0:
+            return False
+    return True
+
+
+@numba.njit(**_JIT)
+def _value_slope(
+    piece: np.ndarray, u: float, work: np.ndarray, value: np.ndarray, slope: np.ndarray
+) -> None:
+    """p(u) and p'(u) by de Casteljau in the scratch array work (no temporaries)."""
+    n, dim = piece.shape[0] - 1, piece.shape[1]
+    for i in range(n + 1):
+        for j in range(dim):
+            work[i, j] = piece[i, j]
+    for level in range(n):
+        if level == n - 1:
+            for j in range(dim):
+                slope[j] = n * (work[1, j] - work[0, j])
+        for i in range(n - level):
+            for j in range(dim):
+                work[i, j] += u * (work[i + 1, j] - work[i, j])
+    for j in range(dim):
+        value[j] = work[0, j]
+    if n == 0:
+        for j in range(dim):
+            slope[j] = 0.0
+
+
+@numba.njit(**_JIT)
+def _local_newton(
+    a: np.ndarray,
+    b: np.ndarray,
+    steps: int,
+    inside: float,
+    wa: np.ndarray,
+    wb: np.ndarray,
+    vec: np.ndarray,
+) -> tuple[float, float, bool]:
+    """intersect_compiled._local_newton in scratch arrays: Gauss-Newton on a(u) - b(v) from
+    (1/2, 1/2); ok where the last step is below 1e-12 inside the pieces."""
+    dim = a.shape[1]
+    pa, da, pb, db = vec[0], vec[1], vec[2], vec[3]
+    u, v, step = 0.5, 0.5, np.inf
+    for _ in range(steps):
+        _value_slope(a, u, wa, pa, da)
+        _value_slope(b, v, wb, pb, db)
+        aa = ab = bb = ga = gb = 0.0
+        for j in range(dim):
+            f = pa[j] - pb[j]
+            aa += da[j] * da[j]
+            ab -= da[j] * db[j]
+            bb += db[j] * db[j]
+            ga -= da[j] * f
+            gb += db[j] * f
+        det = aa * bb - ab * ab
+        du = (bb * ga - ab * gb) / det
+        dv = (aa * gb - ab * ga) / det
+        u, v = u + du, v + dv
+        step = abs(du) + abs(dv)
+        if not step > 1e-15:
+            break
+        if not (-1.0 < u < 2.0 and -1.0 < v < 2.0):
+            return u, v, False  # thrown far off: no root of these pieces near (subdivide)
+    ok = math.isfinite(step) and step < 1e-12
+    ok = ok and -inside <= u <= 1 + inside and -inside <= v <= 1 + inside
+    return u, v, ok
+
+
+@numba.njit(**_JIT)
+def _compensated(
+    ctrl: np.ndarray, t: float, hi: np.ndarray, lo: np.ndarray, slope: np.ndarray
+) -> None:
+    """p(t) as hi[0] + lo[0] (compensated de Casteljau, Graillat-Langlois-Louvet), and p'(t)
+    in floats into slope. hi, lo: (n+1, d) work arrays."""
+    n, dim = ctrl.shape[0] - 1, ctrl.shape[1]
+    r, rho = _two_sum(1.0, -t)
+    for i in range(n + 1):
+        for j in range(dim):
+            hi[i, j] = ctrl[i, j]
+            lo[i, j] = 0.0
+    for level in range(n):
+        if level == n - 1:
+            for j in range(dim):
+                slope[j] = n * (hi[1, j] - hi[0, j])
+        for i in range(n - level):
+            for j in range(dim):
+                p1, e1 = _two_prod(r, hi[i, j])
+                p2, e2 = _two_prod(t, hi[i + 1, j])
+                s, e3 = _two_sum(p1, p2)
+                lo[i, j] = r * lo[i, j] + t * lo[i + 1, j] + (e1 + e2 + e3 + rho * hi[i, j])
+                hi[i, j] = s
+
+
+@numba.njit(**_JIT)
+def _split(piece: np.ndarray, work: np.ndarray, left: np.ndarray, right: np.ndarray) -> None:
+    """de Casteljau at 1/2: left and right halves of piece (work: scratch of its shape)."""
+    n, dim = piece.shape[0] - 1, piece.shape[1]
+    for i in range(n + 1):
+        for j in range(dim):
+            work[i, j] = piece[i, j]
+    for j in range(dim):
+        left[0, j] = work[0, j]
+        right[n, j] = work[n, j]
+    for r in range(1, n + 1):
+        for i in range(n - r + 1):
+            for j in range(dim):
+                work[i, j] = 0.5 * (work[i, j] + work[i + 1, j])
+        for j in range(dim):
+            left[r, j] = work[0, j]
+            right[n - r, j] = work[n - r, j]
+
+
+@numba.njit(**_JIT)
+def _refine(
+    a: np.ndarray,
+    b: np.ndarray,
+    s: float,
+    t: float,
+    work: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
+    vec: np.ndarray,
+) -> tuple[float, float, float, float, float]:
+    """Newton (Gauss-Newton for d > 2) on p(s) - q(t) with the compensated residual, from
+    (s, t): (s, t, last step, residual norm, sine of the tangents' angle)."""
+    ah, al, bh, bl = work
+    dim = a.shape[1]
+    da, db, f = vec[0], vec[1], vec[2]
+    prev = np.inf
+    size = np.inf
+    for it in range(16):
+        _compensated(a, s, ah, al, da)
+        _compensated(b, t, bh, bl, db)
+        for j in range(dim):
+            d, e = _two_sum(ah[0, j], -bh[0, j])
+            f[j] = d + (e + (al[0, j] - bl[0, j]))
+        # least squares of [da, -db] (ds, dt) = -f through the 2x2 normal equations
+        aa = ab = bb = ga = gb = 0.0
+        for j in range(dim):
+            aa += da[j] * da[j]
+            ab -= da[j] * db[j]
+            bb += db[j] * db[j]
+            ga -= da[j] * f[j]
+            gb += db[j] * f[j]
+        det = aa * bb - ab * ab
+        if not det > 0.0:
+            return s, t, np.inf, np.inf, 0.0
+        ds = (bb * ga - ab * gb) / det
+        dt = (aa * gb - ab * ga) / det
+        s, t = s + ds, t + dt
+        size = abs(ds) + abs(dt)
+        if not (-0.5 < s < 1.5 and -0.5 < t < 1.5):
+            return s, t, np.inf, np.inf, 0.0
+        if size < 1e-17 or (it >= 4 and size >= prev):
+            break
+        prev = size
+    _compensated(a, s, ah, al, da)
+    _compensated(b, t, bh, bl, db)
+    res = 0.0
+    for j in range(dim):
+        d, e = _two_sum(ah[0, j], -bh[0, j])
+        x = d + (e + (al[0, j] - bl[0, j]))
+        res += x * x
+    nu = nv = dot = 0.0
+    for j in range(dim):
+        nu += da[j] * da[j]
+        nv += db[j] * db[j]
+        dot += da[j] * db[j]
+    cross2 = max(nu * nv - dot * dot, 0.0)
+    sine = math.sqrt(cross2) / math.sqrt(nu * nv) if nu * nv > 0.0 else 0.0
+    return s, t, size, math.sqrt(res), sine
+
+
+@numba.njit(**_JIT)
+def _certify_one(
+    a: np.ndarray,
+    b: np.ndarray,
+    slack: float,
+    bound: float,
+    depth: int,
+    max_pieces: int,
+    newton_steps: int,
+    inside: float,
+    margin: float,
+    end_margin: float,
+    drift: float,
+    same: float,
+    sine_min: float,
+    out_s: np.ndarray,
+    out_t: np.ndarray,
+) -> int:
+    """Certified intersections of one pair into out_s, out_t: their count, or -1 where the
+    certificate fails (the careful path decides)."""
+    n1, n2, dim = a.shape[0], b.shape[0], a.shape[1]
+    planar = dim == 2
+    cap = 4 * depth + 8  # depth first: at most 3 siblings wait per level
+    sa = np.empty((cap, n1, dim))
+    sb = np.empty((cap, n2, dim))
+    level = np.empty(cap, dtype=np.int64)
+    ia = np.empty(cap, dtype=np.int64)
+    ib = np.empty(cap, dtype=np.int64)
+    pa, pb = np.empty((n1, dim)), np.empty((n2, dim))
+    wa, wb = np.empty((n1, dim)), np.empty((n2, dim))
+    la, ra = np.empty((n1, dim)), np.empty((n1, dim))
+    lb, rb = np.empty((n2, dim)), np.empty((n2, dim))
+    axis_a, axis_b = np.empty(dim), np.empty(dim)
+    vec4 = np.empty((4, dim))
+    room = out_s.shape[0]
+    start_s, start_t = np.empty(room), np.empty(room)
+    found = 0
+    sa[0], sb[0] = a, b
+    level[0] = ia[0] = ib[0] = 0
+    top = 1
+    popped = 0
+    while top > 0:
+        top -= 1
+        popped += 1
+        if popped > max_pieces:
+            return -1
+        pa[:], pb[:] = sa[top], sb[top]
+        lev, ka, kb = level[top], ia[top], ib[top]
+        if _boxes_apart(pa, pb, slack):
+            continue
+        if planar and (_fat_line_apart(pa, pb, slack) or _fat_line_apart(pb, pa, slack)):
+            continue
+        if lev == depth:
+            return -1  # unresolved at the depth: a tangency, or crossings closer than that
+        width = 0.5**lev
+        half_a = _cone(pa, axis_a)
+        half_b = _cone(pb, axis_b)
+        if half_a < math.pi / 2 - margin and half_b < math.pi / 2 - margin:
+            dot = 0.0
+            for j in range(dim):
+                dot += axis_a[j] * axis_b[j]
+            between = math.acos(min(abs(dot), 1.0))
+            if between > half_a + half_b + margin:
+                u, v, ok = _local_newton(pa, pb, newton_steps, inside, la, lb, vec4)
+                if ok:
+                    if found == room:
+                        return -1
+                    start_s[found] = (ka + min(max(u, 0.0), 1.0)) * width
+                    start_t[found] = (kb + min(max(v, 0.0), 1.0)) * width
+                    found += 1
+                    continue
+        if _flat_forward(pa, slack) and _flat_forward(pb, slack):
+            return -1  # flat to rounding on both sides: the careful path's tangent refinement
+        if top + 4 > cap:
+            return -1
+        _split(pa, wa, la, ra)
+        _split(pb, wb, lb, rb)
+        for c in range(4):
+            sa[top] = la if c < 2 else ra
+            sb[top] = lb if c % 2 == 0 else rb
+            level[top] = lev + 1
+            ia[top] = 2 * ka + (0 if c < 2 else 1)
+            ib[top] = 2 * kb + c % 2
+            top += 1
+    # refinement on the whole curves; every root must pass the certificate's checks
+    work = (np.empty((n1, dim)), np.empty((n1, dim)), np.empty((n2, dim)), np.empty((n2, dim)))
+    vec = np.empty((3, dim))
+    count = 0
+    for k in range(found):
+        s, t, step, res, sine = _refine(a, b, start_s[k], start_t[k], work, vec)
+        if not (step < 1e-12 and res <= bound and sine > sine_min):
+            return -1
+        if abs(s - start_s[k]) > drift or abs(t - start_t[k]) > drift:
+            return -1
+        if not (end_margin <= s <= 1 - end_margin and end_margin <= t <= 1 - end_margin):
+            return -1  # at an end: the careful path locates the ends exactly
+        duplicate = False
+        for m in range(count):
+            if abs(out_s[m] - s) < same and abs(out_t[m] - t) < same:
+                duplicate = True
+        if not duplicate:
+            out_s[count] = s
+            out_t[count] = t
+            count += 1
+    return count
+
+
+@numba.njit(**_JIT)
+def certify(
+    a: np.ndarray,
+    b: np.ndarray,
+    slack: np.ndarray,
+    bound: np.ndarray,
+    depth: int,
+    max_pieces: int,
+    newton_steps: int,
+    inside: float,
+    margin: float,
+    end_margin: float,
+    drift: float,
+    same: float,
+    sine_min: float,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """P pairs (P, n+1, d) and (P, m+1, d): (count (P,), -1 where the certificate fails;
+    s (P, room), t (P, room)), the first count entries of each row being its roots."""
+    pairs = a.shape[0]
+    room = 4 * a.shape[1] * b.shape[1] + 8  # Bezout's n m roots, each in up to 4 pieces
+    counts = np.empty(pairs, dtype=np.int64)
+    out_s = np.zeros((pairs, room))
+    out_t = np.zeros((pairs, room))
+    for k in range(pairs):
+        counts[k] = _certify_one(
+            a[k],
+            b[k],
+            slack[k],
+            bound[k],
+            depth,
+            max_pieces,
+            newton_steps,
+            inside,
+            margin,
+            end_margin,
+            drift,
+            same,
+            sine_min,
+            out_s[k],
+            out_t[k],
+        )
+    return counts, out_s, out_t
+
+
+@numba.njit(**_JIT)
+def _size(points: np.ndarray) -> tuple[float, float]:
+    """(span, scale) as intersect_prepared.Prepared has them: the largest extent of the
+    control points, and the larger of that and their largest coordinate (at least 1e-300)."""
+    span = 0.0
+    big = 0.0
+    for j in range(points.shape[1]):
+        lo = hi = points[0, j]
+        for i in range(points.shape[0]):
+            lo, hi = min(lo, points[i, j]), max(hi, points[i, j])
+            big = max(big, abs(points[i, j]))
+        span = max(span, hi - lo)
+    return span, max(span, big, 1e-300)
+
+
+@numba.njit(**_JIT)
+def certify_one(
+    a: np.ndarray,
+    b: np.ndarray,
+    box_slack: float,
+    root_residual: float,
+    depth: int,
+    max_pieces: int,
+    newton_steps: int,
+    inside: float,
+    margin: float,
+    end_margin: float,
+    drift: float,
+    same: float,
+    sine_min: float,
+) -> tuple[int, np.ndarray, np.ndarray]:
+    """One pair, with its slack and residual bound computed here as the careful path does
+    (intersect._slack, _root_bound): (count, s, t) sorted by s, count -1 where the
+    certificate fails (or either curve is a point: the careful path says so)."""
+    span_a, scale_a = _size(a)
+    span_b, scale_b = _size(b)
+    room = 4 * a.shape[0] * b.shape[0] + 8
+    out_s = np.zeros(room)
+    out_t = np.zeros(room)
+    if span_a == 0.0 or span_b == 0.0:
+        return -1, out_s, out_t
+    degree = max(a.shape[0], b.shape[0]) - 1
+    scale = max(scale_a, scale_b)
+    count = _certify_one(
+        a,
+        b,
+        box_slack * degree * scale,
+        root_residual * degree * scale,
+        depth,
+        max_pieces,
+        newton_steps,
+        inside,
+        margin,
+        end_margin,
+        drift,
+        same,
+        sine_min,
+        out_s,
+        out_t,
+    )
+    for k in range(1, max(count, 0)):  # insertion sort by s: a handful of roots
+        s, t = out_s[k], out_t[k]
+        m = k - 1
+        while m >= 0 and out_s[m] > s:
+            out_s[m + 1], out_t[m + 1] = out_s[m], out_t[m]
+            m -= 1
+        out_s[m + 1], out_t[m + 1] = s, t
+    return count, out_s, out_t

@@ -521,6 +521,9 @@ def optimal_parameters(
     >>> r["lam"], r.free_inside, r.boundary
     (Fraction(-2, 1), False, 'lam = -2 (lower end, excluded: not attained)')
     """
+    atom = getattr(family, "atom_data", None)
+    if atom is not None:
+        return _optimal_atoms(points, k, atom)
     several = getattr(family, "several", None)
     if several is not None:
         return _optimal_several(points, k, family, several)
@@ -569,8 +572,6 @@ def _optimal_several(points: PointsLike, k: int, family: Any, several: Any) -> O
     (S from the derived Gram matrices, exact); its minimum over the closed box is the least
     of the free minima on the box's faces (each a linear system) that lie in the face:
     every face is tried, 3^J of them."""
-    import itertools
-
     k = _check_order(k)
     names = several.NAMES
     if several.ENERGY_REASON is not None:
@@ -601,17 +602,89 @@ def _optimal_several(points: PointsLike, k: int, family: Any, several: Any) -> O
                 total += pi * sum((g * rows[j][dim] for j, g in enumerate(row)), Fraction(0))
         s_mat[a][b] = s_mat[b][a] = total
 
-    def energy_at(x: list[Fraction]) -> Fraction:
+    return _box_minimum(s_mat, names, several.RANGES, exact, k, several.FAMILY)
+
+
+def _optimal_atoms(points: PointsLike, k: int, data: Any) -> OptimalParameters:
+    """optimal_parameters for a trigonometric, hyperbolic or mixed family (atom_family):
+    E_k = Σ over monomial pairs params^(m1+m2) P^T G P with entries in ℚ[π] or ℚ[e^W], a
+    quadratic in the parameters when each monomial has degree <= 1 (the family is affine in
+    them): then the box minimum is exact, in ℚ(π) (ConstantFraction) for exact points."""
+    k = _check_order(k)
+    names = data.NAMES
+    if data.ENERGY_REASON is not None and not data.GRAM:
+        raise ValueError(f"optimal_parameters: {data.ENERGY_REASON}")
+    given = val.exact_rows(points)
+    exact = given is not None
+    rows: list[tuple[Fraction, ...]]
+    if given is None:
+        arr = np.asarray(val.as_points(points, family=data.FAMILY, degrees=data.DEGREES))
+        rows = [tuple(Fraction(float(v)) for v in row) for row in arr]
+    else:
+        val.exact_shape(given, family=data.FAMILY, degrees=data.DEGREES)
+        rows = [tuple(Fraction(v) for v in row) for row in given]
+    n = len(rows) - 1
+    if (n, k) not in data.GRAM:
+        raise ValueError(
+            f"points: {n + 1} control points: no derived E_{k} of {data.FAMILY} for degree {n}"
+        )
+    size = len(names) + 1
+
+    def index(mono: tuple[int, ...]) -> int:
+        if sum(mono) == 0:
+            return 0
+        if sum(mono) == 1:
+            return 1 + mono.index(1)
+        raise ValueError(
+            f"optimal_parameters: {data.FAMILY} is not affine in its parameters (a term "
+            f"{mono} of degree {sum(mono)}): its energy is not a quadratic in them, and this "
+            "version minimises only quadratics exactly"
+        )
+
+    s_mat: list[list[Any]] = [[Fraction(0)] * size for _ in range(size)]
+    for (m1, m2), gram in data.GRAM[(n, k)].items():
+        a, b = index(m1), index(m2)
+        total: Any = Fraction(0)
+        for dim in range(len(rows[0])):
+            for i, row in enumerate(gram):
+                pi = rows[i][dim]
+                if pi == 0:
+                    continue
+                for j, g in enumerate(row):
+                    if rows[j][dim] and g:
+                        total = total + pi * rows[j][dim] * g
+        # E = Σ_(a,b) w_a w_b S[a][b] over ordered pairs: S symmetric, the cross term halved
+        s_mat[a][b] = s_mat[a][b] + total / 2
+        s_mat[b][a] = s_mat[b][a] + total / 2
+    return _box_minimum(s_mat, names, data.RANGES, exact, k, data.FAMILY)
+
+
+def _box_minimum(
+    s_mat: list[list[Any]],
+    names: tuple[str, ...],
+    ranges: dict[str, tuple[Any, ...]],
+    exact: bool,
+    k: int,
+    family: str,
+) -> OptimalParameters:
+    """The minimum of w^T S w, w = (1, x_1..x_J), over the closed box of `ranges` (the
+    least of the free minima of the box's faces that lie in their face). The entries of S
+    may be Fractions or exact numbers of a field containing them (hazmat.constants'
+    ConstantFraction: energies in ℚ(π)); comparisons are exact either way."""
+    import itertools
+
+    size = len(names) + 1
+
+    def energy_at(x: list[Any]) -> Any:
         w = [Fraction(1), *x]
         return sum(
             (w[a] * w[b] * s_mat[a][b] for a in range(size) for b in range(size)), Fraction(0)
         )
 
-    def face_minimum(state: tuple[int, ...]) -> list[Fraction] | None:
+    def face_minimum(state: tuple[int, ...]) -> list[Any] | None:
         # state[j]: 0 free, 1 at lo, 2 at hi
-        x: list[Fraction | None] = [
-            None if st == 0 else several.RANGES[name][st - 1]
-            for name, st in zip(names, state, strict=True)
+        x: list[Any] = [
+            None if st == 0 else ranges[name][st - 1] for name, st in zip(names, state, strict=True)
         ]
         free = [j for j, v in enumerate(x) if v is None]
         a = [[s_mat[1 + r][1 + c] for c in free] for r in free]
@@ -632,14 +705,13 @@ def _optimal_several(points: PointsLike, k: int, family: Any, several: Any) -> O
         return [v for v in x if v is not None]
 
     free_opt = face_minimum((0,) * len(names))
-    best: tuple[Fraction, list[Fraction], tuple[int, ...]] | None = None
+    best: tuple[Any, list[Any], tuple[int, ...]] | None = None
     for state in itertools.product((0, 1, 2), repeat=len(names)):
         x = face_minimum(state)
         if x is None:
             continue
         if not all(
-            several.RANGES[name][0] <= v <= several.RANGES[name][1]
-            for name, v in zip(names, x, strict=True)
+            ranges[name][0] <= v <= ranges[name][1] for name, v in zip(names, x, strict=True)
         ):
             continue
         e = energy_at(x)
@@ -649,12 +721,11 @@ def _optimal_several(points: PointsLike, k: int, family: Any, several: Any) -> O
         raise AssertionError("no face of the box has a minimum")
     energy, x, state = best
     inside = free_opt is not None and all(
-        several.RANGES[name][0] <= v <= several.RANGES[name][1]
-        for name, v in zip(names, free_opt, strict=True)
+        ranges[name][0] <= v <= ranges[name][1] for name, v in zip(names, free_opt, strict=True)
     )
     boundary = []
     for name, v, st in zip(names, x, state, strict=True):
-        lo, hi, lo_closed, hi_closed, _ = several.RANGES[name]
+        lo, hi, lo_closed, hi_closed, _ = ranges[name]
         if st == 0 and lo < v < hi:
             continue
         end = "lower" if v == lo else "upper"
@@ -663,7 +734,7 @@ def _optimal_several(points: PointsLike, k: int, family: Any, several: Any) -> O
             boundary.append(
                 f"{name} = {v} ({end} end{'' if closed else ', excluded: not attained'})"
             )
-    out: Any = (lambda v: v) if exact else float
+    out: Any = _exact_value if exact else float
     return OptimalParameters(
         values={name: out(v) for name, v in zip(names, x, strict=True)},
         energy=out(energy),
@@ -673,8 +744,15 @@ def _optimal_several(points: PointsLike, k: int, family: Any, several: Any) -> O
         free_inside=inside,
         boundary="" if inside else "; ".join(boundary),
         k=k,
-        family=several.FAMILY,
+        family=family,
     )
+
+
+def _exact_value(v: Any) -> Any:
+    """A Fraction, or an exact number of ℚ(π) that is rational, as the Fraction it is."""
+    if getattr(v, "is_rational", False):
+        return v.numerator[0] if v.numerator else Fraction(0)
+    return v
 
 
 def _no_effect_message(k: int) -> str:

@@ -21,7 +21,10 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `rational_kernels`: rational Bézier curves on their homogeneous form (evaluation, derivatives
   by the quotient rule, subdivision, Möbius maps);
 - `surface_kernels`: tensor-product evaluation, boxes and closest points of control nets;
-- `exact_poly`: exact polynomials over the rationals (Sturm sequences, resultants).
+- `exact_poly`: exact polynomials over the rationals (Sturm sequences, resultants);
+- `atoms`: curves in a space of atoms 1, t^k, cos/sin, cosh/sinh (trigonometric, hyperbolic
+  and mixed families): the atom grammar, exact differentiation, fast evaluation;
+- `constants`: exact numbers in ℚ(π) and ℚ(e^W) (`ConstantFraction`), signs decided exactly.
 
 The submodules are imported on use: ``from lambda_bezier.hazmat import kernels``.
 """
@@ -30,6 +33,8 @@ from __future__ import annotations
 
 __all__ = [
     "arclength",
+    "atoms",
+    "constants",
     "exact_poly",
     "extremes",
     "forms",

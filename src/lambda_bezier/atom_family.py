@@ -175,6 +175,8 @@ class AtomCurve:
                 out = ak.evaluate(coeffs, tau, sh.omega0, sh.powers, sh.harmonics, sh.hyperbolic)
             if self._scale != 1.0:
                 out = out * self._scale
+        if inside and self._half_angle and self._scale == 1.0:
+            return out  # |u| <= 1, denominator >= 1, coordinates below 2^900: no overflow
         return val.finite_result(out, "the curve" if order == 0 else f"derivative {order}")
 
     def evaluate(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray:

@@ -17,15 +17,16 @@ cos of ωτ once, then the Chebyshev recurrences c_{j+1} = 2 c_1 c_j − c_{j−
 the hyperbolic ones), then one matrix product. For a purely trigonometric curve whose angle
 ωτ stays within ±π/2 there is a faster path (`half_angle_coefficients`, `evaluate_half_angle`):
 with u = tan(ωτ/2), e^{ijωτ} = (1 + iu)^{2j} / (1 + u²)^j, so the curve is N(u) / (1 + u²)^J
-with N a polynomial of degree 2J, |u| ≤ 1: one tan, the powers of u, one matrix product and
-one division (numpy's tan is several times faster than its sin and cos).
+with N a polynomial of degree 2J, |u| ≤ 1: one tan, Horner's rule in u for the d numerator
+coordinates and the denominator, one division (numpy's tan is several times faster than its
+sin and cos).
 """
 
 from __future__ import annotations
 
 import re
 from fractions import Fraction
-from math import comb, factorial
+from math import comb
 from typing import NamedTuple
 
 import numpy as np
@@ -206,19 +207,34 @@ def evaluate_half_angle(
     table: np.ndarray, tau: np.ndarray, omega0: float, harmonics: int
 ) -> np.ndarray:
     """(d, len(tau)): the curve N(u)/(1+u²)^J from `half_angle_coefficients`, u = tan(ωτ/2);
-    for |ωτ| <= π/2 (then |u| <= 1 and the denominator is in [1, 2^J])."""
-    size = 2 * harmonics + 1
-    u = np.tan(0.5 * omega0 * tau)
-    powers = np.empty((size, tau.size))
-    powers[0] = 1.0
-    for e in range(1, size):
-        np.multiply(powers[e - 1], u, out=powers[e])
-    h = table.T @ powers
-    np.divide(h[:-1], h[-1], out=h[:-1])
-    out: np.ndarray = h[:-1]
+    for |ωτ| <= π/2 (then |u| <= 1 and the denominator is in [1, 2^J]).
+
+    Blocked over τ as kernels.centred_horner is, so that every pass (the tan, Horner's rule
+    on the (d, block) slab of numerators, the denominator's J − 1 products, the division)
+    runs on data in cache; the denominator is (1 + u²)^J by products, not by Horner."""
+    from .kernels import BLOCK
+
+    dim = table.shape[1] - 1
+    coeffs = np.ascontiguousarray(table[:, :dim].T)  # (d, 2J+1)
+    size = coeffs.shape[1]
+    out = np.empty((dim, tau.size))
+    half = 0.5 * omega0
+    for start in range(0, tau.size, BLOCK):
+        u = np.tan(half * tau[start : start + BLOCK])
+        acc = out[:, start : start + BLOCK]
+        if size == 1:
+            acc[...] = coeffs
+            continue
+        np.multiply(coeffs[:, -1:], u, out=acc)
+        acc += coeffs[:, -2:-1]
+        for e in range(size - 3, -1, -1):
+            acc *= u
+            acc += coeffs[:, e : e + 1]
+        den = u * u
+        den += 1.0
+        if harmonics > 1:
+            base = den.copy()
+            for _ in range(harmonics - 1):
+                den *= base
+        acc /= den
     return out
-
-
-def power_derivative_factor(k: int, r: int) -> int:
-    """k! / (k − r)! (0 for r > k): the factor of d^r/dt^r t^k."""
-    return 0 if r > k else factorial(k) // factorial(k - r)

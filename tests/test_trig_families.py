@@ -454,3 +454,67 @@ def test_evaluate_many(families, path):
         assert np.abs(got - want).max() < 1e-12
     with pytest.raises(ValueError, match="outside"):
         lb.evaluate_many(pts, [0.0, 5.0], fam, params=params)
+
+
+# ------------------------------------------------------------------------------ joins
+def _ends_match(first, second, order, alpha=1, d=0):
+    """C1^(r)(end) against α-scaled C2^(r)(start), each in its own parameter."""
+    end = first.domain[1] if hasattr(first, "domain") else 1.0
+    start = second.domain[0] if hasattr(second, "domain") else 0.0
+    c1 = [np.asarray(first.derivative(end, r), float) for r in range(order + 1)]
+    c2 = [np.asarray(second.derivative(start, r), float) for r in range(order + 1)]
+    want = [c2[0], alpha * c2[1]]
+    if order == 2:
+        want.append(alpha**2 * c2[2] + d * c2[1])
+    scale = 1 + max(np.abs(v).max() for v in c1)
+    return all(np.abs(a - b).max() < 1e-12 * scale for a, b in zip(c1, want, strict=False))
+
+
+@pytest.mark.parametrize("continuity", ["C1", "C2", "G1", "G2"])
+def test_joins_trig_to_any_family_and_back(families, continuity):
+    order = 1 if continuity in ("C1", "G1") else 2
+    alpha, d = (F(3, 2), F(1, 3)) if continuity.startswith("G") else (1, 0)
+    kw = (
+        {"alpha": alpha, "d": d}
+        if continuity == "G2"
+        else {"alpha": alpha}
+        if continuity == "G1"
+        else {}
+    )
+    trig = families[HAN].curve(PTS, lam=F(1, 2), mu=-1)
+    rest4 = [(7, 1), (8, 0), (9, 2)][: 4 - order]
+    for target, params in (
+        ("bezier", {}),
+        ("same_degree", {"lam": F(1, 2)}),
+        (families[HAN], {"lam": 0, "mu": F(1, 2)}),
+        (families[HYP], {"lam": F(1, 5), "mu": F(1, 2)}),
+        (families[AT], {"lam": F(1, 5)}),
+    ):
+        degree = 4 if target in ("bezier", "same_degree") else 3
+        if target is families[AT] and order == 2:
+            # b_1 and b_2 of at_cubic agree to second order at t = 0 (lam (t - sin t) ~ t³/6):
+            # C''(0) cannot fix P_1 and P_2 apart
+            with pytest.raises(ValueError, match="cannot solve"):
+                lb.join(trig, continuity, degree, family=target, rest=rest4[:1], **params, **kw)
+            continue
+        nxt = lb.join(
+            trig, continuity, degree, family=target, rest=rest4[: degree - order], **params, **kw
+        )
+        assert _ends_match(trig, nxt, order, float(alpha), float(d)), target
+    # into a trigonometric segment from a polynomial one: exact (the start values are rational)
+    poly = lb.BezierCurve([(0, 0), (1, 1), (2, 0), (3, 1)])
+    nxt = lb.join(
+        poly, continuity, 3, family=families[HAN], lam=0, mu=F(1, 2), rest=rest4[: 3 - order], **kw
+    )
+    assert nxt.is_exact and all(isinstance(v, F) for p in nxt.control_points() for v in p)
+    assert _ends_match(poly, nxt, order, float(alpha), float(d))
+
+
+def test_join_errors(families):
+    trig = families[HAN].curve(PTS, lam=0, mu=0)
+    with pytest.raises(ValueError, match="rest must hold the 2 control points"):
+        lb.join(trig, "C1", 3, lam=0, mu=0, rest=[(1, 1)])
+    with pytest.raises(TypeError, match="mu"):
+        lb.join(trig, "C1", 3, lam=0, rest=[(1, 1), (2, 2)])
+    with pytest.raises(ValueError, match="outside the han_trig_cubic range"):
+        lb.join(trig, "C1", 3, lam=5, mu=0, rest=[(1, 1), (2, 2)])

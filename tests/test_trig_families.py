@@ -518,3 +518,62 @@ def test_join_errors(families):
         lb.join(trig, "C1", 3, lam=0, rest=[(1, 1), (2, 2)])
     with pytest.raises(ValueError, match="outside the han_trig_cubic range"):
         lb.join(trig, "C1", 3, lam=5, mu=0, rest=[(1, 1), (2, 2)])
+
+
+# ------------------------------------------------------------------------------ JSON, export
+@pytest.mark.parametrize("path", [HAN, HYP, AT])
+def test_json_round_trip(families, path):
+    from lambda_bezier import export
+
+    fam = families[path]
+    params = {n: F(1, 3) for n in fam.parameters}
+    curve = fam.curve(PTS, params=params)
+    back = export.from_json(export.to_json(curve), family=fam)
+    assert type(back) is type(curve) and back.is_exact
+    assert back.control_points() == curve.control_points()
+    assert back.parameter_values == curve.parameter_values
+    floaty = fam.curve(np.array(PTS, float) / 3, params={n: 0.3 for n in fam.parameters})
+    back = export.from_json(export.to_json(floaty), family=path)  # the definition file
+    assert not back.is_exact and back.atom_parameter_values() == {n: 0.3 for n in fam.parameters}
+    t = np.linspace(*fam.domain, 7)
+    assert np.array_equal(back.evaluate(t), floaty.evaluate(t))
+    doc = json.loads(export.to_json(curve))
+    doc["params"] = {"lam": "1/3"} if len(fam.parameters) > 1 else {"nu": "0"}
+    with pytest.raises(TypeError):
+        export.from_json(json.dumps(doc), family=fam)
+
+
+def _spline_matches(spline, curve, tol):
+    """The B-spline against the curve at the same points: u ∈ [0, pieces] ↔ t."""
+    lo, hi = curve.domain
+    if curve.has_rational_form:
+        s = np.linspace(0, 1, 41)
+        got = np.array([spline.evaluate(float(x)) for x in s])
+        want = curve.evaluate(curve.t_of_s(s))
+    else:
+        u_end = float(spline.knots[-1])
+        u = np.linspace(0, u_end, 81)
+        got = np.array([spline.evaluate(float(x)) for x in u])
+        want = curve.evaluate(lo + (hi - lo) * u / u_end)
+    return np.abs(got - want).max() <= tol
+
+
+@pytest.mark.parametrize("path", [HAN, HYP, AT])
+def test_export_through_the_rational_form_or_pieces(families, path, tmp_path):
+    from lambda_bezier import export
+
+    fam = families[path]
+    curve = fam.curve(PTS, params={n: F(1, 3) for n in fam.parameters})
+    spline = export.to_bspline(curve)
+    if path == HAN:  # exact: the rational form, a NURBS of degree 6
+        assert spline.exact and spline.weights is not None and spline.degree == 6
+        assert _spline_matches(spline, curve, 1e-14 * 4)
+    else:  # numerically: polynomial pieces within 1e-13 of the size
+        assert spline.weights is None and spline.degree <= 10
+        assert _spline_matches(spline, curve, 1e-13 * 4 * 2)
+    ezdxf = pytest.importorskip("ezdxf")
+    file = export.to_dxf(curve, tmp_path / "c.dxf")
+    (entity,) = ezdxf.readfile(file).modelspace().query("SPLINE")
+    assert entity.construction_tool().degree == spline.degree
+    pytest.importorskip("OCP")
+    assert export.to_step(curve, tmp_path / "c.step").is_file()

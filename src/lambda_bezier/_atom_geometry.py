@@ -34,6 +34,7 @@ if TYPE_CHECKING:
     from .atom_family import AtomCurve
 
 DEGREE = 16  # of the polynomial pieces approximating a curve
+EXPORT_DEGREE = 9  # of the pieces export writes (a DXF SPLINE holds degree 10 at most)
 SAMPLES = 64  # grid points per piece for boxes and closest points
 APPROX_TOL = 1e-13  # relative to the curve's size
 MAX_PIECES = 512
@@ -59,18 +60,21 @@ def _bernstein_collocation(u: np.ndarray, n: int) -> np.ndarray:
     return binom * u[:, None] ** i * (1 - u[:, None]) ** (n - i)
 
 
-def pieces(curve: AtomCurve) -> list[tuple[float, float, BezierCurve]]:
-    """(a, b, B): polynomial Bézier curves B(u), u ∈ [0, 1] ↔ t = a + u (b − a), each within
-    APPROX_TOL · size of the curve (checked on a grid of 4 · DEGREE points per piece)."""
-    cached: list[tuple[float, float, BezierCurve]] | None = curve.__dict__.get("_pieces")
-    if cached is not None:
-        return cached
+def pieces(curve: AtomCurve, degree: int = DEGREE) -> list[tuple[float, float, BezierCurve]]:
+    """(a, b, B): polynomial Bézier curves B(u) of `degree`, u ∈ [0, 1] ↔ t = a + u (b − a),
+    each within APPROX_TOL · size of the curve (checked on a grid of 4 · degree + 1 points
+    per piece; pieces are halved until it holds, up to MAX_PIECES)."""
+    cache: dict[int, list[tuple[float, float, BezierCurve]]] = curve.__dict__.setdefault(
+        "_pieces", {}
+    )
+    if degree in cache:
+        return cache[degree]
     lo, hi = curve.domain
     tol = APPROX_TOL * _size(curve)
-    u_nodes = _nodes(0.0, 1.0, DEGREE + 1) - 0.0
-    colloc = np.linalg.inv(_bernstein_collocation(u_nodes, DEGREE))
-    u_check = np.linspace(0.0, 1.0, 4 * DEGREE + 1)
-    check = _bernstein_collocation(u_check, DEGREE)
+    u_nodes = _nodes(0.0, 1.0, degree + 1)
+    colloc = np.linalg.inv(_bernstein_collocation(u_nodes, degree))
+    u_check = np.linspace(0.0, 1.0, 4 * degree + 1)
+    check = _bernstein_collocation(u_check, degree)
     count = 4
     while True:
         edges = np.linspace(lo, hi, count + 1)
@@ -85,7 +89,7 @@ def pieces(curve: AtomCurve) -> list[tuple[float, float, BezierCurve]]:
         if worst <= tol or count >= MAX_PIECES:
             break
         count *= 2
-    curve.__dict__["_pieces"] = out
+    cache[degree] = out
     return out
 
 

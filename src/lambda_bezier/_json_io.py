@@ -33,13 +33,14 @@ def _rational(obj: object) -> RationalBezierCurve | None:
 
 
 def _segments(obj: object) -> tuple[Curve, ...]:
+    from .atom_family import AtomCurve
     from .composite import CompositeCurve
     from .curves import Curve
 
     if isinstance(obj, CompositeCurve):
         return obj.segments
-    if isinstance(obj, Curve):
-        return (obj,)
+    if isinstance(obj, Curve | AtomCurve):
+        return (obj,)  # type: ignore[return-value]  # an AtomCurve has what JSON reads
     raise TypeError(
         "expected a lambda_bezier curve, RationalBezierCurve or CompositeCurve, got "
         f"{type(obj).__name__}"
@@ -96,6 +97,9 @@ def _curve_dict(curve: Curve | RationalBezierCurve) -> dict[str, Any]:  # JSON v
         "lambda": None if curve.lam is None else _number_out(curve.lam),
         "points": [[_number_out(v) for v in row] for row in curve.control_points()],
     }
+    atom_values = getattr(curve, "atom_parameter_values", None)
+    if atom_values is not None:  # a trigonometric/hyperbolic/mixed family: every parameter
+        out["params"] = {name: _number_out(v) for name, v in atom_values().items()}
     rational = _rational(curve)
     if rational is not None:
         out["weights"] = [_number_out(w) for w in rational.control_weights()]
@@ -176,6 +180,16 @@ def _curve_from(
         return RationalBezierCurve(rows, ws)
     cls = own[family] if family in own else FAMILIES[family]
     lam = data.get("lambda")
+    atom_family = getattr(getattr(cls, "family_object", None), "atom_data", None)
+    if atom_family is not None:  # a trigonometric, hyperbolic or mixed family: params
+        if lam is not None:
+            raise ValueError(f"{where}.lambda must be null for a {family} curve (use params)")
+        given = data.get("params")
+        if not isinstance(given, dict):
+            raise ValueError(f"{where}.params must be an object {{name: value}} for {family}")
+        values = {str(k): _number_in(v, f"{where}.params[{k!r}]") for k, v in given.items()}
+        fam: Any = cls.family_object  # type: ignore[attr-defined]
+        return fam.curve(rows, params=values, check_range=check_range)  # type: ignore[no-any-return]
     if not cls._has_lambda:  # the classical Bézier curve
         if lam is not None:
             raise ValueError(f"{where}.lambda must be null for a {family} curve")

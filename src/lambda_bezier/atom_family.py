@@ -135,6 +135,13 @@ class AtomCurve:
             return self._exact_points
         return tuple(tuple(float(v) for v in row) for row in self.points)
 
+    def atom_parameter_values(self) -> dict[str, Fraction | float]:
+        """The parameter values as given: Fractions if given exactly, floats otherwise (what
+        the JSON form writes)."""
+        if self._exact_parameters:
+            return dict(self.parameter_values)
+        return {k: float(v) for k, v in self.parameter_values.items()}
+
     # ------------------------------------------------------------------ evaluation
     def _parameters(self, t: ParamLike, extrapolate: bool) -> tuple[np.ndarray, bool]:
         extrapolate = val.flag(extrapolate, "extrapolate")

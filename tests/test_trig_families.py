@@ -577,3 +577,31 @@ def test_export_through_the_rational_form_or_pieces(families, path, tmp_path):
     assert entity.construction_tool().degree == spline.degree
     pytest.importorskip("OCP")
     assert export.to_step(curve, tmp_path / "c.step").is_file()
+
+
+# ------------------------------------------------------------------------------ command line
+def test_cli_optimal_parameters(capsys):
+    from lambda_bezier.cli import main
+
+    points = ["0,0", "1,3", "3,-1", "4,1"]
+    assert main(["optimal-lambda", "--json", "--family", str(HAN), *points]) == 0
+    report = json.loads(capsys.readouterr().out)
+    want = lb.optimal_parameters(PTS, 2, family=lb.load_family(HAN))
+    assert report["parameters"] == {n: str(v) for n, v in want.values.items()}
+    assert report["parameters_decimal"]["mu"] == float(want["mu"])
+    assert "pi" in report["energy"] and report["free_inside"] is True
+    assert main(["optimal-lambda", "-k", "1", "--family", str(HYP), *points]) == 0
+    assert "lam = 0 (lower end)" in capsys.readouterr().out
+
+
+def test_cli_export_reads_the_family(tmp_path, capsys):
+    from lambda_bezier import export
+    from lambda_bezier.cli import main
+
+    fam = lb.load_family(HAN)
+    src = tmp_path / "c.json"
+    src.write_text(export.to_json(fam.curve(PTS, lam=0, mu=F(1, 2))))
+    pytest.importorskip("ezdxf")
+    out = tmp_path / "c.dxf"
+    assert main(["export", "--format", "dxf", "--family", str(HAN), str(src), str(out)]) == 0
+    assert out.is_file()

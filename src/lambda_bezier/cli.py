@@ -8,7 +8,7 @@ import sys
 from collections.abc import Iterator
 from fractions import Fraction
 from pathlib import Path
-from typing import TYPE_CHECKING, SupportsFloat, cast
+from typing import TYPE_CHECKING, Any, SupportsFloat, cast
 
 if TYPE_CHECKING:
     from .energy import OptimalLambda
@@ -312,6 +312,10 @@ def _optimal_lambda(args: argparse.Namespace) -> int:
         if len({len(p) for p in points}) != 1:
             raise ValueError("all points must have the same dimension (2 or 3 coordinates)")
         family = _family_argument(args.family)
+        if getattr(family, "atom_data", None) is not None or getattr(family, "several", None):
+            # several parameters, or a trigonometric/hyperbolic/mixed family: every
+            # parameter by name over the box (optimal_parameters; --clamp is implied)
+            return _print_optimal_parameters(args, family, points)
         result = optimal_lambda(points, args.energy, family, clamp=args.clamp)
     except ValueError as exc:
         print(f"lambda-bezier optimal-lambda: error: {exc}", file=sys.stderr)
@@ -382,6 +386,45 @@ def _print_optimal_lambda(args: argparse.Namespace, family: object, result: Opti
             f"clamped λ       {both('clamped_lambda')}{note}",
             f"E_{k} at clamped  {both('clamped_energy')}",
         ]
+    print("\n".join(lines))
+    return 0
+
+
+def _print_optimal_parameters(args: argparse.Namespace, family: Any, points: list[Any]) -> int:
+    """optimal-lambda for a family of several parameters or of atoms: each parameter's exact
+    value (a Fraction, or a ConstantFraction in π or e^W) and its decimal, over the box."""
+    import json
+
+    from .energy import ENERGY_NAMES, optimal_parameters
+
+    result = optimal_parameters(points, args.energy, family)
+    k = args.energy
+    report = {
+        "family": family.name,
+        "range": family.range_text,
+        "energy_order": k,
+        "energy_name": ENERGY_NAMES[k],
+        "parameters": {n: str(v) for n, v in result.values.items()},
+        "parameters_decimal": {n: _float_or_none(v) for n, v in result.values.items()},
+        "energy": str(result.energy),
+        "energy_decimal": _float_or_none(result.energy),
+        "free_inside": result.free_inside,
+        "boundary": result.boundary,
+    }
+    if args.json:
+        print(json.dumps(report, indent=2, ensure_ascii=False))
+        return 0
+    lines = [
+        f"family          {family.name}  ({family.range_text})",
+        f"energy          E_{k} ({ENERGY_NAMES[k]})",
+    ]
+    for name, value in result.values.items():
+        lines.append(f"optimal {name:<8}{value}  ≈ {float(value):.12g}")
+    lines.append(f"E_{k} there      {result.energy}  ≈ {float(result.energy):.12g}")
+    lines.append(
+        "where           "
+        + ("the free minimum, inside the box" if result.free_inside else result.boundary)
+    )
     print("\n".join(lines))
     return 0
 

@@ -442,7 +442,7 @@ class AtomCurve:
 
 
 def evaluate_many(
-    family: Any,
+    atom_family: Any,
     points: npt.ArrayLike,
     t: npt.ArrayLike,
     k: int,
@@ -452,7 +452,7 @@ def evaluate_many(
     """batch.evaluate_many for a family of this module: m curves of one degree and one set
     of parameter values, (m, T, d): every curve's coefficients over the centred atoms in one
     product, the atoms evaluated once on the shared grid, one more product."""
-    data: AtomData = family.atom_data
+    data: AtomData = atom_family.atom_data
     arr = val.real_array(points, "control points")
     if arr.ndim != 3:
         raise ValueError(f"control points must have shape (m, n+1, d), got shape {arr.shape}")
@@ -462,7 +462,7 @@ def evaluate_many(
         idx = np.argwhere(~np.isfinite(arr))[0]
         raise ValueError(f"curve {idx[0]}, control point {idx[1]} has a non-finite coordinate")
     order = val.as_order(k)
-    probe = AtomCurve(family, arr[0], values, False)  # checks t against the domain too
+    probe = AtomCurve(atom_family, arr[0], values, False)  # checks t against the domain too
     tt, scalar = probe._parameters(t, extrapolate)
     sh = probe.shape
     scale = val.power_of_two_scale(arr)

@@ -605,3 +605,12 @@ def test_cli_export_reads_the_family(tmp_path, capsys):
     out = tmp_path / "c.dxf"
     assert main(["export", "--format", "dxf", "--family", str(HAN), str(src), str(out)]) == 0
     assert out.is_file()
+
+
+def test_the_shipped_example_is_the_test_family():
+    """The own-family guide loads examples/han_trig_cubic.*, the tests tests/data's copy:
+    both are regenerated together (tests/data/families/README.md)."""
+    from lambda_bezier import examples
+
+    for name in ("han_trig_cubic.toml", "han_trig_cubic.derived.json"):
+        assert examples.path(name).read_bytes() == (DATA / name).read_bytes()

@@ -20,6 +20,7 @@ import importlib
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from .atom_family import AtomCurve
     from .batch import evaluate_many
     from .builtin_curves import BernsteinLikeCurve, SameDegreeCurve
     from .builtin_surfaces import BernsteinLikeSurface, SameDegreeSurface
@@ -33,6 +34,7 @@ if TYPE_CHECKING:
         optimal_lambda,
     )
     from .family import Family, load_family
+    from .hazmat.constants import ConstantFraction
     from .intersection import intersect_many
     from .joins import Joint, join
     from .properties import IsolatedRoot, singular_parameters
@@ -83,15 +85,19 @@ _EXPORTS = {
     "SameDegreeSurface": "builtin_surfaces",
     "Surface": "surfaces",
     "RationalBezierCurve": "rational",
+    "AtomCurve": "atom_family",
+    "ConstantFraction": "hazmat.constants",
 }
 __all__ = [
     "FAMILIES",
+    "AtomCurve",
     "BernsteinLikeCurve",
     "BernsteinLikeSurface",
     "BezierCurve",
     "BezierSurface",
     "CompositeCurve",
     "CompositeSurface",
+    "ConstantFraction",
     "Curve",
     "Family",
     "IsolatedRoot",

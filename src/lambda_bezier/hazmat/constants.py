@@ -301,10 +301,7 @@ class ConstantFraction:
         return len(self.numerator) <= 1 and self.denominator == (Fraction(1),)
 
     def __repr__(self) -> str:
-        return (
-            f"ConstantFraction({_text(self.numerator, self.constant)} / "
-            f"{_text(self.denominator, self.constant)}, ≈ {float(self)!r})"
-        )
+        return f"ConstantFraction({self}, ≈ {float(self)!r})"
 
     def __str__(self) -> str:
         num = _text(self.numerator, self.constant)

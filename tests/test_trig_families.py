@@ -614,3 +614,54 @@ def test_the_shipped_example_is_the_test_family():
 
     for name in ("han_trig_cubic.toml", "han_trig_cubic.derived.json"):
         assert examples.path(name).read_bytes() == (DATA / name).read_bytes()
+
+
+def _polyline_crossings(pts):
+    """Parameter index pairs (i < j - 1) where the polyline's segments i and j cross."""
+    a, b = pts[:-1], pts[1:]
+    d = b - a
+    den = d[:, None, 0] * d[None, :, 1] - d[:, None, 1] * d[None, :, 0]
+    w = a[None, :, :] - a[:, None, :]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u = (w[..., 0] * d[None, :, 1] - w[..., 1] * d[None, :, 0]) / den
+        v = (w[..., 0] * d[:, None, 1] - w[..., 1] * d[:, None, 0]) / den
+    i, j = np.nonzero((u >= 0) & (u < 1) & (v >= 0) & (v < 1))
+    keep = j > i + 1
+    return list(zip(i[keep], j[keep], strict=True))
+
+
+# (points, parameters) with one loop each (found by a polyline search), and without
+LOOPS = {
+    HAN: ([(0, 0), (20, 10), (-16, 10), (4, 0)], {"lam": 1, "mu": 1}),
+    HYP: (
+        [(-2.304, 0.268), (-3.661, -0.508), (-2.762, 0.364), (2.976, -1.603)],
+        {"lam": 0.15, "mu": 0.94},
+    ),
+    AT: ([(2.022, -3.168), (-2.689, -0.333), (0.865, -8.834), (0.211, 0.693)], {"lam": -0.95}),
+}
+
+
+@pytest.mark.parametrize("path", [HAN, HYP, AT])
+def test_self_intersections_against_a_polyline(families, path):
+    fam = families[path]
+    rng = np.random.default_rng(21)
+    cases = [LOOPS[path]]
+    for _ in range(3):
+        params = {
+            n: float(fam.atom_data.RANGES[n][0])
+            + rng.random() * float(fam.atom_data.RANGES[n][1] - fam.atom_data.RANGES[n][0])
+            for n in fam.parameters
+        }
+        cases.append((rng.normal(size=(4, 2)) * 3, params))
+    loops = 0
+    for pts, params in cases:
+        curve = fam.curve(pts, params=params)
+        t = np.linspace(*curve.domain, 1201)
+        want = _polyline_crossings(curve.evaluate(t))
+        got = curve.self_intersections()
+        assert len(got) == len(want), (got, want)
+        loops += len(got)
+        for x, (i, j) in zip(got, want, strict=True):
+            assert np.linalg.norm(curve.evaluate(x.s) - curve.evaluate(x.t)) < 1e-10
+            assert t[i] - 1e-2 <= x.s <= t[i + 1] + 1e-2 and t[j] - 1e-2 <= x.t <= t[j + 1] + 1e-2
+    assert loops >= 1

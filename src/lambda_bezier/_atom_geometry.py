@@ -33,8 +33,11 @@ from .rational import RationalBezierCurve
 if TYPE_CHECKING:
     from .atom_family import AtomCurve
 
-DEGREE = 16  # of the polynomial pieces approximating a curve
-EXPORT_DEGREE = 9  # of the pieces export writes (a DXF SPLINE holds degree 10 at most)
+# the degree of the polynomial pieces approximating a curve: low enough that the Bernstein
+# collocation at Chebyshev points is well conditioned (the pieces then reach 1e-13 of the
+# size instead of stalling on amplified rounding), and a DXF SPLINE holds it (degree <= 10)
+DEGREE = 9
+EXPORT_DEGREE = DEGREE
 SAMPLES = 64  # grid points per piece for boxes and closest points
 APPROX_TOL = 1e-13  # relative to the curve's size
 MAX_PIECES = 512
@@ -76,6 +79,7 @@ def pieces(curve: AtomCurve, degree: int = DEGREE) -> list[tuple[float, float, B
     u_check = np.linspace(0.0, 1.0, 4 * degree + 1)
     check = _bernstein_collocation(u_check, degree)
     count = 4
+    best: tuple[float, list[tuple[float, float, BezierCurve]]] | None = None
     while True:
         edges = np.linspace(lo, hi, count + 1)
         edges[-1] = hi
@@ -86,11 +90,16 @@ def pieces(curve: AtomCurve, degree: int = DEGREE) -> list[tuple[float, float, B
             err = np.abs(check @ ctrl - curve.evaluate(a + (b - a) * u_check, extrapolate=True))
             worst = max(worst, float(err.max()))
             out.append((float(a), float(b), BezierCurve(ctrl)))
+        if best is not None and worst > best[0] / 4:
+            break  # rounding, not the approximation, dominates: halving gains nothing more
+        best = (worst, out)
         if worst <= tol or count >= MAX_PIECES:
             break
         count *= 2
-    cache[degree] = out
-    return out
+    assert best is not None
+    curve.__dict__.setdefault("_approximation_error", {})[degree] = best[0]
+    cache[degree] = best[1]
+    return best[1]
 
 
 def _grid(curve: AtomCurve) -> np.ndarray:
@@ -310,5 +319,42 @@ def intersect(p: AtomCurve, q: Any) -> list[Intersection]:
     for s, t, kind in found:
         if out and abs(s - out[-1].s) <= SAME * width and abs(t - out[-1].t) <= SAME * width:
             continue  # the same point found in two neighbouring pieces
+        out.append(Intersection(s, t, kind))
+    return out
+
+
+def _boxes_meet(p: BezierCurve, q: BezierCurve) -> bool:
+    """Whether the control polygons' boxes overlap (else the pieces cannot meet)."""
+    lo_p, hi_p = p.points.min(axis=0), p.points.max(axis=0)
+    lo_q, hi_q = q.points.min(axis=0), q.points.max(axis=0)
+    return bool(np.all(lo_p <= hi_q) and np.all(lo_q <= hi_p))
+
+
+def self_intersections(curve: AtomCurve) -> list[Intersection]:
+    """Pairs s < t with C(s) = C(t), from the polynomial pieces (every pair of pieces, and
+    each piece with itself), polished by Newton's method on the exact curve."""
+    parts = pieces(curve)
+    width = max(curve.domain[1] - curve.domain[0], 1e-300)
+    found: list[tuple[float, float, str]] = []
+    for i, (a, b, p) in enumerate(parts):
+        for x in p.self_intersections():
+            found.append((a + (b - a) * x.s, a + (b - a) * x.t, x.kind))
+        for c, e, q in parts[i + 1 :]:
+            if not _boxes_meet(p, q):
+                continue
+            for x in p.intersect(q):
+                s, t = a + (b - a) * x.s, c + (e - c) * x.t
+                if abs(s - t) <= SAME * width:  # the shared end of neighbouring pieces
+                    continue
+                found.append((s, t, x.kind))
+    out: list[Intersection] = []
+    for s, t, kind in sorted(found):
+        if kind != "coincident":
+            s, t = _polish(curve, curve, s, t)
+        s, t = min(s, t), max(s, t)
+        if t - s <= SAME * width:
+            continue
+        if out and abs(s - out[-1].s) <= SAME * width and abs(t - out[-1].t) <= SAME * width:
+            continue
         out.append(Intersection(s, t, kind))
     return out

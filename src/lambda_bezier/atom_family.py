@@ -314,6 +314,8 @@ class AtomCurve:
         parameters, a float otherwise."""
         from .hazmat.constants import ConstantFraction
 
+        if isinstance(k, bool) or not isinstance(k, int | np.integer) or k < 1:
+            raise ValueError(f"k must be a positive integer (the derivative order), got {k!r}")
         gram = self.data.GRAM.get((self.degree, int(k)))
         if gram is None:
             reason = self.data.ENERGY_REASON or "not in the derived document"
@@ -423,7 +425,9 @@ class AtomCurve:
 
         rat = self._rational_or_none()
         if rat is None:
-            _not_available("self_intersections", f"{self.data.RATIONAL_REASON}")
+            from . import _atom_geometry as ag
+
+            return ag.self_intersections(self)
         return [
             Intersection(float(self.t_of_s(x.s)), float(self.t_of_s(x.t)), x.kind)
             for x in rat.self_intersections()

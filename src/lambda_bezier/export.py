@@ -312,8 +312,8 @@ def _exportable(obj: Any) -> Any:
     """A curve of a trigonometric, hyperbolic or mixed family (atom_family) as what the
     writers take: its exact rational form where it has one (tan(t/2): a NURBS equal to the
     curve); otherwise its approximation by polynomial Bézier pieces of degree 9, one
-    CompositeCurve, each piece within 1e-13 of the curve's size (_atom_geometry.pieces,
-    checked on a grid of 37 points per piece). Anything else unchanged."""
+    CompositeCurve, each piece within 1e-13 of the curve's size where rounding allows
+    (_atom_geometry.pieces, checked on a grid of 37 points per piece). Anything else unchanged."""
     from .atom_family import AtomCurve
 
     if not isinstance(obj, AtomCurve):

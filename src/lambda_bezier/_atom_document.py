@@ -37,7 +37,10 @@ FamilyFileError.__module__ = "lambda_bezier.family"
 def _fraction(text: object, where: str) -> Fraction:
     if not isinstance(text, str) or not _EXACT.match(text):
         raise FamilyFileError(f"{where}: {text!r} is not an exact number")
-    return Fraction(text)
+    try:
+        return Fraction(text)
+    except ZeroDivisionError:
+        raise FamilyFileError(f"{where}: {text!r} divides by zero") from None
 
 
 def _table(doc: dict[str, Any], key: str, where: str) -> Any:

@@ -25,7 +25,13 @@ def check_constant(name: object) -> str:
     """The constant's name ("pi" or "exp(W)"), or ValueError."""
     if not isinstance(name, str) or not _CONSTANT.match(name):
         raise ValueError(f"{name!r} is not a constant (pi or exp(W) with W rational)")
-    if name != "pi" and Fraction(name[4:-1]) == 0:
+    if name == "pi":
+        return name
+    try:
+        w = Fraction(name[4:-1])
+    except ZeroDivisionError:
+        raise ValueError(f"{name!r}: a zero denominator") from None
+    if w == 0:
         raise ValueError(f"{name!r}: exp(0) = 1 is not transcendental")
     return name
 
@@ -331,7 +337,7 @@ def parse_exact(value: object, constant: str | None, where: str) -> Fraction | C
     """An exact number of the format-4 document: "p/q", or [["coefficient", exponent], ...]
     meaning Σ coefficient · constant^exponent. ValueError naming `where` otherwise."""
     if isinstance(value, str):
-        if not re.match(r"^-?[0-9]{1,400}(/[0-9]{1,400})?$", value):
+        if not re.match(r"^-?[0-9]{1,400}(/0*[1-9][0-9]{0,400})?$", value):
             raise ValueError(f"{where}: {value!r} is not an exact number")
         return Fraction(value)
     if not isinstance(value, list) or not value:

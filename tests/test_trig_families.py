@@ -784,3 +784,17 @@ def test_random_spaces_evaluate_as_the_sum_of_their_atoms(tmp_path_factory, case
     inner = t[1:-1]
     fd = (curve.evaluate(inner + h) - curve.evaluate(inner - h)) / (2 * h)
     assert np.abs(curve.derivative(inner) - fd).max() <= 1e-6 * (1 + np.abs(fd).max())
+
+
+def test_polynomial_only_functions_say_so(families):
+    fam = families[AT]
+    with pytest.raises(TypeError, match="mixed-trigonometric .not polynomial."):
+        lb.optimal_lambda(PTS, 2, family=fam)
+    with pytest.raises(TypeError, match="not polynomial"):
+        lb.energy_coefficients(PTS, 2, family=fam)
+    with pytest.raises(ValueError, match="composites of such segments are not available"):
+        lb.CompositeCurve([fam.curve(PTS, lam=0)])
+    with pytest.raises(NotImplementedError, match="surfaces"):
+        fam.surface([[(0, 0, 0)] * 4] * 4, 0, 0)
+    with pytest.raises(ValueError, match="k must be a positive integer"):
+        fam.curve(PTS, lam=0).energy(2.5)

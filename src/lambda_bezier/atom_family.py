@@ -221,7 +221,7 @@ class AtomCurve:
         return kappa[()] if np.ndim(kappa) == 0 else kappa
 
     def tangent(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray:
-        """The unit tangent C'/|C'|; ValueError where C'(t) = 0."""
+        """The unit tangent C'/‖C'‖; ValueError where C'(t) = 0."""
         d1 = self.derivative(t, 1, extrapolate=extrapolate)
         norm = np.linalg.norm(d1, axis=-1, keepdims=True)
         if not (norm > 0).all():
@@ -309,7 +309,7 @@ class AtomCurve:
 
     # ------------------------------------------------------------------ energy
     def energy(self, k: int) -> Exact | float:
-        r"""E_k = ∫ |C^(k)(t)|² dt over the family's domain, from the document's Gram
+        r"""E_k = ∫ ‖C^(k)(t)‖² dt over the family's domain, from the document's Gram
         matrices: exact (a Fraction or a `ConstantFraction` in π or e^W) for exact points and
         parameters, a float otherwise."""
         from .hazmat.constants import ConstantFraction
@@ -359,7 +359,7 @@ class AtomCurve:
     def arc_length(
         self, t0: Fraction | float | None = None, t1: Fraction | float | None = None
     ) -> float:
-        """∫ |C'(t)| dt from t0 to t1 (default: the whole domain), relative accuracy 1e-12."""
+        """∫ ‖C'(t)‖ dt from t0 to t1 (default: the whole domain), relative accuracy 1e-12."""
         lo, hi = self.data.DOMAIN
         a = lo if t0 is None else self._t(t0, "t0")
         b = hi if t1 is None else self._t(t1, "t1")

@@ -715,8 +715,8 @@ def test_a_mangled_document_is_refused_by_name_never_a_traceback(tmp_path_factor
     except FamilyFileError:
         return
     # accepted (an ignored or harmless change): it must still work
-    curve = fam.curve(PTS, lam=0, mu=0)
-    assert np.isfinite(curve.evaluate(np.linspace(0, math.pi / 2, 5))).all()
+    curve = fam.curve(PTS, lam=0, mu=0, check_range=False)  # a range may have changed
+    assert np.isfinite(curve.evaluate(np.linspace(*fam.domain, 5))).all()
 
 
 @st.composite

@@ -486,6 +486,7 @@ def test_joins_trig_to_any_family_and_back(families, continuity):
     for target, params in (
         ("bezier", {}),
         ("same_degree", {"lam": F(1, 2)}),
+        (lb.load_family(DATA / "per_leg_cubic.toml"), {"s0": F(1, 3), "s1": 0, "s2": F(1, 2)}),
         (families[HAN], {"lam": 0, "mu": F(1, 2)}),
         (families[HYP], {"lam": F(1, 5), "mu": F(1, 2)}),
         (families[AT], {"lam": F(1, 5)}),

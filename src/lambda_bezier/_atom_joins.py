@@ -156,6 +156,13 @@ def join(
         def make(points: PointsLike) -> Any:
             return target.curve(points, params=values, check_range=check_range)
     else:
+        if getattr(target, "several", None) is not None:  # polynomial, several parameters
+            if lam is not None and "lam" in target.parameters:
+                named, lam = {**named, "lam": lam}, None
+            values = target.parameter_values(lam, params, named)
+            exact_inputs = exact_inputs and all(val.is_exact_scalar(v) for v in values.values())
+            target = target._fixed_class(values, check_range)
+            lam, params, named = None, None, {}
         if params is not None or named:
             raise TypeError("params and named parameters are for families of several parameters")
         cls: type[Curve] = (

@@ -187,6 +187,37 @@ def bench_rational_evaluation(size: int) -> None:
         record(name, ours, f"BezierCurve.evaluate n={n}", ref, "<= 2x", ours / ref <= 2)
 
 
+def bench_trig_evaluation(size: int) -> None:
+    """A han_trig_cubic curve (issue #30; tests/data/families/) at `size` parameters on its
+    domain [0, π/2], against our polynomial BezierCurve.evaluate timed in the same run: of
+    degree 6, the degree of the trigonometric cubic's rational form and the dimension of its
+    space (7 functions: 1, cos jt, sin jt, j <= 3), the target row; and of degree 3, the same
+    number of control points, shown for comparison."""
+    import math
+
+    import lambda_bezier as lb
+
+    fam = lb.load_family(
+        Path(__file__).resolve().parents[1] / "tests/data/families/han_trig_cubic.toml"
+    )
+    t = np.random.default_rng(0).random(size)
+    trig = fam.curve(np.random.default_rng(3).normal(size=(4, 2)), lam=0.5, mu=-1.0)
+    tt = t * (math.pi / 2)
+    for n, target in ((6, 2.0), (3, 2.0)):
+        polynomial = lb.BezierCurve(np.random.default_rng(n).normal(size=(n + 1, 2)))
+        ours = best_of(lambda: trig.evaluate(tt))
+        ref = best_of(lambda polynomial=polynomial: polynomial.evaluate(t))
+        name = f"evaluate han_trig_cubic (trigonometric, n=3), {size:,} t"
+        record(
+            name,
+            ours,
+            f"BezierCurve.evaluate degree {n}",
+            ref,
+            f"<= {target:g}x",
+            ours / ref <= target,
+        )
+
+
 def bench_batch_evaluation(m: int, m_memory: int) -> None:
     import bezier
 
@@ -786,6 +817,7 @@ def main() -> None:
     groups = (
         "evaluation",
         "rational",
+        "trig",
         "batch",
         "lambda",
         "geometry",
@@ -814,6 +846,7 @@ def main() -> None:
     runs = {
         "evaluation": lambda: bench_evaluation(size),
         "rational": lambda: bench_rational_evaluation(size),
+        "trig": lambda: bench_trig_evaluation(size),
         "batch": lambda: bench_batch_evaluation(m_batch, m_memory),
         "lambda": lambda: bench_optimal_lambda(m_lambda, m_memory),
         "geometry": lambda: bench_arc_length(20 if args.quick else 100),

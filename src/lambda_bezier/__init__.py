@@ -20,6 +20,7 @@ import importlib
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from .atom_family import AtomCurve
     from .batch import evaluate_many
     from .builtin_curves import BernsteinLikeCurve, SameDegreeCurve
     from .builtin_surfaces import BernsteinLikeSurface, SameDegreeSurface
@@ -27,14 +28,15 @@ if TYPE_CHECKING:
     from .curves import FAMILIES, BezierCurve, Curve
     from .energy import (
         OptimalLambda,
-        OptimalParameters,
         energy_coefficients,
         energy_matrices,
         optimal_lambda,
     )
     from .family import Family, load_family
+    from .hazmat.constants import ConstantFraction
     from .intersection import intersect_exact, intersect_many
     from .joins import Joint, join
+    from .parameter_optimum import OptimalParameters
     from .properties import IsolatedRoot, singular_parameters
     from .rational import RationalBezierCurve
     from .surface_energies import (
@@ -64,7 +66,7 @@ _EXPORTS = {
     "energy_coefficients": "energy",
     "energy_matrices": "energy",
     "optimal_lambda": "energy",
-    "OptimalParameters": "energy",
+    "OptimalParameters": "parameter_optimum",
     "Family": "family",
     "load_family": "family",
     "intersect_exact": "intersection",
@@ -84,15 +86,19 @@ _EXPORTS = {
     "SameDegreeSurface": "builtin_surfaces",
     "Surface": "surfaces",
     "RationalBezierCurve": "rational",
+    "AtomCurve": "atom_family",
+    "ConstantFraction": "hazmat.constants",
 }
 __all__ = [
     "FAMILIES",
+    "AtomCurve",
     "BernsteinLikeCurve",
     "BernsteinLikeSurface",
     "BezierCurve",
     "BezierSurface",
     "CompositeCurve",
     "CompositeSurface",
+    "ConstantFraction",
     "Curve",
     "Family",
     "IsolatedRoot",

@@ -33,13 +33,14 @@ def _rational(obj: object) -> RationalBezierCurve | None:
 
 
 def _segments(obj: object) -> tuple[Curve, ...]:
+    from .atom_family import AtomCurve
     from .composite import CompositeCurve
     from .curves import Curve
 
     if isinstance(obj, CompositeCurve):
         return obj.segments
-    if isinstance(obj, Curve):
-        return (obj,)
+    if isinstance(obj, Curve | AtomCurve):
+        return (obj,)  # type: ignore[return-value]  # an AtomCurve has what JSON reads
     raise TypeError(
         "expected a lambda_bezier curve, RationalBezierCurve or CompositeCurve, got "
         f"{type(obj).__name__}"
@@ -110,9 +111,13 @@ def _curve_dict(curve: Curve | RationalBezierCurve) -> dict[str, Any]:  # JSON v
         "lambda": None if curve.lam is None else _number_out(curve.lam),
         "points": [[_number_out(v) for v in row] for row in curve.control_points()],
     }
-    params = _parameters_out(curve) if _rational(curve) is None else None  # type: ignore[arg-type]
-    if params is not None:
-        out["parameters"] = params
+    atom_values = getattr(curve, "atom_parameter_values", None)
+    if atom_values is not None:  # a trigonometric/hyperbolic/mixed family: every parameter
+        out["parameters"] = {name: _number_out(v) for name, v in atom_values().items()}
+    else:
+        params = _parameters_out(curve) if _rational(curve) is None else None  # type: ignore[arg-type]
+        if params is not None:
+            out["parameters"] = params
     rational = _rational(curve)
     if rational is not None:
         out["weights"] = [_number_out(w) for w in rational.control_weights()]
@@ -193,6 +198,16 @@ def _curve_from(
         return RationalBezierCurve(rows, ws)
     cls = own[family] if family in own else FAMILIES[family]
     lam = data.get("lambda")
+    atom_family = getattr(getattr(cls, "family_object", None), "atom_data", None)
+    if atom_family is not None:  # a trigonometric, hyperbolic or mixed family: parameters
+        if lam is not None:
+            raise ValueError(f"{where}.lambda must be null for a {family} curve (use parameters)")
+        given = data.get("parameters")
+        if not isinstance(given, dict):
+            raise ValueError(f"{where}.parameters must be an object {{name: value}} for {family}")
+        values = {str(k): _number_in(v, f"{where}.parameters[{k!r}]") for k, v in given.items()}
+        fam: Any = cls.family_object  # type: ignore[attr-defined]
+        return fam.curve(rows, params=values, check_range=check_range)  # type: ignore[no-any-return]
     if "parameters" in data and family in own:
         return _several_curve_from(data["parameters"], rows, cls, where, check_range)
     if not cls._has_lambda:  # the classical Bézier curve

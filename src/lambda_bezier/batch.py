@@ -52,7 +52,8 @@ def evaluate_many(
     points : array_like
         Control points of shape (m, n+1, d).
     t : array_like
-        Parameter values, shape (T,), in [0, 1] unless `extrapolate`.
+        Parameter values, shape (T,), in [0, 1] unless `extrapolate` (a trigonometric,
+        hyperbolic or mixed family: in its own domain of t, e.g. [0, π/2]).
     family : str
         ``"bezier"``, ``"same_degree"`` or ``"bernstein_like"``.
     lam : float or array_like, optional
@@ -81,6 +82,13 @@ def evaluate_many(
     array([[2.  , 1.5 ],
            [2.  , 1.25]])
     """
+    if getattr(family, "atom_data", None) is not None:  # trigonometric, hyperbolic, mixed
+        from .atom_family import evaluate_many as atom_evaluate_many
+
+        named = {} if lam is None else {"lam": lam}
+        given = family.parameter_values(None, params, named)  # type: ignore[attr-defined]
+        exact = family.exact_values(given, val.flag(check_range, "check_range"))  # type: ignore[attr-defined]
+        return atom_evaluate_many(family, points, t, k, exact, extrapolate)
     if hasattr(family, "by_degree"):  # an indexed family (lam(i)): its degree's own Family
         shape = np.shape(val.real_array(points, "control points"))
         if len(shape) != 3:

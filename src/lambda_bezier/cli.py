@@ -318,7 +318,13 @@ def _optimal_lambda(args: argparse.Namespace) -> int:
         if len({len(p) for p in points}) != 1:
             raise ValueError("all points must have the same dimension (2 or 3 coordinates)")
         family = _family_argument(args.family)
-        if getattr(family, "several", None) is not None or hasattr(family, "by_degree"):
+        if (
+            getattr(family, "atom_data", None) is not None
+            or getattr(family, "several", None) is not None
+            or hasattr(family, "by_degree")
+        ):
+            # several (or indexed) parameters, or a trigonometric/hyperbolic/mixed family:
+            # every parameter by name over the box (optimal_parameters; --clamp is implied)
             return _optimal_parameters(args, points, family)
         result = optimal_lambda(points, args.energy, family, clamp=args.clamp)
     except ValueError as exc:
@@ -395,24 +401,33 @@ def _print_optimal_lambda(args: argparse.Namespace, family: object, result: Opti
 
 
 def _optimal_parameters(args: argparse.Namespace, points: list[Any], family: Any) -> int:
-    """optimal-lambda for a family file in several (or indexed) parameters: every parameter
-    by name over the closed box (lambda_bezier.optimal_parameters); --clamp changes nothing,
-    the box is always respected."""
+    """optimal-lambda for a family file in several (or indexed) parameters, or of atoms
+    (trigonometric, hyperbolic, mixed): every parameter by name over the closed box
+    (lambda_bezier.optimal_parameters), exact (a Fraction, or a ConstantFraction in π or
+    e^W) and as a decimal; --clamp changes nothing, the box is always respected."""
     import json
 
     from .energy import ENERGY_NAMES, optimal_parameters
 
     r = optimal_parameters(points, args.energy, family=family)
+    k = args.energy
 
     def text(v: Any) -> Any:
         return [str(x) for x in v] if isinstance(v, tuple) else str(v)
 
+    def decimal(v: Any) -> Any:
+        return [_float_or_none(x) for x in v] if isinstance(v, tuple) else _float_or_none(v)
+
+    range_text = getattr(family, "range_text", "every parameter over its closed range")
     report = {
         "family": family.name,
-        "energy_order": args.energy,
-        "energy_name": ENERGY_NAMES[args.energy],
+        "range": range_text,
+        "energy_order": k,
+        "energy_name": ENERGY_NAMES[k],
         "parameters": {name: text(v) for name, v in r.values.items()},
+        "parameters_decimal": {name: decimal(v) for name, v in r.values.items()},
         "energy": str(r.energy),
+        "energy_decimal": _float_or_none(r.energy),
         "free_inside": r.free_inside,
         "boundary": r.boundary,
         "lower_bound": None if r.lower_bound is None else str(r.lower_bound),
@@ -421,17 +436,18 @@ def _optimal_parameters(args: argparse.Namespace, points: list[Any], family: Any
         print(json.dumps(report, indent=2, ensure_ascii=False))
         return 0
     lines = [
-        f"family          {family.name}  (every parameter over its closed range)",
-        f"energy          E_{args.energy} ({ENERGY_NAMES[args.energy]})",
-        *(f"optimal {name:<8} {text(v)}" for name, v in r.values.items()),
-        f"E_{args.energy} there      {r.energy}  ≈ {_decimal(Fraction(r.energy))}",
+        f"family          {family.name}  ({range_text})",
+        f"energy          E_{k} ({ENERGY_NAMES[k]})",
     ]
-    if r.boundary:
-        lines.append(f"on the boundary {r.boundary}")
+    for name, value in r.values.items():
+        lines.append(f"optimal {name:<8}{text(value)}  ≈ {decimal(value)}")
+    lines.append(f"E_{k} there      {r.energy}  ≈ {float(r.energy):.12g}")
+    lines.append(
+        "where           "
+        + ("the free minimum, inside the box" if r.free_inside else f"on the boundary {r.boundary}")
+    )
     if r.lower_bound is not None:
-        lines.append(
-            f"proven bound    E_{args.energy} >= {_decimal(Fraction(r.lower_bound))} on the box"
-        )
+        lines.append(f"proven bound    E_{k} >= {float(r.lower_bound):.12g} on the box")
     print("\n".join(lines))
     return 0
 

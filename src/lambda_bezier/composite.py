@@ -218,6 +218,12 @@ class CompositeCurve:
             raise ValueError("a composite curve needs at least one segment")
         for idx, seg in enumerate(segs):
             if not isinstance(seg, Curve):
+                if hasattr(seg, "has_rational_form"):  # an atom_family curve
+                    raise ValueError(
+                        f"segment {idx} is a curve of the {seg.family} family, whose parameter "
+                        "runs over its own domain: composites of such segments are not "
+                        "available yet (a composite runs each segment on [0, 1])"
+                    )
                 raise ValueError(
                     f"segment {idx} is not a lambda_bezier curve: {type(seg).__name__}"
                 )

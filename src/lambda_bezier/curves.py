@@ -125,6 +125,13 @@ def family_class(family: object) -> type[Curve]:
             "optimal_parameters, evaluate_many(..., params={...}) or join(..., "
             f"{names.replace(', ', '=..., ')}=...)"
         )
+    atoms = getattr(family, "atom_data", None)
+    if atoms is not None:  # atom_family: curves that are not polynomial, no tables here
+        raise TypeError(
+            f"the family {atoms.FAMILY!r} is {atoms.SPACE} (not polynomial): this function "
+            "takes polynomial families only; its curves come from fam.curve(points, ...), and "
+            "optimal_parameters, evaluate_many(..., params={...}), join and export take it"
+        )
     cls = getattr(family, "curve_class", family)
     if isinstance(cls, type) and issubclass(cls, Curve) and cls is not Curve:
         return cls

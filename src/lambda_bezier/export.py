@@ -308,13 +308,34 @@ def _assemble(
     return spline
 
 
+def _exportable(obj: Any) -> Any:
+    """A curve of a trigonometric, hyperbolic or mixed family (atom_family) as what the
+    writers take: its exact rational form where it has one (tan(t/2): a NURBS equal to the
+    curve); otherwise its approximation by polynomial Bézier pieces of degree 9, one
+    CompositeCurve, each piece within 1e-13 of the curve's size where rounding allows
+    (_atom_geometry.pieces, checked on a grid of 37 points per piece). Anything else unchanged."""
+    from .atom_family import AtomCurve
+
+    if not isinstance(obj, AtomCurve):
+        return obj
+    if obj.has_rational_form:
+        return obj.to_rational_bezier()
+    from . import _atom_geometry
+    from .composite import CompositeCurve
+
+    degree = _atom_geometry.EXPORT_DEGREE
+    return CompositeCurve([piece for _, _, piece in _atom_geometry.pieces(obj, degree)])
+
+
 def to_bspline(obj: Shape, *, tol: float = 1e-9) -> BSpline:
     """One clamped B-spline equal to the curve or composite (on t ∈ [0, 1] or u ∈ [0, N]):
     the Bernstein pieces at a common degree p, the knot at each joint repeated p − k times
     where the joint is C^k in u (exactly, for exact input; within the relative tolerance
     `tol` otherwise). Exact (Fractions) when every segment is exact. A composite with a
     gap at a joint raises ValueError. A RationalBezierCurve is one rational span with its
-    weights."""
+    weights; a curve of a trigonometric family is its exact rational form, of a family
+    without one its approximation by polynomial pieces (`_exportable`)."""
+    obj = _exportable(obj)
     rational = _rational(obj)
     if rational is not None:
         n = rational.degree
@@ -490,6 +511,7 @@ def to_svg(obj: Shape, *, tolerance: float | None = None, stroke_width: float | 
     `tolerance`: they become cubics within that distance of the curve at every parameter
     (checked on the Bernstein form of the difference), else ValueError. A rational curve
     whose weights differ always needs `tolerance` (SVG has no rational segments)."""
+    obj = _exportable(obj)
     rational = _rational(obj)
     if rational is not None:
         if rational.dimension != 2:

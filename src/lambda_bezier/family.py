@@ -23,8 +23,10 @@ from fractions import Fraction
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from ._atom_document import AtomData, FamilyFileError, _fraction
 from ._singular import IsolatedRoot
 from ._validate import PointsLike
+from .atom_family import AtomCurve
 from .curves import BezierCurve, Curve, Matrix, data_curve_class
 
 if TYPE_CHECKING:
@@ -32,19 +34,9 @@ if TYPE_CHECKING:
     from .surfaces import NetLike, Surface
 
 FORMAT = 3  # the derived document's format this runtime writes and reads
-READS = (2, 3)  # 2: one parameter, laid out as in 3
+# 2: one parameter, laid out as in 3; 4: non-polynomial families (atom_family)
+READS = (2, 3, 4)
 MAX_DOCUMENT_BYTES = 50_000_000
-_EXACT = re.compile(r"^-?[0-9]{1,400}(/[0-9]{1,400})?$")
-
-
-class FamilyFileError(ValueError):
-    """A definition or derived file that cannot be used (the message says what to run)."""
-
-
-def _fraction(text: object, where: str) -> Fraction:
-    if not isinstance(text, str) or not _EXACT.match(text):
-        raise FamilyFileError(f"{where}: {text!r} is not an exact number")
-    return Fraction(text)
 
 
 def _matrices(value: object, where: str) -> tuple[Matrix, ...]:
@@ -548,6 +540,112 @@ class IndexedFamily:
         return f"IndexedFamily({self.name!r}, degrees {lo}..{hi}, {self.index_name}(i) per index)"
 
 
+class AtomFamily(Family):
+    """A family of trigonometric, hyperbolic or mixed basis functions (format-4 document,
+    atom_family): ``curve(points, lam=..., mu=...)`` gives an `AtomCurve` whose parameter is
+    the family's own t on its domain (`domain_text`, e.g. ``[0, pi/2]``)."""
+
+    def __init__(
+        self,
+        data: AtomData,
+        definition: Path | None,
+        title: str,
+        table: dict[str, Any] | None = None,
+    ):
+        self.atom_data = data
+        self.data = data  # type: ignore[assignment]
+        self.several = None
+        self.definition = definition
+        self.title = title
+        self.parameter = data.NAMES[0]
+        self.table = dict(table or {})
+        self.digest = definition_digest(self.table)
+        camel = "".join(part.capitalize() for part in data.FAMILY.split("_"))
+        doc = f"A curve of the family {data.FAMILY!r} ({title}), t in {data.DOMAIN_TEXT}."
+        self.atom_curve_class: type[AtomCurve] = type(
+            f"{camel}Curve", (AtomCurve,), {"__doc__": doc, "__module__": __name__}
+        )
+        self.curve_class = self.atom_curve_class  # type: ignore[assignment]
+        setattr(self.curve_class, "family_object", self)  # noqa: B010
+
+    @property
+    def parameters(self) -> tuple[str, ...]:
+        return self.atom_data.NAMES
+
+    @property
+    def range_text(self) -> str:
+        return ", ".join(f"{x} in {r[4]!s}" for x, r in self.atom_data.RANGES.items())
+
+    @property
+    def space(self) -> str:
+        """The space of the basis: "trigonometric", "hyperbolic", "mixed-trigonometric" or
+        "mixed-hyperbolic"."""
+        return self.atom_data.SPACE
+
+    @property
+    def domain(self) -> tuple[float, float]:
+        """The interval of t (floats; `domain_text` gives it exactly)."""
+        return self.atom_data.DOMAIN
+
+    @property
+    def domain_text(self) -> str:
+        return self.atom_data.DOMAIN_TEXT
+
+    def exact_values(
+        self, values: Mapping[str, object], check_range: bool = True
+    ) -> tuple[Fraction, ...]:
+        """The parameter values as exact Fractions (a float at its exact binary value),
+        checked against the ranges."""
+        from . import _validate as val
+
+        out = []
+        for name, v in values.items():
+            x = val.real_number(v, name)
+            lo, hi, lo_closed, hi_closed, text = self.atom_data.RANGES[name]
+            inside = (lo < x or (lo == x and lo_closed)) and (x < hi or (x == hi and hi_closed))
+            if check_range and not inside:
+                raise ValueError(
+                    f"{name} = {v} is outside the {self.name} range {text}; pass "
+                    "check_range=False to use it anyway"
+                )
+            out.append(Fraction(x))
+        return tuple(out)
+
+    def curve(  # type: ignore[override]
+        self,
+        points: PointsLike,
+        value: Fraction | float | None = None,
+        *,
+        params: dict[str, Fraction | float] | None = None,
+        check_range: bool = True,
+        **named: Fraction | float,
+    ) -> AtomCurve:
+        """Σ P_i b_i(t; parameters), t on the family's domain; the parameters by name,
+        `params={...}`, or positionally for a one-parameter family."""
+        from . import _validate as val
+
+        values = self.parameter_values(value, params, named)
+        exact = all(val.is_exact_scalar(v) for v in values.values())
+        return self.atom_curve_class(self, points, self.exact_values(values, check_range), exact)
+
+    def surface(self, *args: object, **kwargs: object) -> Surface:
+        raise NotImplementedError(
+            f"surfaces of the {self.space} family {self.name!r} are not available yet"
+        )
+
+    def from_bezier(self, *args: object, **kwargs: object) -> Curve:
+        raise NotImplementedError(
+            f"a {self.space} family does not contain the polynomial curves: a Bézier curve "
+            "has no exact form in it"
+        )
+
+    def __repr__(self) -> str:
+        return (
+            f"Family({self.name!r}, {self.space}, degrees {self.degrees[0]}..{self.degrees[-1]}, "
+            f"t in {self.domain_text}, {self.range_text})"
+        )
+
+
 def definition_toml(table: dict[str, Any]) -> str:
     """The ``[family]`` table as the text of a TOML file (a definition embedded in a curve's
     JSON form, written out for ``lambda-bezier derive --family``). The table's values are
@@ -646,6 +744,9 @@ def _derived_family(
     title = title if isinstance(title, str) else ""
     if "indexed" in doc:
         return IndexedFamily(doc, definition, title, table, str(doc_path))
+    if doc.get("format") == 4:
+        atom = AtomData(doc, str(doc_path))
+        return AtomFamily(atom, definition, title, table)
     if "parameters" in doc:
         several = SeveralData(doc, str(doc_path))
         return Family(several, definition, title, several.NAMES[0], table, several)

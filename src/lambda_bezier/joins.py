@@ -320,6 +320,24 @@ def join(
     >>> [tuple(map(str, p)) for p in nxt.control_points()[:3]]
     [('4', '0'), ('17/3', '-10/3'), ('8', '-40/3')]
     """
+    from . import _atom_joins
+
+    if _atom_joins.involved(curve, family):  # a trigonometric, hyperbolic or mixed family
+        spec = Joint(continuity, alpha, d)
+        return _atom_joins.join(  # type: ignore[no-any-return]
+            curve,
+            spec.continuity,
+            spec.order,
+            spec.alpha,
+            spec.d,
+            degree,
+            lam,
+            rest,
+            family,
+            val.flag(check_range, "check_range"),
+            params,
+            dict(named),
+        )
     if not isinstance(curve, Curve):
         raise ValueError(
             "curve must be a lambda_bezier curve (one of "

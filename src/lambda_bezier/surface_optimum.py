@@ -25,8 +25,8 @@ from typing import Any, cast
 import numpy as np
 
 from . import _validate as val
-from .energy import OptimalParameters as CurveOptimalParameters
 from .energy import optimal_parameters as curve_optimal_parameters
+from .parameter_optimum import OptimalParameters as CurveOptimalParameters
 from .surface_energies import (
     ENERGIES,
     SurfaceOptimalParameters,

@@ -34,6 +34,9 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `exact_poly`: exact polynomials over the rationals (Sturm sequences, resultants);
 - `box_bernstein`: exact Bernstein bounds of a polynomial in several variables over a box
   (branch and bound: signs, zeros, the certified minimum).
+- `atoms`: curves in a space of atoms 1, t^k, cos/sin, cosh/sinh (trigonometric, hyperbolic
+  and mixed families): the atom grammar, exact differentiation, fast evaluation;
+- `constants`: exact numbers in ℚ(π) and ℚ(e^W) (`ConstantFraction`), signs decided exactly.
 
 The submodules are imported on use: ``from lambda_bezier.hazmat import kernels``.
 """
@@ -42,9 +45,11 @@ from __future__ import annotations
 
 __all__ = [
     "arclength",
+    "atoms",
     "box_bernstein",
     "certify_compiled",
     "closest_compiled",
+    "constants",
     "exact_poly",
     "extremes",
     "forms",

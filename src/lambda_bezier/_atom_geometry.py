@@ -1,0 +1,360 @@
+"""Geometry of curves of non-polynomial families (atom_family.AtomCurve), numerically.
+
+Curves with an exact rational form do their geometry on it (atom_family); this module serves
+the others (hyperbolic families on a domain where tanh is irrational, mixed
+algebraic-trigonometric families) and intersections between any two curves.
+
+The accuracy promises are those of the polynomial and rational curves, reached differently:
+- `arc_length`: adaptive Gauss-Legendre on the exact speed |C'(t)|, relative 1e-12;
+- `bounding_box`: every sign change of each coordinate's exact derivative on a grid of
+  `SAMPLES` points per piece, refined by bisection to the last bit of t (an extreme between
+  two grid points where the derivative does not change sign on the grid, i.e. two roots closer
+  than the grid step, is missed: such a wiggle is below the grid's resolution);
+- `closest_point`: the best few grid points, polished by Newton's method on the exact curve;
+- `intersect`: the curve is approximated piece by piece by polynomial Bézier curves
+  (Chebyshev interpolation of degree `DEGREE`, pieces halved until the approximation is
+  within 1e-13 of the curve's size at a check grid), those are intersected exactly by the
+  polynomial code, and every candidate is polished by Newton's method on the exact curves.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import numpy.typing as npt
+
+from . import _validate as val
+from .curves import BezierCurve, Curve
+from .geometry import ClosestPoint
+from .hazmat.intersect import Intersection
+from .rational import RationalBezierCurve
+
+if TYPE_CHECKING:
+    from .atom_family import AtomCurve
+
+# the degree of the polynomial pieces approximating a curve: low enough that the Bernstein
+# collocation at Chebyshev points is well conditioned (the pieces then reach 1e-13 of the
+# size instead of stalling on amplified rounding), and a DXF SPLINE holds it (degree <= 10)
+DEGREE = 9
+EXPORT_DEGREE = DEGREE
+SAMPLES = 64  # grid points per piece for boxes and closest points
+APPROX_TOL = 1e-13  # relative to the curve's size
+MAX_PIECES = 512
+SAME = 1e-9  # parameters closer than this (relative to the domain) are one intersection
+
+
+def _size(curve: AtomCurve) -> float:
+    pts = curve.points
+    return max(float(np.abs(pts).max()), float(np.ptp(pts, axis=0).max()), 1e-300)
+
+
+def _nodes(a: float, b: float, count: int) -> np.ndarray:
+    k = np.arange(count)
+    x = -np.cos(np.pi * (k + 0.5) / count)  # Chebyshev points of the first kind, increasing
+    return a + (b - a) * (x + 1) / 2
+
+
+def _bernstein_collocation(u: np.ndarray, n: int) -> np.ndarray:
+    from math import comb
+
+    i = np.arange(n + 1)
+    binom = np.array([comb(n, j) for j in i], dtype=float)
+    return binom * u[:, None] ** i * (1 - u[:, None]) ** (n - i)
+
+
+def pieces(curve: AtomCurve, degree: int = DEGREE) -> list[tuple[float, float, BezierCurve]]:
+    """(a, b, B): polynomial Bézier curves B(u) of `degree`, u ∈ [0, 1] ↔ t = a + u (b − a),
+    each within APPROX_TOL · size of the curve (checked on a grid of 4 · degree + 1 points
+    per piece; pieces are halved until it holds, up to MAX_PIECES)."""
+    cache: dict[int, list[tuple[float, float, BezierCurve]]] = curve.__dict__.setdefault(
+        "_pieces", {}
+    )
+    if degree in cache:
+        return cache[degree]
+    lo, hi = curve.domain
+    tol = APPROX_TOL * _size(curve)
+    u_nodes = _nodes(0.0, 1.0, degree + 1)
+    colloc = np.linalg.inv(_bernstein_collocation(u_nodes, degree))
+    u_check = np.linspace(0.0, 1.0, 4 * degree + 1)
+    check = _bernstein_collocation(u_check, degree)
+    count = 4
+    best: tuple[float, list[tuple[float, float, BezierCurve]]] | None = None
+    while True:
+        edges = np.linspace(lo, hi, count + 1)
+        edges[-1] = hi
+        out: list[tuple[float, float, BezierCurve]] = []
+        worst = 0.0
+        for a, b in zip(edges[:-1], edges[1:], strict=True):
+            ctrl = colloc @ curve.evaluate(a + (b - a) * u_nodes, extrapolate=True)
+            err = np.abs(check @ ctrl - curve.evaluate(a + (b - a) * u_check, extrapolate=True))
+            worst = max(worst, float(err.max()))
+            out.append((float(a), float(b), BezierCurve(ctrl)))
+        if best is not None and worst > best[0] / 4:
+            break  # rounding, not the approximation, dominates: halving gains nothing more
+        best = (worst, out)
+        if worst <= tol or count >= MAX_PIECES:
+            break
+        count *= 2
+    assert best is not None
+    curve.__dict__.setdefault("_approximation_error", {})[degree] = best[0]
+    cache[degree] = best[1]
+    return best[1]
+
+
+def _grid(curve: AtomCurve) -> np.ndarray:
+    lo, hi = curve.domain
+    count = len(pieces(curve)) * SAMPLES
+    return np.linspace(lo, hi, count + 1)
+
+
+# ---------------------------------------------------------------------- arc length
+_GL = np.polynomial.legendre.leggauss(20)
+_GL2 = np.polynomial.legendre.leggauss(30)
+
+
+def _gauss(curve: AtomCurve, a: float, b: float, rule: tuple[np.ndarray, np.ndarray]) -> float:
+    x, w = rule
+    t = a + (b - a) * (x + 1) / 2
+    speed = np.linalg.norm(curve.derivative(t, 1, extrapolate=True), axis=1)
+    return float((b - a) / 2 * (w @ speed))
+
+
+def _adaptive(curve: AtomCurve, a: float, b: float, tol: float, depth: int = 0) -> float:
+    coarse = _gauss(curve, a, b, _GL)
+    fine = _gauss(curve, a, b, _GL2)
+    if abs(fine - coarse) <= tol or depth >= 40 or b - a <= 1e-15 * max(1.0, abs(a)):
+        return fine
+    m = 0.5 * (a + b)
+    return _adaptive(curve, a, m, tol / 2, depth + 1) + _adaptive(curve, m, b, tol / 2, depth + 1)
+
+
+def arc_length(curve: AtomCurve, a: float, b: float) -> float:
+    if a == b:
+        return 0.0
+    total = 0.0
+    for pa, pb, _ in pieces(curve):
+        lo, hi = max(pa, a), min(pb, b)
+        if lo < hi:
+            rough = _gauss(curve, lo, hi, _GL)
+            total += _adaptive(curve, lo, hi, 1e-13 * max(abs(rough), 1e-300))
+    return total
+
+
+def parameter_at_length(curve: AtomCurve, s: npt.ArrayLike) -> np.ndarray | float:
+    arr = val.real_array(s, "s")
+    scalar = arr.ndim == 0
+    flat = np.atleast_1d(arr).astype(float).ravel()
+    lo, hi = curve.domain
+    total = arc_length(curve, lo, hi)
+    if flat.size and (flat.min() < 0 or flat.max() > total * (1 + 1e-12)):
+        raise ValueError(f"s must lie in [0, {total}] (the curve's length), got {flat}")
+    edges = [lo] + [p[1] for p in pieces(curve)]
+    cum = np.cumsum(
+        [0.0] + [arc_length(curve, x, y) for x, y in zip(edges[:-1], edges[1:], strict=True)]
+    )
+    out = np.empty_like(flat)
+    for idx, target in enumerate(flat):
+        k = int(min(np.searchsorted(cum, target, side="right") - 1, len(edges) - 2))
+        a, b = edges[k], edges[k + 1]
+        base = cum[k]
+        x = a + (b - a) * (target - base) / max(cum[k + 1] - base, 1e-300)
+        for _ in range(60):  # safeguarded Newton on L(x) = target
+            f = base + arc_length(curve, a, x) - target
+            speed = float(np.linalg.norm(curve.derivative(x, 1, extrapolate=True)))
+            step = f / speed if speed > 0 else 0.0
+            new = min(max(x - step, edges[k]), edges[k + 1])
+            if abs(new - x) <= 1e-15 * max(1.0, abs(x)):
+                x = new
+                break
+            x = new
+        out[idx] = x
+    return float(out[0]) if scalar else out.reshape(np.shape(arr))
+
+
+# ---------------------------------------------------------------------- boxes
+def _bisect(f: Any, a: float, b: float, fa: float) -> float:
+    for _ in range(200):
+        m = 0.5 * (a + b)
+        if m in (a, b):
+            break
+        fm = f(m)
+        if (fm > 0) == (fa > 0) and fm != 0:
+            a, fa = m, fm
+        else:
+            b = m
+    return 0.5 * (a + b)
+
+
+def bounding_box(curve: AtomCurve) -> tuple[np.ndarray, np.ndarray]:
+    t = _grid(curve)
+    d = curve.derivative(t, 1)
+    candidates = [t[0], t[-1]]
+    for c in range(curve.dimension):
+        col = d[:, c]
+        for i in np.nonzero(np.sign(col[:-1]) * np.sign(col[1:]) < 0)[0]:
+
+            def f(x: float, c: int = c) -> float:
+                return float(curve.derivative(x, 1, extrapolate=True)[c])
+
+            candidates.append(_bisect(f, float(t[i]), float(t[i + 1]), float(col[i])))
+        candidates.extend(t[1:-1][col[1:-1] == 0])
+    values = curve.evaluate(np.clip(np.array(candidates), t[0], t[-1]))
+    return values.min(axis=0), values.max(axis=0)
+
+
+# ---------------------------------------------------------------------- closest points
+def _newton_closest(curve: AtomCurve, q: np.ndarray, x: float) -> float:
+    lo, hi = curve.domain
+    for _ in range(50):
+        p0 = curve.evaluate(x, extrapolate=True) - q
+        p1 = curve.derivative(x, 1, extrapolate=True)
+        p2 = curve.derivative(x, 2, extrapolate=True)
+        g = float(p0 @ p1)
+        h = float(p1 @ p1 + p0 @ p2)
+        if h <= 0:
+            break
+        new = min(max(x - g / h, lo), hi)
+        if abs(new - x) <= 1e-16 * max(1.0, abs(x)):
+            return new
+        x = new
+    return x
+
+
+def closest_point(curve: AtomCurve, q: npt.ArrayLike) -> ClosestPoint:
+    from .geometry import _queries
+
+    queries, single = _queries(q, curve.dimension)
+    t = _grid(curve)
+    pts = curve.evaluate(t)
+    ts = np.empty(len(queries))
+    for k, qq in enumerate(queries):
+        dist = np.square(pts - qq).sum(axis=1)
+        best_t, best_d = float(t[int(np.argmin(dist))]), float(dist.min())
+        for i in np.argsort(dist)[:4]:
+            x = _newton_closest(curve, qq, float(t[i]))
+            dx = float(np.square(curve.evaluate(x) - qq).sum())
+            if dx < best_d:
+                best_t, best_d = x, dx
+        ts[k] = best_t
+    points = curve.evaluate(ts)
+    dists = np.linalg.norm(points - queries, axis=1)
+    if single:
+        return ClosestPoint(float(ts[0]), points[0], float(dists[0]))
+    return ClosestPoint(ts, points, dists)
+
+
+def locate(curve: AtomCurve, point: object) -> float | None:
+    arr = val.as_point(point, curve.dimension)
+    found = closest_point(curve, arr)
+    return float(found.t) if float(found.distance) <= 1e-10 * _size(curve) else None
+
+
+# ---------------------------------------------------------------------- intersections
+def _as_parts(curve: Any) -> list[tuple[Any, Any]]:
+    """[(polynomial or rational curve, its parameter -> the caller's t)]."""
+    if _is_atom(curve):
+        if curve.has_rational_form:
+            return [(curve.to_rational_bezier(), curve.t_of_s)]
+        return [(b, lambda u, a=a, w=bb - a: a + w * np.asarray(u)) for a, bb, b in pieces(curve)]
+    if isinstance(curve, Curve | RationalBezierCurve):
+        return [(curve, lambda u: u)]
+    raise TypeError(f"other must be a curve, got {type(curve).__name__}")
+
+
+def _pair(p: Any, q: Any) -> list[Intersection]:
+    if isinstance(p, RationalBezierCurve):
+        return p.intersect(q)
+    if isinstance(q, RationalBezierCurve):
+        return [Intersection(x.t, x.s, x.kind) for x in q.intersect(p)]
+    return p.intersect(q)  # type: ignore[no-any-return]
+
+
+def _polish(p: Any, q: Any, s: float, t: float) -> tuple[float, float]:
+    """Newton's method on p(s) − q(t) = 0 (least squares in 3D), on the exact curves."""
+
+    def ev(c: Any, x: float, k: int) -> np.ndarray:
+        return np.asarray(
+            c.derivative(x, k, extrapolate=True) if k else c.evaluate(x, extrapolate=True)
+        )
+
+    for _ in range(30):
+        f = ev(p, s, 0) - ev(q, t, 0)
+        jac = np.stack([ev(p, s, 1), -ev(q, t, 1)], axis=1)
+        step, *_ = np.linalg.lstsq(jac, -f, rcond=None)
+        if not np.isfinite(step).all():
+            break
+        s, t = s + float(step[0]), t + float(step[1])
+        if abs(step).max() <= 1e-15:
+            break
+    (plo, phi), (qlo, qhi) = _dom(p), _dom(q)
+    return min(max(s, plo), phi), min(max(t, qlo), qhi)
+
+
+def _is_atom(c: object) -> bool:
+    # an AtomCurve (atom_family sits above this module: no import of it here)
+    return hasattr(c, "has_rational_form") and hasattr(c, "shape")
+
+
+def _dom(c: Any) -> tuple[float, float]:
+    return c.domain if _is_atom(c) else (0.0, 1.0)
+
+
+def intersect(p: AtomCurve, q: Any) -> list[Intersection]:
+    if getattr(q, "dimension", None) != p.dimension:
+        if not isinstance(q, Curve | RationalBezierCurve) and not _is_atom(q):
+            raise TypeError(f"other must be a curve, got {type(q).__name__}")
+        raise ValueError(f"the curves have different dimensions ({p.dimension} and {q.dimension})")
+    found: list[tuple[float, float, str]] = []
+    for pc, pmap in _as_parts(p):
+        for qc, qmap in _as_parts(q):
+            for x in _pair(pc, qc):
+                s, t = float(pmap(x.s)), float(qmap(x.t))
+                if x.kind != "coincident":
+                    s, t = _polish(p, q, s, t)
+                found.append((s, t, x.kind))
+    found.sort()
+    out: list[Intersection] = []
+    width = max(_dom(p)[1] - _dom(p)[0], 1e-300)
+    for s, t, kind in found:
+        if out and abs(s - out[-1].s) <= SAME * width and abs(t - out[-1].t) <= SAME * width:
+            continue  # the same point found in two neighbouring pieces
+        out.append(Intersection(s, t, kind))
+    return out
+
+
+def _boxes_meet(p: BezierCurve, q: BezierCurve) -> bool:
+    """Whether the control polygons' boxes overlap (else the pieces cannot meet)."""
+    lo_p, hi_p = p.points.min(axis=0), p.points.max(axis=0)
+    lo_q, hi_q = q.points.min(axis=0), q.points.max(axis=0)
+    return bool(np.all(lo_p <= hi_q) and np.all(lo_q <= hi_p))
+
+
+def self_intersections(curve: AtomCurve) -> list[Intersection]:
+    """Pairs s < t with C(s) = C(t), from the polynomial pieces (every pair of pieces, and
+    each piece with itself), polished by Newton's method on the exact curve."""
+    parts = pieces(curve)
+    width = max(curve.domain[1] - curve.domain[0], 1e-300)
+    found: list[tuple[float, float, str]] = []
+    for i, (a, b, p) in enumerate(parts):
+        for x in p.self_intersections():
+            found.append((a + (b - a) * x.s, a + (b - a) * x.t, x.kind))
+        for c, e, q in parts[i + 1 :]:
+            if not _boxes_meet(p, q):
+                continue
+            for x in p.intersect(q):
+                s, t = a + (b - a) * x.s, c + (e - c) * x.t
+                if abs(s - t) <= SAME * width:  # the shared end of neighbouring pieces
+                    continue
+                found.append((s, t, x.kind))
+    out: list[Intersection] = []
+    for s, t, kind in sorted(found):
+        if kind != "coincident":
+            s, t = _polish(curve, curve, s, t)
+        s, t = min(s, t), max(s, t)
+        if t - s <= SAME * width:
+            continue
+        if out and abs(s - out[-1].s) <= SAME * width and abs(t - out[-1].t) <= SAME * width:
+            continue
+        out.append(Intersection(s, t, kind))
+    return out

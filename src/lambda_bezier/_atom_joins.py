@@ -1,0 +1,268 @@
+"""Joins where a trigonometric, hyperbolic or mixed family takes part (issue #30).
+
+`joins.join` hands over here when the first curve or the new segment's family is one of
+atom_family's. The conditions are joins.py's, with every derivative taken in each curve's
+own parameter (a trigonometric curve's t on [0, π/2], a polynomial curve's t on [0, 1]):
+
+    C2(start) = C1(end),  C1'(end) = α C2'(start),  C1''(end) = α² C2''(start) + d C2'(start)
+
+(α = 1, d = 0 for C joins). The new segment's start derivatives are linear in its control
+points: s[r][j] is the coefficient of P_j in C2^(r)(start) (the r-th derivative of b_j at the
+start of the domain: from the atoms, exactly when the domain starts at 0 and no frequency is a
+multiple of π; from the power tables for a polynomial family). The first curve's end
+derivatives are vectors: exact for an exact polynomial curve, floats for a curve of an atom
+family (sin and cos at the end of its domain are irrational in general). P_{0..R,2} then
+solve an (R+1) x (R+1) system, the given points P_{R+1..m,2} on its right-hand side.
+"""
+
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+from typing import Any
+
+import numpy as np
+
+from . import _join_engine
+from . import _validate as val
+from ._validate import PointsLike
+from .atom_family import AtomCurve
+from .curves import FAMILIES, Curve, family_class
+from .hazmat import atoms as ak
+
+Number = Fraction | float
+
+
+def involved(curve: object, family: object) -> bool:
+    """Whether the first curve or the target family is a family of atoms."""
+    return isinstance(curve, AtomCurve) or getattr(family, "atom_data", None) is not None
+
+
+def _atom_start(
+    family: Any, values: tuple[Fraction, ...], degree: int, orders: int
+) -> list[list[Number]]:
+    """s[r][j] = b_j^(r)(lo) of an atom family at `values` (exact where the atoms' values at
+    lo are rational: lo = 0 and no frequency a multiple of π)."""
+    from .atom_family import _combine
+
+    data = family.atom_data
+    shape = data.SHAPES[degree]
+    basis = _combine(data.COEFFICIENTS[degree], values)  # (m+1, atoms)
+    lo_exact = data.DOMAIN_EXACT[0]
+    exact = lo_exact == 0 and not any(a.pi for a in shape.atoms)
+    rows: list[list[Number]] = []
+    for r in range(orders + 1):
+        if exact:
+            at = [_atom_at_zero(a, r) for a in shape.atoms]
+            rows.append(
+                [sum((c * v for c, v in zip(b, at, strict=True)), Fraction(0)) for b in basis]
+            )
+        else:
+            lo = data.DOMAIN[0]
+            at_f = [_atom_float(a, r, lo) for a in shape.atoms]
+            rows.append(
+                [float(sum(float(c) * v for c, v in zip(b, at_f, strict=True))) for b in basis]
+            )
+    return rows
+
+
+def _atom_at_zero(atom: ak.Atom, r: int) -> Fraction:
+    if atom.kind == "1":
+        return Fraction(1 if r == 0 else 0)
+    if atom.kind == "t":
+        return Fraction(math.factorial(r)) if r == atom.power else Fraction(0)
+    w = atom.omega**r
+    cycle = {
+        "cos": (1, 0, -1, 0),
+        "sin": (0, 1, 0, -1),
+        "cosh": (1, 0, 1, 0),
+        "sinh": (0, 1, 0, 1),
+    }[atom.kind]
+    return Fraction(w * cycle[r % 4])
+
+
+def _atom_float(atom: Any, r: int, x: float) -> float:
+    if atom.kind == "1":
+        return 1.0 if r == 0 else 0.0
+    if atom.kind == "t":
+        k = atom.power
+        return 0.0 if r > k else math.factorial(k) / math.factorial(k - r) * x ** (k - r)
+    w = float(atom.omega) * (math.pi if atom.pi else 1.0)
+    phase = w * x
+    if atom.kind in ("cos", "sin"):
+        shift = r * math.pi / 2 - (math.pi / 2 if atom.kind == "sin" else 0.0)
+        return w**r * math.cos(phase + shift)
+    even = math.cosh(phase) if atom.kind == "cosh" else math.sinh(phase)
+    odd = math.sinh(phase) if atom.kind == "cosh" else math.cosh(phase)
+    return w**r * (even if r % 2 == 0 else odd)
+
+
+def _end_derivatives(curve: Any, orders: int) -> list[list[Number]]:
+    """C1^(r)(end) as vectors, r = 0..orders."""
+    if isinstance(curve, AtomCurve):
+        hi = curve.domain[1]
+        return [[float(v) for v in curve.derivative(hi, r)] for r in range(orders + 1)]
+    e = _join_engine.end_coefficients(curve, orders)  # coefficient of P_{n-j} in C^(r)(1)
+    pts = curve.control_points()
+    n = curve.degree
+    out: list[list[Number]] = []
+    for r in range(orders + 1):
+        acc: list[Number] = [Fraction(0) if curve.is_exact else 0.0] * curve.dimension
+        for j, w in enumerate(e[r]):
+            if w:
+                acc = [a + w * p for a, p in zip(acc, pts[n - j], strict=True)]
+        out.append(acc if curve.is_exact else [float(a) for a in acc])
+    return out
+
+
+def join(
+    curve: Any,
+    continuity: str,
+    order: int,
+    alpha: Number,
+    d: Number,
+    degree: int,
+    lam: object,
+    rest: PointsLike,
+    family: object,
+    check_range: bool,
+    params: object,
+    named: dict[str, object],
+) -> Any:
+    """joins.join for the cases `involved` names (see the module docstring)."""
+    if not isinstance(curve, AtomCurve | Curve):
+        raise ValueError(f"curve must be a lambda_bezier curve, got {type(curve).__name__}")
+    target: Any = family
+    if family is None:
+        target = curve.family_object if isinstance(curve, AtomCurve) else type(curve)
+    degree = val.integer(degree, "degree")
+    exact_inputs = not any(isinstance(x, float) for x in (alpha, d))
+    # the new segment's start coefficients and its constructor
+    if getattr(target, "atom_data", None) is not None:
+        names = target.parameters
+        if lam is not None and "lam" in names:
+            named, lam = {**named, "lam": lam}, None
+        values = target.parameter_values(lam, params, named)
+        exact_inputs = exact_inputs and all(val.is_exact_scalar(v) for v in values.values())
+        exact_values = target.exact_values(values, check_range)
+        degrees = target.degrees
+        if degree not in degrees:
+            raise ValueError(
+                f"degree {degree} is not supported for {target.name}: degrees "
+                f"{degrees[0]}..{degrees[-1]}"
+            )
+        start = _atom_start(target, exact_values, degree, order)
+
+        def make(points: PointsLike) -> Any:
+            return target.curve(points, params=values, check_range=check_range)
+    else:
+        if getattr(target, "several", None) is not None:  # polynomial, several parameters
+            if lam is not None and "lam" in target.parameters:
+                named, lam = {**named, "lam": lam}, None
+            values = target.parameter_values(lam, params, named)
+            exact_inputs = exact_inputs and all(val.is_exact_scalar(v) for v in values.values())
+            target = target._fixed_class(values, check_range)
+            lam, params, named = None, None, {}
+        if params is not None or named:
+            raise TypeError("params and named parameters are for families of several parameters")
+        cls: type[Curve] = (
+            FAMILIES[val.choice(target, "family", tuple(FAMILIES))]
+            if isinstance(target, str)
+            else target
+            if isinstance(target, type)
+            else family_class(target)
+        )
+        if cls._has_lambda:
+            if lam is None:
+                raise ValueError(f"a {cls.family} segment needs a shape parameter lam")
+            lam = val.as_lambda(lam, cls._data, check_range=check_range, name=cls.parameter_name)
+        elif lam is not None:
+            raise ValueError("a classical Bézier segment takes no shape parameter lam")
+        degrees = tuple(cls._data.DEGREES)
+        if not degrees[0] <= degree <= degrees[-1] and cls._has_lambda:
+            raise ValueError(f"degree {degree} is not supported for {cls.family}")
+        exact_inputs = exact_inputs and not isinstance(lam, float)
+        start = _join_engine.start_coefficients(cls, degree, lam, order)
+
+        def make(points: PointsLike) -> Any:
+            return cls(points, lam, check_range=check_range) if cls._has_lambda else cls(points)
+
+    if degree < order:
+        raise ValueError(f"a {continuity} join needs the new curve of degree >= {order}")
+    rest_any: Any = rest
+    given_rows: list[Any] = (
+        rest_any.tolist() if isinstance(rest_any, np.ndarray) else [list(r) for r in rest_any]
+    )
+    if len(given_rows) != degree - order:
+        raise ValueError(
+            f"rest must hold the {degree - order} control points after P_{{{order},2}} "
+            f"(degree {degree}, {continuity}), got {len(given_rows)}"
+        )
+    given_exact = val.exact_rows(given_rows) if given_rows else ()
+    ends = _end_derivatives(curve, order)
+    exact = (
+        exact_inputs
+        and given_exact is not None
+        and all(isinstance(v, Fraction) for row in ends for v in row)
+        and all(isinstance(v, Fraction) for row in start for v in row)
+    )
+    dim = curve.dimension
+    given: list[list[Number]] = (
+        [list(r) for r in given_exact]  # type: ignore[union-attr]
+        if exact
+        else [
+            [float(v) for v in r]
+            for r in val.as_points(given_rows, family="rest", degrees=(0, 10**6))
+        ]
+        if given_rows
+        else []
+    )
+    if given and len(given[0]) != dim:
+        raise ValueError(f"rest: points of dimension {len(given[0])}, the curve has {dim}")
+    one: Number = Fraction(1) if exact else 1.0
+    a_, d_ = (Fraction(alpha), Fraction(d)) if exact else (float(alpha), float(d))
+    targets: list[list[Number]] = [list(ends[0])]
+    if order >= 1:
+        targets.append([v * one / a_ for v in ends[1]])
+    if order >= 2:
+        targets.append([(v - d_ * t1) / a_**2 for v, t1 in zip(ends[2], targets[1], strict=True)])
+    for r in range(order + 1):
+        for j in range(order + 1, degree + 1):
+            if start[r][j]:
+                targets[r] = [
+                    t - start[r][j] * g
+                    for t, g in zip(targets[r], given[j - order - 1], strict=True)
+                ]
+    matrix = [[start[r][c] for c in range(order + 1)] for r in range(order + 1)]
+    if exact:
+        solved = _solve_exact(matrix, targets, continuity)
+    else:
+        m = np.array(matrix, dtype=float)
+        if abs(np.linalg.det(m)) <= 1e-12 * max(1.0, float(np.abs(m).max())) ** len(m):
+            raise ValueError(_singular(continuity))
+        solved = np.linalg.solve(m, np.array(targets, dtype=float)).tolist()
+    return make([*solved, *given])
+
+
+def _singular(continuity: str) -> str:
+    return (
+        f"cannot solve {continuity}: the new segment's start derivatives do not determine its "
+        "leading control points at these parameters (choose another degree or parameters)"
+    )
+
+
+def _solve_exact(
+    matrix: list[list[Number]], targets: list[list[Number]], continuity: str
+) -> list[list[Number]]:
+    size = len(matrix)
+    rows = [[*matrix[r], *targets[r]] for r in range(size)]
+    for col in range(size):
+        piv = next((r for r in range(col, size) if rows[r][col] != 0), None)
+        if piv is None:
+            raise ValueError(_singular(continuity))
+        rows[col], rows[piv] = rows[piv], rows[col]
+        for r in range(size):
+            if r != col and rows[r][col] != 0:
+                f = rows[r][col] / rows[col][col]
+                rows[r] = [x - f * y for x, y in zip(rows[r], rows[col], strict=True)]
+    return [[v / rows[r][r] for v in rows[r][size:]] for r in range(size)]

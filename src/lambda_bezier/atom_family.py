@@ -1,0 +1,484 @@
+r"""Families beyond polynomials (issue #30): trigonometric, hyperbolic and mixed bases.
+
+`load_family` reads a derived document of ``"format": 4`` here (`AtomData`): the basis
+functions of each degree as exact rational combinations of *atoms* (``1``, ``t^K``,
+``cos(W*t)``, ``sin(W*t)``, ``cosh(W*t)``, ``sinh(W*t)``), per monomial of the shape
+parameters, on the family's own domain of t (e.g. [0, π/2]); the exact rational Bézier form
+where there is one (u = tan(t/2) for trigonometric families), and the energies with entries
+in ℚ[π] or ℚ[e^W] (`hazmat.constants`). Every key is checked; the atom strings go through a
+strict regular expression (`hazmat.atoms.parse_atom`), nothing is evaluated.
+
+`AtomCurve` is a curve of such a family at fixed parameter values, with the curve API; its
+parameter is always the family's own t on its domain. Evaluation and derivatives of any
+order are exact differentiation of the atoms then the kernels of `hazmat.atoms`; the geometry
+(split, arc length, boxes, closest points, intersections) goes through the exact
+`to_rational_bezier()` when the family has a rational form, with the parameters mapped back
+to t (t = lo + 2·atan(scale·s) for tan(t/2)), and numerically otherwise (_atom_geometry).
+"""
+
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+from typing import TYPE_CHECKING, Any, NoReturn
+
+import numpy as np
+import numpy.typing as npt
+
+from . import _validate as val
+from ._atom_document import AtomData, Exact, Matrix, Mono, RationalForm
+from ._validate import ParamLike, PointsLike
+from .hazmat import atoms as ak
+from .rational import RationalBezierCurve
+
+if TYPE_CHECKING:
+    from .geometry import ClosestPoint
+    from .hazmat.intersect import Intersection
+
+
+def _power(values: tuple[Fraction, ...], mono: Mono) -> Fraction:
+    w = Fraction(1)
+    for v, e in zip(values, mono, strict=True):
+        w *= v**e
+    return w
+
+
+def _combine(by_mono: dict[Mono, Matrix], values: tuple[Fraction, ...]) -> Matrix:
+    acc: list[list[Fraction]] | None = None
+    for mono, mat in by_mono.items():
+        w = _power(values, mono)
+        if acc is None:
+            acc = [[Fraction(0)] * len(mat[0]) for _ in mat]
+        if w:
+            for r, row in enumerate(mat):
+                for c, x in enumerate(row):
+                    acc[r][c] += w * x
+    assert acc is not None
+    return tuple(tuple(row) for row in acc)
+
+
+def _not_available(what: str, why: str) -> NoReturn:
+    raise NotImplementedError(f"{what} is not available for this curve: {why}")
+
+
+class AtomCurve:
+    """A curve Σ P_i b_i(t; parameters) of a trigonometric, hyperbolic or mixed family, t on
+    the family's domain (e.g. [0, π/2]). Made by ``Family.curve``; exact control points and
+    parameter values (ints, Fractions) keep `to_rational_bezier` and `energy` exact."""
+
+    _has_lambda = False
+    lam = None
+
+    def __init__(
+        self,
+        family: Any,
+        points: PointsLike,
+        values: tuple[Fraction, ...],
+        exact_parameters: bool = True,
+    ):
+        data: AtomData = family.atom_data
+        self.family_object = family
+        self.data = data
+        self.family = data.FAMILY
+        self.points = val.as_points(points, family=data.FAMILY, degrees=data.DEGREES)
+        self._exact_points = val.exact_rows(points)
+        self._exact_parameters = exact_parameters  # given as ints/Fractions (not floats)
+        self.values = values
+        self.parameter_values = dict(zip(data.NAMES, values, strict=True))
+        n = self.degree
+        self.shape = data.SHAPES[n]
+        basis = _combine(data.COEFFICIENTS[n], values)  # (n+1, atoms), exact
+        self.basis_coefficients = basis
+        self._basis_float = np.array(basis, dtype=float)
+        # the curve over the document's atoms, then over the centred atoms (floats)
+        scale = val.power_of_two_scale(self.points)
+        with val.overflow_allowed():
+            atoms = self._basis_float.T @ (self.points / scale)
+            self._centred = self.shape.centring.T @ atoms
+        self._scale = scale
+        self._orders: dict[int, np.ndarray] = {0: self._centred}
+        lo, hi = data.DOMAIN
+        self._mid = 0.5 * (lo + hi)
+        self._half_angle = (
+            data.SPACE == "trigonometric" and self.shape.omega0 * (hi - lo) * 0.5 <= math.pi / 2
+        )
+        self._tables: dict[int, np.ndarray] = {}
+
+    # ------------------------------------------------------------------ description
+    @property
+    def degree(self) -> int:
+        return int(self.points.shape[0]) - 1
+
+    @property
+    def dimension(self) -> int:
+        return int(self.points.shape[1])
+
+    @property
+    def domain(self) -> tuple[float, float]:
+        """The family's interval of t (floats; `data.DOMAIN_TEXT` exactly)."""
+        return self.data.DOMAIN
+
+    @property
+    def is_exact(self) -> bool:
+        """Exact control points and parameter values (ints and Fractions)."""
+        return self._exact_points is not None and self._exact_parameters
+
+    def __repr__(self) -> str:
+        shown = ", ".join(f"{k}={v}" for k, v in self.parameter_values.items())
+        return (
+            f"{type(self).__name__}({self.family}, degree={self.degree}, "
+            f"dimension={self.dimension}, {shown}, t in {self.data.DOMAIN_TEXT})"
+        )
+
+    def control_points(self) -> tuple[tuple[Fraction, ...], ...] | tuple[tuple[float, ...], ...]:
+        if self._exact_points is not None:
+            return self._exact_points
+        return tuple(tuple(float(v) for v in row) for row in self.points)
+
+    def atom_parameter_values(self) -> dict[str, Fraction | float]:
+        """The parameter values as given: Fractions if given exactly, floats otherwise (what
+        the JSON form writes)."""
+        if self._exact_parameters:
+            return dict(self.parameter_values)
+        return {k: float(v) for k, v in self.parameter_values.items()}
+
+    # ------------------------------------------------------------------ evaluation
+    def _parameters(self, t: ParamLike, extrapolate: bool) -> tuple[np.ndarray, bool]:
+        extrapolate = val.flag(extrapolate, "extrapolate")
+        tt, scalar = val.as_parameters(t, extrapolate=True)
+        lo, hi = self.data.DOMAIN
+        if not extrapolate and tt.size:
+            small, big = float(tt.min()), float(tt.max())
+            # the domain's ends are rounded (π/2): allow them to a few ulps
+            slack = 4 * np.spacing(max(abs(lo), abs(hi), 1.0))
+            if small < lo - slack or big > hi + slack:
+                bad = small if small < lo - slack else big
+                raise ValueError(
+                    f"t = {bad} is outside the {self.family} domain {self.data.DOMAIN_TEXT}; "
+                    "pass extrapolate=True to evaluate there"
+                )
+        return tt, scalar
+
+    def _coefficients(self, order: int) -> np.ndarray:
+        if order not in self._orders:
+            d = self.shape.derivative
+            out = self._orders[max(k for k in self._orders if k < order)]
+            for _ in range(order - max(k for k in self._orders if k < order)):
+                out = d @ out
+            self._orders[order] = out
+        return self._orders[order]
+
+    def _values(self, tt: np.ndarray, order: int, inside: bool) -> np.ndarray:
+        """(d, len(tt)): the order-th derivative (points scaled back)."""
+        coeffs = self._coefficients(order)
+        tau = tt - self._mid
+        sh = self.shape
+        with val.overflow_allowed():
+            if inside and self._half_angle:
+                if order not in self._tables:
+                    self._tables[order] = ak.half_angle_coefficients(coeffs, sh.harmonics)
+                out = ak.evaluate_half_angle(self._tables[order], tau, sh.omega0, sh.harmonics)
+            else:
+                out = ak.evaluate(coeffs, tau, sh.omega0, sh.powers, sh.harmonics, sh.hyperbolic)
+            if self._scale != 1.0:
+                out = out * self._scale
+        if inside and self._half_angle and self._scale == 1.0:
+            return out  # |u| <= 1, denominator >= 1, coordinates below 2^900: no overflow
+        return val.finite_result(out, "the curve" if order == 0 else f"derivative {order}")
+
+    def evaluate(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray:
+        """C(t): (d,) for a scalar t, (len(t), d) for an array; t in the family's domain."""
+        tt, scalar = self._parameters(t, extrapolate)
+        out = self._values(tt, 0, not extrapolate).T
+        return out[0] if scalar else out
+
+    def derivative(self, t: ParamLike, k: int = 1, *, extrapolate: bool = False) -> np.ndarray:
+        """d^k C / dt^k (in the family's t), any k >= 0, by exact differentiation of the atoms."""
+        order = val.as_order(k)
+        tt, scalar = self._parameters(t, extrapolate)
+        out = self._values(tt, order, not extrapolate).T
+        return out[0] if scalar else out
+
+    def basis(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray:
+        """b_i(t) at the curve's parameter values: (n+1,) or (len(t), n+1)."""
+        tt, scalar = self._parameters(t, extrapolate)
+        sh = self.shape
+        coeffs = sh.centring.T @ self._basis_float.T  # (A, n+1)
+        out = ak.evaluate(coeffs, tt - self._mid, sh.omega0, sh.powers, sh.harmonics, sh.hyperbolic)
+        return out.T[0] if scalar else out.T
+
+    def curvature(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
+        """Signed curvature in 2D, unsigned in 3D (in t; curvature does not depend on it)."""
+        from .hazmat import rational_kernels as rk
+
+        if self.dimension not in (2, 3):
+            raise ValueError(
+                f"curvature is defined for dimension 2 or 3, this curve has {self.dimension}"
+            )
+        d1 = self.derivative(t, 1, extrapolate=extrapolate)
+        d2 = self.derivative(t, 2, extrapolate=extrapolate)
+        kappa = rk.curvature_from_derivatives(d1, d2)
+        return kappa[()] if np.ndim(kappa) == 0 else kappa
+
+    def tangent(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray:
+        """The unit tangent C'/‖C'‖; ValueError where C'(t) = 0."""
+        d1 = self.derivative(t, 1, extrapolate=extrapolate)
+        norm = np.linalg.norm(d1, axis=-1, keepdims=True)
+        if not (norm > 0).all():
+            raise ValueError("the tangent is undefined where C'(t) = 0")
+        out: np.ndarray = d1 / norm
+        return out
+
+    def normal(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray:
+        """The unit normal of a planar curve: the tangent turned by +90°."""
+        if self.dimension != 2:
+            raise ValueError(f"normal is defined for planar curves, got dimension {self.dimension}")
+        tan = self.tangent(t, extrapolate=extrapolate)
+        return np.stack([-tan[..., 1], tan[..., 0]], axis=-1)
+
+    def torsion(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
+        from .geometry import torsion
+
+        return torsion(self, t, extrapolate=extrapolate)  # type: ignore[arg-type]
+
+    # ------------------------------------------------------------------ the rational form
+    @property
+    def has_rational_form(self) -> bool:
+        return self.degree in self.data.RATIONAL
+
+    def to_rational_bezier(self) -> RationalBezierCurve:
+        """The exact rational Bézier curve of this curve (Fractions in, Fractions out), in
+        s = tan(t/2)/scale (hyperbolic: tanh); `t_of_s` and `s_of_t` map the parameters."""
+        cached: RationalBezierCurve | None = self.__dict__.get("_rational")
+        if cached is not None:
+            return cached
+        form = self.data.RATIONAL.get(self.degree)
+        if form is None:
+            raise ValueError(
+                f"the {self.family} family has no exact rational Bézier form: "
+                f"{self.data.RATIONAL_REASON}"
+            )
+        num = _combine(form.numerators, self.values)  # (n+1, deg+1)
+        if self._exact_points is not None:
+            pts = self._exact_points
+            rows = [
+                (
+                    *(
+                        sum((num[i][j] * p[c] for i, p in enumerate(pts)), Fraction(0))
+                        for c in range(self.dimension)
+                    ),
+                    form.weights[j],
+                )
+                for j in range(len(form.weights))
+            ]
+            curve = RationalBezierCurve._from_rows(tuple(rows))
+        else:
+            numf = np.array(num, dtype=float)
+            w = np.array(form.weights, dtype=float)
+            pts_f = (numf.T @ self.points) / w[:, None]
+            curve = RationalBezierCurve(pts_f, w)
+        self.__dict__["_rational"] = curve
+        return curve
+
+    def s_of_t(self, t: npt.ArrayLike) -> np.ndarray | float:
+        """The rational form's parameter s at the family's t."""
+        form = self._form("s_of_t")
+        return form.s_of_t(np.asarray(t, dtype=float) if np.ndim(t) else float(t))  # type: ignore[arg-type]
+
+    def t_of_s(self, s: npt.ArrayLike) -> np.ndarray | float:
+        """The family's t at the rational form's parameter s."""
+        form = self._form("t_of_s")
+        return form.t_of_s(np.asarray(s, dtype=float) if np.ndim(s) else float(s))  # type: ignore[arg-type]
+
+    def _form(self, what: str) -> RationalForm:
+        form = self.data.RATIONAL.get(self.degree)
+        if form is None:
+            raise ValueError(f"{what}: the {self.family} family has no rational form")
+        return form
+
+    def to_bezier(self) -> NoReturn:
+        _not_available(
+            "to_bezier",
+            f"a {self.data.SPACE} curve is not a polynomial curve"
+            + (
+                "; use to_rational_bezier() for its exact rational Bézier form"
+                if self.has_rational_form
+                else f" and has no rational form ({self.data.RATIONAL_REASON})"
+            ),
+        )
+
+    # ------------------------------------------------------------------ energy
+    def energy(self, k: int) -> Exact | float:
+        r"""E_k = ∫ ‖C^(k)(t)‖² dt over the family's domain, from the document's Gram
+        matrices: exact (a Fraction or a `ConstantFraction` in π or e^W) for exact points and
+        parameters, a float otherwise."""
+        from .hazmat.constants import ConstantFraction
+
+        if isinstance(k, bool) or not isinstance(k, int | np.integer) or k < 1:
+            raise ValueError(f"k must be a positive integer (the derivative order), got {k!r}")
+        gram = self.data.GRAM.get((self.degree, int(k)))
+        if gram is None:
+            reason = self.data.ENERGY_REASON or "not in the derived document"
+            raise ValueError(f"E_{k} of {self.family} at degree {self.degree}: {reason}")
+        rows = self._exact_points
+        exact = self.is_exact
+        pts = (
+            rows
+            if rows is not None
+            else [tuple(Fraction(float(v)) for v in r) for r in self.points]
+        )
+        total: Exact = Fraction(0)
+        for (m1, m2), mat in gram.items():
+            w = _power(self.values, tuple(a + b for a, b in zip(m1, m2, strict=True)))
+            if not w:
+                continue
+            for dim in range(self.dimension):
+                for i, row in enumerate(mat):
+                    pi = pts[i][dim]
+                    if pi:
+                        for j, g in enumerate(row):
+                            if g and pts[j][dim]:
+                                total = total + w * pi * pts[j][dim] * g
+        if not exact:
+            return float(total)
+        if isinstance(total, ConstantFraction) and total.is_rational:
+            return total.numerator[0] if total.numerator else Fraction(0)
+        return total
+
+    # ------------------------------------------------------------------ geometry
+    def _rational_or_none(self) -> RationalBezierCurve | None:
+        return self.to_rational_bezier() if self.has_rational_form else None
+
+    def _t(self, t: object, name: str) -> float:
+        x = float(val.real_number(t, name))
+        lo, hi = self.data.DOMAIN
+        if not lo - 1e-15 <= x <= hi + 1e-15:
+            raise ValueError(f"{name} = {t} is outside the domain {self.data.DOMAIN_TEXT}")
+        return min(max(x, lo), hi)
+
+    def arc_length(
+        self, t0: Fraction | float | None = None, t1: Fraction | float | None = None
+    ) -> float:
+        """∫ ‖C'(t)‖ dt from t0 to t1 (default: the whole domain), relative accuracy 1e-12."""
+        lo, hi = self.data.DOMAIN
+        a = lo if t0 is None else self._t(t0, "t0")
+        b = hi if t1 is None else self._t(t1, "t1")
+        if a > b:
+            raise ValueError(f"t0 = {t0} must not exceed t1 = {t1}")
+        rat = self._rational_or_none()
+        if rat is not None:
+            return rat.arc_length(self.s_of_t(a), self.s_of_t(b))  # type: ignore[arg-type]
+        from . import _atom_geometry as ag
+
+        return ag.arc_length(self, a, b)
+
+    def parameter_at_length(self, s: npt.ArrayLike) -> np.ndarray | float:
+        """The t at which the arc length from the domain's start equals s."""
+        rat = self._rational_or_none()
+        if rat is not None:
+            return self.t_of_s(rat.parameter_at_length(s))
+        from . import _atom_geometry as ag
+
+        return ag.parameter_at_length(self, s)
+
+    def bounding_box(self) -> tuple[np.ndarray, np.ndarray]:
+        """(lo, hi): the tight axis-aligned box of the curve over its domain."""
+        rat = self._rational_or_none()
+        if rat is not None:
+            return rat.bounding_box()
+        from . import _atom_geometry as ag
+
+        return ag.bounding_box(self)
+
+    def closest_point(self, q: npt.ArrayLike) -> ClosestPoint:
+        """The nearest point to q ((d,) or a batch (m, d)); `t` in the family's t."""
+        from .geometry import ClosestPoint
+
+        rat = self._rational_or_none()
+        if rat is not None:
+            found = rat.closest_point(q)
+            return ClosestPoint(self.t_of_s(found.t), found.point, found.distance)
+        from . import _atom_geometry as ag
+
+        return ag.closest_point(self, q)
+
+    def locate(self, point: PointsLike) -> float | None:
+        """The t with C(t) = point (within 1e-10 of the curve's size), or None."""
+        rat = self._rational_or_none()
+        if rat is not None:
+            s = rat.locate(point)
+            return None if s is None else float(self.t_of_s(s))
+        from . import _atom_geometry as ag
+
+        return ag.locate(self, point)
+
+    def intersect(self, other: object) -> list[Intersection]:
+        """Every isolated intersection with another curve, Intersection(s, t, kind) sorted by
+        s: self(s) = other(t), each parameter in its own curve's t."""
+        from . import _atom_geometry as ag
+
+        return ag.intersect(self, other)
+
+    def self_intersections(self) -> list[Intersection]:
+        """Every pair s < t with C(s) = C(t), both in the family's t."""
+        from .hazmat.intersect import Intersection
+
+        rat = self._rational_or_none()
+        if rat is None:
+            from . import _atom_geometry as ag
+
+            return ag.self_intersections(self)
+        return [
+            Intersection(float(self.t_of_s(x.s)), float(self.t_of_s(x.t)), x.kind)
+            for x in rat.self_intersections()
+        ]
+
+    def split(self, t: Fraction | float) -> tuple[RationalBezierCurve, RationalBezierCurve]:
+        """The pieces over [lo, t] and [t, hi] as rational Bézier curves, each in its own
+        parameter on [0, 1] (the rational form split at s(t), in floats: s(t) = tan(t/2) is
+        irrational at most t)."""
+        x = self._t(t, "t")
+        rat = self._rational_or_none()
+        if rat is None:
+            _not_available("split", f"it has no rational form ({self.data.RATIONAL_REASON})")
+        s = self.s_of_t(x)
+        return rat.split(float(s))
+
+
+def evaluate_many(
+    atom_family: Any,
+    points: npt.ArrayLike,
+    t: npt.ArrayLike,
+    k: int,
+    values: tuple[Fraction, ...],
+    extrapolate: bool,
+) -> np.ndarray:
+    """batch.evaluate_many for a family of this module: m curves of one degree and one set
+    of parameter values, (m, T, d): every curve's coefficients over the centred atoms in one
+    product, the atoms evaluated once on the shared grid, one more product."""
+    data: AtomData = atom_family.atom_data
+    arr = val.real_array(points, "control points")
+    if arr.ndim != 3:
+        raise ValueError(f"control points must have shape (m, n+1, d), got shape {arr.shape}")
+    m, size, dim = arr.shape
+    val.check_point_shape((size, dim), family=data.FAMILY, degrees=data.DEGREES)
+    if not np.isfinite(arr).all():
+        idx = np.argwhere(~np.isfinite(arr))[0]
+        raise ValueError(f"curve {idx[0]}, control point {idx[1]} has a non-finite coordinate")
+    order = val.as_order(k)
+    probe = AtomCurve(atom_family, arr[0], values, False)  # checks t against the domain too
+    tt, scalar = probe._parameters(t, extrapolate)
+    sh = probe.shape
+    scale = val.power_of_two_scale(arr)
+    with val.overflow_allowed():
+        pt = np.ascontiguousarray(arr.transpose(1, 0, 2)).reshape(size, m * dim) / scale
+        coeffs = sh.centring.T @ (probe._basis_float.T @ pt)  # (A, m·d)
+        for _ in range(order):
+            coeffs = sh.derivative @ coeffs
+        out = ak.evaluate(
+            coeffs, tt - probe._mid, sh.omega0, sh.powers, sh.harmonics, sh.hyperbolic
+        )
+        out = (out.T.reshape(tt.size, m, dim).transpose(1, 0, 2)) * scale
+    val.finite_result(out, "p(t)" if order == 0 else f"the derivative of order {order}")
+    result: np.ndarray = out[:, 0] if scalar else out
+    return result

@@ -1,0 +1,240 @@
+r"""Curves in a space of atoms: 1, τ^k, cos(jωτ), sin(jωτ) (or cosh, sinh), τ = t − mid.
+
+A family of issue #30 writes its basis functions as exact combinations of atoms (`1`,
+`t^K`, `cos(W*t)`, `sin(W*t)`, `cosh(W*t)`, `sinh(W*t)`, W a positive rational or a rational
+times π). The classes above parse the atom strings (`parse_atom`), bring every frequency to
+integer multiples j of one base frequency ω, and rewrite the curve about the middle of its
+domain: its coefficients then form a (A, d) matrix over the *centred atoms* in the order
+
+    1, τ, τ², …, τ^K, cos(ωτ), sin(ωτ), cos(2ωτ), sin(2ωτ), …, cos(Jωτ), sin(Jωτ)
+
+(cosh/sinh for a hyperbolic space). Differentiation is exact on that basis
+(`derivative_matrix`), so a derivative of any order is the same evaluation with other
+coefficients.
+
+Evaluation (`evaluate`): the values of the centred atoms at every τ (`atom_values`: sin and
+cos of ωτ once, then the Chebyshev recurrences c_{j+1} = 2 c_1 c_j − c_{j−1}; e^{ωτ} once for
+the hyperbolic ones), then one matrix product. For a purely trigonometric curve whose angle
+ωτ stays within ±π/2 there is a faster path (`half_angle_coefficients`, `evaluate_half_angle`):
+with u = tan(ωτ/2), e^{ijωτ} = (1 + iu)^{2j} / (1 + u²)^j, so the curve is N(u) / (1 + u²)^J
+with N a polynomial of degree 2J, |u| ≤ 1: one tan, Horner's rule in u for the d numerator
+coordinates and the denominator, one division (numpy's tan is several times faster than its
+sin and cos).
+"""
+
+from __future__ import annotations
+
+import re
+from fractions import Fraction
+from math import comb
+from typing import NamedTuple
+
+import numpy as np
+
+KINDS = ("1", "t", "cos", "sin", "cosh", "sinh")
+_NUMBER = r"[1-9][0-9]{0,30}(?:/[1-9][0-9]{0,30})?"
+_ATOM = re.compile(
+    rf"^(?:(?P<one>1)|t(?:\^(?P<power>[1-9][0-9]?))?"
+    rf"|(?P<kind>cosh|sinh|cos|sin)\((?:(?P<w>{_NUMBER})(?P<pi>\*pi)?\*|(?P<bare_pi>pi)\*)?t\))$"
+)
+
+
+class Atom(NamedTuple):
+    """One atom: kind ("1", "t", "cos", "sin", "cosh", "sinh"), the power of t (kind "t"),
+    and the frequency W = omega (· π when `pi`)."""
+
+    kind: str
+    power: int
+    omega: Fraction
+    pi: bool
+
+
+def parse_atom(text: str) -> Atom:
+    """The atom a string of the contract's grammar names; ValueError for anything else.
+    Accepted: ``1``, ``t``, ``t^K``, ``cos(W*t)``, ``sin(p/q*pi*t)``, ``cos(pi*t)``,
+    ``cos(t)`` (W = 1)."""
+    m = _ATOM.match(text) if isinstance(text, str) and len(text) < 100 else None
+    if m is None:
+        raise ValueError(f"{text!r} is not an atom (1, t^K, cos(W*t), sin(W*t), cosh, sinh)")
+    if m.group("one"):
+        return Atom("1", 0, Fraction(0), False)
+    kind = m.group("kind")
+    if kind is None:
+        return Atom("t", int(m.group("power") or 1), Fraction(0), False)
+    w = Fraction(m.group("w")) if m.group("w") else Fraction(1)
+    return Atom(kind, 0, w, bool(m.group("pi") or m.group("bare_pi")))
+
+
+def base_frequency(omegas: list[Fraction]) -> Fraction:
+    """The largest ω0 of which every ω is an integer multiple (the gcd of rationals)."""
+    from math import gcd, lcm
+
+    num = 0
+    den = 1
+    for w in omegas:
+        num = gcd(num, w.numerator)
+        den = lcm(den, w.denominator)
+    return Fraction(num, den)
+
+
+def centring_matrix(
+    atoms: list[Atom], omega0: float, powers: int, harmonics: int, hyperbolic: bool, mid: float
+) -> np.ndarray:
+    """(len(atoms), A): row a gives atom a(t) in the centred atoms about t = mid (floats;
+    frequencies are multiples of omega0, given in radians per unit of t)."""
+    size = 1 + powers + 2 * harmonics
+    out = np.zeros((len(atoms), size))
+    for row, atom in enumerate(atoms):
+        if atom.kind == "1":
+            out[row, 0] = 1.0
+        elif atom.kind == "t":
+            k = atom.power
+            for i in range(k + 1):  # t^k = Σ C(k, i) mid^(k-i) τ^i
+                out[row, i] = comb(k, i) * mid ** (k - i)
+        else:
+            w = float(atom.omega) * (np.pi if atom.pi else 1.0)
+            j = int(round(w / omega0))
+            phi = j * omega0 * mid
+            col = 1 + powers + 2 * (j - 1)
+            if hyperbolic:
+                ch, sh = np.cosh(phi), np.sinh(phi)
+                out[row, col : col + 2] = (ch, sh) if atom.kind == "cosh" else (sh, ch)
+            else:
+                c, s = np.cos(phi), np.sin(phi)
+                out[row, col : col + 2] = (c, -s) if atom.kind == "cos" else (s, c)
+    return out
+
+
+def derivative_matrix(omega0: float, powers: int, harmonics: int, hyperbolic: bool) -> np.ndarray:
+    """(A, A): D with coefficients' = D @ coefficients on the centred atoms (d/dτ = d/dt)."""
+    size = 1 + powers + 2 * harmonics
+    d = np.zeros((size, size))
+    for k in range(1, powers + 1):
+        d[k - 1, k] = k  # (τ^k)' = k τ^(k-1): the coefficient of τ^k moves to τ^(k-1)
+    for j in range(1, harmonics + 1):
+        c = 1 + powers + 2 * (j - 1)
+        w = j * omega0
+        if hyperbolic:  # cosh' = w sinh, sinh' = w cosh
+            d[c + 1, c] = w
+            d[c, c + 1] = w
+        else:  # cos' = -w sin, sin' = w cos
+            d[c + 1, c] = -w
+            d[c, c + 1] = w
+    return d
+
+
+def atom_values(
+    tau: np.ndarray, omega0: float, powers: int, harmonics: int, hyperbolic: bool
+) -> np.ndarray:
+    """(A, len(tau)): the centred atoms at every τ (rows in the module's order)."""
+    size = 1 + powers + 2 * harmonics
+    out = np.empty((size, tau.size))
+    out[0] = 1.0
+    for k in range(1, powers + 1):
+        np.multiply(out[k - 1], tau, out=out[k])
+    if harmonics:
+        base = 1 + powers
+        x = omega0 * tau
+        if hyperbolic:
+            e = np.exp(x)
+            inv = 1.0 / e
+            up, down = e.copy(), inv.copy()
+            for j in range(harmonics):
+                c = base + 2 * j
+                np.add(up, down, out=out[c])
+                out[c] *= 0.5
+                np.subtract(up, down, out=out[c + 1])
+                out[c + 1] *= 0.5
+                if j + 1 < harmonics:
+                    up *= e
+                    down *= inv
+        else:
+            np.cos(x, out=out[base])
+            np.sin(x, out=out[base + 1])
+            two_c = 2.0 * out[base]
+            for j in range(1, harmonics):
+                c = base + 2 * j
+                for off in (0, 1):  # c_{j+1} = 2 c_1 c_j − c_{j−1} (s likewise)
+                    np.multiply(two_c, out[c - 2 + off], out=out[c + off])
+                    if j == 1:
+                        if off == 0:
+                            out[c] -= 1.0
+                    else:
+                        out[c + off] -= out[c - 4 + off]
+    return out
+
+
+def evaluate(
+    coefficients: np.ndarray,
+    tau: np.ndarray,
+    omega0: float,
+    powers: int,
+    harmonics: int,
+    hyperbolic: bool,
+) -> np.ndarray:
+    """(d, len(tau)): Σ_a coefficients[a] atom_a(τ) for coefficients of shape (A, d)."""
+    values = atom_values(tau, omega0, powers, harmonics, hyperbolic)
+    out: np.ndarray = coefficients.T @ values
+    return out
+
+
+def half_angle_coefficients(coefficients: np.ndarray, harmonics: int) -> np.ndarray:
+    """(2J+1, d+1): the monomial coefficients in u = tan(ωτ/2) of the numerator N(u) (first
+    d columns) and of the denominator (1 + u²)^J (last column) of a trigonometric curve with
+    (2J+1, d) coefficients on 1, cos(ωτ), sin(ωτ), …: e^{ijωτ} = (1+iu)^{2j} (1+u²)^{J−j} /
+    (1+u²)^J."""
+    from numpy.polynomial import polynomial as P
+
+    dim = coefficients.shape[1]
+    size = 2 * harmonics + 1
+    out = np.zeros((size, dim + 1))
+    one_plus = np.array([1.0, 0.0, 1.0])
+    den = P.polypow(one_plus, harmonics) if harmonics else np.array([1.0])
+    out[: den.size, dim] = den
+    out[: den.size, :dim] += np.outer(den, coefficients[0])
+    for j in range(1, harmonics + 1):
+        z: np.ndarray = P.polymul(
+            P.polypow(np.array([1.0, 1j]), 2 * j), P.polypow(one_plus, harmonics - j)
+        )
+        a, b = coefficients[2 * j - 1], coefficients[2 * j]
+        # a cos + b sin = Re((a − i b) e^{ijθ})
+        part = np.real(np.outer(z, a - 1j * b))
+        out[: part.shape[0], :dim] += part
+    return out
+
+
+def evaluate_half_angle(
+    table: np.ndarray, tau: np.ndarray, omega0: float, harmonics: int
+) -> np.ndarray:
+    """(d, len(tau)): the curve N(u)/(1+u²)^J from `half_angle_coefficients`, u = tan(ωτ/2);
+    for |ωτ| <= π/2 (then |u| <= 1 and the denominator is in [1, 2^J]).
+
+    Blocked over τ as kernels.centred_horner is, so that every pass (the tan, Horner's rule
+    on the (d, block) slab of numerators, the denominator's J − 1 products, the division)
+    runs on data in cache; the denominator is (1 + u²)^J by products, not by Horner."""
+    from .kernels import BLOCK
+
+    dim = table.shape[1] - 1
+    coeffs = np.ascontiguousarray(table[:, :dim].T)  # (d, 2J+1)
+    size = coeffs.shape[1]
+    out = np.empty((dim, tau.size))
+    half = 0.5 * omega0
+    for start in range(0, tau.size, BLOCK):
+        u = np.tan(half * tau[start : start + BLOCK])
+        acc = out[:, start : start + BLOCK]
+        if size == 1:
+            acc[...] = coeffs
+            continue
+        np.multiply(coeffs[:, -1:], u, out=acc)
+        acc += coeffs[:, -2:-1]
+        for e in range(size - 3, -1, -1):
+            acc *= u
+            acc += coeffs[:, e : e + 1]
+        den = u * u
+        den += 1.0
+        if harmonics > 1:
+            base = den.copy()
+            for _ in range(harmonics - 1):
+                den *= base
+        acc /= den
+    return out

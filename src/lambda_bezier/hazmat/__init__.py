@@ -1,11 +1,11 @@
 """lambda_bezier.hazmat: pure functions on coefficient and point arrays.
 
-The rule: a module here imports numpy, the standard library and other hazmat modules
-(and numba, optionally, in intersect_compiled), nothing else from lambda_bezier
-(import-linter checks it in CI, and tests/test_runtime_layers.py). A kernel that needs a
-generated table takes it as an argument. Inputs are not validated here: the curve classes
-above check them first, so calling these directly with bad arrays gives numpy's errors, not
-ours (the name follows the `bezier` package's `hazmat`).
+The rule: a module here imports numpy, the standard library and other hazmat modules (and
+numba, optionally, in intersect_compiled and surface_optimum_compiled), nothing else from
+lambda_bezier (import-linter checks it in CI, and tests/test_runtime_layers.py). A kernel
+that needs a generated table takes it as an argument. Inputs are not validated here: the
+curve classes above check them first, so calling these directly with bad arrays gives
+numpy's errors, not ours (the name follows the `bezier` package's `hazmat`).
 
 - `kernels`: de Casteljau, subdivision, blocked Horner, exact matrix products;
 - `forms`: classical Bézier hodograph, elevation and blossoming at any degree;
@@ -21,6 +21,8 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `rational_kernels`: rational Bézier curves on their homogeneous form (evaluation, derivatives
   by the quotient rule, subdivision, Möbius maps);
 - `surface_kernels`: tensor-product evaluation, boxes and closest points of control nets;
+- `surface_optimum_compiled`: the batch optimum of (λ_u, λ_v), compiled with numba (the
+  `fast` extra; imported on use);
 - `exact_poly`: exact polynomials over the rationals (Sturm sequences, resultants).
 
 The submodules are imported on use: ``from lambda_bezier.hazmat import kernels``.
@@ -43,4 +45,5 @@ __all__ = [
     "reduce",
     "roots",
     "surface_kernels",
+    "surface_optimum_compiled",
 ]

@@ -21,6 +21,11 @@ import numpy as np
 Scalar = Fraction | float
 ExactNet = tuple[tuple[tuple[Fraction, ...], ...], ...]
 
+# the batch optimum of (λ_u, λ_v) accepts an interior point when its last Newton step is
+# below this (quadratic convergence: the point is then within about that of the critical
+# point); shared by the numpy version and the compiled one
+OPTIMUM_STEP_TOLERANCE = 1e-13
+
 
 # ---------------------------------------------------------------------- basis changes
 @cache

@@ -1,0 +1,73 @@
+"""Surfaces, issue 31's remaining items: G1 joins with a factor varying along the boundary,
+JSON of a user family's surface, and the derived continuity conditions of a user family
+against the runtime's join_surface."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+import pytest
+
+import lambda_bezier as lb
+
+F = Fraction
+
+
+def patch():
+    return lb.SameDegreeSurface(
+        [[(i, j, (i * j) % 3 - F(j, 2)) for j in range(4)] for i in range(4)], F(1, 2), F(1, 3)
+    )
+
+
+@pytest.mark.parametrize("side", ["u", "v"])
+@pytest.mark.parametrize("mu", [(F(1, 2), F(1)), (F(3), F(-2)), (2, 0)])
+def test_g1_with_a_linear_factor(side, mu):
+    a = patch()
+    big_n = a.to_bezier().degrees[1 if side == "u" else 0]
+    count = big_n + 2
+    if side == "u":
+        rest = [[(5 + k, F(j, 2), 0) for j in range(count)] for k in range(2)]
+    else:
+        rest = [[(i, 5 + k, 1) for k in range(2)] for i in range(count)]
+    b = lb.join_surface(a, side, "G1", 3, F(-1, 2), rest=rest, mu=mu)
+    assert b.is_exact
+    t = np.linspace(0, 1, 9)
+    one, zero = np.ones(9), np.zeros(9)
+    factor = (float(mu[0]) + float(mu[1]) * t)[:, None]
+    if side == "u":
+        pairs = [
+            (a.evaluate(one, t), b.evaluate(zero, t)),
+            (a.derivative(one, t, 1, 0), b.derivative(zero, t, 1, 0) / factor),
+        ]
+    else:
+        pairs = [
+            (a.evaluate(t, one), b.evaluate(t, zero)),
+            (a.derivative(t, one, 0, 1), b.derivative(t, zero, 0, 1) / factor),
+        ]
+    for left, right in pairs:
+        np.testing.assert_allclose(left, right, atol=1e-12)
+    grid = [[a], [b]] if side == "u" else [[a, b]]
+    assert [r.continuity for r in lb.CompositeSurface(grid).report()] == ["G1"]
+    # the degrees along the boundary: one more than a's Bézier form there
+    assert b.degrees[1 if side == "u" else 0] == big_n + 1
+
+
+def test_g1_varying_factor_errors_are_named():
+    a = patch()
+    rest = [[(5, j, 0) for j in range(6)]] * 2
+    with pytest.raises(ValueError, match="mu=\\(mu0, mu1\\)"):
+        lb.join_surface(a, "u", "G1", 3, 0, rest=rest, alpha=(1, 2))
+    with pytest.raises(ValueError, match="positive on \\[0, 1\\]"):
+        lb.join_surface(a, "u", "G1", 3, 0, rest=rest, mu=(1, -2))
+    with pytest.raises(ValueError, match="needs continuity G1"):
+        lb.join_surface(a, "u", "C1", 3, 0, rest=rest, mu=(1, 1))
+    with pytest.raises(ValueError, match="5 points along the boundary"):
+        lb.join_surface(a, "u", "G1", 3, 0, rest=[[(5, j, 0) for j in range(4)]] * 2, mu=(1, 1))
+    # a patch joined with a constant factor is not mistaken for a varying one, and a kink is
+    b = lb.join_surface(a, "u", "G1", 3, 0, rest=[[(5, j, 0) for j in range(4)]] * 2, alpha=2)
+    assert lb.CompositeSurface([[a], [b]]).report()[0].continuity == "G1"
+    kinked = [list(row) for row in b.control_net()]
+    kinked[1][0] = tuple(c + 1 for c in kinked[1][0])
+    bad = lb.Surface(kinked, b.lam_u, b.lam_v, family=b.family)
+    assert lb.CompositeSurface([[a], [bad]]).report()[0].continuity == "C0"

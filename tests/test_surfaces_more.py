@@ -71,3 +71,45 @@ def test_g1_varying_factor_errors_are_named():
     kinked[1][0] = tuple(c + 1 for c in kinked[1][0])
     bad = lb.Surface(kinked, b.lam_u, b.lam_v, family=b.family)
     assert lb.CompositeSurface([[a], [bad]]).report()[0].continuity == "C0"
+
+
+# ---------------------------------------------------------------------- JSON, own families
+def own_family():
+    from lambda_bezier import examples
+
+    return lb.load_family(examples.path("nouri_saeidian.toml"))
+
+
+def test_json_round_trip_of_a_user_family_surface():
+    from lambda_bezier import examples
+    from lambda_bezier.surface_export import surface_from_json, surface_to_json
+
+    fam = own_family()
+    net = [[(i, F(j, 3), (i * j) % 2) for j in range(4)] for i in range(5)]
+    s = lb.Surface(net, F(1, 2), F(1, 4), family=(fam, "same_degree"))
+    text = surface_to_json(s)
+    assert '"definitions"' in text and "nouri_saeidian" in text
+    back = surface_from_json(text, family=fam)
+    assert back.control_net() == s.control_net() and (back.lam_u, back.lam_v) == (F(1, 2), F(1, 4))
+    assert back.family == ("nouri_saeidian", "same_degree") and back.is_exact
+    assert back.evaluate(0.3, 0.7).tolist() == s.evaluate(0.3, 0.7).tolist()
+    # the definition file works as family= too; without a family the error says what to pass
+    again = surface_from_json(text, family=examples.path("nouri_saeidian.toml"))
+    assert again.control_net() == s.control_net()
+    with pytest.raises(ValueError, match="embeds its definition"):
+        surface_from_json(text)
+    # ... and the embedded definition can be written out as a family file
+    from lambda_bezier.export import family_definition
+
+    assert 'name = "nouri_saeidian"' in family_definition(text)
+    # a document written with another definition under the same name is refused
+    import json
+
+    from lambda_bezier.family import definition_digest
+
+    doc = json.loads(text)
+    entry = doc["definitions"]["nouri_saeidian"]
+    entry["definition"]["title"] = "edited"
+    entry["definition_digest"] = definition_digest(entry["definition"])
+    with pytest.raises(ValueError, match="another version"):
+        surface_from_json(json.dumps(doc), family=fam)

@@ -113,3 +113,83 @@ def test_json_round_trip_of_a_user_family_surface():
     entry["definition_digest"] = definition_digest(entry["definition"])
     with pytest.raises(ValueError, match="another version"):
         surface_from_json(json.dumps(doc), family=fam)
+
+
+# ---------------------------------------------------------------------- derived conditions
+@pytest.mark.parametrize("continuity", ["C1", "G1"])
+@pytest.mark.parametrize("side", ["u", "v"])
+@pytest.mark.parametrize("pair", ["own>own", "own>same_degree", "bernstein_like>own", "bezier>own"])
+def test_derived_surface_conditions_match_the_solved_join(continuity, side, pair):
+    fam = own_family()
+    first, second = (fam if x == "own" else x for x in pair.split(">"))
+    lams = {"same_degree": F(1, 3), "bernstein_like": F(-1, 2), "bezier": None}
+    lam1 = F(1, 3) if first is fam else lams[first]
+    lam2 = F(3, 4) if second is fam else lams[second]
+    degree = {"bernstein_like": 3, "bezier": 3, "same_degree": 4}.get(first, 4)
+    net = [[(i, j, (i * j + j * j) % 5 - F(i, 3)) for j in range(4)] for i in range(degree + 1)]
+    if side == "v":
+        net = [list(r) for r in zip(*net, strict=True)]
+    family = (first, "same_degree") if side == "u" else ("same_degree", first)
+    lam_u, lam_v = (lam1, F(-1, 2)) if side == "u" else (F(-1, 2), lam1)
+    a = lb.Surface(net, lam_u, lam_v, family=family)
+    new_degree = 4
+    if side == "u":
+        rest = [[(6 + k, j, k) for j in range(4)] for k in range(new_degree - 1)]
+    else:
+        rest = [[(i, 6 + k, k) for k in range(new_degree - 1)] for i in range(4)]
+    kw = dict(rest=rest, family=second, alpha=F(3, 2) if continuity == "G1" else 1)
+    solved = lb.join_surface(a, side, continuity, new_degree, lam2, **kw)
+    derived = lb.join_surface(a, side, continuity, new_degree, lam2, conditions="derived", **kw)
+    assert derived.is_exact and derived.control_net() == solved.control_net()
+    assert derived.family == solved.family and (derived.lam_u, derived.lam_v) == (
+        solved.lam_u,
+        solved.lam_v,
+    )
+    report = lb.CompositeSurface([[a], [derived]] if side == "u" else [[a, derived]]).report()
+    assert report[0].continuity in (continuity, "C1", "C2")
+
+
+def test_derived_surface_conditions_say_what_is_missing():
+    fam = own_family()
+    a = lb.Surface([[(i, j, 0) for j in range(4)] for i in range(4)], F(1, 2), F(1, 3), family=fam)
+    rest = [[(5, j, 0) for j in range(4)]]
+    with pytest.raises(ValueError, match="no derived C2 conditions.*order 2"):
+        lb.join_surface(a, "u", "C2", 3, F(1, 2), rest=rest, conditions="derived")
+    b = lb.SameDegreeSurface([[(i, j, 0) for j in range(4)] for i in range(4)], 0, 0)
+    with pytest.raises(ValueError, match='conditions="solve"'):
+        lb.join_surface(b, "u", "C1", 3, 0, rest=rest * 2, conditions="derived")
+    with pytest.raises(ValueError, match="conditions"):
+        lb.join_surface(b, "u", "C1", 3, 0, rest=rest * 2, conditions="guess")
+
+
+def test_derive_proves_each_user_family_condition_and_rejects_a_wrong_one(monkeypatch):
+    import importlib
+
+    from conftest import ROOT
+
+    from lambda_bezier import _derive_runner, examples
+
+    if not (ROOT / "derive" / "formulas" / "surface_joins.py").is_file():
+        pytest.skip("needs the source checkout (derive/)")
+    pkg = _derive_runner.load_derive(ROOT).__name__
+    sj = importlib.import_module(f"{pkg}.formulas.surface_joins")
+    family = importlib.import_module(f"{pkg}.formulas.family")
+    definition = importlib.import_module(f"{pkg}.families.definition")
+    engine = importlib.import_module(f"{pkg}.families.engine")
+    defn = definition.read_definition(examples.path("nouri_saeidian.toml"))
+    closed = engine.closed_endpoint_forms(defn)
+    doc = family.surface_join_artifacts(defn, closed)
+    shipped = own_family().curve_class._data.SURFACE_JOINS
+    assert doc == shipped  # the shipped document holds what derive gives now
+    # a changed weight fails the column-wise proof on the family's own basis
+    original = sj._check_weights
+
+    def corrupt(first, second, continuity, basis, weights):
+        bad = dict(weights)
+        key = next(k for k in sorted(bad) if k[0] == 1)
+        bad[key] = bad[key] + 1
+        original(first, second, continuity, basis, bad)
+
+    monkeypatch.setattr(sj, "_check_weights", corrupt)
+    with pytest.raises(AssertionError, match="do not match"):
+        family.surface_join_artifacts(defn, closed)

@@ -21,7 +21,12 @@ from ..families.engine import (
     nonnegative_over_box,
     symmetry,
 )
-from ..formulas.family import energy_artifacts, join_artifacts, singular_artifacts
+from ..formulas.family import (
+    energy_artifacts,
+    join_artifacts,
+    singular_artifacts,
+    surface_join_artifacts,
+)
 
 # --------------------------------------------------------------------------- the document
 
@@ -93,6 +98,7 @@ def _several(defn: Definition, checked: list[str]) -> dict:
             "by this version"
         },
         "joins": {"reason": "several parameters: the runtime joins per degree"},
+        "surface_joins": {"reason": "several parameters: the runtime joins per degree"},
     }
 
 
@@ -140,6 +146,11 @@ def derive(defn: Definition, *, with_joins: bool = True) -> dict:
             {"reason": "no closed end forms in n: the runtime joins per degree"}
             if closed is None
             else join_artifacts(defn, closed)
+        )
+        doc["surface_joins"] = (
+            {"reason": "no closed end forms in n: the runtime joins per degree"}
+            if closed is None
+            else surface_join_artifacts(defn, closed)
         )
     return doc
 

@@ -16,6 +16,11 @@ the boundary are solved column by column from the target value and cross derivat
 of its N + 2 Bernstein coefficients (the product μ·A_u in Bernstein form). A linear α(v) in
 A_u(1, v) = α(v) B_u(0, v) is not offered: B_u = A_u / α(v) is not a polynomial.
 
+A family defined by data carries the same conditions in its derived document
+(``surface_joins``: the column-wise weights in closed form, proved by derive on the family's
+own basis); ``join_surface(..., conditions="derived")`` applies those instead of solving, and
+the tests check that the two agree.
+
 `CompositeSurface` holds a grid of patches and reports, for every interior boundary, the
 continuity achieved, found exactly on the Bézier forms (Fractions for exact patches).
 """
@@ -31,13 +36,15 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _validate as val
-from .curves import BezierCurve
+from .curves import BezierCurve, Curve, family_class
 from .hazmat.forms import elevation_matrix, hodograph_matrix
 from .joins import join
 from .surfaces import BezierSurface, Surface, _exact_net
 
 SIDES = ("u", "v")
 SURFACE_CONTINUITIES = ("C1", "G1", "C2")
+CONDITIONS = ("solve", "derived")
+ORDER = {"C1": 1, "G1": 1, "C2": 2}
 
 
 def _transpose(rows: Any) -> Any:
@@ -62,6 +69,7 @@ def join_surface(
     mu: tuple[Fraction | float, Fraction | float] | None = None,
     family: object = None,
     check_range: bool = True,
+    conditions: str = "solve",
 ) -> Surface:
     """The next patch across `patch`'s boundary u = 1 (side "u") or v = 1 (side "v").
 
@@ -75,6 +83,10 @@ def join_surface(
     a factor varying along the boundary (positive on [0, 1]). The new patch is then classical
     Bézier along the boundary, of one degree more than `patch`'s Bézier form there (N + 1),
     and `rest` has N + 2 points along the boundary.
+
+    ``conditions="derived"`` takes the conditions from the derived document of a family
+    defined by data (one of the two across the boundary; its ``surface_joins``) instead of
+    solving the curve joins per column; the result is the same.
 
     >>> from lambda_bezier import SameDegreeSurface
     >>> from lambda_bezier.surface_joins import join_surface
@@ -98,7 +110,10 @@ def join_surface(
             "boundary is mu=(mu0, mu1): B_u(0, v) = (mu0 + mu1 v) A_u(1, v) (a linear alpha(v) "
             "would make B_u = A_u / alpha(v), not a polynomial)"
         )
+    conditions = val.choice(conditions, "conditions", CONDITIONS)
     if mu is not None:
+        if conditions != "solve":
+            raise ValueError('mu (a varying G1 factor) is solved: use conditions="solve"')
         if continuity != "G1":
             raise ValueError(f"mu (a varying G1 factor) needs continuity G1, got {continuity}")
         if alpha != 1:
@@ -128,6 +143,31 @@ def join_surface(
     if rest_arr is not None:
         rest_rows: Any = exact_rest if exact_rest is not None else rest_arr.tolist()
         rest_cols = _transpose(rest_rows) if axis == 0 else [list(r) for r in rest_rows]
+    if conditions == "derived":
+        new_cls = family_class(new_family)
+        weights = _derived_weights(
+            across_cls,
+            new_cls,
+            continuity,
+            len(columns[0]) - 1,
+            degree,
+            (across_lam, lam, alpha if continuity == "G1" else 1),
+        )
+        order = ORDER[continuity]
+        if any(len(col) != degree - order for col in rest_cols):
+            raise ValueError(
+                f"rest must hold {degree - order} rows after the {order + 1} solved ones "
+                f"(degree {degree}), got {len(rest_cols[0])}"
+            )
+        new_columns = [
+            _apply_weights(weights, columns[j], list(rest_cols[j]), order) for j in range(count)
+        ]
+        net: Any = _transpose(new_columns) if axis == 0 else new_columns
+        fam = (new_cls, along_cls) if axis == 0 else (along_cls, new_cls)
+        lams = (lam, along_lam) if axis == 0 else (along_lam, lam)
+        if not new_cls._has_lambda:
+            lams = (None, along_lam) if axis == 0 else (along_lam, None)
+        return Surface(net, lams[0], lams[1], family=fam, check_range=check_range)
     new_columns = []
     for j in range(count):
         curve = (
@@ -146,10 +186,74 @@ def join_surface(
             check_range=check_range,
         )
         new_columns.append(list(nxt.control_points()))
-    net: Any = _transpose(new_columns) if axis == 0 else new_columns
+    net = _transpose(new_columns) if axis == 0 else new_columns
     fam = (type(nxt), along_cls) if axis == 0 else (along_cls, type(nxt))
     lams = (nxt.lam, along_lam) if axis == 0 else (along_lam, nxt.lam)
     return Surface(net, lams[0], lams[1], family=fam, check_range=False)
+
+
+def _derived_weights(
+    first: type[Curve], second: type[Curve], continuity: str, n: int, m: int, values: Any
+) -> dict[tuple[int, str, int], Any]:
+    """{(row, src, k): weight} of the derived document of a family defined by data, at the
+    degrees n (across the patch) and m (the new patch) and (λ1, λ2, α); exact for exact
+    values. The weights are polynomial data (no expression is parsed)."""
+    key = f"{first.family}>{second.family}"
+    docs = [getattr(cls._data, "SURFACE_JOINS", None) for cls in (first, second) if cls is not None]
+    table = next((d for d in docs if isinstance(d, dict)), None)
+    if table is None:
+        raise ValueError(
+            f'conditions="derived" reads the derived document of a family defined by data; '
+            f"{first.family} and {second.family} have none with surface joins (use "
+            f'conditions="solve", or re-derive the family with `lambda-bezier derive --family`)'
+        )
+    if "pairs" not in table:
+        raise ValueError(f"no derived surface conditions for {key}: {table.get('reason')}")
+    entry = table["pairs"].get(key, {})
+    if continuity not in entry:
+        reason = entry.get("reason", "the pair is not in the document")
+        raise ValueError(f"no derived {continuity} conditions for {key}: {reason}")
+    lam1, lam2, alpha = (Fraction(0) if x is None else x for x in values)
+    if isinstance(alpha, int):
+        alpha = Fraction(alpha)
+    point = (Fraction(n), Fraction(m), lam1, lam2, alpha)
+
+    def value(terms: Any) -> Any:
+        total: Any = Fraction(0)
+        for coef, *exps in terms:
+            term: Any = Fraction(coef)
+            for x, e in zip(point, exps, strict=True):
+                term *= x**e
+            total += term
+        return total
+
+    out = {}
+    for text, (num, den) in entry[continuity].items():
+        row, src, k = text.split(",")
+        bottom = value(den)
+        if not bottom:
+            raise ValueError(
+                f"the derived {continuity} weight {text} of {key} is singular at n = {n}, "
+                f"m = {m}, (lam1, lam2, alpha) = ({lam1}, {lam2}, {alpha})"
+            )
+        out[(int(row), src, int(k))] = value(num) / bottom
+    return out
+
+
+def _apply_weights(weights: Any, first: list[Any], rest: list[Any], order: int) -> list[Any]:
+    """One column of the new patch: rows 0..order by the weights, then `rest`."""
+    n = len(first) - 1
+    dim = len(first[0])
+    rows = []
+    for r in range(order + 1):
+        acc: list[Any] = [0 * first[0][0]] * dim
+        for (row, src, k), w in weights.items():
+            if row != r:
+                continue
+            x = first[n - k] if src == "first" else rest[k - order - 1]
+            acc = [a + w * c for a, c in zip(acc, x, strict=True)]
+        rows.append(tuple(acc))
+    return rows + [tuple(p) for p in rest]
 
 
 def _factor(mu: object) -> tuple[Fraction | float, Fraction | float]:

@@ -193,3 +193,58 @@ def test_derive_proves_each_user_family_condition_and_rejects_a_wrong_one(monkey
     monkeypatch.setattr(sj, "_check_weights", corrupt)
     with pytest.raises(AssertionError, match="do not match"):
         family.surface_join_artifacts(defn, closed)
+
+
+# ---------------------------------------------------------------------- robustness
+def test_closest_point_along_a_curve_of_minima_is_certified_and_quick():
+    import math
+
+    # a cylinder patch (radius 1 about the z axis) and a point on the axis: every point of the
+    # surface at z = 0.5 is nearest; a scalar field (d = 1) and a value on a level line
+    angles = np.linspace(0, 1.2, 4)
+    cyl = lb.BezierSurface([[(math.cos(a), math.sin(a), z) for a in angles] for z in (0, 1)])
+    plane = lb.BezierSurface([[(i + j,) for j in range(3)] for i in range(3)])
+    for surf, q in ((cyl, [0, 0, 0.5]), (plane, [1.0])):
+        cp = surf.closest_point(q)
+        us, vs = np.meshgrid(np.linspace(0, 1, 201), np.linspace(0, 1, 201), indexing="ij")
+        dense = np.linalg.norm(surf.evaluate(us.ravel(), vs.ravel()) - np.asarray(q), axis=1)
+        assert cp.lower_bound <= cp.distance <= dense.min() + 1e-12
+        np.testing.assert_allclose(np.linalg.norm(cp.point - np.asarray(q)), cp.distance)
+        assert cp.distance - cp.lower_bound <= 1e-6  # certified, if more loosely than tol
+
+
+def test_normals_and_curvatures_of_huge_and_tiny_nets():
+    base = [[(i, j, (i - 1) * (j - 1)) for j in range(3)] for i in range(3)]
+    ref = lb.BezierSurface(base)
+    k0, h0 = ref.curvatures(0.3, 0.6)
+    for scale in (1e-200, 1e-100, 1e100, 1e250):
+        s = lb.BezierSurface(np.array(base, dtype=float) * scale)
+        np.testing.assert_allclose(s.normal(0.3, 0.6), ref.normal(0.3, 0.6), rtol=1e-13)
+        if scale >= 1e-100:
+            k, h = s.curvatures(0.3, 0.6)
+            np.testing.assert_allclose(h * scale, h0, rtol=1e-12)
+            if scale < 1e150:  # beyond, K (about 1/scale²) is below the smallest float
+                np.testing.assert_allclose(k * scale * scale, k0, rtol=1e-12)
+            else:
+                assert k == 0
+    flat_tiny = lb.BezierSurface(
+        [[(i * 1e-300, j * 1e-300, 0) for j in range(3)] for i in range(3)]
+    )
+    assert [float(x) for x in flat_tiny.curvatures(0.5, 0.5)] == [0.0, 0.0]
+    with pytest.raises(ValueError, match="beyond the float range"):
+        lb.BezierSurface(np.array(base, dtype=float) * 1e-200).curvatures(0.3, 0.6)
+
+
+def test_bad_magnitudes_and_tolerances_are_named():
+    from lambda_bezier.surface_export import mesh
+
+    nets = np.random.default_rng(1).normal(size=(2, 4, 4, 3)) * 1e200
+    with pytest.raises(ValueError, match="scale them down"):
+        lb.optimal_parameters(nets, "membrane")
+    s = patch()
+    with pytest.raises(ValueError, match="tolerance must be > 0"):
+        mesh(s, 0)
+    with pytest.raises(ValueError, match="cells"):
+        mesh(s, 1e-300)
+    flat = lb.BezierSurface([[(i, j, 0) for j in range(3)] for i in range(3)])
+    assert mesh(flat, 0).deviation_bound == 0

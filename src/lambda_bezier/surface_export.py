@@ -116,14 +116,21 @@ def mesh(surf: Surface, tolerance: float) -> SurfaceMesh:
         )
     net = surf.to_bezier().net
     muu, muv, mvv = (_hull_bound(_derivative_net(net, a, b)) for a, b in ((2, 0), (1, 1), (0, 2)))
+    if tol == 0 and (muu or muv or mvv):
+        raise ValueError(
+            "tolerance must be > 0 for a curved surface (only a flat one meshes exactly)"
+        )
     hu = math.sqrt(2 * tol / (3 * muu)) if muu else 1.0
     hv = math.sqrt(2 * tol / (3 * mvv)) if mvv else 1.0
     if muv and muv * hu * hv > tol / 3:
         shrink = math.sqrt(tol / (3 * muv * hu * hv))
         hu, hv = hu * shrink, hv * shrink
+    if 1 / hu * (1 / hv) > 25_000_000:
+        raise ValueError(
+            f"tolerance {tol} needs about {1 / hu:.3g} x {1 / hv:.3g} cells (at most 25,000,000); "
+            "choose a larger tolerance"
+        )
     nu, nv = max(1, math.ceil(1 / hu)), max(1, math.ceil(1 / hv))
-    if nu * nv > 25_000_000:
-        raise ValueError(f"tolerance {tol} needs {nu} x {nv} cells; choose a larger tolerance")
     us, vs = np.linspace(0, 1, nu + 1), np.linspace(0, 1, nv + 1)
     pts = surf.evaluate_grid(us, vs).reshape(-1, surf.dimension)
     if surf.dimension == 2:

@@ -49,6 +49,9 @@ from .surface_energies import (
 from .surfaces import NetLike, _as_family_pair, _as_net, _exact_net
 
 STEP_TOLERANCE = OPTIMUM_STEP_TOLERANCE
+# the energy is a quadratic form in the net with entries up to about 1e4 (degrees <= 12):
+# coordinates below this keep every coefficient far inside the float range
+MAX_COORDINATE = 1e140
 _WHERE = np.array(["edge", "interior", "corner"], dtype=object)  # the compiled kernel's codes
 
 # the compiled kernel when numba is there and not switched off (module flag, read per call;
@@ -125,6 +128,11 @@ def optimal_parameters_batch(
         raise ValueError(f"a batch of nets must have shape (k, m+1, n+1, d), got {nets.shape}")
     if not np.isfinite(nets).all():
         raise ValueError("the nets contain NaN or infinity")
+    if np.abs(nets).max() > MAX_COORDINATE:
+        raise ValueError(
+            f"the nets have coordinates above {MAX_COORDINATE:.0e}, where the energy overflows "
+            "a float; scale them down (the optimal parameters do not depend on the scale)"
+        )
     count, m1, n1, dim = nets.shape
     mats = surface_energy_matrices((m1 - 1, n1 - 1), energy, (u_cls, v_cls))
     top = max(max(a, b) for a, b in mats.full)

@@ -96,9 +96,13 @@ def _powers(t: np.ndarray, size: int) -> np.ndarray:
 
 def evaluate_points(coeffs: np.ndarray, u: np.ndarray, v: np.ndarray) -> np.ndarray:
     """S(u_k, v_k) for paired 1-D arrays u, v: (len(u), d)."""
-    pu = _powers(u, coeffs.shape[0])
-    pv = _powers(v, coeffs.shape[1])
-    out: np.ndarray = np.einsum("ki,ijd,kj->kd", pu, coeffs, pv, optimize=True)
+    big_m, big_n, dim = coeffs.shape
+    pu = _powers(u, big_m)
+    pv = _powers(v, big_n)
+    # one matrix product along u, then the pairing along v; no einsum path search, which
+    # cost more than the arithmetic for the few points the global searches evaluate
+    along_u = (pu @ coeffs.reshape(big_m, big_n * dim)).reshape(u.size, big_n, dim)
+    out: np.ndarray = np.einsum("knd,kn->kd", along_u, pv)
     return out
 
 
@@ -206,6 +210,27 @@ def split_float(net: np.ndarray, t: float, axis: int) -> tuple[np.ndarray, np.nd
     return np.moveaxis(np.stack(lo), 0, axis), np.moveaxis(np.stack(hi[::-1]), 0, axis)
 
 
+@cache
+def _halving(degree: int) -> np.ndarray:
+    """(2, N+1, N+1): the nets of the halves [0, 1/2] and [1/2, 1] of a degree-N Bézier
+    polynomial as matrices on its net (de Casteljau at 1/2, exact in binary floats)."""
+    out = np.zeros((2, degree + 1, degree + 1))
+    for i in range(degree + 1):
+        for j in range(i + 1):
+            out[0, i, j] = comb(i, j) / 2**i
+        for j in range(i, degree + 1):
+            out[1, i, j] = comb(degree - i, j - i) / 2 ** (degree - i)
+    return out
+
+
+def quarters(net: np.ndarray) -> np.ndarray:
+    """(2, 2, M+1, N+1): the nets of a scalar net's four quarters [a/2, (a+1)/2] x
+    [b/2, (b+1)/2], by one product with the halving matrices."""
+    hu, hv = _halving(net.shape[0] - 1), _halving(net.shape[1] - 1)
+    out: np.ndarray = np.einsum("aij,jk,blk->abil", hu, net, hv)
+    return out
+
+
 def bernstein_product(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """The Bézier net of the product of two scalar tensor-product Bézier polynomials,
     a (M+1, N+1) and b (P+1, Q+1) → (M+P+1, N+Q+1)."""
@@ -229,19 +254,24 @@ def _binomials(n: int) -> np.ndarray:
 # ---------------------------------------------------------------------- global minimum
 def minimise_scalar_net(
     net: np.ndarray,
-    value: Callable[[float, float], float],
+    value: Callable[[np.ndarray, np.ndarray], np.ndarray],
     polish: Callable[[float, float], tuple[float, float]],
     tol: float | Callable[[float], float],
-    max_patches: int = 200_000,
+    max_patches: int = 4_000,
 ) -> tuple[float, float, float, float]:
     """The global minimum over the unit square of a scalar Bézier polynomial f given by its net
     (M+1, N+1), by branch and bound: a patch's lower bound is the least of its net (the
     polynomial lies in the hull), its corners are attained values, and `polish` (Newton from a
-    patch centre, kept inside the square) supplies better attained values.
+    patch centre, kept inside the square) supplies better attained values. `value` evaluates
+    f at paired arrays of parameters.
 
     Returns (u, v, f(u, v), lower): the best point found and a certified lower bound of the
     minimum; stops when the best value exceeds `lower` by at most `tol` (a number, or a
-    function of the best value). A RuntimeError when `max_patches` patches did not get there.
+    function of the best value), or after `max_patches` subdivisions with the bound reached
+    then (still certified, only looser than `tol`). The budget matters where the minimum is
+    attained along a curve (a query point on the axis of a surface of revolution, a level set
+    of a scalar field): the net's bound is only O(h²) below the minimum on a patch of size h,
+    so every patch along that curve would have to shrink to about sqrt(tol) first.
     """
     gap = tol if callable(tol) else (lambda _best: float(tol))
     best_u, best_v, best = 0.0, 0.0, np.inf
@@ -268,19 +298,22 @@ def minimise_scalar_net(
             continue
         splits += 1
         if splits > max_patches:
-            raise RuntimeError("the global minimum search did not converge")
+            return best_u, best_v, best, min(lb, heap[0][0] if heap else lb, floor)
         um, vm = (u0 + u1) / 2, (v0 + v1) / 2
         cand = _try(um, vm, value, polish)
         if cand[2] < best:
             best_u, best_v, best = cand
-        left, right = split_float(patch, 0.5, 0)
-        for (a0, a1), half in (((u0, um), left), ((um, u1), right)):
-            low, high = split_float(half, 0.5, 1)
-            for (b0, b1), piece in (((v0, vm), low), ((vm, v1), high)):
-                for cu, cv in ((a0, b0), (a1, b0), (a0, b1), (a1, b1)):
-                    corner = value(cu, cv)  # the net's corners are attained values
-                    if corner < best:
-                        best_u, best_v, best = cu, cv, corner
+        # the children's corners (a 3 x 3 grid) are attained values: one evaluation
+        gu = np.repeat((u0, um, u1), 3)
+        gv = np.tile((v0, vm, v1), 3)
+        corners = value(gu, gv)
+        k = int(np.argmin(corners))
+        if corners[k] < best:
+            best_u, best_v, best = float(gu[k]), float(gv[k]), float(corners[k])
+        children = quarters(patch)
+        for a, (a0, a1) in enumerate(((u0, um), (um, u1))):
+            for b, (b0, b1) in enumerate(((v0, vm), (vm, v1))):
+                piece = children[a, b]
                 lo = float(piece.min())
                 if lo <= best - gap(best):
                     heapq.heappush(heap, (lo, next(tie), a0, a1, b0, b1, piece))
@@ -292,9 +325,10 @@ def minimise_scalar_net(
 def _try(
     u: float,
     v: float,
-    value: Callable[[float, float], float],
+    value: Callable[[np.ndarray, np.ndarray], np.ndarray],
     polish: Callable[[float, float], tuple[float, float]],
 ) -> tuple[float, float, float]:
     pu, pv = polish(u, v)
-    fa, fb = value(u, v), value(pu, pv)
+    both = value(np.array([u, pu]), np.array([v, pv]))
+    fa, fb = float(both[0]), float(both[1])
     return (u, v, fa) if fa <= fb else (pu, pv, fb)

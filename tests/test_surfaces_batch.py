@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import lambda_bezier as lb
-from lambda_bezier import surface_optimum
+from lambda_bezier.hazmat import surface_kernels
 
 needs_numba = pytest.mark.skipif(
     find_spec("numba") is None, reason="numba is not installed (pip install '.[fast]')"
@@ -27,7 +27,7 @@ def random_nets(seed, count, m=3, n=3, d=3):
 def path(request, monkeypatch):
     if request.param == "numba" and find_spec("numba") is None:
         pytest.skip("numba is not installed (pip install '.[fast]'): the compiled path")
-    monkeypatch.setattr(surface_optimum, "USE_COMPILED", request.param == "numba")
+    monkeypatch.setattr(surface_kernels, "USE_COMPILED", request.param == "numba")
     return request.param
 
 
@@ -49,9 +49,9 @@ def test_batch_agrees_with_the_exact_method(path, fam, energy):
 @pytest.mark.parametrize("fam", ["same_degree", "bernstein_like"])
 def test_compiled_and_numpy_paths_agree(monkeypatch, fam):
     nets = random_nets(11, 2000, 3, 3)
-    monkeypatch.setattr(surface_optimum, "USE_COMPILED", True)
+    monkeypatch.setattr(surface_kernels, "USE_COMPILED", True)
     fast = lb.optimal_parameters(nets, "thin_plate", fam)
-    monkeypatch.setattr(surface_optimum, "USE_COMPILED", False)
+    monkeypatch.setattr(surface_kernels, "USE_COMPILED", False)
     slow = lb.optimal_parameters(nets, "thin_plate", fam)
     np.testing.assert_allclose(fast["lam_u"], slow["lam_u"], atol=1e-12, rtol=0)
     np.testing.assert_allclose(fast["lam_v"], slow["lam_v"], atol=1e-12, rtol=0)
@@ -74,7 +74,7 @@ def test_ties_and_planar_nets_go_to_the_exact_method(path):
 
 @needs_numba
 def test_compiled_root_finder_on_known_roots():
-    from lambda_bezier.hazmat import surface_optimum_compiled as comp
+    from lambda_bezier.hazmat import surface_compiled as comp
 
     ders, pts, out = np.empty((6, 6)), np.empty(7), np.empty(6)
     rng = np.random.default_rng(2)
@@ -100,3 +100,22 @@ def test_compiled_root_finder_on_known_roots():
     assert (count, near) == (1, False) and out[0] == 0.5
     count, near = comp._roots_in(np.zeros(6), -2.0, 1.0, out, ders, pts)
     assert (count, near) == (0, True)
+
+
+def test_grid_evaluation_on_both_paths(path):
+    # the compiled products and numpy's matmul, against evaluation at paired points
+    net = random_nets(3, 1, 3, 4)[0]
+    s = lb.Surface(net, 0.25, -0.75, family=("same_degree", "bernstein_like"))
+    us, vs = np.linspace(0, 1, 37), np.linspace(0, 1, 23) ** 2
+    grid = s.evaluate_grid(us, vs)
+    assert grid.shape == (37, 23, 3)
+    uu, vv = np.meshgrid(us, vs, indexing="ij")
+    want = s.evaluate(uu.ravel(), vv.ravel()).reshape(37, 23, 3)
+    np.testing.assert_allclose(grid, want, rtol=0, atol=1e-13)
+    np.testing.assert_allclose(
+        s.evaluate_grid(us, vs, 1, 2),
+        s.derivative(uu.ravel(), vv.ravel(), 1, 2).reshape(37, 23, 3),
+        rtol=0,
+        atol=1e-11,
+    )
+    assert s.evaluate_grid([], vs).shape == (0, 23, 3)

@@ -9,9 +9,9 @@ x = −β/α. The roots of R come from the eigenvalues of its companion matrices
 and are polished by Newton on ∇E = 0.
 
 With numba installed (the `fast` extra) the same method runs compiled, one pass per net
-(hazmat.surface_optimum_compiled: the resultant's roots by its derivative chain instead of
-eigenvalues); set LAMBDA_BEZIER_NO_NUMBA=1, or USE_COMPILED = False here, for this numpy
-version. Both are tested against each other and against the exact method.
+(hazmat.surface_compiled: the resultant's roots by its derivative chain instead of
+eigenvalues); set LAMBDA_BEZIER_NO_NUMBA=1, or hazmat.surface_kernels.USE_COMPILED = False,
+for this numpy version. Both are tested against each other and against the exact method.
 
 Certification: a net's answer is accepted when the winning point is a corner or an edge
 minimum (closed forms), or an interior point whose last Newton step is below 1e-13 (quadratic
@@ -24,8 +24,6 @@ values; ``exact_fallbacks`` counts them.
 
 from __future__ import annotations
 
-import importlib.util
-import os
 from fractions import Fraction
 from functools import cache
 from types import ModuleType
@@ -36,6 +34,7 @@ import numpy as np
 from . import _validate as val
 from .energy import OptimalParameters as CurveOptimalParameters
 from .energy import optimal_parameters as curve_optimal_parameters
+from .hazmat import surface_kernels as ker
 from .hazmat.surface_kernels import OPTIMUM_STEP_TOLERANCE
 from .surface_energies import (
     ENERGIES,
@@ -54,19 +53,10 @@ STEP_TOLERANCE = OPTIMUM_STEP_TOLERANCE
 MAX_COORDINATE = 1e140
 _WHERE = np.array(["edge", "interior", "corner"], dtype=object)  # the compiled kernel's codes
 
-# the compiled kernel when numba is there and not switched off (module flag, read per call;
-# the numpy version below is the tested fallback)
-USE_COMPILED = importlib.util.find_spec("numba") is not None and not os.environ.get(
-    "LAMBDA_BEZIER_NO_NUMBA"
-)
-
 
 def _compiled() -> ModuleType | None:
-    if not USE_COMPILED:
-        return None
-    from .hazmat import surface_optimum_compiled  # numba compiles (or loads its cache) here
-
-    return surface_optimum_compiled
+    """The compiled kernels (hazmat.surface_kernels.USE_COMPILED decides), or None."""
+    return ker.compiled()
 
 
 @cache

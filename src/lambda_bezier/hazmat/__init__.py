@@ -1,7 +1,7 @@
 """lambda_bezier.hazmat: pure functions on coefficient and point arrays.
 
 The rule: a module here imports numpy, the standard library and other hazmat modules (and
-numba, optionally, in intersect_compiled and surface_optimum_compiled), nothing else from
+numba, optionally, in intersect_compiled and surface_compiled), nothing else from
 lambda_bezier (import-linter checks it in CI, and tests/test_runtime_layers.py). A kernel
 that needs a generated table takes it as an argument. Inputs are not validated here: the
 curve classes above check them first, so calling these directly with bad arrays gives
@@ -21,7 +21,7 @@ numpy's errors, not ours (the name follows the `bezier` package's `hazmat`).
 - `rational_kernels`: rational Bézier curves on their homogeneous form (evaluation, derivatives
   by the quotient rule, subdivision, Möbius maps);
 - `surface_kernels`: tensor-product evaluation, boxes and closest points of control nets;
-- `surface_optimum_compiled`: the batch optimum of (λ_u, λ_v), compiled with numba (the
+- `surface_compiled`: grid evaluation and the batch optimum of (λ_u, λ_v), compiled with numba (the
   `fast` extra; imported on use);
 - `exact_poly`: exact polynomials over the rationals (Sturm sequences, resultants).
 
@@ -45,5 +45,5 @@ __all__ = [
     "reduce",
     "roots",
     "surface_kernels",
-    "surface_optimum_compiled",
+    "surface_compiled",
 ]

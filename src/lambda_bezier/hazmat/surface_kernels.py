@@ -10,11 +10,14 @@ Bernstein basis (the curves use the same centre).
 from __future__ import annotations
 
 import heapq
+import importlib.util
 import itertools
+import os
 from collections.abc import Callable, Sequence
 from fractions import Fraction
 from functools import cache
 from math import comb
+from types import ModuleType
 
 import numpy as np
 
@@ -25,6 +28,22 @@ ExactNet = tuple[tuple[tuple[Fraction, ...], ...], ...]
 # below this (quadratic convergence: the point is then within about that of the critical
 # point); shared by the numpy version and the compiled one
 OPTIMUM_STEP_TOLERANCE = 1e-13
+
+# the compiled kernels (surface_compiled) when numba is there and not switched off (module
+# flag, read per call; LAMBDA_BEZIER_NO_NUMBA=1 in the environment, or USE_COMPILED = False
+# here, selects the numpy versions, which stay the tested fallback)
+USE_COMPILED = importlib.util.find_spec("numba") is not None and not os.environ.get(
+    "LAMBDA_BEZIER_NO_NUMBA"
+)
+
+
+def compiled() -> ModuleType | None:
+    """hazmat.surface_compiled, or None for the numpy versions."""
+    if not USE_COMPILED:
+        return None
+    from . import surface_compiled  # numba compiles (or loads its cache) on first use
+
+    return surface_compiled
 
 
 # ---------------------------------------------------------------------- basis changes
@@ -113,15 +132,20 @@ def evaluate_grid(coeffs: np.ndarray, us: np.ndarray, vs: np.ndarray) -> np.ndar
     One small contraction along u, then per coordinate one matrix product
     (len(us), N+1) @ (N+1, len(vs)) written straight into its contiguous slab of the output:
     the inner size is N+1 (4 for a bicubic), so the products cost little more than writing the
-    output once.
+    output once. Compiled (surface_compiled.grid_products) when numba is there: BLAS's threads
+    cost more than these products on a busy machine.
     """
     big_m, big_n, dim = coeffs.shape
     pu = _powers(us, big_m)
     pv_t = np.ascontiguousarray(_powers(vs, big_n).T)  # (N+1, len(vs))
-    left = np.einsum("ai,ijd->daj", pu, coeffs)  # (d, len(us), N+1)
+    left = np.ascontiguousarray(np.einsum("ai,ijd->daj", pu, coeffs))  # (d, len(us), N+1)
     out = np.empty((dim, us.size, vs.size))
-    for c in range(dim):
-        np.matmul(left[c], pv_t, out=out[c])
+    fast = compiled()
+    if fast is not None and us.size and vs.size:
+        fast.grid_products(left, pv_t, out)
+    else:
+        for c in range(dim):
+            np.matmul(left[c], pv_t, out=out[c])
     return out.transpose(1, 2, 0)
 
 

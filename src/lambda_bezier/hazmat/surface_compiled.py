@@ -1,4 +1,13 @@
-"""The batch optimum of (λ_u, λ_v) compiled with numba (the `fast` extra): one pass per net.
+"""Surface kernels compiled with numba (the `fast` extra): the batch optimum of (λ_u, λ_v),
+one pass per net, and the products of grid evaluation.
+
+Grid evaluation (`grid_products`): out[c] = left[c] @ right for every coordinate c, with an
+inner size of N+1 (4 for a bicubic). numpy hands each product to BLAS, whose threads cost
+more than the arithmetic when the machine is busy (measured on a loaded two-core machine:
+3.5x the output's write cost with one BLAS thread, 50x with OpenBLAS's threads); here one
+thread writes each output row once for up to four inner terms (1.0x the write cost there).
+
+The batch optimum:
 
 The numpy version (lambda_bezier.surface_optimum.optimal_parameters_batch) makes some forty
 passes over the batch and finds the resultant's roots by eigenvalues of companion matrices;
@@ -18,7 +27,7 @@ here each net is done in one loop iteration, in registers:
    nearly touches zero at one of its local extremes without crossing (a nearly double root:
    the companion eigenvalue test "nearly real" of the numpy version).
 
-Imported only by surface_optimum, when numba is installed and not disabled.
+Imported only by surface_optimum and surfaces, when numba is installed and not disabled.
 """
 
 from __future__ import annotations
@@ -329,3 +338,29 @@ def optimise(
     uncertain = np.empty(count, np.bool_)
     _optimise_range(flat, pair_i, pair_j, weights, box, 0, count, out, where, uncertain)
     return out[0], out[1], out[2], where, uncertain
+
+
+@numba.njit(**_JIT)
+def grid_products(left: np.ndarray, right: np.ndarray, out: np.ndarray) -> None:
+    """out[c] = left[c] @ right for left (d, p, K), right (K, q), out (d, p, q), written in
+    place. Four terms of the inner sum per pass over an output row (K is padded with zeros to
+    a multiple of 4), so a bicubic's row is written once, its four weights in registers."""
+    dim, rows, inner = left.shape
+    cols = right.shape[1]
+    padded = (inner + 3) // 4 * 4
+    lp = np.zeros((dim, rows, padded))
+    lp[:, :, :inner] = left
+    rp = np.zeros((padded, cols))
+    rp[:inner] = right
+    for c in range(dim):
+        for a in range(rows):
+            row = out[c, a]
+            for k in range(0, padded, 4):
+                w0, w1, w2, w3 = lp[c, a, k], lp[c, a, k + 1], lp[c, a, k + 2], lp[c, a, k + 3]
+                r0, r1, r2, r3 = rp[k], rp[k + 1], rp[k + 2], rp[k + 3]
+                if k == 0:
+                    for b in range(cols):
+                        row[b] = w0 * r0[b] + w1 * r1[b] + w2 * r2[b] + w3 * r3[b]
+                else:
+                    for b in range(cols):
+                        row[b] += w0 * r0[b] + w1 * r1[b] + w2 * r2[b] + w3 * r3[b]

@@ -133,7 +133,9 @@ def optimal_parameters_batch(
     if compiled is not None:
         box = np.array([float(u_box[0]), float(u_box[1]), float(v_box[0]), float(v_box[1])])
         pair_i, pair_j, weights = _pair_weights(mats)
-        bx, by, bval, kind, unsure = compiled.optimise(flat, pair_i, pair_j, weights, box)
+        bx, by, bval, kind, unsure = compiled.optimise(
+            flat, pair_i, pair_j, weights, box, STEP_TOLERANCE
+        )
         result = {
             "lam_u": bx,
             "lam_v": by,

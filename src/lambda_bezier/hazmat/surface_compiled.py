@@ -22,7 +22,7 @@ here each net is done in one loop iteration, in registers:
    found by Newton safeguarded by bisection), x = −β/α, and Newton on ∇E = 0;
 3. the certification of the numpy version: a net is `uncertain` (and solved again exactly by
    the caller) when the winner is an interior point whose last Newton step is not below
-   STEP_TOLERANCE with a positive definite Hessian, or another candidate at a distinct point
+   `step_tolerance` with a positive definite Hessian, or another candidate at a distinct point
    comes within 1e-12 (relative) of the least energy, or R's leading coefficient is tiny, or R
    nearly touches zero at one of its local extremes without crossing (a nearly double root:
    the companion eigenvalue test "nearly real" of the numpy version).
@@ -38,10 +38,7 @@ from typing import Any
 import numba
 import numpy as np
 
-from .surface_kernels import OPTIMUM_STEP_TOLERANCE
-
 _JIT: dict[str, Any] = {"cache": True, "error_model": "numpy", "fastmath": False}
-STEP_TOLERANCE = OPTIMUM_STEP_TOLERANCE
 NEAR_DOUBLE = 1e-9  # |R| at a local extreme below this times R's size: a nearly double root
 
 
@@ -172,7 +169,12 @@ def _polymul(a: np.ndarray, na: int, b: np.ndarray, nb: int, out: np.ndarray) ->
 
 @numba.njit(**_JIT)
 def _solve_one(
-    e: np.ndarray, box: np.ndarray, work: np.ndarray, kind: np.ndarray, posdef: np.ndarray
+    e: np.ndarray,
+    box: np.ndarray,
+    work: np.ndarray,
+    kind: np.ndarray,
+    posdef: np.ndarray,
+    step_tolerance: float,
 ) -> tuple[float, float, float, int, bool]:
     """(x, y, E, where, uncertain) for one net's coefficients e (3, 3); where: 0 edge,
     1 interior, 2 corner. work (12, 13), kind (13,) and posdef (13,) are scratch (no
@@ -274,7 +276,7 @@ def _solve_one(
             best = k
     bx, by, bval = cx[best], cy[best], values[best]
     uncertain = suspect
-    if kind[best] == 1 and not (steps[best] < STEP_TOLERANCE and posdef[best]):
+    if kind[best] == 1 and not (steps[best] < step_tolerance and posdef[best]):
         uncertain = True
     margin = 1e-12 * max(abs(bval), emax)
     for k in range(n):
@@ -293,6 +295,7 @@ def _optimise_range(
     pair_j: np.ndarray,
     weights: np.ndarray,
     box: np.ndarray,
+    step_tolerance: float,
     start: int,
     stop: int,
     out: np.ndarray,
@@ -314,7 +317,7 @@ def _optimise_range(
                 g += flat[k, pair_i[p], c] * flat[k, pair_j[p], c]
             for t in range(9):
                 acc[t] += weights[p, t] * g
-        x, y, v, w, u = _solve_one(e, box, work, kind, posdef)
+        x, y, v, w, u = _solve_one(e, box, work, kind, posdef, step_tolerance)
         out[0, k], out[1, k], out[2, k], where[k], uncertain[k] = x, y, v, w, u
 
 
@@ -325,6 +328,7 @@ def optimise(
     pair_j: np.ndarray,
     weights: np.ndarray,
     box: np.ndarray,
+    step_tolerance: float,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """For nets flat (k, s, d) and the energy as Σ_p weights[p, 3a + b] g_p x^a y^b over the
     pairs p = (pair_i[p], pair_j[p]) with g_p = Σ_d flat[:, i, d] flat[:, j, d]: the least
@@ -336,7 +340,9 @@ def optimise(
     out = np.empty((3, count))
     where = np.empty(count, np.int64)
     uncertain = np.empty(count, np.bool_)
-    _optimise_range(flat, pair_i, pair_j, weights, box, 0, count, out, where, uncertain)
+    _optimise_range(
+        flat, pair_i, pair_j, weights, box, step_tolerance, 0, count, out, where, uncertain
+    )
     return out[0], out[1], out[2], where, uncertain
 
 

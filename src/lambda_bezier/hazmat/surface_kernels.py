@@ -26,7 +26,7 @@ ExactNet = tuple[tuple[tuple[Fraction, ...], ...], ...]
 
 # the batch optimum of (λ_u, λ_v) accepts an interior point when its last Newton step is
 # below this (quadratic convergence: the point is then within about that of the critical
-# point); shared by the numpy version and the compiled one
+# point); the numpy version reads it, the compiled one is passed it
 OPTIMUM_STEP_TOLERANCE = 1e-13
 
 # the compiled kernels (surface_compiled) when numba is there and not switched off (module

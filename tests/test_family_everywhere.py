@@ -144,6 +144,16 @@ def _call_from_json(fam):
     assert back.control_points() == c.control_points()
 
 
+def _call_surface_from_json(fam):
+    from lambda_bezier.surface_export import surface_from_json, surface_to_json
+    from lambda_bezier.surfaces import surface
+
+    s = surface(NET, Fraction(1, 2), Fraction(1, 3), family=fam)
+    back = surface_from_json(surface_to_json(s), family=fam)
+    assert back.control_net() == s.control_net() and (back.lam_u, back.lam_v) == (s.lam_u, s.lam_v)
+    assert back.family == s.family
+
+
 def _call_leading_weights(fam):
     from lambda_bezier.joins import Joint, leading_weights
 
@@ -257,6 +267,7 @@ CALLS = {
     "curves.family_class": _call_family_class,
     "export.from_json": _call_from_json,
     "surfaces.surface": _call_surface,
+    "surface_export.surface_from_json": _call_surface_from_json,
     "surface_energies.surface_energy_matrices": _call_surface_energy_matrices,
     "surface_joins.join_surface": _call_join_surface,
     "surface_optimum.optimal_parameters": _call_optimal_parameters,

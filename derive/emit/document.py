@@ -21,7 +21,12 @@ from ..families.engine import (
     symmetry,
 )
 from ..formulas.energy_several import monomial_grams
-from ..formulas.family import energy_artifacts, join_artifacts, singular_artifacts
+from ..formulas.family import (
+    energy_artifacts,
+    join_artifacts,
+    singular_artifacts,
+    surface_join_artifacts,
+)
 from ..formulas.several_box import independence_over_box, nonnegativity
 
 # --------------------------------------------------------------------------- the document
@@ -93,6 +98,7 @@ def _several(defn: Definition, checked: list[str]) -> dict:
         "nonnegative_over_box": nonnegativity(defn),
         "singular_parameters": independence_over_box(defn),
         "joins": {"reason": "several parameters: the runtime joins per degree"},
+        "surface_joins": {"reason": "several parameters: the runtime joins per degree"},
     }
 
 
@@ -171,6 +177,11 @@ def derive(defn: Definition, *, with_joins: bool = True) -> dict:
             {"reason": "no closed end forms in n: the runtime joins per degree"}
             if closed is None
             else join_artifacts(defn, closed)
+        )
+        doc["surface_joins"] = (
+            {"reason": "no closed end forms in n: the runtime joins per degree"}
+            if closed is None
+            else surface_join_artifacts(defn, closed)
         )
     return doc
 

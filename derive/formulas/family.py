@@ -1,6 +1,7 @@
 """What is derived for a family defined by data, generic over its derivation: the energy
-forms, the closed-form join weights against every built-in family, the singular parameters,
-and making the family known to the formula tables for this process (register_formulas).
+forms, the closed-form join weights against every built-in family (of curves, and of surface
+patches column by column), the singular parameters, and making the family known to the
+formula tables for this process (register_formulas).
 """
 
 from __future__ import annotations
@@ -11,7 +12,7 @@ from ..algebra import lambda_degree
 from ..families.definition import CONTINUITIES, ENERGY_ORDERS, Definition
 from ..families.engine import basis_polys, closed_endpoint_forms, closed_endpoint_order
 from ..families.registry import builtin_names
-from . import energy, joins, properties
+from . import energy, joins, properties, surface_joins
 
 
 def energy_artifacts(defn: Definition) -> dict:
@@ -129,6 +130,19 @@ def join_artifacts(defn: Definition, closed: dict) -> dict:
                     entry["reason"] = "; ".join(reasons)
                 out[f"{first}>{second}"] = entry
     return out
+
+
+def surface_join_artifacts(defn: Definition, closed: dict) -> dict:
+    """The C1, G1 and C2 conditions between two surface patches of the family and every
+    built-in family (derive/formulas/surface_joins.py), for the derived document."""
+    order = closed_endpoint_order(defn)
+    with joins.extra_family(defn.name, closed, tuple(defn.degrees), True, order):
+        return surface_joins.family_artifacts(
+            defn.name,
+            lambda degree: basis_polys(defn, degree),
+            (*builtin_names(), defn.name),
+            order,
+        )
 
 
 def _register_properties(defn: Definition) -> None:

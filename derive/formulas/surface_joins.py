@@ -27,6 +27,12 @@ the weights to each column, builds both patches from the tensor-product basis
 (surface_energy.tensor_basis) and compares the cross-boundary derivatives of the two surfaces
 as polynomials in v. The join records of verify (surface_continuity) are checked against
 `conditions`.
+
+For a family defined by data, `family_artifacts` writes the same conditions into its derived
+document (``surface_joins``), against itself and every built-in family in both orders, each
+proved by the same column-wise check on the family's own basis. The weights are stored as
+data the runtime evaluates without a parser: numerator and denominator polynomials in
+(n, m, λ1, λ2, α), each a list of [coefficient, exponents...] terms.
 """
 
 from __future__ import annotations
@@ -38,7 +44,7 @@ import flint
 import sympy as sp
 
 from . import joins as curve_joins
-from .surface_energy import tensor_basis
+from .surface_energy import _curve_basis, _direction, tensor_basis
 
 CONTINUITIES = ("C1", "G1", "C2")
 ORDER = {"C1": 1, "G1": 1, "C2": 2}
@@ -61,15 +67,25 @@ def _curve_joins() -> dict:
 
 
 def apply(
-    first: str, second: str, continuity: str, net1, n: int, m: int, values: dict, given=None
+    first: str,
+    second: str,
+    continuity: str,
+    net1,
+    n: int,
+    m: int,
+    values: dict,
+    given=None,
+    weights: dict | None = None,
 ) -> list:
-    """The rows 0..order of patch 2 (scalar nets, exact) from patch 1's net by `conditions`,
-    at the values of lam1, lam2, alpha; `given` = {row: points} holds the rows of patch 2 a
-    weight refers to (P2_3 in 000's C2)."""
+    """The rows 0..order of patch 2 (scalar nets, exact) from patch 1's net by `conditions`
+    (or `weights` of that form), at the values of lam1, lam2, alpha; `given` = {row: points}
+    holds the rows of patch 2 a weight refers to (P2_3 in 000's C2)."""
     subs = {curve_joins.n: n, curve_joins.m: m}
     subs |= {getattr(curve_joins, name): sp.Rational(str(v)) for name, v in values.items()}
     rows: dict[int, list[Fraction]] = {}
-    for (row, source, k), weight in conditions(first, second, continuity).items():
+    if weights is None:
+        weights = conditions(first, second, continuity)
+    for (row, source, k), weight in weights.items():
         w = sp.Rational(weight.subs(subs))
         points = net1[n - k] if source == "first" else (given or {})[k]
         acc = rows.setdefault(row, [Fraction(0)] * len(net1[0]))
@@ -96,6 +112,10 @@ def _across(p: flint.fmpq_mpoly, r: int, at: int, lam: Fraction) -> flint.fmpq_m
 def check_columnwise(first: str, second: str, continuity: str) -> None:
     """Raise unless the column-wise weights make the two patches meet with `continuity`
     along the whole boundary (exactly, on sample degrees and a sample net)."""
+    _check_weights(first, second, continuity, tensor_basis, conditions(first, second, continuity))
+
+
+def _check_weights(first: str, second: str, continuity: str, basis, weights: dict) -> None:
     along, l_deg = _ALONG
     n = curve_joins.DEGREES[first][0]
     m = (
@@ -115,10 +135,10 @@ def check_columnwise(first: str, second: str, continuity: str) -> None:
         for i in range(ORDER[continuity] + 1, m + 1)
     }
     values = {"lam1": lam1, "lam2": lam2, "alpha": alpha}
-    head = apply(first, second, continuity, net1, n, m, values, rest)
+    head = apply(first, second, continuity, net1, n, m, values, rest, weights)
     net2 = head + [rest[i] for i in sorted(rest)]
-    s1 = _surface(tensor_basis(first, along, n, l_deg), net1)
-    s2 = _surface(tensor_basis(second, along, m, l_deg), net2)
+    s1 = _surface(basis(first, along, n, l_deg), net1)
+    s2 = _surface(basis(second, along, m, l_deg), net2)
     for r in range(ORDER[continuity] + 1):
         left = _across(s1, r, 1, lam1)
         right = _across(s2, r, 0, lam2) * flint.fmpq(alpha.numerator, alpha.denominator) ** r
@@ -135,3 +155,98 @@ def check_all() -> None:
         for second in curve_joins.FAMILIES:
             for continuity in CONTINUITIES:
                 check_columnwise(first, second, continuity)
+
+
+# ---------------------------------------------------------------------- families defined by data
+VARIABLES = ("n", "m", "lam1", "lam2", "alpha")
+RULE = (
+    "Patch 2 continues patch 1 across its boundary u = 1 (v = 1 likewise), with the same "
+    "family, degree and shape parameter along the boundary. The conditions hold along the "
+    "whole boundary exactly when, for every column j (the control points across the boundary), "
+    "P2_{r,j} = sum over k of w[r,src,k] X_k for r = 0..order, X_k = P1_{n-k,j} (src first) or "
+    "the given P2_{k,j} (src second); n and m are the degrees across, lam1 and lam2 the shape "
+    "parameters across, alpha the G1 factor (S1_u = alpha S2_u). Each weight is "
+    "[numerator, denominator], polynomials in the variables as [coefficient, exponents...] "
+    "terms. G1 has one constant alpha along the boundary."
+)
+
+
+def _poly_terms(expr: sp.Expr) -> list:
+    gens = [getattr(curve_joins, name) for name in VARIABLES]
+    poly = sp.Poly(expr, *gens)
+    return [
+        [str(sp.Rational(c)), *map(int, exps)]
+        for exps, c in sorted(poly.terms(), key=lambda t: t[0])
+    ]
+
+
+def _weight_data(expr: sp.Expr) -> list:
+    num, den = sp.fraction(sp.cancel(sp.together(expr)))
+    return [_poly_terms(num), _poly_terms(den)]
+
+
+def _own_basis(name: str, defn_basis):
+    """tensor_basis with the family `name` read from its definition (defn_basis(degree))."""
+
+    def curve_basis(family: str, degree: int):
+        if family != name:
+            return _curve_basis(family, degree)
+        return tuple(
+            {(int(e[0]), int(e[1])): Fraction(int(c.p), int(c.q)) for e, c in p.terms()}
+            for p in defn_basis(degree)
+        )
+
+    def basis(family_u: str, family_v: str, m: int, n: int):
+        bu = [_direction(b, 0) for b in curve_basis(family_u, m)]
+        bv = [_direction(c, 1) for c in curve_basis(family_v, n)]
+        return tuple(b * c for b in bu for c in bv)
+
+    return basis
+
+
+def family_artifacts(name: str, defn_basis, others, order: int) -> dict:
+    """The document's ``surface_joins`` of the family `name`, which must be registered with
+    curve_joins (joins.extra_family) with closed end forms up to derivative `order`: for each
+    ordered pair with `others` and each continuity whose curve weights have a closed form,
+    the weights as polynomial data, proved column by column on the family's basis."""
+    basis = _own_basis(name, defn_basis)
+    pairs: dict = {}
+    for other in others:
+        for first, second in ((name, other), (other, name)):
+            key = f"{first}>{second}"
+            if key in pairs:
+                continue
+            entry: dict = {}
+            reasons = []
+            solved: dict = {}
+            for continuity in CONTINUITIES:
+                k = ORDER[continuity]
+                if k > order:
+                    reasons.append(
+                        f"{continuity}: the end derivatives of order {k} have no closed form "
+                        "in n (the runtime joins per degree)"
+                    )
+                    continue
+                try:
+                    if k not in solved:
+                        solved[k] = curve_joins.solve(first, second, k)
+                except (AssertionError, KeyError, ZeroDivisionError) as exc:
+                    reasons.append(f"{continuity}: no closed form: {exc}")
+                    continue
+                weights = {}
+                for row, combo in enumerate(solved[k]):
+                    for (src, j), w in sorted(combo.items()):
+                        e = w.as_expr()
+                        if continuity.startswith("C"):
+                            e = e.xreplace({curve_joins.alpha: 1, curve_joins.d: 0})
+                        e = sp.factor(e)
+                        if e != 0:
+                            weights[(row, src, j)] = e
+                _check_weights(first, second, continuity, basis, weights)
+                entry[continuity] = {
+                    f"{row},{src},{j}": _weight_data(w) for (row, src, j), w in weights.items()
+                }
+            if reasons:
+                entry["reason"] = "; ".join(reasons)
+            pairs[key] = entry
+    return {"rule": RULE, "variables": list(VARIABLES), "pairs": pairs}

@@ -92,9 +92,15 @@ def _parameters_out(curve: Curve) -> dict[str, Any] | None:
 
 def _definitions(curves: Sequence[Curve]) -> dict[str, Any]:
     """{name: {definition_digest, definition}} of the own families among `curves`."""
+    return class_definitions([type(c) for c in curves])
+
+
+def class_definitions(classes: Sequence[type[Curve]]) -> dict[str, Any]:
+    """{name: {definition_digest, definition}} of the own families among curve classes (a
+    surface's two directions embed theirs as a curve's family does)."""
     out: dict[str, Any] = {}
-    for curve in curves:
-        family = _own_family(curve)
+    for cls in classes:
+        family: Family | None = getattr(cls, "family_object", None)
         if family is None:
             continue
         entry = {"definition_digest": family.digest, "definition": family.table}
@@ -323,20 +329,25 @@ def _given_families(
     return out
 
 
-def _own_classes(doc: dict[str, Any], family: object) -> dict[str, type[Curve]]:
-    """The curve classes of the document's own families, each checked against the
-    fingerprint the document records; a family neither given nor built in is refused,
-    saying how to load it."""
+def _own_classes(
+    doc: dict[str, Any], family: object, names: set[Any] | None = None
+) -> dict[str, type[Curve]]:
+    """The curve classes of the document's own families (those of its segments, or `names`),
+    each checked against the fingerprint the document records; a family neither given nor
+    built in is refused, saying how to load it."""
     from .curves import FAMILIES
 
     embedded = _embedded(doc)
     given = _given_families(family, embedded)
     from .rational import RationalBezierCurve
 
-    segs = doc.get("segments") if doc.get("kind") == "composite" else [doc]
-    names = (
-        {s.get("family") for s in segs if isinstance(s, dict)} if isinstance(segs, list) else set()
-    )
+    if names is None:
+        segs = doc.get("segments") if doc.get("kind") == "composite" else [doc]
+        names = (
+            {s.get("family") for s in segs if isinstance(s, dict)}
+            if isinstance(segs, list)
+            else set()
+        )
     known = {*FAMILIES, RationalBezierCurve.family}  # _curve_from decides where each may stand
     out: dict[str, type[Curve]] = {}
     for name in sorted(n for n in names if isinstance(n, str) and n not in known):

@@ -86,6 +86,8 @@ class FamilyData:
             if isinstance(exc, FamilyFileError):
                 raise
             raise FamilyFileError(f"{where}: not a derived family document ({exc!r})") from None
+        # C1/G1/C2 between surface patches, as data (read by surface_joins when asked to)
+        self.SURFACE_JOINS: Any = doc.get("surface_joins")
         self.ENERGY_REASON: str | None = energy.get("reason")
         self.ENERGY: dict[tuple[int, int], tuple[Form, ...]] = {}
         for key, entry in energy.items():

@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from . import _validate as val
+from ._json_io import _own_classes, class_definitions
 from .export import (
     FORMAT_VERSION,
     _number_in,
@@ -115,14 +116,21 @@ def mesh(surf: Surface, tolerance: float) -> SurfaceMesh:
         )
     net = surf.to_bezier().net
     muu, muv, mvv = (_hull_bound(_derivative_net(net, a, b)) for a, b in ((2, 0), (1, 1), (0, 2)))
+    if tol == 0 and (muu or muv or mvv):
+        raise ValueError(
+            "tolerance must be > 0 for a curved surface (only a flat one meshes exactly)"
+        )
     hu = math.sqrt(2 * tol / (3 * muu)) if muu else 1.0
     hv = math.sqrt(2 * tol / (3 * mvv)) if mvv else 1.0
     if muv and muv * hu * hv > tol / 3:
         shrink = math.sqrt(tol / (3 * muv * hu * hv))
         hu, hv = hu * shrink, hv * shrink
+    if 1 / hu * (1 / hv) > 25_000_000:
+        raise ValueError(
+            f"tolerance {tol} needs about {1 / hu:.3g} x {1 / hv:.3g} cells (at most 25,000,000); "
+            "choose a larger tolerance"
+        )
     nu, nv = max(1, math.ceil(1 / hu)), max(1, math.ceil(1 / hv))
-    if nu * nv > 25_000_000:
-        raise ValueError(f"tolerance {tol} needs {nu} x {nv} cells; choose a larger tolerance")
     us, vs = np.linspace(0, 1, nu + 1), np.linspace(0, 1, nv + 1)
     pts = surf.evaluate_grid(us, vs).reshape(-1, surf.dimension)
     if surf.dimension == 2:
@@ -152,21 +160,29 @@ def to_mesh_file(surf: Surface, path: str | Path, tolerance: float) -> Path:
 
 # ---------------------------------------------------------------------- JSON
 def surface_to_json(surf: Surface, *, indent: int | None = 2) -> str:
-    """The JSON form of a surface of built-in families: exact numbers as strings."""
+    """The JSON form of a surface: exact numbers as strings; a direction of a family of your
+    own embeds its definition (``definitions``, as the curves' JSON does), so that
+    surface_from_json can check the family it is given against it."""
     if not isinstance(surf, Surface):
         raise TypeError(f"surf must be a lambda_bezier surface, got {type(surf).__name__}")
-    doc = {
+    doc: dict[str, Any] = {
         "lambda_bezier": FORMAT_VERSION,
         "kind": "surface",
         "family": [surf._u_cls.family, surf._v_cls.family],
         "lambda": [None if x is None else _number_out(x) for x in (surf.lam_u, surf.lam_v)],
         "net": [[[_number_out(c) for c in p] for p in row] for row in surf.control_net()],
     }
+    definitions = class_definitions([surf._u_cls, surf._v_cls])
+    if definitions:
+        doc["definitions"] = definitions
     return json.dumps(doc, indent=indent, ensure_ascii=False)
 
 
-def surface_from_json(text: str, *, check_range: bool = True) -> Surface:
-    """A surface from its JSON form."""
+def surface_from_json(text: str, *, family: object = None, check_range: bool = True) -> Surface:
+    """A surface from its JSON form. A direction of a family of your own needs that family:
+    `family` is its Family (load_family), definition file or derived document (or a list of
+    them), checked against the definition the document embeds; without it the error says
+    how to get it (`lambda-bezier export --format family` writes the embedded definition)."""
     from .curves import FAMILIES
 
     try:
@@ -183,9 +199,17 @@ def surface_from_json(text: str, *, check_range: bool = True) -> Surface:
             f'{FORMAT_VERSION} and "kind": "surface"'
         )
     fams, lams, net = doc.get("family"), doc.get("lambda"), doc.get("net")
-    if not (isinstance(fams, list) and len(fams) == 2 and all(f in FAMILIES for f in fams)):
+    if not (isinstance(fams, list) and len(fams) == 2 and all(isinstance(f, str) for f in fams)):
+        raise ValueError(f"surface.family must be a pair of family names, got {fams!r}")
+    try:
+        own = _own_classes(doc, family, set(fams))
+    except ValueError as exc:
+        raise ValueError(f"surface.family: {exc}") from None
+    classes = {**FAMILIES, **own}
+    if not all(f in classes for f in fams):
         raise ValueError(
-            f"surface.family must be a pair of names from {sorted(FAMILIES)}, got {fams!r}"
+            f"surface.family must be a pair of names from {sorted(FAMILIES)} or families "
+            f"passed as family=, got {fams!r}"
         )
     if not (isinstance(lams, list) and len(lams) == 2):
         raise ValueError("surface.lambda must be a pair (null for a Bézier direction)")
@@ -203,7 +227,7 @@ def surface_from_json(text: str, *, check_range: bool = True) -> Surface:
         rows = [[[float(c) for c in p] for p in r] for r in rows]
     lu, lv = (None if x is None else _number_in(x, "surface.lambda") for x in lams)
     return Surface(
-        rows, lu, lv, family=(FAMILIES[fams[0]], FAMILIES[fams[1]]), check_range=check_range
+        rows, lu, lv, family=(classes[fams[0]], classes[fams[1]]), check_range=check_range
     )
 
 

@@ -6,7 +6,20 @@ conditions hold for every v exactly when they hold for the coefficient of each b
 function: column j of B's net (the u-curve through B's points P_{·,j}) must join column j of
 A's net as a curve does. `join_surface` therefore solves the rows of B next to the boundary
 column by column with the curves' `join` (its generated vertex formulas, any ordered pair of
-families); G1 here has one constant α along the boundary (A_u(1, v) = α B_u(0, v)).
+families); G1 there has one constant α along the boundary (A_u(1, v) = α B_u(0, v)).
+
+G1 with a factor varying along the boundary, B_u(0, v) = μ(v) A_u(1, v) with a linear
+μ(v) = μ0 + μ1 v > 0 (``mu=(μ0, μ1)``), needs one degree more along the boundary: μ(v) A_u(1, v)
+has degree N + 1 where A's Bézier form has degree N in v. The new patch is therefore classical
+Bézier of degree N + 1 along the boundary (A's boundary degree-elevated), and its rows next to
+the boundary are solved column by column from the target value and cross derivative at each
+of its N + 2 Bernstein coefficients (the product μ·A_u in Bernstein form). A linear α(v) in
+A_u(1, v) = α(v) B_u(0, v) is not offered: B_u = A_u / α(v) is not a polynomial.
+
+A family defined by data carries the same conditions in its derived document
+(``surface_joins``: the column-wise weights in closed form, proved by derive on the family's
+own basis); ``join_surface(..., conditions="derived")`` applies those instead of solving, and
+the tests check that the two agree.
 
 `CompositeSurface` holds a grid of patches and reports, for every interior boundary, the
 continuity achieved, found exactly on the Bézier forms (Fractions for exact patches).
@@ -23,12 +36,15 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _validate as val
+from .curves import BezierCurve, Curve, family_class
 from .hazmat.forms import elevation_matrix, hodograph_matrix
 from .joins import join
-from .surfaces import Surface, _exact_net
+from .surfaces import BezierSurface, Surface, _exact_net
 
 SIDES = ("u", "v")
 SURFACE_CONTINUITIES = ("C1", "G1", "C2")
+CONDITIONS = ("solve", "derived")
+ORDER = {"C1": 1, "G1": 1, "C2": 2}
 
 
 def _transpose(rows: Any) -> Any:
@@ -50,8 +66,10 @@ def join_surface(
     rest: npt.ArrayLike | Sequence[Any] = (),
     *,
     alpha: Fraction | float = 1,
+    mu: tuple[Fraction | float, Fraction | float] | None = None,
     family: object = None,
     check_range: bool = True,
+    conditions: str = "solve",
 ) -> Surface:
     """The next patch across `patch`'s boundary u = 1 (side "u") or v = 1 (side "v").
 
@@ -60,6 +78,15 @@ def join_surface(
     the boundary are solved for `continuity` ("C1", "G1" with a constant `alpha` > 0, "C2");
     `rest` gives the rows after them: an array (k, n+1, d) for side "u" ((m+1, k, d) for side
     "v"). Exact input gives an exact patch.
+
+    ``mu=(μ0, μ1)`` (G1 only, instead of `alpha`) asks for B_u(0, v) = (μ0 + μ1 v) A_u(1, v),
+    a factor varying along the boundary (positive on [0, 1]). The new patch is then classical
+    Bézier along the boundary, of one degree more than `patch`'s Bézier form there (N + 1),
+    and `rest` has N + 2 points along the boundary.
+
+    ``conditions="derived"`` takes the conditions from the derived document of a family
+    defined by data (one of the two across the boundary; its ``surface_joins``) instead of
+    solving the curve joins per column; the result is the same.
 
     >>> from lambda_bezier import SameDegreeSurface
     >>> from lambda_bezier.surface_joins import join_surface
@@ -77,6 +104,21 @@ def join_surface(
     if not isinstance(patch, Surface):
         raise TypeError(f"patch must be a lambda_bezier surface, got {type(patch).__name__}")
     axis = 0 if side == "u" else 1
+    if isinstance(alpha, tuple | list):
+        raise ValueError(
+            "alpha is one constant (A_u(1, v) = alpha B_u(0, v)); a factor varying along the "
+            "boundary is mu=(mu0, mu1): B_u(0, v) = (mu0 + mu1 v) A_u(1, v) (a linear alpha(v) "
+            "would make B_u = A_u / alpha(v), not a polynomial)"
+        )
+    conditions = val.choice(conditions, "conditions", CONDITIONS)
+    if mu is not None:
+        if conditions != "solve":
+            raise ValueError('mu (a varying G1 factor) is solved: use conditions="solve"')
+        if continuity != "G1":
+            raise ValueError(f"mu (a varying G1 factor) needs continuity G1, got {continuity}")
+        if alpha != 1:
+            raise ValueError("give either alpha (a constant G1 factor) or mu, not both")
+        return _join_varying(patch, axis, degree, lam, rest, mu, family, check_range)
     across_cls = patch._u_cls if axis == 0 else patch._v_cls
     along_cls = patch._v_cls if axis == 0 else patch._u_cls
     across_lam = patch.lam_u if axis == 0 else patch.lam_v
@@ -101,6 +143,31 @@ def join_surface(
     if rest_arr is not None:
         rest_rows: Any = exact_rest if exact_rest is not None else rest_arr.tolist()
         rest_cols = _transpose(rest_rows) if axis == 0 else [list(r) for r in rest_rows]
+    if conditions == "derived":
+        new_cls = family_class(new_family)
+        weights = _derived_weights(
+            across_cls,
+            new_cls,
+            continuity,
+            len(columns[0]) - 1,
+            degree,
+            (across_lam, lam, alpha if continuity == "G1" else 1),
+        )
+        order = ORDER[continuity]
+        if any(len(col) != degree - order for col in rest_cols):
+            raise ValueError(
+                f"rest must hold {degree - order} rows after the {order + 1} solved ones "
+                f"(degree {degree}), got {len(rest_cols[0])}"
+            )
+        new_columns = [
+            _apply_weights(weights, columns[j], list(rest_cols[j]), order) for j in range(count)
+        ]
+        net: Any = _transpose(new_columns) if axis == 0 else new_columns
+        fam = (new_cls, along_cls) if axis == 0 else (along_cls, new_cls)
+        lams = (lam, along_lam) if axis == 0 else (along_lam, lam)
+        if not new_cls._has_lambda:
+            lams = (None, along_lam) if axis == 0 else (along_lam, None)
+        return Surface(net, lams[0], lams[1], family=fam, check_range=check_range)
     new_columns = []
     for j in range(count):
         curve = (
@@ -119,9 +186,166 @@ def join_surface(
             check_range=check_range,
         )
         new_columns.append(list(nxt.control_points()))
-    net: Any = _transpose(new_columns) if axis == 0 else new_columns
+    net = _transpose(new_columns) if axis == 0 else new_columns
     fam = (type(nxt), along_cls) if axis == 0 else (along_cls, type(nxt))
     lams = (nxt.lam, along_lam) if axis == 0 else (along_lam, nxt.lam)
+    return Surface(net, lams[0], lams[1], family=fam, check_range=False)
+
+
+def _derived_weights(
+    first: type[Curve], second: type[Curve], continuity: str, n: int, m: int, values: Any
+) -> dict[tuple[int, str, int], Any]:
+    """{(row, src, k): weight} of the derived document of a family defined by data, at the
+    degrees n (across the patch) and m (the new patch) and (λ1, λ2, α); exact for exact
+    values. The weights are polynomial data (no expression is parsed)."""
+    key = f"{first.family}>{second.family}"
+    docs = [getattr(cls._data, "SURFACE_JOINS", None) for cls in (first, second) if cls is not None]
+    table = next((d for d in docs if isinstance(d, dict)), None)
+    if table is None:
+        raise ValueError(
+            f'conditions="derived" reads the derived document of a family defined by data; '
+            f"{first.family} and {second.family} have none with surface joins (use "
+            f'conditions="solve", or re-derive the family with `lambda-bezier derive --family`)'
+        )
+    if "pairs" not in table:
+        raise ValueError(f"no derived surface conditions for {key}: {table.get('reason')}")
+    entry = table["pairs"].get(key, {})
+    if continuity not in entry:
+        reason = entry.get("reason", "the pair is not in the document")
+        raise ValueError(f"no derived {continuity} conditions for {key}: {reason}")
+    lam1, lam2, alpha = (Fraction(0) if x is None else x for x in values)
+    if isinstance(alpha, int):
+        alpha = Fraction(alpha)
+    point = (Fraction(n), Fraction(m), lam1, lam2, alpha)
+
+    def value(terms: Any) -> Any:
+        total: Any = Fraction(0)
+        for coef, *exps in terms:
+            term: Any = Fraction(coef)
+            for x, e in zip(point, exps, strict=True):
+                term *= x**e
+            total += term
+        return total
+
+    out = {}
+    for text, (num, den) in entry[continuity].items():
+        row, src, k = text.split(",")
+        bottom = value(den)
+        if not bottom:
+            raise ValueError(
+                f"the derived {continuity} weight {text} of {key} is singular at n = {n}, "
+                f"m = {m}, (lam1, lam2, alpha) = ({lam1}, {lam2}, {alpha})"
+            )
+        out[(int(row), src, int(k))] = value(num) / bottom
+    return out
+
+
+def _apply_weights(weights: Any, first: list[Any], rest: list[Any], order: int) -> list[Any]:
+    """One column of the new patch: rows 0..order by the weights, then `rest`."""
+    n = len(first) - 1
+    dim = len(first[0])
+    rows = []
+    for r in range(order + 1):
+        acc: list[Any] = [0 * first[0][0]] * dim
+        for (row, src, k), w in weights.items():
+            if row != r:
+                continue
+            x = first[n - k] if src == "first" else rest[k - order - 1]
+            acc = [a + w * c for a, c in zip(acc, x, strict=True)]
+        rows.append(tuple(acc))
+    return rows + [tuple(p) for p in rest]
+
+
+def _factor(mu: object) -> tuple[Fraction | float, Fraction | float]:
+    if not isinstance(mu, tuple | list) or len(mu) != 2:
+        raise ValueError(f"mu must be a pair (mu0, mu1) for mu(v) = mu0 + mu1 v, got {mu!r}")
+    mu0 = val.real_number(mu[0], "mu[0]")
+    mu1 = val.real_number(mu[1], "mu[1]")
+    if not (mu0 > 0 and mu0 + mu1 > 0):
+        raise ValueError(
+            f"mu(v) = {mu0} + {mu1} v must be positive on [0, 1] (mu0 > 0 and mu0 + mu1 > 0)"
+        )
+    return mu0, mu1
+
+
+def _rows_across(rows: Any, axis: int) -> list[Any]:
+    """The lines of a net across the boundary (each one curve in the across direction)."""
+    return _transpose(rows) if axis == 0 else [list(r) for r in rows]
+
+
+def _join_varying(
+    patch: Surface,
+    axis: int,
+    degree: int,
+    lam: Fraction | float | None,
+    rest: Any,
+    mu: object,
+    family: object,
+    check_range: bool,
+) -> Surface:
+    """G1 with B_u(0, v) = μ(v) A_u(1, v), μ linear (see the module's docstring)."""
+    mu0, mu1 = _factor(mu)
+    across_cls = patch._u_cls if axis == 0 else patch._v_cls
+    lines = _rows_across(patch.to_bezier().control_net(), axis)  # N + 1 Bézier lines across
+    big_n = len(lines) - 1
+    ends = [line[-1] for line in lines]  # A(1, v), Bernstein degree N
+    big_m = len(lines[0]) - 1
+    slopes = [  # A_u(1, v) = M (P_M - P_{M-1}) on each line
+        tuple(big_m * (x - y) for x, y in zip(line[-1], line[-2], strict=True)) for line in lines
+    ]
+    value = _elevate_to(ends, big_n + 1)
+    f0, f1 = mu0, mu0 + mu1  # μ in Bernstein degree 1
+    dim = len(ends[0])
+    zero = 0 * ends[0][0]
+    target = []  # (μ A_u)_k = ((N+1-k) f0 s_k + k f1 s_{k-1}) / (N+1)
+    for k in range(big_n + 2):
+        target.append(
+            tuple(
+                (
+                    (big_n + 1 - k) * f0 * (slopes[k][c] if k <= big_n else zero)
+                    + k * f1 * (slopes[k - 1][c] if k >= 1 else zero)
+                )
+                / (big_n + 1)
+                for c in range(dim)
+            )
+        )
+    count = big_n + 2
+    given = np.size(np.asarray(val.real_array(rest, "rest"), dtype=float)) > 0
+    rest_cols: list[Any] = [()] * count
+    if given:
+        rest_arr = np.asarray(val.real_array(rest, "rest"), dtype=float)
+        got = rest_arr.shape[1] if rest_arr.ndim == 3 and axis == 0 else None
+        if rest_arr.ndim == 3 and axis == 1:
+            got = rest_arr.shape[0]
+        if got != count:
+            raise ValueError(
+                f"rest must be a grid of control points with {count} points along the boundary "
+                f"(N + 2 = {count}: the patch's Bézier degree {big_n} there, plus one for mu), "
+                f"got shape {rest_arr.shape}"
+            )
+        exact_rest = _exact_net(rest)
+        rest_rows: Any = exact_rest if exact_rest is not None else rest_arr.tolist()
+        rest_cols = _rows_across(rest_rows, axis)
+    new_family = across_cls if family is None else family
+    new_columns = []
+    for k in range(count):
+        # the line through value_k - target_k and value_k: it ends at value_k with slope target_k
+        start = tuple(x - y for x, y in zip(value[k], target[k], strict=True))
+        nxt = join(
+            BezierCurve([start, value[k]]),
+            "C1",
+            degree,
+            lam,
+            rest=rest_cols[k],
+            family=new_family,
+            check_range=check_range,
+        )
+        new_columns.append(list(nxt.control_points()))
+    net: Any = _transpose(new_columns) if axis == 0 else new_columns
+    fam = (type(nxt), BezierCurve) if axis == 0 else (BezierCurve, type(nxt))
+    lams = (nxt.lam, None) if axis == 0 else (None, nxt.lam)
+    if not type(nxt)._has_lambda:
+        return BezierSurface(net)
     return Surface(net, lams[0], lams[1], family=fam, check_range=False)
 
 
@@ -186,6 +410,31 @@ def _proportional(a: list[Any], b: list[Any], tol: float) -> bool:
     return alpha > 0 and all(abs(x - alpha * y) <= tol for x, y in zip(flat_a, flat_b, strict=True))
 
 
+def _linear_factor(a: list[Any], b: list[Any], tol: float) -> bool:
+    """b = μ a with μ(v) linear and positive on [0, 1] (a G1 join with a varying factor): with
+    a of Bernstein degree p and b of degree p + 1, b_0 = μ(0) a_0 and b_{p+1} = μ(1) a_p give
+    μ, and every coefficient of μ·a is checked."""
+    p = max(len(a) - 1, len(b) - 2)
+    a, b = _elevate_to(a, p), _elevate_to(b, p + 1)
+    ends = []
+    for src, dst in ((a[0], b[0]), (a[-1], b[-1])):
+        k = max(range(len(src)), key=lambda i: abs(src[i]))
+        if not src[k]:
+            return False
+        ends.append(dst[k] / src[k])
+    f0, f1 = ends
+    if not (f0 > 0 and f1 > 0):
+        return False
+    zero = 0 * a[0][0]
+    for k, q in enumerate(b):
+        for c, x in enumerate(q):
+            left = a[k][c] if k <= p else zero
+            right = a[k - 1][c] if k >= 1 else zero
+            if abs(x - ((p + 1 - k) * f0 * left + k * f1 * right) / (p + 1)) > tol:
+                return False
+    return True
+
+
 @dataclass(frozen=True)
 class BoundaryReport:
     """The boundary between patch `first` and the next patch in direction `side`."""
@@ -246,7 +495,9 @@ class CompositeSurface:
         if not _same(da[0], db[0], tol):
             return "none"
         if not _same(da[1], db[1], tol * 10):
-            return "G1" if _proportional(da[1], db[1], tol * 10) else "C0"
+            if _proportional(da[1], db[1], tol * 10) or _linear_factor(da[1], db[1], tol * 10):
+                return "G1"
+            return "C0"
         return "C2" if _same(da[2], db[2], tol * 100) else "C1"
 
     def evaluate(self, u: float, v: float) -> np.ndarray:

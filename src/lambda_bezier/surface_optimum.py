@@ -8,6 +8,11 @@ interior ones have y a root of R(y) = γβ² − δαβ + εα² (the resultant,
 x = −β/α. The roots of R come from the eigenvalues of its companion matrices, all nets at once,
 and are polished by Newton on ∇E = 0.
 
+With numba installed (the `fast` extra) the same method runs compiled, one pass per net
+(hazmat.surface_compiled: the resultant's roots by its derivative chain instead of
+eigenvalues); set LAMBDA_BEZIER_NO_NUMBA=1, or hazmat.surface_kernels.USE_COMPILED = False,
+for this numpy version. Both are tested against each other and against the exact method.
+
 Certification: a net's answer is accepted when the winning point is a corner or an edge
 minimum (closed forms), or an interior point whose last Newton step is below 1e-13 (quadratic
 convergence: the point is within about that of the critical point) with a positive definite
@@ -20,15 +25,20 @@ values; ``exact_fallbacks`` counts them.
 from __future__ import annotations
 
 from fractions import Fraction
+from functools import cache
+from types import ModuleType
 from typing import Any, cast
 
 import numpy as np
 
 from . import _validate as val
 from .energy import optimal_parameters as curve_optimal_parameters
+from .hazmat import surface_kernels as ker
+from .hazmat.surface_kernels import OPTIMUM_STEP_TOLERANCE
 from .parameter_optimum import OptimalParameters as CurveOptimalParameters
 from .surface_energies import (
     ENERGIES,
+    SurfaceEnergyMatrices,
     SurfaceOptimalParameters,
     _box,
     _exact_optimum,
@@ -37,7 +47,39 @@ from .surface_energies import (
 )
 from .surfaces import NetLike, _as_family_pair, _as_net, _exact_net
 
-STEP_TOLERANCE = 1e-13
+STEP_TOLERANCE = OPTIMUM_STEP_TOLERANCE
+# the energy is a quadratic form in the net with entries up to about 1e4 (degrees <= 12):
+# coordinates below this keep every coefficient far inside the float range
+MAX_COORDINATE = 1e140
+_WHERE = np.array(["edge", "interior", "corner"], dtype=object)  # the compiled kernel's codes
+
+
+def _compiled() -> ModuleType | None:
+    """The compiled kernels (hazmat.surface_kernels.USE_COMPILED decides), or None."""
+    return ker.compiled()
+
+
+@cache
+def _pair_weights(mats: SurfaceEnergyMatrices) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The energy matrices as weights of the Gram products g_ij = P_i · P_j, i <= j:
+    (pair_i, pair_j, W) with E = Σ_p W[p, 3a + b] g_p λ_u^a λ_v^b (pairs where every W is 0
+    dropped)."""
+    size = len(next(iter(mats.full.values())))
+    rows_i, rows_j, rows_w = [], [], []
+    for i in range(size):
+        for j in range(i, size):
+            w = np.zeros(9)
+            for (a, b), q in mats.full.items():
+                w[3 * a + b] = float(q[i][j]) * (1 if i == j else 2)
+            if w.any():
+                rows_i.append(i)
+                rows_j.append(j)
+                rows_w.append(w)
+    return (
+        np.array(rows_i, dtype=np.int64),
+        np.array(rows_j, dtype=np.int64),
+        np.array(rows_w).reshape(-1, 9),
+    )
 
 
 def _polymul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -76,12 +118,33 @@ def optimal_parameters_batch(
         raise ValueError(f"a batch of nets must have shape (k, m+1, n+1, d), got {nets.shape}")
     if not np.isfinite(nets).all():
         raise ValueError("the nets contain NaN or infinity")
+    if np.abs(nets).max() > MAX_COORDINATE:
+        raise ValueError(
+            f"the nets have coordinates above {MAX_COORDINATE:.0e}, where the energy overflows "
+            "a float; scale them down (the optimal parameters do not depend on the scale)"
+        )
     count, m1, n1, dim = nets.shape
     mats = surface_energy_matrices((m1 - 1, n1 - 1), energy, (u_cls, v_cls))
-    coeffs = _float_polynomial(mats, nets.reshape(count, m1 * n1, dim))
-    top = max(max(a, b) for a, b in coeffs)
+    top = max(max(a, b) for a, b in mats.full)
     if u_box is None or v_box is None or top > 2:
         return _all_exact(nets, np.ones(count, bool), None, energy, u_box, v_box, u_cls, v_cls)
+    flat = np.ascontiguousarray(nets.reshape(count, m1 * n1, dim))
+    compiled = _compiled()
+    if compiled is not None:
+        box = np.array([float(u_box[0]), float(u_box[1]), float(v_box[0]), float(v_box[1])])
+        pair_i, pair_j, weights = _pair_weights(mats)
+        bx, by, bval, kind, unsure = compiled.optimise(
+            flat, pair_i, pair_j, weights, box, STEP_TOLERANCE
+        )
+        result = {
+            "lam_u": bx,
+            "lam_v": by,
+            "energy": bval,
+            "where": _WHERE[kind],
+            "admissible": _admissible(bx, u_box) & _admissible(by, v_box),
+        }
+        return _all_exact(nets, unsure, result, energy, u_box, v_box, u_cls, v_cls)
+    coeffs = _float_polynomial(mats, flat)
     e = np.zeros((count, 3, 3))
     for (a, b), c in coeffs.items():
         e[:, a, b] = c

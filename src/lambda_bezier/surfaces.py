@@ -310,37 +310,56 @@ class Surface:
                 f"dimension {self.dimension}"
             )
         uu, vv, scalar = _parameter_pair(u, v, False)
-        su = ker.evaluate_points(self._derivative_coefficients(1, 0), uu, vv)
-        sv = ker.evaluate_points(self._derivative_coefficients(0, 1), uu, vv)
+        with val.overflow_allowed():
+            su = ker.evaluate_points(self._derivative_coefficients(1, 0), uu, vv)
+            sv = ker.evaluate_points(self._derivative_coefficients(0, 1), uu, vv)
+        val.finite_result(su, "S_u")
+        val.finite_result(sv, "S_v")
+        # one scale per point for every derivative (the largest first-derivative entry): the
+        # products below neither overflow for a huge net nor underflow for a tiny one, and
+        # the unit normal does not depend on it (curvatures rescale by it, see curvatures)
+        scale = np.maximum(np.abs(su).max(axis=-1), np.abs(sv).max(axis=-1))
+        safe = np.where(scale > 0, scale, 1.0)[:, None]
+        su, sv = su / safe, sv / safe
         cross = np.cross(su, sv)
         size = np.linalg.norm(cross, axis=-1)
-        scale = np.linalg.norm(su, axis=-1) * np.linalg.norm(sv, axis=-1)
-        bad = ~(size > 1e-14 * scale) | (scale == 0)
+        lengths = np.linalg.norm(su, axis=-1) * np.linalg.norm(sv, axis=-1)
+        bad = ~(size > 1e-14 * lengths) | (scale == 0)
         if bad.any():
             k = int(np.argmax(bad))
             raise ValueError(
                 f"the normal is undefined at (u, v) = ({uu[k]}, {vv[k]}): S_u x S_v vanishes "
                 "there (a degenerate point of the surface)"
             )
-        return uu, vv, su, sv, cross / size[:, None], np.array(scalar)
+        return uu, vv, su, sv, cross / size[:, None], np.array(scalar), safe
 
     def normal(self, u: ParamLike, v: ParamLike) -> np.ndarray:
         """The unit normal S_u × S_v / ‖S_u × S_v‖ (3D); a ValueError where it vanishes."""
-        *_, n, scalar = self._frame(u, v)
+        *_, n, scalar, _ = self._frame(u, v)
         return n[0] if scalar else n
 
     def curvatures(self, u: ParamLike, v: ParamLike) -> tuple[np.ndarray, np.ndarray]:
         """(K, H): Gaussian and mean curvature (H's sign follows the normal S_u x S_v); a
         ValueError where the normal is undefined."""
-        uu, vv, su, sv, n, scalar = self._frame(u, v)
-        suu = ker.evaluate_points(self._derivative_coefficients(2, 0), uu, vv)
-        suv = ker.evaluate_points(self._derivative_coefficients(1, 1), uu, vv)
-        svv = ker.evaluate_points(self._derivative_coefficients(0, 2), uu, vv)
+        uu, vv, su, sv, n, scalar, c = self._frame(u, v)
+        with val.overflow_allowed():
+            second = [
+                ker.evaluate_points(self._derivative_coefficients(a, b), uu, vv) / c
+                for a, b in ((2, 0), (1, 1), (0, 2))
+            ]
+        suu, suv, svv = (val.finite_result(x, "a second derivative") for x in second)
+        # every derivative divided by the same c: K = K_scaled / c², H = H_scaled / c
         e, f, g = (su * su).sum(-1), (su * sv).sum(-1), (sv * sv).sum(-1)
         l_, m_, n_ = (suu * n).sum(-1), (suv * n).sum(-1), (svv * n).sum(-1)
         det = e * g - f * f
-        gauss = (l_ * n_ - m_ * m_) / det
-        mean = (e * n_ - 2 * f * m_ + g * l_) / (2 * det)
+        with val.overflow_allowed():
+            gauss = (l_ * n_ - m_ * m_) / det / c[:, 0] / c[:, 0]  # c² could underflow
+            mean = (e * n_ - 2 * f * m_ + g * l_) / (2 * det) / c[:, 0]
+        if not (np.isfinite(gauss).all() and np.isfinite(mean).all()):
+            raise ValueError(
+                "the curvature is beyond the float range here (a net this small curves more "
+                "than 1.8e308); scale the net up"
+            )
         if scalar:
             return gauss[0], mean[0]
         return gauss, mean
@@ -471,9 +490,10 @@ class Surface:
             ker.differentiate(coeffs, 0, 2),
         )
 
-        def value(u: float, v: float) -> float:
-            diff = ker.evaluate_points(self._coefficients, np.array([u]), np.array([v]))[0] - point
-            return float(diff @ diff)
+        def value(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+            diff = ker.evaluate_points(self._coefficients, u, v) - point
+            out: np.ndarray = (diff * diff).sum(axis=1)
+            return out
 
         polish = _newton_polish(grad, hess)
         # the distance gap sqrt(best) - sqrt(lower) <= tol·size needs a squared-distance gap of
@@ -499,8 +519,9 @@ class Surface:
 
 
 def _scalar_value(coeffs: np.ndarray) -> Any:
-    def value(u: float, v: float) -> float:
-        return float(ker.evaluate_points(coeffs, np.array([u]), np.array([v]))[0, 0])
+    def value(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+        out: np.ndarray = ker.evaluate_points(coeffs, u, v)[:, 0]
+        return out
 
     return value
 
@@ -509,11 +530,17 @@ def _newton_polish(grad: tuple[np.ndarray, ...], hess: tuple[np.ndarray, ...]) -
     """Newton on ∇f = 0 from (u, v), kept in the unit square (a few steps; the branch and
     bound only uses the values it reaches, so a poor step costs nothing but time)."""
 
+    # the five scalar tensors side by side (zero-padded to one shape): one evaluation a step
+    parts = (*grad, *hess)
+    shape = (max(p.shape[0] for p in parts), max(p.shape[1] for p in parts))
+    stacked = np.zeros((*shape, len(parts)))
+    for k, part in enumerate(parts):
+        stacked[: part.shape[0], : part.shape[1], k] = part[:, :, 0]
+
     def polish(u: float, v: float) -> tuple[float, float]:
         for _ in range(8):
             uu, vv = np.array([u]), np.array([v])
-            gx, gy = (float(ker.evaluate_points(g, uu, vv)[0, 0]) for g in grad)
-            hxx, hxy, hyy = (float(ker.evaluate_points(h, uu, vv)[0, 0]) for h in hess)
+            gx, gy, hxx, hxy, hyy = map(float, ker.evaluate_points(stacked, uu, vv)[0])
             det = hxx * hyy - hxy * hxy
             if not det or not np.isfinite(det):
                 break

@@ -31,6 +31,8 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `rational_kernels`: rational Bézier curves on their homogeneous form (evaluation, derivatives
   by the quotient rule, subdivision, Möbius maps);
 - `surface_kernels`: tensor-product evaluation, boxes and closest points of control nets;
+- `surface_compiled`: grid evaluation and the batch optimum of (λ_u, λ_v), compiled with numba (the
+  `fast` extra; imported on use);
 - `exact_poly`: exact polynomials over the rationals (Sturm sequences, resultants);
 - `box_bernstein`: exact Bernstein bounds of a polynomial in several variables over a box
   (branch and bound: signs, zeros, the certified minimum).
@@ -67,4 +69,5 @@ __all__ = [
     "reduce",
     "roots",
     "surface_kernels",
+    "surface_compiled",
 ]

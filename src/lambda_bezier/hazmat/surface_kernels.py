@@ -10,16 +10,40 @@ Bernstein basis (the curves use the same centre).
 from __future__ import annotations
 
 import heapq
+import importlib.util
 import itertools
+import os
 from collections.abc import Callable, Sequence
 from fractions import Fraction
 from functools import cache
 from math import comb
+from types import ModuleType
 
 import numpy as np
 
 Scalar = Fraction | float
 ExactNet = tuple[tuple[tuple[Fraction, ...], ...], ...]
+
+# the batch optimum of (λ_u, λ_v) accepts an interior point when its last Newton step is
+# below this (quadratic convergence: the point is then within about that of the critical
+# point); the numpy version reads it, the compiled one is passed it
+OPTIMUM_STEP_TOLERANCE = 1e-13
+
+# the compiled kernels (surface_compiled) when numba is there and not switched off (module
+# flag, read per call; LAMBDA_BEZIER_NO_NUMBA=1 in the environment, or USE_COMPILED = False
+# here, selects the numpy versions, which stay the tested fallback)
+USE_COMPILED = importlib.util.find_spec("numba") is not None and not os.environ.get(
+    "LAMBDA_BEZIER_NO_NUMBA"
+)
+
+
+def compiled() -> ModuleType | None:
+    """hazmat.surface_compiled, or None for the numpy versions."""
+    if not USE_COMPILED:
+        return None
+    from . import surface_compiled  # numba compiles (or loads its cache) on first use
+
+    return surface_compiled
 
 
 # ---------------------------------------------------------------------- basis changes
@@ -91,9 +115,13 @@ def _powers(t: np.ndarray, size: int) -> np.ndarray:
 
 def evaluate_points(coeffs: np.ndarray, u: np.ndarray, v: np.ndarray) -> np.ndarray:
     """S(u_k, v_k) for paired 1-D arrays u, v: (len(u), d)."""
-    pu = _powers(u, coeffs.shape[0])
-    pv = _powers(v, coeffs.shape[1])
-    out: np.ndarray = np.einsum("ki,ijd,kj->kd", pu, coeffs, pv, optimize=True)
+    big_m, big_n, dim = coeffs.shape
+    pu = _powers(u, big_m)
+    pv = _powers(v, big_n)
+    # one matrix product along u, then the pairing along v; no einsum path search, which
+    # cost more than the arithmetic for the few points the global searches evaluate
+    along_u = (pu @ coeffs.reshape(big_m, big_n * dim)).reshape(u.size, big_n, dim)
+    out: np.ndarray = np.einsum("knd,kn->kd", along_u, pv)
     return out
 
 
@@ -104,15 +132,20 @@ def evaluate_grid(coeffs: np.ndarray, us: np.ndarray, vs: np.ndarray) -> np.ndar
     One small contraction along u, then per coordinate one matrix product
     (len(us), N+1) @ (N+1, len(vs)) written straight into its contiguous slab of the output:
     the inner size is N+1 (4 for a bicubic), so the products cost little more than writing the
-    output once.
+    output once. Compiled (surface_compiled.grid_products) when numba is there: BLAS's threads
+    cost more than these products on a busy machine.
     """
     big_m, big_n, dim = coeffs.shape
     pu = _powers(us, big_m)
     pv_t = np.ascontiguousarray(_powers(vs, big_n).T)  # (N+1, len(vs))
-    left = np.einsum("ai,ijd->daj", pu, coeffs)  # (d, len(us), N+1)
+    left = np.ascontiguousarray(np.einsum("ai,ijd->daj", pu, coeffs))  # (d, len(us), N+1)
     out = np.empty((dim, us.size, vs.size))
-    for c in range(dim):
-        np.matmul(left[c], pv_t, out=out[c])
+    fast = compiled()
+    if fast is not None and us.size and vs.size:
+        fast.grid_products(left, pv_t, out)
+    else:
+        for c in range(dim):
+            np.matmul(left[c], pv_t, out=out[c])
     return out.transpose(1, 2, 0)
 
 
@@ -201,6 +234,27 @@ def split_float(net: np.ndarray, t: float, axis: int) -> tuple[np.ndarray, np.nd
     return np.moveaxis(np.stack(lo), 0, axis), np.moveaxis(np.stack(hi[::-1]), 0, axis)
 
 
+@cache
+def _halving(degree: int) -> np.ndarray:
+    """(2, N+1, N+1): the nets of the halves [0, 1/2] and [1/2, 1] of a degree-N Bézier
+    polynomial as matrices on its net (de Casteljau at 1/2, exact in binary floats)."""
+    out = np.zeros((2, degree + 1, degree + 1))
+    for i in range(degree + 1):
+        for j in range(i + 1):
+            out[0, i, j] = comb(i, j) / 2**i
+        for j in range(i, degree + 1):
+            out[1, i, j] = comb(degree - i, j - i) / 2 ** (degree - i)
+    return out
+
+
+def quarters(net: np.ndarray) -> np.ndarray:
+    """(2, 2, M+1, N+1): the nets of a scalar net's four quarters [a/2, (a+1)/2] x
+    [b/2, (b+1)/2], by one product with the halving matrices."""
+    hu, hv = _halving(net.shape[0] - 1), _halving(net.shape[1] - 1)
+    out: np.ndarray = np.einsum("aij,jk,blk->abil", hu, net, hv)
+    return out
+
+
 def bernstein_product(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """The Bézier net of the product of two scalar tensor-product Bézier polynomials,
     a (M+1, N+1) and b (P+1, Q+1) → (M+P+1, N+Q+1)."""
@@ -224,19 +278,24 @@ def _binomials(n: int) -> np.ndarray:
 # ---------------------------------------------------------------------- global minimum
 def minimise_scalar_net(
     net: np.ndarray,
-    value: Callable[[float, float], float],
+    value: Callable[[np.ndarray, np.ndarray], np.ndarray],
     polish: Callable[[float, float], tuple[float, float]],
     tol: float | Callable[[float], float],
-    max_patches: int = 200_000,
+    max_patches: int = 4_000,
 ) -> tuple[float, float, float, float]:
     """The global minimum over the unit square of a scalar Bézier polynomial f given by its net
     (M+1, N+1), by branch and bound: a patch's lower bound is the least of its net (the
     polynomial lies in the hull), its corners are attained values, and `polish` (Newton from a
-    patch centre, kept inside the square) supplies better attained values.
+    patch centre, kept inside the square) supplies better attained values. `value` evaluates
+    f at paired arrays of parameters.
 
     Returns (u, v, f(u, v), lower): the best point found and a certified lower bound of the
     minimum; stops when the best value exceeds `lower` by at most `tol` (a number, or a
-    function of the best value). A RuntimeError when `max_patches` patches did not get there.
+    function of the best value), or after `max_patches` subdivisions with the bound reached
+    then (still certified, only looser than `tol`). The budget matters where the minimum is
+    attained along a curve (a query point on the axis of a surface of revolution, a level set
+    of a scalar field): the net's bound is only O(h²) below the minimum on a patch of size h,
+    so every patch along that curve would have to shrink to about sqrt(tol) first.
     """
     gap = tol if callable(tol) else (lambda _best: float(tol))
     best_u, best_v, best = 0.0, 0.0, np.inf
@@ -263,19 +322,22 @@ def minimise_scalar_net(
             continue
         splits += 1
         if splits > max_patches:
-            raise RuntimeError("the global minimum search did not converge")
+            return best_u, best_v, best, min(lb, heap[0][0] if heap else lb, floor)
         um, vm = (u0 + u1) / 2, (v0 + v1) / 2
         cand = _try(um, vm, value, polish)
         if cand[2] < best:
             best_u, best_v, best = cand
-        left, right = split_float(patch, 0.5, 0)
-        for (a0, a1), half in (((u0, um), left), ((um, u1), right)):
-            low, high = split_float(half, 0.5, 1)
-            for (b0, b1), piece in (((v0, vm), low), ((vm, v1), high)):
-                for cu, cv in ((a0, b0), (a1, b0), (a0, b1), (a1, b1)):
-                    corner = value(cu, cv)  # the net's corners are attained values
-                    if corner < best:
-                        best_u, best_v, best = cu, cv, corner
+        # the children's corners (a 3 x 3 grid) are attained values: one evaluation
+        gu = np.repeat((u0, um, u1), 3)
+        gv = np.tile((v0, vm, v1), 3)
+        corners = value(gu, gv)
+        k = int(np.argmin(corners))
+        if corners[k] < best:
+            best_u, best_v, best = float(gu[k]), float(gv[k]), float(corners[k])
+        children = quarters(patch)
+        for a, (a0, a1) in enumerate(((u0, um), (um, u1))):
+            for b, (b0, b1) in enumerate(((v0, vm), (vm, v1))):
+                piece = children[a, b]
                 lo = float(piece.min())
                 if lo <= best - gap(best):
                     heapq.heappush(heap, (lo, next(tie), a0, a1, b0, b1, piece))
@@ -287,9 +349,10 @@ def minimise_scalar_net(
 def _try(
     u: float,
     v: float,
-    value: Callable[[float, float], float],
+    value: Callable[[np.ndarray, np.ndarray], np.ndarray],
     polish: Callable[[float, float], tuple[float, float]],
 ) -> tuple[float, float, float]:
     pu, pv = polish(u, v)
-    fa, fb = value(u, v), value(pu, pv)
+    both = value(np.array([u, pu]), np.array([v, pv]))
+    fa, fb = float(both[0]), float(both[1])
     return (u, v, fa) if fa <= fb else (pu, pv, fb)

@@ -102,7 +102,7 @@ class Realiser:
 
     def point(self, x: sp.Basic) -> Fraction:
         """A point of t as a multiple of the domain's unit (pi or 1)."""
-        q = sp.nsimplify(x / sp.pi) if self.frame.dom_pi else x
+        q = x / sp.pi if self.frame.dom_pi else x
         if x == 0:
             return Fraction(0)
         if not q.is_Rational:

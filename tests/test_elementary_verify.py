@@ -165,3 +165,22 @@ def test_kinds_for_elementary_families_only_refuse_a_polynomial_family(tmp_path)
     recs = records_mod.load_paths([*paths, tmp_path / "r.records.toml"])
     res = report_mod.check_record(recs[0])
     assert "is polynomial" in str(res.error)
+
+
+@pytest.mark.parametrize(
+    ("change", "message"),
+    [
+        ({"control_points": [["0", "0"], ["1"], ["3", "3"], ["4", "0"]]}, "same number"),
+        ({"control_points": [["0", "0"], ["1", "2"], ["3", "3"]]}, "4 points"),
+        ({"control_points": [["pi", "0"], ["1", "2"], ["3", "3"], ["4", "0"]]}, "unknown name"),
+        ({"k": 5}, "key k"),
+        ({"parameters": {"lam": "1/2"}}, "no value of mu"),
+        ({"parameters": {"lam": "1/2", "mu": "-1", "nu": "0"}}, "not a parameter"),
+        ({"parameters": {"lam": "pi", "mu": "-1"}}, "unknown name"),
+    ],
+)
+def test_a_bad_energy_payload_is_refused_with_its_key(records, change, message):
+    rec = _record(records, "han.energy2")
+    rec.update(change)
+    res = report_mod.check_record(rec)
+    assert message in str(res.error), (res.outcome, res.error)

@@ -412,7 +412,7 @@ def _energy_at(record: dict, real: Realiser, values: list[Fraction]) -> A.Elem:
         raise RecordError("keys k and control_points are required")
     if len(pts) != real.n + 1:
         raise RecordError(f"key control_points: {real.n + 1} points for {real.defn.name}")
-    rows = [[_rational(v, "control_points") for v in row] for row in pts]
+    rows = _point_rows(pts)
     gram = real.gram(k)
     point = tuple(values) + (Fraction(0),) * (real.n + 1)
     total: A.Elem = {}
@@ -421,6 +421,16 @@ def _energy_at(record: dict, real: Realiser, values: list[Fraction]) -> A.Elem:
             for c, rc in enumerate(rows):
                 total = A.add(total, A.at_parameters(gram[a][c], point), ra[dim] * rc[dim])
     return total
+
+
+def _point_rows(pts: list) -> list[list[Fraction]]:
+    rows = [
+        [_rational(v, f"control_points[{j}][{d}]") for d, v in enumerate(row)]
+        for j, row in enumerate(pts)
+    ]
+    if not rows[0] or any(len(row) != len(rows[0]) for row in rows):
+        raise RecordError("key control_points: every point has the same number of coordinates")
+    return rows
 
 
 def _rational(text: str, key: str) -> Fraction:
@@ -506,7 +516,7 @@ def optimum(record: dict, defn: Definition):
     k = record.get("k")
     if k is None or not pts:
         raise RecordError("keys k and control_points are required")
-    rows = [[_rational(v, "control_points") for v in row] for row in pts]
+    rows = _point_rows(pts)
     if len(rows) != real.n + 1:
         raise RecordError(f"key control_points: {real.n + 1} points for {defn.name}")
     gram = real.gram(k)

@@ -37,7 +37,9 @@ from ..families.definition import Definition
 from ..families.engine import basis_polys
 from ..formulas import box
 from ..grammar import SYMBOLS, ParseError, parse_formula
+from . import checks_elementary as elementary
 from .checks_core import KIND_FAMILIES, Outcome, checker
+from .checks_elementary import RecordError
 from .claim_families import SEVERAL_FAMILIES
 
 KINDS = (
@@ -47,6 +49,10 @@ KINDS = (
     "several_energy_matrix",
     "several_energy",
     "several_optimum",
+    # trigonometric, hyperbolic and mixed families only (checks_elementary.py)
+    "several_rational",
+    "several_nonnegative",
+    "several_independence",
 )
 for _kind in KINDS:
     KIND_FAMILIES[_kind] = (
@@ -57,10 +63,6 @@ for _kind in KINDS:
 
 _I, _N, _T, _K = (SYMBOLS[x] for x in ("i", "n", "t", "k"))
 _FUNCTIONS = {name: sp.Function(name) for name in ("P", "b", "p")}
-
-
-class RecordError(ValueError):
-    """A record that cannot be read as a claim about this family (names the key)."""
 
 
 def _defn(record: dict) -> Definition:
@@ -163,11 +165,15 @@ def _equations(record: dict) -> Outcome:
 
 @checker("several_basis", fits=lambda rec: "equations" in rec)
 def check_several_basis(record: dict, _context: object) -> Outcome:
+    if _defn(record).elementary:  # sin, cos, ...: exact atoms (checks_elementary.py)
+        return elementary.equations(record, _defn(record))
     return _equations(record)
 
 
 @checker("several_end_conditions", fits=lambda rec: "equations" in rec)
 def check_several_end_conditions(record: dict, _context: object) -> Outcome:
+    if _defn(record).elementary:  # sin, cos, ...: exact atoms (checks_elementary.py)
+        return elementary.equations(record, _defn(record))
     return _equations(record)
 
 
@@ -176,6 +182,8 @@ _ONE = re.compile(r"^([A-Za-z][A-Za-z0-9_]*)(?:\(k\))?$")
 
 @checker("several_symmetry")
 def check_several_symmetry(record: dict, _context: object) -> Outcome:
+    if _defn(record).elementary:  # sin, cos, ...: exact atoms (checks_elementary.py)
+        return elementary.symmetry(record, _defn(record))
     defn = _defn(record)
     swap = record.get("swap")
     if not swap:
@@ -229,6 +237,8 @@ def _gram(at: Definition, degree: int, k: int) -> list[list[sp.Expr]]:
 
 @checker("several_energy_matrix")
 def check_several_energy_matrix(record: dict, _context: object) -> Outcome:
+    if _defn(record).elementary:  # sin, cos, ...: exact atoms (checks_elementary.py)
+        return elementary.energy_matrix(record, _defn(record))
     defn = _defn(record)
     degree, k = record.get("n"), record.get("k")
     gram = record.get("gram")
@@ -298,6 +308,8 @@ def _parameters(record: dict, defn: Definition, at: Definition, degree: int) -> 
 
 @checker("several_energy")
 def check_several_energy(record: dict, _context: object) -> Outcome:
+    if _defn(record).elementary:  # sin, cos, ...: exact atoms (checks_elementary.py)
+        return elementary.energy(record, _defn(record))
     defn, at, degree, energy = _energy_setup(record)
     values = _parameters(record, defn, at, degree)
     claimed = (
@@ -315,6 +327,8 @@ def check_several_energy(record: dict, _context: object) -> Outcome:
 
 @checker("several_optimum")
 def check_several_optimum(record: dict, _context: object) -> Outcome:
+    if _defn(record).elementary:  # sin, cos, ...: exact atoms (checks_elementary.py)
+        return elementary.optimum(record, _defn(record))
     defn, at, degree, energy = _energy_setup(record)
     values = _parameters(record, defn, at, degree)
     diffs = []
@@ -344,3 +358,28 @@ def check_several_optimum(record: dict, _context: object) -> Outcome:
         f"{float(best['lower']):.15g} (exact Bernstein branch and bound, 1e-12)"
     ]
     return Outcome("mismatch" if diffs else "match", diffs, checked)
+
+
+def _elementary_only(kind: str, record: dict) -> Definition:
+    defn = _defn(record)
+    if not defn.elementary:
+        raise RecordError(
+            f"claim kind {kind!r} is about a trigonometric, hyperbolic or mixed family; "
+            f"{defn.name!r} is polynomial (its derived document decides this)"
+        )
+    return defn
+
+
+@checker("several_rational")
+def check_several_rational(record: dict, _context: object) -> Outcome:
+    return elementary.rational(record, _elementary_only("several_rational", record))
+
+
+@checker("several_nonnegative")
+def check_several_nonnegative(record: dict, _context: object) -> Outcome:
+    return elementary.nonnegative(record, _elementary_only("several_nonnegative", record))
+
+
+@checker("several_independence")
+def check_several_independence(record: dict, _context: object) -> Outcome:
+    return elementary.independence(record, _elementary_only("several_independence", record))

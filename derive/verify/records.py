@@ -38,6 +38,7 @@ from .registry import (
     claim_kind,
     kind_problem,
     register_defined_family,
+    register_elementary_family,
     register_several_family,
 )
 
@@ -183,6 +184,13 @@ PAYLOAD = {
     "swap": _NAMED_STRS,
     "parameters": _NAMED_STRS,
     "gram": {"type": "array", "items": _STRS},
+    # trigonometric, hyperbolic and mixed families (derive/verify/checks_elementary.py)
+    "substitution": {"enum": ["tan(t/2)", "tanh(t/2)"]},
+    "rational_weights": _STRS,
+    "rational_numerators": {"type": "array", "items": _STRS},
+    "nonnegative": {"type": "boolean"},
+    "independent": {"type": "boolean"},
+    "box": _NAMED_STRS,
 }
 
 _RECORD = _table(
@@ -272,6 +280,7 @@ TEXT_KEYS = frozenset(
         "side",
         "line",
         "energy",
+        "substitution",
     }
 )
 
@@ -400,13 +409,9 @@ def _define_family(path: Path, table: dict, points: str | None) -> str:
     """Derive the family a records file defines and make it known to this run's checkers."""
     try:
         defn = definition_from_table(table, str(path))
-        if defn.elementary:  # issue #30: derive --family only, so far
-            raise RecordsError(
-                f"{path}: [family] {defn.name!r} uses sin, cos, sinh, cosh or exp; verify "
-                "checks records about polynomial families only in this version (derive "
-                "--family derives it)"
-            )
-        if defn.several:  # its records: checks_several.py's claim kinds
+        if defn.elementary:  # sin, cos, ...: checks_several.py's kinds, in exact atoms
+            register_elementary_family(defn)
+        elif defn.several:  # its records: checks_several.py's claim kinds
             register_several_family(defn)
         else:
             register_defined_family(defn, points)

@@ -13,6 +13,8 @@ import importlib
 from ..families.definition import Definition
 from ..families.engine import basis_polys, check, closed_endpoint_forms, closed_endpoint_order
 from ..families.registry import builtin_families
+from ..families.spaces import space_of
+from ..formulas.atom_family import check_partition
 from ..formulas.family import register_formulas
 
 # The shared checkers register their claim kinds on import (one module per group of kinds).
@@ -45,6 +47,7 @@ __all__ = [
     "kind_problem",
     "kinds",
     "register_defined_family",
+    "register_elementary_family",
     "register_several_family",
     "run_checker",
 ]
@@ -96,4 +99,12 @@ def register_several_family(defn: Definition) -> None:
     records are checked by checks_several.py's claim kinds (each definition checked first)."""
     for degree in defn.degrees:
         check(defn.at_degree(degree))
+    SEVERAL_FAMILIES[defn.name] = defn
+
+
+def register_elementary_family(defn: Definition) -> None:
+    """A trigonometric, hyperbolic or mixed family that a records file defines: its space and
+    partition of unity are decided first (a DefinitionError names the key), then its records
+    are checked by checks_several.py's claim kinds in exact atoms (checks_elementary.py)."""
+    check_partition(defn, space_of(defn))
     SEVERAL_FAMILIES[defn.name] = defn

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 import re
+import warnings
 from decimal import Decimal
 from fractions import Fraction
 
@@ -560,3 +561,19 @@ def test_cli_version(capsys):
         main(["--version"])
     assert info.value.code == 0
     assert capsys.readouterr().out.strip() == f"lambda-bezier {lb.__version__}"
+
+
+def test_report_of_a_join_near_the_float_limit_warns_nothing():
+    # found by test_fuzz_join_and_composite: a C2 join whose free points are ~1e301 made the
+    # joint report's norms overflow (numpy RuntimeWarning in the squares); the norms are now
+    # taken scaled, and every number in the report is finite
+    comp = lb.CompositeCurve([lb.SameDegreeCurve(P, lam=Fraction(1, 2))])
+    grown = comp.join("C2", 4, 0, 1, 0, np.array([(9.0, -1.0), (10.0, 1.0)]) * 1e300, None)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        (report,) = grown.report(1e-9)
+    assert "C0" in report.achieved
+    assert all(
+        math.isfinite(x)
+        for x in (report.position_gap, report.first_derivative_gap, report.speed_ratio)
+    )

@@ -103,8 +103,32 @@ class JointReport:
         return None if self.built_with is None else self.holds(self.built_with.continuity)
 
 
+def _scaled(a: np.ndarray, by: float | None = None) -> np.ndarray:
+    """a divided by its largest |entry| (or by `by`): norms and products of vectors near the
+    ends of the float range then neither overflow nor underflow."""
+    m = float(np.max(np.abs(a))) if by is None else by
+    return a / m if m > 0 and math.isfinite(m) else a
+
+
+def _norm(a: np.ndarray) -> float:
+    """|a| without overflow in the squares (a Python float: inf where |a| itself is)."""
+    m = float(np.max(np.abs(a))) if a.size else 0.0
+    if m == 0 or not math.isfinite(m):
+        return m
+    return m * float(np.linalg.norm(a / m))
+
+
+def _gap(a: np.ndarray, b: np.ndarray) -> float:
+    """|a - b| without overflow in the difference or the squares."""
+    common = max(float(np.max(np.abs(a))), float(np.max(np.abs(b))))
+    if common == 0 or not math.isfinite(common):
+        return common
+    return common * _norm(a / common - b / common)
+
+
 def _angle(a: np.ndarray, b: np.ndarray) -> float:
     """Angle between two vectors, accurate near 0 (atan2 of |a×b| and a·b)."""
+    a, b = _scaled(a), _scaled(b)
     na, nb = np.linalg.norm(a), np.linalg.norm(b)
     if na == 0 or nb == 0:
         return math.nan
@@ -113,8 +137,8 @@ def _angle(a: np.ndarray, b: np.ndarray) -> float:
 
 
 def _relative_gap(a: np.ndarray, b: np.ndarray) -> float:
-    scale = max(float(np.linalg.norm(a)), float(np.linalg.norm(b)))
-    gap = float(np.linalg.norm(a - b))
+    scale = max(_norm(a), _norm(b))
+    gap = _gap(a, b)
     return 0.0 if gap == 0 else gap / scale
 
 
@@ -128,17 +152,17 @@ def measure(
     d2, e2 = left.derivative(1.0, 2), right.derivative(0.0, 2)
     k1, k2 = float(left.curvature(1.0)), float(right.curvature(0.0))
     size = max(1.0, float(np.abs(left.points).max()), float(np.abs(right.points).max()))
-    gap = float(np.linalg.norm(p1 - p2))
+    gap = _gap(p1, p2)
     angle = _angle(d1, e1)
-    speed2 = float(np.linalg.norm(e1))
-    ratio = float(np.linalg.norm(d1)) / speed2 if speed2 else math.nan
+    speed2 = _norm(e1)
+    ratio = _norm(d1) / speed2 if speed2 else math.nan
     binormal = None
     if left.dimension == 3:
         binormal = _angle(np.cross(d1, d2), np.cross(e1, e2))
     achieved = set()
     if gap <= tol * size:
         achieved.add("C0")
-        if _relative_gap(d1, e1) <= tol and np.linalg.norm(d1) > 0:
+        if _relative_gap(d1, e1) <= tol and _norm(d1) > 0:
             achieved.add("C1")
             if _relative_gap(d2, e2) <= tol:
                 achieved.add("C2")
@@ -154,8 +178,8 @@ def measure(
         index=index,
         u=index + 1,
         position_gap=gap,
-        first_derivative_gap=float(np.linalg.norm(d1 - e1)),
-        second_derivative_gap=float(np.linalg.norm(d2 - e2)),
+        first_derivative_gap=_gap(d1, e1),
+        second_derivative_gap=_gap(d2, e2),
         speed_ratio=ratio,
         tangent_angle=angle,
         curvature=(k1, k2),

@@ -25,9 +25,9 @@ from .hazmat import kernels
 from .hazmat.kernels import chunk_ranges
 from .parameter_optimum import (
     OptimalParameters,
-    optimal_atoms,
-    optimal_indexed,
-    optimal_several,
+    _optimal_atoms,
+    _optimal_indexed,
+    _optimal_several,
 )
 
 _energy = generated("energy")
@@ -586,13 +586,13 @@ def optimal_parameters(
     (Fraction(-2, 1), False, 'lam = -2 (lower end, excluded: not attained)')
     """
     if hasattr(family, "by_degree"):  # an indexed family (lam(i)): its degree's parameters
-        return optimal_indexed(points, _check_order(k), family)
+        return _optimal_indexed(points, _check_order(k), family)
     atom = getattr(family, "atom_data", None)
     if atom is not None:
-        return optimal_atoms(points, _check_order(k), atom)
+        return _optimal_atoms(points, _check_order(k), atom)
     several = getattr(family, "several", None)
     if several is not None:
-        return optimal_several(points, _check_order(k), family, several)
+        return _optimal_several(points, _check_order(k), family, several)
     one = optimal_lambda(points, k, family, clamp=True)
     if isinstance(one.lam, np.ndarray):  # pragma: no cover - a polygon batch
         raise ValueError("points: optimal_parameters takes one control polygon")

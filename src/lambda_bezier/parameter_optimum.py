@@ -83,7 +83,7 @@ def _solve(a: list[list[Fraction]], b: list[Fraction]) -> list[Fraction] | None:
     return [m[r][size] / m[r][r] for r in range(size)]
 
 
-def optimal_several(points: PointsLike, k: int, family: Any, several: Any) -> OptimalParameters:
+def _optimal_several(points: PointsLike, k: int, family: Any, several: Any) -> OptimalParameters:
     """E_k = w^T S w with w = (1, x_1..x_J) for a family affine in its parameters jointly
     (S from the derived Gram matrices, exact); its minimum over the closed box is the least
     of the free minima on the box's faces (each a linear system) that lie in the face:
@@ -122,7 +122,7 @@ def optimal_several(points: PointsLike, k: int, family: Any, several: Any) -> Op
     return _box_minimum(s_mat, names, several.RANGES, exact, k, several.FAMILY)
 
 
-def optimal_atoms(points: PointsLike, k: int, data: Any) -> OptimalParameters:
+def _optimal_atoms(points: PointsLike, k: int, data: Any) -> OptimalParameters:
     """optimal_parameters for a trigonometric, hyperbolic or mixed family (atom_family):
     E_k = Σ over monomial pairs params^(m1+m2) P^T G P with entries in ℚ[π] or ℚ[e^W], a
     quadratic in the parameters when each monomial has degree <= 1 (the family is affine in
@@ -297,12 +297,12 @@ def _certified_several(
     )
 
 
-def optimal_indexed(points: PointsLike, k: int, family: Any) -> OptimalParameters:
+def _optimal_indexed(points: PointsLike, k: int, family: Any) -> OptimalParameters:
     """The several-parameter optimum of the degree the points give, with the parameters
     lam_a .. lam_b of that degree returned as one tuple under the family's own name."""
     rows = val.as_points(points, family=family.name, degrees=family.degrees)
     fam = family.at_degree(len(rows) - 1)
-    r = optimal_several(points, k, fam, fam.several)
+    r = _optimal_several(points, k, fam, fam.several)
     name = family.index_name
     free: dict[str, Any] = {name: tuple(r.free.values())} if r.free else {}
     return OptimalParameters(

@@ -328,6 +328,27 @@ def test_reflected_tangency_lambda_curves(points, lam, t0):
         )
 
 
+def test_tangency_at_the_corner_of_narrow_pieces_is_not_isolated():
+    """Hypothesis's case (numpy engine): the tangency at t0 = 9/16, a dyadic, lies at the
+    corner of a pair of pieces 2^-20 wide, whose hodograph cones touch along the tangent
+    line. Rounding of the pieces' control points turns their directions by ~1e-8 there, so
+    without the cones widened by that blur they looked apart and the pair was "isolated":
+    the tangency came back as a transversal crossing."""
+    lam, t0 = F(1, 3), F(9, 16)
+    curve = lb.SameDegreeCurve([(-5, 7), (1, -4), (-8, -1), (1, 4), (-2, -9)], lam)
+    rows = curve.to_bezier().control_points()
+    point, d, _, reflect = reflect_in_tangent(rows, t0)
+    mirror = lb.SameDegreeCurve([reflect(v) for v in curve.control_points()], lam)
+    hits = curve.intersect(mirror)
+    assert_on_both(curve, mirror, hits)
+    roots = sorted(set(diagonal_roots(rows, point, d)))  # 9/16 (double) and one crossing
+    assert [float(r) for r in roots][0] == 0.5625 and len(roots) == 2
+    assert [h.kind for h in hits] == ["tangent", "transversal"]
+    assert hits[0].s == hits[0].t == 0.5625
+    assert hits[1].s == pytest.approx(float(roots[1]), abs=1e-15)
+    assert hits[1].t == pytest.approx(float(roots[1]), abs=1e-15)
+
+
 def test_newton_thrown_out_of_the_domain_still_finds_the_tangency():
     """A start near the tangency of a cubic and its reflection from which float Newton leaves
     the domain (the Jacobian is nearly singular there): the tangent refinement takes over."""

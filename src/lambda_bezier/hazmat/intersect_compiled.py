@@ -23,6 +23,10 @@ import numba
 import numpy as np
 from numba.typed import List
 
+# intersect_subdivide.BLUR (a compile-time constant here; tests/test_fast_paths.py checks they
+# agree): the pieces' rounding as a share of the slack
+BLUR = 1.0 / 16.0
+
 _JIT: dict[str, Any] = {"cache": True, "error_model": "numpy"}
 
 
@@ -68,10 +72,10 @@ def _cone(points: np.ndarray, axis: np.ndarray, slack: float) -> float:
             h = points[i + 1, j] - points[i, j]
             norm += h * h
         norm = math.sqrt(norm)
-        if norm > 2.0 * slack:
+        if norm > 2.0 * BLUR * slack:
             for j in range(dim):
                 axis[j] += (points[i + 1, j] - points[i, j]) / norm
-            blur = max(blur, math.asin(2.0 * slack / norm))
+            blur = max(blur, math.asin(2.0 * BLUR * slack / norm))
         else:
             good = False
     axis_norm = 0.0

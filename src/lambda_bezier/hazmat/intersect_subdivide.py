@@ -43,6 +43,10 @@ MAX_ROWS = 200_000  # pairs of pieces alive at one level, a guard against runawa
 NEWTON_STEPS = 10  # local Newton iterations on an isolated pair (quadratic from its middle)
 INSIDE = 1e-9  # a Newton root this far (in the pieces' local parameter) outside still counts
 CONE_MARGIN = 1e-9  # radians: cones closer than this are treated as sharing a line
+# the pieces' rounding (the input's half ulp and ~1 ulp per halving: 4 eps per degree of the
+# size) as a share of the slack (64 eps per degree): the error the cones are widened by. The
+# whole slack widened them so much that crossings 1e-6 apart were no longer isolated
+BLUR = 1 / 16
 
 # the compiled loop when numba is there and not switched off (module flag, read per call)
 USE_COMPILED = importlib.util.find_spec("numba") is not None and not os.environ.get(
@@ -143,15 +147,16 @@ def _cones(pieces: np.ndarray, slack: np.ndarray) -> tuple[np.ndarray, np.ndarra
     control point of each piece; half-angle >= pi/2 (not pointed) where there is none
     this way (a zero hodograph point, or directions that turn too far).
 
-    The pieces' control points are off the true pieces' by rounding (slack, (K,), bounds it:
-    the input's and that of repeated halving), so each difference b_{i+1} - b_i is off by up
-    to 2 slack and its direction by up to asin(2 slack / |b_{i+1} - b_i|): the half-angle is
-    widened by that blur. On narrow pieces it is not small (2^-20 wide at a tangency, about
-    1e-8 rad), and without it two cones that touch along the common tangent line can look
+    The pieces' control points are off the true pieces' by rounding (BLUR times the slack,
+    (K,), bounds it: the input's and that of repeated halving), so each difference
+    b_{i+1} - b_i is off by up to twice that and its direction by up to
+    asin(2 BLUR slack / |b_{i+1} - b_i|): the half-angle is widened by that blur. On narrow
+    pieces it is not small (2^-20 wide at a tangency, about 1e-9 rad), and without it two
+    cones that touch along the common tangent line can look
     apart, "isolating" a tangency as a crossing."""
     h = np.diff(pieces, axis=1)
     norm = np.linalg.norm(h, axis=2)
-    good = np.all(norm > 2 * slack[:, None], axis=1)
+    good = np.all(norm > 2 * BLUR * slack[:, None], axis=1)
     unit = h / np.where(norm > 0, norm, 1.0)[..., None]
     axis = unit.sum(axis=1)
     axis_norm = np.linalg.norm(axis, axis=1)
@@ -159,7 +164,7 @@ def _cones(pieces: np.ndarray, slack: np.ndarray) -> tuple[np.ndarray, np.ndarra
     axis = axis / np.where(axis_norm > 0, axis_norm, 1.0)[:, None]
     cos = np.einsum("kid,kd->ki", unit, axis).min(axis=1)
     with np.errstate(divide="ignore", invalid="ignore"):
-        blur = np.arcsin(np.clip(2 * slack[:, None] / norm, 0.0, 1.0)).max(axis=1)
+        blur = np.arcsin(np.clip(2 * BLUR * slack[:, None] / norm, 0.0, 1.0)).max(axis=1)
     half = np.where(good & (cos > 0), np.arccos(np.clip(cos, -1.0, 1.0)) + blur, np.pi)
     return axis, half
 

@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import sympy
-from hypothesis import assume, given, settings
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
 import lambda_bezier as lb
@@ -132,6 +132,7 @@ def test_parabola_and_line_closer_than_the_pieces():
     rotation=st.sampled_from(ROTATIONS),
     k=st.sampled_from([F(1), F(7, 2), F(1, 3)]),
 )
+@example(vertex=F(1, 5), gap_exponent=6, gap_digit=1, rotation=ROTATIONS[0], k=F(1, 3))
 def test_near_double_crossings(vertex, gap_exponent, gap_digit, rotation, k):
     gap = F(gap_digit, 10**gap_exponent)
     parabola, line, roots = parabola_and_line(vertex, gap, k)

@@ -14,6 +14,7 @@ from math import comb
 import mpmath
 import numpy as np
 import pytest
+import sympy
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
@@ -64,13 +65,39 @@ def curve_from_derivative(deriv):
     return lb.BezierCurve([list(p) for p in zip(*points, strict=True)])
 
 
+def speed_bends(deriv) -> tuple[list[Fraction], list[Fraction]]:
+    """The real zeros of (|p'|²)' / 2 = p'·p'' (where |p'| bends), isolated exactly by SymPy
+    (rational intervals, to 1e-30) on the exact derivative: (the local minima of |p'|², all of
+    them). A minimum is a zero where p'·p'' changes sign from − to +, read exactly at the ends
+    of its isolating interval."""
+    t = sympy.symbols("t")
+    rows = [sympy.Poly([sympy.Rational(v) for v in row[::-1]], t) for row in deriv]
+    half = sum((r * r.diff(t) for r in rows), sympy.Poly(0, t))
+    if half.is_zero:
+        return [], []
+    minima, bends = [], []
+    for (a, b), _ in half.intervals(eps=sympy.Rational(1, 10**30)):
+        if a == b:  # a rational zero: the sign change from its lowest nonzero Taylor term
+            order, term = 1, half.diff(t)
+            while term.eval(a) == 0:
+                order, term = order + 1, term.diff(t)
+            is_minimum = order % 2 == 1 and term.eval(a) > 0
+        else:
+            is_minimum = half.eval(a) < 0 < half.eval(b)
+        middle = (Fraction(a.p, a.q) + Fraction(b.p, b.q)) / 2
+        bends.append(middle)
+        if is_minimum:
+            minima.append(middle)
+    return minima, bends
+
+
 def reference_length(deriv, lo, hi, x=None):
     """∫_lo^hi |p'| by mpmath (tanh-sinh, 30 digits) on the exact derivative, split where
     |p'| is least near x and at 10^-k (k = 1..12) either side (a near-cusp bends there at
-    some 10^-k), or in 16 without x; mpmath's own error estimate is checked too."""
+    some 10^-k), at every zero of (|p'|²)', and in 16 (without x: in 16 only); mpmath's own
+    error estimate is checked too."""
     rows = [[mpmath.mpf(v.numerator) / v.denominator for v in row] for row in deriv]
     polys = [row[::-1] for row in rows]
-    slopes = [[c * (len(row) - 1 - i) for i, c in enumerate(row[:-1])] for row in polys]
 
     def speed(t):
         return mpmath.sqrt(sum(mpmath.polyval(p, t) ** 2 for p in polys))
@@ -83,14 +110,15 @@ def reference_length(deriv, lo, hi, x=None):
     # (in 16 with x too: split at x and 10^-k by it alone, a bend outside [lo, hi] left the
     # quadrature short of its 1e-20, seen at x = 0, y = 1e-2, degree 7, dim 2, seed 1715)
     cuts = set(mpmath.linspace(lo, hi, 17))
-    if x is not None:  # the least |p'| near x: a zero of (|p'|²)' / 2 = p'·p''
-        pairs = list(zip(polys, slopes, strict=True))
-        bend = mpmath.findroot(
-            lambda t: sum(mpmath.polyval(p, t) * mpmath.polyval(d, t) for p, d in pairs), mp(x)
-        )
+    if x is not None:
+        minima, bends = speed_bends(deriv)
+        # the least |p'| near x: the local minimum of |p'|² closest to it (exactly isolated:
+        # mpmath's findroot from x, used before, failed to converge on some near-double
+        # zeros, e.g. x = 17/5000, y0 = 1e-12, y1 = 1e-5, degree 5, dim 2, seed 619869)
+        bend = min(minima, key=lambda r: abs(r - Fraction(x)))
         # (quarter decades: a near-double zero's dip has zeros of |p'|² about its width away)
-        cuts |= {bend} | {
-            bend + s * mpmath.mpf(10) ** (-k / 4) for k in range(4, 49) for s in (-1, 1)
+        cuts |= {mp(r) for r in bends} | {
+            mp(bend) + s * mpmath.mpf(10) ** (-k / 4) for k in range(4, 49) for s in (-1, 1)
         }
     value, error = mpmath.quad(
         speed, sorted(c for c in cuts if lo <= c <= hi), error=True, maxdegree=8
@@ -230,6 +258,24 @@ def test_a_near_double_zero_between_the_nodes():
     seed=65537,
     ends=(Fraction(0), Fraction(0)),
 )  # (the reference's 1e-20 needed cuts by the dip every quarter decade)
+@example(
+    x=Fraction(17, 5000),
+    y0=Fraction(1, 10**12),
+    y1=Fraction(1, 10**5),
+    degree=5,
+    dim=2,
+    seed=619869,
+    ends=(Fraction(0), Fraction(1, 100)),
+)  # (mpmath's findroot, which once found the reference's dip, did not converge)
+@example(
+    x=Fraction(4961, 5000),
+    y0=Fraction(1, 10**8),
+    y1=Fraction(1, 10**5),
+    degree=1,
+    dim=2,
+    seed=298615,
+    ends=(Fraction(99, 100), Fraction(1)),
+)  # (likewise)
 @given(
     x=st.fractions(0, 1, max_denominator=10**4),
     y0=st.integers(5, 14).map(lambda k: Fraction(1, 10**k)),

@@ -271,3 +271,10 @@ def test_exact_isolation_bad_input():
         lb.intersect_exact(
             lb.BezierCurve([(0, 0), (1, 2), (2, 0)]), lb.BezierCurve([(0, 0), (1, 2), (2, 0)])
         )
+
+
+def test_compiled_cone_blur_is_the_numpy_one():
+    pytest.importorskip("numba")
+    from lambda_bezier.hazmat import intersect_compiled, intersect_subdivide
+
+    assert intersect_compiled.BLUR == intersect_subdivide.BLUR

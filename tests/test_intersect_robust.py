@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import sympy
-from hypothesis import assume, given, settings
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
 import lambda_bezier as lb
@@ -132,6 +132,7 @@ def test_parabola_and_line_closer_than_the_pieces():
     rotation=st.sampled_from(ROTATIONS),
     k=st.sampled_from([F(1), F(7, 2), F(1, 3)]),
 )
+@example(vertex=F(1, 5), gap_exponent=6, gap_digit=1, rotation=ROTATIONS[0], k=F(1, 3))
 def test_near_double_crossings(vertex, gap_exponent, gap_digit, rotation, k):
     gap = F(gap_digit, 10**gap_exponent)
     parabola, line, roots = parabola_and_line(vertex, gap, k)
@@ -326,6 +327,27 @@ def test_reflected_tangency_lambda_curves(points, lam, t0):
             r,
             hits,
         )
+
+
+def test_tangency_at_the_corner_of_narrow_pieces_is_not_isolated():
+    """Hypothesis's case (numpy engine): the tangency at t0 = 9/16, a dyadic, lies at the
+    corner of a pair of pieces 2^-20 wide, whose hodograph cones touch along the tangent
+    line. Rounding of the pieces' control points turns their directions by ~1e-8 there, so
+    without the cones widened by that blur they looked apart and the pair was "isolated":
+    the tangency came back as a transversal crossing."""
+    lam, t0 = F(1, 3), F(9, 16)
+    curve = lb.SameDegreeCurve([(-5, 7), (1, -4), (-8, -1), (1, 4), (-2, -9)], lam)
+    rows = curve.to_bezier().control_points()
+    point, d, _, reflect = reflect_in_tangent(rows, t0)
+    mirror = lb.SameDegreeCurve([reflect(v) for v in curve.control_points()], lam)
+    hits = curve.intersect(mirror)
+    assert_on_both(curve, mirror, hits)
+    roots = sorted(set(diagonal_roots(rows, point, d)))  # 9/16 (double) and one crossing
+    assert [float(r) for r in roots][0] == 0.5625 and len(roots) == 2
+    assert [h.kind for h in hits] == ["tangent", "transversal"]
+    assert hits[0].s == hits[0].t == 0.5625
+    assert hits[1].s == pytest.approx(float(roots[1]), abs=1e-15)
+    assert hits[1].t == pytest.approx(float(roots[1]), abs=1e-15)
 
 
 def test_newton_thrown_out_of_the_domain_still_finds_the_tangency():

@@ -248,6 +248,27 @@ def test_intersect_properties(a, b):
         assert any(abs(h.s - s) < 1e-3 and abs(h.t - t) < 1e-3 for h in hits), (s, t, hits)
 
 
+def test_contact_of_order_four_at_a_shared_end_is_symmetric():
+    """Hypothesis's case: a and b differ in the first control point only, so along the
+    diagonal p(s) - q(s) = (0, (1 - s)^4): a contact of order 4 at the shared end (1, 1).
+    Near it the exact residual is below rounding over a whole neighbourhood, and pairs of
+    pieces there 2^-17 wide were "isolated" (rounding turned their hodograph cones apart),
+    so each order of the curves reported a different spurious crossing near s = t = 0.99999.
+    The answer is the five crossings intersect_exact certifies, in both orders."""
+    a = [(0, 0), (0, 0), (0, 4), (1, 1), (0, 1)]
+    b = [(0, 1), (0, 0), (0, 4), (1, 1), (0, 1)]
+    p, q = lb.BezierCurve(a), lb.BezierCurve(b)
+    hits = p.intersect(q)
+    swapped = sorted((h.t, h.s, h.kind) for h in q.intersect(p))
+    assert swapped == sorted((h.s, h.t, h.kind) for h in hits)
+    boxes = lb.intersect_exact(p, q)
+    assert all(c.certified for c in boxes) and len(hits) == len(boxes) == 5
+    for h, c in zip(hits, sorted(boxes, key=lambda c: (c.s[0], c.t[0])), strict=True):
+        assert c.s[0] <= Fraction(h.s) <= c.s[1] and c.t[0] <= Fraction(h.t) <= c.t[1]
+    assert hits[-1] == (1.0, 1.0, "tangent")  # the contact, at the end exactly, once
+    assert [h for h in hits if min(h.s, h.t) > 1 - 1e-3] == [hits[-1]]
+
+
 def test_intersect_bad_input():
     c = lb.BezierCurve([(0, 0), (1, 1)])
     with pytest.raises(TypeError, match="curve"):

@@ -313,8 +313,8 @@ def _certify_one(
         if lev == depth:
             return -1  # unresolved at the depth: a tangency, or crossings closer than that
         width = 0.5**lev
-        half_a = _cone(pa, axis_a)
-        half_b = _cone(pb, axis_b)
+        half_a = _cone(pa, axis_a, slack)
+        half_b = _cone(pb, axis_b, slack)
         if half_a < math.pi / 2 - margin and half_b < math.pi / 2 - margin:
             dot = 0.0
             for j in range(dim):

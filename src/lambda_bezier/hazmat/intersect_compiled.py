@@ -23,6 +23,10 @@ import numba
 import numpy as np
 from numba.typed import List
 
+# intersect_subdivide.BLUR (a compile-time constant here; tests/test_fast_paths.py checks they
+# agree): the pieces' rounding as a share of the slack
+BLUR = 1.0 / 16.0
+
 _JIT: dict[str, Any] = {"cache": True, "error_model": "numpy"}
 
 
@@ -53,11 +57,13 @@ def _float_array(values: List) -> np.ndarray:
 
 
 @numba.njit(**_JIT)
-def _cone(points: np.ndarray, axis: np.ndarray) -> float:
+def _cone(points: np.ndarray, axis: np.ndarray, slack: float) -> float:
     """Half-angle of the circular cone about `axis` (written) holding every hodograph
-    control point of `points`; pi where it is not pointed this way."""
+    control point of `points`, widened by the rounding blur of their directions (see
+    intersect_subdivide._cones); pi where it is not pointed this way."""
     count, dim = points.shape[0] - 1, points.shape[1]
     good = True
+    blur = 0.0
     for j in range(dim):
         axis[j] = 0.0
     for i in range(count):
@@ -66,9 +72,10 @@ def _cone(points: np.ndarray, axis: np.ndarray) -> float:
             h = points[i + 1, j] - points[i, j]
             norm += h * h
         norm = math.sqrt(norm)
-        if norm > 0.0:
+        if norm > 2.0 * BLUR * slack:
             for j in range(dim):
                 axis[j] += (points[i + 1, j] - points[i, j]) / norm
+            blur = max(blur, math.asin(2.0 * BLUR * slack / norm))
         else:
             good = False
     axis_norm = 0.0
@@ -94,7 +101,7 @@ def _cone(points: np.ndarray, axis: np.ndarray) -> float:
         cos = min(cos, c)
     if not cos > 0.0:
         return math.pi
-    return math.acos(min(max(cos, -1.0), 1.0))
+    return math.acos(min(max(cos, -1.0), 1.0)) + blur
 
 
 @numba.njit(**_JIT)
@@ -267,12 +274,12 @@ def isolate(
                     keep[k] = False
             if keep[k] and same and abs(ia[k] - ib[k]) <= 1:
                 if ia[k] == ib[k]:
-                    keep[k] = not _pointed(_cone(pa[k], axis_a), margin)
+                    keep[k] = not _pointed(_cone(pa[k], axis_a, sl), margin)
                 else:
                     size = pa.shape[1]
                     union[:size] = pa[k]
                     union[size:] = pb[k, 1:]
-                    keep[k] = not _pointed(_cone(union, axis_a), margin)
+                    keep[k] = not _pointed(_cone(union, axis_a, sl), margin)
         pa, pb, pid, ia, ib = pa[keep], pb[keep], pid[keep], ia[keep], ib[keep]
         count = pid.size
         if count == 0:
@@ -288,8 +295,9 @@ def isolate(
         for k in range(count):
             if same and abs(ia[k] - ib[k]) <= 1:
                 continue
-            half_a = _cone(pa[k], axis_a)
-            half_b = _cone(pb[k], axis_b)
+            sl = slack[pid[k]]
+            half_a = _cone(pa[k], axis_a, sl)
+            half_b = _cone(pb[k], axis_b, sl)
             if not (_pointed(half_a, margin) and _pointed(half_b, margin)):
                 continue
             dot = abs(float(np.sum(axis_a * axis_b)))
@@ -405,7 +413,7 @@ def isolate_points(
             break
         rest = np.ones(count, dtype=np.bool_)
         for k in range(count):
-            if _pointed(_cone(pieces[k], axis), margin):
+            if _pointed(_cone(pieces[k], axis, slack[pid[k]]), margin):
                 u, ok = _local_foot_newton(
                     pieces[k], points[pid[k]], newton_steps, inside, slack[pid[k]]
                 )

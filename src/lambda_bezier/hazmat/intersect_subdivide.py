@@ -43,6 +43,10 @@ MAX_ROWS = 200_000  # pairs of pieces alive at one level, a guard against runawa
 NEWTON_STEPS = 10  # local Newton iterations on an isolated pair (quadratic from its middle)
 INSIDE = 1e-9  # a Newton root this far (in the pieces' local parameter) outside still counts
 CONE_MARGIN = 1e-9  # radians: cones closer than this are treated as sharing a line
+# the pieces' rounding (the input's half ulp and ~1 ulp per halving: 4 eps per degree of the
+# size) as a share of the slack (64 eps per degree): the error the cones are widened by. The
+# whole slack widened them so much that crossings 1e-6 apart were no longer isolated
+BLUR = 1 / 16
 
 # the compiled loop when numba is there and not switched off (module flag, read per call)
 USE_COMPILED = importlib.util.find_spec("numba") is not None and not os.environ.get(
@@ -138,20 +142,30 @@ def _runs_forward(pieces: np.ndarray) -> np.ndarray:
     return forward
 
 
-def _cones(pieces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _cones(pieces: np.ndarray, slack: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The axis (unit vector) and half-angle of a circular cone holding every hodograph
     control point of each piece; half-angle >= pi/2 (not pointed) where there is none
-    this way (a zero hodograph point, or directions that turn too far)."""
+    this way (a zero hodograph point, or directions that turn too far).
+
+    The pieces' control points are off the true pieces' by rounding (BLUR times the slack,
+    (K,), bounds it: the input's and that of repeated halving), so each difference
+    b_{i+1} - b_i is off by up to twice that and its direction by up to
+    asin(2 BLUR slack / |b_{i+1} - b_i|): the half-angle is widened by that blur. On narrow
+    pieces it is not small (2^-20 wide at a tangency, about 1e-9 rad), and without it two
+    cones that touch along the common tangent line can look
+    apart, "isolating" a tangency as a crossing."""
     h = np.diff(pieces, axis=1)
     norm = np.linalg.norm(h, axis=2)
-    good = np.all(norm > 0, axis=1)
+    good = np.all(norm > 2 * BLUR * slack[:, None], axis=1)
     unit = h / np.where(norm > 0, norm, 1.0)[..., None]
     axis = unit.sum(axis=1)
     axis_norm = np.linalg.norm(axis, axis=1)
     good &= axis_norm > 0
     axis = axis / np.where(axis_norm > 0, axis_norm, 1.0)[:, None]
     cos = np.einsum("kid,kd->ki", unit, axis).min(axis=1)
-    half = np.where(good & (cos > 0), np.arccos(np.clip(cos, -1.0, 1.0)), np.pi)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        blur = np.arcsin(np.clip(2 * BLUR * slack[:, None] / norm, 0.0, 1.0)).max(axis=1)
+    half = np.where(good & (cos > 0), np.arccos(np.clip(cos, -1.0, 1.0)) + blur, np.pi)
     return axis, half
 
 
@@ -160,10 +174,10 @@ def _pointed(half: np.ndarray) -> np.ndarray:
     return pointed
 
 
-def _one_to_one_union(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+def _one_to_one_union(a: np.ndarray, b: np.ndarray, slack: np.ndarray) -> np.ndarray:
     """For neighbouring pieces of one curve: True where both together are one-to-one (one
     pointed cone holds both hodographs)."""
-    _, half = _cones(np.concatenate([a, b[:, 1:]], axis=1))
+    _, half = _cones(np.concatenate([a, b[:, 1:]], axis=1), slack)
     return _pointed(half)
 
 
@@ -271,11 +285,11 @@ def isolate(
             near = np.abs(ia - ib) <= 1
             if near.any():
                 diag = near & (ia == ib)
-                _, half = _cones(pa[diag])
+                _, half = _cones(pa[diag], sl[diag])
                 drop = np.zeros_like(keep)
                 drop[np.flatnonzero(diag)[_pointed(half)]] = True
                 nb = near & (ia != ib)
-                drop[np.flatnonzero(nb)[_one_to_one_union(pa[nb], pb[nb])]] = True
+                drop[np.flatnonzero(nb)[_one_to_one_union(pa[nb], pb[nb], sl[nb])]] = True
                 keep &= ~drop
         pa, pb, pid, ia, ib = pa[keep], pb[keep], pid[keep], ia[keep], ib[keep]
         if not pid.size:
@@ -284,8 +298,8 @@ def isolate(
             left.append((pid, ia * 0.5**level, ib * 0.5**level, np.full(pid.size, 0.5**level)))
             break
         # isolation: one-to-one pieces whose tangent cones share no line hold one root at most
-        axis_a, half_a = _cones(pa)
-        axis_b, half_b = _cones(pb)
+        axis_a, half_a = _cones(pa, slack[pid])
+        axis_b, half_b = _cones(pb, slack[pid])
         between = np.arccos(np.clip(np.abs(np.einsum("kd,kd->k", axis_a, axis_b)), 0.0, 1.0))
         isolated = _pointed(half_a) & _pointed(half_b) & (between > half_a + half_b + CONE_MARGIN)
         if same:
@@ -428,7 +442,7 @@ def isolate_points(
         if level == depth or 2 * pid.size > MAX_ROWS:
             left.append((pid, index * width, np.full(pid.size, width)))
             break
-        _, half = _cones(pieces)
+        _, half = _cones(pieces, slack[pid])
         one_to_one = _pointed(half)
         if one_to_one.any():
             idx = np.flatnonzero(one_to_one)

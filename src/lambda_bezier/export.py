@@ -311,7 +311,8 @@ def _assemble(
 def _exportable(obj: Any) -> Any:
     """A curve of a trigonometric, hyperbolic or mixed family (atom_family) as what the
     writers take: its exact rational form where it has one (tan(t/2): a NURBS equal to the
-    curve); otherwise its approximation by polynomial Bézier pieces of degree 9, one
+    curve), a hyperbolic curve's rational form in floats (tanh(t/2), within about 1e-15 of
+    its size); otherwise its approximation by polynomial Bézier pieces of degree 9, one
     CompositeCurve, each piece within 1e-13 of the curve's size where rounding allows
     (_atom_geometry.pieces, checked on a grid of 37 points per piece). A composite with such
     segments: each of them by its polynomial pieces, in one polynomial CompositeCurve (so the
@@ -333,7 +334,7 @@ def _exportable(obj: Any) -> Any:
         )
     if not isinstance(obj, AtomCurve):
         return obj
-    if obj.has_rational_form:
+    if obj.has_rational_form or obj.data.SPACE == "hyperbolic":  # hyperbolic: in floats
         return obj.to_rational_bezier()
     return CompositeCurve(_pieces_of(obj))
 

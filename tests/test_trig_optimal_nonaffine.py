@@ -63,3 +63,15 @@ def test_float_points_give_floats():
     assert isinstance(res["lam"], float) and isinstance(res.energy, float)
     exact = lb.optimal_parameters([(0, 0), (1, 3), (4, 0)], 2, family=fam)
     assert res["lam"] == pytest.approx(float(exact["lam"]), abs=1e-9)
+
+
+def test_hyperbolic_not_affine_against_a_grid():
+    """Energies Laurent in e: e and 1/e are two more variables of the box."""
+    fam = lb.load_family(FAMILY.parent / "hyp_square_quadratic.toml")
+    points = [(0, 0), (1, 3), (4, 0)]
+    res = lb.optimal_parameters(points, 2, family=fam)
+    assert res.lower_bound <= res.energy
+    assert float(res.energy) - float(res.lower_bound) <= 1e-12 * max(1.0, float(res.energy))
+    floats = [(0.0, 0.0), (1.0, 3.0), (4.0, 0.0)]
+    grid = [float(fam.curve(floats, lam=x).energy(2)) for x in np.linspace(-1, 1, 2001)]
+    assert float(res.energy) <= min(grid) * (1 + 1e-12)

@@ -214,8 +214,10 @@ def test_to_bezier_points_to_the_rational_form(families):
         families[HAN].curve(PTS, lam=0, mu=0).to_bezier()
     with pytest.raises(NotImplementedError, match="no rational form"):
         families[AT].curve(PTS, lam=0).to_bezier()
-    with pytest.raises(ValueError, match="no exact rational"):
-        families[HYP].curve(PTS, lam=0, mu=0).to_rational_bezier()
+    with pytest.raises(NotImplementedError, match="in floats"):
+        families[HYP].curve(PTS, lam=0, mu=0).to_bezier()
+    # a hyperbolic curve's rational form is in floats (tests/test_trig_hyperbolic_rational.py)
+    assert not families[HYP].curve(PTS, lam=0, mu=0).to_rational_bezier().is_exact
 
 
 # ------------------------------------------------------------------------------ rational form
@@ -547,7 +549,7 @@ def test_json_round_trip(families, path):
 def _spline_matches(spline, curve, tol):
     """The B-spline against the curve at the same points: u ∈ [0, pieces] ↔ t."""
     lo, hi = curve.domain
-    if curve.has_rational_form:
+    if spline.weights is not None:  # the rational form (a hyperbolic curve's: in floats)
         s = np.linspace(0, 1, 41)
         got = np.array([spline.evaluate(float(x)) for x in s])
         want = curve.evaluate(curve.t_of_s(s))
@@ -568,6 +570,9 @@ def test_export_through_the_rational_form_or_pieces(families, path, tmp_path):
     spline = export.to_bspline(curve)
     if path == HAN:  # exact: the rational form, a NURBS of degree 6
         assert spline.exact and spline.weights is not None and spline.degree == 6
+        assert _spline_matches(spline, curve, 1e-14 * 4)
+    elif path == HYP:  # its rational form in floats: one NURBS span of degree 4
+        assert not spline.exact and spline.weights is not None and spline.degree == 4
         assert _spline_matches(spline, curve, 1e-14 * 4)
     else:  # numerically: polynomial pieces within 1e-13 of the size
         assert spline.weights is None and spline.degree <= 10

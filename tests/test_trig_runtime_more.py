@@ -235,8 +235,8 @@ def test_polynomial_only_functions_say_so(families):
         lb.optimal_lambda(PTS, 2, family=fam)
     with pytest.raises(TypeError, match="not polynomial"):
         lb.energy_coefficients(PTS, 2, family=fam)
-    with pytest.raises(ValueError, match="composites of such segments are not available"):
-        lb.CompositeCurve([fam.curve(PTS, lam=0)])
+    with pytest.raises(ValueError, match="it has parameters lam, not one lam"):
+        lb.CompositeCurve([fam.curve(PTS, lam=0)]).with_lambda(0, 1)
     with pytest.raises(NotImplementedError, match="surfaces"):
         fam.surface([[(0, 0, 0)] * 4] * 4, 0, 0)
     with pytest.raises(ValueError, match="k must be a positive integer"):

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
+    from .atom_family import AtomCurve
     from .composite import CompositeCurve
     from .curves import Curve
     from .family import Family, IndexedFamily
@@ -38,7 +39,7 @@ def _segments(obj: object) -> tuple[Curve, ...]:
     from .curves import Curve
 
     if isinstance(obj, CompositeCurve):
-        return obj.segments
+        return obj.segments  # type: ignore[return-value]  # AtomCurves have what JSON reads
     if isinstance(obj, Curve | AtomCurve):
         return (obj,)  # type: ignore[return-value]  # an AtomCurve has what JSON reads
     raise TypeError(
@@ -111,7 +112,7 @@ def class_definitions(classes: Sequence[type[Curve]]) -> dict[str, Any]:
     return out
 
 
-def _curve_dict(curve: Curve | RationalBezierCurve) -> dict[str, Any]:  # JSON values
+def _curve_dict(curve: Curve | AtomCurve | RationalBezierCurve) -> dict[str, Any]:  # JSON values
     out: dict[str, Any] = {
         "family": curve.family,
         "lambda": None if curve.lam is None else _number_out(curve.lam),
@@ -250,11 +251,13 @@ def _several_curve_from(
 
 def _segment_from(
     data: object, where: str, check_range: bool, own: dict[str, type[Curve]]
-) -> Curve:
+) -> Curve | AtomCurve:
+    from .atom_family import AtomCurve
     from .curves import Curve
 
-    curve = _curve_from(data, where, check_range, own)
-    assert isinstance(curve, Curve)  # _curve_from offers no rational curve here
+    curve: object = _curve_from(data, where, check_range, own)
+    # _curve_from offers no rational curve here; a family of atoms gives an AtomCurve
+    assert isinstance(curve, Curve | AtomCurve)
     return curve
 
 

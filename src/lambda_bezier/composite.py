@@ -2,10 +2,14 @@
 continuity actually achieved at every joint measured numerically, and the shape adjustment of
 001, section 3.3 (change one segment's λ, re-solve the joints so their continuity is kept).
 
-Parametrisation: a composite of N segments lives on u ∈ [0, N]; segment i covers [i, i + 1]
-with local parameter t = u − i (u = i itself belongs to segment i, u = N to the last).
-Derivatives are taken with respect to u, so they equal the segments' own t-derivatives, and
-a C_k joint makes the composite k times continuously differentiable in u there.
+Parametrisation: a composite of N polynomial segments lives on u ∈ [0, N]; segment i covers
+[i, i + 1] with local parameter t = u − i (u = i itself belongs to segment i, u = N to the
+last). A segment of a trigonometric, hyperbolic or mixed family (`AtomCurve`) keeps its own
+domain [lo, hi] (e.g. [0, π/2]): it covers an interval of u of length hi − lo, on which its
+own t = lo + (u − start); the composite's domain is then [0, Σ lengths] (floats). Either way
+derivatives are taken with respect to u, so they equal the segments' own t-derivatives (the
+derivatives lambda_bezier.join matches), and a C_k joint makes the composite k times
+continuously differentiable in u there.
 """
 
 from __future__ import annotations
@@ -22,6 +26,7 @@ import numpy.typing as npt
 from . import _validate as val
 from ._lazy import deferred
 from ._validate import ParamLike, PointsLike
+from .atom_family import AtomCurve
 from .curves import Curve
 from .joins import Joint, join
 
@@ -39,6 +44,7 @@ else:
     _geometry = deferred(_load_geometry)  # imported when a geometry method is first called
 
 NAMES = ("C0", "C1", "C2", "G1", "G2")
+Segment = Curve | AtomCurve  # a polynomial curve on [0, 1], or one of an atom family
 
 
 @dataclass(frozen=True)
@@ -143,14 +149,15 @@ def _relative_gap(a: np.ndarray, b: np.ndarray) -> float:
 
 
 def measure(
-    left: Curve, right: Curve, *, index: int = 0, joint: Joint | None = None, tol: float = 1e-9
+    left: Segment, right: Segment, *, index: int = 0, joint: Joint | None = None, tol: float = 1e-9
 ) -> JointReport:
     """The JointReport for `right` following `left` (see JointReport)."""
     tol = val.tolerance(tol)
-    p1, p2 = left.evaluate(1.0), right.evaluate(0.0)
-    d1, e1 = left.derivative(1.0, 1), right.derivative(0.0, 1)
-    d2, e2 = left.derivative(1.0, 2), right.derivative(0.0, 2)
-    k1, k2 = float(left.curvature(1.0)), float(right.curvature(0.0))
+    end, start = _span(left)[1], _span(right)[0]  # each segment's own t (an AtomCurve's domain)
+    p1, p2 = left.evaluate(end), right.evaluate(start)
+    d1, e1 = left.derivative(end, 1), right.derivative(start, 1)
+    d2, e2 = left.derivative(end, 2), right.derivative(start, 2)
+    k1, k2 = float(left.curvature(end)), float(right.curvature(start))
     size = max(1.0, float(np.abs(left.points).max()), float(np.abs(right.points).max()))
     gap = _gap(p1, p2)
     angle = _angle(d1, e1)
@@ -191,25 +198,55 @@ def measure(
     )
 
 
+def _span(seg: Segment) -> tuple[float, float]:
+    """The interval of the segment's own t: [0, 1], or an AtomCurve's domain."""
+    return seg.domain if isinstance(seg, AtomCurve) else (0.0, 1.0)
+
+
+def _no_atom(seg: Segment, index: int) -> Curve:
+    """The segment, refused when it is an AtomCurve (several parameters, not one λ)."""
+    if isinstance(seg, AtomCurve):
+        raise ValueError(
+            f"segment {index} is a curve of the {seg.family} family: it has parameters "
+            f"{', '.join(seg.parameter_values)}, not one lam; make the segment anew with "
+            "its family's curve(...) and build the composite from it"
+        )
+    return seg
+
+
 def _rejoin(
-    left: Curve,
-    right: Curve,
+    left: Segment,
+    right: Segment,
     joint: Joint,
     lam: Fraction | float | None = None,
     *,
     check_range: bool = False,
-) -> Curve:
+) -> Segment:
     """`right` with its leading control points re-solved against `left` (same family,
-    degree, λ unless given, and the same trailing control points)."""
+    degree, λ (an AtomCurve: its parameters) unless given, and the same trailing points)."""
     keep = right.control_points()[joint.order + 1 :]
+    rest = keep if keep else np.zeros((0, right.dimension))
+    if isinstance(right, AtomCurve):
+        return join(  # an AtomCurve, made by _atom_joins
+            left,  # type: ignore[arg-type]  # join hands atom curves to _atom_joins
+            joint.continuity,
+            right.degree,
+            None,
+            joint.alpha,
+            joint.d,
+            rest=rest,
+            family=right.family_object,
+            check_range=check_range,
+            params=right.atom_parameter_values(),
+        )
     return join(
-        left,
+        left,  # type: ignore[arg-type]  # join hands atom curves to _atom_joins
         joint.continuity,
         right.degree,
         right.lam if lam is None else lam,
         joint.alpha,
         joint.d,
-        rest=keep if keep else np.zeros((0, right.dimension)),
+        rest=rest,
         family=type(right),  # its class: a built-in family or one from load_family
         check_range=check_range,
     )
@@ -235,19 +272,15 @@ class CompositeCurve:
     """
 
     def __init__(
-        self, segments: Sequence[Curve] | Curve, joints: Sequence[Joint | str | None] | None = None
+        self,
+        segments: Sequence[Segment] | Segment,
+        joints: Sequence[Joint | str | None] | None = None,
     ) -> None:
-        segs = tuple(segments) if not isinstance(segments, Curve) else (segments,)
+        segs = tuple(segments) if not isinstance(segments, Curve | AtomCurve) else (segments,)
         if not segs:
             raise ValueError("a composite curve needs at least one segment")
         for idx, seg in enumerate(segs):
-            if not isinstance(seg, Curve):
-                if hasattr(seg, "has_rational_form"):  # an atom_family curve
-                    raise ValueError(
-                        f"segment {idx} is a curve of the {seg.family} family, whose parameter "
-                        "runs over its own domain: composites of such segments are not "
-                        "available yet (a composite runs each segment on [0, 1])"
-                    )
+            if not isinstance(seg, Curve | AtomCurve):
                 raise ValueError(
                     f"segment {idx} is not a lambda_bezier curve: {type(seg).__name__}"
                 )
@@ -265,8 +298,14 @@ class CompositeCurve:
                     f"joints must have one entry per joint ({len(segs) - 1}), got {len(given)}"
                 )
             specs = tuple(s if s is None or isinstance(s, Joint) else Joint(s) for s in given)
-        self.segments: tuple[Curve, ...] = segs
+        self.segments: tuple[Segment, ...] = segs
         self.joints: tuple[Joint | None, ...] = specs
+        # where each segment starts in u, and its own domain (polynomial segments: [i, i + 1])
+        self._atoms = any(isinstance(seg, AtomCurve) for seg in segs)
+        spans = [_span(seg) for seg in segs]
+        self._own = np.array(spans, dtype=float).reshape(len(segs), 2)
+        lengths = self._own[:, 1] - self._own[:, 0]
+        self._starts = np.concatenate([[0.0], np.cumsum(lengths)])  # (N + 1,)
 
     def __len__(self) -> int:
         return len(self.segments)
@@ -280,8 +319,17 @@ class CompositeCurve:
         return self.segments[0].dimension
 
     @property
-    def domain(self) -> tuple[int, int]:
-        return (0, len(self.segments))
+    def domain(self) -> tuple[float, float]:
+        """(0, N) for polynomial segments; (0, Σ lengths of the segments' own domains) when
+        an AtomCurve takes part (floats: π/2 is rounded)."""
+        if not self._atoms:
+            return (0, len(self.segments))
+        return (0.0, float(self._starts[-1]))
+
+    @property
+    def breaks(self) -> tuple[float, ...]:
+        """The u at which each segment starts, and the end of the last (N + 1 values)."""
+        return tuple(float(x) for x in self._starts)
 
     # ------------------------------------------------------------------ building
     def join(
@@ -295,12 +343,16 @@ class CompositeCurve:
         family: object = None,
         *,
         check_range: bool = True,
+        params: dict[str, Fraction | float] | None = None,
+        **named: Fraction | float,
     ) -> CompositeCurve:
         """A new composite with one more segment, built by lambda_bezier.join from the last
-        segment (same arguments); the joint is recorded so with_lambda can re-solve it."""
+        segment (same arguments: `params` or keywords give the parameters of a family in
+        several, e.g. a trigonometric one); the joint is recorded so with_lambda can re-solve
+        it."""
         spec = Joint(continuity, alpha, d)
-        nxt = join(
-            self.segments[-1],
+        nxt: Segment = join(
+            self.segments[-1],  # type: ignore[arg-type]  # join hands atom curves on
             spec.continuity,
             degree,
             lam,
@@ -309,6 +361,8 @@ class CompositeCurve:
             rest,
             family,
             check_range=check_range,
+            params=params,
+            **named,
         )
         return CompositeCurve([*self.segments, nxt], [*self.joints, spec])
 
@@ -345,7 +399,7 @@ class CompositeCurve:
             raise ValueError(
                 f"index {index} is out of range: the composite has {len(self.segments)} segments"
             )
-        old = self.segments[index]
+        old = _no_atom(self.segments[index], index)
         if not type(old)._has_lambda:
             raise ValueError(f"segment {index} is a classical Bézier curve: it has no lam")
         segs = list(self.segments)
@@ -370,18 +424,32 @@ class CompositeCurve:
     def _locate(
         self, u: ParamLike, extrapolate: bool
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool]:
+        """(u, segment index, the segment's own t, scalar?)."""
         # the checks of a curve's t (types, finiteness), then the composite's own interval
         arr, scalar = val.as_parameters(u, extrapolate=True, name="u")
         extrapolate = val.flag(extrapolate, "extrapolate")
         count = len(self.segments)
-        if not extrapolate and arr.size and (arr.min() < 0 or arr.max() > count):
-            bad = arr[(arr < 0) | (arr > count)][0]
-            raise ValueError(
-                f"u = {bad} is outside [0, {count}] (segment i covers [i, i + 1]); pass "
-                "extrapolate=True to evaluate there"
+        top = self._starts[-1]
+        slack = 4 * np.spacing(max(float(top), 1.0)) if self._atoms else 0.0
+        if not extrapolate and arr.size and (arr.min() < -slack or arr.max() > top + slack):
+            bad = arr[(arr < -slack) | (arr > top + slack)][0]
+            where = (
+                f"[0, {count}] (segment i covers [i, i + 1])"
+                if not self._atoms
+                else f"[0, {float(top)!r}] (segment i covers [breaks[i], breaks[i + 1]])"
             )
-        idx = np.clip(np.floor(arr).astype(int), 0, count - 1)
-        return arr, idx, arr - idx, scalar
+            raise ValueError(
+                f"u = {bad} is outside {where}; pass extrapolate=True to evaluate there"
+            )
+        if not self._atoms:
+            idx = np.clip(np.floor(arr).astype(int), 0, count - 1)
+            return arr, idx, arr - idx, scalar
+        idx = np.clip(np.searchsorted(self._starts, arr, side="right") - 1, 0, count - 1)
+        lo, hi = self._own[idx, 0], self._own[idx, 1]
+        t = lo + (arr - self._starts[idx])
+        if not extrapolate:  # rounding of the breaks must not push t out of the domain
+            t = np.clip(t, lo, hi)
+        return arr, idx, t, scalar
 
     def derivative(self, u: ParamLike, k: int = 1, *, extrapolate: bool = False) -> np.ndarray:
         """d^k/du^k of the composite: shape (d,) for a scalar u, (len(u), d) for an array."""
@@ -405,27 +473,91 @@ class CompositeCurve:
             out[mask] = self.segments[s].curvature(t[mask], extrapolate=extrapolate)
         return out[0] if scalar else out
 
-    # ------------------------------------------------------------------ geometry (geometry.py)
+    # ------------------------------------------------------------------ geometry
+    # polynomial segments: geometry.py; with an AtomCurve, segment by segment through each
+    # segment's own geometry in its own t (the rational form or _atom_geometry), u = start + t − lo
     def arc_length(self, u0: Fraction | float = 0, u1: Fraction | float | None = None) -> float:
-        """∫ ‖C'(u)‖ du from u0 to u1 (0 <= u0 <= u1 <= N, default the whole composite)."""
-        return _geometry.arc_length(self, u0, u1)
+        """∫ ‖C'(u)‖ du from u0 to u1 (0 <= u0 <= u1 <= the domain's end, default the whole
+        composite)."""
+        if not self._atoms:
+            return _geometry.arc_length(self, u0, u1)
+        top = float(self._starts[-1])
+        a = self._u(u0, "u0")
+        b = top if u1 is None else self._u(u1, "u1")
+        if a > b:
+            raise ValueError(f"arc_length needs u0 <= u1, got u0={u0}, u1={u1}")
+        parts = []
+        for i, seg in enumerate(self.segments):
+            start, (lo, hi) = float(self._starts[i]), self._own[i]
+            x, y = max(a - start + lo, lo), min(b - start + lo, hi)
+            if x < y:
+                parts.append(seg.arc_length(x, y))
+        return math.fsum(parts)
 
     def parameter_at_length(self, s: npt.ArrayLike) -> np.ndarray | float:
         """The u at which the arc length from u = 0 equals s (a number or an array)."""
-        return _geometry.parameter_at_length(self, s)
+        if not self._atoms:
+            return _geometry.parameter_at_length(self, s)
+        try:
+            arr = np.asarray(s, dtype=float)
+        except (TypeError, ValueError):
+            raise ValueError(f"s must be a number or a 1-D array of numbers, got {s!r}") from None
+        if arr.ndim > 1 or not np.isfinite(arr).all():
+            raise ValueError("s must be a finite number or a 1-D array of finite numbers")
+        scalar, arr = arr.ndim == 0, np.atleast_1d(arr)
+        lengths = np.array([seg.arc_length() for seg in self.segments])
+        arr = _geometry.lengths_within(arr, math.fsum(lengths))
+        cum = np.concatenate([[0.0], np.cumsum(lengths)])
+        idx = np.clip(np.searchsorted(cum, arr, side="right") - 1, 0, len(self.segments) - 1)
+        out = np.zeros(arr.size)
+        for i in np.unique(idx):
+            mask = idx == i
+            local = np.clip(arr[mask] - cum[i], 0.0, lengths[i])
+            lo = self._own[i, 0]
+            own = self.segments[i].parameter_at_length(local) if lengths[i] else lo
+            out[mask] = self._starts[i] + (np.asarray(own, dtype=float) - lo)
+        return float(out[0]) if scalar else out
 
     def bounding_box(self) -> tuple[np.ndarray, np.ndarray]:
         """(lo, hi): the tight axis-aligned box of all segments."""
-        return _geometry.bounding_box(self)
+        if not self._atoms:
+            return _geometry.bounding_box(self)
+        boxes = [seg.bounding_box() for seg in self.segments]
+        return np.min([b[0] for b in boxes], axis=0), np.max([b[1] for b in boxes], axis=0)
 
     def closest_point(self, q: npt.ArrayLike) -> _geometry.ClosestPoint:
         """The global nearest point to q, (d,) or a batch (m, d): `t` (the u), `point`,
         `distance`."""
-        return _geometry.closest_point(self, q)
+        if not self._atoms:
+            return _geometry.closest_point(self, q)
+        best_u: np.ndarray | None = None
+        for i, seg in enumerate(self.segments):
+            found = seg.closest_point(q)
+            u = self._starts[i] + (np.asarray(found.t, dtype=float) - self._own[i, 0])
+            dist = np.asarray(found.distance, dtype=float)
+            pt = np.asarray(found.point, dtype=float)
+            if best_u is None:
+                best_u, best_pt, best_d = u, pt, dist
+                continue
+            better = dist < best_d  # a tie (a joint) keeps the earlier segment
+            best_u = np.where(better, u, best_u)
+            best_pt = np.where(better[..., None], pt, best_pt)
+            best_d = np.where(better, dist, best_d)
+        assert best_u is not None
+        if best_u.ndim == 0:
+            return _geometry.ClosestPoint(float(best_u), best_pt, float(best_d))
+        return _geometry.ClosestPoint(best_u, best_pt, best_d)
 
     def torsion(self, u: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
         """Signed torsion in u of a 3D composite (see Curve.torsion)."""
         return _geometry.torsion(self, u, extrapolate=extrapolate)
+
+    def _u(self, value: object, name: str) -> float:
+        x = float(val.real_number(value, name))
+        top = float(self._starts[-1])
+        if not -1e-15 <= x <= top + 1e-15 * max(top, 1.0):
+            raise ValueError(f"{name} = {value} is outside [0, {top!r}]")
+        return min(max(x, 0.0), top)
 
     # ------------------------------------------------------------------ continuity
     def report(self, tol: float = 1e-9) -> tuple[JointReport, ...]:
@@ -489,7 +621,7 @@ def _follow_c1(
             f"index {index} is out of range: the composite has {len(comp.segments)} segments"
         )
     segs = list(comp.segments)
-    old = segs[index]
+    old = _no_atom(segs[index], index)
     if not type(old)._has_lambda:
         raise ValueError(f"segment {index} is a classical Bézier curve: it has no lam")
     segs[index] = type(old)(old.control_points(), lam, check_range=check_range)
@@ -507,6 +639,8 @@ def _follow_c1(
                     "its leading points"
                 )
             fixed, moving = (segs[j], segs[j + 1]) if direction == 1 else (segs[j + 1], segs[j])
+            fixed = _no_atom(fixed, j if direction == 1 else j + 1)
+            moving = _no_atom(moving, j + 1 if direction == 1 else j)
             if not type(moving)._has_lambda:
                 raise ValueError(f"joint {j}: its other segment is a classical Bézier curve")
             exact = fixed.is_exact and moving.is_exact

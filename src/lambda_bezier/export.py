@@ -311,20 +311,39 @@ def _assemble(
 def _exportable(obj: Any) -> Any:
     """A curve of a trigonometric, hyperbolic or mixed family (atom_family) as what the
     writers take: its exact rational form where it has one (tan(t/2): a NURBS equal to the
-    curve); otherwise its approximation by polynomial Bézier pieces of degree 9, one
+    curve), a hyperbolic curve's rational form in floats (tanh(t/2), within about 1e-15 of
+    its size); otherwise its approximation by polynomial Bézier pieces of degree 9, one
     CompositeCurve, each piece within 1e-13 of the curve's size where rounding allows
-    (_atom_geometry.pieces, checked on a grid of 37 points per piece). Anything else unchanged."""
+    (_atom_geometry.pieces, checked on a grid of 37 points per piece). A composite with such
+    segments: each of them by its polynomial pieces, in one polynomial CompositeCurve (so the
+    B-spline's parameter runs over the pieces, one unit each, not over the composite's u).
+    Anything else unchanged."""
     from .atom_family import AtomCurve
-
-    if not isinstance(obj, AtomCurve):
-        return obj
-    if obj.has_rational_form:
-        return obj.to_rational_bezier()
-    from . import _atom_geometry
     from .composite import CompositeCurve
 
-    degree = _atom_geometry.EXPORT_DEGREE
-    return CompositeCurve([piece for _, _, piece in _atom_geometry.pieces(obj, degree)])
+    if isinstance(obj, CompositeCurve) and any(isinstance(s, AtomCurve) for s in obj.segments):
+        # one polynomial B-spline: every AtomCurve segment by its polynomial pieces (a NURBS
+        # segment and polynomial ones share no exact common form); the joints are measured
+        # on the pieces as on any composite, so the knots say what continuity they keep
+        return CompositeCurve(
+            [
+                p
+                for seg in obj.segments
+                for p in (_pieces_of(seg) if isinstance(seg, AtomCurve) else [seg])
+            ]
+        )
+    if not isinstance(obj, AtomCurve):
+        return obj
+    if obj.has_rational_form or obj.data.SPACE == "hyperbolic":  # hyperbolic: in floats
+        return obj.to_rational_bezier()
+    return CompositeCurve(_pieces_of(obj))
+
+
+def _pieces_of(curve: Any) -> list[Any]:
+    """An AtomCurve's polynomial Bézier pieces of degree EXPORT_DEGREE (_atom_geometry.pieces)."""
+    from . import _atom_geometry
+
+    return [piece for _, _, piece in _atom_geometry.pieces(curve, _atom_geometry.EXPORT_DEGREE)]
 
 
 def to_bspline(obj: Shape, *, tol: float = 1e-9) -> BSpline:

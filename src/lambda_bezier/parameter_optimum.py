@@ -145,17 +145,12 @@ def _optimal_atoms(points: PointsLike, k: int, data: Any) -> OptimalParameters:
             f"points: {n + 1} control points: no derived E_{k} of {data.FAMILY} for degree {n}"
         )
     size = len(names) + 1
+    if any(sum(m) > 1 for pair in data.GRAM[(n, k)] for m in pair):
+        # not affine in the parameters: E_k is no quadratic, its minimum is certified
+        return _certified_several(rows, n, k, data, exact, atoms=True)
 
     def index(mono: tuple[int, ...]) -> int:
-        if sum(mono) == 0:
-            return 0
-        if sum(mono) == 1:
-            return 1 + mono.index(1)
-        raise ValueError(
-            f"optimal_parameters: {data.FAMILY} is not affine in its parameters (a term "
-            f"{mono} of degree {sum(mono)}): its energy is not a quadratic in them, and this "
-            "version minimises only quadratics exactly"
-        )
+        return 0 if sum(mono) == 0 else 1 + mono.index(1)
 
     s_mat: list[list[Any]] = [[Fraction(0)] * size for _ in range(size)]
     for (m1, m2), gram in data.GRAM[(n, k)].items():
@@ -265,19 +260,20 @@ def _box_minimum(
 
 
 def _certified_several(
-    rows: list[tuple[Fraction, ...]], n: int, k: int, several: Any, exact: bool
+    rows: list[tuple[Fraction, ...]], n: int, k: int, several: Any, exact: bool, atoms: bool = False
 ) -> OptimalParameters:
     """The certified minimum of E_k over the box of a family not affine in its parameters
-    (_optimal_box). No free optimum is computed: `free` is empty and `free_inside` False."""
-    from ._optimal_box import certified_minimum
+    (_optimal_box; `atoms`: a trigonometric, hyperbolic or mixed family, energies in ℚ(π) or
+    ℚ(e^W)). No free optimum is computed: `free` is empty and `free_inside` False."""
+    from ._optimal_box import certified_atom_minimum, certified_minimum
 
-    got = certified_minimum(rows, n, k, several)
+    got = (certified_atom_minimum if atoms else certified_minimum)(rows, n, k, several)
     if not got["certified"]:  # pragma: no cover - the budget is far above the test families'
         raise ValueError(
             f"optimal_parameters: the minimum of E_{k} over the box was not certified within "
             f"the budget (best {float(got['value'])}, proven lower bound {float(got['lower'])})"
         )
-    out: Any = (lambda v: v) if exact else float
+    out: Any = _exact_value if exact else float
     where = []
     for name, v in zip(several.NAMES, got["point"], strict=True):
         lo, hi, lo_closed, hi_closed, _ = several.RANGES[name]

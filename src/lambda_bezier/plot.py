@@ -24,6 +24,7 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.typing import ColorType
 
+    from .atom_family import AtomCurve
     from .composite import CompositeCurve
     from .curves import Curve
 
@@ -39,7 +40,7 @@ def _axes(ax: Axes | None) -> Axes:
 
 
 def plot_curve(
-    curve: Curve,
+    curve: Curve | AtomCurve,
     ax: Axes | None = None,
     *,
     polygon: bool = True,
@@ -51,7 +52,8 @@ def plot_curve(
 ) -> Axes:
     """The curve (2D, or the xy projection of a 3D curve) with its control polygon."""
     ax = _axes(ax)
-    t = np.linspace(0.0, 1.0, samples)
+    lo, hi = getattr(curve, "domain", (0.0, 1.0))  # an AtomCurve: its family's domain of t
+    t = np.linspace(lo, hi, samples)
     xy = curve.evaluate(t)
     (line,) = ax.plot(xy[:, 0], xy[:, 1], label=label, color=color, **line_kwargs)
     if polygon:
@@ -108,7 +110,7 @@ def plot_composite(
             **line_kwargs,
         )
     if joints:
-        ends = np.array([seg.evaluate(1.0) for seg in composite.segments[:-1]])
+        ends = composite.evaluate(np.array(composite.breaks[1:-1]))
         if len(ends):
             ax.plot(ends[:, 0], ends[:, 1], "ks", markersize=5, label="joints")
     return ax

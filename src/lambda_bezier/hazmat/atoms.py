@@ -238,3 +238,25 @@ def evaluate_half_angle(
                 den *= base
         acc /= den
     return out
+
+
+def exponential_bernstein(harmonics: int, c: float) -> np.ndarray:
+    """(2K+1, 2K+1), K = harmonics: row K + k holds the Bernstein coefficients (degree 2K, in
+    s ∈ [0, 1]) of e^(k x) (1 − u²)^K = (1 + u)^(K+k) (1 − u)^(K−k), u = tanh(x/2) = c·s,
+    0 <= c < 1. Built by multiplying linear factors in Bernstein form, [1, 1 ± c], whose
+    coefficients are positive: every step adds positive terms, so each entry has a relative
+    error of a few ulps (no cancellation)."""
+    size = 2 * harmonics
+    out = np.empty((size + 1, size + 1))
+    for k in range(-harmonics, harmonics + 1):
+        coeffs = np.ones(1)
+        for up in [True] * (harmonics + k) + [False] * (harmonics - k):
+            end = 1.0 + c if up else 1.0 - c  # the factor's Bernstein coefficients [1, end]
+            m = coeffs.size  # the product's degree
+            j = np.arange(m + 1)
+            nxt = np.zeros(m + 1)
+            nxt[:m] += (m - j[:m]) / m * coeffs
+            nxt[1:] += j[1:] / m * coeffs * end
+            coeffs = nxt
+        out[k + harmonics] = coeffs
+    return out

@@ -99,7 +99,8 @@ def test_export_writes_one_nurbs_span():
     curve = fam.curve([(0, 0), (1, 3), (3, -1), (4, 1)], lam=F(1, 2), mu=F(1, 4))
     spline = export.to_bspline(curve)
     assert (
-        spline.weights is not None and len(spline.control_points) == curve.to_rational_bezier().degree + 1
+        spline.weights is not None
+        and len(spline.control_points) == curve.to_rational_bezier().degree + 1
     )
     s = 0.37
     assert np.allclose(

@@ -62,6 +62,30 @@ def definition_digest(table: dict[str, Any]) -> str:
     return hashlib.sha256(text.encode()).hexdigest()
 
 
+def _exact_in_ranges(
+    family: str,
+    ranges: Mapping[str, tuple[Fraction, Fraction, bool, bool, str]],
+    values: Mapping[str, object],
+    check_range: bool,
+) -> tuple[Fraction, ...]:
+    """Parameter values as exact Fractions (a float at its exact binary value), each checked
+    against its range (lo, hi, lo closed, hi closed, text) unless `check_range` is False."""
+    from . import _validate as val
+
+    out = []
+    for name, v in values.items():
+        x = val.real_number(v, name)
+        lo, hi, lo_closed, hi_closed, text = ranges[name]
+        inside = (lo < x or (lo == x and lo_closed)) and (x < hi or (x == hi and hi_closed))
+        if check_range and not inside:
+            raise ValueError(
+                f"{name} = {v} is outside the {family} range {text}; pass "
+                "check_range=False to use it anyway"
+            )
+        out.append(Fraction(x))
+    return tuple(out)
+
+
 class FamilyData:
     """The tables of one family, with the attributes of a generated family module (what the
     Curve base class and the energy and batch code read)."""
@@ -365,21 +389,9 @@ class Family:
     def _fixed_class(self, values: dict[str, object], check_range: bool) -> type[Curve]:
         """The curve class of this family at these parameter values (exact: a float is
         taken at its exact binary value), cached per values."""
-        from . import _validate as val
 
         assert self.several is not None
-        exact = []
-        for name, v in values.items():
-            x = val.real_number(v, name)
-            lo, hi, lo_closed, hi_closed, text = self.several.RANGES[name]
-            inside = (lo < x or (lo == x and lo_closed)) and (x < hi or (x == hi and hi_closed))
-            if check_range and not inside:
-                raise ValueError(
-                    f"{name} = {v} is outside the {self.name} range {text}; pass "
-                    "check_range=False to use it anyway"
-                )
-            exact.append(Fraction(x))
-        key = tuple(exact)
+        key = _exact_in_ranges(self.name, self.several.RANGES, values, check_range)
         if key not in self._classes:
             shown = ", ".join(f"{n}={v}" for n, v in values.items())
             data = _FixedData(self.several, key)
@@ -598,20 +610,7 @@ class AtomFamily(Family):
     ) -> tuple[Fraction, ...]:
         """The parameter values as exact Fractions (a float at its exact binary value),
         checked against the ranges."""
-        from . import _validate as val
-
-        out = []
-        for name, v in values.items():
-            x = val.real_number(v, name)
-            lo, hi, lo_closed, hi_closed, text = self.atom_data.RANGES[name]
-            inside = (lo < x or (lo == x and lo_closed)) and (x < hi or (x == hi and hi_closed))
-            if check_range and not inside:
-                raise ValueError(
-                    f"{name} = {v} is outside the {self.name} range {text}; pass "
-                    "check_range=False to use it anyway"
-                )
-            out.append(Fraction(x))
-        return tuple(out)
+        return _exact_in_ranges(self.name, self.atom_data.RANGES, values, check_range)
 
     def curve(  # type: ignore[override]
         self,

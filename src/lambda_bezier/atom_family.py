@@ -28,6 +28,7 @@ import numpy.typing as npt
 from . import _validate as val
 from ._atom_document import AtomData, Exact, Matrix, Mono, RationalForm
 from ._validate import ParamLike, PointsLike
+from .hazmat import atom_pieces as ap
 from .hazmat import atoms as ak
 from .rational import RationalBezierCurve
 
@@ -103,6 +104,7 @@ class AtomCurve:
             data.SPACE == "trigonometric" and self.shape.omega0 * (hi - lo) * 0.5 <= math.pi / 2
         )
         self._tables: dict[int, np.ndarray] = {}
+        self._pieces: dict[int, ap.PieceTable | None] = {}
 
     # ------------------------------------------------------------------ description
     @property
@@ -168,8 +170,36 @@ class AtomCurve:
             self._orders[order] = out
         return self._orders[order]
 
+    def _piece_table(self, order: int) -> ap.PieceTable | None:
+        """The certified piecewise polynomial of the order-th derivative (hazmat.atom_pieces),
+        built on first use; None where none is certified."""
+        if order not in self._pieces:
+            sh = self.shape
+            lo, hi = self.data.DOMAIN
+            self._pieces[order] = ap.build(
+                self._coefficients(order),
+                sh.derivative,
+                lo,
+                hi,
+                self._mid,
+                sh.omega0,
+                sh.powers,
+                sh.harmonics,
+                sh.hyperbolic,
+            )
+        return self._pieces[order]
+
     def _values(self, tt: np.ndarray, order: int, inside: bool) -> np.ndarray:
-        """(d, len(tt)): the order-th derivative (points scaled back)."""
+        """(d, len(tt)): the order-th derivative (points scaled back). Arrays of at least
+        ap.PIECES_FROM parameters inside the domain go through the piecewise form."""
+        pieces = self._piece_table(order) if inside and tt.size >= ap.PIECES_FROM else None
+        if pieces is not None:
+            out = ap.evaluate(pieces, tt)
+            if self._scale == 1.0:
+                return out  # ap.build bounds the values far below overflow
+            with val.overflow_allowed():
+                out = out * self._scale
+            return val.finite_result(out, "the curve" if order == 0 else f"derivative {order}")
         coeffs = self._coefficients(order)
         tau = tt - self._mid
         sh = self.shape

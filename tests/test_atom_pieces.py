@@ -1,10 +1,11 @@
 """The certified piecewise form of trigonometric, hyperbolic and mixed curves (issue #30,
-hazmat.atom_pieces): AtomCurve.evaluate and derivative of arrays of at least
-atom_pieces.PIECES_FROM parameters go through it.
+hazmat.atom_pieces): with numba, AtomCurve.evaluate and derivative of arrays of at least
+atom_pieces.PIECES_FROM parameters in the domain go through it; without, the atoms.
 
 References are independent of the runtime: the definitions typed in as mpmath functions
 (test_trig_runtime), mpmath's derivatives, and mpmath's own sin/cos/sinh/cosh at 40 digits
-for the remainder bound. Both the compiled kernel and the numpy path run every check."""
+for the remainder bound. The curve runs with the compiled kernel switched on and off, and the
+numpy evaluation of the pieces is checked on the same tables."""
 
 from __future__ import annotations
 
@@ -28,7 +29,12 @@ DATA = HAN.parent
 
 def at_pi(t, lam):
     s, c = mpmath.sin(mpmath.pi * t / 2), mpmath.cos(mpmath.pi * t / 2)
-    return [1 - t - (1 - lam) * (s - t), (1 - lam) * (s - t), (1 - lam) * (c - 1 + t), t - (1 - lam) * (c - 1 + t)]
+    return [
+        1 - t - (1 - lam) * (s - t),
+        (1 - lam) * (s - t),
+        (1 - lam) * (c - 1 + t),
+        t - (1 - lam) * (c - 1 + t),
+    ]
 
 
 def hyp_shift(t, lam):
@@ -107,11 +113,12 @@ def _parameters(curve, order, count, seed):
 def test_values_match_mpmath_within_a_few_ulps(name, curves, compiled):
     curve, basis, params, pts = curves[name]
     t, pieces = _parameters(curve, 0, 600, 1)
-    got = curve.evaluate(t)
     want = _reference(basis, params, pts, t)
     scale = np.abs(want).max()
-    err = np.abs(got - want).max() / np.spacing(scale)
-    assert err <= 8, f"{name}: {err} ulps of the coordinate scale {scale}"
+    # the curve (pieces with numba, atoms without), and the numpy path on the same pieces
+    for got in (curve.evaluate(t), ap.evaluate_pieces(pieces, t).T):
+        err = np.abs(got - want).max() / np.spacing(scale)
+        assert err <= 8, f"{name}: {err} ulps of the coordinate scale {scale}"
     assert pieces.bound <= pieces.tolerance <= scale * 2.0**-53
 
 
@@ -120,16 +127,17 @@ def test_values_match_mpmath_within_a_few_ulps(name, curves, compiled):
 def test_derivatives_match_mpmath(name, k, curves, compiled):
     curve, basis, params, pts = curves[name]
     t, _ = _parameters(curve, k, 40, 2)
-    got = curve.derivative(t, k)
     pick = np.r_[0 : 40 + 12, -4:0]  # random ones, the first boundaries, the ends
     want = _reference(basis, params, pts, t[pick], k)
-    err = np.abs(got[pick] - want).max() / np.spacing(np.abs(want).max())
-    assert err <= 16, f"{name}, derivative {k}: {err} ulps"
+    for got in (curve.derivative(t, k), ap.evaluate_pieces(curve._piece_table(k), t).T):
+        err = np.abs(got[pick] - want).max() / np.spacing(np.abs(want).max())
+        assert err <= 16, f"{name}, derivative {k}: {err} ulps"
 
 
 @pytest.mark.parametrize("name", list(CASES))
 def test_pieces_and_atoms_agree(name, curves, compiled):
-    """The array path (pieces) and the short-array path (atoms) give the same curve."""
+    """The long-array path (pieces, with numba) and the short-array path (atoms) give the
+    same curve."""
     curve, *_ = curves[name]
     lo, hi = curve.domain
     t = np.linspace(lo, hi, 3 * ap.PIECES_FROM)
@@ -143,7 +151,7 @@ def test_extrapolation_keeps_the_atoms(curves):
     lo, hi = curve.domain
     t = np.linspace(lo - 0.5, hi + 0.5, ap.PIECES_FROM + 1)
     got = curve.evaluate(t, extrapolate=True)
-    want = _reference(basis, params, pts, t[:: 64])
+    want = _reference(basis, params, pts, t[::64])
     assert np.abs(got[::64] - want).max() <= 8 * np.spacing(np.abs(want).max())
 
 
@@ -270,3 +278,19 @@ def test_hazmat_table_against_atom_evaluation():
     want = ak.evaluate(coeffs, t - 0.5, omega0, powers, harmonics, True)
     got = ap.evaluate_pieces(pieces, t)
     assert np.abs(got - want).max() <= 8 * np.spacing(np.abs(want).max())
+
+
+def test_long_arrays_take_the_pieces_only_with_the_kernel(monkeypatch):
+    fam = lb.load_family(HAN)
+    t = np.linspace(0, math.pi / 2, ap.PIECES_FROM)
+    for on in (True, False):
+        monkeypatch.setattr(kernels, "USE_COMPILED", on)
+        if on and ap.compiled() is None:
+            continue
+        curve = fam.curve([(0, 0), (1, 3), (3, -1), (4, 1)], lam=F(1, 2), mu=-1)
+        curve.evaluate(t[:-1])  # one short of the switch: the atoms
+        assert curve._pieces == {}
+        got = curve.evaluate(t)
+        assert (0 in curve._pieces) == on
+        if on:
+            assert np.array_equal(got, ap.evaluate_pieces(curve._pieces[0], t).T)

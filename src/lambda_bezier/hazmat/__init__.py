@@ -38,6 +38,9 @@ ours (the name follows the `bezier` package's `hazmat`).
   (branch and bound: signs, zeros, the certified minimum).
 - `atoms`: curves in a space of atoms 1, t^k, cos/sin, cosh/sinh (trigonometric, hyperbolic
   and mixed families): the atom grammar, exact differentiation, fast evaluation;
+- `atom_pieces`: such a curve as a piecewise polynomial with a certified truncation bound
+  (numpy), and `atom_pieces_compiled`, its evaluation compiled with numba (the `fast`
+  extra; imported on use);
 - `constants`: exact numbers in ℚ(π) and ℚ(e^W) (`ConstantFraction`), signs decided exactly.
 
 The submodules are imported on use: ``from lambda_bezier.hazmat import kernels``.
@@ -47,6 +50,8 @@ from __future__ import annotations
 
 __all__ = [
     "arclength",
+    "atom_pieces",
+    "atom_pieces_compiled",
     "atoms",
     "box_bernstein",
     "certify_compiled",

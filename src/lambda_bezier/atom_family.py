@@ -10,7 +10,8 @@ strict regular expression (`hazmat.atoms.parse_atom`), nothing is evaluated.
 
 `AtomCurve` is a curve of such a family at fixed parameter values, with the curve API; its
 parameter is always the family's own t on its domain. Evaluation and derivatives of any
-order are exact differentiation of the atoms then the kernels of `hazmat.atoms`; the geometry
+order are exact differentiation of the atoms then the kernels of `hazmat.atoms`, or, for long
+arrays with numba, a certified piecewise polynomial of them (`hazmat.atom_pieces`); the geometry
 (split, arc length, boxes, closest points, intersections) goes through the exact
 `to_rational_bezier()` when the family has a rational form, with the parameters mapped back
 to t (t = lo + 2·atan(scale·s) for tan(t/2)), and numerically otherwise (_atom_geometry).

@@ -134,3 +134,127 @@ def test_compiled_coefficients_keep_their_summation_order(family, n, dim):
         out = np.empty((4, len(pts)))
         batch_compiled.energy_coefficients(pts, compact, rows, 1e-12 * weight, out)
         np.testing.assert_array_equal(out, _ordered_reference(pts, compact, rows, 1e-12 * weight))
+
+
+@pytest.fixture
+def numpy_and_compiled(monkeypatch):
+    """Calls evaluate_many on the numpy path and on the compiled one."""
+
+    def both(*args, **kwargs):
+        monkeypatch.setattr(kernels, "USE_COMPILED", False)
+        slow = lb.evaluate_many(*args, **kwargs)
+        monkeypatch.setattr(kernels, "USE_COMPILED", True)
+        fast = lb.evaluate_many(*args, **kwargs)
+        return slow, fast
+
+    return both
+
+
+@pytest.mark.parametrize("name", ["bezier", "same_degree", "bernstein_like"])
+@pytest.mark.parametrize("dim", [1, 2, 3])
+def test_compiled_evaluate_many_matches_numpy(name, dim, numpy_and_compiled):
+    """Every derivative order (past the degree too), curves near 2^±1000 (scaled per curve)
+    beside ordinary ones, more parameters than one span, one λ per curve."""
+    from lambda_bezier.hazmat import batch_compiled
+
+    fam = lb.FAMILIES[name]
+    rng = np.random.default_rng(dim)
+    for n in fam._data.DEGREES[:3]:
+        pts = rng.normal(size=(9, n + 1, dim))
+        pts[2] *= 1e300
+        pts[4] *= 1e-300
+        t = np.linspace(0.0, 1.0, batch_compiled._SPAN + 37)
+        lam = None if name == "bezier" else rng.uniform(-0.9, 0.9, size=9)
+        for k in range(n + 3):
+            slow, fast = numpy_and_compiled(pts, t, name, lam, k=k)
+            assert fast.shape == slow.shape == (9, t.size, dim)
+            assert fast.flags.c_contiguous
+            # rounding relative to each curve's own magnitude (near-zero values cancel)
+            size = np.abs(slow).max(axis=(1, 2), keepdims=True)
+            assert (np.abs(fast - slow) <= 1e-12 * size).all()
+        one, one_fast = numpy_and_compiled(pts, 0.25, name, lam)  # a scalar t: (m, d)
+        assert one.shape == one_fast.shape == (9, dim)
+        assert (np.abs(one_fast - one) <= 1e-12 * np.abs(one).max(axis=1, keepdims=True)).all()
+
+
+def test_compiled_evaluate_many_declines_and_names(numpy_and_compiled, monkeypatch):
+    """A NaN late in the batch is named by its curve; an overflow when extrapolating is
+    refused by the numpy path it is handed to, with the same message."""
+    monkeypatch.setattr(kernels, "CHUNK_ELEMENTS", 64)
+    pts = np.random.default_rng(2).normal(size=(50, 4, 2))
+    pts[41, 3, 0] = np.nan
+    for use in (False, True):
+        monkeypatch.setattr(kernels, "USE_COMPILED", use)
+        with pytest.raises(ValueError, match="curve 41, control point 3 has a non-finite"):
+            lb.evaluate_many(pts, [0.0, 1.0], "bezier")
+    pts[41] = np.random.default_rng(3).normal(size=(4, 2)) * 1e306
+    for use in (False, True):
+        monkeypatch.setattr(kernels, "USE_COMPILED", use)
+        with pytest.raises(ValueError, match="overflows the float range"):
+            lb.evaluate_many(pts, [0.0, 30.0], "bezier", extrapolate=True)
+    pts[41] = 1.0
+    slow, fast = numpy_and_compiled(pts, np.linspace(0, 1, 5), "bezier")
+    np.testing.assert_allclose(fast, slow, rtol=1e-12)
+
+
+@pytest.mark.parametrize("use_compiled", [False, True])
+def test_evaluate_many_out(use_compiled, monkeypatch):
+    """out= writes the result into the caller's buffer and returns it, on every path (the
+    tables, de Casteljau past them, a trigonometric family), scalar t included."""
+    monkeypatch.setattr(kernels, "USE_COMPILED", use_compiled)
+    rng = np.random.default_rng(5)
+    t = np.linspace(0, 1, 7)
+    cases = [
+        (rng.normal(size=(6, 4, 2)), "same_degree", 0.5),
+        (rng.normal(size=(6, 6, 3)), "bezier", None),
+        (rng.normal(size=(6, 25, 2)), "bezier", None),  # past the tables: de Casteljau
+    ]
+    for pts, name, lam in cases:
+        want = lb.evaluate_many(pts, t, name, lam, k=1)
+        buf = np.full((6, 7, pts.shape[2]), np.nan)
+        got = lb.evaluate_many(pts, t, name, lam, k=1, out=buf)
+        assert got is buf
+        np.testing.assert_array_equal(buf, want)
+        scalar = np.empty((6, pts.shape[2]))
+        assert lb.evaluate_many(pts, 0.5, name, lam, out=scalar) is scalar
+        np.testing.assert_array_equal(scalar, lb.evaluate_many(pts, 0.5, name, lam))
+
+
+def test_evaluate_many_out_of_an_atom_family():
+    from pathlib import Path
+
+    fam = lb.load_family(Path(__file__).parent / "data/families/han_trig_cubic.toml")
+    pts = np.random.default_rng(1).normal(size=(3, 4, 2))
+    want = lb.evaluate_many(pts, [0.0, 0.5], fam, params={"lam": 0.5, "mu": -1.0})
+    buf = np.empty((3, 2, 2))
+    assert lb.evaluate_many(pts, [0.0, 0.5], fam, params={"lam": 0.5, "mu": -1.0}, out=buf) is buf
+    np.testing.assert_array_equal(buf, want)
+
+
+def test_evaluate_many_out_is_checked():
+    """numpy's out= rules, each refused by name before anything is written."""
+    pts = np.random.default_rng(0).normal(size=(4, 4, 2))
+    t = np.linspace(0, 1, 3)
+    bad = [
+        ([[0.0]], TypeError, "out must be a numpy array, got list"),
+        (np.empty((4, 3, 2), dtype=np.float32), TypeError, "out must have dtype float64"),
+        (np.empty((4, 3, 3)), ValueError, r"out must have the result's shape \(4, 3, 2\)"),
+        (np.empty((4, 2, 3)).transpose(0, 2, 1), ValueError, "out must be C-contiguous"),
+    ]
+    frozen = np.zeros((4, 3, 2))
+    frozen.setflags(write=False)
+    bad.append((frozen, ValueError, "out is read-only"))
+    for out, error, message in bad:
+        with pytest.raises(error, match=message):
+            lb.evaluate_many(pts, t, "bezier", out=out)
+    assert (frozen == 0).all()
+    # the result may not overwrite its own input
+    shared = np.zeros(4 * 3 * 2 + 4 * 4 * 2)
+    inputs = shared[:32].reshape(4, 4, 2)
+    inputs[...] = pts
+    with pytest.raises(ValueError, match="out must not overlap the control points or t"):
+        lb.evaluate_many(inputs, t, "bezier", out=shared[8:32].reshape(4, 3, 2))
+    grid = np.zeros(4 * 3 * 2 + 3)
+    grid[:3] = t
+    with pytest.raises(ValueError, match="out must not overlap the control points or t"):
+        lb.evaluate_many(pts, grid[:3], "bezier", out=grid[:24].reshape(4, 3, 2))

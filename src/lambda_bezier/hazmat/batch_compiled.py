@@ -186,20 +186,29 @@ def energy_optimum(
     for lo in range(0, m, _BLOCK):
         count = min(_BLOCK, m - lo)
         _block_coefficients(points, lo, count, compact, rows, block, acc)
+        # the block's test first (a vector loop), so the optimum's loops have no exit
+        declined = 0
         for j in range(count):
-            a0 = acc[0, j]
-            a1 = 2.0 * acc[1, j]
-            a2 = acc[2, j]
-            if not (np.isfinite(a0) and np.isfinite(a2)) or a2 <= acc[3, j] * rounding_weight:
-                return lo + j
+            a0, a2 = acc[0, j], acc[2, j]
+            bad = not (np.isfinite(a0) and np.isfinite(a2)) or a2 <= acc[3, j] * rounding_weight
+            declined += bad
+        if declined:
+            for j in range(count):
+                a0, a2 = acc[0, j], acc[2, j]
+                if not (np.isfinite(a0) and np.isfinite(a2)) or a2 <= acc[3, j] * rounding_weight:
+                    return int(lo + j)
+        for j in range(count):
+            a0, a1, a2 = acc[0, j], 2.0 * acc[1, j], acc[2, j]
             x = -a1 / (2.0 * a2)
             best[lo + j] = x
-            ok_best[lo + j] = x >= least and x <= greatest
+            ok_best[lo + j] = (x >= least) & (x <= greatest)
             energy_best[lo + j] = a0 + a1 * x + a2 * x * x
-            if clamp:
-                y = min(max(x, clip_lo), clip_hi)
+        if clamp:
+            for j in range(count):
+                a0, a1, a2 = acc[0, j], 2.0 * acc[1, j], acc[2, j]
+                y = min(max(best[lo + j], clip_lo), clip_hi)
                 lam[lo + j] = y
-                ok[lo + j] = y >= least and y <= greatest
+                ok[lo + j] = (y >= least) & (y <= greatest)
                 energy[lo + j] = a0 + a1 * y + a2 * y * y
     return int(m)
 

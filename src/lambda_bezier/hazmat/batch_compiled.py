@@ -192,24 +192,28 @@ def energy_optimum(
             a0, a2 = acc[0, j], acc[2, j]
             bad = not (np.isfinite(a0) and np.isfinite(a2)) or a2 <= acc[3, j] * rounding_weight
             declined += bad
+        final = count  # the polygons before the first declined one are answered
         if declined:
             for j in range(count):
                 a0, a2 = acc[0, j], acc[2, j]
                 if not (np.isfinite(a0) and np.isfinite(a2)) or a2 <= acc[3, j] * rounding_weight:
-                    return int(lo + j)
-        for j in range(count):
+                    final = j
+                    break
+        for j in range(final):
             a0, a1, a2 = acc[0, j], 2.0 * acc[1, j], acc[2, j]
             x = -a1 / (2.0 * a2)
             best[lo + j] = x
             ok_best[lo + j] = (x >= least) & (x <= greatest)
             energy_best[lo + j] = a0 + a1 * x + a2 * x * x
         if clamp:
-            for j in range(count):
+            for j in range(final):
                 a0, a1, a2 = acc[0, j], 2.0 * acc[1, j], acc[2, j]
                 y = min(max(best[lo + j], clip_lo), clip_hi)
                 lam[lo + j] = y
                 ok[lo + j] = (y >= least) & (y <= greatest)
                 energy[lo + j] = a0 + a1 * y + a2 * y * y
+        if final < count:
+            return int(lo + final)
     return int(m)
 
 

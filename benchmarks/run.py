@@ -300,7 +300,7 @@ def bench_optimal_lambda(m: int, m_memory: int) -> None:
         for path in paths:
             kernels.USE_COMPILED = path == "numba kernel"
             best = interleaved(
-                {"ours": lambda: lb.optimal_lambda(pts, 2), "read": lambda: pts.sum()}, 7
+                {"ours": lambda: lb.optimal_lambda(pts, 2), "read": lambda: pts.sum()}, 25
             )
             ours, read = best["ours"], best["read"]
             record(

@@ -44,6 +44,7 @@ def evaluate_many(
     check_range: bool = True,
     extrapolate: bool = False,
     params: dict[str, float] | None = None,
+    out: np.ndarray | None = None,
 ) -> np.ndarray:
     r"""The k-th derivative :math:`p^{(k)}(t)` of m curves of one family and degree at once.
 
@@ -68,11 +69,16 @@ def evaluate_many(
         A family in several parameters (from `load_family`): one value per parameter,
         ``{"lam": ..., "mu": ...}``, shared by every curve; an indexed family (``lam(i)``)
         takes ``{"lam": [one value per index]}`` (or ``lam=[...]``).
+    out : numpy.ndarray, optional
+        An array to write the result into and return, as numpy's ``out=``: float64,
+        C-contiguous, writeable, of the result's shape (m, T, d) ((m, d) for a scalar t),
+        and not overlapping `points` or `t`. Reusing one buffer across calls saves
+        allocating (and the operating system zeroing) a fresh result each time.
 
     Returns
     -------
     numpy.ndarray
-        Shape (m, T, d).
+        Shape (m, T, d) (`out` when given).
 
     Examples
     --------
@@ -88,7 +94,8 @@ def evaluate_many(
         named = {} if lam is None else {"lam": lam}
         given = family.parameter_values(None, params, named)  # type: ignore[attr-defined]
         exact = family.exact_values(given, val.flag(check_range, "check_range"))  # type: ignore[attr-defined]
-        return atom_evaluate_many(family, points, t, k, exact, extrapolate)
+        values = atom_evaluate_many(family, points, t, k, exact, extrapolate)
+        return values if out is None else _into(out, values, points, t)
     if hasattr(family, "by_degree"):  # an indexed family (lam(i)): its degree's own Family
         shape = np.shape(val.real_array(points, "control points"))
         if len(shape) != 3:
@@ -128,7 +135,8 @@ def evaluate_many(
     if n not in cls._data.DEGREES:
         if lam is not None:
             raise ValueError("a classical Bézier curve takes no shape parameter")
-        return _de_casteljau_many(arr, tt, k, scalar)
+        values = _de_casteljau_many(arr, tt, k, scalar)
+        return values if out is None else _into(out, values, points, arr, t)
     mats = _tables(cls._data, "centred")[n]
     if not cls._has_lambda:
         if lam is not None:
@@ -139,6 +147,63 @@ def evaluate_many(
             raise ValueError(f"a {family} curve needs a shape parameter lam")
         lams = _lambdas(lam, cls, m, check_range)
     tables = [_float_matrix(cls._data, "centred", n, p).T for p in range(len(mats))]
+    result = None if out is None else _checked_out(out, (m, tt.size, dim), scalar, points, arr, t)
+    check_needed = extrapolate or not check_range  # else nothing can overflow
+    compiled = alg.batch_compiled()
+    if compiled is None:  # numpy: (T, m·d), or into `out`
+        values = _numpy_many(arr, tables, lams, tt, k, check_needed, result)
+    else:
+        # Compiled: each curve's coefficients, Horner, and each element of the C-contiguous
+        # (m, T, d) result written once, in one pass with no working arrays
+        # (hazmat/batch_compiled.evaluate_batch). A curve it declines (a non-finite input,
+        # an overflow) is left to the numpy path, chunk by chunk, which names it.
+        values = np.empty((m, tt.size, dim)) if result is None else result
+        stacked = np.ascontiguousarray(np.stack(tables))
+        size_k = tables[0].shape[0] - k  # the Bézier degree N + 1 - k (N ≥ n), or ≤ 0
+        factors = differentiate_coefficients(np.ones(tables[0].shape[0]), k)
+        u = tt - 0.5
+        start = 0
+        while start < m:
+            declined = compiled.evaluate_batch(
+                arr[start:],
+                stacked,
+                lams[start:] if lams.size == m else lams,
+                max(k, 0) if size_k > 0 else 0,
+                factors,
+                u,
+                check_needed,
+                values[start:],
+            )
+            if declined < 0:
+                break
+            lo, hi = next(
+                c for c in chunk_ranges(m, tt.size * dim) if c[0] <= start + declined < c[1]
+            )
+            _numpy_many(arr[lo:hi], tables, lams[lo:hi] if lams.size == m else lams, tt, k,
+                        check_needed, values[lo:hi], lo)  # fmt: skip
+            start = hi
+    if out is not None:
+        return out
+    return values[:, 0] if scalar else values
+
+
+def _numpy_many(
+    arr: np.ndarray,
+    tables: list[np.ndarray],
+    lams: np.ndarray,
+    tt: np.ndarray,
+    k: int,
+    check_needed: bool,
+    result: np.ndarray | None,
+    first: int = 0,
+) -> np.ndarray:
+    """evaluate_many's numpy path on curves `arr` (the first is curve `first` of the batch):
+    into `result` (m, T, d) when given, else laid out (T, m·d) and returned as the (m, T, d)
+    view. Each chunk of curves is one product of the monomials with its coefficients,
+    written by BLAS straight into its columns (a transposing copy into an (m, T, d) array
+    costs three times as much; it is done only into a given `result`). Chunks keep the
+    working arrays in cache and the extra memory bounded at any m."""
+    m, size, dim = arr.shape
     # Every curve shares the parameter grid: its monomials (t - 1/2)^e, once.
     size_k = max(tables[0].shape[0] - k, 1)  # the Bézier degree N + 1 - k (N ≥ n)
     u = tt - 0.5
@@ -146,18 +211,14 @@ def evaluate_many(
     powers[:, 0] = 1.0
     for e in range(1, size_k):
         np.multiply(powers[:, e - 1], u, out=powers[:, e])
-    # The result is laid out (T, m·d) and returned as the (m, T, d) view: each chunk of
-    # curves is one product of the monomials with its coefficients, written by BLAS straight
-    # into its columns (a transposing copy into an (m, T, d) array costs three times as much).
-    # Chunks keep the working arrays in cache and the extra memory bounded at any m.
-    out = np.empty((tt.size, m * dim))
-    check_needed = extrapolate or not check_range  # else nothing can overflow
+    wide = np.empty((tt.size, m * dim)) if result is None else None
+    what = "p(t)" if k == 0 else f"the derivative of order {k}"
     for lo, hi in chunk_ranges(m, tt.size * dim):
         part = arr[lo:hi]
         # a curve with coordinates beyond 2^±900 is computed on its points scaled by a power
         # of two (exact), then scaled back, so a representable p(t) is not lost to an
         # overflow or underflow in the coefficients (each curve by its own magnitude)
-        scales = _curve_scales(part, lo)
+        scales = _curve_scales(part, first + lo)
         with val.overflow_allowed():
             # coefficients in the centred monomials, laid out (N+1, c·d): wide products
             pt = part.transpose(1, 0, 2).reshape(size, (hi - lo) * dim)
@@ -169,14 +230,55 @@ def evaluate_many(
                 coeffs += (tables[p] @ pt) * np.repeat(lams[lo:hi] ** p, dim)
             if k:
                 coeffs = differentiate_coefficients(coeffs.T, k).T
-            block = out[:, lo * dim : hi * dim]
+            block = (
+                wide[:, lo * dim : hi * dim]
+                if wide is not None
+                else np.empty((tt.size, (hi - lo) * dim))
+            )
             np.matmul(powers, coeffs, out=block)
             if scales is not None:
                 block *= scales
         if scales is not None or check_needed:
-            val.finite_result(block, "p(t)" if k == 0 else f"the derivative of order {k}")
-    values: np.ndarray = out.reshape(tt.size, m, dim).transpose(1, 0, 2)
-    return values[:, 0] if scalar else values
+            val.finite_result(block, what)
+        if result is not None:
+            result[lo:hi] = block.reshape(tt.size, hi - lo, dim).transpose(1, 0, 2)
+    if result is not None:
+        return result
+    assert wide is not None
+    values: np.ndarray = wide.reshape(tt.size, m, dim).transpose(1, 0, 2)
+    return values
+
+
+def _checked_out(
+    out: object, shape: tuple[int, int, int], scalar: bool, *inputs: npt.ArrayLike
+) -> np.ndarray:
+    """`out` as the (m, T, d) array to write (a view of the (m, d) one for a scalar t), or
+    a TypeError/ValueError naming what is wrong with it: numpy's `out=` rules, checked
+    before anything is computed."""
+    want = (shape[0], shape[2]) if scalar else shape
+    if not isinstance(out, np.ndarray):
+        raise TypeError(f"out must be a numpy array, got {type(out).__name__}")
+    if out.dtype != np.float64:
+        raise TypeError(f"out must have dtype float64, got {out.dtype}")
+    if out.shape != want:
+        raise ValueError(f"out must have the result's shape {want}, got shape {out.shape}")
+    if not out.flags.c_contiguous:
+        raise ValueError("out must be C-contiguous")
+    if not out.flags.writeable:
+        raise ValueError("out is read-only")
+    if any(np.may_share_memory(out, x) for x in inputs):
+        raise ValueError("out must not overlap the control points or t")
+    return out.reshape(shape)
+
+
+def _into(out: object, values: np.ndarray, *inputs: npt.ArrayLike) -> np.ndarray:
+    """`values` (computed by a path that allocates its own result) copied into the
+    checked `out`."""
+    scalar = values.ndim == 2
+    shape = (values.shape[0], 1, values.shape[1]) if scalar else values.shape
+    target = _checked_out(out, shape, scalar, *inputs)
+    target[...] = values.reshape(shape)
+    return out  # type: ignore[return-value]
 
 
 def _curve_scales(part: np.ndarray, first: int) -> np.ndarray | None:

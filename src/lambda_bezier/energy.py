@@ -7,6 +7,7 @@ generated/energy.py.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import cache
@@ -350,8 +351,8 @@ def _coefficients_of(
     arr: np.ndarray, k: int, family: object
 ) -> tuple[tuple[np.ndarray, np.ndarray, np.ndarray], np.ndarray]:
     m, size, dim = arr.shape
-    compiled = kernels.compiled()
-    if compiled is not None:  # one pass per polygon (hazmat/kernels_compiled.py)
+    compiled = kernels.batch_compiled()
+    if compiled is not None:  # one pass per polygon (hazmat/batch_compiled.py)
         compact, rows, a2_weight = _compact_forms(family, size - 1, k)
         out = np.empty((4, m))
         compiled.energy_coefficients(
@@ -539,20 +540,26 @@ def _float_optimum(
             energy_best,
         )
     )
-    for lo, hi in _chunks(arr, k, family):
-        coefficients, rounding, exponents = _chunk_coefficients(arr[lo:hi], k, family, single, lo)
-        degenerate = coefficients[2] <= rounding
-        if degenerate.any():
-            where = "" if single else f" (polygon {lo + int(np.argmax(degenerate))})"
-            raise ValueError(_no_effect_message(k) + where)
-        got = _optimum(coefficients, clamp, data)
-        e_lam, e_best = got[4], got[5]
-        if exponents is not None:  # the polygons that were computed scaled
-            e_best = _unscale(e_best, exponents, single, f"E_{k}", lo)
-            e_lam = e_best if got[4] is got[5] else _unscale(e_lam, exponents, single, f"E_{k}", lo)
-        best[lo:hi], ok_best[lo:hi], energy_best[lo:hi] = got[1], got[3], e_best
-        if clamp:
-            lam[lo:hi], ok[lo:hi], energy[lo:hi] = got[0], got[2], e_lam
+    result = (lam, best, ok, ok_best, energy, energy_best)
+    compiled = kernels.batch_compiled()
+    chunks = _chunks(arr, k, family)
+    if compiled is not None:  # one compiled pass; only the chunks it declines are redone
+        compact, rows, a2_weight = _compact_forms(family, arr.shape[1] - 1, k)
+        bounds = _admissible_bounds(data)
+        start, stop = 0, 0
+        while start < m:
+            stop = start + compiled.energy_optimum(
+                arr[start:], compact, rows, 1e-12 * a2_weight, bounds, clamp, best[start:],
+                ok_best[start:], energy_best[start:], lam[start:], ok[start:], energy[start:]
+            )  # fmt: skip
+            if stop == m:
+                break
+            lo, hi = next(c for c in chunks if c[0] <= stop < c[1])
+            _float_optimum_chunk(arr, lo, hi, k, family, clamp, data, single, result)
+            start = hi
+    else:
+        for lo, hi in chunks:
+            _float_optimum_chunk(arr, lo, hi, k, family, clamp, data, single, result)
     if single:
         return (
             float(lam[0]),
@@ -562,7 +569,57 @@ def _float_optimum(
             float(energy[0]),
             float(energy_best[0]),
         )
-    return lam, best, ok, ok_best, energy, energy_best
+    return result
+
+
+def _admissible_bounds(data: Any) -> np.ndarray:
+    """(clip low, clip high, least admissible, greatest admissible) as floats, for the
+    compiled optimum: the clip bounds are `_optimum`'s float(lo), float(hi); the admissible
+    ones are the least and greatest floats inside the family's exact range (an open or
+    closed end, an int or a Fraction), so closed float comparisons decide exactly what
+    `_optimum`'s comparisons with the exact ends decide."""
+    lo, hi = data.LAMBDA_RANGE
+    lo_closed, hi_closed = data.LAMBDA_CLOSED
+
+    def inner(end: Any, closed: bool, up: float) -> float:
+        near = float(end)
+        if math.isinf(near):
+            return near
+        exact, end_q = Fraction(near), Fraction(end)
+        inside = (exact - end_q) * up > 0 or (closed and exact == end_q)
+        return near if inside else float(np.nextafter(near, up * math.inf))
+
+    return np.array([float(lo), float(hi), inner(lo, lo_closed, 1.0), inner(hi, hi_closed, -1.0)])
+
+
+def _float_optimum_chunk(
+    arr: np.ndarray,
+    lo: int,
+    hi: int,
+    k: int,
+    family: object,
+    clamp: bool,
+    data: Any,
+    single: bool,
+    result: tuple[np.ndarray, ...],
+) -> None:
+    """Polygons lo .. hi-1 of `_float_optimum` by the careful path, written into result
+    (λ, λ*, λ admissible, λ* admissible, E_k(λ), E_k(λ*)): the numpy fallback, and where the
+    compiled pass declines (rescaling near the float limits, the error naming a polygon)."""
+    lam, best, ok, ok_best, energy, energy_best = result
+    coefficients, rounding, exponents = _chunk_coefficients(arr[lo:hi], k, family, single, lo)
+    degenerate = coefficients[2] <= rounding
+    if degenerate.any():
+        where = "" if single else f" (polygon {lo + int(np.argmax(degenerate))})"
+        raise ValueError(_no_effect_message(k) + where)
+    got = _optimum(coefficients, clamp, data)
+    e_lam, e_best = got[4], got[5]
+    if exponents is not None:  # the polygons that were computed scaled
+        e_best = _unscale(e_best, exponents, single, f"E_{k}", lo)
+        e_lam = e_best if got[4] is got[5] else _unscale(e_lam, exponents, single, f"E_{k}", lo)
+    best[lo:hi], ok_best[lo:hi], energy_best[lo:hi] = got[1], got[3], e_best
+    if clamp:
+        lam[lo:hi], ok[lo:hi], energy[lo:hi] = got[0], got[2], e_lam
 
 
 def optimal_parameters(

@@ -70,6 +70,16 @@ def compiled() -> ModuleType | None:
     return kernels_compiled
 
 
+def batch_compiled() -> ModuleType | None:
+    """hazmat.batch_compiled (evaluate_many's and optimal_lambda's kernels) when USE_COMPILED,
+    else None (the numpy paths)."""
+    if not USE_COMPILED:
+        return None
+    from . import batch_compiled as module  # numba compiles (or loads its cache) on first use
+
+    return module
+
+
 # Elements of one chunk's working block in the batch operations (evaluate_many, optimal_lambda):
 # 2 MB of floats, inside the L2 cache, and a bound on their extra memory at any batch size.
 CHUNK_ELEMENTS = 1 << 18

@@ -1,0 +1,116 @@
+"""Exact rational functions in t and the shape parameters, on FLINT's multivariate
+polynomials (fmpq_mpoly), for the family engine's evaluation of a definition per degree.
+
+SymPy's sparse field Q(t, λ) does the same arithmetic, but cancels every intermediate result
+with a gcd in Python; a basis definition of degree 12 is a few thousand such operations per
+degree (issue #29: it was a fifth of `derive --check`). Here a value is a numerator and a
+denominator in FLINT's C arithmetic. Denominators only arise from negative powers (t^(i-1) at
+i = 0, say), so a denominator that is a number is folded into the numerator at once and a
+gcd is only taken when one is not.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from functools import cache
+
+import flint
+
+
+@cache
+def context(count: int) -> flint.fmpq_mpoly_ctx:
+    """Polynomials in `count` variables (t first, then the parameters), lexicographic."""
+    return flint.fmpq_mpoly_ctx.get(tuple(f"x{k}" for k in range(count)), "lex")
+
+
+class RationalFunction:
+    """num / den over Q, both fmpq_mpoly of one context; den is 1 unless it has a variable,
+    and num / den is in lowest terms (a common factor is cancelled when it forms)."""
+
+    __slots__ = ("num", "den")
+
+    def __init__(self, num: flint.fmpq_mpoly, den: flint.fmpq_mpoly | None = None):
+        ctx = num.context()
+        if den is None or den.is_one():
+            self.num, self.den = num, ctx.from_dict({(0,) * ctx.nvars(): 1})
+            return
+        if den.is_zero():
+            raise ZeroDivisionError("a rational function with denominator 0")
+        if den.is_constant():
+            self.num, self.den = (
+                num / den.leading_coefficient(),
+                ctx.from_dict({(0,) * ctx.nvars(): 1}),
+            )
+            return
+        g = num.gcd(den)
+        if not g.is_one():
+            num, den = num / g, den / g
+        lead = den.leading_coefficient()  # a unique representative: den with leading term 1
+        self.num, self.den = num / lead, den / lead
+        if self.den.is_constant():  # the gcd took every variable out
+            self.den = ctx.from_dict({(0,) * ctx.nvars(): 1})
+
+    @classmethod
+    def constant(cls, count: int, value: int | Fraction) -> RationalFunction:
+        ctx = context(count)
+        value = Fraction(value)
+        return cls(ctx.from_dict({(0,) * count: flint.fmpq(value.numerator, value.denominator)}))
+
+    @classmethod
+    def variable(cls, count: int, index: int) -> RationalFunction:
+        return cls(context(count).gens()[index])
+
+    @property
+    def is_polynomial(self) -> bool:
+        return self.den.is_constant()
+
+    def is_zero(self) -> bool:
+        return bool(self.num.is_zero())
+
+    def constant_value(self) -> Fraction | None:
+        """The value when this is a number, else None."""
+        if not (self.num.is_constant() and self.den.is_constant()):
+            return None
+        if self.num.is_zero():
+            return Fraction(0)
+        q = self.num.leading_coefficient()
+        return Fraction(int(q.p), int(q.q))
+
+    def __add__(self, other: RationalFunction) -> RationalFunction:
+        if self.den.is_one() and other.den.is_one():
+            return RationalFunction(self.num + other.num)
+        return RationalFunction(self.num * other.den + other.num * self.den, self.den * other.den)
+
+    def __mul__(self, other: RationalFunction) -> RationalFunction:
+        if self.den.is_one() and other.den.is_one():
+            return RationalFunction(self.num * other.num)
+        return RationalFunction(self.num * other.num, self.den * other.den)
+
+    def __pow__(self, exponent: int) -> RationalFunction:
+        if exponent >= 0:
+            if self.den.is_one():
+                return RationalFunction(self.num**exponent)
+            return RationalFunction(self.num**exponent, self.den**exponent)
+        if self.num.is_zero():
+            raise ZeroDivisionError("0 to a negative power")
+        return RationalFunction(self.den ** (-exponent), self.num ** (-exponent))
+
+    def terms(self) -> dict[tuple[int, ...], Fraction]:
+        """{exponent tuple: coefficient} of a polynomial (the denominator is 1)."""
+        if not self.is_polynomial:
+            raise ArithmeticError("not a polynomial")
+        return {
+            tuple(int(e) for e in m): Fraction(int(c.p), int(c.q))
+            for m, c in zip(self.num.monoms(), self.num.coeffs(), strict=True)
+        }
+
+    def as_pair(self) -> tuple[dict[tuple[int, ...], Fraction], dict[tuple[int, ...], Fraction]]:
+        """(numerator, denominator) as {exponent tuple: coefficient}, for printing."""
+
+        def terms(p: flint.fmpq_mpoly) -> dict[tuple[int, ...], Fraction]:
+            return {
+                tuple(int(e) for e in m): Fraction(int(c.p), int(c.q))
+                for m, c in zip(p.monoms(), p.coeffs(), strict=True)
+            }
+
+        return terms(self.num), terms(self.den)

@@ -13,8 +13,14 @@ from __future__ import annotations
 
 from fractions import Fraction
 from functools import cache
+from math import gcd, lcm
+from typing import TYPE_CHECKING
 
 import flint
+import sympy as sp
+
+if TYPE_CHECKING:
+    from sympy.polys.fields import FracElement, FracField
 
 
 @cache
@@ -76,12 +82,60 @@ class RationalFunction:
         q = self.num.leading_coefficient()
         return Fraction(int(q.p), int(q.q))
 
-    def __add__(self, other: RationalFunction) -> RationalFunction:
+    def _coerce(self, other: object) -> RationalFunction:
+        if isinstance(other, RationalFunction):
+            return other
+        if isinstance(other, int | Fraction):
+            return RationalFunction.constant(self.num.context().nvars(), other)
+        raise TypeError(f"cannot combine a rational function with {type(other).__name__}")
+
+    def __eq__(self, other: object) -> bool:
+        if isinstance(other, int | Fraction):
+            return self.constant_value() == other
+        if not isinstance(other, RationalFunction):
+            return NotImplemented
+        return bool(self.num == other.num and self.den == other.den)
+
+    def __ne__(self, other: object) -> bool:
+        equal = self.__eq__(other)
+        return equal if equal is NotImplemented else not equal
+
+    __hash__ = None  # type: ignore[assignment]  # mutable-looking, compared by value
+
+    def __neg__(self) -> RationalFunction:
+        out = object.__new__(RationalFunction)
+        out.num, out.den = -self.num, self.den
+        return out
+
+    def __sub__(self, other: RationalFunction | int | Fraction) -> RationalFunction:
+        return self + (-self._coerce(other))
+
+    def __rsub__(self, other: int | Fraction) -> RationalFunction:
+        return self._coerce(other) + (-self)
+
+    def __radd__(self, other: int | Fraction) -> RationalFunction:
+        return self._coerce(other) + self
+
+    def __rmul__(self, other: int | Fraction) -> RationalFunction:
+        return self._coerce(other) * self
+
+    def __truediv__(self, other: RationalFunction | int | Fraction) -> RationalFunction:
+        other = self._coerce(other)
+        if other.num.is_zero():
+            raise ZeroDivisionError("division by the zero rational function")
+        return RationalFunction(self.num * other.den, self.den * other.num)
+
+    def __rtruediv__(self, other: int | Fraction) -> RationalFunction:
+        return self._coerce(other) / self
+
+    def __add__(self, other: RationalFunction | int | Fraction) -> RationalFunction:
+        other = self._coerce(other)
         if self.den.is_one() and other.den.is_one():
             return RationalFunction(self.num + other.num)
         return RationalFunction(self.num * other.den + other.num * self.den, self.den * other.den)
 
-    def __mul__(self, other: RationalFunction) -> RationalFunction:
+    def __mul__(self, other: RationalFunction | int | Fraction) -> RationalFunction:
+        other = self._coerce(other)
         if self.den.is_one() and other.den.is_one():
             return RationalFunction(self.num * other.num)
         return RationalFunction(self.num * other.num, self.den * other.den)
@@ -114,3 +168,54 @@ class RationalFunction:
             }
 
         return terms(self.num), terms(self.den)
+
+
+def from_expr(expr: sp.Expr, symbols: tuple[sp.Symbol, ...]) -> RationalFunction:
+    """A SymPy rational expression in `symbols` (sums, products, integer powers, rational
+    numbers) as a RationalFunction in those variables, in that order."""
+    count = len(symbols)
+    index = {s: k for k, s in enumerate(symbols)}
+
+    def walk(e: sp.Expr) -> RationalFunction:
+        if e.is_Rational:
+            return RationalFunction.constant(count, Fraction(int(e.p), int(e.q)))
+        if e.is_Symbol:
+            if e not in index:
+                raise ValueError(f"{e} is not one of the variables {symbols}")
+            return RationalFunction.variable(count, index[e])
+        if e.is_Add:
+            out = walk(e.args[0])
+            for a in e.args[1:]:
+                out = out + walk(a)
+            return out
+        if e.is_Mul:
+            out = walk(e.args[0])
+            for a in e.args[1:]:
+                out = out * walk(a)
+            return out
+        if e.is_Pow and e.exp.is_Integer:
+            return walk(e.base) ** int(e.exp)
+        raise ValueError(f"{e} is not a rational function of {symbols}")
+
+    return walk(sp.sympify(expr))
+
+
+def to_sympy_field(value: RationalFunction, field: FracField) -> FracElement:
+    """`value` as an element of SymPy's field over QQ with the same variables in the same
+    order, in the form SymPy's own arithmetic leaves it (numerator and denominator with
+    integer coefficients and no common factor, not even a number, the denominator's leading
+    term positive in lex order), so that whatever prints it prints the same text."""
+    num, den = value.as_pair()
+    if not num:
+        return field.zero
+    scale = lcm(*(c.denominator for c in (*num.values(), *den.values())))
+    inum = {m: int(c * scale) for m, c in num.items()}
+    iden = {m: int(c * scale) for m, c in den.items()}
+    common = gcd(*inum.values(), *iden.values())
+    if iden[max(iden)] < 0:  # lex order: exponent tuples compare as tuples
+        common = -common
+    ring = field.ring
+    qq = ring.domain
+    numer = ring.from_dict({m: qq(c // common) for m, c in inum.items()})
+    denom = ring.from_dict({m: qq(c // common) for m, c in iden.items()})
+    return field.zero.raw_new(numer, denom)

@@ -206,11 +206,12 @@ CENTRE = Fraction(1, 2)
 def centred_row(row: tuple[Fraction, ...], centre: Fraction = CENTRE) -> tuple[Fraction, ...]:
     """Taylor coefficients about `centre`: Σ a_q t^q = Σ c_e (t - centre)^e, exactly.
     (Horner on these is as accurate as de Casteljau on [0, 1]; at 0 it is not.)"""
+    # p(s + centre) by FLINT's exact composition: the binomial sums in Fractions were a
+    # tenth of `derive --check` (issue #29)
     size = len(row)
-    return tuple(
-        sum((row[q] * comb(q, e) * centre ** (q - e) for q in range(e, size)), Fraction(0))
-        for e in range(size)
-    )
+    shifted = flint.fmpq_poly([_fmpq(c) for c in row])(flint.fmpq_poly([_fmpq(centre), 1]))
+    coeffs = [Fraction(int(c.p), int(c.q)) for c in shifted.coeffs()]
+    return tuple(coeffs + [Fraction(0)] * (size - len(coeffs)))
 
 
 def centred_matrices(mats: tuple[Matrix, ...]) -> tuple[Matrix, ...]:

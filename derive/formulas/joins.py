@@ -45,7 +45,7 @@ from sympy.polys.fields import field
 from sympy.polys.rings import ring
 
 from ..algebra import lam, m, n
-from ..algebra.ratfunc import RationalFunction, from_expr, to_sympy_field
+from ..algebra.ratfunc import RationalFunction, factored, from_expr, to_sympy_field
 from ..families.registry import REFERENCE, builtin_names, derivation
 
 FAMILIES = builtin_names()  # the reference basis, then derive/families/*.toml in order
@@ -318,9 +318,11 @@ def _printed(poly) -> sp.Expr:
 def _factored(terms: tuple) -> sp.Expr:
     """A polynomial in (n, m, λ1, λ2), given by its terms, factored (the same coefficients
     recur across family pairs, hence the cache)."""
-    ring_ = _coefficient_ring()
-    const, factors = ring_(dict(terms)).factor_list()
-    return sp.Mul(ring_.domain.to_sympy(const), *(f.as_expr() ** p for f, p in factors))
+    # FLINT factors, in SymPy's form of factor_list (algebra/ratfunc.factored): SymPy's own
+    # multivariate factoring was a tenth of `derive --check` (issue #29)
+    qq = _coefficient_ring().domain
+    exact = {mon: Fraction(int(qq.numer(c)), int(qq.denom(c))) for mon, c in terms}
+    return factored(exact, (n, m, lam1, lam2))
 
 
 # Rational points at which the printed form of each weight is compared with the field element.

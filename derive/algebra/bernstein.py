@@ -163,8 +163,15 @@ def power_to_bernstein_matrix(degree: int) -> Matrix:
 
 def bernstein_matrices(polys: list[sp.Poly], degree: int) -> tuple[Matrix, ...]:
     """M_p[i][j] = coefficient of lam^p B_j^degree in basis function i."""
+    return _bernstein_matrices(tuple(polys), degree)
+
+
+@cache
+def _bernstein_matrices(polys: tuple[sp.Poly, ...], degree: int) -> tuple[Matrix, ...]:
+    # keyed by the polynomials themselves: the family tables, the energies (three orders k),
+    # the properties and the families' own checks all ask for the same ones (issue #29)
     conv = power_to_bernstein_matrix(degree)
-    return tuple(matmul(mat, conv) for mat in power_matrices(polys, degree))
+    return tuple(matmul(mat, conv) for mat in power_matrices(list(polys), degree))
 
 
 def expansion_tables(basis_polys, degrees, offset: int) -> dict[str, dict[int, tuple]]:

@@ -9,7 +9,7 @@ Bernstein coefficients; both split by powers of λ so that the runtime can assem
 from __future__ import annotations
 
 from fractions import Fraction
-from math import comb
+from math import comb, factorial
 
 import flint
 import sympy as sp
@@ -124,7 +124,7 @@ def exact_function(expr: sp.Expr, args, number: type = Fraction):
     fn = sp.lambdify(
         args,
         expr,
-        modules=[{"binomial": _binomial, "Fraction": number}, "math"],
+        modules=[{"binomial": _binomial, "factorial": _factorial, "Fraction": number}, "math"],
         printer=_ExactCodePrinter(
             {"fully_qualified_modules": False, "inline": True, "allow_unknown_functions": True}
         ),
@@ -137,6 +137,12 @@ def _binomial(a, b):
         raise ValueError(f"binomial({a}, {b}) of a non-integer")
     a, b = int(a), int(b)
     return comb(a, b) if 0 <= b <= a else 0
+
+
+def _factorial(a):
+    if a.denominator != 1 or a < 0:  # math.factorial refuses a Fraction, even a whole one
+        raise ValueError(f"factorial({a}) of a non-integer or a negative number")
+    return factorial(int(a))
 
 
 def endpoint_values(polys, orders: int) -> dict[tuple[str, int, int], tuple[Fraction, ...]]:

@@ -8,10 +8,8 @@ from fractions import Fraction
 from functools import cache
 from math import factorial, perm
 
-import sympy as sp
-
 from ..algebra import bernstein as _bernstein
-from ..algebra import lam, t, to_fraction
+from ..algebra import to_fraction
 from ..families.registry import REFERENCE, derivation
 from ..formulas.joins import (
     CONTINUITIES,
@@ -39,8 +37,8 @@ def _per_degree_table(family: str, degree: int) -> dict[tuple[str, int, int], tu
     (lowest power first), read off the polynomials' own terms: p^(r)(0) = r! [t^r] p and
     p^(r)(1) = Σ_e e!/(e-r)! [t^e] p. Independent of the closed forms."""
     if family == REFERENCE:
-        x = sp.Poly(t, t, lam, domain="QQ")
-        polys = [_bernstein.bernstein_basis(degree, ii, x) for ii in range(degree + 1)]
+        # the axiom in polynomial arithmetic, as the Bernstein tables have it (computed once)
+        polys = [_bernstein.bernstein_poly(degree, ii) for ii in range(degree + 1)]
     else:
         polys = list(derivation(family).basis_polys(degree))
     out: dict = {}

@@ -15,6 +15,8 @@ import flint
 import sympy as sp
 from sympy.printing.pycode import PythonCodePrinter
 
+from .ratfunc import from_expr
+
 t, lam = sp.symbols("t lam")
 # Symbols of the general-n closed forms: integers, so SymPy may simplify binomials.
 n, m, i, j, k = sp.symbols("n m i j k", integer=True, nonnegative=True)
@@ -98,8 +100,16 @@ LAMBDA_SAMPLES = (0, 1)  # two values of λ decide equality of expressions linea
 
 
 def linear_in_lambda(expr: sp.Expr) -> bool:
-    num, den = sp.fraction(sp.together(expr))
-    return not den.has(lam) and sp.degree(num, lam) <= 1
+    """Whether `expr` is a rational function of degree <= 1 in λ with no λ in its
+    denominator (in lowest terms)."""
+    expr = sp.sympify(expr)
+    others = sorted(expr.free_symbols - {lam}, key=str)
+    try:  # FLINT's cancellation, where the expression is a rational function at all
+        value = from_expr(expr, (lam, *others))
+    except ValueError:  # binomials, factorials of symbols: SymPy's own
+        num, den = sp.fraction(sp.together(expr))
+        return not den.has(lam) and sp.degree(num, lam) <= 1
+    return value.den.degrees()[0] == 0 and (value.num.is_zero() or value.num.degrees()[0] <= 1)
 
 
 class _ExactCodePrinter(PythonCodePrinter):

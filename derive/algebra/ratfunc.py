@@ -208,16 +208,18 @@ def to_sympy_field(value: RationalFunction, field: FracField) -> FracElement:
     num, den = value.as_pair()
     if not num:
         return field.zero
+    # value.den is monic, so scaling both by the least common denominator leaves integer
+    # polynomials with no common factor (some coefficient keeps each prime of the scale) and
+    # a positive leading term: SymPy's form already
     scale = lcm(*(c.denominator for c in (*num.values(), *den.values())))
     inum = {m: int(c * scale) for m, c in num.items()}
     iden = {m: int(c * scale) for m, c in den.items()}
-    common = gcd(*inum.values(), *iden.values())
-    if iden[max(iden)] < 0:  # lex order: exponent tuples compare as tuples
-        common = -common
+    if iden[max(iden)] <= 0 or gcd(*inum.values(), *iden.values()) != 1:
+        raise AssertionError(f"not in lowest terms with a monic denominator: {value.as_pair()}")
     ring = field.ring
     qq = ring.domain
-    numer = ring.from_dict({m: qq(c // common) for m, c in inum.items()})
-    denom = ring.from_dict({m: qq(c // common) for m, c in iden.items()})
+    numer = ring.from_dict({m: qq(c) for m, c in inum.items()})
+    denom = ring.from_dict({m: qq(c) for m, c in iden.items()})
     return field.zero.raw_new(numer, denom)
 
 

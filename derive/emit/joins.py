@@ -190,6 +190,17 @@ def _check_per_degree(namespace: dict, table: dict) -> int:
     return checks
 
 
+def shared_inputs() -> None:
+    """Derive (into their caches) what the joins share with the families' own groups: the
+    closed end forms and the basis polynomials of every degree (emit/workers.py derives them
+    once, before the joins go to a second process)."""
+    for family in FAMILIES:
+        endpoint_forms(family)
+        if family != REFERENCE:
+            for degree in DEGREES[family]:
+                derivation(family).basis_polys(degree)
+
+
 # --------------------------------------------------------------------------- emission
 
 

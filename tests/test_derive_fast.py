@@ -220,3 +220,26 @@ def test_serial_check_passes_too():
     )
     assert proc.returncode == 0, proc.stdout + proc.stderr
     assert "matches the derivation" in proc.stderr
+
+
+@pytest.mark.parametrize("continuity", ["C2", "G2", "C1"])
+def test_per_degree_join_check_catches_a_wrong_emitted_weight(continuity):
+    """The per-degree check (fmpq sums around the emitted functions) still fails on one weight
+    off by 1e-9 in one emitted function."""
+    emit_joins = _derive_module("emit.joins")
+    formulas_joins = _derive_module("formulas.joins")
+    table = formulas_joins.joins()
+    namespace: dict = {}
+    exec(compile(emit_joins.render(), "generated/joins.py", "exec"), namespace)  # noqa: S102
+    key = ("same_degree", "bernstein_like", continuity)
+    fn, args = namespace["JOINS"][key]
+
+    def wrong(*values):
+        weights = dict(fn(*values))
+        last = max(weights)
+        weights[last] = weights[last] + Fraction(1, 10**9)
+        return weights
+
+    namespace["JOINS"][key] = (wrong, args)
+    with pytest.raises(AssertionError, match=f"{continuity} same_degree .* fails"):
+        emit_joins._check_per_degree(namespace, table)

@@ -10,13 +10,17 @@ f_i in the power basis, and the k-th derivative at either end for every order, i
 
 from __future__ import annotations
 
+from fractions import Fraction
 from functools import cache
+from math import comb
 
+import flint
 import sympy as sp
 
 from .core import (
     Matrix,
     centred_matrices,
+    exact_function,
     from_flint,
     i,
     k,
@@ -29,7 +33,14 @@ from .core import (
     transpose,
 )
 
-X = sp.Poly(t, t, lam, domain="QQ")  # evaluating the axioms at X gives them as polynomials
+X = sp.Poly(t, t, lam, domain="QQ")
+
+
+def _fmpq(v: int | Fraction) -> flint.fmpq:
+    v = Fraction(v)
+    return flint.fmpq(
+        v.numerator, v.denominator
+    )  # evaluating the axioms at X gives them as polynomials
 
 
 def bernstein_basis(degree, index, x=t):
@@ -127,25 +138,24 @@ def endpoint_weight(end: str, order: int, index: int) -> sp.Expr:
 
 def check_endpoint_weights(start: sp.Expr, end: sp.Expr, degrees: range) -> None:
     """The closed forms agree with differentiating every B_{i,N} for every N in `degrees`."""
-    w_start = sp.lambdify((n, k, i), start, modules="sympy")
-    w_end = sp.lambdify((n, k, i), end, modules="sympy")
+    # exact rationals throughout, in C: the polynomials in FLINT, the closed forms compiled
+    # to Fraction arithmetic (SymPy's Poly and Integer arithmetic here were a twentieth of
+    # `derive --check`, issue #29)
+    w_start = exact_function(start, (n, k, i))
+    w_end = exact_function(end, (n, k, i))
+    one_minus_t = flint.fmpq_poly([1, -1])
+    t_ = flint.fmpq_poly([0, 1])
     for deg in degrees:
         for ii in range(deg + 1):
-            p0 = bernstein_poly(deg, ii)
-            p1 = bernstein_poly(deg, deg - ii)
+            p0 = comb(deg, ii) * t_**ii * one_minus_t ** (deg - ii)
+            p1 = comb(deg, deg - ii) * t_ ** (deg - ii) * one_minus_t**ii
             for order in range(deg + 1):
-                got0, got1 = p0.eval(t, 0), p1.eval(t, 1)
-                want0 = (
-                    w_start(sp.Integer(deg), sp.Integer(order), sp.Integer(ii))
-                    if ii <= order
-                    else 0
-                )
-                want1 = (
-                    w_end(sp.Integer(deg), sp.Integer(order), sp.Integer(ii)) if ii <= order else 0
-                )
-                if got0.as_expr() != want0 or got1.as_expr() != want1:
+                got0, got1 = p0(0), p1(1)
+                want0 = w_start(deg, order, ii) if ii <= order else 0
+                want1 = w_end(deg, order, ii) if ii <= order else 0
+                if got0 != _fmpq(want0) or got1 != _fmpq(want1):
                     raise AssertionError(f"endpoint weights disagree at N={deg} k={order} i={ii}")
-                p0, p1 = p0.diff(t), p1.diff(t)
+                p0, p1 = p0.derivative(), p1.derivative()
 
 
 @cache
@@ -163,8 +173,15 @@ def power_to_bernstein_matrix(degree: int) -> Matrix:
 
 def bernstein_matrices(polys: list[sp.Poly], degree: int) -> tuple[Matrix, ...]:
     """M_p[i][j] = coefficient of lam^p B_j^degree in basis function i."""
+    return _bernstein_matrices(tuple(polys), degree)
+
+
+@cache
+def _bernstein_matrices(polys: tuple[sp.Poly, ...], degree: int) -> tuple[Matrix, ...]:
+    # keyed by the polynomials themselves: the family tables, the energies (three orders k),
+    # the properties and the families' own checks all ask for the same ones (issue #29)
     conv = power_to_bernstein_matrix(degree)
-    return tuple(matmul(mat, conv) for mat in power_matrices(polys, degree))
+    return tuple(matmul(mat, conv) for mat in power_matrices(list(polys), degree))
 
 
 def expansion_tables(basis_polys, degrees, offset: int) -> dict[str, dict[int, tuple]]:

@@ -9,11 +9,13 @@ Bernstein coefficients; both split by powers of λ so that the runtime can assem
 from __future__ import annotations
 
 from fractions import Fraction
-from math import comb
+from math import comb, factorial
 
 import flint
 import sympy as sp
 from sympy.printing.pycode import PythonCodePrinter
+
+from .ratfunc import from_expr
 
 t, lam = sp.symbols("t lam")
 # Symbols of the general-n closed forms: integers, so SymPy may simplify binomials.
@@ -98,8 +100,16 @@ LAMBDA_SAMPLES = (0, 1)  # two values of λ decide equality of expressions linea
 
 
 def linear_in_lambda(expr: sp.Expr) -> bool:
-    num, den = sp.fraction(sp.together(expr))
-    return not den.has(lam) and sp.degree(num, lam) <= 1
+    """Whether `expr` is a rational function of degree <= 1 in λ with no λ in its
+    denominator (in lowest terms)."""
+    expr = sp.sympify(expr)
+    others = sorted(expr.free_symbols - {lam}, key=str)
+    try:  # FLINT's cancellation, where the expression is a rational function at all
+        value = from_expr(expr, (lam, *others))
+    except ValueError:  # binomials, factorials of symbols: SymPy's own
+        num, den = sp.fraction(sp.together(expr))
+        return not den.has(lam) and sp.degree(num, lam) <= 1
+    return value.den.degrees()[0] == 0 and (value.num.is_zero() or value.num.degrees()[0] <= 1)
 
 
 class _ExactCodePrinter(PythonCodePrinter):
@@ -124,7 +134,7 @@ def exact_function(expr: sp.Expr, args, number: type = Fraction):
     fn = sp.lambdify(
         args,
         expr,
-        modules=[{"binomial": _binomial, "Fraction": number}, "math"],
+        modules=[{"binomial": _binomial, "factorial": _factorial, "Fraction": number}, "math"],
         printer=_ExactCodePrinter(
             {"fully_qualified_modules": False, "inline": True, "allow_unknown_functions": True}
         ),
@@ -137,6 +147,12 @@ def _binomial(a, b):
         raise ValueError(f"binomial({a}, {b}) of a non-integer")
     a, b = int(a), int(b)
     return comb(a, b) if 0 <= b <= a else 0
+
+
+def _factorial(a):
+    if a.denominator != 1 or a < 0:  # math.factorial refuses a Fraction, even a whole one
+        raise ValueError(f"factorial({a}) of a non-integer or a negative number")
+    return factorial(int(a))
 
 
 def endpoint_values(polys, orders: int) -> dict[tuple[str, int, int], tuple[Fraction, ...]]:
@@ -206,11 +222,12 @@ CENTRE = Fraction(1, 2)
 def centred_row(row: tuple[Fraction, ...], centre: Fraction = CENTRE) -> tuple[Fraction, ...]:
     """Taylor coefficients about `centre`: Σ a_q t^q = Σ c_e (t - centre)^e, exactly.
     (Horner on these is as accurate as de Casteljau on [0, 1]; at 0 it is not.)"""
+    # p(s + centre) by FLINT's exact composition: the binomial sums in Fractions were a
+    # tenth of `derive --check` (issue #29)
     size = len(row)
-    return tuple(
-        sum((row[q] * comb(q, e) * centre ** (q - e) for q in range(e, size)), Fraction(0))
-        for e in range(size)
-    )
+    shifted = flint.fmpq_poly([_fmpq(c) for c in row])(flint.fmpq_poly([_fmpq(centre), 1]))
+    coeffs = [Fraction(int(c.p), int(c.q)) for c in shifted.coeffs()]
+    return tuple(coeffs + [Fraction(0)] * (size - len(coeffs)))
 
 
 def centred_matrices(mats: tuple[Matrix, ...]) -> tuple[Matrix, ...]:

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from ..families.registry import builtin_families
-from . import bernstein, energy, families, joins, printing, properties, surface_energy
+from . import bernstein, energy, families, joins, printing, properties, surface_energy, workers
 
 # The groups over every family, after the reference basis and the built-in families.
 _SHARED = {
@@ -40,9 +40,10 @@ def render_all(progress: Callable[[str], object] | None = None) -> dict[str, str
         "__init__.py": printing.package_init(groups(), curve_classes),
         "_exact.py": printing.exact_helpers(),
     }
-    for name in groups():
-        if progress:
-            progress(name)
-        output, render = _renderer(name)
-        files[output] = render()
+    names = groups()
+    texts = workers.render_groups(
+        names, lambda name: _renderer(name)[1](), progress, joins.shared_inputs
+    )
+    for name in names:  # in the groups' order, as a serial run adds them
+        files[_renderer(name)[0]] = texts[name]
     return files

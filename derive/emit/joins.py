@@ -8,10 +8,10 @@ from fractions import Fraction
 from functools import cache
 from math import factorial, perm
 
-import sympy as sp
+import flint
 
 from ..algebra import bernstein as _bernstein
-from ..algebra import lam, t, to_fraction
+from ..algebra import to_fraction
 from ..families.registry import REFERENCE, derivation
 from ..formulas.joins import (
     CONTINUITIES,
@@ -39,8 +39,8 @@ def _per_degree_table(family: str, degree: int) -> dict[tuple[str, int, int], tu
     (lowest power first), read off the polynomials' own terms: p^(r)(0) = r! [t^r] p and
     p^(r)(1) = Σ_e e!/(e-r)! [t^e] p. Independent of the closed forms."""
     if family == REFERENCE:
-        x = sp.Poly(t, t, lam, domain="QQ")
-        polys = [_bernstein.bernstein_basis(degree, ii, x) for ii in range(degree + 1)]
+        # the axiom in polynomial arithmetic, as the Bernstein tables have it (computed once)
+        polys = [_bernstein.bernstein_poly(degree, ii) for ii in range(degree + 1)]
     else:
         polys = list(derivation(family).basis_polys(degree))
     out: dict = {}
@@ -90,6 +90,14 @@ def _corner(degree: int, degrees: tuple[int, ...]) -> bool:
     return degree in (degrees[0], degrees[1], degrees[len(degrees) // 2], degrees[-1])
 
 
+_ZERO = flint.fmpq(0)
+
+
+def _q(v: int | Fraction) -> flint.fmpq:
+    """An exact rational as FLINT's fmpq."""
+    return flint.fmpq(v) if type(v) is int else flint.fmpq(v.numerator, v.denominator)
+
+
 def _check_per_degree(namespace: dict, table: dict) -> int:
     """The emitted functions against the per-degree tables, on a grid of degree pairs (every
     degree of one range against the corner degrees of the other, see _corner), at one of
@@ -107,6 +115,10 @@ def _check_per_degree(namespace: dict, table: dict) -> int:
             ):
                 raise AssertionError(f"{cont} {first} -> {second} differs from its order-2 form")
 
+    # Our side of the comparison (the points, the end derivatives, the sums the emitted
+    # weights produce) is exact in FLINT's fmpq, which is several times faster than Fraction
+    # (issue #29); the emitted functions themselves run as printed, on Fractions, and each
+    # weight they return is converted exactly.
     @cache
     def first_end(family, degree, sample):
         lam_ = SAMPLES[sample][0] if HAS_LAMBDA[family] else None
@@ -115,23 +127,27 @@ def _check_per_degree(namespace: dict, table: dict) -> int:
         for (e, r, ii), c in _per_degree_table(family, degree).items():
             if e == "end":
                 out[r] += _horner(c, lam_) * pts[ii]
-        return out
+        return [_q(v) for v in out]
 
     @cache
     def second_start(family, degree, sample):
         lam_ = SAMPLES[sample][1] if HAS_LAMBDA[family] else None
         return [
-            (r, ii, _horner(c, lam_))
+            (r, ii, _q(_horner(c, lam_)))
             for (e, r, ii), c in _per_degree_table(family, degree).items()
             if e == "start"
         ]
+
+    @cache
+    def points(degree, which):
+        return [_q(v) for v in (_first_points if which == 1 else _second_points)(degree)]
 
     checks = 0
     for (first, second, cont), (fn, args) in namespace["JOINS"].items():
         order, geometric = ORDER[cont], cont.startswith("G")
         pivot_fn, pivot_args = namespace["PIVOTS"][second]
         for n_ in DEGREES[first]:
-            pts1 = _first_points(n_)
+            pts1 = points(n_, 1)
             for m_ in second_degrees(second, cont):
                 if order == 1 and m_ >= 2 and m_ != n_:
                     continue  # covered by the order-2 form (see above)
@@ -146,12 +162,13 @@ def _check_per_degree(namespace: dict, table: dict) -> int:
                 if any(piv[f"P{r}"] == 0 for r in range(1, order + 1)):
                     continue  # no join there; the runtime refuses it
                 weights = fn(*(values[x] for x in args))
-                pts2 = _second_points(m_)
+                pts2 = list(points(m_, 2))
                 for row in range(order + 1):
-                    total = Fraction(0)
+                    total = _ZERO
                     for (r, src, j), w in weights.items():
                         if r != row or w == 0:
                             continue
+                        w = _q(w)
                         if src == "first":
                             if j > n_:
                                 raise AssertionError(f"{cont} {first}->{second}: P_(n-{j}), n={n_}")
@@ -160,16 +177,28 @@ def _check_per_degree(namespace: dict, table: dict) -> int:
                             total += w * pts2[j]
                     pts2[row] = total
                 d1 = first_end(first, n_, sample)
-                d2 = [Fraction(0)] * 3
+                d2 = [_ZERO] * 3
                 for r, ii, c in second_start(second, m_, sample):
                     d2[r] += c * pts2[ii]
-                ok = d2[0] == d1[0] and a * d2[1] == d1[1]
+                qa, qd = _q(a), _q(dd)
+                ok = d2[0] == d1[0] and qa * d2[1] == d1[1]
                 if order == 2:
-                    ok = ok and a * a * d2[2] + dd * d2[1] == d1[2]
+                    ok = ok and qa * qa * d2[2] + qd * d2[1] == d1[2]
                 if not ok:
                     raise AssertionError(f"{cont} {first} (n={n_}) -> {second} (m={m_}) fails")
                 checks += 1
     return checks
+
+
+def shared_inputs() -> None:
+    """Derive (into their caches) what the joins share with the families' own groups: the
+    closed end forms and the basis polynomials of every degree (emit/workers.py derives them
+    once, before the joins go to a second process)."""
+    for family in FAMILIES:
+        endpoint_forms(family)
+        if family != REFERENCE:
+            for degree in DEGREES[family]:
+                derivation(family).basis_polys(degree)
 
 
 # --------------------------------------------------------------------------- emission

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 from fractions import Fraction
+from functools import cache
 
 import sympy as sp
 from sympy.printing.str import StrPrinter
@@ -51,7 +52,13 @@ def literal(obj: object, indent: int = 0, prefix: int = 0) -> str:
     """Python source for nested tuples/dicts of exact rationals, wrapped to LINE_WIDTH.
     `indent` is the indentation of the line the literal starts on, `prefix` the width of
     what precedes it on that line."""
-    flat = _flat(obj)
+    return _literal(obj, indent, prefix, {})
+
+
+def _literal(obj: object, indent: int, prefix: int, flats: dict[int, str]) -> str:
+    # flats: the one-line text of each container already printed, by id (every one is alive
+    # for the whole call): a nested table is flattened once, not once per level it sits at
+    flat = _flat(obj, flats)
     if indent + prefix + len(flat) + 1 <= LINE_WIDTH:
         return flat
     pad = " " * (indent + 4)
@@ -59,10 +66,10 @@ def literal(obj: object, indent: int = 0, prefix: int = 0) -> str:
         items = []
         for key, value in _sorted_items(obj):
             head = f"{_key(key)}: "
-            items.append(f"{pad}{head}{literal(value, indent + 4, len(head))},")
+            items.append(f"{pad}{head}{_literal(value, indent + 4, len(head), flats)},")
         return "{\n" + "\n".join(items) + "\n" + " " * indent + "}"
     if isinstance(obj, tuple | list):
-        items = [f"{pad}{literal(v, indent + 4)}," for v in obj]
+        items = [f"{pad}{_literal(v, indent + 4, 0, flats)}," for v in obj]
         return "(\n" + "\n".join(items) + "\n" + " " * indent + ")"
     return flat
 
@@ -75,23 +82,31 @@ def _sorted_items(m: Mapping) -> list:
     return sorted(m.items(), key=lambda kv: repr(kv[0]) if isinstance(kv[0], str) else kv[0])
 
 
-def _flat(obj: object) -> str:
+def _flat(obj: object, flats: dict[int, str] | None = None) -> str:
     cls = type(obj)  # the common exact types first: an isinstance on Mapping is slow
     if cls is int or cls is Fraction:
         return scalar(obj)
+    if flats is not None and cls is not str:
+        done = flats.get(id(obj))
+        if done is not None:
+            return done
     if cls is tuple or cls is list:
-        inner = ", ".join([_flat(v) for v in obj])  # type: ignore[attr-defined]
-        return f"({inner},)" if len(obj) == 1 else f"({inner})"  # type: ignore[arg-type]
-    if isinstance(obj, str):
+        inner = ", ".join([_flat(v, flats) for v in obj])  # type: ignore[attr-defined]
+        text = f"({inner},)" if len(obj) == 1 else f"({inner})"  # type: ignore[arg-type]
+    elif isinstance(obj, str):
         return repr(obj)
-    if isinstance(obj, Mapping):
-        return "{" + ", ".join(f"{_key(k)}: {_flat(v)}" for k, v in _sorted_items(obj)) + "}"
-    if isinstance(obj, tuple | list):
-        inner = ", ".join(_flat(v) for v in obj)
-        return f"({inner},)" if len(obj) == 1 else f"({inner})"
-    if obj is None:
+    elif isinstance(obj, Mapping):
+        text = "{" + ", ".join(f"{_key(k)}: {_flat(v, flats)}" for k, v in _sorted_items(obj)) + "}"
+    elif isinstance(obj, tuple | list):
+        inner = ", ".join(_flat(v, flats) for v in obj)
+        text = f"({inner},)" if len(obj) == 1 else f"({inner})"
+    elif obj is None:
         return "None"
-    return scalar(obj)
+    else:
+        return scalar(obj)
+    if flats is not None:
+        flats[id(obj)] = text
+    return text
 
 
 # --------------------------------------------------------------------------- expressions
@@ -120,7 +135,15 @@ class _ExactPrinter(StrPrinter):
 def expression(expr: sp.Expr) -> str:
     """Deterministic Python source for a SymPy expression (no hash-order dependence:
     StrPrinter orders terms by SymPy's canonical sort key)."""
-    return _ExactPrinter({"order": "lex"}).doprint(sp.sympify(expr, strict=True))
+    expr = sp.sympify(expr, strict=True)
+    return _expression(expr)
+
+
+@cache
+def _expression(expr: sp.Expr) -> str:
+    # the same weight is printed for C1 and C2 (G1 and G2) and compared between them first:
+    # printed once per run (equal expressions print equally)
+    return _ExactPrinter({"order": "lex"}).doprint(expr)
 
 
 def function(name: str, args: Iterable[str], doc: str, body: str) -> str:

@@ -20,9 +20,11 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
+from fractions import Fraction
 from functools import cache
-from math import comb
+from math import comb, factorial
 
+import flint
 import sympy as sp
 
 from ..algebra import (
@@ -31,7 +33,9 @@ from ..algebra import (
     lam,
     n,
     t,
+    to_fraction,
 )
+from ..algebra.ratfunc import RationalFunction
 from ..grammar import MAX_EXPONENT
 from .definition import (
     _I,
@@ -70,28 +74,63 @@ class FamilyModule:
 # --------------------------------------------------------------------------- the basis
 
 
-def _instantiate(e: sp.Basic, env: dict, ring, lookup=None) -> object:
+class _Field:
+    """Q(t, parameters) as the engine evaluates in it (algebra/ratfunc.py, on FLINT): the
+    variables are t and the definition's parameter symbols, in this order."""
+
+    def __init__(self, symbols: tuple[sp.Symbol, ...]):
+        self.symbols = (_T, *symbols)
+        self.count = len(self.symbols)
+        self._index = {s: k for k, s in enumerate(self.symbols)}
+
+    def __call__(self, value: int | Fraction | sp.Rational) -> RationalFunction:
+        return RationalFunction.constant(self.count, to_fraction(value))
+
+    def variable(self, symbol: sp.Symbol) -> RationalFunction | None:
+        k = self._index.get(symbol)
+        return None if k is None else RationalFunction.variable(self.count, k)
+
+    def expr(self, value: RationalFunction) -> sp.Expr:
+        """The value as a SymPy expression (for messages)."""
+
+        def of(terms: dict) -> sp.Expr:
+            return sp.Add(
+                *(
+                    sp.Rational(c.numerator, c.denominator)
+                    * sp.Mul(*(s**e for s, e in zip(self.symbols, m, strict=True)))
+                    for m, c in terms.items()
+                )
+            )
+
+        num, den = value.as_pair()
+        return of(num) / of(den)
+
+
+def _instantiate(e: sp.Basic, env: dict, ring: _Field, lookup=None) -> RationalFunction:
     """e with n and i replaced by integers, evaluated in the field Q(t, lam): binomials with
     the papers' convention, powers bounded; b(i', n', t) of a recursion through lookup."""
     if isinstance(e, sp.core.function.AppliedUndef):
         if lookup is None:
             raise DefinitionError(f"cannot evaluate {e} in a closed formula")
-        idx, deg = (_integer(_instantiate(x, env, ring), "index of b") for x in e.args[:2])
+        idx, deg = (_integer(_instantiate(x, env, ring), "index of b", ring) for x in e.args[:2])
         return lookup(idx, deg)
     if e.is_Symbol:
         if e in env:
             return ring(env[e])
-        return ring(e)
+        var = ring.variable(e)
+        if var is None:
+            raise DefinitionError(f"cannot evaluate {e} in a basis definition")
+        return var
     if e.is_Rational:
         return ring(e)
     if isinstance(e, sp.binomial):
-        a, b = (_integer(_instantiate(x, env, ring), "binomial") for x in e.args)
+        a, b = (_integer(_instantiate(x, env, ring), "binomial", ring) for x in e.args)
         return ring(comb(a, b) if 0 <= b <= a else 0)
     if isinstance(e, sp.factorial):
-        a = _integer(_instantiate(e.args[0], env, ring), "factorial")
+        a = _integer(_instantiate(e.args[0], env, ring), "factorial", ring)
         if not 0 <= a <= 1000:
             raise DefinitionError(f"factorial({a}) in the basis")
-        return ring(sp.factorial(a))
+        return ring(factorial(a))
     if e.is_Add:
         out = ring(0)
         for a in e.args:
@@ -104,29 +143,29 @@ def _instantiate(e: sp.Basic, env: dict, ring, lookup=None) -> object:
         return out
     if e.is_Pow:
         base = _instantiate(e.base, env, ring, lookup)
-        ex = _integer(_instantiate(e.exp, env, ring), "exponent")
+        ex = _integer(_instantiate(e.exp, env, ring), "exponent", ring)
         if abs(ex) > MAX_EXPONENT:
             raise DefinitionError(f"an exponent {ex} in the basis")
-        if ex < 0:
-            if base == 0:
-                raise DefinitionError("the basis divides by zero")
-            return 1 / base**-ex
+        if ex < 0 and base.is_zero():
+            raise DefinitionError("the basis divides by zero")
         return base**ex
     raise DefinitionError(f"cannot evaluate {e} in a basis definition")
 
 
-def _integer(x, what: str) -> int:
-    if x.denom != 1 or not x.numer.is_ground:
-        raise DefinitionError(f"the {what} {x.as_expr()} is not an integer once n and i are set")
-    value = sp.Rational(x.numer.LC if x.numer else 0)
-    if not value.is_Integer:
-        raise DefinitionError(f"the {what} {value} is not an integer")
+def _integer(x: RationalFunction, what: str, ring: _Field) -> int:
+    value = x.constant_value()
+    if value is None:
+        raise DefinitionError(f"the {what} {ring.expr(x)} is not an integer once n and i are set")
+    if value.denominator != 1:
+        raise DefinitionError(
+            f"the {what} {sp.Rational(value.numerator, value.denominator)} is not an integer"
+        )
     return int(value)
 
 
 @cache
-def _field(symbols: tuple[sp.Symbol, ...] = (_LAM,)):
-    return sp.polys.fields.field([_T, *symbols], sp.QQ)[0]
+def _field(symbols: tuple[sp.Symbol, ...] = (_LAM,)) -> _Field:
+    return _Field(symbols)
 
 
 def basis_polys(defn: Definition, degree: int) -> list[sp.Poly]:
@@ -176,14 +215,22 @@ def _basis_values_lam(defn: Definition, degree: int) -> tuple:
 def _basis_polys(defn: Definition, degree: int) -> tuple[sp.Poly, ...]:
     big = degree + defn.offset
     out = []
+    field = _field(defn.symbols)
+    gens = (t, *defn.symbols)
     for idx, value in enumerate(_basis_values(defn, degree)):
-        if not value.denom.is_ground:
+        if not value.is_polynomial:
             raise DefinitionError(
                 f"[family] basis: b({idx}, {degree}, t) is not a polynomial: "
-                f"{defn.show(sp.factor(value.as_expr()))} (a negative power that does not cancel)"
+                f"{defn.show(sp.factor(field.expr(value)))} (a negative power that does not "
+                "cancel)"
             )
-        numer = value.numer.quo_ground(value.denom.LC)  # the denominator is a number
-        p = sp.Poly.from_dict(dict(numer), t, *defn.symbols, domain="QQ")  # same symbols
+        terms = value.terms()
+        p = sp.Poly.from_dict(
+            {m: sp.QQ(c.numerator, c.denominator) for m, c in terms.items()}
+            or {(0,) * len(gens): 0},
+            gens,
+            domain="QQ",
+        )
         if p.degree(t) > big:
             raise DefinitionError(
                 f"[family] basis: b({idx}, {degree}, t) has degree {p.degree(t)} in t, more "
@@ -196,33 +243,39 @@ def _basis_polys(defn: Definition, degree: int) -> tuple[sp.Poly, ...]:
 def check(defn: Definition) -> list[str]:
     """The definition's own claims, for every degree: what was checked (raises on failure)."""
     done = []
-    one = sp.Poly(1, t, *defn.symbols, domain="QQ")
+    field = _field(defn.symbols)
     for deg in defn.degrees:
-        polys = basis_polys(defn, deg)
+        polys = basis_polys(defn, deg)  # raises unless every function is a polynomial
+        values = _basis_values(defn, deg)  # the same functions in FLINT: the checks run there
         big = deg + defn.offset
-        total = sum(polys[1:], polys[0])
-        if total != one:
+        total = values[0]
+        for v in values[1:]:
+            total += v
+        if total.constant_value() != 1:
             raise DefinitionError(
                 f"[family] basis: no partition of unity at n = {deg}: the functions sum to "
-                f"{defn.show(sp.factor(total.as_expr()))}"
+                f"{defn.show(sp.factor(field.expr(total)))}"
             )
         if defn.bernstein_at is not None:
             at = {
-                sym: sp.Rational(q.bernstein_at.numerator, q.bernstein_at.denominator)
-                for sym, q in zip(defn.symbols, defn.params or (defn,), strict=True)
+                f"x{k + 1}": q.bernstein_at
+                for k, q in enumerate(defn.params or (defn,))
                 if q.bernstein_at is not None
             }
             where = ", ".join(
                 f"{name} = {v}" for name, v in zip(defn.parameters, at.values(), strict=True)
             )
-            for idx, p in enumerate(polys):
-                want = sp.Poly(comb(deg, idx) * t**idx * (1 - t) ** (deg - idx), t, domain="QQ")
-                got = sp.Poly(p.as_expr().xreplace(at), t, domain="QQ")
-                if got != want:
+            point = {k: flint.fmpq(v.numerator, v.denominator) for k, v in at.items()}
+            t_ = RationalFunction.variable(field.count, 0)
+            one = field(1)
+            for idx, v in enumerate(values):
+                want = field(comb(deg, idx)) * t_**idx * (one + field(-1) * t_) ** (deg - idx)
+                got = RationalFunction(v.num.subs(point))
+                if got.num != want.num:
                     raise DefinitionError(
                         f"[family] bernstein_at: at {where}, b({idx}, {deg}, t) "
-                        f"= {sp.factor(got.as_expr())}, not the Bernstein function "
-                        f"{sp.factor(want.as_expr())}"
+                        f"= {sp.factor(field.expr(got))}, not the Bernstein function "
+                        f"{sp.factor(field.expr(want))}"
                     )
         generic = max(p.degree(t) for p in polys)
         if generic != big:

@@ -45,6 +45,7 @@ from sympy.polys.fields import field
 from sympy.polys.rings import ring
 
 from ..algebra import lam, m, n
+from ..algebra.ratfunc import RationalFunction, factored, from_expr, to_sympy_field
 from ..families.registry import REFERENCE, builtin_names, derivation
 
 FAMILIES = builtin_names()  # the reference basis, then derive/families/*.toml in order
@@ -156,6 +157,21 @@ def _field():
     return field([n, m, lam1, lam2, alpha, d], sp.QQ)[0]
 
 
+# The solve runs in FLINT (algebra/ratfunc.py: the same field, Q(n, m, λ1, λ2, α, d), with
+# every operation in C; SymPy's field took a third of `derive --check`, issue #29), and hands
+# SymPy's field elements, in SymPy's own normal form, to the printing.
+_VARIABLES = (n, m, lam1, lam2, alpha, d)
+
+
+@cache
+def _rf_of(expr: sp.Expr) -> RationalFunction:
+    return from_expr(expr, _VARIABLES)
+
+
+def _rf(value: int) -> RationalFunction:
+    return RationalFunction.constant(len(_VARIABLES), value)
+
+
 def _combine(*terms) -> Combination:
     out: Combination = {}
     for c, comb in terms:
@@ -176,13 +192,12 @@ def solve(first: str, second: str, order: int = 2) -> tuple[Combination, ...]:
     for fam in (first, second):
         if CLOSED_ORDER.get(fam, 2) < order:
             raise AssertionError(f"{fam}: end derivatives of order {order} not in closed form")
-    field_ = _field()
-    zero = field_(0)
-    e = {key: field_(v) for key, v in end_coefficients(first).items()}
-    s = {key: field_(v) for key, v in start_coefficients(second).items()}
+    one, zero = _rf(1), _rf(0)
+    e = {key: _rf_of(v) for key, v in end_coefficients(first).items()}
+    s = {key: _rf_of(v) for key, v in start_coefficients(second).items()}
     if any(r > 2 for r, _ in s) or any(r > 2 for r, _ in e):
         raise AssertionError(f"{first} -> {second}: end forms of order > 2 given")
-    a, dd = field_(alpha), field_(d)
+    a, dd = _rf_of(alpha), _rf_of(d)
     width = 1 + max([j for _, j in e] + [order])
     c1 = [{("first", j): e[(r, j)] for j in range(width) if (r, j) in e} for r in range(3)]
     # the conditions, with the first curve's side scaled: C2^(r)(0) = target_r
@@ -196,8 +211,8 @@ def solve(first: str, second: str, order: int = 2) -> tuple[Combination, ...]:
     for r in range(order + 1):
         coeffs = {i: s[(r, i)] for i in unknowns if (r, i) in s}
         rhs = _combine(
-            (field_(1), targets[r]),
-            *((-s[(r, j)], {("second", j): field_(1)}) for j in given if (r, j) in s),
+            (one, targets[r]),
+            *((-s[(r, j)], {("second", j): one}) for j in given if (r, j) in s),
         )
         rows.append((coeffs, rhs))
     solution: list[Combination | None] = [None] * (order + 1)
@@ -216,25 +231,25 @@ def solve(first: str, second: str, order: int = 2) -> tuple[Combination, ...]:
                     for k in unknowns
                     if k > i
                 }
-                rows[r] = (coeffs, _combine((field_(1), rows[r][1]), (-factor, rows[i][1])))
+                rows[r] = (coeffs, _combine((one, rows[r][1]), (-factor, rows[i][1])))
     for i in reversed(unknowns):
         coeffs, rhs = rows[i]
-        terms = [(field_(1) / coeffs[i], rhs)]
+        terms = [(one / coeffs[i], rhs)]
         for k in unknowns:
             if k > i and coeffs.get(k, zero) != 0:
                 terms.append((-coeffs[k] / coeffs[i], solution[k]))
         solution[i] = _combine(*terms)
     out = tuple({key: v for key, v in p.items() if v != 0} for p in solution)
     _check_symbolic(first, second, out, e, s, a, dd, order, width, given)
-    return out
+    field_ = _field()
+    return tuple({key: to_sympy_field(v, field_) for key, v in p.items()} for p in out)
 
 
 def _check_symbolic(first, second, rows, e, s, a, dd, order, width, given) -> None:
     """General n, m: the solution satisfies every condition; the weights of every solved point
     sum to 1 (affine invariance); every denominator divides α^(order+1) times the pivots'
     product; P_{1,2} does not involve d where the stencil is triangular."""
-    field_ = _field()
-    zero = field_(0)
+    zero = _rf(0)
     keys = [("first", j) for j in range(width)] + [("second", j) for j in given]
     for key in keys:  # everything is linear in the points: compare coefficients point by point
         c1 = [e.get((r, key[1]), zero) if key[0] == "first" else zero for r in range(3)]
@@ -247,29 +262,39 @@ def _check_symbolic(first, second, rows, e, s, a, dd, order, width, given) -> No
         for idx, cond in enumerate(conditions[: order + 1]):
             if cond != 0:
                 raise AssertionError(f"{first} -> {second}: condition {idx} fails at {key}")
-    bound = field_(alpha) ** (order + 1)
+    bound = _rf_of(alpha) ** (order + 1)
     for p_ in pivot_products(second, order):
-        bound *= field_(p_)
+        bound *= _rf_of(p_)
     for row, comb in enumerate(rows):
-        if sum(comb.values(), field_(0)) != 1:
+        if sum(comb.values(), zero) != 1:
             raise AssertionError(f"{first} -> {second}: weights of P_{row},2 do not sum to 1")
         for w in comb.values():
-            if not (bound / field_(w.denom)).denom.is_ground:
-                raise AssertionError(f"{first} -> {second}: unexpected denominator {w.denom}")
+            if not (bound / RationalFunction(w.den)).is_polynomial:
+                raise AssertionError(f"{first} -> {second}: unexpected denominator {w.den}")
     # with C2(0), C2'(0) involving P_{0,2}, P_{1,2} only, those two come from the G1 rows and
     # cannot depend on d (a wider first-derivative stencil couples P_{1,2} to the G2 row)
     triangular = not any((r == 0 and j > 0) or (r == 1 and j > 1) for r, j in s)
-    if triangular and any(w.numer.degree(5) > 0 or w.denom.degree(5) > 0 for w in rows[1].values()):
+    if triangular and any(
+        w.num.degrees()[5] > 0 or w.den.degrees()[5] > 0 for w in rows[1].values()
+    ):
         raise AssertionError(f"{first} -> {second}: P_1,2 depends on d")
 
 
 def pivot_products(family: str, order: int) -> list:
     """The leading principal minors of the start stencil (orders 0..order), whose product
     bounds every denominator of the solve (for a triangular stencil: s00, s00·s11, ...)."""
+    # keyed by the stencil itself, not the family's name: a family registered for one
+    # derivation (register()) may have other forms under the same name in the next
+    stencil = tuple(sorted(start_coefficients(family).items()))
+    return list(_pivot_products(stencil, order))
+
+
+@cache
+def _pivot_products(stencil: tuple, order: int) -> tuple:
     field_ = _field()
-    s = {key: field_(v) for key, v in start_coefficients(family).items()}
+    s = {key: field_(v) for key, v in stencil}
     mat = sp.Matrix(order + 1, order + 1, lambda r, i: s.get((r, i), field_(0)).as_expr())
-    return [sp.factor(mat[: k + 1, : k + 1].det()) for k in range(order + 1)]
+    return tuple(sp.factor(mat[: k + 1, : k + 1].det()) for k in range(order + 1))
 
 
 @cache
@@ -293,9 +318,11 @@ def _printed(poly) -> sp.Expr:
 def _factored(terms: tuple) -> sp.Expr:
     """A polynomial in (n, m, λ1, λ2), given by its terms, factored (the same coefficients
     recur across family pairs, hence the cache)."""
-    ring_ = _coefficient_ring()
-    const, factors = ring_(dict(terms)).factor_list()
-    return sp.Mul(ring_.domain.to_sympy(const), *(f.as_expr() ** p for f, p in factors))
+    # FLINT factors, in SymPy's form of factor_list (algebra/ratfunc.factored): SymPy's own
+    # multivariate factoring was a tenth of `derive --check` (issue #29)
+    qq = _coefficient_ring().domain
+    exact = {mon: Fraction(int(qq.numer(c)), int(qq.denom(c))) for mon, c in terms}
+    return factored(exact, (n, m, lam1, lam2))
 
 
 # Rational points at which the printed form of each weight is compared with the field element.

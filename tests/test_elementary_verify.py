@@ -121,13 +121,15 @@ def test_a_rational_form_where_none_exists_is_a_mismatch(records):
     assert "no exact rational Bezier form" in res.outcome.diffs[0]
 
 
-def test_non_negativity_of_a_mixed_family_is_pending_not_guessed(records):
-    rec = _record(records, "at.independent")
-    rec.update(claim="at_pi_cubic.several_nonnegative", nonnegative=True)
-    del rec["independent"]
-    res = report_mod.check_record(rec)
-    assert res.outcome.verdict == "pending"
-    assert "not decided" in res.outcome.diffs[0]
+def test_non_negativity_of_a_mixed_family_is_decided(records):
+    """Decided by derive/formulas/atom_nonnegative.py (it was pending before): at_pi_cubic is
+    non-negative on its box, so the claim matches and its negation is a mismatch."""
+    for claimed, verdict in ((True, "match"), (False, "mismatch")):
+        rec = _record(records, "at.independent")
+        rec.update(claim="at_pi_cubic.several_nonnegative", nonnegative=claimed)
+        del rec["independent"]
+        res = report_mod.check_record(rec)
+        assert res.outcome.verdict == verdict
 
 
 @pytest.mark.parametrize(

@@ -360,15 +360,14 @@ def nonnegative_over_box(defn: Definition, space: Space) -> dict:
     [x0, x0 + pi/(2w)] of the domain is N(u)/(1 + u^2)^M with u = tan(w (t - x0)/2) in
     [0, 1], so the question is polynomial non-negativity of N on [0, 1] (decided exactly by
     derive/families/engine.py's root isolation)."""
-    if any(sum(key[0]) > 1 for elem in space.functions for key in elem):
-        return {"reason": "not affine in the parameters jointly: not decided"}
+    if space.name.startswith("mixed") or any(
+        sum(key[0]) > 1 for elem in space.functions for key in elem
+    ):  # no polynomial substitution, or not affine: a certified branch and bound
+        from .atom_nonnegative import nonnegative_elementary
+
+        return nonnegative_elementary(defn, space)
     if space.name == "hyperbolic":
         return _nonnegative_hyperbolic(defn, space)
-    if space.name != "trigonometric":
-        return {
-            "reason": f"a {space.name} basis: t with sin/cos (or sinh/cosh) has no polynomial "
-            "substitution; non-negativity is not decided by this version"
-        }
     frame = space.frame
     quarters = 2 * frame.rate * (frame.hi - frame.lo)  # the domain in quarter periods
     assert quarters.denominator == 1
@@ -523,11 +522,17 @@ def independence(defn: Definition, space: Space) -> dict:
         if first.is_ground or _no_zero_in_box(first, defn):
             return {"independent": True, "singular": []}
         refined = _refine(first, tables, entries, ring, defn)
-        if refined is not None:
+        if isinstance(refined, dict):
             return refined
+        why = refined
+    else:
+        why = "the rank is not full at the box's centre"
     combos = list(itertools.combinations(range(width), rows))
     if len(combos) > MAX_MINORS:
-        return {"reason": f"{len(combos)} maximal minors: not decided by this version"}
+        return {
+            "reason": f"{len(combos)} maximal minors (over {MAX_MINORS}: their common zeros are "
+            f"not computed), and the search one minor at a time stopped: {why}"
+        }
     minors = []
     for cols in combos:
         sub = DomainMatrix([[row[j] for j in cols] for row in entries], (rows, rows), ring)
@@ -687,7 +692,7 @@ def _box_point(defn: Definition, values: tuple) -> dict:
     return {q.name: str(v) for v, q in zip(values, defn.params, strict=True)}
 
 
-def _refine(first, tables, entries, ring, defn: Definition, rounds: int = 40) -> dict | None:
+def _refine(first, tables, entries, ring, defn: Definition, rounds: int = 40) -> dict | str:
     """The points of the box where the rank drops, from few minors: the candidates are the
     zeros in the box of the minors so far (a point on each curve of zeros, the finitely many
     other common zeros); at a rational candidate the exact rank decides: full, and the minor
@@ -703,13 +708,20 @@ def _refine(first, tables, entries, ring, defn: Definition, rounds: int = 40) ->
     for _ in range(rounds):
         candidates = _candidates(minors, defn)
         if candidates is None:
-            return None
+            return (
+                "more than two parameters: the zeros of a minor in the box are not located"
+                if len(syms) > 2
+                else "the minors' common zeros are neither finitely many nor curves"
+            )
         grew = False
         for point in candidates:
             if point in singular:
                 continue
             if not all(v.is_Rational for v in point):
-                return None
+                return (
+                    f"a point where the rank may drop is irrational ({point}): the exact rank "
+                    "there (over an algebraic field) is not computed"
+                )
             exact = tuple(Fraction(int(v.p), int(v.q)) for v in point)
             pivots = _pivot_columns(tables, defn, exact)
             if pivots is None:
@@ -723,7 +735,7 @@ def _refine(first, tables, entries, ring, defn: Definition, rounds: int = 40) ->
             if len(syms) == 1:
                 return {"independent": not points, "singular": [str(p[0]) for p in points]}
             return {"independent": not points, "singular": [_box_point(defn, p) for p in points]}
-    return None
+    return f"no end after {rounds} rounds of candidates"
 
 
 def _candidates(minors: list, defn: Definition) -> list[tuple] | None:

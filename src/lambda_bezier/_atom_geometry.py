@@ -6,11 +6,12 @@ algebraic-trigonometric families) and intersections between any two curves.
 
 The accuracy promises are those of the polynomial and rational curves, reached differently:
 - `arc_length`: adaptive Gauss-Legendre on the exact speed |C'(t)|, relative 1e-12;
-- `bounding_box`: every sign change of each coordinate's exact derivative on a grid of
-  `SAMPLES` points per piece, refined by bisection to the last bit of t (an extreme between
-  two grid points where the derivative does not change sign on the grid, i.e. two roots closer
-  than the grid step, is missed: such a wiggle is below the grid's resolution);
-- `closest_point`: the best few grid points, polished by Newton's method on the exact curve;
+- `bounding_box` and `closest_point`: certified, by branch and bound in t on rigorous Taylor
+  enclosures of the coordinates and their derivatives (hazmat.atom_bounds): an interval is
+  dropped only when its enclosure proves it holds nothing better, or when a derivative of one
+  sign leaves at most one candidate in it, found by bisection to the last bit of t. So no
+  extreme is missed however narrow (a spike between the points of any fixed grid is found),
+  up to the enclosures' rounding allowance (a few ulps of the curve's size);
 - `intersect`: the curve is approximated piece by piece by polynomial Bézier curves
   (Chebyshev interpolation of degree `DEGREE`, pieces halved until the approximation is
   within 1e-13 of the curve's size at a check grid), those are intersected exactly by the
@@ -27,6 +28,7 @@ import numpy.typing as npt
 from . import _validate as val
 from .curves import BezierCurve, Curve
 from .geometry import ClosestPoint
+from .hazmat import atom_bounds as ab
 from .hazmat.intersect import Intersection
 from .rational import RationalBezierCurve
 
@@ -38,7 +40,6 @@ if TYPE_CHECKING:
 # size instead of stalling on amplified rounding), and a DXF SPLINE holds it (degree <= 10)
 DEGREE = 9
 EXPORT_DEGREE = DEGREE
-SAMPLES = 64  # grid points per piece for boxes and closest points
 APPROX_TOL = 1e-13  # relative to the curve's size
 MAX_PIECES = 512
 SAME = 1e-9  # parameters closer than this (relative to the domain) are one intersection
@@ -100,12 +101,6 @@ def pieces(curve: AtomCurve, degree: int = DEGREE) -> list[tuple[float, float, B
     curve.__dict__.setdefault("_approximation_error", {})[degree] = best[0]
     cache[degree] = best[1]
     return best[1]
-
-
-def _grid(curve: AtomCurve) -> np.ndarray:
-    lo, hi = curve.domain
-    count = len(pieces(curve)) * SAMPLES
-    return np.linspace(lo, hi, count + 1)
 
 
 # ---------------------------------------------------------------------- arc length
@@ -173,70 +168,40 @@ def parameter_at_length(curve: AtomCurve, s: npt.ArrayLike) -> np.ndarray | floa
 
 
 # ---------------------------------------------------------------------- boxes
-def _bisect(f: Any, a: float, b: float, fa: float) -> float:
-    for _ in range(200):
-        m = 0.5 * (a + b)
-        if m in (a, b):
-            break
-        fm = f(m)
-        if (fm > 0) == (fa > 0) and fm != 0:
-            a, fa = m, fm
-        else:
-            b = m
-    return 0.5 * (a + b)
+def _bounds_data(curve: AtomCurve) -> ab.AtomCurveData:
+    """The curve over its centred atoms (coefficients divided by the curve's power-of-two
+    scale), for the certified kernels of hazmat.atom_bounds."""
+    cached: ab.AtomCurveData | None = curve.__dict__.get("_bounds_data")
+    if cached is None:
+        sh = curve.shape
+        cached = ab.AtomCurveData(curve._centred, sh.omega0, sh.powers, sh.harmonics, sh.hyperbolic)
+        curve.__dict__["_bounds_data"] = cached
+    return cached
 
 
 def bounding_box(curve: AtomCurve) -> tuple[np.ndarray, np.ndarray]:
-    t = _grid(curve)
-    d = curve.derivative(t, 1)
-    candidates = [t[0], t[-1]]
-    for c in range(curve.dimension):
-        col = d[:, c]
-        for i in np.nonzero(np.sign(col[:-1]) * np.sign(col[1:]) < 0)[0]:
-
-            def f(x: float, c: int = c) -> float:
-                return float(curve.derivative(x, 1, extrapolate=True)[c])
-
-            candidates.append(_bisect(f, float(t[i]), float(t[i + 1]), float(col[i])))
-        candidates.extend(t[1:-1][col[1:-1] == 0])
-    values = curve.evaluate(np.clip(np.array(candidates), t[0], t[-1]))
-    return values.min(axis=0), values.max(axis=0)
+    """The certified tight box (hazmat.atom_bounds.coordinate_extremes), in t."""
+    lo, hi = curve.domain
+    data = _bounds_data(curve)
+    mins, maxs, _, _ = ab.coordinate_extremes(data, lo - curve._mid, hi - curve._mid)
+    ends = curve.evaluate(np.array([lo, hi]))
+    with val.overflow_allowed():
+        mins, maxs = mins * curve._scale, maxs * curve._scale
+    return np.minimum(mins, ends.min(axis=0)), np.maximum(maxs, ends.max(axis=0))
 
 
 # ---------------------------------------------------------------------- closest points
-def _newton_closest(curve: AtomCurve, q: np.ndarray, x: float) -> float:
-    lo, hi = curve.domain
-    for _ in range(50):
-        p0 = curve.evaluate(x, extrapolate=True) - q
-        p1 = curve.derivative(x, 1, extrapolate=True)
-        p2 = curve.derivative(x, 2, extrapolate=True)
-        g = float(p0 @ p1)
-        h = float(p1 @ p1 + p0 @ p2)
-        if h <= 0:
-            break
-        new = min(max(x - g / h, lo), hi)
-        if abs(new - x) <= 1e-16 * max(1.0, abs(x)):
-            return new
-        x = new
-    return x
-
-
 def closest_point(curve: AtomCurve, q: npt.ArrayLike) -> ClosestPoint:
+    """The certified global minimum of |C(t) − q| (hazmat.atom_bounds.closest) per query."""
     from .geometry import _queries
 
     queries, single = _queries(q, curve.dimension)
-    t = _grid(curve)
-    pts = curve.evaluate(t)
+    lo, hi = curve.domain
+    data = _bounds_data(curve)
     ts = np.empty(len(queries))
     for k, qq in enumerate(queries):
-        dist = np.square(pts - qq).sum(axis=1)
-        best_t, best_d = float(t[int(np.argmin(dist))]), float(dist.min())
-        for i in np.argsort(dist)[:4]:
-            x = _newton_closest(curve, qq, float(t[i]))
-            dx = float(np.square(curve.evaluate(x) - qq).sum())
-            if dx < best_d:
-                best_t, best_d = x, dx
-        ts[k] = best_t
+        tau, _ = ab.closest(data, qq / curve._scale, lo - curve._mid, hi - curve._mid)
+        ts[k] = min(max(tau + curve._mid, lo), hi)
     points = curve.evaluate(ts)
     dists = np.linalg.norm(points - queries, axis=1)
     if single:

@@ -157,7 +157,8 @@ def optimal_parameters_batch(
                 *(coeffs[(a, b)] for a in range(3) for b in range(3)), *box, CERTIFIED_TOLERANCE
             )
     declined = np.flatnonzero(~ok)
-    where = np.full(count, "interior", dtype=object)
+    where = np.empty(count, dtype=object)
+    where[:] = "interior"  # (np.full of a str into an object array is 6x slower)
     admissible, free_u, free_v = np.ones(count, bool), np.zeros(count, bool), np.zeros(count, bool)
     exact = 0
     if declined.size:

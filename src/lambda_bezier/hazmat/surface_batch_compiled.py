@@ -108,7 +108,7 @@ def _transpose_chunk(flat: np.ndarray, start: int, n: int, limit: float, lanes: 
     return valid
 
 
-@numba.njit(**_JIT)
+@numba.njit(cache=True, error_model="numpy", fastmath={"contract"})
 def _coefficients_chunk(
     lanes: np.ndarray,
     dim: int,
@@ -118,21 +118,35 @@ def _coefficients_chunk(
     gram: np.ndarray,
     acc: np.ndarray,
 ) -> None:
-    """acc[t, k] = Σ_p weights[p, t] g_p(k) for the chunk's nets (lanes k), every loop over
-    the lanes alone, so each vectorises."""
-    lanes_n = lanes.shape[1]
+    """acc[t, k] = Σ_p weights[p, t] g_p(k) for the chunk's nets (lanes k). Every loop runs
+    over the lanes alone, so each vectorises; the Gram products of four pairs at a time go
+    into each accumulator in one update (the updates' loads and stores bound the loop).
+    Multiply-adds may fuse (fastmath "contract" only: one rounding instead of two, no
+    reassociation), which halves the arithmetic here."""
+    width = lanes.shape[1]
+    n_pairs = pair_i.shape[0]
     acc[:, :] = 0.0
-    for p in range(pair_i.shape[0]):
-        a, b = pair_i[p] * dim, pair_j[p] * dim
-        for k in range(lanes_n):
-            gram[k] = lanes[a, k] * lanes[b, k]
-        for c in range(1, dim):
-            for k in range(lanes_n):
-                gram[k] += lanes[a + c, k] * lanes[b + c, k]
+    for q in range(0, n_pairs, 4):
+        for s in range(4):
+            p = min(q + s, n_pairs - 1)
+            a, b = pair_i[p] * dim, pair_j[p] * dim
+            if q + s >= n_pairs:  # past the last pair: a zero product (weights unused)
+                for k in range(width):
+                    gram[s, k] = 0.0
+                continue
+            for k in range(width):
+                gram[s, k] = lanes[a, k] * lanes[b, k]
+            for c in range(1, dim):
+                for k in range(width):
+                    gram[s, k] += lanes[a + c, k] * lanes[b + c, k]
+        last = n_pairs - 1
         for t in range(weights.shape[1]):
-            w = weights[p, t]
-            for k in range(lanes_n):
-                acc[t, k] += w * gram[k]
+            w0 = weights[q, t]
+            w1 = weights[min(q + 1, last), t]
+            w2 = weights[min(q + 2, last), t]
+            w3 = weights[min(q + 3, last), t]
+            for k in range(width):
+                acc[t, k] += w0 * gram[0, k] + w1 * gram[1, k] + w2 * gram[2, k] + w3 * gram[3, k]
 
 
 @numba.njit(**_JIT)
@@ -155,7 +169,7 @@ def optimise(
     out = np.empty((5, count))
     lanes = np.zeros((width, CHUNK))
     acc = np.empty((9, CHUNK))
-    gram = np.empty(CHUNK)
+    gram = np.empty((4, CHUNK))
     answers = np.empty((5, CHUNK))
     valid = True
     for start in range(0, count, CHUNK):

@@ -1,7 +1,13 @@
 """Energy-optimal (λ_u, λ_v): `optimal_parameters` for one net (exact, through
 surface_energies) or for a batch of float nets, vectorised.
 
-For families affine in λ the energy of one net is E(x, y) = Σ_{a,b<=2} e_ab x^a y^b. Over the
+A batch first takes the fixed-cost certified minimum (hazmat.surface_certify: start, Newton,
+local strong convexity and a global clearing of the rest of the box; compiled with the
+coefficients in hazmat.surface_batch_compiled). Only the nets it declines (minima on an edge
+or a corner, or not convex enough about the minimum) take the careful path below, counted in
+``careful_fallbacks``.
+
+The careful path. For families affine in λ the energy of one net is E(x, y) = Σ_{a,b<=2} e_ab x^a y^b. Over the
 box its minimum is at a corner, on an edge (a quadratic in one variable: closed form), or at an
 interior critical point: with E_x = α(y) x + β(y) and E_y = γ(y) x² + δ(y) x + ε(y), the
 interior ones have y a root of R(y) = γβ² − δαβ + εα² (the resultant, degree <= 5) and
@@ -153,9 +159,12 @@ def optimal_parameters_batch(
     else:
         coeffs = _float_polynomial(mats, nets.reshape(count, m1 * n1, dim))
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            zero = np.zeros(count)  # a power λ_u^a λ_v^b the energy lacks
+            c = [coeffs.get((a, b), zero) for a in range(3) for b in range(3)]
             bx, by, bval, _, ok = certified_minimum(
-                *(coeffs[(a, b)] for a in range(3) for b in range(3)), *box, CERTIFIED_TOLERANCE
-            )
+                c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8],
+                box[0], box[1], box[2], box[3], CERTIFIED_TOLERANCE,
+            )  # fmt: skip
     declined = np.flatnonzero(~ok)
     where = np.empty(count, dtype=object)
     where[:] = "interior"  # (np.full of a str into an object array is 6x slower)

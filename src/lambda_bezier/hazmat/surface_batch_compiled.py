@@ -165,7 +165,6 @@ def optimise(
     surface_certify.certified_minimum over box = (xlo, xhi, ylo, yhi), and whether every
     coordinate was finite and <= limit."""
     count, width = flat.shape
-    n_pairs = pair_i.shape[0]
     out = np.empty((5, count))
     lanes = np.zeros((width, CHUNK))
     acc = np.empty((9, CHUNK))

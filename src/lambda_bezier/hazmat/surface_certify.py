@@ -55,8 +55,20 @@ def _clip(t: F, lo: float, hi: float) -> F:
 
 
 def _sweep(
-    e01: F, e02: F, e10: F, e11: F, e12: F, e20: F, e21: F, e22: F,
-    x: F, y: F, xlo: float, xhi: float, ylo: float, yhi: float,
+    e01: F,
+    e02: F,
+    e10: F,
+    e11: F,
+    e12: F,
+    e20: F,
+    e21: F,
+    e22: F,
+    x: F,
+    y: F,
+    xlo: float,
+    xhi: float,
+    ylo: float,
+    yhi: float,
 ) -> tuple[F, F]:
     """One alternating step: x minimising E(·, y) on [xlo, xhi], then y minimising E(x, ·)
     (each a quadratic; kept where its leading coefficient is not positive)."""
@@ -72,8 +84,20 @@ def _sweep(
 
 
 def _newton(
-    e01: F, e02: F, e10: F, e11: F, e12: F, e20: F, e21: F, e22: F,
-    x: F, y: F, xlo: float, xhi: float, ylo: float, yhi: float,
+    e01: F,
+    e02: F,
+    e10: F,
+    e11: F,
+    e12: F,
+    e20: F,
+    e21: F,
+    e22: F,
+    x: F,
+    y: F,
+    xlo: float,
+    xhi: float,
+    ylo: float,
+    yhi: float,
 ) -> tuple[F, F]:
     """One Newton step on ∇E = 0, clipped to the box (none where the Hessian is not
     positive definite)."""
@@ -96,9 +120,7 @@ def _newton(
     return x, y
 
 
-def _quartic_positive(
-    p0: F, p1: F, p2: F, p3: F, p4: F, a: F, b: F, slack: F
-) -> F:
+def _quartic_positive(p0: F, p1: F, p2: F, p3: F, p4: F, a: F, b: F, slack: F) -> F:
     """p0 + p1 t + ... + p4 t^4 > slack at every t in [a, b], by its Bernstein coefficients
     there (a sufficient test)."""
     # Taylor coefficients about a (Horner's shift), then scaled to t = a + h s, s in [0, 1]
@@ -259,11 +281,7 @@ def certified_minimum(
     local = convex & (delta <= tol) & (delta < r)
     inside = (x - r > xlo) & (x + r < xhi) & (y - r > ylo) & (y + r < yhi)
     level = energy + slack
-    clear_y = _side_clear(
-        e20, e21, e22, e10, e11, e12, e00, e01, e02, level, y, r, ylo, yhi, emax
-    )
-    clear_x = _side_clear(
-        e02, e12, e22, e01, e11, e21, e00, e10, e20, level, x, r, xlo, xhi, emax
-    )
+    clear_y = _side_clear(e20, e21, e22, e10, e11, e12, e00, e01, e02, level, y, r, ylo, yhi, emax)
+    clear_x = _side_clear(e02, e12, e22, e01, e11, e21, e00, e10, e20, level, x, r, xlo, xhi, emax)
     ok = local & inside & clear_y & clear_x
     return x, y, energy, _where(convex, delta, np.inf), ok

@@ -143,3 +143,15 @@ def test_bad_coordinates_are_refused_on_both_engines(engine, bad):
     nets[150, 2, 1, 0] = bad
     with pytest.raises(ValueError, match="NaN or infinity|coordinates above"):
         lb.optimal_parameters(nets, "thin_plate")
+
+
+def test_the_compiled_kernels_record_the_certificate_they_inline():
+    # numba caches the kernels by their own file: an edit of surface_certify.py must come with
+    # its new hash in surface_batch_compiled.py, which invalidates the cache
+    pytest.importorskip("numba")
+    from lambda_bezier.hazmat import surface_batch_compiled as sbc
+
+    assert sbc.certify_source_sha256() == sbc.CERTIFY_SHA256, (
+        "surface_certify.py changed: set CERTIFY_SHA256 in surface_batch_compiled.py to "
+        f"{sbc.certify_source_sha256()}"
+    )

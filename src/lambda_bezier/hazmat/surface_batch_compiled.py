@@ -17,8 +17,10 @@ Validation rides along: the transposition notes any coordinate that is not finit
 
 from __future__ import annotations
 
+import hashlib
 import types
 from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
 import numba
@@ -26,7 +28,23 @@ import numpy as np
 
 from . import surface_certify as sc
 
-_JIT: dict[str, Any] = {"cache": True, "error_model": "numpy", "fastmath": False}
+# numba's cache of a kernel is keyed to the file that defines it, here, yet the kernels inline
+# surface_certify's code: its source's hash is recorded below, so that editing it means
+# editing this file too (tests/test_surfaces_certify.py checks the two agree). Where they
+# differ anyway (an edit without the tests), the kernels compile afresh, uncached, rather
+# than load code of the old certificate.
+CERTIFY_SHA256 = "ec503ab58db95a09da4166241c5f08b3c8a91dc3d5d7493a8baeecb585f5b089"
+
+
+def certify_source_sha256() -> str:
+    return hashlib.sha256(Path(sc.__file__).read_bytes()).hexdigest()
+
+
+_JIT: dict[str, Any] = {
+    "cache": certify_source_sha256() == CERTIFY_SHA256,
+    "error_model": "numpy",
+    "fastmath": False,
+}
 CHUNK = 64  # nets per chunk: the transposed chunk (s·d x CHUNK floats) stays in L1
 
 
@@ -108,7 +126,7 @@ def _transpose_chunk(flat: np.ndarray, start: int, n: int, limit: float, lanes: 
     return valid
 
 
-@numba.njit(cache=True, error_model="numpy", fastmath={"contract"})
+@numba.njit(cache=_JIT["cache"], error_model="numpy", fastmath={"contract"})
 def _coefficients_chunk(
     lanes: np.ndarray,
     dim: int,

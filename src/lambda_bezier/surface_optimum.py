@@ -9,10 +9,10 @@ or a corner, or not convex enough about the minimum) take the careful path below
 
 The careful path. For families affine in λ the energy of one net is
 E(x, y) = Σ_{a,b<=2} e_ab x^a y^b. Over the box its minimum is at a corner, on an edge (a
-quadratic in one variable: closed form), or at an interior critical point: with E_x = α(y) x + β(y) and E_y = γ(y) x² + δ(y) x + ε(y), the
-interior ones have y a root of R(y) = γβ² − δαβ + εα² (the resultant, degree <= 5) and
-x = −β/α. The roots of R come from the eigenvalues of its companion matrices, all nets at once,
-and are polished by Newton on ∇E = 0.
+quadratic in one variable: closed form), or at an interior critical point: with
+E_x = α(y) x + β(y) and E_y = γ(y) x² + δ(y) x + ε(y), the interior ones have y a root of
+R(y) = γβ² − δαβ + εα² (the resultant, degree <= 5) and x = −β/α. The roots of R come from
+the eigenvalues of its companion matrices, all nets at once, and are polished by Newton on ∇E = 0.
 
 With numba installed (the `fast` extra) the same method runs compiled, one pass per net
 (hazmat.surface_compiled: the resultant's roots by its derivative chain instead of

@@ -18,9 +18,10 @@ The method, the same fixed work for every net (no root isolation, no branches on
    on [ylo, y − r] and on [y + r, yhi] when its Bernstein coefficients there are (and A's on
    the whole side). The same in x with E = F(x) y² + G(x) y + H(x) covers |x' − x| >= r.
 
-A net is certified when all of that holds with δ <= `tol` and R inside the open box; the
-minimiser is then unique and within δ of the returned point. The certificate is about the
-float coefficients e_ab. A net whose minimum is on an edge or a corner, or near one, or
+A net is certified when all of that holds with δ <= `tol` (and 2δ < r) and R inside the
+open box; the minimiser is then unique and within δ of the returned point. The certificate
+is about the float coefficients e_ab; its rounding bounds are generous estimates (a few
+hundred units in the last place of each quantity's size), not interval arithmetic. A net whose minimum is on an edge or a corner, or near one, or
 whose energy is not convex enough about its minimum, is declined; the caller solves it by
 the careful path (surface_optimum) and counts it.
 """
@@ -278,7 +279,9 @@ def certified_minimum(
     ey = np.abs(gy) + GRADIENT_ROUND * size_gy
     grad = np.sqrt(ex * ex + ey * ey)
     delta = grad / _where(convex, mu, 1.0)
-    local = convex & (delta <= tol) & (delta < r)
+    # 2δ < r: E on R's boundary exceeds E(x, y) (E >= E(x, y) − |∇E| r + μ r² / 2), so the
+    # minimum over R is interior, the critical point
+    local = convex & (delta <= tol) & (2 * delta < r)
     inside = (x - r > xlo) & (x + r < xhi) & (y - r > ylo) & (y + r < yhi)
     level = energy + slack
     clear_y = _side_clear(e20, e21, e22, e10, e11, e12, e00, e01, e02, level, y, r, ylo, yhi, emax)

@@ -33,7 +33,7 @@ from . import surface_certify as sc
 # editing this file too (tests/test_surfaces_certify.py checks the two agree). Where they
 # differ anyway (an edit without the tests), the kernels compile afresh, uncached, rather
 # than load code of the old certificate.
-CERTIFY_SHA256 = ""
+CERTIFY_SHA256 = "188cc18cdbeb6e06610e4cb0d0cdd075aec5c4ee1b806755cef7b1340110df5e"
 
 
 def certify_source_sha256() -> str:

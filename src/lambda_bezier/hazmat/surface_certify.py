@@ -21,9 +21,10 @@ The method, the same fixed work for every net (no root isolation, no branches on
 A net is certified when all of that holds with δ <= `tol` (and 2δ < r) and R inside the
 open box; the minimiser is then unique and within δ of the returned point. The certificate
 is about the float coefficients e_ab; its rounding bounds are generous estimates (a few
-hundred units in the last place of each quantity's size), not interval arithmetic. A net whose minimum is on an edge or a corner, or near one, or
-whose energy is not convex enough about its minimum, is declined; the caller solves it by
-the careful path (surface_optimum) and counts it.
+hundred units in the last place of each quantity's size), not interval arithmetic. A net
+whose minimum is on an edge or a corner, or near one, or whose energy is not convex enough
+about its minimum, is declined; the caller solves it by the careful path (surface_optimum)
+and counts it.
 """
 
 from __future__ import annotations

@@ -333,6 +333,7 @@ class SurfaceOptimalParameters(Mapping[str, Any]):
     free_u: Any = False
     free_v: Any = False
     exact_fallbacks: int = 0
+    careful_fallbacks: int = 0  # a batch: nets the fixed-cost certificate declined
 
     def __getitem__(self, key: str) -> Any:
         if key not in self.__dataclass_fields__:

@@ -1,12 +1,18 @@
 """Energy-optimal (λ_u, λ_v): `optimal_parameters` for one net (exact, through
 surface_energies) or for a batch of float nets, vectorised.
 
-For families affine in λ the energy of one net is E(x, y) = Σ_{a,b<=2} e_ab x^a y^b. Over the
-box its minimum is at a corner, on an edge (a quadratic in one variable: closed form), or at an
-interior critical point: with E_x = α(y) x + β(y) and E_y = γ(y) x² + δ(y) x + ε(y), the
-interior ones have y a root of R(y) = γβ² − δαβ + εα² (the resultant, degree <= 5) and
-x = −β/α. The roots of R come from the eigenvalues of its companion matrices, all nets at once,
-and are polished by Newton on ∇E = 0.
+A batch first takes the fixed-cost certified minimum (hazmat.surface_certify: start, Newton,
+local strong convexity and a global clearing of the rest of the box; compiled with the
+coefficients in hazmat.surface_batch_compiled). Only the nets it declines (minima on an edge
+or a corner, or not convex enough about the minimum) take the careful path below, counted in
+``careful_fallbacks``.
+
+The careful path. For families affine in λ the energy of one net is
+E(x, y) = Σ_{a,b<=2} e_ab x^a y^b. Over the box its minimum is at a corner, on an edge (a
+quadratic in one variable: closed form), or at an interior critical point: with
+E_x = α(y) x + β(y) and E_y = γ(y) x² + δ(y) x + ε(y), the interior ones have y a root of
+R(y) = γβ² − δαβ + εα² (the resultant, degree <= 5) and x = −β/α. The roots of R come from
+the eigenvalues of its companion matrices, all nets at once, and are polished by Newton on ∇E = 0.
 
 With numba installed (the `fast` extra) the same method runs compiled, one pass per net
 (hazmat.surface_compiled: the resultant's roots by its derivative chain instead of
@@ -34,6 +40,7 @@ import numpy as np
 from . import _validate as val
 from .energy import optimal_parameters as curve_optimal_parameters
 from .hazmat import surface_kernels as ker
+from .hazmat.surface_certify import certified_minimum
 from .hazmat.surface_kernels import OPTIMUM_STEP_TOLERANCE
 from .parameter_optimum import OptimalParameters as CurveOptimalParameters
 from .surface_energies import (
@@ -48,6 +55,8 @@ from .surface_energies import (
 from .surfaces import NetLike, _as_family_pair, _as_net, _exact_net
 
 STEP_TOLERANCE = OPTIMUM_STEP_TOLERANCE
+# the fixed-cost path accepts a net when the minimiser is certified within this of its answer
+CERTIFIED_TOLERANCE = 1e-12
 # the energy is a quadratic form in the net with entries up to about 1e4 (degrees <= 12):
 # coordinates below this keep every coefficient far inside the float range
 MAX_COORDINATE = 1e140
@@ -57,6 +66,15 @@ _WHERE = np.array(["edge", "interior", "corner"], dtype=object)  # the compiled 
 def _compiled() -> ModuleType | None:
     """The compiled kernels (hazmat.surface_kernels.USE_COMPILED decides), or None."""
     return ker.compiled()
+
+
+def _batch_compiled() -> ModuleType | None:
+    """The compiled fixed-cost batch optimum (the same switch), or None."""
+    if not ker.USE_COMPILED:
+        return None
+    from .hazmat import surface_batch_compiled  # numba compiles (or loads its cache) here
+
+    return surface_batch_compiled
 
 
 @cache
@@ -111,11 +129,59 @@ def _edge_minima(
 def optimal_parameters_batch(
     nets: np.ndarray, energy: str, family: object
 ) -> SurfaceOptimalParameters:
-    """optimal_parameters for (k, m+1, n+1, d) float nets; arrays of length k in every field."""
+    """optimal_parameters for (k, m+1, n+1, d) float nets; arrays of length k in every field.
+
+    Every net first takes the fixed-cost certified minimum (hazmat.surface_certify; compiled
+    in hazmat.surface_batch_compiled with the coefficients when numba is there); the nets it
+    declines go to `_careful_batch` (``careful_fallbacks`` counts them, ``exact_fallbacks``
+    those of them the exact method then solves)."""
     u_cls, v_cls = _as_family_pair(family)
     u_box, v_box = _box(u_cls), _box(v_cls)
     if nets.ndim != 4 or nets.shape[0] == 0:
         raise ValueError(f"a batch of nets must have shape (k, m+1, n+1, d), got {nets.shape}")
+    count, m1, n1, dim = nets.shape
+    mats = surface_energy_matrices((m1 - 1, n1 - 1), energy, (u_cls, v_cls))
+    top = max(max(a, b) for a, b in mats.full)
+    fast = _batch_compiled()
+    if u_box is None or v_box is None or top > 2 or fast is None:
+        _check_values(nets)
+    if u_box is None or v_box is None or top > 2:
+        return _all_exact(nets, np.ones(count, bool), None, energy, u_box, v_box, u_cls, v_cls)
+    box = np.array([float(u_box[0]), float(u_box[1]), float(v_box[0]), float(v_box[1])])
+    if fast is not None:
+        pair_i, pair_j, weights = _pair_weights(mats)
+        flat = np.ascontiguousarray(nets.reshape(count, m1 * n1 * dim), dtype=float)
+        bx, by, bval, _, ok, valid = fast.optimise(
+            flat, dim, pair_i, pair_j, weights, box, CERTIFIED_TOLERANCE, MAX_COORDINATE
+        )
+        if not valid:
+            _check_values(nets)  # raises the error that fits
+    else:
+        coeffs = _float_polynomial(mats, nets.reshape(count, m1 * n1, dim))
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            zero = np.zeros(count)  # a power λ_u^a λ_v^b the energy lacks
+            c = [coeffs.get((a, b), zero) for a in range(3) for b in range(3)]
+            bx, by, bval, _, ok = certified_minimum(
+                c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8],
+                box[0], box[1], box[2], box[3], CERTIFIED_TOLERANCE,
+            )  # fmt: skip
+    declined = np.flatnonzero(~ok)
+    where = np.empty(count, dtype=object)
+    where[:] = "interior"  # (np.full of a str into an object array is 6x slower)
+    admissible, free_u, free_v = np.ones(count, bool), np.zeros(count, bool), np.zeros(count, bool)
+    exact = 0
+    if declined.size:
+        rest = _careful_batch(nets[declined], energy, mats, u_box, v_box, u_cls, v_cls)
+        bx[declined], by[declined], bval[declined] = rest.lam_u, rest.lam_v, rest.energy
+        where[declined], admissible[declined] = rest.where, rest.admissible
+        free_u[declined], free_v[declined] = rest.free_u, rest.free_v
+        exact = rest.exact_fallbacks
+    return SurfaceOptimalParameters(
+        bx, by, bx, by, bval, where, admissible, free_u, free_v, exact, int(declined.size)
+    )
+
+
+def _check_values(nets: np.ndarray) -> None:
     if not np.isfinite(nets).all():
         raise ValueError("the nets contain NaN or infinity")
     if np.abs(nets).max() > MAX_COORDINATE:
@@ -123,11 +189,21 @@ def optimal_parameters_batch(
             f"the nets have coordinates above {MAX_COORDINATE:.0e}, where the energy overflows "
             "a float; scale them down (the optimal parameters do not depend on the scale)"
         )
+
+
+def _careful_batch(
+    nets: np.ndarray,
+    energy: str,
+    mats: SurfaceEnergyMatrices,
+    u_box: Any,
+    v_box: Any,
+    u_cls: Any,
+    v_cls: Any,
+) -> SurfaceOptimalParameters:
+    """The careful path for nets the fixed-cost certificate declined: every candidate (corners,
+    edge minima, the interior critical points from the resultant's roots), with its own
+    certificate, and the exact method where that declines too."""
     count, m1, n1, dim = nets.shape
-    mats = surface_energy_matrices((m1 - 1, n1 - 1), energy, (u_cls, v_cls))
-    top = max(max(a, b) for a, b in mats.full)
-    if u_box is None or v_box is None or top > 2:
-        return _all_exact(nets, np.ones(count, bool), None, energy, u_box, v_box, u_cls, v_cls)
     flat = np.ascontiguousarray(nets.reshape(count, m1 * n1, dim))
     compiled = _compiled()
     if compiled is not None:

@@ -1,0 +1,200 @@
+"""The batch optimum of (λ_u, λ_v), compiled with numba (the `fast` extra): one pass over the
+nets in cache-sized chunks, each chunk transposed once (net index last, so every later loop
+runs over contiguous lanes and vectorises), its energy coefficients from the Gram products,
+then hazmat.surface_certify's fixed-cost certified minimum, compiled from the same source.
+
+The coefficients: e_ab = Σ_p W[p, 3a + b] g_p over the pairs p = (i, j), i <= j, of control
+points, g_p = P_i · P_j (surface_optimum.pair_weights). For a bicubic net that is 136 pairs,
+3 + 9 multiply-adds each: about 1,600 a net. The Kronecker route (contract the net with the
+per-direction forms first, P ↦ A_u P A_v^T) costs more at these sizes: each of the nine
+λ-powers needs its own pair of small products (about 3,600 multiply-adds a net for the thin
+plate energy, 2,400 through orthonormal features), so the dense pair sum is kept and made
+fast by lanes instead.
+
+Validation rides along: the transposition notes any coordinate that is not finite or is above
+`limit`, and the caller raises the same errors as the numpy path.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import types
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numba
+import numpy as np
+
+from . import surface_certify as sc
+
+# numba's cache of a kernel is keyed to the file that defines it, here, yet the kernels inline
+# surface_certify's code: its source's hash is recorded below, so that editing it means
+# editing this file too (tests/test_surfaces_certify.py checks the two agree). Where they
+# differ anyway (an edit without the tests), the kernels compile afresh, uncached, rather
+# than load code of the old certificate.
+CERTIFY_SHA256 = "188cc18cdbeb6e06610e4cb0d0cdd075aec5c4ee1b806755cef7b1340110df5e"
+
+
+def certify_source_sha256() -> str:
+    return hashlib.sha256(Path(sc.__file__).read_bytes()).hexdigest()
+
+
+_JIT: dict[str, Any] = {
+    "cache": certify_source_sha256() == CERTIFY_SHA256,
+    "error_model": "numpy",
+    "fastmath": False,
+}
+CHUNK = 64  # nets per chunk: the transposed chunk (s·d x CHUNK floats) stays in L1
+
+
+@numba.njit(inline="always", error_model="numpy")
+def _select(c: bool, a: float, b: float) -> float:
+    return a if c else b
+
+
+def _recompiled(names: tuple[str, ...]) -> dict[str, Callable[..., Any]]:
+    """surface_certify's functions compiled for scalars: the same code objects with `_where`
+    bound to a scalar selection (and their calls to each other bound to the compiled ones)."""
+    space: dict[str, Any] = dict(vars(sc))
+    space["_where"] = _select
+    out: dict[str, Callable[..., Any]] = {}
+    for name in names:  # callees first
+        fn = getattr(sc, name)
+        copy = types.FunctionType(fn.__code__, space, name, fn.__defaults__)
+        copy.__qualname__ = f"surface_batch_compiled.{name}"
+        # inlined into the cached kernels below (numba inlines at its own IR level, so the
+        # loops over nets see straight-line code)
+        out[name] = space[name] = numba.njit(inline="always", error_model="numpy")(copy)
+    return out
+
+
+_certified_minimum = _recompiled(
+    (
+        "_clip",
+        "_sweep",
+        "_newton",
+        "_quartic_positive",
+        "_quadratic_positive",
+        "_side_clear",
+        "certified_minimum",
+    )
+)["certified_minimum"]
+
+
+@numba.njit(**_JIT)
+def _certify_chunk(acc: np.ndarray, n: int, box: np.ndarray, tol: float, out: np.ndarray) -> None:
+    """certified_minimum for the chunk's n nets into out[:, :n] (x, y, energy, δ, certified
+    as 1.0 or 0.0): one output array, indexed by the loop variable alone, and no branches, so
+    the loop vectorises (measured: five output arrays, or an offset index, kept it scalar,
+    3-4x slower)."""
+    xlo, xhi, ylo, yhi = box[0], box[1], box[2], box[3]
+    for k in range(n):
+        x, y, e, d, ok = _certified_minimum(
+            acc[0, k],
+            acc[1, k],
+            acc[2, k],
+            acc[3, k],
+            acc[4, k],
+            acc[5, k],
+            acc[6, k],
+            acc[7, k],
+            acc[8, k],
+            xlo,
+            xhi,
+            ylo,
+            yhi,
+            tol,
+        )
+        out[0, k] = x
+        out[1, k] = y
+        out[2, k] = e
+        out[3, k] = d
+        out[4, k] = 1.0 if ok else 0.0
+
+
+@numba.njit(**_JIT)
+def _transpose_chunk(flat: np.ndarray, start: int, n: int, limit: float, lanes: np.ndarray) -> bool:
+    """lanes[r, k] = flat[start + k, r]; whether every value was finite and <= limit."""
+    valid = True
+    for k in range(n):
+        row = flat[start + k]
+        for r in range(row.shape[0]):
+            v = row[r]
+            valid &= abs(v) <= limit  # False for NaN too
+            lanes[r, k] = v
+    return valid
+
+
+@numba.njit(cache=_JIT["cache"], error_model="numpy", fastmath={"contract"})
+def _coefficients_chunk(
+    lanes: np.ndarray,
+    dim: int,
+    pair_i: np.ndarray,
+    pair_j: np.ndarray,
+    weights: np.ndarray,
+    gram: np.ndarray,
+    acc: np.ndarray,
+) -> None:
+    """acc[t, k] = Σ_p weights[p, t] g_p(k) for the chunk's nets (lanes k). Every loop runs
+    over the lanes alone, so each vectorises; the Gram products of four pairs at a time go
+    into each accumulator in one update (the updates' loads and stores bound the loop).
+    Multiply-adds may fuse (fastmath "contract" only: one rounding instead of two, no
+    reassociation), which halves the arithmetic here."""
+    width = lanes.shape[1]
+    n_pairs = pair_i.shape[0]
+    acc[:, :] = 0.0
+    for q in range(0, n_pairs, 4):
+        for s in range(4):
+            p = min(q + s, n_pairs - 1)
+            a, b = pair_i[p] * dim, pair_j[p] * dim
+            if q + s >= n_pairs:  # past the last pair: a zero product (weights unused)
+                for k in range(width):
+                    gram[s, k] = 0.0
+                continue
+            for k in range(width):
+                gram[s, k] = lanes[a, k] * lanes[b, k]
+            for c in range(1, dim):
+                for k in range(width):
+                    gram[s, k] += lanes[a + c, k] * lanes[b + c, k]
+        last = n_pairs - 1
+        for t in range(weights.shape[1]):
+            w0 = weights[q, t]
+            w1 = weights[min(q + 1, last), t]
+            w2 = weights[min(q + 2, last), t]
+            w3 = weights[min(q + 3, last), t]
+            for k in range(width):
+                acc[t, k] += w0 * gram[0, k] + w1 * gram[1, k] + w2 * gram[2, k] + w3 * gram[3, k]
+
+
+@numba.njit(**_JIT)
+def optimise(
+    flat: np.ndarray,
+    dim: int,
+    pair_i: np.ndarray,
+    pair_j: np.ndarray,
+    weights: np.ndarray,
+    box: np.ndarray,
+    tol: float,
+    limit: float,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, bool]:
+    """For nets flat (k, s·d) (control point i's coordinates at i·d .. i·d + d − 1) and the
+    energy Σ_p weights[p, 3a + b] g_p x^a y^b: per net (x, y, energy, δ, certified) of
+    surface_certify.certified_minimum over box = (xlo, xhi, ylo, yhi), and whether every
+    coordinate was finite and <= limit."""
+    count, width = flat.shape
+    out = np.empty((5, count))
+    lanes = np.zeros((width, CHUNK))
+    acc = np.empty((9, CHUNK))
+    gram = np.empty((4, CHUNK))
+    answers = np.empty((5, CHUNK))
+    valid = True
+    for start in range(0, count, CHUNK):
+        n = min(CHUNK, count - start)
+        valid &= _transpose_chunk(flat, start, n, limit, lanes)
+        _coefficients_chunk(lanes, dim, pair_i, pair_j, weights, gram, acc)
+        _certify_chunk(acc, n, box, tol, answers)
+        for row in range(5):
+            for k in range(n):
+                out[row, start + k] = answers[row, k]
+    return out[0], out[1], out[2], out[3], out[4] > 0.5, valid

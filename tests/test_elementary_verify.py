@@ -130,6 +130,9 @@ def test_non_negativity_of_a_mixed_family_is_decided(records):
         del rec["independent"]
         res = report_mod.check_record(rec)
         assert res.outcome.verdict == verdict
+        if verdict == "match":  # the report says how it was decided: not exactly, certified
+            assert any("certified" in line for line in res.outcome.checked), res.outcome.checked
+            assert not any(line.endswith(": exact") for line in res.outcome.checked)
 
 
 @pytest.mark.parametrize(

@@ -353,6 +353,15 @@ def rational_form(space: Space) -> dict:
 # --------------------------------------------------------------------------- non-negativity
 
 
+def nonnegative_is_certified(space: Space) -> bool:
+    """Whether non-negativity over the box is decided by the certified branch and bound of
+    atom_nonnegative.py (arb balls) rather than exactly: a mixed space has no polynomial
+    substitution, and a basis not affine in its parameters has no vertex argument."""
+    return space.name.startswith("mixed") or any(
+        sum(key[0]) > 1 for elem in space.functions for key in elem
+    )
+
+
 def nonnegative_over_box(defn: Definition, space: Space) -> dict:
     """Every b_i >= 0 on the domain for every parameter value of the box? For a basis affine
     in the parameters jointly the least value at fixed t is at a vertex of the box (an open
@@ -360,9 +369,7 @@ def nonnegative_over_box(defn: Definition, space: Space) -> dict:
     [x0, x0 + pi/(2w)] of the domain is N(u)/(1 + u^2)^M with u = tan(w (t - x0)/2) in
     [0, 1], so the question is polynomial non-negativity of N on [0, 1] (decided exactly by
     derive/families/engine.py's root isolation)."""
-    if space.name.startswith("mixed") or any(
-        sum(key[0]) > 1 for elem in space.functions for key in elem
-    ):  # no polynomial substitution, or not affine: a certified branch and bound
+    if nonnegative_is_certified(space):
         from .atom_nonnegative import nonnegative_elementary
 
         return nonnegative_elementary(defn, space)

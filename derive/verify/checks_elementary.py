@@ -638,7 +638,12 @@ def nonnegative(record: dict, defn: Definition):
             f": counterexample {decided['counterexample']}" if "counterexample" in decided else ""
         )
         diffs.append(f"printed nonnegative = {claimed}, derived {decided['nonnegative']}{extra}")
-    return _verdict(diffs, [f"b_i >= 0 on {defn.domain_text} for {where}: exact"])
+    how = (
+        "certified (arb ball branch and bound)"
+        if F.nonnegative_is_certified(space_of(boxed))
+        else "exact"
+    )
+    return _verdict(diffs, [f"b_i >= 0 on {defn.domain_text} for {where}: {how}"])
 
 
 def independence(record: dict, defn: Definition):

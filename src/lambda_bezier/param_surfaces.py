@@ -52,11 +52,22 @@ def _given(family: Any, lam: object, params: object, name: str) -> dict[str, obj
                 given[index] = lam
             if index not in given:
                 raise TypeError(f"the {family.name} direction needs {index}=[...] (a sequence)")
-            return given
+            return {k: _normalised(v) for k, v in given.items()}
         out: dict[str, object] = family.parameter_values(lam, params)
-        return out
+        return {k: _normalised(v) for k, v in out.items()}
     except TypeError as exc:
         raise TypeError(f"params_{name}: {exc}") from None
+
+
+def _normalised(v: object) -> object:
+    """An exact value (int, numpy integer) as the Fraction it is, so that the surface keeps
+    and writes it exactly; sequences element by element; anything else as given (checked
+    where it is used)."""
+    if isinstance(v, list | tuple):
+        return [_normalised(x) for x in v]
+    if val.is_exact_scalar(v):
+        return Fraction(int(v.numerator), int(v.denominator))
+    return v
 
 
 class ParamSurface(Surface):

@@ -56,7 +56,7 @@ def _given(family: Any, lam: object, params: object, name: str) -> dict[str, obj
         out: dict[str, object] = family.parameter_values(lam, params)
         return {k: _normalised(v) for k, v in out.items()}
     except TypeError as exc:
-        raise TypeError(f"params_{name}: {exc}") from None
+        raise TypeError(f"params_{name}: {str(exc).removeprefix('params: ')}") from None
 
 
 def _normalised(v: object) -> object:

@@ -299,6 +299,40 @@ def test_optimal_parameters_of_an_indexed_family():
         r["mu_u"]
 
 
+# ---------------------------------------------------------------------- joins
+@pytest.mark.parametrize("fam", [TRIG, TWO, QB, HYP])
+@pytest.mark.parametrize(("continuity", "rows"), [("C1", 2), ("G1", 2), ("C2", 1)])
+def test_join_surface_matches_cross_derivatives(fam, continuity, rows):
+    if fam is QB:
+        pu, pv, new = {"lam": [1, F(1, 2), -1]}, {"lam": [0, F(1, 3), 0]}, {"lam": [0, 0, 0]}
+    else:
+        pu = {k: F(i + 1, 4) for i, k in enumerate(fam.parameters)}
+        pv = {k: -F(i + 1, 3) for i, k in enumerate(fam.parameters)}
+        new = {k: 0 for k in fam.parameters}
+    a = fam.surface(NET, params_u=pu, params_v=pv)
+    alpha = F(1, 2) if continuity == "G1" else 1
+    rest = [[(5 + k, j, F(j, 3)) for j in range(4)] for k in range(rows)]
+    b = lb.join_surface(a, "u", continuity, 3, rest=rest, alpha=alpha, params=new)
+    assert type(b) is type(a)
+    assert b.parameters()[f"{fam.parameters[0]}_v"] == a.parameters()[f"{fam.parameters[0]}_v"]
+    hi = a.domain_u[1] if isinstance(a, AtomSurface) else 1.0
+    lo = b.domain_u[0] if isinstance(b, AtomSurface) else 0.0
+    vs = np.linspace(*(a.domain_v if isinstance(a, AtomSurface) else (0, 1)), 7)
+    for k in range(3 if continuity == "C2" else 2):
+        want = a.derivative(hi, vs, k, 0)
+        got = b.derivative(lo, vs, k, 0) * float(alpha) ** k
+        assert np.allclose(got, want, atol=1e-12), (k, got, want)
+    if isinstance(b, ParamSurface):  # exact in, exact out
+        assert all(isinstance(c, F) for row in b.control_net() for p in row for c in p)
+
+
+def test_join_surface_refuses_lam_for_parameters_by_name():
+    with pytest.raises(ValueError, match="params="):
+        lb.join_surface(
+            trig_surface(), "u", "C1", 3, F(1, 2), rest=[[(5, j, 0) for j in range(4)]] * 2
+        )
+
+
 # ---------------------------------------------------------------------- export
 @pytest.mark.parametrize(
     ("fam", "pu", "pv"),

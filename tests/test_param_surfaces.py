@@ -373,3 +373,25 @@ def test_step_export_read_back_by_occt(tmp_path):
     for u, v in ((0.1, 0.2), (1.0, 0.4), (0.7, 1.5)):
         p = surf.Value(float(s.s_of_t(0, u)), float(s.s_of_t(1, v)))
         assert np.allclose([p.X(), p.Y(), p.Z()], s.evaluate(u, v), atol=1e-12)
+
+
+@pytest.mark.parametrize("fam", [TRIG, HYP, MIXED])
+def test_mesh_deviation_bound_holds(fam):
+    params = {name: 0 for name in fam.parameters}
+    s = fam.surface(NET, params_u=params, params_v=params)
+    m = se.mesh(s, 1e-2)
+    assert m.deviation_bound <= 1e-2
+    (a, b), (c, d) = s.domain_u, s.domain_v
+    assert m.parameters[:, 0].min() == a and m.parameters[:, 0].max() == b
+    # the surface at the parameters of points inside the triangles, against the triangles
+    rng = np.random.default_rng(0)
+    bary = rng.dirichlet((1, 1, 1), size=len(m.faces))
+    pts = np.einsum("fk,fkd->fd", bary, m.vertices[m.faces])
+    par = np.einsum("fk,fkd->fd", bary, m.parameters[m.faces])
+    dev = np.linalg.norm(s.evaluate(par[:, 0], par[:, 1]) - pts, axis=1).max()
+    assert dev <= m.deviation_bound
+    # the bounds of the second derivatives hold at dense samples
+    muu, muv, mvv = s.derivative_bounds()
+    us, vs = np.linspace(a, b, 301), np.linspace(c, d, 301)
+    for (p, q), bound in zip(((2, 0), (1, 1), (0, 2)), (muu, muv, mvv)):
+        assert np.linalg.norm(s.evaluate_grid(us, vs, p, q), axis=-1).max() <= bound

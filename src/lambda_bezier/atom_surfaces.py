@@ -375,6 +375,37 @@ class AtomSurface(Surface):
         s = float(self.s_of_t(axis, float(tt[0])))
         return rat.split_u(s) if axis == 0 else rat.split_v(s)
 
+    def derivative_bounds(self, samples: int = 257) -> tuple[float, float, float]:
+        """(M_uu, M_uv, M_vv): bounds of |S_uu|, |S_uv|, |S_vv| over the domain (the mesh's
+        deviation bound). On a grid of `samples`² points of spacing (Δu, Δv), every point is
+        within Δu/2, Δv/2 of a node, so |S^(a,b)| <= max over the nodes + Δu/2 · sup
+        |S^(a+1,b)| + Δv/2 · sup |S^(a,b+1)|, the sups bounded crudely by Σ_ij B^a_i |P_ij|
+        B^b_j with B^k_i = Σ_atoms |coefficient| · sup |atom| >= |b_i^(k)| (sup |cos| = 1,
+        |τ^p| <= h^p, |cosh|, |sinh| <= cosh(m ω0 h) on the centred domain |τ| <= h)."""
+        crude = []
+        for probe in self._probes:
+            sh = probe.shape
+            lo, hi = probe.domain
+            half = 0.5 * (hi - lo)
+            sup = [1.0, *(half**k for k in range(1, sh.powers + 1))]
+            for j in range(1, sh.harmonics + 1):
+                wave = math.cosh(j * sh.omega0 * half) if sh.hyperbolic else 1.0
+                sup += [wave, wave]
+            weights = np.array(sup)
+            crude.append([np.abs(probe._coefficients(k)).T @ weights for k in range(4)])
+        size = np.linalg.norm(self.net, axis=-1)
+        (a0, a1), (b0, b1) = self.domain_u, self.domain_v
+        us, vs = np.linspace(a0, a1, samples), np.linspace(b0, b1, samples)
+        step_u, step_v = (a1 - a0) / (samples - 1), (b1 - b0) / (samples - 1)
+
+        def bound(a: int, b: int) -> float:
+            nodes = float(np.linalg.norm(self.evaluate_grid(us, vs, a, b), axis=-1).max())
+            up_u = float(crude[0][a + 1] @ size @ crude[1][b])
+            up_v = float(crude[0][a] @ size @ crude[1][b + 1])
+            return nodes + 0.5 * step_u * up_u + 0.5 * step_v * up_v
+
+        return bound(2, 0), bound(1, 1), bound(0, 2)
+
     # ------------------------------------------------------------------ global queries
     def _has_form(self) -> bool:
         return all(p.has_rational_form or p.data.SPACE == "hyperbolic" for p in self._probes)

@@ -150,24 +150,32 @@ def mesh(surf: Surface, tolerance: float) -> SurfaceMesh:
         raise ValueError(
             f"a triangle mesh needs a surface in 2D or 3D, got dimension {surf.dimension}"
         )
-    net = surf.to_bezier().net
-    muu, muv, mvv = (_hull_bound(_derivative_net(net, a, b)) for a, b in ((2, 0), (1, 1), (0, 2)))
+    (u0, u1), (v0, v1) = (0.0, 1.0), (0.0, 1.0)
+    if hasattr(surf, "derivative_bounds"):  # an AtomSurface: bounds from its atoms, its domain
+        muu, muv, mvv = surf.derivative_bounds()
+        (u0, u1), (v0, v1) = surf.domain_u, surf.domain_v  # type: ignore[attr-defined]
+    else:
+        net = surf.to_bezier().net
+        muu, muv, mvv = (
+            _hull_bound(_derivative_net(net, a, b)) for a, b in ((2, 0), (1, 1), (0, 2))
+        )
+    span_u, span_v = u1 - u0, v1 - v0
     if tol == 0 and (muu or muv or mvv):
         raise ValueError(
             "tolerance must be > 0 for a curved surface (only a flat one meshes exactly)"
         )
-    hu = math.sqrt(2 * tol / (3 * muu)) if muu else 1.0
-    hv = math.sqrt(2 * tol / (3 * mvv)) if mvv else 1.0
+    hu = math.sqrt(2 * tol / (3 * muu)) if muu else span_u
+    hv = math.sqrt(2 * tol / (3 * mvv)) if mvv else span_v
     if muv and muv * hu * hv > tol / 3:
         shrink = math.sqrt(tol / (3 * muv * hu * hv))
         hu, hv = hu * shrink, hv * shrink
-    if 1 / hu * (1 / hv) > 25_000_000:
+    if span_u / hu * (span_v / hv) > 25_000_000:
         raise ValueError(
-            f"tolerance {tol} needs about {1 / hu:.3g} x {1 / hv:.3g} cells (at most 25,000,000); "
-            "choose a larger tolerance"
+            f"tolerance {tol} needs about {span_u / hu:.3g} x {span_v / hv:.3g} cells (at most "
+            "25,000,000); choose a larger tolerance"
         )
-    nu, nv = max(1, math.ceil(1 / hu)), max(1, math.ceil(1 / hv))
-    us, vs = np.linspace(0, 1, nu + 1), np.linspace(0, 1, nv + 1)
+    nu, nv = max(1, math.ceil(span_u / hu)), max(1, math.ceil(span_v / hv))
+    us, vs = np.linspace(u0, u1, nu + 1), np.linspace(v0, v1, nv + 1)
     pts = surf.evaluate_grid(us, vs).reshape(-1, surf.dimension)
     if surf.dimension == 2:
         pts = np.column_stack([pts, np.zeros(len(pts))])
@@ -175,7 +183,7 @@ def mesh(surf: Surface, tolerance: float) -> SurfaceMesh:
     a, b = idx[:-1, :-1].ravel(), idx[1:, :-1].ravel()
     c, d = idx[1:, 1:].ravel(), idx[:-1, 1:].ravel()
     faces = np.concatenate([np.stack([a, b, c], 1), np.stack([a, c, d], 1)])
-    h1, h2 = 1 / nu, 1 / nv
+    h1, h2 = span_u / nu, span_v / nv
     bound = (muu * h1 * h1 + 2 * muv * h1 * h2 + mvv * h2 * h2) / 2
     params = np.stack(np.meshgrid(us, vs, indexing="ij"), axis=-1).reshape(-1, 2)
     return SurfaceMesh(pts, params, faces, bound)

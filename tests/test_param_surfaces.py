@@ -259,6 +259,31 @@ def test_trig_energy_is_exact_in_pi_and_matches_quadrature(energy):
     assert math.isclose(float(got), _gauss_legendre_energy(energy), rel_tol=1e-11)
 
 
+@pytest.mark.parametrize("fam", [HYP, MIXED, QB])
+@pytest.mark.parametrize("energy", ["membrane", "thin_plate"])
+def test_energy_of_other_families_matches_quadrature(fam, energy):
+    """The Gram route (the derived document's Gram matrices, or Bernstein tables) against a
+    Gauss-Legendre quadrature of the surface's own partial derivatives over its domain."""
+    if fam is QB:
+        s = fam.surface(NET, [1, F(1, 2), -1], [0, F(1, 3), 0])
+        (a, b), (c, d) = (0.0, 1.0), (0.0, 1.0)
+    else:
+        params = {k: F(i + 1, 5) for i, k in enumerate(fam.parameters)}
+        s = fam.surface(NET, params_u=params, params_v=params)
+        (a, b), (c, d) = s.domain_u, s.domain_v
+    x, w = np.polynomial.legendre.leggauss(30)
+    us, wu = a + (x + 1) * (b - a) / 2, w * (b - a) / 2
+    vs, wv = c + (x + 1) * (d - c) / 2, w * (d - c) / 2
+    terms = {"membrane": ((1, 0, 1), (0, 1, 1)), "thin_plate": ((2, 0, 1), (1, 1, 2), (0, 2, 1))}
+    want = sum(
+        k * float(np.einsum("i,j,ijc->", wu, wv, s.evaluate_grid(us, vs, p, q) ** 2))
+        for p, q, k in terms[energy]
+    )
+    got = lb.surface_energy(s, energy)
+    assert isinstance(got, F | lb.ConstantFraction)
+    assert math.isclose(float(got), want, rel_tol=1e-11)
+
+
 def test_several_parameter_energy_matches_the_kronecker_form():
     s = TWO.surface(NET, params_u=PU, params_v=PV)
     generic = lb.Surface(NET, None, None, family=(s._u_cls, s._v_cls))

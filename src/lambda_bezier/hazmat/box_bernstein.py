@@ -59,6 +59,17 @@ def value(power: np.ndarray, point: tuple[Fraction, ...]) -> Fraction:
     return Fraction(out.item() if isinstance(out, np.ndarray) else out)  # type: ignore[arg-type]
 
 
+def _float_value(power: np.ndarray, point: tuple[float, ...]) -> float:
+    """`value` in floats (a screen before the exact evaluation)."""
+    out = power
+    for x in reversed(point):
+        acc = out[..., -1]
+        for k in range(out.shape[-1] - 2, -1, -1):
+            acc = acc * x + out[..., k]
+        out = acc
+    return float(out)
+
+
 def samples(box: Box) -> list[tuple[Fraction, ...]]:
     """The corners of a box and its centre."""
     return [*itertools.product(*box), tuple((lo + hi) / 2 for lo, hi in box)]
@@ -209,12 +220,20 @@ def _minimum_by_halving(
         ints[idx] = int(Fraction(x) * den)
     best_v: Fraction | None = None
     best_p: tuple[Fraction, ...] | None = None
+    floats = np.array(power.tolist(), dtype=float)
+    best_f = np.inf
 
     def consider(p: tuple[Fraction, ...]) -> None:
-        nonlocal best_v, best_p
+        # a centre is evaluated exactly only when its float value could beat the best by
+        # more than rounding: most cannot, and the exact value dominated the cost
+        nonlocal best_v, best_p, best_f
+        if best_v is not None:
+            approx = _float_value(floats, tuple(float(x) for x in p))
+            if not approx < best_f - 1e-14 * max(1.0, abs(best_f)):
+                return
         v = value(power, p)
         if best_v is None or v < best_v:
-            best_v, best_p = v, p
+            best_v, best_p, best_f = v, p, float(v)
 
     for p in [*start, *samples(box)]:
         consider(p)

@@ -418,5 +418,19 @@ def test_mesh_deviation_bound_holds(fam):
     # the bounds of the second derivatives hold at dense samples
     muu, muv, mvv = s.derivative_bounds()
     us, vs = np.linspace(a, b, 301), np.linspace(c, d, 301)
-    for (p, q), bound in zip(((2, 0), (1, 1), (0, 2)), (muu, muv, mvv)):
+    for (p, q), bound in zip(((2, 0), (1, 1), (0, 2)), (muu, muv, mvv), strict=True):
         assert np.linalg.norm(s.evaluate_grid(us, vs, p, q), axis=-1).max() <= bound
+
+
+def test_plot_covers_the_whole_domain():
+    pytest.importorskip("matplotlib")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from lambda_bezier.surface_plot import plot_surface
+
+    s = trig_surface()
+    ax = plot_surface(s, curvature="mean", net=False)
+    _, hi = s.bounding_box()
+    top = float(ax.xy_dataLim.intervalx[1])  # the data the surface was drawn with
+    assert math.isclose(top, hi[0], abs_tol=1e-9)  # it reaches u = pi/2, not only u = 1

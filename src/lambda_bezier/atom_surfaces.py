@@ -21,7 +21,6 @@ box and closest point are numeric (a dense grid, then Newton), **not certified**
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 from fractions import Fraction
 from typing import Any, NoReturn
 
@@ -340,9 +339,8 @@ class AtomSurface(Surface):
         return self._probes[axis].t_of_s(s)
 
     def to_bezier(self) -> NoReturn:
-        space = self.family_u.space if self.family_u.space != "polynomial" else ""
         raise ValueError(
-            f"to_bezier: a surface of {space} families is not a polynomial surface; "
+            f"to_bezier: a surface of {self.family_u.space} families is not a polynomial surface; "
             "to_rational_bezier() gives its rational Bézier form where the families have one"
         )
 
@@ -515,16 +513,3 @@ class AtomSurface(Surface):
 
 def _no_polish(u: float, v: float) -> tuple[float, float]:
     return u, v
-
-
-def atom_surface(
-    net: NetLike,
-    family: Any,
-    params_u: Sequence[Any] | dict[str, object],
-    params_v: dict[str, object],
-    *,
-    check_range: bool = True,
-) -> AtomSurface:
-    """An AtomSurface of one family, or a pair (family_u, family_v)."""
-    fu, fv = family if isinstance(family, tuple) else (family, family)
-    return AtomSurface(net, fu, dict(params_u), fv, params_v, check_range=check_range)

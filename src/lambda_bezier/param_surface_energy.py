@@ -17,10 +17,14 @@ derived document's (``energy`` "n,k", k = 0..3, entries in ℚ[π, 1/π] or Laur
 For a given net the energy is therefore a polynomial in all the parameters of both
 directions whose coefficients lie in ℚ[c, 1/c] (c = π or e^W). It is quadratic in each
 direction's parameters for affine families and quartic jointly, never a quadratic in all of
-them, so its minimum over the parameter box is found by the certified Bernstein branch and
-bound of `_optimal_box` (c and 1/c as two more variables over rational enclosures): the
-point is exact, its energy exact (a Fraction or a ConstantFraction), and ``lower_bound`` a
-proven lower bound over the whole box within 1e-12 (relative) of it.
+them, so its minimum over the parameter box is found by the exact Bernstein branch and bound
+the curves' several-parameter optimum uses (`hazmat.box_bernstein.minimum`, with
+`_optimal_box`'s tolerance and budget), started from the best point of a float grid, with c
+replaced by a rational ĉ within 2^-64 of it and the difference bounded over the box
+(`_rational_power`): the point is exact, its energy exact (a Fraction or a
+ConstantFraction), and ``lower_bound`` a proven lower bound over the whole box within 1e-12
+(relative) of it. Never exact in closed form: the minimiser is in general irrational (a
+point of ℚ(π)-algebraic coordinates), so a rational point within the certificate is given.
 """
 
 from __future__ import annotations
@@ -69,14 +73,8 @@ def direction(family: Any, degree: int) -> Direction:
         return Direction(at, degree, d.names, d.ranges, None, family.index_name)
     if hasattr(family, "atom_data"):
         data = family.atom_data
-        constant = None
-        for (n, _k), grams in data.GRAM.items():
-            for mat in grams.values():
-                for row in mat:
-                    for g in row:
-                        constant = getattr(g, "constant", constant)
-            if n == degree and constant:
-                break
+        entries = (g for grams in data.GRAM.values() for m in grams.values() for r in m for g in r)
+        constant = next((g.constant for g in entries if hasattr(g, "constant")), None)
         return Direction(family, degree, data.NAMES, dict(data.RANGES), constant, None)
     if family.several is not None:
         sev = family.several

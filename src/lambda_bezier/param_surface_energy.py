@@ -65,11 +65,11 @@ class Direction:
         return _grams(self.family, self.degree, k)
 
 
-def direction(family: Any, degree: int) -> Direction:
+def _direction(family: Any, degree: int) -> Direction:
     """The Direction of a family from load_family at one degree."""
     if hasattr(family, "index_name"):
         at = family.at_degree(degree)
-        d = direction(at, degree)
+        d = _direction(at, degree)
         return Direction(at, degree, d.names, d.ranges, None, family.index_name)
     if hasattr(family, "atom_data"):
         data = family.atom_data
@@ -210,7 +210,7 @@ def surface_energy(surf: Any, energy: str = "thin_plate") -> Any:
         return surface_energies.surface_energy(surf, energy)
     energy = val.choice(energy, "energy", tuple(ENERGIES))
     m, n = surf.degrees
-    du, dv = direction(surf.family_u, m), direction(surf.family_v, n)
+    du, dv = _direction(surf.family_u, m), _direction(surf.family_v, n)
     rows, exact = _exact_rows(surf.net if surf._exact is None else surf._exact)
     poly, constant = energy_polynomial(rows, du, dv, energy)
     point = (*_flat(du, surf.params_u), *_flat(dv, surf.params_v))
@@ -306,7 +306,7 @@ class SurfaceParameterOptimum(Mapping[str, Any]):
         return len(self.parameters) + 4
 
 
-def param_families(family: object) -> bool:
+def _param_families(family: object) -> bool:
     """Whether `family` (or either of a pair) is a family this module's optimum is for:
     several or indexed parameters, or a trigonometric, hyperbolic or mixed basis."""
     pair = family if isinstance(family, tuple | list) else (family,)
@@ -340,7 +340,7 @@ def optimal_parameters(net: NetLike, energy: str, family: Any) -> SurfaceParamet
                 f"net, direction {name}: degree {deg}; {fam.name!r} has degrees "
                 f"{fam.degrees[0]}..{fam.degrees[-1]}"
             )
-    du, dv = direction(fu, m), direction(fv, n)
+    du, dv = _direction(fu, m), _direction(fv, n)
     rows, exact = _exact_rows(net)
     poly, constant = energy_polynomial(rows, du, dv, energy)
     count = len(du.names) + len(dv.names)

@@ -22,7 +22,7 @@ from .param_surfaces import family_surface
 from .surfaces import _exact_net
 
 
-def join_param_surface(
+def _join_param_surface(
     patch: Any,
     axis: int,
     continuity: str,

@@ -39,7 +39,7 @@ from . import _validate as val
 from .curves import BezierCurve, Curve, family_class
 from .hazmat.forms import elevation_matrix, hodograph_matrix
 from .joins import join
-from .param_surface_joins import join_param_surface
+from .param_surface_joins import _join_param_surface
 from .surfaces import BezierSurface, Surface, _exact_net
 
 SIDES = ("u", "v")
@@ -117,7 +117,7 @@ def join_surface(
                 "solving the curve joins with a constant alpha; give the new parameters as "
                 "params={...} (not lam, mu or conditions)"
             )
-        return join_param_surface(  # type: ignore[no-any-return]
+        return _join_param_surface(  # type: ignore[no-any-return]
             patch, axis, continuity, degree, rest, alpha, family, params, check_range
         )
     if params is not None:

@@ -250,6 +250,27 @@ def _call_optimal_parameters(fam):
             assert surface_energy(other, "membrane") >= best - 1e-12
 
 
+def _call_family_surface(fam):
+    from lambda_bezier.param_surfaces import family_surface
+    from lambda_bezier.surfaces import surface
+
+    s = family_surface(NET, fam, params_u={"sigma": Fraction(1, 2)}, params_v={"sigma": 0})
+    plain = surface(NET, Fraction(1, 2), 0, family=fam)
+    assert s.parameters() == {"sigma_u": Fraction(1, 2), "sigma_v": 0}
+    assert s.to_bezier().control_net() == plain.to_bezier().control_net()
+
+
+def _call_param_optimal_parameters(fam):
+    from lambda_bezier.param_surface_energy import optimal_parameters
+
+    r = optimal_parameters(NET, "membrane", fam)  # the certified branch and bound
+    one = lb.optimal_parameters(NET, "membrane", family=fam)  # exact: resultants, Sturm
+    assert math.isclose(float(r["sigma_u"]), one["lam_u_float"], abs_tol=1e-5)
+    assert math.isclose(float(r["sigma_v"]), one["lam_v_float"], abs_tol=1e-5)
+    assert r.lower_bound <= float(one["energy"]) <= r.energy
+    assert r.energy - r.lower_bound <= 1e-12 * max(1, r.energy)
+
+
 # parameters named `family` that name something else
 NOT_A_FAMILY = {"curves.data_curve_class": "the new class's family name, not one to look up"}
 
@@ -272,6 +293,8 @@ CALLS = {
     "surface_joins.join_surface": _call_join_surface,
     "surface_optimum.optimal_parameters": _call_optimal_parameters,
     "surface_optimum.optimal_parameters_batch": _call_optimal_parameters_batch,
+    "param_surfaces.family_surface": _call_family_surface,
+    "param_surface_energy.optimal_parameters": _call_param_optimal_parameters,
 }
 
 

@@ -237,7 +237,7 @@ def test_polynomial_only_functions_say_so(families):
         lb.energy_coefficients(PTS, 2, family=fam)
     with pytest.raises(ValueError, match="it has parameters lam, not one lam"):
         lb.CompositeCurve([fam.curve(PTS, lam=0)]).with_lambda(0, 1)
-    with pytest.raises(NotImplementedError, match="surfaces"):
-        fam.surface([[(0, 0, 0)] * 4] * 4, 0, 0)
+    # surfaces of such families exist now (atom_surfaces; tests/test_param_surfaces.py)
+    assert type(fam.surface([[(0, 0, 0)] * 4] * 4, 0, 0)).__name__ == "AtomSurface"
     with pytest.raises(ValueError, match="k must be a positive integer"):
         fam.curve(PTS, lam=0).energy(2.5)

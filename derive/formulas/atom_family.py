@@ -204,12 +204,13 @@ def symmetry(defn: Definition, space: Space) -> tuple[str, ...] | None:
 def energies(space: Space) -> dict[str, dict]:
     """{"n,k": {"constant": C, "gram": {"m1|m2": G}}} with G[i][j] = int_lo^hi of the k-th
     derivatives of the m1-part of b_i and the m2-part of b_j, exact; E_k = sum over every
-    ordered pair of monomials params^(m1 + m2) P^T G P."""
+    ordered pair of monomials params^(m1 + m2) P^T G P. k = 0 too: the Gram matrix of the
+    functions themselves, which the surface energies' Kronecker products need (issue #31)."""
     n = len(space.functions) - 1
     monos = A.monomials(space.functions)
     frame = space.frame
     out: dict[str, dict] = {}
-    for k in ENERGY_ORDERS:
+    for k in (0, *ENERGY_ORDERS):
         ders = {m: [A.diff(A.part(b, m), frame, k) for b in space.functions] for m in monos}
         gram: dict[tuple[A.Mono, A.Mono], list[list]] = {}
         for a, m1 in enumerate(monos):

@@ -316,7 +316,7 @@ class AtomData:
             if len(parts) != 2 or not all(p.isdigit() for p in parts):
                 raise FamilyFileError(f"{here}: not a key 'n,k'")
             n, k = int(parts[0]), int(parts[1])
-            if n not in self.DEGREES or not 1 <= k <= 10:
+            if n not in self.DEGREES or not 0 <= k <= 10:
                 raise FamilyFileError(f"{here}: no such degree or order")
             entry = _dict(entry, here)
             constant = entry.get("constant")

@@ -232,11 +232,15 @@ class AtomCurve:
         out = self._values(tt, order, not extrapolate).T
         return out[0] if scalar else out
 
-    def basis(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray:
-        """b_i(t) at the curve's parameter values: (n+1,) or (len(t), n+1)."""
+    def basis(self, t: ParamLike, order: int = 0, *, extrapolate: bool = False) -> np.ndarray:
+        """b_i^(order)(t) at the curve's parameter values: (n+1,) or (len(t), n+1) (the
+        tensor-product surfaces of atom_surfaces evaluate through it)."""
+        order = val.as_order(order)
         tt, scalar = self._parameters(t, extrapolate)
         sh = self.shape
         coeffs = sh.centring.T @ self._basis_float.T  # (A, n+1)
+        for _ in range(order):
+            coeffs = sh.derivative @ coeffs
         out = ak.evaluate(coeffs, tt - self._mid, sh.omega0, sh.powers, sh.harmonics, sh.hyperbolic)
         return out.T[0] if scalar else out.T
 

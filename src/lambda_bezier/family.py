@@ -298,16 +298,26 @@ class Family:
     def surface(
         self,
         net: NetLike,
-        lam_u: Fraction | float,
-        lam_v: Fraction | float,
+        lam_u: Fraction | float | None = None,
+        lam_v: Fraction | float | None = None,
         *,
+        params_u: dict[str, Any] | None = None,
+        params_v: dict[str, Any] | None = None,
         check_range: bool = True,
     ) -> Surface:
-        """The tensor-product surface Σ P_ij b_i(u; lam_u) b_j(v; lam_v) of this family on a
-        net of (m+1) x (n+1) control points (lambda_bezier.surfaces)."""
-        from .surfaces import Surface
+        """The tensor-product surface Σ P_ij b_i(u; x_u) b_j(v; x_v) of this family on a net
+        of (m+1) x (n+1) control points: ``lam_u, lam_v`` for one parameter, or each
+        direction's parameters by name, ``params_u={"lam": .., "mu": ..}``; an indexed family
+        one sequence per direction; an atom family u, v in its own domain (param_surfaces)."""
+        from .param_surfaces import family_surface
 
-        return Surface(net, lam_u, lam_v, family=self, check_range=check_range)
+        if type(self) is Family and self.several is None and params_u is params_v is None:
+            from .surfaces import Surface
+
+            return Surface(net, lam_u, lam_v, family=self, check_range=check_range)
+        return family_surface(
+            net, self, lam_u, lam_v, params_u=params_u, params_v=params_v, check_range=check_range
+        )
 
     def parameter_values(
         self,
@@ -549,6 +559,9 @@ class IndexedFamily:
             check_range=check_range,
         )
 
+    # one sequence of values per direction: lam_u=[...] or params_u={"lam": [...]}
+    surface = Family.surface
+
     def __repr__(self) -> str:
         lo, hi = self.degrees[0], self.degrees[-1]
         return f"IndexedFamily({self.name!r}, degrees {lo}..{hi}, {self.index_name}(i) per index)"
@@ -628,11 +641,6 @@ class AtomFamily(Family):
         values = self.parameter_values(value, params, named)
         exact = all(val.is_exact_scalar(v) for v in values.values())
         return self.atom_curve_class(self, points, self.exact_values(values, check_range), exact)
-
-    def surface(self, *args: object, **kwargs: object) -> Surface:
-        raise NotImplementedError(
-            f"surfaces of the {self.space} family {self.name!r} are not available yet"
-        )
 
     def from_bezier(self, *args: object, **kwargs: object) -> Curve:
         raise NotImplementedError(

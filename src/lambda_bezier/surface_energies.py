@@ -76,6 +76,20 @@ def _matmul(a: Any, b: Any) -> list[list[Fraction]]:
 
 
 @cache
+def hodograph_gram(big: int, k: int) -> list[list[Fraction]]:
+    """Hᵀ G H: ∫ p^(k) q^(k) over [0, 1] = aᵀ (Hᵀ G H) b for the degree-`big` Bernstein
+    coefficients a, b of p, q (H the hodograph matrices down k degrees); zero when k > big."""
+    if k > big:
+        return [[Fraction(0)] * (big + 1) for _ in range(big + 1)]
+    h: list[list[Fraction]] = [
+        [Fraction(int(r == c)) for c in range(big + 1)] for r in range(big + 1)
+    ]
+    for d in range(big, big - k, -1):
+        h = _matmul(hodograph_matrix(d), h)
+    return _matmul(_matmul(list(zip(*h, strict=True)), _gram(big - k)), h)
+
+
+@cache
 def direction_forms(cls: Any, degree: int, k: int) -> tuple[Matrix, ...]:
     """(A_0, A_1, …): ∫ |p^(k)|² = Dᵀ (Σ_a λ^a A_a) D summed over coordinates, for the
     family's degree-`degree` curve with control points D; exact, symmetric."""
@@ -84,12 +98,7 @@ def direction_forms(cls: Any, degree: int, k: int) -> tuple[Matrix, ...]:
     if k > big:
         zero = tuple(tuple(Fraction(0) for _ in range(degree + 1)) for _ in range(degree + 1))
         return (zero,)
-    h: list[list[Fraction]] = [
-        [Fraction(int(r == c)) for c in range(big + 1)] for r in range(big + 1)
-    ]
-    for d in range(big, big - k, -1):
-        h = _matmul(hodograph_matrix(d), h)
-    inner = _matmul(_matmul(list(zip(*h, strict=True)), _gram(big - k)), h)  # Hᵀ G H
+    inner = hodograph_gram(big, k)
     out: list[list[list[Fraction]]] = []
     for p, bp in enumerate(split):
         left = _matmul(bp, inner)
@@ -246,6 +255,11 @@ def surface_energy_matrices(
 
 def surface_energy(surf: Surface, energy: str = "thin_plate") -> Fraction | float:
     """The energy of a surface (exact for an exact surface)."""
+    if not hasattr(surf, "_u_cls"):  # an AtomSurface: param_surface_energy (lb.surface_energy)
+        raise TypeError(
+            "surf: the energy of a surface of trigonometric, hyperbolic or mixed families is "
+            "lambda_bezier.surface_energy (param_surface_energy.surface_energy)"
+        )
     mats = surface_energy_matrices(surf.degrees, energy, (surf._u_cls, surf._v_cls))
     poly = mats.polynomial(surf._exact if surf._exact is not None and surf.is_exact else surf.net)
     lu = Fraction(0) if surf.lam_u is None else surf.lam_u

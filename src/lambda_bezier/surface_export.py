@@ -49,10 +49,43 @@ def occt_bezier_surface(surf: Surface) -> Any:
     return Geom_BezierSurface(poles)
 
 
+def occt_rational_surface(rat: Any) -> Any:
+    """A RationalBezierSurface (atom_surfaces) as an OCCT rational Geom_BSplineSurface: one
+    span with clamped knots on [0, 1]², its weights kept (3D; 2D nets at z = 0)."""
+    from OCP.collections import Array1_double, Array1_int, Array2_double, Array2_gp_Pnt
+    from OCP.Geom import Geom_BSplineSurface
+    from OCP.gp import gp_Pnt
+
+    h = rat.homogeneous.net
+    rows, cols, dim = h.shape
+    if dim - 1 not in (2, 3):
+        raise ValueError(f"OCCT surfaces live in 3D: this surface has dimension {dim - 1}")
+    poles = Array2_gp_Pnt(1, rows, 1, cols)
+    weights = Array2_double(1, rows, 1, cols)
+    for i in range(rows):
+        for j in range(cols):
+            w = float(h[i, j, -1])
+            x, y, *z = (float(c) / w for c in h[i, j, :-1])
+            poles.SetValue(i + 1, j + 1, gp_Pnt(x, y, z[0] if z else 0.0))
+            weights.SetValue(i + 1, j + 1, w)
+
+    def knots(degree: int) -> tuple[Any, Any]:
+        values, mults = Array1_double(1, 2), Array1_int(1, 2)
+        for k, v in enumerate((0.0, 1.0), start=1):
+            values.SetValue(k, v)
+            mults.SetValue(k, degree + 1)
+        return values, mults
+
+    (uk, um), (vk, vm) = knots(rows - 1), knots(cols - 1)
+    return Geom_BSplineSurface(poles, weights, uk, vk, um, vm, rows - 1, cols - 1)
+
+
 def to_step_surface(surf: Surface, path: str | Path) -> Path:
     """Write the surface as one face on a B-spline surface (B_SPLINE_SURFACE_WITH_KNOTS, its
     Bézier form with clamped knots) to a STEP file through OCCT, every number with 17
-    significant digits (the doubles read back unchanged)."""
+    significant digits (the doubles read back unchanged). A surface of trigonometric or
+    hyperbolic families is written as its rational form (a rational B-spline surface, one
+    span, whose parameters are the rational form's s_u, s_v ∈ [0, 1], not the families' t)."""
     _optional("OCP", "cadquery-ocp-novtk (OCP)", "to_step_surface")
     from OCP import Message
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
@@ -63,7 +96,10 @@ def to_step_surface(surf: Surface, path: str | Path) -> Path:
     if not isinstance(surf, Surface):
         raise TypeError(f"surf must be a lambda_bezier surface, got {type(surf).__name__}")
     _quiet_occt(Message)
-    spline = GeomConvert.SurfaceToBSplineSurface_s(occt_bezier_surface(surf))
+    if hasattr(surf, "to_rational_bezier"):  # an AtomSurface: its rational form, in (s_u, s_v)
+        spline = occt_rational_surface(surf.to_rational_bezier())
+    else:
+        spline = GeomConvert.SurfaceToBSplineSurface_s(occt_bezier_surface(surf))
     face = BRepBuilderAPI_MakeFace(spline, 1e-9).Face()
     writer = STEPControl_Writer()
     done = IFSelect_ReturnStatus.IFSelect_RetDone
@@ -114,24 +150,32 @@ def mesh(surf: Surface, tolerance: float) -> SurfaceMesh:
         raise ValueError(
             f"a triangle mesh needs a surface in 2D or 3D, got dimension {surf.dimension}"
         )
-    net = surf.to_bezier().net
-    muu, muv, mvv = (_hull_bound(_derivative_net(net, a, b)) for a, b in ((2, 0), (1, 1), (0, 2)))
+    (u0, u1), (v0, v1) = (0.0, 1.0), (0.0, 1.0)
+    if hasattr(surf, "derivative_bounds"):  # an AtomSurface: bounds from its atoms, its domain
+        muu, muv, mvv = surf.derivative_bounds()
+        (u0, u1), (v0, v1) = surf.domain_u, surf.domain_v  # type: ignore[attr-defined]
+    else:
+        net = surf.to_bezier().net
+        muu, muv, mvv = (
+            _hull_bound(_derivative_net(net, a, b)) for a, b in ((2, 0), (1, 1), (0, 2))
+        )
+    span_u, span_v = u1 - u0, v1 - v0
     if tol == 0 and (muu or muv or mvv):
         raise ValueError(
             "tolerance must be > 0 for a curved surface (only a flat one meshes exactly)"
         )
-    hu = math.sqrt(2 * tol / (3 * muu)) if muu else 1.0
-    hv = math.sqrt(2 * tol / (3 * mvv)) if mvv else 1.0
+    hu = math.sqrt(2 * tol / (3 * muu)) if muu else span_u
+    hv = math.sqrt(2 * tol / (3 * mvv)) if mvv else span_v
     if muv and muv * hu * hv > tol / 3:
         shrink = math.sqrt(tol / (3 * muv * hu * hv))
         hu, hv = hu * shrink, hv * shrink
-    if 1 / hu * (1 / hv) > 25_000_000:
+    if span_u / hu * (span_v / hv) > 25_000_000:
         raise ValueError(
-            f"tolerance {tol} needs about {1 / hu:.3g} x {1 / hv:.3g} cells (at most 25,000,000); "
-            "choose a larger tolerance"
+            f"tolerance {tol} needs about {span_u / hu:.3g} x {span_v / hv:.3g} cells (at most "
+            "25,000,000); choose a larger tolerance"
         )
-    nu, nv = max(1, math.ceil(1 / hu)), max(1, math.ceil(1 / hv))
-    us, vs = np.linspace(0, 1, nu + 1), np.linspace(0, 1, nv + 1)
+    nu, nv = max(1, math.ceil(span_u / hu)), max(1, math.ceil(span_v / hv))
+    us, vs = np.linspace(u0, u1, nu + 1), np.linspace(v0, v1, nv + 1)
     pts = surf.evaluate_grid(us, vs).reshape(-1, surf.dimension)
     if surf.dimension == 2:
         pts = np.column_stack([pts, np.zeros(len(pts))])
@@ -139,7 +183,7 @@ def mesh(surf: Surface, tolerance: float) -> SurfaceMesh:
     a, b = idx[:-1, :-1].ravel(), idx[1:, :-1].ravel()
     c, d = idx[1:, 1:].ravel(), idx[:-1, 1:].ravel()
     faces = np.concatenate([np.stack([a, b, c], 1), np.stack([a, c, d], 1)])
-    h1, h2 = 1 / nu, 1 / nv
+    h1, h2 = span_u / nu, span_v / nv
     bound = (muu * h1 * h1 + 2 * muv * h1 * h2 + mvv * h2 * h2) / 2
     params = np.stack(np.meshgrid(us, vs, indexing="ij"), axis=-1).reshape(-1, 2)
     return SurfaceMesh(pts, params, faces, bound)
@@ -165,6 +209,8 @@ def surface_to_json(surf: Surface, *, indent: int | None = 2) -> str:
     surface_from_json can check the family it is given against it."""
     if not isinstance(surf, Surface):
         raise TypeError(f"surf must be a lambda_bezier surface, got {type(surf).__name__}")
+    if hasattr(surf, "family_u"):  # several, indexed or atom families: parameters by name
+        return _param_surface_json(surf, indent)
     doc: dict[str, Any] = {
         "lambda_bezier": FORMAT_VERSION,
         "kind": "surface",
@@ -176,6 +222,57 @@ def surface_to_json(surf: Surface, *, indent: int | None = 2) -> str:
     if definitions:
         doc["definitions"] = definitions
     return json.dumps(doc, indent=indent, ensure_ascii=False)
+
+
+def _param_surface_json(surf: Any, indent: int | None) -> str:
+    """A surface of param_surfaces: ``"parameters": [{name: value}, {name: value}]`` (an
+    indexed family's as {name: [value per index]}) instead of ``"lambda"``."""
+
+    def values(given: dict[str, Any]) -> dict[str, Any]:
+        return {
+            k: [_number_out(x) for x in v] if isinstance(v, list | tuple) else _number_out(v)
+            for k, v in given.items()
+        }
+
+    doc: dict[str, Any] = {
+        "lambda_bezier": FORMAT_VERSION,
+        "kind": "surface",
+        "family": [surf.family_u.name, surf.family_v.name],
+        "parameters": [values(surf.params_u), values(surf.params_v)],
+        "net": [[[_number_out(c) for c in p] for p in row] for row in surf.control_net()],
+    }
+    definitions = class_definitions([surf.family_u.curve_class, surf.family_v.curve_class])
+    if definitions:
+        doc["definitions"] = definitions
+    return json.dumps(doc, indent=indent, ensure_ascii=False)
+
+
+def _param_surface_from(
+    doc: dict[str, Any], classes: dict[str, Any], rows: Any, check_range: bool
+) -> Surface:
+    from .param_surfaces import family_surface
+
+    params = doc["parameters"]
+    if not (
+        isinstance(params, list) and len(params) == 2 and all(isinstance(p, dict) for p in params)
+    ):
+        raise ValueError("surface.parameters must be a pair of tables {name: value}")
+    fams = []
+    for name in doc["family"]:
+        fam = getattr(classes[name], "family_object", None)
+        if fam is None:
+            raise ValueError(f"surface.family: {name!r} takes no parameters by name")
+        fams.append(getattr(fam, "indexed_family", fam))
+
+    def value(v: object, where: str) -> Any:
+        if isinstance(v, list):
+            return [_number_in(x, where) for x in v]
+        return _number_in(v, where)
+
+    given = [{k: value(v, f"surface.parameters.{k}") for k, v in p.items()} for p in params]
+    return family_surface(
+        rows, tuple(fams), params_u=given[0], params_v=given[1], check_range=check_range
+    )
 
 
 def surface_from_json(text: str, *, family: object = None, check_range: bool = True) -> Surface:
@@ -211,7 +308,7 @@ def surface_from_json(text: str, *, family: object = None, check_range: bool = T
             f"surface.family must be a pair of names from {sorted(FAMILIES)} or families "
             f"passed as family=, got {fams!r}"
         )
-    if not (isinstance(lams, list) and len(lams) == 2):
+    if "parameters" not in doc and not (isinstance(lams, list) and len(lams) == 2):
         raise ValueError("surface.lambda must be a pair (null for a Bézier direction)")
     if not (
         isinstance(net, list)
@@ -225,7 +322,9 @@ def surface_from_json(text: str, *, family: object = None, check_range: bool = T
     ]
     if not all(isinstance(c, Fraction) for r in rows for p in r for c in p):
         rows = [[[float(c) for c in p] for p in r] for r in rows]
-    lu, lv = (None if x is None else _number_in(x, "surface.lambda") for x in lams)
+    if "parameters" in doc:
+        return _param_surface_from(doc, classes, rows, check_range)
+    lu, lv = (None if x is None else _number_in(x, "surface.lambda") for x in lams)  # type: ignore[union-attr]
     return Surface(
         rows, lu, lv, family=(classes[fams[0]], classes[fams[1]]), check_range=check_range
     )
@@ -241,6 +340,7 @@ __all__ = [
     "SurfaceMesh",
     "mesh",
     "occt_bezier_surface",
+    "occt_rational_surface",
     "surface_from_json",
     "surface_to_json",
     "to_mesh_file",

@@ -39,6 +39,7 @@ from . import _validate as val
 from .curves import BezierCurve, Curve, family_class
 from .hazmat.forms import elevation_matrix, hodograph_matrix
 from .joins import join
+from .param_surface_joins import _join_param_surface
 from .surfaces import BezierSurface, Surface, _exact_net
 
 SIDES = ("u", "v")
@@ -70,6 +71,7 @@ def join_surface(
     family: object = None,
     check_range: bool = True,
     conditions: str = "solve",
+    params: dict[str, Any] | None = None,
 ) -> Surface:
     """The next patch across `patch`'s boundary u = 1 (side "u") or v = 1 (side "v").
 
@@ -83,6 +85,10 @@ def join_surface(
     a factor varying along the boundary (positive on [0, 1]). The new patch is then classical
     Bézier along the boundary, of one degree more than `patch`'s Bézier form there (N + 1),
     and `rest` has N + 2 points along the boundary.
+
+    A patch of several-parameter, indexed or atom families (param_surfaces) takes the new
+    patch's parameters by name, ``params={...}`` (default: the patch's own), and its
+    boundary is the end of its domain (param_surface_joins).
 
     ``conditions="derived"`` takes the conditions from the derived document of a family
     defined by data (one of the two across the boundary; its ``surface_joins``) instead of
@@ -104,6 +110,18 @@ def join_surface(
     if not isinstance(patch, Surface):
         raise TypeError(f"patch must be a lambda_bezier surface, got {type(patch).__name__}")
     axis = 0 if side == "u" else 1
+    if hasattr(patch, "family_u"):  # ParamSurface, AtomSurface: parameters by name
+        if mu is not None or conditions != "solve" or lam is not None:
+            raise ValueError(
+                "patch: a surface of several-parameter, indexed or atom families is joined by "
+                "solving the curve joins with a constant alpha; give the new parameters as "
+                "params={...} (not lam, mu or conditions)"
+            )
+        return _join_param_surface(  # type: ignore[no-any-return]
+            patch, axis, continuity, degree, rest, alpha, family, params, check_range
+        )
+    if params is not None:
+        raise ValueError("params is for patches of several-parameter or atom families")
     if isinstance(alpha, tuple | list):
         raise ValueError(
             "alpha is one constant (A_u(1, v) = alpha B_u(0, v)); a factor varying along the "

@@ -42,6 +42,8 @@ from .energy import optimal_parameters as curve_optimal_parameters
 from .hazmat import surface_kernels as ker
 from .hazmat.surface_certify import certified_minimum
 from .hazmat.surface_kernels import OPTIMUM_STEP_TOLERANCE
+from .param_surface_energy import _param_families
+from .param_surface_energy import optimal_parameters as param_optimal_parameters
 from .parameter_optimum import OptimalParameters as CurveOptimalParameters
 from .surface_energies import (
     ENERGIES,
@@ -405,6 +407,8 @@ def optimal_parameters(
             raise TypeError("give the curve energy's order once: as energy or as k")
         return curve_optimal_parameters(net, cast(int, order), family)  # type: ignore[arg-type]
     energy = val.choice(energy, "energy", tuple(ENERGIES))
+    if _param_families(family):  # several/indexed parameters, trigonometric...: certified
+        return param_optimal_parameters(net, energy, family)  # type: ignore[return-value]
     u_cls, v_cls = _as_family_pair(family)
     u_box, v_box = _box(u_cls), _box(v_cls)
     if u_box is None and v_box is None:

@@ -54,11 +54,13 @@ def plot_surface(
         raise ValueError(f"samples must be at least 2, got {samples}")
     if ax is None:
         ax = plt.figure().add_subplot(projection="3d")
-    t = np.linspace(0.0, 1.0, samples)
-    pts = surf.evaluate_grid(t, t)
+    # an AtomSurface (atom_surfaces) lives on its families' domains, every other on [0, 1]²
+    (u0, u1), (v0, v1) = getattr(surf, "domain_u", (0.0, 1.0)), getattr(surf, "domain_v", (0, 1))
+    tu, tv = np.linspace(u0, u1, samples), np.linspace(v0, v1, samples)
+    pts = surf.evaluate_grid(tu, tv)
     kwargs: dict[str, Any] = {"linewidth": 0, "antialiased": True, "alpha": 0.9}
     if curvature != "none":
-        uu, vv = np.meshgrid(t, t, indexing="ij")
+        uu, vv = np.meshgrid(tu, tv, indexing="ij")
         gauss, mean = surf.curvatures(uu.ravel(), vv.ravel())
         values = (gauss if curvature == "gaussian" else mean).reshape(samples, samples)
         # the colour of a quad is that of its first corner: centre the map on zero

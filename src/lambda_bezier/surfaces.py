@@ -303,16 +303,24 @@ class Surface:
         return out
 
     # ------------------------------------------------------------------ differential geometry
+    def _pair(self, u: ParamLike, v: ParamLike) -> tuple[np.ndarray, np.ndarray, bool]:
+        """Paired parameter arrays on the surface's domain (atom_surfaces: the families' t)."""
+        return _parameter_pair(u, v, False)
+
+    def _partial(self, uu: np.ndarray, vv: np.ndarray, du: int, dv: int) -> np.ndarray:
+        """(k, d): ∂^(du+dv) S at paired parameter arrays (no checks; the caller's)."""
+        out: np.ndarray = ker.evaluate_points(self._derivative_coefficients(du, dv), uu, vv)
+        return out
+
     def _frame(self, u: ParamLike, v: ParamLike) -> tuple[np.ndarray, ...]:
         if self.dimension != 3:
             raise ValueError(
                 f"normals and curvatures are defined here for surfaces in 3D, this one has "
                 f"dimension {self.dimension}"
             )
-        uu, vv, scalar = _parameter_pair(u, v, False)
+        uu, vv, scalar = self._pair(u, v)
         with val.overflow_allowed():
-            su = ker.evaluate_points(self._derivative_coefficients(1, 0), uu, vv)
-            sv = ker.evaluate_points(self._derivative_coefficients(0, 1), uu, vv)
+            su, sv = self._partial(uu, vv, 1, 0), self._partial(uu, vv, 0, 1)
         val.finite_result(su, "S_u")
         val.finite_result(sv, "S_v")
         # one scale per point for every derivative (the largest first-derivative entry): the
@@ -343,10 +351,7 @@ class Surface:
         ValueError where the normal is undefined."""
         uu, vv, su, sv, n, scalar, c = self._frame(u, v)
         with val.overflow_allowed():
-            second = [
-                ker.evaluate_points(self._derivative_coefficients(a, b), uu, vv) / c
-                for a, b in ((2, 0), (1, 1), (0, 2))
-            ]
+            second = [self._partial(uu, vv, a, b) / c for a, b in ((2, 0), (1, 1), (0, 2))]
         suu, suv, svv = (val.finite_result(x, "a second derivative") for x in second)
         # every derivative divided by the same c: K = K_scaled / c², H = H_scaled / c
         e, f, g = (su * su).sum(-1), (su * sv).sum(-1), (sv * sv).sum(-1)

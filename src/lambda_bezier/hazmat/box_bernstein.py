@@ -15,6 +15,7 @@ by lambda_bezier.energy (the certified global minimum of E_k over the box).
 from __future__ import annotations
 
 import itertools
+import math
 from fractions import Fraction
 from math import comb
 from typing import Any
@@ -56,6 +57,17 @@ def value(power: np.ndarray, point: tuple[Fraction, ...]) -> Fraction:
             acc = acc * x + arr[..., k]
         out = acc
     return Fraction(out.item() if isinstance(out, np.ndarray) else out)  # type: ignore[arg-type]
+
+
+def _float_value(power: np.ndarray, point: tuple[float, ...]) -> float:
+    """`value` in floats (a screen before the exact evaluation)."""
+    out = power
+    for x in reversed(point):
+        acc = out[..., -1]
+        for k in range(out.shape[-1] - 2, -1, -1):
+            acc = acc * x + out[..., k]
+        out = acc
+    return float(out)
 
 
 def samples(box: Box) -> list[tuple[Fraction, ...]]:
@@ -118,12 +130,27 @@ def zero_search(power: np.ndarray, box: Box, budget: int) -> dict[str, Any]:
     return {"zero": False} if not boxes else {"zero": None, "boxes": budget}
 
 
-def minimum(power: np.ndarray, box: Box, tolerance: Fraction, budget: int) -> dict[str, Any]:
+def minimum(
+    power: np.ndarray,
+    box: Box,
+    tolerance: Fraction,
+    budget: int,
+    *,
+    start: list[tuple[Fraction, ...]] | None = None,
+) -> dict[str, Any]:
     """The global minimum of the polynomial over the closed box, certified: {"point",
     "value", "lower"} with value - lower <= tolerance * max(1, |value|), value the exact
     polynomial value at the exact point and lower a proven lower bound over the whole box
     (the least Bernstein coefficient over the sub-boxes still open). "certified" False when
-    the budget ran out first (lower is still a proven bound)."""
+    the budget ran out first (lower is still a proven bound).
+
+    Every box's corners and centre are tried as candidates. With `start` (candidate points
+    found otherwise, e.g. by a float search) only those and each box's centre are, and a
+    box's coefficients come from its parent's by integer de Casteljau halving
+    (`_minimum_by_halving`): the 2^J corners and the Bernstein change of basis from the
+    power form cost far more when J is 4 or more (surface energies)."""
+    if start is not None:
+        return _minimum_by_halving(power, box, tolerance, budget, start)
     best_v: Fraction | None = None
     best_p: tuple[Fraction, ...] | None = None
 
@@ -154,3 +181,90 @@ def minimum(power: np.ndarray, box: Box, tolerance: Fraction, budget: int) -> di
             return {"point": best_p, "value": best_v, "lower": best_v, "certified": True}
     open_boxes.sort(key=lambda item: item[0])
     return {"point": best_p, "value": best_v, "lower": open_boxes[0][0], "certified": False}
+
+
+def _halve(coeffs: np.ndarray, axis: int) -> tuple[np.ndarray, np.ndarray]:
+    """The integer Bernstein coefficients of the two halves along `axis`, both times 2^n
+    (n the degree there): left_k = 2^(n-k) Σ_j C(k, j) c_j, right_k = 2^k Σ_j C(n-k, j)
+    c_(k+j); no division, so Python integers stay exact and fast."""
+    c = np.moveaxis(coeffs, axis, 0)
+    n = c.shape[0] - 1
+    left = np.empty_like(c)
+    right = np.empty_like(c)
+    for k in range(n + 1):
+        acc_l = sum((comb(k, j) * c[j] for j in range(k + 1)), np.zeros_like(c[0]))
+        acc_r = sum((comb(n - k, j) * c[k + j] for j in range(n - k + 1)), np.zeros_like(c[0]))
+        left[k] = acc_l * 2 ** (n - k)
+        right[k] = acc_r * 2**k
+    return np.moveaxis(left, 0, axis), np.moveaxis(right, 0, axis)
+
+
+def _minimum_by_halving(
+    power: np.ndarray,
+    box: Box,
+    tolerance: Fraction,
+    budget: int,
+    start: list[tuple[Fraction, ...]],
+) -> dict[str, Any]:
+    """`minimum` from candidate points: the Bernstein coefficients over the whole box once,
+    as integers over one denominator, then each box's from its parent's (`_halve`); a box's
+    bound is its least coefficient over denominator · 2^s."""
+    import heapq
+
+    first = bernstein(power, box)
+    den = 1
+    for x in first.flat:
+        den = den * Fraction(x).denominator // math.gcd(den, Fraction(x).denominator)
+    ints = np.empty(first.shape, dtype=object)
+    for idx, x in np.ndenumerate(first):
+        ints[idx] = int(Fraction(x) * den)
+    best_v: Fraction | None = None
+    best_p: tuple[Fraction, ...] | None = None
+    floats = np.array(power.tolist(), dtype=float)
+    best_f = np.inf
+
+    def consider(p: tuple[Fraction, ...]) -> None:
+        # a centre is evaluated exactly only when its float value could beat the best by
+        # more than rounding: most cannot, and the exact value dominated the cost
+        nonlocal best_v, best_p, best_f
+        if best_v is not None:
+            approx = _float_value(floats, tuple(float(x) for x in p))
+            if not approx < best_f - 1e-14 * max(1.0, abs(best_f)):
+                return
+        v = value(power, p)
+        if best_v is None or v < best_v:
+            best_v, best_p, best_f = v, p, float(v)
+
+    for p in [*start, *samples(box)]:
+        consider(p)
+    tie = itertools.count()
+    heap = [(Fraction(min(ints.flat), den), next(tie), box, ints, 0)]
+    floor: Fraction | None = None  # the least bound of the boxes dropped as within tolerance
+    for _ in range(budget):
+        assert best_v is not None
+        allowed = tolerance * max(Fraction(1), abs(best_v))
+        lower = heap[0][0] if heap else best_v
+        if floor is not None:
+            lower = min(lower, floor)
+        if best_v - lower <= allowed:
+            return {"point": best_p, "value": best_v, "lower": lower, "certified": True}
+        bound, _, current, coeffs, shift = heapq.heappop(heap)
+        if bound > best_v - allowed:
+            floor = bound if floor is None else min(floor, bound)
+            continue
+        axis = max(range(len(current)), key=lambda j: (current[j][1] - current[j][0], -j))
+        lo, hi = current[axis]
+        mid = (lo + hi) / 2
+        halves = _halve(coeffs, axis)
+        step = shift + coeffs.shape[axis] - 1
+        for (a, b), part in zip(((lo, mid), (mid, hi)), halves, strict=True):
+            sub = list(current)
+            sub[axis] = (a, b)
+            consider(tuple((x + y) / 2 for x, y in sub))
+            lb = Fraction(min(part.flat), den * 2**step)
+            heapq.heappush(heap, (lb, next(tie), sub, part, step))
+    assert best_v is not None
+    lower = heap[0][0] if heap else best_v
+    if floor is not None:
+        lower = min(lower, floor)
+    return {"point": best_p, "value": best_v, "lower": lower, "certified": False}

@@ -282,6 +282,7 @@ def minimise_scalar_net(
     polish: Callable[[float, float], tuple[float, float]],
     tol: float | Callable[[float], float],
     max_patches: int = 4_000,
+    denominator: np.ndarray | None = None,
 ) -> tuple[float, float, float, float]:
     """The global minimum over the unit square of a scalar Bézier polynomial f given by its net
     (M+1, N+1), by branch and bound: a patch's lower bound is the least of its net (the
@@ -296,8 +297,25 @@ def minimise_scalar_net(
     attained along a curve (a query point on the axis of a surface of revolution, a level set
     of a scalar field): the net's bound is only O(h²) below the minimum on a patch of size h,
     so every patch along that curve would have to shrink to about sqrt(tol) first.
+
+    With a `denominator` net (the same shape, every entry > 0) f is the rational function
+    net / denominator: a patch's bound is then the least ratio of their entries (f is a
+    weighted mean of those ratios with positive weights), as for rational Bézier surfaces.
     """
     gap = tol if callable(tol) else (lambda _best: float(tol))
+    if denominator is not None:
+        net = np.stack([net, denominator], axis=-1)
+
+    def bound(patch: np.ndarray) -> float:
+        if denominator is None:
+            return float(patch.min())
+        return float((patch[..., 0] / patch[..., 1]).min())
+
+    def split(patch: np.ndarray) -> np.ndarray:
+        if denominator is None:
+            return quarters(patch)
+        return np.stack([quarters(patch[..., 0]), quarters(patch[..., 1])], axis=-1)
+
     best_u, best_v, best = 0.0, 0.0, np.inf
     for u, v in ((0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0), (0.5, 0.5)):
         cand = _try(u, v, value, polish)
@@ -308,7 +326,7 @@ def minimise_scalar_net(
     floor = np.inf
     tie = itertools.count()
     heap: list[tuple[float, int, float, float, float, float, np.ndarray]] = [
-        (float(net.min()), next(tie), 0.0, 1.0, 0.0, 1.0, net)
+        (bound(net), next(tie), 0.0, 1.0, 0.0, 1.0, net)
     ]
     splits = 0
     while heap:
@@ -334,11 +352,11 @@ def minimise_scalar_net(
         k = int(np.argmin(corners))
         if corners[k] < best:
             best_u, best_v, best = float(gu[k]), float(gv[k]), float(corners[k])
-        children = quarters(patch)
+        children = split(patch)
         for a, (a0, a1) in enumerate(((u0, um), (um, u1))):
             for b, (b0, b1) in enumerate(((v0, vm), (vm, v1))):
                 piece = children[a, b]
-                lo = float(piece.min())
+                lo = bound(piece)
                 if lo <= best - gap(best):
                     heapq.heappush(heap, (lo, next(tie), a0, a1, b0, b1, piece))
                 else:

@@ -1,0 +1,380 @@
+r"""Surface energies and energy-optimal parameters of surfaces of several-parameter, indexed
+and trigonometric/hyperbolic/mixed families (param_surfaces, atom_surfaces).
+
+Each direction's curve Gram matrices per pair of parameter monomials,
+G^k_(a,b)[i][l] = ∫ (b_i^(a))^(k) (b_l^(b))^(k) over the family's domain (b^(a) the part of
+the basis at the monomial x^a), give the energy's quadratic form as Kronecker products, as
+for one-parameter families (surface_energies):
+
+    ∫∫ |∂_u^p ∂_v^q S|² = Σ_(a,b) Σ_(c,d) x_u^(a+b) x_v^(c+d) Σ_ijkl G^p_u,(a,b)[i][k]
+                           G^q_v,(c,d)[j][l] P_ij · P_kl.
+
+The membrane energy is the (1, 0) and (0, 1) terms, the thin-plate energy (2, 0), 2·(1, 1)
+and (0, 2). A polynomial family's Gram matrices are computed here, exactly, from its
+Bernstein tables (Bᵀ Hᵀ G H B, surface_energies.hodograph_gram); an atom family's are the
+derived document's (``energy`` "n,k", k = 0..3, entries in ℚ[π, 1/π] or Laurent in e^W).
+
+For a given net the energy is therefore a polynomial in all the parameters of both
+directions whose coefficients lie in ℚ[c, 1/c] (c = π or e^W). It is quadratic in each
+direction's parameters for affine families and quartic jointly, never a quadratic in all of
+them, so its minimum over the parameter box is found by the exact Bernstein branch and bound
+the curves' several-parameter optimum uses (`hazmat.box_bernstein.minimum`, with
+`_optimal_box`'s tolerance and budget), started from the best point of a float grid, with c
+replaced by a rational ĉ within 2^-64 of it and the difference bounded over the box
+(`_rational_power`): the point is exact, its energy exact (a Fraction or a
+ConstantFraction), and ``lower_bound`` a proven lower bound over the whole box within 1e-12
+(relative) of it. Never exact in closed form: the minimiser is in general irrational (a
+point of ℚ(π)-algebraic coordinates), so a rational point within the certificate is given.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass
+from fractions import Fraction
+from functools import cache
+from typing import Any
+
+import numpy as np
+
+from . import _validate as val
+from . import surface_energies
+from ._optimal_box import BUDGET, CONSTANT_BITS, TOLERANCE, _laurent
+from .hazmat import box_bernstein
+from .surface_energies import ENERGIES, _matmul, hodograph_gram
+from .surfaces import NetLike, _as_net, _exact_net
+
+Laurent = dict[int, Fraction]
+Mono = tuple[int, ...]
+
+
+# ---------------------------------------------------------------------- one direction
+@dataclass(frozen=True, eq=False)
+class Direction:
+    """One direction of a surface: the family at one degree, its parameter names (in the
+    result: ``name_u``), their boxes, and its Gram matrices per monomial pair and order."""
+
+    family: Any
+    degree: int
+    names: tuple[str, ...]
+    ranges: dict[str, tuple[Fraction, Fraction, bool, bool, str]]
+    constant: str | None
+    indexed: str | None  # the indexed family's own name: its values come back as one tuple
+
+    def grams(self, k: int) -> dict[tuple[Mono, Mono], tuple[tuple[Laurent, ...], ...]]:
+        return _grams(self.family, self.degree, k)
+
+
+def _direction(family: Any, degree: int) -> Direction:
+    """The Direction of a family from load_family at one degree."""
+    if hasattr(family, "index_name"):
+        at = family.at_degree(degree)
+        d = _direction(at, degree)
+        return Direction(at, degree, d.names, d.ranges, None, family.index_name)
+    if hasattr(family, "atom_data"):
+        data = family.atom_data
+        entries = (g for grams in data.GRAM.values() for m in grams.values() for r in m for g in r)
+        constant = next((g.constant for g in entries if hasattr(g, "constant")), None)
+        return Direction(family, degree, data.NAMES, dict(data.RANGES), constant, None)
+    if family.several is not None:
+        sev = family.several
+        return Direction(family, degree, sev.NAMES, dict(sev.RANGES), None, None)
+    data = family.data
+    lo, hi = data.LAMBDA_RANGE
+    closed = data.LAMBDA_CLOSED
+    rng = (lo, hi, closed[0], closed[1], data.LAMBDA_RANGE_TEXT)
+    return Direction(family, degree, (family.parameter,), {family.parameter: rng}, None, None)
+
+
+@cache
+def _grams(
+    family: Any, degree: int, k: int
+) -> dict[tuple[Mono, Mono], tuple[tuple[Laurent, ...], ...]]:
+    """{(a, b): G} with G[i][l] = ∫ (part a of b_i)^(k) (part b of b_l)^(k), as Laurent
+    dicts {exponent of the constant: Fraction} (exponent 0 only for polynomial families)."""
+    if hasattr(family, "atom_data"):
+        data = family.atom_data
+        if (degree, k) not in data.GRAM:
+            raise ValueError(
+                f"family: the derived document of {family.name!r} has no Gram matrix of order "
+                f"{k} at degree {degree}; re-derive it (lambda-bezier derive --family FILE) "
+                "with this version, which writes order 0 for surfaces"
+            )
+        return {
+            pair: tuple(tuple(_laurent(g) for g in row) for row in mat)
+            for pair, mat in data.GRAM[(degree, k)].items()
+        }
+    if family.several is not None:
+        by_mono = family.several.TABLES["bernstein"][degree]
+    else:
+        split = family.data.BERNSTEIN[degree]
+        by_mono = {(p,): m for p, m in enumerate(split)}
+    big = len(next(iter(by_mono.values()))[0]) - 1
+    inner = hodograph_gram(big, k)
+    out = {}
+    for a, ba in by_mono.items():
+        left = _matmul(ba, inner)
+        for b, bb in by_mono.items():
+            mat = _matmul(left, list(zip(*bb, strict=True)))
+            out[(a, b)] = tuple(tuple({0: x} if x else {} for x in row) for row in mat)
+    return out
+
+
+# ---------------------------------------------------------------------- the energy polynomial
+def energy_polynomial(
+    rows: Any, du: Direction, dv: Direction, energy: str
+) -> tuple[dict[tuple[int, ...], Fraction], str | None]:
+    """The energy of the exact net `rows` ((m+1) x (n+1) points of Fractions) as a sparse
+    polynomial {(u exponents.., v exponents.., c exponent, 1/c exponent): coefficient} in the
+    parameters of both directions (and the constant c of an atom family, named second)."""
+    constants = {c for c in (du.constant, dv.constant) if c}
+    if len(constants) > 1:
+        raise ValueError(
+            "family: the two directions' energies involve different constants "
+            f"({' and '.join(sorted(constants))}); their surface energy is not available"
+        )
+    dim = len(rows[0][0])
+    m, n = len(rows) - 1, len(rows[0]) - 1
+    out: dict[tuple[int, ...], Fraction] = {}
+    for ku, kv, weight in ENERGIES[energy]:
+        gu, gv = du.grams(ku), dv.grams(kv)
+        for (c, d), mat_v in gv.items():
+            # R[i][k] = Σ_coord Σ_jl G_v[j][l] P_ij · P_kl, per exponent of the constant
+            r_mat: list[list[Laurent]] = [[{} for _ in range(m + 1)] for _ in range(m + 1)]
+            for i in range(m + 1):
+                for k in range(m + 1):
+                    acc = r_mat[i][k]
+                    for j in range(n + 1):
+                        for l_ in range(n + 1):
+                            g = mat_v[j][l_]
+                            if not g:
+                                continue
+                            dot = sum(
+                                (rows[i][j][x] * rows[k][l_][x] for x in range(dim)), Fraction(0)
+                            )
+                            if dot:
+                                for e, v in g.items():
+                                    acc[e] = acc.get(e, Fraction(0)) + v * dot
+            for (a, b), mat_u in gu.items():
+                total: Laurent = {}
+                for i in range(m + 1):
+                    for k in range(m + 1):
+                        g, r = mat_u[i][k], r_mat[i][k]
+                        for e1, v1 in g.items():
+                            for e2, v2 in r.items():
+                                total[e1 + e2] = total.get(e1 + e2, Fraction(0)) + v1 * v2
+                mono = (
+                    *(x + y for x, y in zip(a, b, strict=True)),
+                    *(x + y for x, y in zip(c, d, strict=True)),
+                )
+                for e, v in total.items():
+                    if v:
+                        key = (*mono, max(e, 0), max(-e, 0))
+                        out[key] = out.get(key, Fraction(0)) + weight * v
+    return {key: v for key, v in out.items() if v}, next(iter(constants), None)
+
+
+def _value(
+    poly: dict[tuple[int, ...], Fraction], point: tuple[Fraction, ...], constant: str | None
+) -> Any:
+    """The polynomial at exact parameter values, exactly (a ConstantFraction with a constant)."""
+    from .hazmat.constants import ConstantFraction
+
+    by_power: dict[int, Fraction] = {}
+    for key, v in poly.items():
+        w = v
+        for x, e in zip(point, key[:-2], strict=True):
+            w *= x**e
+        e = key[-2] - key[-1]
+        by_power[e] = by_power.get(e, Fraction(0)) + w
+    if constant is None or all(e == 0 or not v for e, v in by_power.items()):
+        return by_power.get(0, Fraction(0))
+    return ConstantFraction.from_laurent({e: v for e, v in by_power.items() if v}, constant)
+
+
+def _exact_rows(net: NetLike) -> tuple[Any, bool]:
+    grid = _as_net(net)
+    exact = _exact_net(net)
+    if exact is None or len(exact[0][0]) != grid.shape[2]:
+        rows = tuple(tuple(tuple(Fraction(float(c)) for c in p) for p in row) for row in grid)
+        return rows, False
+    return exact, True
+
+
+def surface_energy(surf: Any, energy: str = "thin_plate") -> Any:
+    """The membrane or thin-plate energy of any surface over its domain (lb.surface_energy):
+    exact (a Fraction, or a ConstantFraction in π or e^W for an AtomSurface) for an exact
+    surface, else a float. A surface of one-parameter or built-in families goes to
+    surface_energies.surface_energy."""
+    if not hasattr(surf, "family_u"):
+        return surface_energies.surface_energy(surf, energy)
+    energy = val.choice(energy, "energy", tuple(ENERGIES))
+    m, n = surf.degrees
+    du, dv = _direction(surf.family_u, m), _direction(surf.family_v, n)
+    rows, exact = _exact_rows(surf.net if surf._exact is None else surf._exact)
+    poly, constant = energy_polynomial(rows, du, dv, energy)
+    point = (*_flat(du, surf.params_u), *_flat(dv, surf.params_v))
+    got = _value(poly, point, constant)
+    return got if exact and surf.is_exact else float(got)
+
+
+def _flat(d: Direction, given: dict[str, Any]) -> tuple[Fraction, ...]:
+    """The values of one direction in the order of d.names, as exact Fractions."""
+    if d.indexed is not None:
+        seq = given[d.indexed]
+        return tuple(Fraction(val.real_number(x, d.indexed)) for x in seq)
+    return tuple(Fraction(val.real_number(given[x], x)) for x in d.names)
+
+
+# ---------------------------------------------------------------------- the optimum
+def _rational_power(
+    poly: dict[tuple[int, ...], Fraction], constant: str | None, box: list[Any]
+) -> tuple[np.ndarray, Fraction]:
+    """(power, slack): the dense power coefficients in the parameters of the energy with the
+    constant c replaced by a rational ĉ within 2^-64 of it (the midpoint of
+    hazmat.constants.constant_bounds), and a proven bound `slack` of |E(x; c) − E(x; ĉ)| over
+    the box (c^e is monotone in c > 0 for every integer e). A lower bound of the rational
+    polynomial minus `slack` bounds the true energy: this keeps c out of the branch and
+    bound, whose cost grows with the number of variables."""
+    from .hazmat.constants import constant_bounds
+
+    count = len(box)
+    c_hat, lo, hi = Fraction(1), Fraction(1), Fraction(1)
+    if constant is not None:
+        lo, hi = constant_bounds(constant, CONSTANT_BITS)
+        c_hat = (lo + hi) / 2
+    size = [max(abs(a), abs(b)) for a, b in box]
+    degree = [max((key[j] for key in poly), default=0) for j in range(count)]
+    power = np.empty(tuple(d + 1 for d in degree), dtype=object)
+    power.fill(Fraction(0))
+    slack = Fraction(0)
+    for key, v in poly.items():
+        e = key[-2] - key[-1]
+        power[key[:count]] += v * c_hat**e
+        if e:
+            reach = Fraction(1)
+            for x, a in zip(size, key[:count], strict=True):
+                reach *= x**a
+            slack += abs(v) * max(abs(hi**e - c_hat**e), abs(lo**e - c_hat**e)) * reach
+    return power, slack
+
+
+def _grid_start(power: np.ndarray, box: list[Any]) -> tuple[Fraction, ...]:
+    """The best point of a float grid over the box (about 20,000 points): the branch and
+    bound's first candidate, so that it prunes from the start."""
+    count = len(box)
+    side = max(3, int(round(20_000 ** (1 / count))))
+    axes = [np.linspace(float(a), float(b), side) for a, b in box]
+    mesh = np.meshgrid(*axes, indexing="ij")
+    flat = [g.ravel() for g in mesh]
+    coeffs = np.array(power.tolist(), dtype=float)
+    total = np.zeros(flat[0].shape)
+    for idx in zip(*np.nonzero(coeffs), strict=True):
+        term = np.full(flat[0].shape, coeffs[idx])
+        for x, e in zip(flat, idx, strict=True):
+            if e:
+                term = term * x**e
+        total += term
+    k = int(np.argmin(total))
+    return tuple(Fraction(float(axis[k])) for axis in flat)
+
+
+@dataclass(frozen=True)
+class SurfaceParameterOptimum(Mapping[str, Any]):
+    """The energy-optimal parameters of both directions by name: ``r["lam_u"]``,
+    ``r["mu_v"]`` (an indexed family's as one tuple, ``r["lam_u"]``); ``energy`` exact at
+    that point, ``lower_bound`` a proven lower bound of the energy over the whole box within
+    1e-12 (relative) of it; ``boundary`` names the parameters at an end of their range."""
+
+    parameters: dict[str, Any]
+    energy: Any
+    lower_bound: Any
+    boundary: str
+    certified: bool
+
+    def __getitem__(self, key: str) -> Any:
+        if key in self.parameters:
+            return self.parameters[key]
+        if key in ("energy", "lower_bound", "boundary", "certified"):
+            return getattr(self, key)
+        raise KeyError(f"{key!r}: the parameters are {', '.join(self.parameters)}")
+
+    def __iter__(self) -> Iterator[str]:
+        return iter((*self.parameters, "energy", "lower_bound", "boundary", "certified"))
+
+    def __len__(self) -> int:
+        return len(self.parameters) + 4
+
+
+def _param_families(family: object) -> bool:
+    """Whether `family` (or either of a pair) is a family this module's optimum is for:
+    several or indexed parameters, or a trigonometric, hyperbolic or mixed basis."""
+    pair = family if isinstance(family, tuple | list) else (family,)
+    return any(
+        hasattr(f, "atom_data") or hasattr(f, "index_name") or getattr(f, "several", None)
+        for f in pair
+    )
+
+
+def optimal_parameters(net: NetLike, energy: str, family: Any) -> SurfaceParameterOptimum:
+    """The certified global minimum of the surface energy over both directions' parameter
+    boxes (`family` one family from load_family or a pair); see the module's doc."""
+    energy = val.choice(energy, "energy", tuple(ENERGIES))
+    fu, fv = family if isinstance(family, tuple | list) else (family, family)
+    for f in (fu, fv):
+        if not hasattr(f, "degrees") or not hasattr(f, "parameters"):
+            raise TypeError(
+                "family: a family from load_family is needed in each direction, got "
+                f"{type(f).__name__}"
+            )
+    if np.ndim(val.real_array(net, "net")) == 4:
+        raise ValueError(
+            "net: a batch of nets is solved vectorised for one-parameter families only; "
+            "call optimal_parameters once per net for this family"
+        )
+    grid = _as_net(net)
+    m, n = int(grid.shape[0]) - 1, int(grid.shape[1]) - 1
+    for fam, deg, name in ((fu, m, "u"), (fv, n, "v")):
+        if deg not in fam.degrees:
+            raise ValueError(
+                f"net, direction {name}: degree {deg}; {fam.name!r} has degrees "
+                f"{fam.degrees[0]}..{fam.degrees[-1]}"
+            )
+    du, dv = _direction(fu, m), _direction(fv, n)
+    rows, exact = _exact_rows(net)
+    poly, constant = energy_polynomial(rows, du, dv, energy)
+    count = len(du.names) + len(dv.names)
+    ranges = [du.ranges[x] for x in du.names] + [dv.ranges[x] for x in dv.names]
+    box = [(r[0], r[1]) for r in ranges]
+    power, slack = _rational_power(poly, constant, box)
+    got = box_bernstein.minimum(power, box, TOLERANCE, BUDGET, start=[_grid_start(power, box)])
+    point = tuple(got["point"][:count])
+    value = _value(poly, point, constant)
+    lower = got["lower"] - slack
+    certified = got["certified"] and not (TOLERANCE * max(1, abs(float(value))) < value - lower)
+    if not certified:
+        raise ValueError(
+            f"optimal_parameters: the minimum of the {energy} energy over the box was not "
+            f"certified within the budget (best {float(value)}, lower bound {float(lower)})"
+        )
+    out: Any = (lambda x: x) if exact else float
+    values: dict[str, Any] = {}
+    where = []
+    k = 0
+    for d, suffix in ((du, "u"), (dv, "v")):
+        vals = point[k : k + len(d.names)]
+        for x, v in zip(d.names, vals, strict=True):
+            lo_, hi_, lo_closed, hi_closed, _ = d.ranges[x]
+            if v in (lo_, hi_):
+                end = "lower" if v == lo_ else "upper"
+                closed = lo_closed if v == lo_ else hi_closed
+                note = "" if closed else ", excluded: not attained"
+                where.append(f"{x}_{suffix} = {v} ({end} end{note})")
+        if d.indexed is not None:
+            values[f"{d.indexed}_{suffix}"] = tuple(out(v) for v in vals)
+        else:
+            values.update({f"{x}_{suffix}": out(v) for x, v in zip(d.names, vals, strict=True)})
+        k += len(d.names)
+    energy_out = value if exact else float(value)
+    lower_out = lower if exact else float(lower)
+    return SurfaceParameterOptimum(values, energy_out, lower_out, "; ".join(where), certified)

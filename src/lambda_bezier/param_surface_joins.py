@@ -1,0 +1,88 @@
+"""`join_surface` across the boundary of a surface of several-parameter, indexed or
+trigonometric/hyperbolic/mixed families (param_surfaces, atom_surfaces).
+
+As for one-parameter families (surface_joins), when the next patch keeps the family, degree
+and parameters along the boundary, every condition holds for all v exactly when each column
+of the net joins as a curve does; the columns are joined with the curves' `join`, which
+solves these families' joins per degree (the end derivatives of the derived documents, in
+each family's own t). G1 has one constant α: A_u(end, v) = α B_u(start, v). The new patch
+is a surface of the same kind, with the new family's parameters by name across the boundary
+(default: the patch's own) and the patch's along it.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from . import _validate as val
+from .joins import join
+from .param_surfaces import family_surface
+from .surfaces import _exact_net
+
+
+def _join_param_surface(
+    patch: Any,
+    axis: int,
+    continuity: str,
+    degree: int,
+    rest: Any,
+    alpha: Any,
+    family: Any,
+    params: Any,
+    check_range: bool,
+) -> Any:
+    """The next patch across `patch`'s boundary at the end of direction `axis` (0: u)."""
+    across = patch.family_u if axis == 0 else patch.family_v
+    across_params = patch.params_u if axis == 0 else patch.params_v
+    along = patch.family_v if axis == 0 else patch.family_u
+    along_params = patch.params_v if axis == 0 else patch.params_u
+    new_family = across if family is None else family
+    new_params = dict(across_params if params is None else params)
+    if not isinstance(new_params, dict):
+        raise TypeError(f"params must be a dict {{name: value}}, not {type(params).__name__}")
+    count = patch.net.shape[1 - axis]
+    rows: Any = patch.control_net()
+    columns = [[rows[i][j] for i in range(len(rows))] for j in range(count)] if axis == 0 else rows
+    rest_cols: list[Any] = [()] * count
+    if np.size(np.asarray(val.real_array(rest, "rest"), dtype=float)):
+        arr = np.asarray(val.real_array(rest, "rest"), dtype=float)
+        if arr.ndim != 3 or (arr.shape[1] if axis == 0 else arr.shape[0]) != count:
+            raise ValueError(
+                f"rest must be a grid of rows of {count} points along the boundary, got shape "
+                f"{arr.shape}"
+            )
+        exact = _exact_net(rest)
+        given: Any = exact if exact is not None else arr.tolist()
+        rest_cols = (
+            [[given[i][j] for i in range(len(given))] for j in range(count)]
+            if axis == 0
+            else [list(r) for r in given]
+        )
+    target, target_params = new_family, new_params
+    if hasattr(new_family, "index_name"):  # one value per index of the new degree
+        target = new_family.at_degree(degree)
+        target_params = new_family.index_values(degree, new_params.get(new_family.index_name))
+    new_columns: list[Any] = []
+    net: Any
+    for j in range(count):
+        curve = across.curve(columns[j], params=across_params, check_range=False)
+        nxt = join(
+            curve,
+            continuity,
+            degree,
+            alpha=alpha if str(continuity).upper() == "G1" else 1,
+            rest=rest_cols[j],
+            family=target,
+            params=target_params,
+            check_range=check_range,
+        )
+        new_columns.append(list(nxt.control_points()))
+    if axis == 0:
+        net = [[new_columns[j][i] for j in range(count)] for i in range(len(new_columns[0]))]
+        pair, pu, pv = (new_family, along), new_params, along_params
+    else:
+        net = new_columns
+        pair, pu, pv = (along, new_family), along_params, new_params
+    return family_surface(net, pair, params_u=pu, params_v=pv, check_range=False)

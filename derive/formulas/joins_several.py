@@ -27,7 +27,7 @@ from ..algebra import t
 from ..families.definition import CONTINUITIES, Definition
 from ..families.engine import basis_polys
 from ..families.registry import builtin_names
-from ..families.spaces import Space
+from ..families.spaces import Space, space_of
 from . import joins
 from .atom_family import end_values
 
@@ -73,6 +73,41 @@ def atom_end_forms(defn: Definition, space: Space) -> dict[tuple[str, int, int],
                 term *= x**e
             total += term
         out[key] = total
+    return out
+
+
+def end_forms(defn: Definition, degree: int | None = None) -> tuple[dict, int, str | None]:
+    """(end forms, degree, constant name or None) of a family of one order: an atom family,
+    or a polynomial family in several parameters at `degree` (an indexed family's expansion
+    there)."""
+    if defn.elementary:
+        space = space_of(defn)
+        return atom_end_forms(defn, space), len(space.functions) - 1, space.constant
+    at = defn.at_degree(degree if degree is not None else defn.degrees.start)
+    deg = degree if degree is not None else at.degrees.start
+    return polynomial_end_forms(at, deg), deg, None
+
+
+def pair_weights(defn: Definition, degree: int, forms: dict, pair: str, continuity: str):
+    """{"row,src,k": weight as an expression in the side symbols and C} of one ordered pair
+    ("first>second", each the family's name or a built-in one), or a reason (str) where the
+    closed-form solve has none."""
+    first, _, second = pair.partition(">")
+    known = (*builtin_names(), defn.name)
+    if first not in known or second not in known or defn.name not in (first, second):
+        return f"{pair!r} is not a pair of {defn.name} with itself or a built-in family"
+    order = joins.ORDER[continuity]
+    with joins.extra_family(defn.name, forms, (degree,), True, 2, defn.symbols):
+        try:
+            solved = joins.solve(first, second, order)
+        except (AssertionError, KeyError, ZeroDivisionError) as exc:
+            return str(exc)
+    out = {}
+    for row, combo in enumerate(solved):
+        for (src, j), w in sorted(combo.items()):
+            num, den = _weight(w, continuity.startswith("C"))
+            if num != 0:
+                out[f"{row},{src},{j}"] = num / den
     return out
 
 

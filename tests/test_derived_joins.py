@@ -173,3 +173,20 @@ def test_bad_weight_text_is_refused():
     table["pairs"]["a>b"]["C1"] = {"0,first,0": "1@1 / -3@0 3@1"}
     with pytest.raises(ValueError, match="vanishing denominator"):
         _derived_joins.lookup(table, "a>b", "C1", {"n": 1})
+
+
+def test_an_indexed_family_joins_itself_at_another_degree(monkeypatch):
+    """Each degree's table of q_bezier holds that degree with itself only: a join from degree
+    3 into degree 4 is solved per degree, and it is C1 (exact derivatives)."""
+    fam = lb.load_family(DATA / "q_bezier.toml")
+    first = fam.curve([(0, 0), (1, 2), (3, 3), (4, 1)], lam=[Fraction(1, 2), 0, Fraction(-1, 3)])
+    used = []
+    real = _derived_joins.lookup
+    monkeypatch.setattr(_derived_joins, "lookup", lambda *a: used.append(a) or real(*a))
+    four = fam.at_degree(4)
+    values = dict(zip(four.parameters, [Fraction(1, 4), 0, 0, Fraction(1, 5)], strict=True))
+    nxt = lb.join(first, "C1", 4, family=four, params=values, rest=[(7, 1), (8, -2), (9, 0)])
+    assert used == []
+    assert [float(v) for v in nxt.derivative(0.0)] == pytest.approx(
+        [float(v) for v in first.derivative(1.0)], abs=1e-12
+    )

@@ -69,6 +69,8 @@ def derived_weights(
 ) -> dict[tuple[int, str, int], Number] | None:
     """The join's weights from the derived document of either side's family, or None."""
     pair = f"{first[0]}>{second[0]}"
+    if first[0] == second[0] and first[1]["n"] != second[1]["m"]:
+        return None  # an indexed family at two degrees: its tables hold each degree with itself
     for table in (first[2], second[2]):
         if table is None or not (first[3] and second[3]):
             continue

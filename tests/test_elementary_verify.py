@@ -39,16 +39,18 @@ def _record(records, rid: str) -> dict:
 
 
 def test_every_record_agrees_with_its_expectation(results):
-    assert len(results) == 28
+    assert len(results) == 31
     for rid, res in results.items():
         assert res.problems() == [], (rid, res.outcome, res.error)
         assert res.verdict in ("match", "mismatch"), (rid, res.outcome)
-    assert {rid for rid, r in results.items() if r.verdict == "mismatch"} == {
+    misprints = {
         "han.ends_misprint",
         "han.nonnegative_misprint",
         "hyp.energy1_misprint",
+        "han.join_c1_misprint",
     }
-    for rid in ("han.ends_misprint", "han.nonnegative_misprint", "hyp.energy1_misprint"):
+    assert {rid for rid, r in results.items() if r.verdict == "mismatch"} == misprints
+    for rid in misprints:
         assert results[rid].erratum.verdict == "match", rid
 
 
@@ -82,6 +84,10 @@ def test_the_misprinted_tangent_is_caught_with_its_gap(results):
         ("at.ends", ("equations", 1, "rhs"), "P(3)*lam", "P(3)*lam*pi"),
         ("at.mirror", ("equations", 0, "rhs"), "b(2, n, 1 - t)", "b(2, n, t)"),
         ("at.gram2_entries", ("expression",), "pi**4/128", "pi**3/128"),
+        ("han.join_g1", ("join_weights", "1,first,1"), "-(2 + mu1)", "-(3 + mu1)"),
+        ("han.join_g1", ("join_weights", "1,first,0"), "alpha*(2 + lam2)", "(2 + lam2)"),
+        ("hyp.join_c1_bezier", ("join_weights", "0,first,3"), "e**4", "e**3"),
+        ("hyp.join_c1_bezier", ("join_weights", "0,first,2"), "3*e", "2*e"),
     ],
 )
 def test_one_changed_number_flips_the_verdict(records, rid, path, old, new):

@@ -11,6 +11,8 @@ from __future__ import annotations
 from ..families.definition import Definition
 from ..families.spaces import space_of
 from ..formulas import atom_family as F
+from ..formulas.joins_several import atom_end_forms, join_table
+from .parameters import parameter_table
 
 FORMAT = 4
 
@@ -48,19 +50,7 @@ def derive(defn: Definition) -> dict:
         "family": defn.name,
         "title": defn.title,
         "space": space.name,
-        "parameters": [
-            {
-                "name": q.name,
-                "range": {
-                    "text": q.range_text,
-                    "lo": str(q.lo),
-                    "hi": str(q.hi),
-                    "closed": [q.lo_closed, q.hi_closed],
-                },
-                "bernstein_at": None,
-            }
-            for q in defn.params
-        ],
+        "parameters": parameter_table(defn),
         "domain": {
             "lo": str(defn.domain_lo),
             "hi": str(defn.domain_hi),
@@ -92,8 +82,5 @@ def derive(defn: Definition) -> dict:
         "nonnegative_over_box": F.nonnegative_over_box(defn, space),
         "linear_independence": independence,
         "singular_parameters": singular,
-        "joins": {
-            "reason": "joins of non-polynomial families are solved by the runtime per degree "
-            "from the exact end derivatives (endpoints); no closed form in n (one order)"
-        },
+        "joins": join_table(defn, n, atom_end_forms(defn, space), space.constant),
     }

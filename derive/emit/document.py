@@ -27,7 +27,9 @@ from ..formulas.family import (
     singular_artifacts,
     surface_join_artifacts,
 )
+from ..formulas.joins_several import join_table, polynomial_end_forms
 from ..formulas.several_box import independence_over_box, nonnegativity
+from .parameters import parameter_table
 
 # --------------------------------------------------------------------------- the document
 
@@ -52,6 +54,7 @@ def _several(defn: Definition, checked: list[str]) -> dict:
                 tables[kind][str(deg)][",".join(map(str, mono))] = _matrices(got[kind][deg])[0]
     swap = symmetry(defn)
     energy = energy_artifacts(defn)
+    low = defn.degrees.start
     return {
         "generated_by": "lambda-bezier derive --family -- DO NOT EDIT; regenerate with "
         "`lambda-bezier derive --family FILE`",
@@ -59,19 +62,7 @@ def _several(defn: Definition, checked: list[str]) -> dict:
         "definition_sha256": defn.digest,
         "family": defn.name,
         "title": defn.title,
-        "parameters": [
-            {
-                "name": q.name,
-                "range": {
-                    "text": q.range_text,
-                    "lo": str(q.lo),
-                    "hi": str(q.hi),
-                    "closed": [q.lo_closed, q.hi_closed],
-                },
-                "bernstein_at": None if q.bernstein_at is None else str(q.bernstein_at),
-            }
-            for q in defn.params
-        ],
+        "parameters": parameter_table(defn),
         "domain": {"lo": str(defn.domain.lo), "hi": str(defn.domain.hi)},
         "degrees": [defn.degrees.start, defn.degrees.stop - 1],
         "degree_offset": defn.offset,
@@ -97,7 +88,12 @@ def _several(defn: Definition, checked: list[str]) -> dict:
         **({"energy_monomials": monomial_grams(defn)} if "reason" in energy else {}),
         "nonnegative_over_box": nonnegativity(defn),
         "singular_parameters": independence_over_box(defn),
-        "joins": {"reason": "several parameters: the runtime joins per degree"},
+        "joins": join_table(defn, low, polynomial_end_forms(defn, low))
+        if len(defn.degrees) == 1
+        else {
+            "reason": "several parameters over a range of degrees: no closed forms in n; the "
+            "runtime joins per degree"
+        },
         "surface_joins": {"reason": "several parameters: the runtime joins per degree"},
     }
 

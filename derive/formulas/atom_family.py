@@ -148,18 +148,24 @@ def show_elem(elem: A.Elem, defn: Definition, space: Space) -> str:
 # --------------------------------------------------------------------------- end values
 
 
-def endpoints(space: Space) -> dict[str, dict]:
-    """{"start,r,j": value of d^r b_j at lo, "end,r,j": of d^r b_(n-j) at hi}, each a
-    polynomial in the parameters with exact-number coefficients, r = 0..3."""
+def end_values(space: Space) -> dict[tuple[str, int, int], A.Number]:
+    """{("start", r, j): d^r b_j at lo, ("end", r, j): d^r b_(n-j) at hi}, r = 0..3, exact
+    (polynomials in the parameters with coefficients in Q[C, 1/C])."""
     n = len(space.functions) - 1
     frame = space.frame
-    row: dict[str, dict] = {}
+    out: dict[tuple[str, int, int], A.Number] = {}
     for i, elem in enumerate(space.functions):
         d = elem
         for r in range(ENDPOINT_ORDERS + 1):
-            row[f"start,{r},{i}"] = by_monomial(A.value(d, frame, frame.lo))
-            row[f"end,{r},{n - i}"] = by_monomial(A.value(d, frame, frame.hi))
+            out[("start", r, i)] = A.value(d, frame, frame.lo)
+            out[("end", r, n - i)] = A.value(d, frame, frame.hi)
             d = A.diff(d, frame)
+    return out
+
+
+def endpoints(space: Space) -> dict[str, dict]:
+    """end_values() for the document: {"start,r,j" | "end,r,j": value by monomial}."""
+    row = {f"{e},{r},{j}": by_monomial(v) for (e, r, j), v in end_values(space).items()}
     return dict(sorted(row.items(), key=lambda kv: _endpoint_order(kv[0])))
 
 

@@ -71,29 +71,61 @@ SAMPLES = (
 # Families defined by data (derive/families/engine.py) while their joins are derived: name ->
 # closed endpoint forms {(end, r, idx): expr in n, lam}; see extra_family().
 _EXTRA: dict[str, dict[tuple[str, int, int], sp.Expr]] = {}
+# A family in several parameters (or with atoms: derive/formulas/joins_several.py): the
+# symbols of its parameters, each renamed per side (x -> x1 on the first curve, x2 on the
+# second, as lam -> lam1, lam2); any other symbol of its forms (the constant C = pi or e^W of
+# an atom family) is shared by both sides.
+_PARAMS: dict[str, tuple[sp.Symbol, ...]] = {}
 
 
 def register(
-    name: str, forms: dict, degrees: tuple[int, ...], has_lambda: bool, order: int = 2
+    name: str,
+    forms: dict,
+    degrees: tuple[int, ...],
+    has_lambda: bool,
+    order: int = 2,
+    params: tuple[sp.Symbol, ...] = (),
 ) -> None:
     """`name` becomes a family of the solve, with the given closed end forms of orders
-    0..order (the solve uses up to 2); it is never emitted."""
+    0..order (the solve uses up to 2); it is never emitted. `params`: the symbols of a
+    family in several parameters (its forms are then in them, not in n and lam)."""
     _EXTRA[name] = {key: v for key, v in forms.items() if key[1] <= min(order, 2) and v != 0}
     DEGREES[name] = degrees
     HAS_LAMBDA[name] = has_lambda
     CLOSED_ORDER[name] = order
+    _PARAMS[name] = params
 
 
 @contextmanager
 def extra_family(
-    name: str, forms: dict, degrees: tuple[int, ...], has_lambda: bool, order: int = 2
+    name: str,
+    forms: dict,
+    degrees: tuple[int, ...],
+    has_lambda: bool,
+    order: int = 2,
+    params: tuple[sp.Symbol, ...] = (),
 ):
     """register() for the duration of the block."""
-    register(name, forms, degrees, has_lambda, order)
+    register(name, forms, degrees, has_lambda, order, params)
     try:
         yield
     finally:
-        del _EXTRA[name], DEGREES[name], HAS_LAMBDA[name], CLOSED_ORDER[name]
+        del _EXTRA[name], DEGREES[name], HAS_LAMBDA[name], CLOSED_ORDER[name], _PARAMS[name]
+
+
+def side_symbol(symbol: sp.Symbol, side: int) -> sp.Symbol:
+    """A parameter's symbol on the first (side 1) or second (side 2) curve of a join."""
+    if symbol == lam:
+        return (lam1, lam2)[side - 1]
+    return sp.Symbol(f"{symbol.name}{side}")
+
+
+def _renaming(family: str, side: int) -> dict:
+    out = {lam: (lam1, lam2)[side - 1]}
+    out.update({x: side_symbol(x, side) for x in _PARAMS.get(family, ())})
+    if side == 2:
+        out[n] = m
+    return out
 
 
 def endpoint_forms(family: str) -> dict[tuple[str, int, int], sp.Expr]:
@@ -123,17 +155,17 @@ def _builtin_endpoint_forms(family: str) -> dict[tuple[str, int, int], sp.Expr]:
 
 def end_coefficients(family: str) -> dict[tuple[int, int], sp.Expr]:
     """e[(r, j)]: weight of Q_j = P_{n-j,1} in C1^(r)(1), in n and λ1."""
+    rename = _renaming(family, 1)
     return {
-        (r, j): v.xreplace({lam: lam1})
-        for (e, r, j), v in endpoint_forms(family).items()
-        if e == "end"
+        (r, j): v.xreplace(rename) for (e, r, j), v in endpoint_forms(family).items() if e == "end"
     }
 
 
 def start_coefficients(family: str) -> dict[tuple[int, int], sp.Expr]:
     """s[(r, i)]: weight of P_{i,2} in C2^(r)(0), in m and λ2."""
+    rename = _renaming(family, 2)
     return {
-        (r, j): v.xreplace({n: m, lam: lam2})
+        (r, j): v.xreplace(rename)
         for (e, r, j), v in endpoint_forms(family).items()
         if e == "start"
     }
@@ -151,25 +183,34 @@ def pivots(family: str) -> tuple[sp.Expr, sp.Expr]:
 Combination = dict  # ("first", j) -> weight of Q_j = P_{n-j,1}; ("second", 3) -> of P_{3,2}
 
 
-@cache
-def _field():
-    """Q(n, m, λ1, λ2, α, d): exact rational-function arithmetic (much faster than Expr)."""
-    return field([n, m, lam1, lam2, alpha, d], sp.QQ)[0]
-
-
-# The solve runs in FLINT (algebra/ratfunc.py: the same field, Q(n, m, λ1, λ2, α, d), with
-# every operation in C; SymPy's field took a third of `derive --check`, issue #29), and hands
-# SymPy's field elements, in SymPy's own normal form, to the printing.
-_VARIABLES = (n, m, lam1, lam2, alpha, d)
+BASE_SYMBOLS = (n, m, lam1, lam2, alpha, d)
 
 
 @cache
-def _rf_of(expr: sp.Expr) -> RationalFunction:
-    return from_expr(expr, _VARIABLES)
+def _field(extra: tuple[sp.Symbol, ...] = ()):
+    """Q(n, m, λ1, λ2, α, d) (and the parameters of families in several parameters, and
+    their constant): exact rational-function arithmetic (much faster than Expr)."""
+    return field([*BASE_SYMBOLS, *extra], sp.QQ)[0]
 
 
-def _rf(value: int) -> RationalFunction:
-    return RationalFunction.constant(len(_VARIABLES), value)
+def extra_symbols(first: str, second: str) -> tuple[sp.Symbol, ...]:
+    """The symbols of the pair's end forms beyond BASE_SYMBOLS, sorted by name."""
+    exprs = [*end_coefficients(first).values(), *start_coefficients(second).values()]
+    found = set().union(*(v.free_symbols for v in exprs)) - set(BASE_SYMBOLS)
+    return tuple(sorted(found, key=lambda x: x.name))
+
+
+# The solve runs in FLINT (algebra/ratfunc.py: the same field, Q(n, m, λ1, λ2, α, d) and the
+# pair's extra symbols, with every operation in C; SymPy's field took a third of `derive
+# --check`, issue #29), and hands SymPy's field elements, in SymPy's own normal form, to the
+# printing.
+@cache
+def _rf_of(expr: sp.Expr, extra: tuple[sp.Symbol, ...] = ()) -> RationalFunction:
+    return from_expr(expr, (*BASE_SYMBOLS, *extra))
+
+
+def _rf(value: int, extra: tuple[sp.Symbol, ...] = ()) -> RationalFunction:
+    return RationalFunction.constant(len(BASE_SYMBOLS) + len(extra), value)
 
 
 def _combine(*terms) -> Combination:
@@ -192,12 +233,13 @@ def solve(first: str, second: str, order: int = 2) -> tuple[Combination, ...]:
     for fam in (first, second):
         if CLOSED_ORDER.get(fam, 2) < order:
             raise AssertionError(f"{fam}: end derivatives of order {order} not in closed form")
-    one, zero = _rf(1), _rf(0)
-    e = {key: _rf_of(v) for key, v in end_coefficients(first).items()}
-    s = {key: _rf_of(v) for key, v in start_coefficients(second).items()}
+    extra = extra_symbols(first, second)
+    one, zero = _rf(1, extra), _rf(0, extra)
+    e = {key: _rf_of(v, extra) for key, v in end_coefficients(first).items()}
+    s = {key: _rf_of(v, extra) for key, v in start_coefficients(second).items()}
     if any(r > 2 for r, _ in s) or any(r > 2 for r, _ in e):
         raise AssertionError(f"{first} -> {second}: end forms of order > 2 given")
-    a, dd = _rf_of(alpha), _rf_of(d)
+    a, dd = _rf_of(alpha, extra), _rf_of(d, extra)
     width = 1 + max([j for _, j in e] + [order])
     c1 = [{("first", j): e[(r, j)] for j in range(width) if (r, j) in e} for r in range(3)]
     # the conditions, with the first curve's side scaled: C2^(r)(0) = target_r
@@ -240,16 +282,17 @@ def solve(first: str, second: str, order: int = 2) -> tuple[Combination, ...]:
                 terms.append((-coeffs[k] / coeffs[i], solution[k]))
         solution[i] = _combine(*terms)
     out = tuple({key: v for key, v in p.items() if v != 0} for p in solution)
-    _check_symbolic(first, second, out, e, s, a, dd, order, width, given)
-    field_ = _field()
+    _check_symbolic(first, second, out, e, s, a, dd, order, width, given, extra)
+    field_ = _field(extra)
     return tuple({key: to_sympy_field(v, field_) for key, v in p.items()} for p in out)
 
 
-def _check_symbolic(first, second, rows, e, s, a, dd, order, width, given) -> None:
+def _check_symbolic(first, second, rows, e, s, a, dd, order, width, given, extra) -> None:
     """General n, m: the solution satisfies every condition; the weights of every solved point
     sum to 1 (affine invariance); every denominator divides α^(order+1) times the pivots'
-    product; P_{1,2} does not involve d where the stencil is triangular."""
-    zero = _rf(0)
+    product (and the denominators of the end forms); P_{1,2} does not involve d where the
+    stencil is triangular."""
+    zero = _rf(0, extra)
     keys = [("first", j) for j in range(width)] + [("second", j) for j in given]
     for key in keys:  # everything is linear in the points: compare coefficients point by point
         c1 = [e.get((r, key[1]), zero) if key[0] == "first" else zero for r in range(3)]
@@ -262,9 +305,13 @@ def _check_symbolic(first, second, rows, e, s, a, dd, order, width, given) -> No
         for idx, cond in enumerate(conditions[: order + 1]):
             if cond != 0:
                 raise AssertionError(f"{first} -> {second}: condition {idx} fails at {key}")
-    bound = _rf_of(alpha) ** (order + 1)
-    for p_ in pivot_products(second, order):
-        bound *= _rf_of(p_)
+    bound = _rf_of(alpha, extra) ** (order + 1)
+    for p_ in pivot_products(second, order, extra):
+        bound *= RationalFunction(_rf_of(p_, extra).num)
+    # end forms that are fractions (an atom family's powers C^-k of its constant e^W)
+    dens = {str(x.den): x.den for x in (*e.values(), *s.values())}
+    for key in sorted(dens):
+        bound *= RationalFunction(dens[key])
     for row, comb in enumerate(rows):
         if sum(comb.values(), zero) != 1:
             raise AssertionError(f"{first} -> {second}: weights of P_{row},2 do not sum to 1")
@@ -280,18 +327,18 @@ def _check_symbolic(first, second, rows, e, s, a, dd, order, width, given) -> No
         raise AssertionError(f"{first} -> {second}: P_1,2 depends on d")
 
 
-def pivot_products(family: str, order: int) -> list:
+def pivot_products(family: str, order: int, extra: tuple[sp.Symbol, ...] = ()) -> list:
     """The leading principal minors of the start stencil (orders 0..order), whose product
     bounds every denominator of the solve (for a triangular stencil: s00, s00·s11, ...)."""
     # keyed by the stencil itself, not the family's name: a family registered for one
     # derivation (register()) may have other forms under the same name in the next
     stencil = tuple(sorted(start_coefficients(family).items()))
-    return list(_pivot_products(stencil, order))
+    return list(_pivot_products(stencil, order, extra))
 
 
 @cache
-def _pivot_products(stencil: tuple, order: int) -> tuple:
-    field_ = _field()
+def _pivot_products(stencil: tuple, order: int, extra: tuple[sp.Symbol, ...]) -> tuple:
+    field_ = _field(extra)
     s = {key: field_(v) for key, v in stencil}
     mat = sp.Matrix(order + 1, order + 1, lambda r, i: s.get((r, i), field_(0)).as_expr())
     return tuple(sp.factor(mat[: k + 1, : k + 1].det()) for k in range(order + 1))

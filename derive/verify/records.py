@@ -191,6 +191,9 @@ PAYLOAD = {
     "nonnegative": {"type": "boolean"},
     "independent": {"type": "boolean"},
     "box": _NAMED_STRS,
+    # join weights of such families (derive/verify/checks_joins_several.py)
+    "pair": {"type": "string", "pattern": r"^[a-z][a-z0-9_]*>[a-z][a-z0-9_]*$"},
+    "join_weights": _NAMED_STRS,
 }
 
 _RECORD = _table(

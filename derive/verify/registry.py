@@ -23,6 +23,7 @@ from . import (  # noqa: F401 - imported for their registrations
     checks_equations,
     checks_examples,
     checks_joins,
+    checks_joins_several,
     checks_properties,
     checks_several,
     checks_surfaces,

@@ -217,6 +217,8 @@ class AtomData:
         self._read_rational(_dict(_table(doc, "rational", where), f"{where}: rational"), where)
         self._read_energy(_dict(_table(doc, "energy", where), f"{where}: energy"), where)
         self._read_endpoints(doc.get("endpoints"), where)
+        # the derived join weights (read by _derived_joins when a join asks for them)
+        self.JOINS: Any = doc.get("joins")
 
     def _read_parameters(self, doc: dict[str, Any], where: str) -> None:
         params = doc.get("parameters")

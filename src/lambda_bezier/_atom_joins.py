@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from . import _join_engine
+from . import _derived_joins, _join_engine
 from . import _validate as val
 from ._validate import PointsLike
 from .atom_family import AtomCurve
@@ -36,6 +36,49 @@ Number = Fraction | float
 def involved(curve: object, family: object) -> bool:
     """Whether the first curve or the target family is a family of atoms."""
     return isinstance(curve, AtomCurve) or getattr(family, "atom_data", None) is not None
+
+
+Side = tuple[str, dict[str, Any], Any, bool]  # family name, variables, joins table, table valid
+
+
+def join_side(thing: Any, side: int, degree: int, values: Any = None) -> Side:
+    """One curve of a join as the derived weights name it: a curve (side 1) or the new
+    segment's family or class (side 2) with its parameter `values` (a dict by name)."""
+    letter = "n" if side == 1 else "m"
+    if isinstance(thing, AtomCurve) or getattr(thing, "atom_data", None) is not None:
+        fam = thing.family_object if isinstance(thing, AtomCurve) else thing
+        data = fam.atom_data
+        given = thing.atom_parameter_values() if isinstance(thing, AtomCurve) else values
+        names = tuple(data.NAMES)
+        got = _derived_joins.side_values(side, names, tuple(given[x] for x in names))
+        return data.FAMILY, {letter: degree, **got}, data.JOINS, degree in data.DEGREES
+    cls = thing if isinstance(thing, type) else type(thing)
+    several = getattr(cls, "several_family", None)
+    if several is not None:
+        given = cls.parameter_values  # type: ignore[attr-defined]
+        names = tuple(several.parameters)
+        got = _derived_joins.side_values(side, names, tuple(given[x] for x in names))
+        ok = tuple(several.degrees) == (degree,)
+        return several.name, {letter: degree, **got}, several.several.JOINS, ok
+    lam = thing.lam if not isinstance(thing, type) else values
+    return str(getattr(cls, "family", "")), {letter: degree, f"lam{side}": lam}, None, True
+
+
+def derived_weights(
+    first: Side, second: Side, continuity: str, alpha: Number, d: Number
+) -> dict[tuple[int, str, int], Number] | None:
+    """The join's weights from the derived document of either side's family, or None."""
+    pair = f"{first[0]}>{second[0]}"
+    if first[0] == second[0] and first[1]["n"] != second[1]["m"]:
+        return None  # an indexed family at two degrees: its tables hold each degree with itself
+    for table in (first[2], second[2]):
+        if table is None or not (first[3] and second[3]):
+            continue
+        values = {**first[1], **second[1], "alpha": alpha, "d": d}
+        found = _derived_joins.lookup(table, pair, continuity, values)
+        if found is not None:
+            return found
+    return None
 
 
 def _atom_start(
@@ -152,6 +195,10 @@ def join(
                 f"{degrees[0]}..{degrees[-1]}"
             )
         start = _atom_start(target, exact_values, degree, order)
+        given_values = {
+            k: (v if exact_inputs else float(v)) for k, v in zip(names, exact_values, strict=True)
+        }
+        second_side = join_side(target, 2, degree, given_values)
 
         def make(points: PointsLike) -> Any:
             return target.curve(points, params=values, check_range=check_range)
@@ -183,6 +230,7 @@ def join(
             raise ValueError(f"degree {degree} is not supported for {cls.family}")
         exact_inputs = exact_inputs and not isinstance(lam, float)
         start = _join_engine.start_coefficients(cls, degree, lam, order)
+        second_side = join_side(cls, 2, degree, lam)
 
         def make(points: PointsLike) -> Any:
             return cls(points, lam, check_range=check_range) if cls._has_lambda else cls(points)
@@ -219,6 +267,9 @@ def join(
     )
     if given and len(given[0]) != dim:
         raise ValueError(f"rest: points of dimension {len(given[0])}, the curve has {dim}")
+    derived = derived_weights(join_side(curve, 1, curve.degree), second_side, continuity, alpha, d)
+    if derived is not None:  # the document's exact weights (derive/formulas/joins_several.py)
+        return make(_apply(derived, curve, given_rows, given_exact, order))
     one: Number = Fraction(1) if exact else 1.0
     a_, d_ = (Fraction(alpha), Fraction(d)) if exact else (float(alpha), float(d))
     targets: list[list[Number]] = [list(ends[0])]
@@ -266,3 +317,32 @@ def _solve_exact(
                 f = rows[r][col] / rows[col][col]
                 rows[r] = [x - f * y for x, y in zip(rows[r], rows[col], strict=True)]
     return [[v / rows[r][r] for v in rows[r][size:]] for r in range(size)]
+
+
+def _apply(
+    weights: dict[tuple[int, str, int], Number],
+    curve: Any,
+    given_rows: list[Any],
+    given_exact: Any,
+    order: int,
+) -> list[list[Number]]:
+    """P_{0..order,2} from the weights, then the given points (exact where all of it is)."""
+    exact = (
+        curve.is_exact
+        and given_exact is not None
+        and all(isinstance(w, Fraction) for w in weights.values())
+    )
+    first: Any = curve.control_points() if exact else curve.points.tolist()
+    given: Any = [list(r) for r in given_exact] if exact and given_rows else given_rows
+    given = [[v if exact else float(v) for v in r] for r in given]
+    n = curve.degree
+    zero: Number = Fraction(0) if exact else 0.0
+    lead = []
+    for row in range(order + 1):
+        acc = [zero] * curve.dimension
+        for (r, src, j), w in weights.items():
+            if r == row:
+                p = first[n - j] if src == "first" else given[j - order - 1]
+                acc = [a + (w if exact else float(w)) * v for a, v in zip(acc, p, strict=True)]
+        lead.append(acc)
+    return [*lead, *given]

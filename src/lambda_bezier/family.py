@@ -179,6 +179,7 @@ class SeveralData:
                 for kind in ("power", "centred", "bernstein")
             }
             energy = doc["energy"]
+            self.JOINS: Any = doc.get("joins")  # derived join weights (_derived_joins)
             self.ENERGY_REASON: str | None = energy.get("reason")
             self.GRAM: dict[tuple[int, int], dict[tuple[int, int], Matrix]] = {}
             for key, entry in energy.items():

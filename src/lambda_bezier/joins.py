@@ -197,6 +197,13 @@ def _generic_weights(
             f"the first curve's end is degenerate: C1'(1) = 0 for this {curve.family} curve "
             f"of degree {curve.degree} with lam = {curve.lam}, so there is no tangent to continue"
         )
+    from . import _atom_joins  # a family's derived document may hold the weights
+
+    first = _atom_joins.join_side(curve, 1, curve.degree)
+    second = _atom_joins.join_side(cls, 2, degree, lam)
+    derived = _atom_joins.derived_weights(first, second, joint.continuity, joint.alpha, joint.d)
+    if derived is not None:
+        return derived
     try:
         return _join_engine.weights(
             curve, joint.order, joint.alpha, joint.d, cls, degree, lam, joint.continuity

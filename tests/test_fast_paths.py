@@ -275,6 +275,6 @@ def test_exact_isolation_bad_input():
 
 def test_compiled_cone_blur_is_the_numpy_one():
     pytest.importorskip("numba")
-    from lambda_bezier.hazmat import intersect_compiled, intersect_subdivide
+    from lambda_bezier.hazmat import intersect_subdivide, pieces_compiled
 
-    assert intersect_compiled.BLUR == intersect_subdivide.BLUR
+    assert pieces_compiled.BLUR == intersect_subdivide.BLUR

@@ -51,6 +51,18 @@ MAX_ROWS = 400  # the numpy path's guard: pairs of pieces alive at one level, pe
 # the careful path's, which subdivides to 2^-32; stopping here saves half of that work
 DEPTH = 16
 _SPLITTER = 134217729.0
+# the compiled kernels' knobs, in the order certify_compiled.Settings names them
+SETTINGS = (
+    DEPTH,
+    MAX_PIECES,
+    sub.NEWTON_STEPS,
+    sub.INSIDE,
+    sub.CONE_MARGIN,
+    END_MARGIN,
+    DRIFT,
+    SAME,
+    SINE_MIN,
+)
 
 
 def in_use() -> bool:
@@ -83,15 +95,7 @@ def certify(
             np.ascontiguousarray(b, dtype=float),
             np.ascontiguousarray(slack, dtype=float),
             np.ascontiguousarray(bound, dtype=float),
-            DEPTH,
-            MAX_PIECES,
-            sub.NEWTON_STEPS,
-            sub.INSIDE,
-            sub.CONE_MARGIN,
-            END_MARGIN,
-            DRIFT,
-            SAME,
-            SINE_MIN,
+            SETTINGS,
         )
         results: list[tuple[list[float], list[float]] | None] = []
         for k, count in enumerate(counts.tolist()):
@@ -117,15 +121,7 @@ def certify_one(
             b,
             box_slack,
             root_residual,
-            DEPTH,
-            MAX_PIECES,
-            sub.NEWTON_STEPS,
-            sub.INSIDE,
-            sub.CONE_MARGIN,
-            END_MARGIN,
-            DRIFT,
-            SAME,
-            SINE_MIN,
+            SETTINGS,
         )
         if count < 0:
             return None

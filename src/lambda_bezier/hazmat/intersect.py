@@ -55,6 +55,26 @@ ROOT_RESIDUAL = 64 * float(np.finfo(float).eps)
 WIDE_PIECE = 1e-6
 NEAR_FOUND = 1e-6  # float Newton this close to a refined root has found that root
 TANGENT_SINE = 1e-6  # below this sine of the angle between tangents, refine as tangent
+# the tolerances above and the subdivision's, as the compiled careful path takes them
+# (settle_compiled.Knobs names the order)
+SETTLE = (
+    ON_CURVE,
+    SAME_ROOT,
+    ISOLATED_SAME,
+    MERGE_RADIUS,
+    MERGE_GAP,
+    ROOT_RESIDUAL,
+    BOX_SLACK,
+    WIDE_PIECE,
+    NEAR_FOUND,
+    TANGENT_SINE,
+    sub.DEPTH,
+    sub.MAX_ROWS,
+    sub.NEWTON_STEPS,
+    sub.INSIDE,
+    sub.CONE_MARGIN,
+)
+_KINDS = ("tangent", "transversal")  # settle_compiled's kind codes
 
 
 class Intersection(NamedTuple):
@@ -459,6 +479,10 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
         if got is not None:
             s, t = got
             return [Intersection(x, y, "transversal") for x, y in zip(s, t, strict=True)]
+        _check_pair(p, q)
+        settled = cert.settle_one(p.pts, q.pts, SETTLE)
+        if settled is not None:
+            return [Intersection(x, y, _KINDS[kind]) for x, y, kind in settled]
     _check_pair(p, q)
     results: list[list[Intersection]] = [[]]
     _careful_pairs([(p, q)], [0], results)  # declined (or exact input): not certified again

@@ -65,6 +65,11 @@ SETTINGS = (
 )
 
 
+# the careful path compiled (settle_one) where the certificate declines; a switch for tests,
+# which compare it with the careful path in Python
+USE_SETTLE = True
+
+
 def in_use() -> bool:
     """Whether intersect runs the certificate first: only compiled. The numpy version below
     is the readable reference the kernel is tested against; run by intersect it would cost
@@ -79,6 +84,37 @@ def _compiled() -> ModuleType | None:
     from . import certify_compiled
 
     return certify_compiled
+
+
+def _settle_compiled() -> ModuleType | None:
+    if not (sub.USE_COMPILED and USE_SETTLE):
+        return None
+    from . import settle_compiled
+
+    return settle_compiled
+
+
+def settle_one(
+    a: np.ndarray, b: np.ndarray, knobs: tuple[float | int, ...]
+) -> list[tuple[float, float, int]] | None:
+    """The careful path compiled (settle_compiled) on one pair of float curves (n+1, d),
+    (m+1, d) that are the curves exactly, d >= 2, neither a point: its hits (s, t, kind
+    code: 0 tangent, 1 transversal) in the careful path's order, or None where it declines
+    (a stretch the curves may share, curves on one line) or is not compiled. knobs:
+    intersect.SETTLE."""
+    compiled = _settle_compiled()
+    if compiled is None:
+        return None
+    count, s, t, kind = compiled.settle(
+        np.ascontiguousarray(a, dtype=float),
+        np.ascontiguousarray(b, dtype=float),
+        knobs,
+        sub.half_matrices(a.shape[0] - 1),
+        sub.half_matrices(b.shape[0] - 1),
+    )
+    if count < 0:
+        return None
+    return list(zip(s[:count].tolist(), t[:count].tolist(), kind[:count].tolist(), strict=True))
 
 
 def certify(

@@ -25,9 +25,21 @@ import math
 import numba
 import numpy as np
 
-from .intersect_compiled import isolate, isolate_points
+from .intersect_compiled import isolate_points
 from .pieces_compiled import JIT as _JIT
-from .pieces_compiled import compensated, compensated_pair, two_prod, two_sum, value_slope
+from .pieces_compiled import (
+    boxes_apart,
+    compensated,
+    compensated_pair,
+    cone,
+    fat_line_apart,
+    flat_forward,
+    local_newton,
+    pointed,
+    two_prod,
+    two_sum,
+    value_slope,
+)
 
 TANGENT, TRANSVERSAL = 0, 1  # kind codes, in the order of the careful path's kind strings
 
@@ -389,6 +401,145 @@ def _sine(p, q, s: float, t: float) -> float:  # type: ignore[no-untyped-def]
     return math.sqrt(cross) / (nu * nv)
 
 
+# ---------------------------------------------------------------------------- subdivision
+@numba.njit(**_JIT)
+def _halve(piece: np.ndarray, matrix: np.ndarray, out: np.ndarray) -> None:
+    """intersect_compiled._halve on one piece (the same sums in the same order)."""
+    size, dim = piece.shape
+    for i in range(size):
+        for j in range(dim):
+            out[i, j] = 0.0
+        for m in range(size):
+            w = matrix[i, m]
+            if w != 0.0:
+                for j in range(dim):
+                    out[i, j] += w * piece[m, j]
+
+
+@numba.njit(**_JIT)
+def _before(level: int, ia: int, ib: int, level2: int, ia2: int, ib2: int) -> bool:
+    """Whether pair of pieces (level, ia, ib) comes before the other in intersect_compiled
+    .isolate's breadth-first order: by level, then by the children's block (2 a-bit + b-bit)
+    of the latest halving, then of the one before, and so on."""
+    if level != level2:
+        return level < level2
+    for j in range(level):
+        c = 2 * ((ia >> j) & 1) + ((ib >> j) & 1)
+        c2 = 2 * ((ia2 >> j) & 1) + ((ib2 >> j) & 1)
+        if c != c2:
+            return c < c2
+    return False
+
+
+@numba.njit(**_JIT)
+def _breadth_first(level: np.ndarray, ia: np.ndarray, ib: np.ndarray, count: int) -> np.ndarray:
+    """The order (indices) of count pairs of pieces in the breadth-first subdivision."""
+    order = np.arange(count)
+    for k in range(1, count):
+        x = order[k]
+        m = k - 1
+        while m >= 0 and _before(
+            level[x], ia[x], ib[x], level[order[m]], ia[order[m]], ib[order[m]]
+        ):
+            order[m + 1] = order[m]
+            m -= 1
+        order[m + 1] = x
+    return order
+
+
+@numba.njit(**_JIT)
+def _isolate(
+    a: np.ndarray,
+    b: np.ndarray,
+    slack: float,
+    depth: int,
+    budget: int,
+    steps: int,
+    inside: float,
+    margin: float,
+    halves_a: tuple[np.ndarray, np.ndarray],
+    halves_b: tuple[np.ndarray, np.ndarray],
+) -> tuple[bool, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """intersect_compiled.isolate for one pair (no skip, not a curve against itself) depth
+    first on a small stack, its roots and unresolved pieces put back in its breadth-first
+    order: (within budget, root s, root t, left s0, left t0, left width). The pieces are
+    halved with the same matrices, so the same pairs are dropped, isolated or left."""
+    n1, n2, dim = a.shape[0], b.shape[0], a.shape[1]
+    planar = dim == 2
+    cap = 4 * depth + 8
+    sa, sb = np.empty((cap, n1, dim)), np.empty((cap, n2, dim))
+    level, ia, ib = np.empty(cap, np.int64), np.empty(cap, np.int64), np.empty(cap, np.int64)
+    axis_a, axis_b = np.empty(dim), np.empty(dim)
+    wa, wb = np.empty((n1, dim)), np.empty((n2, dim))
+    pa, pb = np.empty((n1, dim)), np.empty((n2, dim))
+    vec4 = np.empty((4, dim))
+    room = 64
+    r_lev, r_ia, r_ib = np.empty(room, np.int64), np.empty(room, np.int64), np.empty(room, np.int64)
+    r_s, r_t = np.empty(room), np.empty(room)
+    l_lev, l_ia, l_ib = np.empty(room, np.int64), np.empty(room, np.int64), np.empty(room, np.int64)
+    roots = lefts = 0
+    sa[0], sb[0] = a, b
+    level[0] = ia[0] = ib[0] = 0
+    top, popped = 1, 0
+    while top > 0:
+        top -= 1
+        popped += 1
+        if popped > budget:
+            return False, r_s[:0], r_t[:0], r_s[:0], r_s[:0], r_s[:0]
+        pa[:, :] = sa[top]
+        pb[:, :] = sb[top]
+        lev, ka, kb = level[top], ia[top], ib[top]
+        if boxes_apart(pa, pb, slack):
+            continue
+        if planar and (fat_line_apart(pa, pb, slack) or fat_line_apart(pb, pa, slack)):
+            continue
+        leave = lev == depth
+        if not leave:
+            half_a, half_b = cone(pa, axis_a, slack), cone(pb, axis_b, slack)
+            if pointed(half_a, margin) and pointed(half_b, margin):
+                dot = 0.0
+                for j in range(dim):
+                    dot += axis_a[j] * axis_b[j]
+                between = math.acos(min(max(abs(dot), 0.0), 1.0))
+                if between > half_a + half_b + margin:
+                    u, v, ok = local_newton(pa, pb, steps, inside, wa, wb, vec4)
+                    if ok:
+                        if roots == room:
+                            return False, r_s[:0], r_t[:0], r_s[:0], r_s[:0], r_s[:0]
+                        width = 0.5**lev
+                        r_lev[roots], r_ia[roots], r_ib[roots] = lev, ka, kb
+                        r_s[roots] = (ka + min(max(u, 0.0), 1.0)) * width
+                        r_t[roots] = (kb + min(max(v, 0.0), 1.0)) * width
+                        roots += 1
+                        continue
+            leave = flat_forward(pa, slack) and flat_forward(pb, slack)
+        if leave:
+            if lefts == room:
+                return False, r_s[:0], r_t[:0], r_s[:0], r_s[:0], r_s[:0]
+            l_lev[lefts], l_ia[lefts], l_ib[lefts] = lev, ka, kb
+            lefts += 1
+            continue
+        if top + 4 > cap:
+            return False, r_s[:0], r_t[:0], r_s[:0], r_s[:0], r_s[:0]
+        # children pushed last block first, so the stack pops them in block order
+        for c in range(3, -1, -1):
+            _halve(pa, halves_a[c // 2], sa[top])
+            _halve(pb, halves_b[c % 2], sb[top])
+            level[top] = lev + 1
+            ia[top] = 2 * ka + c // 2
+            ib[top] = 2 * kb + c % 2
+            top += 1
+    order = _breadth_first(r_lev, r_ia, r_ib, roots)
+    root_s, root_t = r_s[order], r_t[order]
+    order = _breadth_first(l_lev, l_ia, l_ib, lefts)
+    left_s0, left_t0, left_w = np.empty(lefts), np.empty(lefts), np.empty(lefts)
+    for m in range(lefts):
+        k = order[m]
+        width = 0.5 ** l_lev[k]
+        left_s0[m], left_t0[m], left_w[m] = l_ia[k] * width, l_ib[k] * width, width
+    return True, root_s, root_t, left_s0, left_t0, left_w
+
+
 # ---------------------------------------------------------------------------- starts
 @numba.njit(**_JIT)
 def _root(parent: np.ndarray, k: int) -> int:
@@ -548,6 +699,12 @@ def _locate_all(
                 equal = False
         if equal:
             found.append(float(end))
+    for j in range(dim):  # the point beyond the control points' box: isolate_points drops it
+        lo, hi = pts[0, j], pts[0, j]
+        for i in range(n + 1):
+            lo, hi = min(lo, pts[i, j]), max(hi, pts[i, j])
+        if not (lo <= point[j] + tol and point[j] - tol <= hi):
+            return np.sort(np.array(found))
     curves = pts.copy().reshape((1, n + 1, dim))
     root_pair, root_s, left_pair, left_s0, left_width = isolate_points(
         curves,
@@ -812,21 +969,11 @@ def settle(
     if _collinear(a, b, on_curve * scale):
         return -1, fs, ft, fk
     # the subdivision, then refinement from its roots and from the starts it leaves
-    dim = a.shape[1]
-    root_pair, root_s, root_t, left_pair, left_s0, left_t0, left_width = isolate(
-        a.copy().reshape((1, a.shape[0], dim)),
-        b.copy().reshape((1, b.shape[0], dim)),
-        False,
-        np.array([box_slack * degree * scale]),
-        np.empty((0, 5)),
-        depth,
-        max_rows,
-        steps,
-        inside,
-        margin,
-        halves_a,
-        halves_b,
+    ok, root_s, root_t, left_s0, left_t0, left_width = _isolate(
+        a, b, box_slack * degree * scale, depth, max_rows, steps, inside, margin, halves_a, halves_b
     )
+    if not ok:
+        return -1, fs, ft, fk
     for k in range(root_s.size):
         ok, s, t, kind = _solve_from(
             p, q, root_s[k], root_t[k], fs, ft, count, True, scale, bound, knobs

@@ -417,34 +417,31 @@ def _halve(piece: np.ndarray, matrix: np.ndarray, out: np.ndarray) -> None:
 
 
 @numba.njit(**_JIT)
-def _before(level: int, ia: int, ib: int, level2: int, ia2: int, ib2: int) -> bool:
-    """Whether pair of pieces (level, ia, ib) comes before the other in intersect_compiled
-    .isolate's breadth-first order: by level, then by the children's block (2 a-bit + b-bit)
-    of the latest halving, then of the one before, and so on."""
-    if level != level2:
-        return level < level2
-    for j in range(level):
-        c = 2 * ((ia >> j) & 1) + ((ib >> j) & 1)
-        c2 = 2 * ((ia2 >> j) & 1) + ((ib2 >> j) & 1)
-        if c != c2:
-            return c < c2
-    return False
+def _grow(values: np.ndarray) -> np.ndarray:
+    """values in an array twice as long (the rest unset)."""
+    out = np.empty(2 * values.size, values.dtype)
+    out[: values.size] = values
+    return out
 
 
 @numba.njit(**_JIT)
 def _breadth_first(level: np.ndarray, ia: np.ndarray, ib: np.ndarray, count: int) -> np.ndarray:
-    """The order (indices) of count pairs of pieces in the breadth-first subdivision."""
-    order = np.arange(count)
-    for k in range(1, count):
-        x = order[k]
-        m = k - 1
-        while m >= 0 and _before(
-            level[x], ia[x], ib[x], level[order[m]], ia[order[m]], ib[order[m]]
-        ):
-            order[m + 1] = order[m]
-            m -= 1
-        order[m + 1] = x
-    return order
+    """The order (indices) of count pairs of pieces in intersect_compiled.isolate's
+    breadth-first subdivision: by level, then by the children's block (2 a-bit + b-bit) of
+    the latest halving, then of the one before, and so on (each level's children are four
+    blocks, each in the parents' order). The blocks as base-4 digits, latest first, in two
+    keys of 16 digits each; stable sorts from the least significant key."""
+    high, low = np.zeros(count, np.int64), np.zeros(count, np.int64)
+    for k in range(count):
+        for j in range(level[k]):
+            digit = 2 * ((ia[k] >> j) & 1) + ((ib[k] >> j) & 1)
+            if j < 16:
+                high[k] += digit << (2 * (15 - j))
+            else:
+                low[k] += digit << (2 * (31 - j))
+    order = np.argsort(low[:count], kind="mergesort")
+    order = order[np.argsort(high[order], kind="mergesort")]
+    return order[np.argsort(level[:count][order], kind="mergesort")]
 
 
 @numba.njit(**_JIT)
@@ -467,6 +464,8 @@ def _isolate(
     n1, n2, dim = a.shape[0], b.shape[0], a.shape[1]
     planar = dim == 2
     cap = 4 * depth + 8
+    if depth > 32:  # _breadth_first's keys hold 32 halvings
+        return False, np.empty(0), np.empty(0), np.empty(0), np.empty(0), np.empty(0)
     sa, sb = np.empty((cap, n1, dim)), np.empty((cap, n2, dim))
     level, ia, ib = np.empty(cap, np.int64), np.empty(cap, np.int64), np.empty(cap, np.int64)
     axis_a, axis_b = np.empty(dim), np.empty(dim)
@@ -504,8 +503,9 @@ def _isolate(
                 if between > half_a + half_b + margin:
                     u, v, ok = local_newton(pa, pb, steps, inside, wa, wb, vec4)
                     if ok:
-                        if roots == room:
-                            return False, r_s[:0], r_t[:0], r_s[:0], r_s[:0], r_s[:0]
+                        if roots == r_lev.size:
+                            r_lev, r_ia, r_ib = _grow(r_lev), _grow(r_ia), _grow(r_ib)
+                            r_s, r_t = _grow(r_s), _grow(r_t)
                         width = 0.5**lev
                         r_lev[roots], r_ia[roots], r_ib[roots] = lev, ka, kb
                         r_s[roots] = (ka + min(max(u, 0.0), 1.0)) * width
@@ -514,8 +514,8 @@ def _isolate(
                         continue
             leave = flat_forward(pa, slack) and flat_forward(pb, slack)
         if leave:
-            if lefts == room:
-                return False, r_s[:0], r_t[:0], r_s[:0], r_s[:0], r_s[:0]
+            if lefts == l_lev.size:
+                l_lev, l_ia, l_ib = _grow(l_lev), _grow(l_ia), _grow(l_ib)
             l_lev[lefts], l_ia[lefts], l_ib[lefts] = lev, ka, kb
             lefts += 1
             continue

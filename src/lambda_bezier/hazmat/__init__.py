@@ -24,6 +24,8 @@ ours (the name follows the `bezier` package's `hazmat`).
   (numpy, or `certify_compiled`: the whole per-pair pipeline in one numba call);
 - `pieces_compiled`: the compiled helpers on one or two pieces those kernels share (boxes,
   fat lines, cones, halving, compensated de Casteljau, local Newton);
+- `settle_compiled`, `refine_compiled`: intersect's careful path compiled (end points,
+  tangencies, merging) for the pairs the certificate declines (numba; imported on use);
 - `intersect_exact`: exact, certified isolation of planar crossings (resultants, Sturm,
   Krawczyk in rational interval arithmetic);
 - `intersect_prepared`: a curve as the intersection solvers use it (floats, exact rows);
@@ -70,7 +72,9 @@ __all__ = [
     "numbers",
     "rational_kernels",
     "reduce",
+    "refine_compiled",
     "roots",
+    "settle_compiled",
     "surface_kernels",
     "surface_compiled",
 ]

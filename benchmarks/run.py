@@ -739,9 +739,9 @@ def bench_intersection() -> None:
     per_ref = ref_total / pairs
     # both subdivision paths: the numba kernel (the `fast` extra) when installed, and the
     # numpy fallback. Target (issue #29): no slower than the Fortran peer, in total and by
-    # geometric mean. Measured floor (see the README's notes): with the subdivision compiled,
-    # ~90% of the time is the Python refinement (float Newton, the exact-residual polish,
-    # locating the four end points, the exact form of each curve)
+    # geometric mean. Measured floor (see the README's notes): with numba, building the two
+    # curves, the certificate's try, then (declined pairs) the compiled careful path: locating
+    # the four end points and, at a tangency, the subdivision to depth 32
     saved = sub.USE_COMPILED
     paths = (["numba kernel"] if saved else []) + ["numpy fallback"]
     try:

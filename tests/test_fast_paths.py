@@ -25,13 +25,16 @@ pytestmark = pytest.mark.usefixtures("intersect_engine")
 
 
 def careful(p: lb.BezierCurve, q: lb.BezierCurve) -> list[engine.Intersection]:
-    """The careful path alone: intersect_pairs with the certificate declining every pair."""
+    """The careful path alone, in Python: intersect_pairs with the certificate declining every
+    pair and the compiled careful path switched off."""
     saved = cert.certify
     cert.certify = lambda a, b, slack, bound: [None] * a.shape[0]
+    cert.USE_SETTLE = False
     try:
         return engine.intersect_pairs([(p._prepared, q._prepared)])[0]
     finally:
         cert.certify = saved
+        cert.USE_SETTLE = True
 
 
 def certified(p: lb.BezierCurve, q: lb.BezierCurve):
@@ -275,6 +278,6 @@ def test_exact_isolation_bad_input():
 
 def test_compiled_cone_blur_is_the_numpy_one():
     pytest.importorskip("numba")
-    from lambda_bezier.hazmat import intersect_compiled, intersect_subdivide
+    from lambda_bezier.hazmat import intersect_subdivide, pieces_compiled
 
-    assert intersect_compiled.BLUR == intersect_subdivide.BLUR
+    assert pieces_compiled.BLUR == intersect_subdivide.BLUR

@@ -24,6 +24,10 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `intersect_compiled`: the same loop compiled with numba (the `fast` extra; imported on use);
 - `intersect_certify`: the certified fast path for transversal crossings away from the ends
   (numpy, or `certify_compiled`: the whole per-pair pipeline in one numba call);
+- `pieces_compiled`: the compiled helpers on one or two pieces those kernels share (boxes,
+  fat lines, cones, halving, compensated de Casteljau, local Newton);
+- `settle_compiled`, `refine_compiled`: intersect's careful path compiled (end points,
+  tangencies, merging) for the pairs the certificate declines (numba; imported on use);
 - `intersect_exact`: exact, certified isolation of planar crossings (resultants, Sturm,
   Krawczyk in rational interval arithmetic);
 - `intersect_prepared`: a curve as the intersection solvers use it (floats, exact rows);
@@ -72,10 +76,13 @@ __all__ = [
     "intersect_subdivide",
     "kernels",
     "kernels_compiled",
+    "pieces_compiled",
     "numbers",
     "rational_kernels",
     "reduce",
+    "refine_compiled",
     "roots",
+    "settle_compiled",
     "surface_kernels",
     "surface_compiled",
 ]

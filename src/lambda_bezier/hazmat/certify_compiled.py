@@ -17,186 +17,21 @@ numba compiles on first use and caches the machine code next to this file.
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numba
 import numpy as np
 
-from .intersect_compiled import _cone, _fat_line_apart
-
-_JIT: dict[str, Any] = {"cache": True, "error_model": "numpy"}
-_SPLITTER = 134217729.0  # 2^27 + 1: Dekker's split of a double into two 26-bit halves
-
-
-@numba.njit(**_JIT)
-def _two_sum(a: float, b: float) -> tuple[float, float]:
-    s = a + b
-    v = s - a
-    return s, (a - (s - v)) + (b - v)
-
-
-@numba.njit(**_JIT)
-def _two_prod(a: float, b: float) -> tuple[float, float]:
-    p = a * b
-    c = _SPLITTER * a
-    ah = c - (c - a)
-    al = a - ah
-    c = _SPLITTER * b
-    bh = c - (c - b)
-    bl = b - bh
-    return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
-
-
-@numba.njit(**_JIT)
-def _boxes_apart(a: np.ndarray, b: np.ndarray, slack: float) -> bool:
-    """intersect_compiled._boxes_apart in scalar loops (no array reductions)."""
-    for j in range(a.shape[1]):
-        a_lo = a_hi = a[0, j]
-        for i in range(1, a.shape[0]):
-            a_lo, a_hi = min(a_lo, a[i, j]), max(a_hi, a[i, j])
-        b_lo = b_hi = b[0, j]
-        for i in range(1, b.shape[0]):
-            b_lo, b_hi = min(b_lo, b[i, j]), max(b_hi, b[i, j])
-        if a_lo > b_hi + slack or b_lo > a_hi + slack:
-            return True
-    return False
-
-
-@numba.njit(**_JIT)
-def _flat_forward(piece: np.ndarray, slack: float) -> bool:
-    """intersect_compiled._flat_forward without temporaries: every control point within slack
-    of the chord, and the control polygon running forward along it."""
-    n, dim = piece.shape[0] - 1, piece.shape[1]
-    length = 0.0
-    for j in range(dim):
-        length += (piece[n, j] - piece[0, j]) ** 2
-    length = math.sqrt(length)
-    if not length > 0.0:
-        return False
-    for i in range(n + 1):
-        along = 0.0
-        for j in range(dim):
-            along += (piece[i, j] - piece[0, j]) * (piece[n, j] - piece[0, j]) / length
-        off = 0.0
-        for j in range(dim):
-            r = piece[i, j] - piece[0, j] - along * (piece[n, j] - piece[0, j]) / length
-            off += r * r
-        if math.sqrt(off) > slack:
-            return False
-    for i in range(n):
-        dot = 0.0
-        for j in range(dim):
-            dot += (piece[i + 1, j] - piece[i, j]) * (piece[n, j] - piece[0, j])
-        if dot < 0.0:
-            return False
-    return True
-
-
-@numba.njit(**_JIT)
-def _value_slope(
-    piece: np.ndarray, u: float, work: np.ndarray, value: np.ndarray, slope: np.ndarray
-) -> None:
-    """p(u) and p'(u) by de Casteljau in the scratch array work (no temporaries)."""
-    n, dim = piece.shape[0] - 1, piece.shape[1]
-    for i in range(n + 1):
-        for j in range(dim):
-            work[i, j] = piece[i, j]
-    for level in range(n):
-        if level == n - 1:
-            for j in range(dim):
-                slope[j] = n * (work[1, j] - work[0, j])
-        for i in range(n - level):
-            for j in range(dim):
-                work[i, j] += u * (work[i + 1, j] - work[i, j])
-    for j in range(dim):
-        value[j] = work[0, j]
-    if n == 0:
-        for j in range(dim):
-            slope[j] = 0.0
-
-
-@numba.njit(**_JIT)
-def _local_newton(
-    a: np.ndarray,
-    b: np.ndarray,
-    steps: int,
-    inside: float,
-    wa: np.ndarray,
-    wb: np.ndarray,
-    vec: np.ndarray,
-) -> tuple[float, float, bool]:
-    """intersect_compiled._local_newton in scratch arrays: Gauss-Newton on a(u) - b(v) from
-    (1/2, 1/2); ok where the last step is below 1e-12 inside the pieces."""
-    dim = a.shape[1]
-    pa, da, pb, db = vec[0], vec[1], vec[2], vec[3]
-    u, v, step = 0.5, 0.5, np.inf
-    for _ in range(steps):
-        _value_slope(a, u, wa, pa, da)
-        _value_slope(b, v, wb, pb, db)
-        aa = ab = bb = ga = gb = 0.0
-        for j in range(dim):
-            f = pa[j] - pb[j]
-            aa += da[j] * da[j]
-            ab -= da[j] * db[j]
-            bb += db[j] * db[j]
-            ga -= da[j] * f
-            gb += db[j] * f
-        det = aa * bb - ab * ab
-        du = (bb * ga - ab * gb) / det
-        dv = (aa * gb - ab * ga) / det
-        u, v = u + du, v + dv
-        step = abs(du) + abs(dv)
-        if not step > 1e-15:
-            break
-        if not (-1.0 < u < 2.0 and -1.0 < v < 2.0):
-            return u, v, False  # thrown far off: no root of these pieces near (subdivide)
-    ok = math.isfinite(step) and step < 1e-12
-    ok = ok and -inside <= u <= 1 + inside and -inside <= v <= 1 + inside
-    return u, v, ok
-
-
-@numba.njit(**_JIT)
-def _compensated(
-    ctrl: np.ndarray, t: float, hi: np.ndarray, lo: np.ndarray, slope: np.ndarray
-) -> None:
-    """p(t) as hi[0] + lo[0] (compensated de Casteljau, Graillat-Langlois-Louvet), and p'(t)
-    in floats into slope. hi, lo: (n+1, d) work arrays."""
-    n, dim = ctrl.shape[0] - 1, ctrl.shape[1]
-    r, rho = _two_sum(1.0, -t)
-    for i in range(n + 1):
-        for j in range(dim):
-            hi[i, j] = ctrl[i, j]
-            lo[i, j] = 0.0
-    for level in range(n):
-        if level == n - 1:
-            for j in range(dim):
-                slope[j] = n * (hi[1, j] - hi[0, j])
-        for i in range(n - level):
-            for j in range(dim):
-                p1, e1 = _two_prod(r, hi[i, j])
-                p2, e2 = _two_prod(t, hi[i + 1, j])
-                s, e3 = _two_sum(p1, p2)
-                lo[i, j] = r * lo[i, j] + t * lo[i + 1, j] + (e1 + e2 + e3 + rho * hi[i, j])
-                hi[i, j] = s
-
-
-@numba.njit(**_JIT)
-def _split(piece: np.ndarray, work: np.ndarray, left: np.ndarray, right: np.ndarray) -> None:
-    """de Casteljau at 1/2: left and right halves of piece (work: scratch of its shape)."""
-    n, dim = piece.shape[0] - 1, piece.shape[1]
-    for i in range(n + 1):
-        for j in range(dim):
-            work[i, j] = piece[i, j]
-    for j in range(dim):
-        left[0, j] = work[0, j]
-        right[n, j] = work[n, j]
-    for r in range(1, n + 1):
-        for i in range(n - r + 1):
-            for j in range(dim):
-                work[i, j] = 0.5 * (work[i, j] + work[i + 1, j])
-        for j in range(dim):
-            left[r, j] = work[0, j]
-            right[n - r, j] = work[n - r, j]
+from .pieces_compiled import JIT as _JIT
+from .pieces_compiled import (
+    boxes_apart,
+    compensated,
+    cone,
+    fat_line_apart,
+    flat_forward,
+    local_newton,
+    split,
+    two_sum,
+)
 
 
 @numba.njit(**_JIT)
@@ -216,10 +51,10 @@ def _refine(
     prev = np.inf
     size = np.inf
     for it in range(16):
-        _compensated(a, s, ah, al, da)
-        _compensated(b, t, bh, bl, db)
+        compensated(a, s, ah, al, da)
+        compensated(b, t, bh, bl, db)
         for j in range(dim):
-            d, e = _two_sum(ah[0, j], -bh[0, j])
+            d, e = two_sum(ah[0, j], -bh[0, j])
             f[j] = d + (e + (al[0, j] - bl[0, j]))
         # least squares of [da, -db] (ds, dt) = -f through the 2x2 normal equations
         aa = ab = bb = ga = gb = 0.0
@@ -241,11 +76,11 @@ def _refine(
         if size < 1e-17 or (it >= 4 and size >= prev):
             break
         prev = size
-    _compensated(a, s, ah, al, da)
-    _compensated(b, t, bh, bl, db)
+    compensated(a, s, ah, al, da)
+    compensated(b, t, bh, bl, db)
     res = 0.0
     for j in range(dim):
-        d, e = _two_sum(ah[0, j], -bh[0, j])
+        d, e = two_sum(ah[0, j], -bh[0, j])
         x = d + (e + (al[0, j] - bl[0, j]))
         res += x * x
     nu = nv = dot = 0.0
@@ -258,26 +93,24 @@ def _refine(
     return s, t, size, math.sqrt(res), sine
 
 
+# intersect_certify.SETTINGS: depth, max pieces, local Newton steps, inside, cone margin, end
+# margin, drift, same, least sine (the certificate's knobs, named there)
+Settings = tuple[int, int, int, float, float, float, float, float, float]
+
+
 @numba.njit(**_JIT)
 def _certify_one(
     a: np.ndarray,
     b: np.ndarray,
     slack: float,
     bound: float,
-    depth: int,
-    max_pieces: int,
-    newton_steps: int,
-    inside: float,
-    margin: float,
-    end_margin: float,
-    drift: float,
-    same: float,
-    sine_min: float,
+    settings: Settings,
     out_s: np.ndarray,
     out_t: np.ndarray,
 ) -> int:
     """Certified intersections of one pair into out_s, out_t: their count, or -1 where the
     certificate fails (the careful path decides)."""
+    depth, max_pieces, newton_steps, inside, margin, end_margin, drift, same, sine_min = settings
     n1, n2, dim = a.shape[0], b.shape[0], a.shape[1]
     planar = dim == 2
     cap = 4 * depth + 8  # depth first: at most 3 siblings wait per level
@@ -306,22 +139,22 @@ def _certify_one(
             return -1
         pa[:], pb[:] = sa[top], sb[top]
         lev, ka, kb = level[top], ia[top], ib[top]
-        if _boxes_apart(pa, pb, slack):
+        if boxes_apart(pa, pb, slack):
             continue
-        if planar and (_fat_line_apart(pa, pb, slack) or _fat_line_apart(pb, pa, slack)):
+        if planar and (fat_line_apart(pa, pb, slack) or fat_line_apart(pb, pa, slack)):
             continue
         if lev == depth:
             return -1  # unresolved at the depth: a tangency, or crossings closer than that
         width = 0.5**lev
-        half_a = _cone(pa, axis_a, slack)
-        half_b = _cone(pb, axis_b, slack)
+        half_a = cone(pa, axis_a, slack)
+        half_b = cone(pb, axis_b, slack)
         if half_a < math.pi / 2 - margin and half_b < math.pi / 2 - margin:
             dot = 0.0
             for j in range(dim):
                 dot += axis_a[j] * axis_b[j]
             between = math.acos(min(abs(dot), 1.0))
             if between > half_a + half_b + margin:
-                u, v, ok = _local_newton(pa, pb, newton_steps, inside, la, lb, vec4)
+                u, v, ok = local_newton(pa, pb, newton_steps, inside, la, lb, vec4)
                 if ok:
                     if found == room:
                         return -1
@@ -329,12 +162,12 @@ def _certify_one(
                     start_t[found] = (kb + min(max(v, 0.0), 1.0)) * width
                     found += 1
                     continue
-        if _flat_forward(pa, slack) and _flat_forward(pb, slack):
+        if flat_forward(pa, slack) and flat_forward(pb, slack):
             return -1  # flat to rounding on both sides: the careful path's tangent refinement
         if top + 4 > cap:
             return -1
-        _split(pa, wa, la, ra)
-        _split(pb, wb, lb, rb)
+        split(pa, wa, la, ra)
+        split(pb, wb, lb, rb)
         for c in range(4):
             sa[top] = la if c < 2 else ra
             sb[top] = lb if c % 2 == 0 else rb
@@ -371,15 +204,7 @@ def certify(
     b: np.ndarray,
     slack: np.ndarray,
     bound: np.ndarray,
-    depth: int,
-    max_pieces: int,
-    newton_steps: int,
-    inside: float,
-    margin: float,
-    end_margin: float,
-    drift: float,
-    same: float,
-    sine_min: float,
+    settings: Settings,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """P pairs (P, n+1, d) and (P, m+1, d): (count (P,), -1 where the certificate fails;
     s (P, room), t (P, room)), the first count entries of each row being its roots."""
@@ -394,15 +219,7 @@ def certify(
             b[k],
             slack[k],
             bound[k],
-            depth,
-            max_pieces,
-            newton_steps,
-            inside,
-            margin,
-            end_margin,
-            drift,
-            same,
-            sine_min,
+            settings,
             out_s[k],
             out_t[k],
         )
@@ -430,15 +247,7 @@ def certify_one(
     b: np.ndarray,
     box_slack: float,
     root_residual: float,
-    depth: int,
-    max_pieces: int,
-    newton_steps: int,
-    inside: float,
-    margin: float,
-    end_margin: float,
-    drift: float,
-    same: float,
-    sine_min: float,
+    settings: Settings,
 ) -> tuple[int, np.ndarray, np.ndarray]:
     """One pair, with its slack and residual bound computed here as the careful path does
     (intersect._slack, _root_bound): (count, s, t) sorted by s, count -1 where the
@@ -457,15 +266,7 @@ def certify_one(
         b,
         box_slack * degree * scale,
         root_residual * degree * scale,
-        depth,
-        max_pieces,
-        newton_steps,
-        inside,
-        margin,
-        end_margin,
-        drift,
-        same,
-        sine_min,
+        settings,
         out_s,
         out_t,
     )

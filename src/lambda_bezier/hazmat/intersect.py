@@ -55,6 +55,26 @@ ROOT_RESIDUAL = 64 * float(np.finfo(float).eps)
 WIDE_PIECE = 1e-6
 NEAR_FOUND = 1e-6  # float Newton this close to a refined root has found that root
 TANGENT_SINE = 1e-6  # below this sine of the angle between tangents, refine as tangent
+# the tolerances above and the subdivision's, as the compiled careful path takes them
+# (settle_compiled.Knobs names the order)
+SETTLE = (
+    ON_CURVE,
+    SAME_ROOT,
+    ISOLATED_SAME,
+    MERGE_RADIUS,
+    MERGE_GAP,
+    ROOT_RESIDUAL,
+    BOX_SLACK,
+    WIDE_PIECE,
+    NEAR_FOUND,
+    TANGENT_SINE,
+    sub.DEPTH,
+    sub.MAX_ROWS,
+    sub.NEWTON_STEPS,
+    sub.INSIDE,
+    sub.CONE_MARGIN,
+)
+_KINDS = ("tangent", "transversal")  # settle_compiled's kind codes
 
 
 class Intersection(NamedTuple):
@@ -453,12 +473,17 @@ Box = tuple[float, float, float, float]  # s0, s1, t0, t1 of a coincident stretc
 
 def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
     """Every intersection of p and q, sorted by s: the certified fast path when both are
-    floats exactly, else (or where it does not certify) the careful path."""
+    floats exactly, else (or where it does not certify) the careful path: compiled
+    (settle_one) where it can, in Python otherwise."""
     if cert.in_use() and p.floats_exact and q.floats_exact and p.dim == q.dim and p.dim >= 2:
         got = cert.certify_one(p.pts, q.pts, BOX_SLACK, ROOT_RESIDUAL)
         if got is not None:
             s, t = got
             return [Intersection(x, y, "transversal") for x, y in zip(s, t, strict=True)]
+        _check_pair(p, q)
+        settled = cert.settle_one(p.pts, q.pts, SETTLE)
+        if settled is not None:
+            return [Intersection(x, y, _KINDS[kind]) for x, y, kind in settled]
     _check_pair(p, q)
     results: list[list[Intersection]] = [[]]
     _careful_pairs([(p, q)], [0], results)  # declined (or exact input): not certified again
@@ -468,7 +493,8 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
 def intersect_pairs(pairs: list[tuple[Prepared, Prepared]]) -> list[list[Intersection]]:
     """Every intersection of each pair, sorted by s. Pairs of equal degrees and dimension go
     together: first the certified fast path (intersect_certify) on those whose floats are
-    the curves exactly; the rest, and those it does not certify, the careful way: the end
+    the curves exactly, then the careful path compiled (settle_one) on those it declines;
+    the rest, and those the compiled careful path declines, the careful way in Python: the end
     points and shared stretches pair by pair, the subdivision in one set of arrays
     (intersect_subdivide.isolate), then refinement pair by pair."""
     for p, q in pairs:
@@ -493,7 +519,11 @@ def intersect_pairs(pairs: list[tuple[Prepared, Prepared]]) -> list[list[Interse
             )
             for k, got in zip(fast, certified, strict=True):
                 if got is None:
-                    careful.append(k)
+                    settled = cert.settle_one(pairs[k][0].pts, pairs[k][1].pts, SETTLE)
+                    if settled is None:
+                        careful.append(k)
+                    else:
+                        results[k] = [Intersection(x, y, _KINDS[c]) for x, y, c in settled]
                 else:
                     s_list, t_list = got
                     results[k] = [

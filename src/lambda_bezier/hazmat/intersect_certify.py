@@ -51,6 +51,23 @@ MAX_ROWS = 400  # the numpy path's guard: pairs of pieces alive at one level, pe
 # the careful path's, which subdivides to 2^-32; stopping here saves half of that work
 DEPTH = 16
 _SPLITTER = 134217729.0
+# the compiled kernels' knobs, in the order certify_compiled.Settings names them
+SETTINGS = (
+    DEPTH,
+    MAX_PIECES,
+    sub.NEWTON_STEPS,
+    sub.INSIDE,
+    sub.CONE_MARGIN,
+    END_MARGIN,
+    DRIFT,
+    SAME,
+    SINE_MIN,
+)
+
+
+# the careful path compiled (settle_one) where the certificate declines; a switch for tests,
+# which compare it with the careful path in Python
+USE_SETTLE = True
 
 
 def in_use() -> bool:
@@ -69,6 +86,37 @@ def _compiled() -> ModuleType | None:
     return certify_compiled
 
 
+def _settle_compiled() -> ModuleType | None:
+    if not (sub.USE_COMPILED and USE_SETTLE):
+        return None
+    from . import settle_compiled
+
+    return settle_compiled
+
+
+def settle_one(
+    a: np.ndarray, b: np.ndarray, knobs: tuple[float | int, ...]
+) -> list[tuple[float, float, int]] | None:
+    """The careful path compiled (settle_compiled) on one pair of float curves (n+1, d),
+    (m+1, d) that are the curves exactly, d >= 2, neither a point: its hits (s, t, kind
+    code: 0 tangent, 1 transversal) in the careful path's order, or None where it declines
+    (a stretch the curves may share, curves on one line) or is not compiled. knobs:
+    intersect.SETTLE."""
+    compiled = _settle_compiled()
+    if compiled is None:
+        return None
+    count, s, t, kind = compiled.settle(
+        np.ascontiguousarray(a, dtype=float),
+        np.ascontiguousarray(b, dtype=float),
+        knobs,
+        sub.half_matrices(a.shape[0] - 1),
+        sub.half_matrices(b.shape[0] - 1),
+    )
+    if count < 0:
+        return None
+    return list(zip(s[:count].tolist(), t[:count].tolist(), kind[:count].tolist(), strict=True))
+
+
 def certify(
     a: np.ndarray, b: np.ndarray, slack: np.ndarray, bound: np.ndarray
 ) -> list[tuple[list[float], list[float]] | None]:
@@ -83,15 +131,7 @@ def certify(
             np.ascontiguousarray(b, dtype=float),
             np.ascontiguousarray(slack, dtype=float),
             np.ascontiguousarray(bound, dtype=float),
-            DEPTH,
-            MAX_PIECES,
-            sub.NEWTON_STEPS,
-            sub.INSIDE,
-            sub.CONE_MARGIN,
-            END_MARGIN,
-            DRIFT,
-            SAME,
-            SINE_MIN,
+            SETTINGS,
         )
         results: list[tuple[list[float], list[float]] | None] = []
         for k, count in enumerate(counts.tolist()):
@@ -117,15 +157,7 @@ def certify_one(
             b,
             box_slack,
             root_residual,
-            DEPTH,
-            MAX_PIECES,
-            sub.NEWTON_STEPS,
-            sub.INSIDE,
-            sub.CONE_MARGIN,
-            END_MARGIN,
-            DRIFT,
-            SAME,
-            SINE_MIN,
+            SETTINGS,
         )
         if count < 0:
             return None

@@ -17,17 +17,21 @@ numba compiles on first use and caches the machine code next to this file.
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numba
 import numpy as np
 from numba.typed import List
 
-# intersect_subdivide.BLUR (a compile-time constant here; tests/test_fast_paths.py checks they
-# agree): the pieces' rounding as a share of the slack
-BLUR = 1.0 / 16.0
-
-_JIT: dict[str, Any] = {"cache": True, "error_model": "numpy"}
+from .pieces_compiled import JIT as _JIT
+from .pieces_compiled import (
+    boxes_apart,
+    cone,
+    fat_line_apart,
+    flat_forward,
+    local_newton,
+    pointed,
+    value_slope,
+)
 
 
 @numba.njit(**_JIT)
@@ -54,160 +58,6 @@ def _float_array(values: List) -> np.ndarray:
     for k in range(len(values)):
         out[k] = values[k]
     return out
-
-
-@numba.njit(**_JIT)
-def _cone(points: np.ndarray, axis: np.ndarray, slack: float) -> float:
-    """Half-angle of the circular cone about `axis` (written) holding every hodograph
-    control point of `points`, widened by the rounding blur of their directions (see
-    intersect_subdivide._cones); pi where it is not pointed this way."""
-    count, dim = points.shape[0] - 1, points.shape[1]
-    good = True
-    blur = 0.0
-    for j in range(dim):
-        axis[j] = 0.0
-    for i in range(count):
-        norm = 0.0
-        for j in range(dim):
-            h = points[i + 1, j] - points[i, j]
-            norm += h * h
-        norm = math.sqrt(norm)
-        if norm > 2.0 * BLUR * slack:
-            for j in range(dim):
-                axis[j] += (points[i + 1, j] - points[i, j]) / norm
-            blur = max(blur, math.asin(2.0 * BLUR * slack / norm))
-        else:
-            good = False
-    axis_norm = 0.0
-    for j in range(dim):
-        axis_norm += axis[j] * axis[j]
-    axis_norm = math.sqrt(axis_norm)
-    if axis_norm > 0.0:
-        for j in range(dim):
-            axis[j] /= axis_norm
-    else:
-        good = False
-    if not good:
-        return math.pi
-    cos = np.inf
-    for i in range(count):
-        norm = 0.0
-        dot = 0.0
-        for j in range(dim):
-            h = points[i + 1, j] - points[i, j]
-            norm += h * h
-            dot += h * axis[j]
-        c = dot / math.sqrt(norm)
-        cos = min(cos, c)
-    if not cos > 0.0:
-        return math.pi
-    return math.acos(min(max(cos, -1.0), 1.0)) + blur
-
-
-@numba.njit(**_JIT)
-def _pointed(half: float, margin: float) -> bool:
-    return half < math.pi / 2 - margin
-
-
-@numba.njit(**_JIT)
-def _boxes_apart(a: np.ndarray, b: np.ndarray, slack: float) -> bool:
-    for j in range(a.shape[1]):
-        a_lo, a_hi = a[:, j].min(), a[:, j].max()
-        b_lo, b_hi = b[:, j].min(), b[:, j].max()
-        if a_lo > b_hi + slack or b_lo > a_hi + slack:
-            return True
-    return False
-
-
-@numba.njit(**_JIT)
-def _fat_line_apart(a: np.ndarray, b: np.ndarray, slack: float) -> bool:
-    """Planar: a's control points lie beyond b's fat line, on one side."""
-    cx, cy = b[-1, 0] - b[0, 0], b[-1, 1] - b[0, 1]
-    length = math.hypot(cx, cy)
-    if not length > 0.0:
-        return False
-    nx, ny = -cy / length, cx / length
-    b_lo, b_hi = np.inf, -np.inf
-    for i in range(b.shape[0]):
-        dist = (b[i, 0] - b[0, 0]) * nx + (b[i, 1] - b[0, 1]) * ny
-        b_lo, b_hi = min(b_lo, dist), max(b_hi, dist)
-    a_lo, a_hi = np.inf, -np.inf
-    for i in range(a.shape[0]):
-        dist = (a[i, 0] - b[0, 0]) * nx + (a[i, 1] - b[0, 1]) * ny
-        a_lo, a_hi = min(a_lo, dist), max(a_hi, dist)
-    return a_lo > b_hi + slack or a_hi < b_lo - slack
-
-
-@numba.njit(**_JIT)
-def _flat_forward(piece: np.ndarray, slack: float) -> bool:
-    """Thickness (largest distance from the chord) within slack, and runs forward along it."""
-    dim = piece.shape[1]
-    chord = piece[-1] - piece[0]
-    length = math.sqrt(float(np.sum(chord * chord)))
-    if not length > 0.0:
-        return False
-    unit = chord / length
-    for i in range(piece.shape[0]):
-        rel = piece[i] - piece[0]
-        along = float(np.sum(rel * unit))
-        off = 0.0
-        for j in range(dim):
-            r = rel[j] - along * unit[j]
-            off += r * r
-        if math.sqrt(off) > slack:
-            return False
-    for i in range(piece.shape[0] - 1):
-        if float(np.sum((piece[i + 1] - piece[i]) * chord)) < 0.0:
-            return False
-    return True
-
-
-@numba.njit(**_JIT)
-def _eval(piece: np.ndarray, u: float, value: np.ndarray, slope: np.ndarray) -> None:
-    work = piece.copy()
-    degree = piece.shape[0] - 1
-    top = degree
-    while top > 1:
-        for i in range(top):
-            work[i] = work[i] + u * (work[i + 1] - work[i])
-        top -= 1
-    if degree == 0:
-        value[:] = work[0]
-        slope[:] = 0.0
-        return
-    value[:] = work[0] + u * (work[1] - work[0])
-    slope[:] = degree * (work[1] - work[0])
-
-
-@numba.njit(**_JIT)
-def _local_newton(
-    a: np.ndarray, b: np.ndarray, steps: int, inside: float
-) -> tuple[float, float, bool]:
-    dim = a.shape[1]
-    pa, da = np.empty(dim), np.empty(dim)
-    pb, db = np.empty(dim), np.empty(dim)
-    u, v, step = 0.5, 0.5, np.inf
-    for _ in range(steps):
-        _eval(a, u, pa, da)
-        _eval(b, v, pb, db)
-        aa = ab = bb = ga = gb = 0.0
-        for j in range(dim):
-            f = pa[j] - pb[j]
-            aa += da[j] * da[j]
-            ab -= da[j] * db[j]
-            bb += db[j] * db[j]
-            ga -= da[j] * f
-            gb += db[j] * f
-        det = aa * bb - ab * ab
-        du = (bb * ga - ab * gb) / det
-        dv = (aa * gb - ab * ga) / det
-        u, v = u + du, v + dv
-        step = abs(du) + abs(dv)
-        if not step > 1e-15:
-            break
-    ok = math.isfinite(step) and step < 1e-12
-    ok = ok and -inside <= u <= 1 + inside and -inside <= v <= 1 + inside
-    return u, v, ok
 
 
 @numba.njit(**_JIT)
@@ -249,6 +99,8 @@ def isolate(
     root_pair, root_s, root_t = _ints(), _floats(), _floats()
     left_pair, left_s, left_t, left_w = _ints(), _floats(), _floats(), _floats()
     axis_a, axis_b = np.empty(dim), np.empty(dim)
+    wa, wb = np.empty((a.shape[1], dim)), np.empty((b.shape[1], dim))
+    vec4 = np.empty((4, dim))
     union = np.empty((pa.shape[1] + pb.shape[1] - 1, dim))
     level = 0
     while True:
@@ -257,10 +109,10 @@ def isolate(
         keep = np.ones(count, dtype=np.bool_)
         for k in range(count):
             sl = slack[pid[k]]
-            if _boxes_apart(pa[k], pb[k], sl):
+            if boxes_apart(pa[k], pb[k], sl):
                 keep[k] = False
                 continue
-            if planar and (_fat_line_apart(pa[k], pb[k], sl) or _fat_line_apart(pb[k], pa[k], sl)):
+            if planar and (fat_line_apart(pa[k], pb[k], sl) or fat_line_apart(pb[k], pa[k], sl)):
                 keep[k] = False
                 continue
             for r in range(skip.shape[0]):
@@ -274,12 +126,12 @@ def isolate(
                     keep[k] = False
             if keep[k] and same and abs(ia[k] - ib[k]) <= 1:
                 if ia[k] == ib[k]:
-                    keep[k] = not _pointed(_cone(pa[k], axis_a, sl), margin)
+                    keep[k] = not pointed(cone(pa[k], axis_a, sl), margin)
                 else:
                     size = pa.shape[1]
                     union[:size] = pa[k]
                     union[size:] = pb[k, 1:]
-                    keep[k] = not _pointed(_cone(union, axis_a, sl), margin)
+                    keep[k] = not pointed(cone(union, axis_a, sl), margin)
         pa, pb, pid, ia, ib = pa[keep], pb[keep], pid[keep], ia[keep], ib[keep]
         count = pid.size
         if count == 0:
@@ -296,15 +148,15 @@ def isolate(
             if same and abs(ia[k] - ib[k]) <= 1:
                 continue
             sl = slack[pid[k]]
-            half_a = _cone(pa[k], axis_a, sl)
-            half_b = _cone(pb[k], axis_b, sl)
-            if not (_pointed(half_a, margin) and _pointed(half_b, margin)):
+            half_a = cone(pa[k], axis_a, sl)
+            half_b = cone(pb[k], axis_b, sl)
+            if not (pointed(half_a, margin) and pointed(half_b, margin)):
                 continue
             dot = abs(float(np.sum(axis_a * axis_b)))
             between = math.acos(min(max(dot, 0.0), 1.0))
             if not between > half_a + half_b + margin:
                 continue
-            u, v, ok = _local_newton(pa[k], pb[k], newton_steps, inside)
+            u, v, ok = local_newton(pa[k], pb[k], newton_steps, inside, wa, wb, vec4)
             if ok:
                 root_pair.append(pid[k])
                 root_s.append((ia[k] + min(max(u, 0.0), 1.0)) * width)
@@ -314,7 +166,7 @@ def isolate(
             if not rest[k] or (same and abs(ia[k] - ib[k]) <= 1):
                 continue
             sl = slack[pid[k]]
-            if _flat_forward(pa[k], sl) and _flat_forward(pb[k], sl):
+            if flat_forward(pa[k], sl) and flat_forward(pb[k], sl):
                 left_pair.append(pid[k])
                 left_s.append(ia[k] * width)
                 left_t.append(ib[k] * width)
@@ -351,9 +203,10 @@ def _local_foot_newton(
 ) -> tuple[float, bool]:
     dim = piece.shape[1]
     value, slope = np.empty(dim), np.empty(dim)
+    work = np.empty(piece.shape)
     u, step = 0.5, np.inf
     for _ in range(steps):
-        _eval(piece, u, value, slope)
+        value_slope(piece, u, work, value, slope)
         du = -float(np.sum((value - point) * slope)) / float(np.sum(slope * slope))
         u += du
         step = abs(du)
@@ -361,7 +214,7 @@ def _local_foot_newton(
             break
     ok = math.isfinite(step) and step < 1e-12 and -inside <= u <= 1 + inside
     if ok:  # the point itself, not a foot point off it (see intersect_subdivide)
-        _eval(piece, u, value, slope)
+        value_slope(piece, u, work, value, slope)
         ok = math.sqrt(float(np.sum((value - point) ** 2))) <= slack
     return u, ok
 
@@ -398,7 +251,7 @@ def isolate_points(
                 lo, hi = pieces[k, :, j].min(), pieces[k, :, j].max()
                 if not (lo <= target[j] + sl and target[j] - sl <= hi):
                     keep[k] = False
-            if keep[k] and planar and _fat_line_apart(target.reshape(1, dim), pieces[k], sl):
+            if keep[k] and planar and fat_line_apart(target.reshape(1, dim), pieces[k], sl):
                 keep[k] = False
         pieces, pid, index = pieces[keep], pid[keep], index[keep]
         count = pid.size
@@ -413,7 +266,7 @@ def isolate_points(
             break
         rest = np.ones(count, dtype=np.bool_)
         for k in range(count):
-            if _pointed(_cone(pieces[k], axis, slack[pid[k]]), margin):
+            if pointed(cone(pieces[k], axis, slack[pid[k]]), margin):
                 u, ok = _local_foot_newton(
                     pieces[k], points[pid[k]], newton_steps, inside, slack[pid[k]]
                 )
@@ -422,7 +275,7 @@ def isolate_points(
                     root_s.append((index[k] + min(max(u, 0.0), 1.0)) * width)
                     rest[k] = False
         for k in range(count):
-            if rest[k] and _flat_forward(pieces[k], slack[pid[k]]):
+            if rest[k] and flat_forward(pieces[k], slack[pid[k]]):
                 left_pair.append(pid[k])
                 left_s.append(index[k] * width)
                 left_w.append(width)

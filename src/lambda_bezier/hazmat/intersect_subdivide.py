@@ -201,6 +201,7 @@ def local_newton(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray, 
     u = np.full(k, 0.5)
     v = np.full(k, 0.5)
     step = np.full(k, np.inf)
+    thrown = np.zeros(k, dtype=bool)
     with np.errstate(all="ignore"):
         for _ in range(NEWTON_STEPS):
             pa, da = _eval_with_derivative(a, u)
@@ -218,10 +219,12 @@ def local_newton(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray, 
             u = u + du
             v = v + dv
             step = np.abs(du) + np.abs(dv)
+            # thrown far off (a step too big to stop): no root of these pieces near, subdivide
+            thrown |= (step > 1e-15) & ~((u > -1) & (u < 2) & (v > -1) & (v < 2))
             if not np.any(step > 1e-15):
                 break
     inside = (u >= -INSIDE) & (u <= 1 + INSIDE) & (v >= -INSIDE) & (v <= 1 + INSIDE)
-    converged = np.isfinite(step) & (step < 1e-12) & inside
+    converged = np.isfinite(step) & (step < 1e-12) & inside & ~thrown
     return u, v, converged
 
 

@@ -1,0 +1,570 @@
+"""The careful path of curve intersection (hazmat.intersect) compiled with numba, for the
+pairs the certificate declines: end points located on the other curve, tangencies refined on
+the tangent system, the merging of hits that are one, all in one call.
+
+It is intersect's careful path step for step (the same subdivisions, the same Newton starts,
+iterations, tolerances and merging rules, in the same order), with one change of means: where
+the careful path evaluates a residual exactly in rationals, this kernel evaluates it by
+compensated de Casteljau (error-free transformations: as accurate as twice the working
+precision), which decides the same comparisons at the tolerances involved (64 eps of the
+curves' size and above). Two things it does not do, and declines instead (count -1: the
+caller runs the careful path): deciding whether two end hits bound a shared stretch (it
+declines as soon as a stretch between two end hits might be shared: the same polynomial
+piece, or the careful path's first test point of a shared image lying on the other curve),
+and curves whose control points all lie on one line (the careful path refuses or reports
+those). Hits are returned with kinds 0 (tangent) and 1 (transversal), sorted as the careful
+path sorts them. The refinement steps (Newton, tangent refinement, a hit's acceptance and
+merging) are refine_compiled's; the subdivision, the Newton starts, point location and the
+pair's driver are here.
+
+Imported only by intersect_certify, and only when numba is installed and not disabled.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from .intersect_compiled import isolate_points
+from .pieces_compiled import JIT as _JIT
+from .pieces_compiled import (
+    boxes_apart,
+    cone,
+    fat_line_apart,
+    flat_forward,
+    local_newton,
+    pointed,
+)
+from .refine_compiled import (
+    TANGENT,
+    TRANSVERSAL,
+    Curve,
+    Halves,
+    Knobs,
+    _add,
+    _curve,
+    _d,
+    _near,
+    _norm,
+    _scale,
+    _sine,
+    _size,
+    _solve_from,
+    _value_minus,
+)
+
+
+# ---------------------------------------------------------------------------- subdivision
+@numba.njit(**_JIT)
+def _halve(piece: np.ndarray, matrix: np.ndarray, out: np.ndarray) -> None:
+    """intersect_compiled._halve on one piece (the same sums in the same order)."""
+    size, dim = piece.shape
+    for i in range(size):
+        for j in range(dim):
+            out[i, j] = 0.0
+        for m in range(size):
+            w = matrix[i, m]
+            if w != 0.0:
+                for j in range(dim):
+                    out[i, j] += w * piece[m, j]
+
+
+@numba.njit(**_JIT)
+def _grow(values: np.ndarray) -> np.ndarray:
+    """values in an array twice as long (the rest unset)."""
+    out = np.empty(2 * values.size, values.dtype)
+    out[: values.size] = values
+    return out
+
+
+@numba.njit(**_JIT)
+def _breadth_first(level: np.ndarray, ia: np.ndarray, ib: np.ndarray, count: int) -> np.ndarray:
+    """The order (indices) of count pairs of pieces in intersect_compiled.isolate's
+    breadth-first subdivision: by level, then by the children's block (2 a-bit + b-bit) of
+    the latest halving, then of the one before, and so on (each level's children are four
+    blocks, each in the parents' order). The blocks as base-4 digits, latest first, in two
+    keys of 16 digits each; stable sorts from the least significant key."""
+    high, low = np.zeros(count, np.int64), np.zeros(count, np.int64)
+    for k in range(count):
+        for j in range(level[k]):
+            digit = 2 * ((ia[k] >> j) & 1) + ((ib[k] >> j) & 1)
+            if j < 16:
+                high[k] += digit << (2 * (15 - j))
+            else:
+                low[k] += digit << (2 * (31 - j))
+    order = np.argsort(low[:count], kind="mergesort")
+    order = order[np.argsort(high[order], kind="mergesort")]
+    return order[np.argsort(level[:count][order], kind="mergesort")]
+
+
+@numba.njit(**_JIT)
+def _isolate(
+    a: np.ndarray,
+    b: np.ndarray,
+    slack: float,
+    depth: int,
+    budget: int,
+    steps: int,
+    inside: float,
+    margin: float,
+    halves_a: tuple[np.ndarray, np.ndarray],
+    halves_b: tuple[np.ndarray, np.ndarray],
+) -> tuple[bool, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """intersect_compiled.isolate for one pair (no skip, not a curve against itself) depth
+    first on a small stack, its roots and unresolved pieces put back in its breadth-first
+    order: (within budget, root s, root t, left s0, left t0, left width). The pieces are
+    halved with the same matrices, so the same pairs are dropped, isolated or left."""
+    n1, n2, dim = a.shape[0], b.shape[0], a.shape[1]
+    planar = dim == 2
+    cap = 4 * depth + 8
+    if depth > 32:  # _breadth_first's keys hold 32 halvings
+        return False, np.empty(0), np.empty(0), np.empty(0), np.empty(0), np.empty(0)
+    sa, sb = np.empty((cap, n1, dim)), np.empty((cap, n2, dim))
+    level, ia, ib = np.empty(cap, np.int64), np.empty(cap, np.int64), np.empty(cap, np.int64)
+    axis_a, axis_b = np.empty(dim), np.empty(dim)
+    wa, wb = np.empty((n1, dim)), np.empty((n2, dim))
+    pa, pb = np.empty((n1, dim)), np.empty((n2, dim))
+    vec4 = np.empty((4, dim))
+    room = 64
+    r_lev, r_ia, r_ib = np.empty(room, np.int64), np.empty(room, np.int64), np.empty(room, np.int64)
+    r_s, r_t = np.empty(room), np.empty(room)
+    l_lev, l_ia, l_ib = np.empty(room, np.int64), np.empty(room, np.int64), np.empty(room, np.int64)
+    roots = lefts = 0
+    sa[0], sb[0] = a, b
+    level[0] = ia[0] = ib[0] = 0
+    top, popped = 1, 0
+    while top > 0:
+        top -= 1
+        popped += 1
+        if popped > budget:
+            return False, r_s[:0], r_t[:0], r_s[:0], r_s[:0], r_s[:0]
+        pa[:, :] = sa[top]
+        pb[:, :] = sb[top]
+        lev, ka, kb = level[top], ia[top], ib[top]
+        if boxes_apart(pa, pb, slack):
+            continue
+        if planar and (fat_line_apart(pa, pb, slack) or fat_line_apart(pb, pa, slack)):
+            continue
+        leave = lev == depth
+        if not leave:
+            half_a, half_b = cone(pa, axis_a, slack), cone(pb, axis_b, slack)
+            if pointed(half_a, margin) and pointed(half_b, margin):
+                dot = 0.0
+                for j in range(dim):
+                    dot += axis_a[j] * axis_b[j]
+                between = math.acos(min(max(abs(dot), 0.0), 1.0))
+                if between > half_a + half_b + margin:
+                    u, v, ok = local_newton(pa, pb, steps, inside, wa, wb, vec4)
+                    if ok:
+                        if roots == r_lev.size:
+                            r_lev, r_ia, r_ib = _grow(r_lev), _grow(r_ia), _grow(r_ib)
+                            r_s, r_t = _grow(r_s), _grow(r_t)
+                        width = 0.5**lev
+                        r_lev[roots], r_ia[roots], r_ib[roots] = lev, ka, kb
+                        r_s[roots] = (ka + min(max(u, 0.0), 1.0)) * width
+                        r_t[roots] = (kb + min(max(v, 0.0), 1.0)) * width
+                        roots += 1
+                        continue
+            leave = flat_forward(pa, slack) and flat_forward(pb, slack)
+        if leave:
+            if lefts == l_lev.size:
+                l_lev, l_ia, l_ib = _grow(l_lev), _grow(l_ia), _grow(l_ib)
+            l_lev[lefts], l_ia[lefts], l_ib[lefts] = lev, ka, kb
+            lefts += 1
+            continue
+        if top + 4 > cap:
+            return False, r_s[:0], r_t[:0], r_s[:0], r_s[:0], r_s[:0]
+        # children pushed last block first, so the stack pops them in block order
+        for c in range(3, -1, -1):
+            _halve(pa, halves_a[c // 2], sa[top])
+            _halve(pb, halves_b[c % 2], sb[top])
+            level[top] = lev + 1
+            ia[top] = 2 * ka + c // 2
+            ib[top] = 2 * kb + c % 2
+            top += 1
+    order = _breadth_first(r_lev, r_ia, r_ib, roots)
+    root_s, root_t = r_s[order], r_t[order]
+    order = _breadth_first(l_lev, l_ia, l_ib, lefts)
+    left_s0, left_t0, left_w = np.empty(lefts), np.empty(lefts), np.empty(lefts)
+    for m in range(lefts):
+        k = order[m]
+        width = 0.5 ** l_lev[k]
+        left_s0[m], left_t0[m], left_w[m] = l_ia[k] * width, l_ib[k] * width, width
+    return True, root_s, root_t, left_s0, left_t0, left_w
+
+
+# ---------------------------------------------------------------------------- starts
+@numba.njit(**_JIT)
+def _root(parent: np.ndarray, k: int) -> int:
+    while parent[k] != k:
+        parent[k] = parent[parent[k]]
+        k = parent[k]
+    return k
+
+
+@numba.njit(**_JIT)
+def _starts(
+    s0: np.ndarray, t0: np.ndarray, width: np.ndarray, per_cluster: int = 6
+) -> tuple[np.ndarray, np.ndarray]:
+    """intersect._starts (with _interval_clusters): Newton starts for unresolved pairs of
+    pieces, cluster by cluster in the same order."""
+    count = s0.size
+    parent = np.arange(count)
+    order = np.argsort(s0, kind="mergesort")
+    active = np.empty(count, dtype=np.int64)
+    live = 0
+    for k in order:
+        kept = 0
+        for m in range(live):
+            j = active[m]
+            if s0[j] + width[j] >= s0[k] - 1e-15:
+                active[kept] = j
+                kept += 1
+        live = kept
+        for m in range(live):
+            j = active[m]
+            if t0[j] <= t0[k] + width[k] + 1e-15 and t0[k] <= t0[j] + width[j] + 1e-15:
+                parent[_root(parent, j)] = _root(parent, k)
+        active[live] = k
+        live += 1
+    roots = np.empty(count, dtype=np.int64)
+    for k in range(count):
+        roots[k] = _root(parent, k)
+    out_s, out_t = np.empty(count), np.empty(count)
+    made = 0
+    seen = np.zeros(count, dtype=np.bool_)
+    for first in range(count):  # groups in the order of their first member
+        if seen[roots[first]]:
+            continue
+        seen[roots[first]] = True
+        members = np.array([k for k in range(count) if roots[k] == roots[first]])
+        centre = np.empty(members.size)
+        for m in range(members.size):
+            k = members[m]
+            centre[m] = (s0[k] + width[k] / 2) + (t0[k] + width[k] / 2)
+        ordered = members[np.argsort(centre, kind="mergesort")]
+        size = ordered.size
+        if size <= per_cluster:
+            picks = ordered.copy()
+        else:
+            spots = min(per_cluster, size)
+            step = (size - 1) / (spots - 1)  # numpy.linspace(0, size - 1, spots), truncated
+            extra = [ordered[size // 2]]
+            last = -1
+            for i in range(spots):
+                x = int(i * step) if i < spots - 1 else size - 1
+                if x != last and ordered[x] != ordered[size // 2]:
+                    extra.append(ordered[x])
+                last = x
+            picks = np.array(extra)
+        for k in picks:
+            out_s[made] = s0[k] + width[k] / 2
+            out_t[made] = t0[k] + width[k] / 2
+            made += 1
+    return out_s[:made], out_t[:made]
+
+
+# ---------------------------------------------------------------------------- locate
+@numba.njit(**_JIT)
+def _locate_newton(c: Curve, point: np.ndarray, t: float) -> float:
+    """intersect._locate_newton: nan where it leaves the domain."""
+    dim = point.shape[0]
+    pts = c[0]
+    hi, lo = np.empty(pts.shape), np.empty(pts.shape)
+    diff = np.empty(dim)
+    for phase in range(2):
+        exact = phase == 1
+        prev = np.inf
+        for it in range(3 if exact else 40):
+            if exact:
+                _value_minus(pts, t, point, hi, lo, diff)
+            else:
+                x = _d(c, t, 0)
+                for j in range(dim):
+                    diff[j] = x[j] - point[j]
+            d1, d2 = _d(c, t, 1), _d(c, t, 2)
+            slope = 0.0
+            lead = 0.0
+            for j in range(dim):
+                slope += d1[j] * d1[j]
+            for j in range(dim):
+                lead += diff[j] * d2[j]
+            slope += lead
+            if slope == 0.0:
+                break
+            num = 0.0
+            for j in range(dim):
+                num += diff[j] * d1[j]
+            step = num / slope
+            t -= step
+            if not -0.5 < t < 1.5:
+                return np.nan
+            if abs(step) < 1e-16 or (it > 5 and abs(step) > 0.5 * prev):
+                break
+            prev = abs(step)
+    if -1e-12 <= t <= 1 + 1e-12:
+        return min(max(t, 0.0), 1.0)
+    return np.nan
+
+
+@numba.njit(**_JIT)
+def _distance(c: Curve, t: float, point: np.ndarray) -> float:
+    diff = np.empty(point.shape[0])
+    _value_minus(c[0], t, point, np.empty(c[0].shape), np.empty(c[0].shape), diff)
+    return float(_norm(diff))
+
+
+@numba.njit(**_JIT)
+def _chord_bracket(c: Curve, point: np.ndarray, s0: float, s1: float, wide: float) -> float:
+    chord = _d(c, s1, 0) - _d(c, s0, 0)
+    while s1 - s0 > wide:
+        middle = 0.5 * (s0 + s1)
+        x = _d(c, middle, 0)
+        dot = 0.0
+        for j in range(point.shape[0]):
+            dot += (x[j] - point[j]) * chord[j]
+        if dot < 0.0:
+            s0 = middle
+        else:
+            s1 = middle
+    return 0.5 * (s0 + s1)
+
+
+@numba.njit(**_JIT)
+def _locate_all(
+    c: Curve, scale: float, size: float, point: np.ndarray, knobs: Knobs, halves: Halves
+) -> np.ndarray:
+    """intersect.locate_all for a float point: every t with c(t) = point."""
+    on_curve_rel, same_root, wide = knobs[0], knobs[1], knobs[7]
+    depth, max_rows, steps, inside, margin = knobs[10], knobs[11], knobs[12], knobs[13], knobs[14]
+    pts = c[0]
+    n, dim = pts.shape[0] - 1, pts.shape[1]
+    big = 0.0
+    for j in range(dim):
+        big = max(big, abs(point[j]))
+    tol = on_curve_rel * max(scale, big)
+    on_curve = on_curve_rel * max(size, big)
+    found = [0.0 for _ in range(0)]
+    for end in range(2):
+        equal = True
+        for j in range(dim):
+            if pts[n if end else 0, j] != point[j]:
+                equal = False
+        if equal:
+            found.append(float(end))
+    for j in range(dim):  # the point beyond the control points' box: isolate_points drops it
+        lo, hi = pts[0, j], pts[0, j]
+        for i in range(n + 1):
+            lo, hi = min(lo, pts[i, j]), max(hi, pts[i, j])
+        if not (lo <= point[j] + tol and point[j] - tol <= hi):
+            return np.sort(np.array(found))
+    curves = pts.copy().reshape((1, n + 1, dim))
+    root_pair, root_s, left_pair, left_s0, left_width = isolate_points(
+        curves,
+        point.copy().reshape((1, dim)),
+        np.array([tol]),
+        depth,
+        max_rows,
+        steps,
+        inside,
+        margin,
+        halves,
+    )
+    starts = [x for x in root_s]
+    narrow = left_width <= wide
+    for k in range(left_s0.size):
+        if not narrow[k]:
+            starts.append(_chord_bracket(c, point, left_s0[k], left_s0[k] + left_width[k], wide))
+    cluster_s, _ = _starts(left_s0[narrow], np.zeros(int(narrow.sum())), left_width[narrow])
+    for x in cluster_s:
+        starts.append(x)
+    for start in starts:
+        t = _locate_newton(c, point, start)
+        if math.isnan(t):
+            continue
+        near = False
+        for u in found:
+            if abs(t - u) < same_root:
+                near = True
+        if near:
+            continue
+        here = _distance(c, t, point)
+        if here > on_curve:
+            continue
+        same = -1
+        for j in range(len(found)):
+            u = found[j]
+            stays = True
+            for m in range(17):
+                x = _d(c, u + (m / 16.0) * (t - u), 0)
+                gap = 0.0
+                for i in range(dim):
+                    gap += (x[i] - point[i]) ** 2
+                if math.sqrt(gap) > on_curve:
+                    stays = False
+                    break
+            if stays:
+                same = j
+                break
+        if same < 0:
+            found.append(t)
+        elif here < _distance(c, found[same], point):
+            found[same] = t
+    return np.sort(np.array(found))
+
+
+# ---------------------------------------------------------------------------- the pair
+@numba.njit(**_JIT)
+def _after(s: float, t: float, kind: int, s2: float, t2: float, kind2: int) -> bool:
+    """(s, t, kind) > (s2, t2, kind2) as tuples compare."""
+    if s != s2:
+        return s > s2
+    if t != t2:
+        return t > t2
+    return kind > kind2
+
+
+@numba.njit(**_JIT)
+def _same_piece(p: Curve, q: Curve, s0: float, s1: float, t0: float, t1: float, tol: float) -> bool:
+    """intersect._same_piece."""
+    points = max(p[0].shape[0], q[0].shape[0]) + 1
+    for k in range(points):
+        x = 0.05 + k * (0.9 / (points - 1))
+        if _norm(_d(p, s0 + x * (s1 - s0), 0) - _d(q, t0 + x * (t1 - t0), 0)) > tol:
+            return False
+    return True
+
+
+@numba.njit(**_JIT)
+def _collinear(a: np.ndarray, b: np.ndarray, tol: float) -> bool:
+    """intersect._common_line is not None: every control point of both within tol of one line."""
+    pts = np.concatenate((a, b))
+    dim = pts.shape[1]
+    base = pts[0]
+    far, length = 0, -1.0
+    for i in range(pts.shape[0]):
+        d = _norm(pts[i] - base)
+        if d > length:
+            far, length = i, d
+    if length == 0.0:
+        return False
+    unit = (pts[far] - base) / length
+    for i in range(pts.shape[0]):
+        rel = pts[i] - base
+        along = 0.0
+        for j in range(dim):
+            along += rel[j] * unit[j]
+        if _norm(rel - along * unit) > tol:
+            return False
+    return True
+
+
+@numba.njit(**_JIT)
+def settle(
+    a: np.ndarray, b: np.ndarray, knobs: Knobs, halves_a: Halves, halves_b: Halves
+) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
+    """intersect's careful path on one pair of float curves (n+1, d), (m+1, d), d >= 2,
+    neither a point: (count, s, t, kind), sorted as the careful path sorts its hits, or
+    count -1 where it declines (a stretch between end hits that may be shared; control
+    points on one line; more hits than room)."""
+    on_curve, same_root, isolated_same, radius, merge_gap = (
+        knobs[0],
+        knobs[1],
+        knobs[2],
+        knobs[3],
+        knobs[4],
+    )
+    root_residual, box_slack, tangent_sine = knobs[5], knobs[6], knobs[9]
+    depth, max_rows, steps, inside, margin = knobs[10], knobs[11], knobs[12], knobs[13], knobs[14]
+    p, q = _curve(a), _curve(b)
+    _, scale_p = _scale(a)
+    _, scale_q = _scale(b)
+    size_p, size_q = _size(a), _size(b)
+    scale = max(scale_p, scale_q)
+    degree = max(a.shape[0], b.shape[0]) - 1
+    bound = root_residual * degree * scale
+    room = 8 * a.shape[0] * b.shape[0] + 64
+    fs, ft = np.zeros(room), np.zeros(room)
+    fk = np.zeros(room, dtype=np.int64)
+    # the end points located on the other curve
+    es, et = np.zeros(room), np.zeros(room)
+    ends = 0
+    for s_end in range(2):
+        hits = _locate_all(q, scale_q, size_q, a[a.shape[0] - 1 if s_end else 0], knobs, halves_b)
+        for t in hits:
+            if ends == room:
+                return -1, fs, ft, fk
+            if not _near(float(s_end), t, es, et, ends, same_root):
+                es[ends], et[ends] = float(s_end), t
+                ends += 1
+    for t_end in range(2):
+        hits = _locate_all(p, scale_p, size_p, b[b.shape[0] - 1 if t_end else 0], knobs, halves_a)
+        for s in hits:
+            if ends == room:
+                return -1, fs, ft, fk
+            if not _near(s, float(t_end), es, et, ends, same_root):
+                es[ends], et[ends] = s, float(t_end)
+                ends += 1
+    ek = np.empty(ends, dtype=np.int64)
+    for k in range(ends):
+        ek[k] = TANGENT if _sine(p, q, es[k], et[k]) <= tangent_sine else TRANSVERSAL
+    # two end hits may bound a shared stretch: the careful path decides
+    count_along = max((a.shape[0] - 1) * (b.shape[0] - 1) + 1, 3)
+    middle = (count_along // 2 + 0.5) / count_along
+    for i in range(ends):
+        for j in range(i + 1, ends):
+            if abs(es[i] - es[j]) < same_root or abs(et[i] - et[j]) < same_root:
+                continue
+            if _same_piece(p, q, es[i], es[j], et[i], et[j], on_curve * scale * 10):
+                return -1, fs, ft, fk
+            probe = _d(p, es[i] + middle * (es[j] - es[i]), 0)
+            lo, hi = min(et[i], et[j]) - same_root, max(et[i], et[j]) + same_root
+            on_q = 0
+            for t in _locate_all(q, scale_q, size_q, probe, knobs, halves_b):
+                if lo <= t <= hi:
+                    on_q += 1
+            if on_q == 1:
+                return -1, fs, ft, fk
+    count = 0
+    gap_bound = merge_gap * degree * scale
+    for k in range(ends):
+        if not _near(es[k], et[k], fs, ft, count, same_root):
+            count = _add(p, q, fs, ft, fk, count, es[k], et[k], ek[k], gap_bound, radius)
+    if _collinear(a, b, on_curve * scale):
+        return -1, fs, ft, fk
+    # the subdivision, then refinement from its roots and from the starts it leaves
+    ok, root_s, root_t, left_s0, left_t0, left_width = _isolate(
+        a, b, box_slack * degree * scale, depth, max_rows, steps, inside, margin, halves_a, halves_b
+    )
+    if not ok:
+        return -1, fs, ft, fk
+    for k in range(root_s.size):
+        ok, s, t, kind = _solve_from(
+            p, q, root_s[k], root_t[k], fs, ft, count, True, scale, bound, knobs
+        )
+        if ok and not _near(s, t, fs, ft, count, isolated_same):
+            if count == room:
+                return -1, fs, ft, fk
+            fs[count], ft[count], fk[count] = s, t, kind
+            count += 1
+    start_s, start_t = _starts(left_s0, left_t0, left_width)
+    for k in range(start_s.size):
+        ok, s, t, kind = _solve_from(
+            p, q, start_s[k], start_t[k], fs, ft, count, False, scale, bound, knobs
+        )
+        if not ok or _near(s, t, fs, ft, count, same_root):
+            continue
+        if count == room:
+            return -1, fs, ft, fk
+        count = _add(p, q, fs, ft, fk, count, s, t, kind, gap_bound, radius)
+    # sorted as tuples (s, t, kind) sort
+    for k in range(1, count):
+        s, t, kind = fs[k], ft[k], fk[k]
+        m = k - 1
+        while m >= 0 and _after(fs[m], ft[m], fk[m], s, t, kind):
+            fs[m + 1], ft[m + 1], fk[m + 1] = fs[m], ft[m], fk[m]
+            m -= 1
+        fs[m + 1], ft[m + 1], fk[m + 1] = s, t, kind
+    return count, fs, ft, fk

@@ -47,6 +47,11 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `atom_pieces`: such a curve as a piecewise polynomial with a certified truncation bound
   (numpy), and `atom_pieces_compiled`, its evaluation compiled with numba (the `fast`
   extra; imported on use);
+- `atom_bounds`: certified enclosures of such a curve and its derivatives on t-intervals
+  (Taylor forms), and the branch and bound of its bounding box and closest point;
+- `surface_certify`: the fixed-cost certificate of the batch optimum of (λ_u, λ_v) (one
+  elementwise source: numpy on arrays, or compiled by `surface_batch_compiled`, numba, the
+  `fast` extra; imported on use);
 - `constants`: exact numbers in ℚ(π) and ℚ(e^W) (`ConstantFraction`), signs decided exactly.
 
 The submodules are imported on use: ``from lambda_bezier.hazmat import kernels``.
@@ -56,6 +61,7 @@ from __future__ import annotations
 
 __all__ = [
     "arclength",
+    "atom_bounds",
     "atom_pieces",
     "atom_pieces_compiled",
     "atoms",
@@ -83,6 +89,8 @@ __all__ = [
     "refine_compiled",
     "roots",
     "settle_compiled",
-    "surface_kernels",
+    "surface_batch_compiled",
+    "surface_certify",
     "surface_compiled",
+    "surface_kernels",
 ]

@@ -161,7 +161,7 @@ def test_enclosures_tighten_with_the_interval():
 def test_box_matches_mpmath(at_family, at_pi_family, raw, lam, pi_family):
     fam = at_pi_family if pi_family else at_family
     if pi_family:
-        lam = abs(lam) if lam < 1 else F(0)
+        lam = abs(lam) if abs(lam) < 1 else F(0)  # at_pi_cubic: lam in [0, 1)
     curve = fam.curve(np.array(raw).reshape(4, 2), lam=lam)
     lo, hi = curve.bounding_box()
     tol = 1e-14 * max(_size(curve), 1e-300)

@@ -16,7 +16,7 @@ from ..algebra import (
 from ..families.registry import reference_degrees
 from . import printing as _emit
 
-SCRIPT = "bernstein.py"  # the banner names the pre-#27 path (generated/ unchanged)
+SCRIPT = "emit/bernstein.py"
 OUTPUT = "bernstein.py"
 
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 from ..formulas.energy import FAMILIES, GRAM_DEGREES, ORDERS, energy_forms, gram, upper_form
 from . import printing as _emit
 
-SCRIPT = "energy.py"  # the banner names the pre-#27 path (generated/ unchanged)
+SCRIPT = "emit/energy.py"
 OUTPUT = "energy.py"
 
 

@@ -26,7 +26,7 @@ from ..formulas.joins import (
 )
 from . import printing as _emit
 
-SCRIPT = "joins.py"  # the banner names the pre-#27 path (generated/ unchanged)
+SCRIPT = "emit/joins.py"
 OUTPUT = "joins.py"
 
 

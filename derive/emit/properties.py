@@ -6,7 +6,7 @@ from __future__ import annotations
 from ..formulas.properties import singular_table
 from . import printing as _emit
 
-SCRIPT = "properties.py"  # the banner names the pre-#27 path (generated/ unchanged)
+SCRIPT = "emit/properties.py"
 OUTPUT = "properties.py"
 
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 from ..formulas.surface_energy import ENERGIES, SURFACE_DEGREES, emitted
 from . import printing as _emit
 
-SCRIPT = "formulas/surface_energy.py"
+SCRIPT = "emit/surface_energy.py"
 OUTPUT = "surface_energy.py"
 
 

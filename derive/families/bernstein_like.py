@@ -33,7 +33,7 @@ from .definition import builtin_definition
 from .engine import FamilyModule, GeneralForm, check
 from .engine import basis_polys as basis_polys_of
 
-SCRIPT = "bernstein_like.py"  # the banner names the pre-#27 path (generated/ unchanged)
+SCRIPT = "families/bernstein_like.py"
 OUTPUT = "bernstein_like.py"
 ORDERS = 2
 

@@ -387,7 +387,7 @@ class GenericDerivation:
     (fitted, then checked against every degree of the range), and no general form of a
     paper's own."""
 
-    SCRIPT = "family_engine.py"  # the banner names the pre-#27 path (generated/ unchanged)
+    SCRIPT = "families/engine.py"
 
     def __init__(self, defn: Definition):
         self.DEFINITION = defn

@@ -34,7 +34,7 @@ from .definition import builtin_definition
 from .engine import FamilyModule, GeneralForm, check
 from .engine import basis_polys as basis_polys_of
 
-SCRIPT = "same_degree.py"  # the banner names the pre-#27 path (generated/ unchanged)
+SCRIPT = "families/same_degree.py"
 OUTPUT = "same_degree.py"
 ORDERS = 2  # endpoint derivatives emitted in closed form: value, first, second
 

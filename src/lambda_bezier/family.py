@@ -54,7 +54,7 @@ def _ints(value: object, where: str) -> tuple[tuple[int, ...], ...]:
 
 
 def definition_digest(table: dict[str, Any]) -> str:
-    """The fingerprint derive/family_engine.py stores (the same canonical JSON, SHA-256)."""
+    """The fingerprint derive/families/engine.py stores (the same canonical JSON, SHA-256)."""
     import hashlib
     import json
 
@@ -690,7 +690,7 @@ def definition_toml(table: dict[str, Any]) -> str:
 
 def read_family_table(path: str | Path) -> dict[str, Any]:
     """The [family] table of a TOML file (a family file, or a records file that defines one);
-    derive/family_engine.py reads definitions through this too, so both fingerprint the same
+    derive/families/engine.py reads definitions through this too, so both fingerprint the same
     table."""
     if sys.version_info >= (3, 11):
         import tomllib

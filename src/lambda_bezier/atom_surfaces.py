@@ -261,21 +261,7 @@ class AtomSurface(Surface):
     def _iso_curve(self, axis: int, t: object, s: object = None) -> AtomCurve:  # type: ignore[override]
         weights = self._weights_at(axis, t, s)
         exact = self._exact is not None and all(isinstance(w, Fraction) for w in weights)
-        count = self.net.shape[1 - axis]
-        pts: Any
-        if exact:
-            assert self._exact is not None
-            net = self._exact if axis == 0 else tuple(zip(*self._exact, strict=True))
-            pts = [
-                tuple(
-                    sum((w * net[i][j][c] for i, w in enumerate(weights)), Fraction(0))
-                    for c in range(self.dimension)
-                )
-                for j in range(count)
-            ]
-        else:
-            w = np.array([float(x) for x in weights])
-            pts = np.tensordot(w, self.net, axes=([0], [axis]))
+        pts = self._contract(axis, weights, exact)
         fam, given = (self.family_v, self.params_v) if axis == 0 else (self.family_u, self.params_u)
         curve: AtomCurve = fam.curve(pts, params=given, check_range=False)
         return curve

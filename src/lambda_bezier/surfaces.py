@@ -394,24 +394,27 @@ class Surface:
         rows = bern if isinstance(bern, tuple) else bern.tolist()
         return tuple(sum((r[k] * values[k] for k in range(big + 1)), 0 * x) for r in rows)
 
+    def _contract(self, axis: int, weights: Any, exact: bool) -> Any:
+        """The control points of an iso-parameter curve: the net's rows along `axis` combined
+        with the basis values `weights` (exact rows where `exact`, else a float array)."""
+        if not exact:
+            w = np.array([float(x) for x in weights])
+            return np.tensordot(w, self.net, axes=([0], [axis]))
+        assert self._exact is not None
+        net: ExactNet = self._exact if axis == 0 else tuple(zip(*self._exact, strict=True))
+        return [
+            tuple(
+                sum((w * net[i][j][c] for i, w in enumerate(weights)), Fraction(0))
+                for c in range(self.dimension)
+            )
+            for j in range(self.net.shape[1 - axis])
+        ]
+
     def _iso_curve(self, axis: int, t: object) -> Curve:
         weights = self._basis_values(axis, t)
         exact = self.is_exact and all(isinstance(w, Fraction) for w in weights)
         cls, lam = (self._v_cls, self.lam_v) if axis == 0 else (self._u_cls, self.lam_u)
-        count = self.net.shape[1 - axis]
-        if exact:
-            assert self._exact is not None
-            net: ExactNet = self._exact if axis == 0 else tuple(zip(*self._exact, strict=True))
-            pts: Any = [
-                tuple(
-                    sum((w * net[i][j][c] for i, w in enumerate(weights)), Fraction(0))
-                    for c in range(self.dimension)
-                )
-                for j in range(count)
-            ]
-        else:
-            w = np.array([float(x) for x in weights])
-            pts = np.tensordot(w, self.net, axes=([0], [axis]))
+        pts = self._contract(axis, weights, exact)
         if cls._has_lambda:
             return cls(pts, lam, check_range=False)
         return cls(pts)

@@ -40,8 +40,10 @@ their middle; `Stats.narrow` counts them (0 in every certified answer the tests 
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from math import factorial
+from typing import Any
 
 import numpy as np
 
@@ -232,25 +234,52 @@ def coordinate_extremes(
                 cand_v += list(curve.values(0, pts)[c])
             keep = ~(inside | ended)
             a, b = a[keep], b[keep]
-            done = (b - a) <= NARROW * width
-            if rounds >= MAX_ROUNDS or a.size > MAX_OPEN:
-                done = np.ones_like(done)
-            if done.any():
-                mids = 0.5 * (a[done] + b[done])
-                stats.narrow += int(done.sum())
-                cand_t += list(mids)
-                cand_v += list(curve.values(0, mids)[c])
-                a, b = a[~done], b[~done]
-            mid = 0.5 * (a + b)
-            if mid.size:
-                cand_t += list(mid)
-                cand_v += list(curve.values(0, mid)[c])
-            a, b = np.concatenate([a, mid]), np.concatenate([mid, b])
+            # (called at once, inside this round: the lambda sees this c)
+            a, b = _settle_and_halve(
+                a,
+                b,
+                width,
+                rounds,
+                stats,
+                lambda t: curve.values(0, t)[c],
+                cand_t,
+                cand_v,  # noqa: B023
+            )
         arr = np.array(cand_v)
         i, j = int(np.argmin(arr)), int(np.argmax(arr))
         out.append((arr[i], arr[j], cand_t[i], cand_t[j]))
     mins, maxs, tmins, tmaxs = (np.array(col, dtype=float) for col in zip(*out, strict=True))
     return mins, maxs, tmins, tmaxs
+
+
+def _settle_and_halve(
+    a: np.ndarray,
+    b: np.ndarray,
+    width: float,
+    rounds: int,
+    stats: Stats,
+    value: Callable[[np.ndarray], np.ndarray],
+    cand_t: list[Any],
+    cand_v: list[Any],
+) -> tuple[np.ndarray, np.ndarray]:
+    """One round's end for the open intervals [a, b] of a branch and bound: those narrower
+    than NARROW * width (all of them past MAX_ROUNDS or MAX_OPEN) are settled by their middle
+    (not certified: counted in stats.narrow), the others halved; every middle becomes a
+    candidate (cand_t, cand_v, with `value` at it). Returns the halves."""
+    done = (b - a) <= NARROW * width
+    if rounds >= MAX_ROUNDS or a.size > MAX_OPEN:
+        done = np.ones_like(done)
+    if done.any():
+        mids = 0.5 * (a[done] + b[done])
+        stats.narrow += int(done.sum())
+        cand_t += list(mids)
+        cand_v += list(value(mids))
+        a, b = a[~done], b[~done]
+    mid = 0.5 * (a + b)
+    if mid.size:
+        cand_t += list(mid)
+        cand_v += list(value(mid))
+    return np.concatenate([a, mid]), np.concatenate([mid, b])
 
 
 # ---------------------------------------------------------------------- closest points
@@ -342,19 +371,8 @@ def closest(
             cand_v.append(float(_distance2(curve, q, np.array([r]))[0]))
         keep = ~(far | monotone | convex)
         a, b = a[keep], b[keep]
-        done = (b - a) <= NARROW * width
-        if rounds >= MAX_ROUNDS or a.size > MAX_OPEN:
-            done = np.ones_like(done)
-        if done.any():
-            mids = 0.5 * (a[done] + b[done])
-            stats.narrow += int(done.sum())
-            cand_t += list(mids)
-            cand_v += list(_distance2(curve, q, mids))
-            a, b = a[~done], b[~done]
-        mid = 0.5 * (a + b)
-        if mid.size:
-            cand_t += list(mid)
-            cand_v += list(_distance2(curve, q, mid))
-        a, b = np.concatenate([a, mid]), np.concatenate([mid, b])
+        a, b = _settle_and_halve(
+            a, b, width, rounds, stats, lambda t: _distance2(curve, q, t), cand_t, cand_v
+        )
     k = int(np.argmin(cand_v))
     return float(cand_t[k]), float(cand_v[k])

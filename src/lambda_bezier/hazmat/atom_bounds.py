@@ -241,9 +241,9 @@ def coordinate_extremes(
                 width,
                 rounds,
                 stats,
-                lambda t: curve.values(0, t)[c],
+                lambda t: curve.values(0, t)[c],  # noqa: B023
                 cand_t,
-                cand_v,  # noqa: B023
+                cand_v,
             )
         arr = np.array(cand_v)
         i, j = int(np.argmin(arr)), int(np.argmax(arr))

@@ -29,6 +29,7 @@ from .pieces_compiled import (
     fat_line_apart,
     flat_forward,
     local_newton,
+    span_scale,
     split,
     two_sum,
 )
@@ -227,21 +228,6 @@ def certify(
 
 
 @numba.njit(**_JIT)
-def _size(points: np.ndarray) -> tuple[float, float]:
-    """(span, scale) as intersect_prepared.Prepared has them: the largest extent of the
-    control points, and the larger of that and their largest coordinate (at least 1e-300)."""
-    span = 0.0
-    big = 0.0
-    for j in range(points.shape[1]):
-        lo = hi = points[0, j]
-        for i in range(points.shape[0]):
-            lo, hi = min(lo, points[i, j]), max(hi, points[i, j])
-            big = max(big, abs(points[i, j]))
-        span = max(span, hi - lo)
-    return span, max(span, big, 1e-300)
-
-
-@numba.njit(**_JIT)
 def certify_one(
     a: np.ndarray,
     b: np.ndarray,
@@ -252,8 +238,8 @@ def certify_one(
     """One pair, with its slack and residual bound computed here as the careful path does
     (intersect._slack, _root_bound): (count, s, t) sorted by s, count -1 where the
     certificate fails (or either curve is a point: the careful path says so)."""
-    span_a, scale_a = _size(a)
-    span_b, scale_b = _size(b)
+    span_a, scale_a = span_scale(a)
+    span_b, scale_b = span_scale(b)
     room = 4 * a.shape[0] * b.shape[0] + 8
     out_s = np.zeros(room)
     out_t = np.zeros(room)

@@ -24,6 +24,21 @@ _SPLITTER = 134217729.0  # 2^27 + 1: Dekker's split of a double into two 26-bit 
 
 
 @numba.njit(**JIT)
+def span_scale(points: np.ndarray) -> tuple[float, float]:
+    """(span, scale) as intersect_prepared.Prepared has them: the largest extent of the
+    control points, and the larger of that and their largest coordinate (at least 1e-300)."""
+    span = 0.0
+    big = 0.0
+    for j in range(points.shape[1]):
+        lo = hi = points[0, j]
+        for i in range(points.shape[0]):
+            lo, hi = min(lo, points[i, j]), max(hi, points[i, j])
+            big = max(big, abs(points[i, j]))
+        span = max(span, hi - lo)
+    return span, max(span, big, 1e-300)
+
+
+@numba.njit(**JIT)
 def two_sum(a: float, b: float) -> tuple[float, float]:
     s = a + b
     v = s - a

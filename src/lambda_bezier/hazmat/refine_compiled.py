@@ -85,20 +85,6 @@ def _curve(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndar
 
 
 @numba.njit(**_JIT)
-def _scale(pts: np.ndarray) -> tuple[float, float]:
-    """(span, scale) as Prepared has them."""
-    span = 0.0
-    big = 0.0
-    for j in range(pts.shape[1]):
-        lo = hi = pts[0, j]
-        for i in range(pts.shape[0]):
-            lo, hi = min(lo, pts[i, j]), max(hi, pts[i, j])
-            big = max(big, abs(pts[i, j]))
-        span = max(span, hi - lo)
-    return span, max(span, big, 1e-300)
-
-
-@numba.njit(**_JIT)
 def _size(pts: np.ndarray) -> float:
     """Prepared.size: the extent and distance from the origin of 129 samples."""
     dim = pts.shape[1]

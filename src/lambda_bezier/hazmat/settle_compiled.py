@@ -36,6 +36,7 @@ from .pieces_compiled import (
     flat_forward,
     local_newton,
     pointed,
+    span_scale,
 )
 from .refine_compiled import (
     TANGENT,
@@ -48,7 +49,6 @@ from .refine_compiled import (
     _d,
     _near,
     _norm,
-    _scale,
     _sine,
     _size,
     _solve_from,
@@ -479,8 +479,8 @@ def settle(
     root_residual, box_slack, tangent_sine = knobs[5], knobs[6], knobs[9]
     depth, max_rows, steps, inside, margin = knobs[10], knobs[11], knobs[12], knobs[13], knobs[14]
     p, q = _curve(a), _curve(b)
-    _, scale_p = _scale(a)
-    _, scale_q = _scale(b)
+    _, scale_p = span_scale(a)
+    _, scale_q = span_scale(b)
     size_p, size_q = _size(a), _size(b)
     scale = max(scale_p, scale_q)
     degree = max(a.shape[0], b.shape[0]) - 1

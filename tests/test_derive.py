@@ -35,20 +35,24 @@ def emit(derive_pkg):
     return importlib.import_module(f"{derive_pkg.__name__}.emit.printing")
 
 
-def test_check_passes_on_checkout_under_another_hash_seed():
+def assert_check_passes(**env: str) -> None:
     """`lambda-bezier derive --check`, as CI runs it (derived afresh, not read back from the
-    cache), with a hash seed of its own."""
-    env = {**os.environ, "PYTHONHASHSEED": "4242"}
+    cache), in a fresh process with these environment variables, matches generated/."""
     proc = subprocess.run(
         [sys.executable, "-m", "lambda_bezier", "derive", "--check", "--no-cache"],
         cwd=ROOT,
-        env=env,
+        env={**os.environ, **env},
         capture_output=True,
         text=True,
         timeout=600,
     )
     assert proc.returncode == 0, proc.stdout + proc.stderr
     assert "matches the derivation" in proc.stderr
+
+
+def test_check_passes_on_checkout_under_another_hash_seed():
+    """`derive --check` with a hash seed of its own."""
+    assert_check_passes(PYTHONHASHSEED="4242")
 
 
 def test_rendering_is_identical_to_committed(rendered, emit):

@@ -7,9 +7,6 @@ and the same failures as a serial run."""
 from __future__ import annotations
 
 import importlib
-import os
-import subprocess
-import sys
 from fractions import Fraction
 from math import comb
 
@@ -20,6 +17,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from sympy.polys.fields import field
 from sympy.polys.rings import ring
+from test_derive import assert_check_passes
 
 from lambda_bezier import _derive_runner
 
@@ -209,17 +207,7 @@ def test_jobs_setting(monkeypatch):
 def test_serial_check_passes_too():
     """`derive --check --no-cache` in one process matches generated/ as the default (two
     processes where there are two cores) does (tests/test_derive.py)."""
-    env = {**os.environ, "LAMBDA_BEZIER_DERIVE_JOBS": "1", "PYTHONHASHSEED": "7"}
-    proc = subprocess.run(
-        [sys.executable, "-m", "lambda_bezier", "derive", "--check", "--no-cache"],
-        cwd=ROOT,
-        env=env,
-        capture_output=True,
-        text=True,
-        timeout=600,
-    )
-    assert proc.returncode == 0, proc.stdout + proc.stderr
-    assert "matches the derivation" in proc.stderr
+    assert_check_passes(LAMBDA_BEZIER_DERIVE_JOBS="1", PYTHONHASHSEED="7")
 
 
 @pytest.mark.parametrize("continuity", ["C2", "G2", "C1"])

@@ -120,6 +120,19 @@ def test_centred_row_is_the_taylor_shift(row, centre):
     assert all(type(v) is Fraction for v in got)
 
 
+def test_bernstein_poly_is_sympys_arithmetic_on_the_axiom():
+    """The FLINT product in bernstein_poly against SymPy's own Poly arithmetic on the axiom:
+    the same Poly (generators, domain, representation), inside and outside 0..degree."""
+    bern = _derive_module("algebra.bernstein")
+    for degree in range(16):
+        for index in range(-1, degree + 2):
+            got = bern.bernstein_poly(degree, index)
+            want = bern.bernstein_basis(degree, index, bern.X)
+            assert got == want and type(got) is type(want), (degree, index)
+            if isinstance(want, sp.Poly):
+                assert (got.gens, got.domain, got.rep) == (want.gens, want.domain, want.rep)
+
+
 def test_linear_in_lambda():
     core = _derive_module("algebra.core")
     lam, n, i = core.lam, core.n, core.i

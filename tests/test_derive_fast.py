@@ -225,8 +225,8 @@ def test_serial_check_passes_too():
 
 @pytest.mark.parametrize("continuity", ["C2", "G2", "C1"])
 def test_per_degree_join_check_catches_a_wrong_emitted_weight(continuity):
-    """The per-degree check (fmpq sums around the emitted functions) still fails on one weight
-    off by 1e-9 in one emitted function."""
+    """The per-degree check (the emitted functions and the sums around them in fmpq) still
+    fails on one weight off by 1e-9 in one emitted function."""
     emit_joins = _derive_module("emit.joins")
     formulas_joins = _derive_module("formulas.joins")
     table = formulas_joins.joins()
@@ -238,7 +238,7 @@ def test_per_degree_join_check_catches_a_wrong_emitted_weight(continuity):
     def wrong(*values):
         weights = dict(fn(*values))
         last = max(weights)
-        weights[last] = weights[last] + Fraction(1, 10**9)
+        weights[last] = weights[last] + type(weights[last])(1, 10**9)  # fmpq there
         return weights
 
     namespace["JOINS"][key] = (wrong, args)

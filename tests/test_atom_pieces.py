@@ -223,7 +223,9 @@ def test_remainder_bound_holds_and_is_tight(hyperbolic, degree):
         nu = 3 * mpmath.mpf(omega0)
         return 0.3 + 0.2 * x**2 + 0.7 * x**powers + a * wave[0](nu * x) + b * wave[1](nu * x)
 
-    amp = ap.amplitudes(coeffs, omega0, powers, harmonics, hyperbolic)
+    amp = ap.amplitudes(
+        ap.CentredCurve(coeffs, -0.6, 0.6, 0.0, omega0, powers, harmonics, hyperbolic)
+    )
     radius = 0.6
     for h in (0.01, 0.05, 0.1):
         bound = float(ap.remainder_bound(amp, degree, h, radius)[0])
@@ -234,7 +236,7 @@ def test_remainder_bound_holds_and_is_tight(hyperbolic, degree):
 def test_polynomial_parts_up_to_the_degree_cost_nothing():
     coeffs = np.zeros((1 + 4, 2))
     coeffs[:, 0] = (1, 2, 3, 4, 5)
-    amp = ap.amplitudes(coeffs, 1.0, 4, 0, False)
+    amp = ap.amplitudes(ap.CentredCurve(coeffs, 0.0, 1.0, 0.5, 1.0, 4, 0, False))
     assert (ap.remainder_bound(amp, 4, 0.5, 1.0) == 0).all()
     assert ap.remainder_bound(amp, 3, 0.5, 1.0)[0] == pytest.approx(5 * 0.5**4, rel=1e-8)
 
@@ -245,11 +247,12 @@ def test_choice_reaches_the_tolerance_and_is_minimal():
     sh = curve.shape
     lo, hi = curve.domain
     coeffs = curve._coefficients(0)
-    degree, count, bound, tol = ap.choose_pieces(
+    centred = ap.CentredCurve(
         coeffs, lo, hi, curve._mid, sh.omega0, sh.powers, sh.harmonics, sh.hyperbolic
     )
+    degree, count, bound, tol = ap.choose_pieces(centred)
     assert bound <= tol
-    amp = ap.amplitudes(coeffs, sh.omega0, sh.powers, sh.harmonics, sh.hyperbolic)
+    amp = ap.amplitudes(centred)
     wider = 0.5 * (hi - lo) / (count - 1)
     assert float(ap.remainder_bound(amp, degree, wider, hi - lo).max()) > tol  # one fewer fails
     assert count * 2 * (degree + 1) * 8 <= ap.TABLE_BYTES
@@ -260,10 +263,11 @@ def test_no_certified_form_falls_back_to_the_atoms():
     stays right (through the atoms)."""
     coeffs = np.zeros((3, 1))
     coeffs[1] = 1.0  # cos(ω τ)
-    assert ap.choose_pieces(coeffs, 0.0, 1.0, 0.5, 1e6, 0, 1, False) is None
-    assert ap.build(coeffs, np.zeros((3, 3)), 0.0, 1.0, 0.5, 1e6, 0, 1, False) is None
+    fast = ap.CentredCurve(coeffs, 0.0, 1.0, 0.5, 1e6, 0, 1, False)
+    assert ap.choose_pieces(fast) is None
+    assert ap.build(fast, np.zeros((3, 3))) is None
     coeffs[1] = math.inf
-    assert ap.choose_pieces(coeffs, 0.0, 1.0, 0.5, 1.0, 0, 1, False) is None
+    assert ap.choose_pieces(ap.CentredCurve(coeffs, 0.0, 1.0, 0.5, 1.0, 0, 1, False)) is None
 
 
 def test_hazmat_table_against_atom_evaluation():
@@ -272,7 +276,7 @@ def test_hazmat_table_against_atom_evaluation():
     rng = np.random.default_rng(7)
     coeffs = rng.normal(size=(1 + powers + 2 * harmonics, 2))
     d = ak.derivative_matrix(omega0, powers, harmonics, True)
-    pieces = ap.build(coeffs, d, -0.5, 1.5, 0.5, omega0, powers, harmonics, True)
+    pieces = ap.build(ap.CentredCurve(coeffs, -0.5, 1.5, 0.5, omega0, powers, harmonics, True), d)
     assert pieces is not None
     t = np.concatenate([pieces.centres, pieces.centres - pieces.width / 2, [1.5]])
     want = ak.evaluate(coeffs, t - 0.5, omega0, powers, harmonics, True)

@@ -120,6 +120,19 @@ def test_centred_row_is_the_taylor_shift(row, centre):
     assert all(type(v) is Fraction for v in got)
 
 
+def test_bernstein_poly_is_sympys_arithmetic_on_the_axiom():
+    """The FLINT product in bernstein_poly against SymPy's own Poly arithmetic on the axiom:
+    the same Poly (generators, domain, representation), inside and outside 0..degree."""
+    bern = _derive_module("algebra.bernstein")
+    for degree in range(16):
+        for index in range(-1, degree + 2):
+            got = bern.bernstein_poly(degree, index)
+            want = bern.bernstein_basis(degree, index, bern.X)
+            assert got == want and type(got) is type(want), (degree, index)
+            if isinstance(want, sp.Poly):
+                assert (got.gens, got.domain, got.rep) == (want.gens, want.domain, want.rep)
+
+
 def test_linear_in_lambda():
     core = _derive_module("algebra.core")
     lam, n, i = core.lam, core.n, core.i
@@ -212,8 +225,8 @@ def test_serial_check_passes_too():
 
 @pytest.mark.parametrize("continuity", ["C2", "G2", "C1"])
 def test_per_degree_join_check_catches_a_wrong_emitted_weight(continuity):
-    """The per-degree check (fmpq sums around the emitted functions) still fails on one weight
-    off by 1e-9 in one emitted function."""
+    """The per-degree check (the emitted functions and the sums around them in fmpq) still
+    fails on one weight off by 1e-9 in one emitted function."""
     emit_joins = _derive_module("emit.joins")
     formulas_joins = _derive_module("formulas.joins")
     table = formulas_joins.joins()
@@ -225,7 +238,7 @@ def test_per_degree_join_check_catches_a_wrong_emitted_weight(continuity):
     def wrong(*values):
         weights = dict(fn(*values))
         last = max(weights)
-        weights[last] = weights[last] + Fraction(1, 10**9)
+        weights[last] = weights[last] + type(weights[last])(1, 10**9)  # fmpq there
         return weights
 
     namespace["JOINS"][key] = (wrong, args)

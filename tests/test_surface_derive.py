@@ -53,6 +53,36 @@ def test_direct_integration_equals_kronecker_for_mixed_families(se, fu, fv, m, n
     se.check_kronecker(fu, fv, m, n, energy)
 
 
+@pytest.mark.parametrize(
+    "fu, fv, m, n, energy",
+    [
+        ("same_degree", "bernstein_like", 3, 2, "thin_plate"),
+        ("bezier", "same_degree", 1, 3, "membrane"),
+    ],
+)
+def test_moment_form_equals_integrating_each_product(se, fu, fv, m, n, energy):
+    # surface_matrices integrates through the moments of the square (issue #29); here each
+    # entry is the literal definition instead: the two partials multiplied as polynomials
+    # and the product integrated over u, then v, in FLINT
+    basis = se.tensor_basis(fu, fv, m, n)
+    direct = se.surface_matrices(fu, fv, m, n, energy)
+    size = len(basis)
+    want: dict = {}
+    for ku, kv, weight in se.ENERGIES[energy]:
+        parts = [se._partial(b, ku, kv) for b in basis]
+        for r in range(size):
+            for c in range(size):
+                product = parts[r] * parts[c]
+                integral = product.integral(0).subs({"u": 1}).integral(1).subs({"v": 1})
+                for (_, _, a, b), coef in integral.to_dict().items():
+                    mat = want.setdefault((int(a), int(b)), [[0] * size for _ in range(size)])
+                    mat[r][c] += weight * coef
+    want = {key: mat for key, mat in want.items() if any(any(row) for row in mat)}
+    assert sorted(direct) == sorted(want)
+    for key, mat in want.items():
+        assert [list(row) for row in direct[key]] == mat, key
+
+
 def test_kronecker_check_rejects_a_changed_entry(se):
     full = dict(se.surface_matrices("same_degree", "same_degree", 3, 3, "thin_plate"))
     key = (1, 1)

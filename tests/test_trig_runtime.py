@@ -209,6 +209,26 @@ def test_half_angle_kernel_equals_the_recurrences(families):
         assert np.abs(fast - slow).max() < 1e-13 * (1 + np.abs(slow).max())
 
 
+@pytest.mark.parametrize("size", [0, 1, 8191, 8193, 20001])
+def test_half_angle_kernel_over_blocks_with_its_centre(families, size):
+    """The powers-and-matrix-product form (issue #30, without numba) over several blocks and
+    a short last one, τ taken about `centre` inside the kernel: within a few ulps of the
+    recurrences, ends of the domain included."""
+    curve = families[HAN].curve(np.random.default_rng(5).normal(size=(4, 2)), lam=0.5, mu=-1)
+    t = np.random.default_rng(6).random(size) * math.pi / 2
+    t[: min(size, 2)] = [0.0, math.pi / 2][: min(size, 2)]
+    sh = curve.shape
+    for k in range(3):
+        coeffs = curve._coefficients(k)
+        table = ak.half_angle_coefficients(coeffs, sh.harmonics)
+        fast = ak.evaluate_half_angle(table, t, sh.omega0, sh.harmonics, curve._mid)
+        slow = ak.evaluate(coeffs, t - curve._mid, sh.omega0, sh.powers, sh.harmonics, False)
+        assert fast.shape == slow.shape == (2, size)
+        assert np.abs(fast - slow).max(initial=0.0) < 8 * 2.0**-52 * (
+            1 + np.abs(slow).max(initial=0.0)
+        )
+
+
 def test_to_bezier_points_to_the_rational_form(families):
     with pytest.raises(NotImplementedError, match="to_rational_bezier"):
         families[HAN].curve(PTS, lam=0, mu=0).to_bezier()

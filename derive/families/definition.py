@@ -211,7 +211,7 @@ class Definition:
 def digest(table: dict) -> str:
     """A stable fingerprint of a [family] table: the runtime's, so that load_family can tell
     whether a derived document came from this very definition."""
-    from lambda_bezier.family import definition_digest
+    from lambda_bezier._family_file import definition_digest
 
     return definition_digest(table)
 
@@ -567,7 +567,7 @@ def _parses(text: str, names: tuple[str, ...]) -> bool:
 def read_definition(path: Path, *, builtin: bool = False) -> Definition:
     """The [family] table of a file (a family file, or a records file that defines one), read
     by the runtime's reader (the same table lambda_bezier.load_family fingerprints)."""
-    from lambda_bezier.family import FamilyFileError, read_family_table
+    from lambda_bezier._family_file import FamilyFileError, read_family_table
 
     try:
         table = read_family_table(path)

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 from fractions import Fraction
 from functools import cache, reduce
-from math import gcd, lcm
+from math import comb, gcd, lcm
 
 import flint
 import sympy as sp
@@ -59,7 +59,7 @@ def bernstein_identities() -> tuple[sp.Expr, sp.Expr]:
 
 def _exact_binomial(a, b):
     a, b = int(a), int(b)
-    return Fraction(sp.binomial(a, b)) if 0 <= b <= a else Fraction(0)
+    return Fraction(comb(a, b)) if 0 <= b <= a else Fraction(0)  # math.comb: exact, no SymPy
 
 
 @cache

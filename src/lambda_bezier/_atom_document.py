@@ -16,6 +16,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from ._family_file import FamilyFileError
 from .hazmat import atoms as ak
 from .hazmat.constants import ConstantFraction, check_constant, parse_exact
 
@@ -25,13 +26,6 @@ _EXACT = re.compile(r"^-?[0-9]{1,400}(/[0-9]{1,400})?$")
 Matrix = tuple[tuple[Fraction, ...], ...]
 Mono = tuple[int, ...]
 Exact = Fraction | ConstantFraction
-
-
-class FamilyFileError(ValueError):
-    """A definition or derived file that cannot be used (the message says what to run)."""
-
-
-FamilyFileError.__module__ = "lambda_bezier.family"
 
 
 def _fraction(text: object, where: str) -> Fraction:

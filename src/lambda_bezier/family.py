@@ -23,7 +23,12 @@ from fractions import Fraction
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from ._atom_document import AtomData, FamilyFileError, _fraction
+from ._atom_document import AtomData, _fraction
+
+# re-exported: they lived here before derive needed them without numpy (issue #29)
+from ._family_file import FamilyFileError as FamilyFileError
+from ._family_file import definition_digest as definition_digest
+from ._family_file import read_family_table as read_family_table
 from ._singular import IsolatedRoot
 from ._validate import PointsLike
 from .atom_family import AtomCurve
@@ -51,15 +56,6 @@ def _ints(value: object, where: str) -> tuple[tuple[int, ...], ...]:
     ):
         raise FamilyFileError(f"{where}: expected a matrix of integers")
     return tuple(tuple(row) for row in value)
-
-
-def definition_digest(table: dict[str, Any]) -> str:
-    """The fingerprint derive/families/engine.py stores (the same canonical JSON, SHA-256)."""
-    import hashlib
-    import json
-
-    text = json.dumps(table, sort_keys=True, ensure_ascii=True, separators=(",", ":"))
-    return hashlib.sha256(text.encode()).hexdigest()
 
 
 def _exact_in_ranges(
@@ -686,29 +682,6 @@ def definition_toml(table: dict[str, Any]) -> str:
     if tomllib.loads(text).get("family") != table:
         raise FamilyFileError("the definition does not survive a TOML round trip")
     return text
-
-
-def read_family_table(path: str | Path) -> dict[str, Any]:
-    """The [family] table of a TOML file (a family file, or a records file that defines one);
-    derive/families/engine.py reads definitions through this too, so both fingerprint the same
-    table."""
-    if sys.version_info >= (3, 11):
-        import tomllib
-    else:  # pragma: no cover - Python 3.10
-        import tomli as tomllib
-
-    try:
-        data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise FamilyFileError(f"{path}: no such file") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise FamilyFileError(f"{path}: cannot be read ({exc})") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise FamilyFileError(f"{path}: not valid TOML: {exc}") from None
-    table = data.get("family")
-    if not isinstance(table, dict):
-        raise FamilyFileError(f"{path}: no [family] table (a family definition starts with one)")
-    return table
 
 
 def _family_name(table: dict[str, Any], where: str) -> str:

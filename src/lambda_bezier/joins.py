@@ -265,6 +265,55 @@ def _own_parameter(
     return given[0][1] if given else None
 
 
+def _indexed_target(
+    curve: Curve,
+    family: object,
+    degree: int,
+    lam: Fraction | float | None,
+    params: dict[str, Fraction | float] | None,
+    named: dict[str, Fraction | float],
+) -> tuple[object, Any, Any, dict[str, Any]]:
+    """(family, lam, params, named) for the rest of join. A family with one parameter per
+    index (IndexedFamily, ``lam(i)``) is one Family per degree: the new segment's is the one
+    of `degree`, its values one sequence (``lam=[...]``, ``params={"lam": [...]}`` or the
+    family's own name) spread over that degree's lam_a..lam_b. Other families pass through."""
+    from .family import IndexedFamily
+
+    indexed = family
+    if family is None:  # continuing a curve of an indexed family: the family, not its degree
+        indexed = getattr(getattr(type(curve), "several_family", None), "indexed_family", None)
+    if not isinstance(indexed, IndexedFamily):
+        return family, lam, params, named
+    name, fam_name = indexed.index_name, indexed.name
+    own = f"its parameter: {name}, one value per index"
+    supplied: list[tuple[str, Any]] = [*(params or {}).items(), *named.items()]
+    if lam is not None:
+        if name != "lam":
+            raise TypeError(f"lam is not a parameter of {fam_name!r} ({own})")
+        supplied.append(("lam", lam))
+    given: dict[str, Any] = {}
+    for key, v in supplied:
+        if key in given:
+            raise TypeError(f"{key} is given twice; give it once")
+        given[key] = v
+    unknown = sorted(set(given) - {name})
+    if unknown:
+        raise TypeError(f"{unknown[0]!r} is not a parameter of {fam_name!r} ({own})")
+    degree = val.integer(degree, "degree")
+    if degree not in indexed.degrees:
+        raise ValueError(
+            f"degree {degree} is not supported for {fam_name}: degrees "
+            f"{', '.join(map(str, indexed.degrees))} (one family per degree, {name}(i) per index)"
+        )
+    if name not in given:
+        raise ValueError(
+            f"a {fam_name} segment of degree {degree} needs its shape parameters "
+            f"{name}=[...], one per index ({', '.join(indexed.at_degree(degree).parameters)})"
+        )
+    values = indexed.index_values(degree, given[name])
+    return indexed.at_degree(degree), None, values, {}
+
+
 def join(
     curve: Curve,
     continuity: str,
@@ -305,8 +354,10 @@ def join(
         :math:`C_1''(1) = \alpha^2 C_2''(0) + d \, C_2'(0)`); C joints take 1 and 0.
     rest : array_like
         The control points after the solved ones.
-    family : str, optional
-        The new segment's family; default that of `curve`.
+    family : str or family, optional
+        The new segment's family; default that of `curve`. A family with one parameter per
+        index (``lam(i)``, an IndexedFamily) takes its values as one sequence, one per index
+        of `degree`: ``lam=[...]`` or ``params={"lam": [...]}``.
     check_range : bool
         Refuse a λ outside the new family's range.
     params, **named : optional
@@ -352,6 +403,7 @@ def join(
             f"from lambda_bezier.load_family), got {type(curve).__name__}"
         )
     spec = Joint(continuity, alpha, d)
+    family, lam, params, named = _indexed_target(curve, family, degree, lam, params, named)
     # a family in several parameters: the new segment's class is the family at its values
     target = family if family is not None else getattr(type(curve), "several_family", None)
     cls: type[Curve]

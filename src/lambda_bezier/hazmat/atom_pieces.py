@@ -32,7 +32,10 @@ result is within a few ulps of the coordinate scale, as the evaluation by the at
 
 `evaluate_pieces` is numpy, blocked so each pass stays in cache; `atom_pieces_compiled` (numba,
 the `fast` extra) runs the same operations in the same order, so the two agree bit for bit (no
-fused multiply-add in either).
+fused multiply-add in either). Only the compiled kernel is used for speed: in numpy, one
+gather per coefficient and parameter made the piecewise form 4-7x a polynomial cubic's
+evaluation at 10^6 parameters (also with the piece's row gathered at once, and with a
+row-wise product on the powers of t − centre), slower than the atoms (issue #30).
 """
 
 from __future__ import annotations
@@ -78,6 +81,21 @@ class PieceTable(NamedTuple):
         return int(self.table.shape[2])
 
 
+class CentredCurve(NamedTuple):
+    """A curve over the centred atoms (`hazmat.atoms`) on its domain [lo, hi]: the
+    coefficients (A, d) of 1, τ, …, τ^powers, then cos/sin (or cosh/sinh) of jω0τ for
+    j = 1..harmonics, in τ = t − mid. What every step here reads of the curve."""
+
+    coefficients: np.ndarray
+    lo: float
+    hi: float
+    mid: float
+    omega0: float
+    powers: int
+    harmonics: int
+    hyperbolic: bool
+
+
 class Amplitudes(NamedTuple):
     """What the remainder bound needs of a curve's coefficients (per coordinate c): the
     powers' |a_i| (K+1, d), each harmonic's amplitude (J, d) (hypot(a, b) for a sinusoid,
@@ -89,19 +107,21 @@ class Amplitudes(NamedTuple):
     hyperbolic: bool
 
 
-def amplitudes(
-    coefficients: np.ndarray, omega0: float, powers: int, harmonics: int, hyperbolic: bool
-) -> Amplitudes:
-    """The `Amplitudes` of coefficients (A, d) over the centred atoms."""
-    base = 1 + powers
+def amplitudes(curve: CentredCurve) -> Amplitudes:
+    """The `Amplitudes` of the curve's coefficients."""
+    coefficients, harmonics = curve.coefficients, curve.harmonics
+    base = 1 + curve.powers
     cos_like = coefficients[base::2][:harmonics]
     sin_like = coefficients[base + 1 :: 2][:harmonics]
-    waves = np.abs(cos_like) + np.abs(sin_like) if hyperbolic else np.hypot(cos_like, sin_like)
+    if curve.hyperbolic:
+        waves = np.abs(cos_like) + np.abs(sin_like)
+    else:
+        waves = np.hypot(cos_like, sin_like)
     return Amplitudes(
         np.abs(coefficients[:base]),
         waves,
-        omega0 * np.arange(1, harmonics + 1, dtype=float),
-        hyperbolic,
+        curve.omega0 * np.arange(1, harmonics + 1, dtype=float),
+        curve.hyperbolic,
     )
 
 
@@ -128,40 +148,23 @@ def remainder_bound(amp: Amplitudes, degree: int, half_width: float, radius: flo
     return np.where(np.isnan(total), np.inf, total * _SAFETY)
 
 
-def coordinate_scale(
-    coefficients: np.ndarray,
-    lo: float,
-    hi: float,
-    mid: float,
-    omega0: float,
-    powers: int,
-    harmonics: int,
-    hyperbolic: bool,
-    samples: int = 257,
-) -> float:
+def coordinate_scale(curve: CentredCurve, samples: int = 257) -> float:
     """The largest coordinate magnitude of the curve at `samples` equally spaced t of the
     domain (ends included): the scale the tolerance is taken against."""
-    tau = np.linspace(lo, hi, samples) - mid
-    values = ak.evaluate(coefficients, tau, omega0, powers, harmonics, hyperbolic)
+    c = curve
+    tau = np.linspace(c.lo, c.hi, samples) - c.mid
+    values = ak.evaluate(c.coefficients, tau, c.omega0, c.powers, c.harmonics, c.hyperbolic)
     return float(np.abs(values).max()) if values.size else 0.0
 
 
-def choose_pieces(
-    coefficients: np.ndarray,
-    lo: float,
-    hi: float,
-    mid: float,
-    omega0: float,
-    powers: int,
-    harmonics: int,
-    hyperbolic: bool,
-) -> tuple[int, int, float, float] | None:
+def choose_pieces(curve: CentredCurve) -> tuple[int, int, float, float] | None:
     """(degree, pieces, bound, tolerance) of the cheapest piecewise form whose certified
     truncation bound is at most half an ulp of the coordinate scale, or None when no degree
     in DEGREES reaches it with at most MAX_PIECES pieces (or the values are not finite)."""
-    if not np.isfinite(coefficients).all() or not hi > lo:
+    lo, hi = curve.lo, curve.hi
+    if not np.isfinite(curve.coefficients).all() or not hi > lo:
         return None
-    scale = coordinate_scale(coefficients, lo, hi, mid, omega0, powers, harmonics, hyperbolic)
+    scale = coordinate_scale(curve)
     if not math.isfinite(scale):
         return None
     tolerance = scale * 2.0**-54
@@ -170,8 +173,8 @@ def choose_pieces(
     # the domain's rounded ends are accepted to 4 ulps): the bound covers a slightly wider piece
     slack = 8.0 * float(np.spacing(max(abs(lo), abs(hi), 1.0)))
     radius = 0.5 * span + slack
-    dim = coefficients.shape[1]
-    amp = amplitudes(coefficients, omega0, powers, harmonics, hyperbolic)
+    dim = curve.coefficients.shape[1]
+    amp = amplitudes(curve)
     fallback: tuple[int, int, float, float] | None = None
     for degree in DEGREES:
 
@@ -197,35 +200,29 @@ def choose_pieces(
 
 
 def piece_table(
-    coefficients: np.ndarray,
+    curve: CentredCurve,
     derivative: np.ndarray,
     degree: int,
     pieces: int,
-    lo: float,
-    hi: float,
-    mid: float,
-    omega0: float,
-    powers: int,
-    harmonics: int,
-    hyperbolic: bool,
     bound: float = math.nan,
     tolerance: float = math.nan,
 ) -> PieceTable:
     """The Taylor coefficients f^(e)(c_k)/e!, e <= degree, of every piece's centre c_k, from
     the exact derivatives of the atoms (`derivative`, hazmat.atoms.derivative_matrix)."""
-    width = (hi - lo) / pieces
-    centres = lo + (np.arange(pieces) + 0.5) * width
-    values = ak.atom_values(centres - mid, omega0, powers, harmonics, hyperbolic)  # (A, m)
-    dim = coefficients.shape[1]
+    c = curve
+    width = (c.hi - c.lo) / pieces
+    centres = c.lo + (np.arange(pieces) + 0.5) * width
+    values = ak.atom_values(centres - c.mid, c.omega0, c.powers, c.harmonics, c.hyperbolic)
+    dim = c.coefficients.shape[1]
     table = np.empty((dim, degree + 1, pieces))
-    current = coefficients
+    current = c.coefficients
     factorial = 1.0
     for e in range(degree + 1):
         if e:
             current = derivative @ current
             factorial *= e
         table[:, e, :] = (current.T @ values) / factorial
-    return PieceTable(lo, width, 1.0 / width, centres, table, bound, tolerance)
+    return PieceTable(c.lo, width, 1.0 / width, centres, table, bound, tolerance)
 
 
 def evaluate_pieces(pieces: PieceTable, t: np.ndarray) -> np.ndarray:
@@ -250,38 +247,14 @@ def evaluate_pieces(pieces: PieceTable, t: np.ndarray) -> np.ndarray:
     return out
 
 
-def build(
-    coefficients: np.ndarray,
-    derivative: np.ndarray,
-    lo: float,
-    hi: float,
-    mid: float,
-    omega0: float,
-    powers: int,
-    harmonics: int,
-    hyperbolic: bool,
-) -> PieceTable | None:
+def build(curve: CentredCurve, derivative: np.ndarray) -> PieceTable | None:
     """`choose_pieces` then `piece_table`; None when no piecewise form is certified, or when
     its values could approach the float range (the caller then evaluates the atoms)."""
-    chosen = choose_pieces(coefficients, lo, hi, mid, omega0, powers, harmonics, hyperbolic)
+    chosen = choose_pieces(curve)
     if chosen is None:
         return None
     degree, count, bound, tolerance = chosen
-    pieces = piece_table(
-        coefficients,
-        derivative,
-        degree,
-        count,
-        lo,
-        hi,
-        mid,
-        omega0,
-        powers,
-        harmonics,
-        hyperbolic,
-        bound,
-        tolerance,
-    )
+    pieces = piece_table(curve, derivative, degree, count, bound, tolerance)
     with np.errstate(over="ignore", invalid="ignore"):
         # |value| <= Σ_e |c_e| h^e on a piece (h <= width): far below overflow, so the
         # caller need not check the result

@@ -42,6 +42,7 @@ from .energy import optimal_parameters as curve_optimal_parameters
 from .hazmat import surface_kernels as ker
 from .hazmat.surface_certify import certified_minimum
 from .hazmat.surface_kernels import OPTIMUM_STEP_TOLERANCE
+from .hazmat.surface_weights import BatchWeights, batch_weights
 from .param_surface_energy import _param_families
 from .param_surface_energy import optimal_parameters as param_optimal_parameters
 from .parameter_optimum import OptimalParameters as CurveOptimalParameters
@@ -54,7 +55,7 @@ from .surface_energies import (
     _float_polynomial,
     surface_energy_matrices,
 )
-from .surfaces import NetLike, _as_family_pair, _as_net, _exact_net
+from .surfaces import NetLike, _as_family_pair, _as_net, _exact_net, basis_to_bernstein_split
 
 STEP_TOLERANCE = OPTIMUM_STEP_TOLERANCE
 # the fixed-cost path accepts a net when the minimiser is certified within this of its answer
@@ -99,6 +100,21 @@ def _pair_weights(mats: SurfaceEnergyMatrices) -> tuple[np.ndarray, np.ndarray, 
         np.array(rows_i, dtype=np.int64),
         np.array(rows_j, dtype=np.int64),
         np.array(rows_w).reshape(-1, 9),
+    )
+
+
+@cache
+def _batch_weights(mats: SurfaceEnergyMatrices, u_cls: Any, v_cls: Any, dim: int) -> BatchWeights:
+    """The energy for the compiled batch kernel, in the basis where each direction's
+    λ-part is sparse (hazmat.surface_weights)."""
+    m, n = mats.degrees
+    u_split, v_split = basis_to_bernstein_split(u_cls, m), basis_to_bernstein_split(v_cls, n)
+    return batch_weights(
+        mats.full,
+        u_split[1] if len(u_split) > 1 else None,
+        v_split[1] if len(v_split) > 1 else None,
+        (m + 1, n + 1),
+        dim,
     )
 
 
@@ -151,10 +167,11 @@ def optimal_parameters_batch(
         return _all_exact(nets, np.ones(count, bool), None, energy, u_box, v_box, u_cls, v_cls)
     box = np.array([float(u_box[0]), float(u_box[1]), float(v_box[0]), float(v_box[1])])
     if fast is not None:
-        pair_i, pair_j, weights = _pair_weights(mats)
+        classes: tuple[Any, Any] = (u_cls, v_cls)  # hashable: classes hash by identity
+        weights = _batch_weights(mats, *classes, dim)
         flat = np.ascontiguousarray(nets.reshape(count, m1 * n1 * dim), dtype=float)
         bx, by, bval, _, ok, valid = fast.optimise(
-            flat, dim, pair_i, pair_j, weights, box, CERTIFIED_TOLERANCE, MAX_COORDINATE
+            flat, dim, weights, box, CERTIFIED_TOLERANCE, MAX_COORDINATE
         )
         if not valid:
             _check_values(nets)  # raises the error that fits

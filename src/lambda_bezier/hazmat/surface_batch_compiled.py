@@ -130,25 +130,30 @@ def _transpose_chunk(flat: np.ndarray, start: int, n: int, limit: float, lanes: 
 def _coefficients_chunk(
     lanes: np.ndarray,
     dim: int,
-    pair_i: np.ndarray,
-    pair_j: np.ndarray,
-    weights: np.ndarray,
+    w: tuple[np.ndarray, ...],
     gram: np.ndarray,
     acc: np.ndarray,
 ) -> None:
-    """acc[t, k] = Σ_p weights[p, t] g_p(k) for the chunk's nets (lanes k). Every loop runs
-    over the lanes alone, so each vectorises; the Gram products of four pairs at a time go
-    into each accumulator in one update (the updates' loads and stores bound the loop).
-    Multiply-adds may fuse (fastmath "contract" only: one rounding instead of two, no
-    reassociation), which halves the arithmetic here."""
+    """acc[t, k] = Σ_p weights[p, t] g_p(k) for the chunk's nets (lanes k), in the basis of
+    hazmat.surface_weights (w: its BatchWeights): first the change of basis on the lanes,
+    then the Gram products of BLOCK pairs at a time, each block added into the powers it has
+    (the updates' loads and stores bound the loop, so a power a block lacks is skipped).
+    Every loop runs over the lanes alone, so each vectorises. Multiply-adds may fuse
+    (fastmath "contract" only: one rounding instead of two, no reassociation)."""
+    pair_i, pair_j, weights, block_start, block_powers, mix_t, mix_s, mix_w = w
     width = lanes.shape[1]
     n_pairs = pair_i.shape[0]
+    for r in range(mix_t.shape[0]):
+        t, s, c = mix_t[r], mix_s[r], mix_w[r]
+        for k in range(width):
+            lanes[t, k] += c * lanes[s, k]
     acc[:, :] = 0.0
+    last = n_pairs - 1
     for q in range(0, n_pairs, 4):
         for s in range(4):
-            p = min(q + s, n_pairs - 1)
+            p = min(q + s, last)
             a, b = pair_i[p] * dim, pair_j[p] * dim
-            if q + s >= n_pairs:  # past the last pair: a zero product (weights unused)
+            if q + s > last:  # past the last pair: a zero product (weights unused)
                 for k in range(width):
                     gram[s, k] = 0.0
                 continue
@@ -157,8 +162,9 @@ def _coefficients_chunk(
             for c in range(1, dim):
                 for k in range(width):
                     gram[s, k] += lanes[a + c, k] * lanes[b + c, k]
-        last = n_pairs - 1
-        for t in range(weights.shape[1]):
+        block = q // 4
+        for u in range(block_start[block], block_start[block + 1]):
+            t = block_powers[u]
             w0 = weights[q, t]
             w1 = weights[min(q + 1, last), t]
             w2 = weights[min(q + 2, last), t]
@@ -171,15 +177,14 @@ def _coefficients_chunk(
 def optimise(
     flat: np.ndarray,
     dim: int,
-    pair_i: np.ndarray,
-    pair_j: np.ndarray,
-    weights: np.ndarray,
+    w: tuple[np.ndarray, ...],
     box: np.ndarray,
     tol: float,
     limit: float,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, bool]:
     """For nets flat (k, s·d) (control point i's coordinates at i·d .. i·d + d − 1) and the
-    energy Σ_p weights[p, 3a + b] g_p x^a y^b: per net (x, y, energy, δ, certified) of
+    energy Σ_p weights[p, 3a + b] g_p x^a y^b in the basis of w (hazmat.surface_weights'
+    BatchWeights, g_p the Gram products of the changed net): per net (x, y, energy, δ, certified) of
     surface_certify.certified_minimum over box = (xlo, xhi, ylo, yhi), and whether every
     coordinate was finite and <= limit."""
     count, width = flat.shape
@@ -192,7 +197,7 @@ def optimise(
     for start in range(0, count, CHUNK):
         n = min(CHUNK, count - start)
         valid &= _transpose_chunk(flat, start, n, limit, lanes)
-        _coefficients_chunk(lanes, dim, pair_i, pair_j, weights, gram, acc)
+        _coefficients_chunk(lanes, dim, w, gram, acc)
         _certify_chunk(acc, n, box, tol, answers)
         for row in range(5):
             for k in range(n):

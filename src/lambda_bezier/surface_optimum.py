@@ -40,7 +40,7 @@ import numpy as np
 from . import _validate as val
 from .energy import optimal_parameters as curve_optimal_parameters
 from .hazmat import surface_kernels as ker
-from .hazmat.surface_certify import certified_minimum
+from .hazmat.surface_certify import certified_minimum, edge_minimum
 from .hazmat.surface_kernels import OPTIMUM_STEP_TOLERANCE
 from .hazmat.surface_weights import BatchWeights, batch_weights
 from .param_surface_energy import _param_families
@@ -170,11 +170,12 @@ def optimal_parameters_batch(
         classes: tuple[Any, Any] = (u_cls, v_cls)  # hashable: classes hash by identity
         weights = _batch_weights(mats, *classes, dim)
         flat = np.ascontiguousarray(nets.reshape(count, m1 * n1 * dim), dtype=float)
-        bx, by, bval, _, ok, valid = fast.optimise(
+        bx, by, bval, _, status, valid = fast.optimise(
             flat, dim, weights, box, CERTIFIED_TOLERANCE, MAX_COORDINATE
         )
         if not valid:
             _check_values(nets)  # raises the error that fits
+        ok, on_edge = status > 0.5, status > 1.5
     else:
         coeffs = _float_polynomial(mats, nets.reshape(count, m1 * n1, dim))
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
@@ -184,10 +185,28 @@ def optimal_parameters_batch(
                 c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8],
                 box[0], box[1], box[2], box[3], CERTIFIED_TOLERANCE,
             )  # fmt: skip
+            on_edge = np.zeros(count, bool)
+            undecided = np.flatnonzero(~ok)
+            if undecided.size:  # the declined nets' edge and corner minima
+                d = [v[undecided] for v in c]
+                ex, ey, eval_, _, eok = edge_minimum(
+                    d[0], d[1], d[2], d[3], d[4], d[5], d[6], d[7], d[8],
+                    box[0], box[1], box[2], box[3], CERTIFIED_TOLERANCE,
+                )  # fmt: skip
+                done = undecided[eok]
+                bx[done], by[done], bval[done] = ex[eok], ey[eok], eval_[eok]
+                ok[done] = on_edge[done] = True
     declined = np.flatnonzero(~ok)
     where = np.empty(count, dtype=object)
     where[:] = "interior"  # (np.full of a str into an object array is 6x slower)
     admissible, free_u, free_v = np.ones(count, bool), np.zeros(count, bool), np.zeros(count, bool)
+    edge = np.flatnonzero(on_edge)
+    if edge.size:  # certified on an edge or at a corner (edge_minimum)
+        ex, ey = bx[edge], by[edge]
+        at_x = (ex == box[0]) | (ex == box[1])
+        at_y = (ey == box[2]) | (ey == box[3])
+        where[edge] = np.where(at_x & at_y, "corner", "edge")
+        admissible[edge] = _admissible(ex, u_box) & _admissible(ey, v_box)
     exact = 0
     if declined.size:
         rest = _careful_batch(nets[declined], energy, mats, u_box, v_box, u_cls, v_cls)

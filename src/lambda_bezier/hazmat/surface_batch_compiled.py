@@ -33,7 +33,7 @@ from . import surface_certify as sc
 # editing this file too (tests/test_surfaces_certify.py checks the two agree). Where they
 # differ anyway (an edit without the tests), the kernels compile afresh, uncached, rather
 # than load code of the old certificate.
-CERTIFY_SHA256 = "188cc18cdbeb6e06610e4cb0d0cdd075aec5c4ee1b806755cef7b1340110df5e"
+CERTIFY_SHA256 = "48f2f0f0cbc844d5d26cf9553c7136494e133535e2135946ff27fe8a894c1cad"
 
 
 def certify_source_sha256() -> str:
@@ -69,25 +69,33 @@ def _recompiled(names: tuple[str, ...]) -> dict[str, Callable[..., Any]]:
     return out
 
 
-_certified_minimum = _recompiled(
+_CERTIFY = _recompiled(
     (
         "_clip",
+        "_step",
         "_sweep",
         "_newton",
         "_quartic_positive",
         "_quadratic_positive",
+        "_discriminant",
         "_side_clear",
+        "_largest",
+        "_direction",
         "certified_minimum",
+        "_edge",
+        "edge_minimum",
     )
-)["certified_minimum"]
+)
+_certified_minimum, _edge_minimum = _CERTIFY["certified_minimum"], _CERTIFY["edge_minimum"]
 
 
 @numba.njit(**_JIT)
 def _certify_chunk(acc: np.ndarray, n: int, box: np.ndarray, tol: float, out: np.ndarray) -> None:
-    """certified_minimum for the chunk's n nets into out[:, :n] (x, y, energy, δ, certified
-    as 1.0 or 0.0): one output array, indexed by the loop variable alone, and no branches, so
-    the loop vectorises (measured: five output arrays, or an offset index, kept it scalar,
-    3-4x slower)."""
+    """certified_minimum for the chunk's n nets into out[:, :n] (x, y, energy, δ, status:
+    1.0 certified, 0.0 declined): one output array, indexed by the loop variable alone, and
+    no branches, so the loop vectorises (measured: five output arrays, or an offset index,
+    kept it scalar, 3-4x slower). Then edge_minimum for the declined nets alone (about 1 in
+    60), status 2.0 where it certifies an edge or corner minimum."""
     xlo, xhi, ylo, yhi = box[0], box[1], box[2], box[3]
     for k in range(n):
         x, y, e, d, ok = _certified_minimum(
@@ -111,6 +119,30 @@ def _certify_chunk(acc: np.ndarray, n: int, box: np.ndarray, tol: float, out: np
         out[2, k] = e
         out[3, k] = d
         out[4, k] = 1.0 if ok else 0.0
+    for k in range(n):
+        if out[4, k] == 0.0:
+            x, y, e, d, ok = _edge_minimum(
+                acc[0, k],
+                acc[1, k],
+                acc[2, k],
+                acc[3, k],
+                acc[4, k],
+                acc[5, k],
+                acc[6, k],
+                acc[7, k],
+                acc[8, k],
+                xlo,
+                xhi,
+                ylo,
+                yhi,
+                tol,
+            )
+            if ok:
+                out[0, k] = x
+                out[1, k] = y
+                out[2, k] = e
+                out[3, k] = d
+                out[4, k] = 2.0
 
 
 @numba.njit(**_JIT)
@@ -184,9 +216,11 @@ def optimise(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, bool]:
     """For nets flat (k, s·d) (control point i's coordinates at i·d .. i·d + d − 1) and the
     energy Σ_p weights[p, 3a + b] g_p x^a y^b in the basis of w (hazmat.surface_weights'
-    BatchWeights, g_p the Gram products of the changed net): per net (x, y, energy, δ, certified) of
-    surface_certify.certified_minimum over box = (xlo, xhi, ylo, yhi), and whether every
-    coordinate was finite and <= limit."""
+    BatchWeights, g_p the Gram products of the changed net): per net (x, y, energy, δ, status)
+    of surface_certify.certified_minimum over box = (xlo, xhi, ylo, yhi), or of its
+    edge_minimum where that declines (status 1.0: an interior minimum certified, 2.0: an edge
+    or corner minimum certified, 0.0: declined), and whether every coordinate was finite and
+    <= limit."""
     count, width = flat.shape
     out = np.empty((5, count))
     lanes = np.zeros((width, CHUNK))
@@ -202,4 +236,4 @@ def optimise(
         for row in range(5):
             for k in range(n):
                 out[row, start + k] = answers[row, k]
-    return out[0], out[1], out[2], out[3], out[4] > 0.5, valid
+    return out[0], out[1], out[2], out[3], out[4], valid

@@ -3,9 +3,10 @@ surface_energies) or for a batch of float nets, vectorised.
 
 A batch first takes the fixed-cost certified minimum (hazmat.surface_certify: start, Newton,
 local strong convexity and a global clearing of the rest of the box; compiled with the
-coefficients in hazmat.surface_batch_compiled). Only the nets it declines (minima on an edge
-or a corner, or not convex enough about the minimum) take the careful path below, counted in
-``careful_fallbacks``.
+coefficients in hazmat.surface_batch_compiled). The nets it declines take its fixed-cost
+certificate of edge and corner minima (surface_certify.edge_minimum). Only the nets both
+decline (minima near an edge or a corner but not on it, or not convex enough about the
+minimum) take the careful path below, counted in ``careful_fallbacks``.
 
 The careful path. For families affine in λ the energy of one net is
 E(x, y) = Σ_{a,b<=2} e_ab x^a y^b. Over the box its minimum is at a corner, on an edge (a
@@ -150,9 +151,10 @@ def optimal_parameters_batch(
     """optimal_parameters for (k, m+1, n+1, d) float nets; arrays of length k in every field.
 
     Every net first takes the fixed-cost certified minimum (hazmat.surface_certify; compiled
-    in hazmat.surface_batch_compiled with the coefficients when numba is there); the nets it
-    declines go to `_careful_batch` (``careful_fallbacks`` counts them, ``exact_fallbacks``
-    those of them the exact method then solves)."""
+    in hazmat.surface_batch_compiled with the coefficients when numba is there), then the
+    nets it declines its edge_minimum; the nets both decline go to `_careful_batch`
+    (``careful_fallbacks`` counts them, ``exact_fallbacks`` those of them the exact method
+    then solves)."""
     u_cls, v_cls = _as_family_pair(family)
     u_box, v_box = _box(u_cls), _box(v_cls)
     if nets.ndim != 4 or nets.shape[0] == 0:

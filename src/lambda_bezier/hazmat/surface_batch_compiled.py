@@ -4,12 +4,17 @@ runs over contiguous lanes and vectorises), its energy coefficients from the Gra
 then hazmat.surface_certify's fixed-cost certified minimum, compiled from the same source.
 
 The coefficients: e_ab = Σ_p W[p, 3a + b] g_p over the pairs p = (i, j), i <= j, of control
-points, g_p = P_i · P_j (surface_optimum.pair_weights). For a bicubic net that is 136 pairs,
-3 + 9 multiply-adds each: about 1,600 a net. The Kronecker route (contract the net with the
-per-direction forms first, P ↦ A_u P A_v^T) costs more at these sizes: each of the nine
-λ-powers needs its own pair of small products (about 3,600 multiply-adds a net for the thin
-plate energy, 2,400 through orthonormal features), so the dense pair sum is kept and made
-fast by lanes instead.
+points, g_p = P_i · P_j, in the basis of hazmat.surface_weights, where each direction's
+λ-part touches only a few points: each net's chunk lanes are changed to that basis first
+(48 multiply-adds a bicubic net), and each block of four pairs is added only into the powers
+it has (536 weights for the 000 bicubic thin plate, against 9 x 136 in the net's own basis).
+The Kronecker route (contract the net with the per-direction forms first, P ↦ A_u P A_v^T)
+costs more at these sizes: each of the nine λ-powers needs its own pair of small products
+(about 3,600 multiply-adds a net for the thin plate energy, 2,400 through orthonormal
+features).
+
+Then, per net, surface_certify.certified_minimum (vectorised over the chunk) and, for the
+nets it declines, surface_certify.edge_minimum.
 
 Validation rides along: the transposition notes any coordinate that is not finite or is above
 `limit`, and the caller raises the same errors as the numpy path.

@@ -125,13 +125,15 @@ def test_a_strictly_convex_energy_is_certified_within_its_bound():
     assert abs(y[0] - (2 * -2.8 - 0.1 * 0.6) / det) <= 1e-14 + delta[0]
 
 
-def test_edge_minima_are_declined_counted_and_solved_carefully(engine):
+def test_edge_minima_are_certified_or_solved_carefully(engine):
+    """Edge and corner minima: edge_minimum certifies some (fewer nets are left to the
+    careful path than lie off the interior), and every answer is the exact method's."""
     nets = grid_nets(3, 600)
     res = lb.optimal_parameters(nets, "membrane")
     off_interior = res["where"] != "interior"
     assert off_interior.any()  # the batch has minima on edges and corners
-    assert res["careful_fallbacks"] >= off_interior.sum()
-    for i in np.flatnonzero(off_interior)[:5]:
+    assert 0 < res["careful_fallbacks"] < off_interior.sum()
+    for i in np.flatnonzero(off_interior)[:12]:
         one = lb.optimal_parameters(nets[i], "membrane")
         assert one["where"] == res["where"][i]
         assert abs(one["lam_u_float"] - res["lam_u"][i]) <= 1e-12

@@ -3,9 +3,10 @@ surface_energies) or for a batch of float nets, vectorised.
 
 A batch first takes the fixed-cost certified minimum (hazmat.surface_certify: start, Newton,
 local strong convexity and a global clearing of the rest of the box; compiled with the
-coefficients in hazmat.surface_batch_compiled). Only the nets it declines (minima on an edge
-or a corner, or not convex enough about the minimum) take the careful path below, counted in
-``careful_fallbacks``.
+coefficients in hazmat.surface_batch_compiled). The nets it declines take its fixed-cost
+certificate of edge and corner minima (surface_certify.edge_minimum). Only the nets both
+decline (minima near an edge or a corner but not on it, or not convex enough about the
+minimum) take the careful path below, counted in ``careful_fallbacks``.
 
 The careful path. For families affine in λ the energy of one net is
 E(x, y) = Σ_{a,b<=2} e_ab x^a y^b. Over the box its minimum is at a corner, on an edge (a
@@ -40,8 +41,9 @@ import numpy as np
 from . import _validate as val
 from .energy import optimal_parameters as curve_optimal_parameters
 from .hazmat import surface_kernels as ker
-from .hazmat.surface_certify import certified_minimum
+from .hazmat.surface_certify import certified_minimum, edge_minimum
 from .hazmat.surface_kernels import OPTIMUM_STEP_TOLERANCE
+from .hazmat.surface_weights import BatchWeights, batch_weights
 from .param_surface_energy import _param_families
 from .param_surface_energy import optimal_parameters as param_optimal_parameters
 from .parameter_optimum import OptimalParameters as CurveOptimalParameters
@@ -54,7 +56,7 @@ from .surface_energies import (
     _float_polynomial,
     surface_energy_matrices,
 )
-from .surfaces import NetLike, _as_family_pair, _as_net, _exact_net
+from .surfaces import NetLike, _as_family_pair, _as_net, _exact_net, basis_to_bernstein_split
 
 STEP_TOLERANCE = OPTIMUM_STEP_TOLERANCE
 # the fixed-cost path accepts a net when the minimiser is certified within this of its answer
@@ -102,6 +104,21 @@ def _pair_weights(mats: SurfaceEnergyMatrices) -> tuple[np.ndarray, np.ndarray, 
     )
 
 
+@cache
+def _batch_weights(mats: SurfaceEnergyMatrices, u_cls: Any, v_cls: Any, dim: int) -> BatchWeights:
+    """The energy for the compiled batch kernel, in the basis where each direction's
+    λ-part is sparse (hazmat.surface_weights)."""
+    m, n = mats.degrees
+    u_split, v_split = basis_to_bernstein_split(u_cls, m), basis_to_bernstein_split(v_cls, n)
+    return batch_weights(
+        mats.full,
+        u_split[1] if len(u_split) > 1 else None,
+        v_split[1] if len(v_split) > 1 else None,
+        (m + 1, n + 1),
+        dim,
+    )
+
+
 def _polymul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Products of polynomials over a batch: (k, p) x (k, q) -> (k, p + q - 1), low first."""
     out = np.zeros((a.shape[0], a.shape[1] + b.shape[1] - 1))
@@ -134,9 +151,10 @@ def optimal_parameters_batch(
     """optimal_parameters for (k, m+1, n+1, d) float nets; arrays of length k in every field.
 
     Every net first takes the fixed-cost certified minimum (hazmat.surface_certify; compiled
-    in hazmat.surface_batch_compiled with the coefficients when numba is there); the nets it
-    declines go to `_careful_batch` (``careful_fallbacks`` counts them, ``exact_fallbacks``
-    those of them the exact method then solves)."""
+    in hazmat.surface_batch_compiled with the coefficients when numba is there), then the
+    nets it declines its edge_minimum; the nets both decline go to `_careful_batch`
+    (``careful_fallbacks`` counts them, ``exact_fallbacks`` those of them the exact method
+    then solves)."""
     u_cls, v_cls = _as_family_pair(family)
     u_box, v_box = _box(u_cls), _box(v_cls)
     if nets.ndim != 4 or nets.shape[0] == 0:
@@ -151,13 +169,15 @@ def optimal_parameters_batch(
         return _all_exact(nets, np.ones(count, bool), None, energy, u_box, v_box, u_cls, v_cls)
     box = np.array([float(u_box[0]), float(u_box[1]), float(v_box[0]), float(v_box[1])])
     if fast is not None:
-        pair_i, pair_j, weights = _pair_weights(mats)
+        classes: tuple[Any, Any] = (u_cls, v_cls)  # hashable: classes hash by identity
+        weights = _batch_weights(mats, *classes, dim)
         flat = np.ascontiguousarray(nets.reshape(count, m1 * n1 * dim), dtype=float)
-        bx, by, bval, _, ok, valid = fast.optimise(
-            flat, dim, pair_i, pair_j, weights, box, CERTIFIED_TOLERANCE, MAX_COORDINATE
+        bx, by, bval, _, status, valid = fast.optimise(
+            flat, dim, weights, box, CERTIFIED_TOLERANCE, MAX_COORDINATE
         )
         if not valid:
             _check_values(nets)  # raises the error that fits
+        ok, on_edge = status > 0.5, status > 1.5
     else:
         coeffs = _float_polynomial(mats, nets.reshape(count, m1 * n1, dim))
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
@@ -167,10 +187,28 @@ def optimal_parameters_batch(
                 c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8],
                 box[0], box[1], box[2], box[3], CERTIFIED_TOLERANCE,
             )  # fmt: skip
+            on_edge = np.zeros(count, bool)
+            undecided = np.flatnonzero(~ok)
+            if undecided.size:  # the declined nets' edge and corner minima
+                d = [v[undecided] for v in c]
+                ex, ey, eval_, _, eok = edge_minimum(
+                    d[0], d[1], d[2], d[3], d[4], d[5], d[6], d[7], d[8],
+                    box[0], box[1], box[2], box[3], CERTIFIED_TOLERANCE,
+                )  # fmt: skip
+                done = undecided[eok]
+                bx[done], by[done], bval[done] = ex[eok], ey[eok], eval_[eok]
+                ok[done] = on_edge[done] = True
     declined = np.flatnonzero(~ok)
     where = np.empty(count, dtype=object)
     where[:] = "interior"  # (np.full of a str into an object array is 6x slower)
     admissible, free_u, free_v = np.ones(count, bool), np.zeros(count, bool), np.zeros(count, bool)
+    edge = np.flatnonzero(on_edge)
+    if edge.size:  # certified on an edge or at a corner (edge_minimum)
+        ex, ey = bx[edge], by[edge]
+        at_x = (ex == box[0]) | (ex == box[1])
+        at_y = (ey == box[2]) | (ey == box[3])
+        where[edge] = np.where(at_x & at_y, "corner", "edge")
+        admissible[edge] = _admissible(ex, u_box) & _admissible(ey, v_box)
     exact = 0
     if declined.size:
         rest = _careful_batch(nets[declined], energy, mats, u_box, v_box, u_cls, v_cls)

@@ -52,6 +52,8 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `surface_certify`: the fixed-cost certificate of the batch optimum of (λ_u, λ_v) (one
   elementwise source: numpy on arrays, or compiled by `surface_batch_compiled`, numba, the
   `fast` extra; imported on use);
+- `surface_weights`: the energy's weights for that kernel, in the basis where each
+  direction's λ-part is sparse (exact change of basis);
 - `constants`: exact numbers in ℚ(π) and ℚ(e^W) (`ConstantFraction`), signs decided exactly.
 
 The submodules are imported on use: ``from lambda_bezier.hazmat import kernels``.
@@ -93,4 +95,5 @@ __all__ = [
     "surface_certify",
     "surface_compiled",
     "surface_kernels",
+    "surface_weights",
 ]

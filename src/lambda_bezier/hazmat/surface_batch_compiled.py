@@ -4,12 +4,17 @@ runs over contiguous lanes and vectorises), its energy coefficients from the Gra
 then hazmat.surface_certify's fixed-cost certified minimum, compiled from the same source.
 
 The coefficients: e_ab = Σ_p W[p, 3a + b] g_p over the pairs p = (i, j), i <= j, of control
-points, g_p = P_i · P_j (surface_optimum.pair_weights). For a bicubic net that is 136 pairs,
-3 + 9 multiply-adds each: about 1,600 a net. The Kronecker route (contract the net with the
-per-direction forms first, P ↦ A_u P A_v^T) costs more at these sizes: each of the nine
-λ-powers needs its own pair of small products (about 3,600 multiply-adds a net for the thin
-plate energy, 2,400 through orthonormal features), so the dense pair sum is kept and made
-fast by lanes instead.
+points, g_p = P_i · P_j, in the basis of hazmat.surface_weights, where each direction's
+λ-part touches only a few points: each net's chunk lanes are changed to that basis first
+(48 multiply-adds a bicubic net), and each block of four pairs is added only into the powers
+it has (536 weights for the 000 bicubic thin plate, against 9 x 136 in the net's own basis).
+The Kronecker route (contract the net with the per-direction forms first, P ↦ A_u P A_v^T)
+costs more at these sizes: each of the nine λ-powers needs its own pair of small products
+(about 3,600 multiply-adds a net for the thin plate energy, 2,400 through orthonormal
+features).
+
+Then, per net, surface_certify.certified_minimum (vectorised over the chunk) and, for the
+nets it declines, surface_certify.edge_minimum.
 
 Validation rides along: the transposition notes any coordinate that is not finite or is above
 `limit`, and the caller raises the same errors as the numpy path.
@@ -33,7 +38,7 @@ from . import surface_certify as sc
 # editing this file too (tests/test_surfaces_certify.py checks the two agree). Where they
 # differ anyway (an edit without the tests), the kernels compile afresh, uncached, rather
 # than load code of the old certificate.
-CERTIFY_SHA256 = "188cc18cdbeb6e06610e4cb0d0cdd075aec5c4ee1b806755cef7b1340110df5e"
+CERTIFY_SHA256 = "48f2f0f0cbc844d5d26cf9553c7136494e133535e2135946ff27fe8a894c1cad"
 
 
 def certify_source_sha256() -> str:
@@ -69,25 +74,33 @@ def _recompiled(names: tuple[str, ...]) -> dict[str, Callable[..., Any]]:
     return out
 
 
-_certified_minimum = _recompiled(
+_CERTIFY = _recompiled(
     (
         "_clip",
+        "_step",
         "_sweep",
         "_newton",
         "_quartic_positive",
         "_quadratic_positive",
+        "_discriminant",
         "_side_clear",
+        "_largest",
+        "_direction",
         "certified_minimum",
+        "_edge",
+        "edge_minimum",
     )
-)["certified_minimum"]
+)
+_certified_minimum, _edge_minimum = _CERTIFY["certified_minimum"], _CERTIFY["edge_minimum"]
 
 
 @numba.njit(**_JIT)
 def _certify_chunk(acc: np.ndarray, n: int, box: np.ndarray, tol: float, out: np.ndarray) -> None:
-    """certified_minimum for the chunk's n nets into out[:, :n] (x, y, energy, δ, certified
-    as 1.0 or 0.0): one output array, indexed by the loop variable alone, and no branches, so
-    the loop vectorises (measured: five output arrays, or an offset index, kept it scalar,
-    3-4x slower)."""
+    """certified_minimum for the chunk's n nets into out[:, :n] (x, y, energy, δ, status:
+    1.0 certified, 0.0 declined): one output array, indexed by the loop variable alone, and
+    no branches, so the loop vectorises (measured: five output arrays, or an offset index,
+    kept it scalar, 3-4x slower). Then edge_minimum for the declined nets alone (about 1 in
+    60), status 2.0 where it certifies an edge or corner minimum."""
     xlo, xhi, ylo, yhi = box[0], box[1], box[2], box[3]
     for k in range(n):
         x, y, e, d, ok = _certified_minimum(
@@ -111,6 +124,30 @@ def _certify_chunk(acc: np.ndarray, n: int, box: np.ndarray, tol: float, out: np
         out[2, k] = e
         out[3, k] = d
         out[4, k] = 1.0 if ok else 0.0
+    for k in range(n):
+        if out[4, k] == 0.0:
+            x, y, e, d, ok = _edge_minimum(
+                acc[0, k],
+                acc[1, k],
+                acc[2, k],
+                acc[3, k],
+                acc[4, k],
+                acc[5, k],
+                acc[6, k],
+                acc[7, k],
+                acc[8, k],
+                xlo,
+                xhi,
+                ylo,
+                yhi,
+                tol,
+            )
+            if ok:
+                out[0, k] = x
+                out[1, k] = y
+                out[2, k] = e
+                out[3, k] = d
+                out[4, k] = 2.0
 
 
 @numba.njit(**_JIT)
@@ -130,25 +167,30 @@ def _transpose_chunk(flat: np.ndarray, start: int, n: int, limit: float, lanes: 
 def _coefficients_chunk(
     lanes: np.ndarray,
     dim: int,
-    pair_i: np.ndarray,
-    pair_j: np.ndarray,
-    weights: np.ndarray,
+    w: tuple[np.ndarray, ...],
     gram: np.ndarray,
     acc: np.ndarray,
 ) -> None:
-    """acc[t, k] = Σ_p weights[p, t] g_p(k) for the chunk's nets (lanes k). Every loop runs
-    over the lanes alone, so each vectorises; the Gram products of four pairs at a time go
-    into each accumulator in one update (the updates' loads and stores bound the loop).
-    Multiply-adds may fuse (fastmath "contract" only: one rounding instead of two, no
-    reassociation), which halves the arithmetic here."""
+    """acc[t, k] = Σ_p weights[p, t] g_p(k) for the chunk's nets (lanes k), in the basis of
+    hazmat.surface_weights (w: its BatchWeights): first the change of basis on the lanes,
+    then the Gram products of BLOCK pairs at a time, each block added into the powers it has
+    (the updates' loads and stores bound the loop, so a power a block lacks is skipped).
+    Every loop runs over the lanes alone, so each vectorises. Multiply-adds may fuse
+    (fastmath "contract" only: one rounding instead of two, no reassociation)."""
+    pair_i, pair_j, weights, block_start, block_powers, mix_t, mix_s, mix_w = w
     width = lanes.shape[1]
     n_pairs = pair_i.shape[0]
+    for r in range(mix_t.shape[0]):
+        t, s, c = mix_t[r], mix_s[r], mix_w[r]
+        for k in range(width):
+            lanes[t, k] += c * lanes[s, k]
     acc[:, :] = 0.0
+    last = n_pairs - 1
     for q in range(0, n_pairs, 4):
         for s in range(4):
-            p = min(q + s, n_pairs - 1)
+            p = min(q + s, last)
             a, b = pair_i[p] * dim, pair_j[p] * dim
-            if q + s >= n_pairs:  # past the last pair: a zero product (weights unused)
+            if q + s > last:  # past the last pair: a zero product (weights unused)
                 for k in range(width):
                     gram[s, k] = 0.0
                 continue
@@ -157,8 +199,9 @@ def _coefficients_chunk(
             for c in range(1, dim):
                 for k in range(width):
                     gram[s, k] += lanes[a + c, k] * lanes[b + c, k]
-        last = n_pairs - 1
-        for t in range(weights.shape[1]):
+        block = q // 4
+        for u in range(block_start[block], block_start[block + 1]):
+            t = block_powers[u]
             w0 = weights[q, t]
             w1 = weights[min(q + 1, last), t]
             w2 = weights[min(q + 2, last), t]
@@ -171,17 +214,18 @@ def _coefficients_chunk(
 def optimise(
     flat: np.ndarray,
     dim: int,
-    pair_i: np.ndarray,
-    pair_j: np.ndarray,
-    weights: np.ndarray,
+    w: tuple[np.ndarray, ...],
     box: np.ndarray,
     tol: float,
     limit: float,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, bool]:
     """For nets flat (k, s·d) (control point i's coordinates at i·d .. i·d + d − 1) and the
-    energy Σ_p weights[p, 3a + b] g_p x^a y^b: per net (x, y, energy, δ, certified) of
-    surface_certify.certified_minimum over box = (xlo, xhi, ylo, yhi), and whether every
-    coordinate was finite and <= limit."""
+    energy Σ_p weights[p, 3a + b] g_p x^a y^b in the basis of w (hazmat.surface_weights'
+    BatchWeights, g_p the Gram products of the changed net): per net (x, y, energy, δ, status)
+    of surface_certify.certified_minimum over box = (xlo, xhi, ylo, yhi), or of its
+    edge_minimum where that declines (status 1.0: an interior minimum certified, 2.0: an edge
+    or corner minimum certified, 0.0: declined), and whether every coordinate was finite and
+    <= limit."""
     count, width = flat.shape
     out = np.empty((5, count))
     lanes = np.zeros((width, CHUNK))
@@ -192,9 +236,9 @@ def optimise(
     for start in range(0, count, CHUNK):
         n = min(CHUNK, count - start)
         valid &= _transpose_chunk(flat, start, n, limit, lanes)
-        _coefficients_chunk(lanes, dim, pair_i, pair_j, weights, gram, acc)
+        _coefficients_chunk(lanes, dim, w, gram, acc)
         _certify_chunk(acc, n, box, tol, answers)
         for row in range(5):
             for k in range(n):
                 out[row, start + k] = answers[row, k]
-    return out[0], out[1], out[2], out[3], out[4] > 0.5, valid
+    return out[0], out[1], out[2], out[3], out[4], valid

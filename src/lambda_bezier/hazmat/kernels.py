@@ -71,8 +71,8 @@ def compiled() -> ModuleType | None:
 
 
 def batch_compiled() -> ModuleType | None:
-    """hazmat.batch_compiled (evaluate_many's and optimal_lambda's kernels) when USE_COMPILED,
-    else None (the numpy paths)."""
+    """hazmat.batch_compiled (optimal_lambda's kernels) when USE_COMPILED, else None (the
+    numpy paths)."""
     if not USE_COMPILED:
         return None
     from . import batch_compiled as module  # numba compiles (or loads its cache) on first use

@@ -3,7 +3,10 @@ that stays as the tested fallback (the batch operations' kernels are in `batch_c
 
 - `first_level`: the first level of arclength.unit_integral (the speed at the fixed nodes,
   each piece's two rules, the accept test's sums, the least speed), which in numpy is about
-  ten calls on arrays of a few hundred values, most of an arc length's cost.
+  ten calls on arrays of a few hundred values, most of an arc length's cost;
+  `unit_first_level` adds unit_integral's decisions around it (whether the coefficients
+  need scaling, a hidden dip, a constant curve, acceptance at once), which in Python cost
+  about a third as much as the level itself.
 
 The sums run in a fixed order, so the results agree with the numpy paths to rounding, not bit
 for bit; tests/test_arclength.py runs both.
@@ -65,3 +68,38 @@ def first_level(
         spent += size[p, 0]
         total += size[p, 1]
     return spent, total, least
+
+
+@numba.njit(**_JIT)
+def unit_first_level(
+    coeffs: np.ndarray,
+    powers: np.ndarray,
+    weights: np.ndarray,
+    pieces: int,
+    rtol: float,
+    hidden_unit: float,
+    size: np.ndarray,
+) -> tuple[int, float, float, float, float]:
+    """arclength.unit_integral up to its first decision, for coefficients as given (not
+    scaled): (code, spent, total, least, peak) with first_level's sums and the largest
+    |coefficient| but the constant terms, `size` written as there.
+    Code 0: the length is `total` (0.0 for a constant curve, else accepted at once); code 1:
+    the coefficients need arclength._scaled first (nothing else computed); code 2: the rule
+    goes on from this level (a piece rejected, or a near-double zero of p' may hide: least
+    within hidden_unit · (coordinates) · (largest coefficient) / pieces², arclength's
+    bound)."""
+    dim, count = coeffs.shape
+    peak = 0.0  # the largest |coefficient| but the constant terms (arclength._scaled's)
+    for c in range(dim):
+        for e in range(1, count):
+            peak = max(peak, abs(coeffs[c, e]))
+    if not (peak == 0.0 or 2.0**-400 <= peak <= 2.0**400):
+        return 1, 0.0, 0.0, 0.0, peak
+    spent, total, least = first_level(coeffs, powers, weights, pieces, size)
+    if not total > 0.0:
+        return 0, spent, 0.0, least, peak
+    if least <= hidden_unit * dim * peak / (pieces * pieces):
+        return 2, spent, total, least, peak
+    if spent <= rtol * total:
+        return 0, spent, total, least, peak
+    return 2, spent, total, least, peak

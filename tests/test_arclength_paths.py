@@ -143,3 +143,33 @@ def test_compiled_first_decisions_are_unit_integrals(monkeypatch):
                 args = (coeffs, first, weights, arclength._PIECES, rtol, unit, size)
                 assert (compiled.unit_first_level(*args)[0] == 0) == accepted
     assert codes == {0, 1, 2}
+
+
+def test_compiled_second_level_is_numpys():
+    """kernels_compiled.second_level against unit_integral's numpy steps on the same
+    rejected pieces (one, two or more of them): the parts' signed sums and least speeds to
+    rounding, the totals and the least speed likewise."""
+    pytest.importorskip("numba")
+    compiled = kernels.compiled() or pytest.fail("numba is installed but not used")
+    rng = np.random.default_rng(31)
+    seen = 0
+    for trial in range(60):
+        x = Fraction(int(rng.integers(1, 99)), 100)
+        curve, _ = kinked_curve(x, Fraction(1, 10 ** int(rng.integers(2, 6))), seed=trial)
+        coeffs = geometry._poly(curve)[0]
+        _, _, _, second, second_weights = arclength._unit_levels(coeffs.shape[1])
+        bad = np.unique(rng.integers(0, arclength._PIECES, size=int(rng.integers(1, 4))))
+        sums = np.empty((bad.size * arclength._SPLIT, 2))
+        low = np.empty(bad.size * arclength._SPLIT)
+        spent, total, least = compiled.second_level(coeffs, second, second_weights, bad, sums, low)
+        speed = arclength._norms(np.concatenate([coeffs.dot(second[k]) for k in bad], axis=-1))
+        want = speed.reshape(bad.size * arclength._SPLIT, -1).dot(second_weights)
+        scale = np.abs(want[:, 1]).sum()
+        np.testing.assert_allclose(sums, want, rtol=0, atol=1e-15 * scale)
+        # speeds to rounding relative to the largest (p' is a sum of cancelling terms)
+        top = speed.max()
+        np.testing.assert_allclose(low, speed.reshape(low.size, -1).min(axis=1), atol=1e-14 * top)
+        assert (spent, total) == pytest.approx(tuple(np.abs(want).sum(axis=0)), rel=1e-13)
+        assert least == pytest.approx(speed.min(), rel=0, abs=1e-14 * top)
+        seen += bad.size > 1
+    assert seen

@@ -286,24 +286,31 @@ def unit_integral(coeffs: np.ndarray, rtol: float) -> float:
     for rejected, value in size[bad].tolist():
         spent -= rejected
         total -= value
-    # one piece as a rule, or two (a near-cusp by a joint): a product each (cheaper than one
-    # batched product of a fancy-indexed stack)
-    if bad.size == 1:
-        values = coeffs.dot(second[bad[0]])
+    if compiled is not None:  # the same steps in one compiled call (kernels_compiled)
+        sums = np.empty((bad.size * _SPLIT, 2))
+        low = np.empty(bad.size * _SPLIT)
+        new_spent, new_total, least = compiled.second_level(
+            coeffs, second, second_weights, bad, sums, low
+        )
     else:
-        values = np.concatenate([coeffs.dot(second[k]) for k in bad], axis=-1)
-    speed = _norms(values)
-    if speed.min() <= hidden / (_PIECES * _SPLIT) ** 2:
+        # one piece as a rule, or two (a near-cusp by a joint): a product each (cheaper
+        # than one batched product of a fancy-indexed stack)
+        if bad.size == 1:
+            values = coeffs.dot(second[bad[0]])
+        else:
+            values = np.concatenate([coeffs.dot(second[k]) for k in bad], axis=-1)
+        speed = _norms(values)
+        least = speed.min()
+        sums = speed.reshape(bad.size * _SPLIT, -1).dot(second_weights)
+        new_spent, new_total = np.abs(sums).sum(axis=0).tolist()
+        low = speed.reshape(bad.size * _SPLIT, -1).min(axis=1)
+    if least <= hidden / (_PIECES * _SPLIT) ** 2:
         return factor * _from_start(coeffs, 0.0, 1.0, rtol, None)
-    sums = speed.reshape(bad.size * _SPLIT, -1).dot(second_weights)
-    size = np.abs(sums)
-    new_spent, new_total = size.sum(axis=0).tolist()
     if spent + new_spent <= rtol * (total + new_total):
         return float(factor * (total + new_total))
     width = 1.0 / (_PIECES * _SPLIT)
     left = ((bad[:, None] * _SPLIT + np.arange(_SPLIT)) * width).ravel()
     widths = np.full(left.size, width)
-    low = speed.reshape(left.size, -1).min(axis=1)
     level = (left, widths, sums, low)
     return factor * _finish(coeffs, 0.0, 1.0, rtol, level, total, spent, None)
 

@@ -1,7 +1,8 @@
 """evaluate_many on the tables (batch._products_many, issue #29): blocks of the result as
 matrix products with the monomials Kronecker the identity, against each curve on its own and
-against de Casteljau; the fast test for curves near the float limits; `out=`. The path needs
-no numba, so these run with numpy alone too."""
+against de Casteljau; the fast tests for curves near the float limits (numpy's over a chunk,
+numba's one pass, batch_compiled.odd_curves); `out=`. The products need no numba: these tests
+run on both paths."""
 
 from __future__ import annotations
 
@@ -17,6 +18,15 @@ from lambda_bezier import batch
 from lambda_bezier.hazmat import kernels
 
 
+@pytest.fixture(params=["numba", "numpy"])
+def path(request, monkeypatch):
+    """Both tests of the curves' magnitudes: numba's one pass and numpy's."""
+    if request.param == "numba":
+        pytest.importorskip("numba")
+    monkeypatch.setattr(kernels, "USE_COMPILED", request.param == "numba")
+    return request.param
+
+
 def _single(name, pts, lams, t, k):
     fam = FAMILIES[name]
     return np.stack(
@@ -30,7 +40,7 @@ def _single(name, pts, lams, t, k):
 @pytest.mark.parametrize("name", ["bezier", "same_degree", "bernstein_like"])
 @pytest.mark.parametrize("dim", [1, 2, 3])
 @pytest.mark.parametrize("chunk", [1 << 18, 300])
-def test_products_match_each_curve(name, dim, chunk, monkeypatch):
+def test_products_match_each_curve(name, dim, chunk, monkeypatch, path):
     """Every derivative order (past the degree too), curves near 2^±1000 (scaled per curve)
     beside ordinary ones, one λ per curve, one λ for all (folded into the product, given as
     a number and as equal values), and (small chunks) the parameters cut into blocks."""
@@ -79,7 +89,7 @@ def test_products_match_de_casteljau(n, dim, m, k, t, seed):
     np.testing.assert_allclose(got, want, rtol=0, atol=1e-12 * scale)
 
 
-def test_scaling_test_is_per_curve():
+def test_scaling_test_is_per_curve(path):
     """The fast test over a whole chunk only lets through chunks where no curve needs
     scaling: a tiny coordinate in an ordinary curve is left as it is, a curve whose largest
     coordinate is tiny is scaled (its values kept, not flushed to zero), a zero curve is
@@ -105,7 +115,7 @@ def test_scaling_test_is_per_curve():
         lb.evaluate_many(pts, t, "bezier")
 
 
-def test_non_finite_and_overflow_are_named(monkeypatch):
+def test_non_finite_and_overflow_are_named(monkeypatch, path):
     """A NaN late in the batch is named by its curve; an overflow when extrapolating, or
     with a λ outside the range, is refused by name."""
     monkeypatch.setattr(kernels, "CHUNK_ELEMENTS", 64)
@@ -182,3 +192,35 @@ def test_evaluate_many_out_is_checked():
     grid[:3] = t
     with pytest.raises(ValueError, match="out must not overlap the control points or t"):
         lb.evaluate_many(pts, grid[:3], "bezier", out=grid[:24].reshape(4, 3, 2))
+
+
+def test_numbas_magnitude_test_is_numpys():
+    """batch_compiled.odd_curves counts exactly the curves batch._curve_scales scales or
+    refuses: NaN and infinities, largest coordinates each side of 2^900 and 2^-901, zero
+    curves, subnormals beside ordinary coordinates, in any position of the curve."""
+    pytest.importorskip("numba")
+    from lambda_bezier.hazmat import batch_compiled
+
+    rng = np.random.default_rng(8)
+    specials = [np.nan, np.inf, -np.inf, 2.0**900, -(2.0**900), np.nextafter(2.0**900, 0)]
+    tiny = [2.0**-901, np.nextafter(2.0**-901, 0), 1e-310, 5e-324, 0.0]
+    for _ in range(300):
+        pts = rng.normal(size=(int(rng.integers(1, 6)), int(rng.integers(1, 5)), 3))
+        odd = 0
+        for j in range(pts.shape[0]):
+            kind = rng.integers(0, 4)
+            i, c = rng.integers(0, pts.shape[1]), rng.integers(0, 3)
+            if kind == 1:
+                pts[j, i, c] = rng.choice(specials)
+            elif kind == 2:  # the whole curve tiny: its largest coordinate decides
+                pts[j] = 0.0
+                pts[j, i, c] = rng.choice(tiny) * rng.choice([1, -1])
+            elif kind == 3:
+                pts[j, i, c] = rng.choice(tiny)  # beside ordinary coordinates: ordinary
+        try:
+            scales = batch._curve_scales(pts, 0)
+            odd = 0 if scales is None else int((scales != 1.0).sum())
+        except ValueError:  # a non-finite coordinate: at least one
+            odd = -1
+        got = batch_compiled.odd_curves(pts)
+        assert got == odd if odd >= 0 else got >= 1

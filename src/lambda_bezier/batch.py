@@ -194,6 +194,7 @@ def _products_many(
     span = max(1, min(total, (alg.CHUNK_ELEMENTS // 4) // (inner * dim)))
     flat = values.reshape(m, total * dim)
     what = "p(t)" if k == 0 else f"the derivative of order {k}"
+    compiled = alg.batch_compiled()  # numba's one-pass test of the curves' magnitudes
     for s0 in range(0, total, span):
         s1 = min(s0 + span, total)
         u = tt[s0:s1] - 0.5
@@ -210,7 +211,11 @@ def _products_many(
             # a curve with coordinates beyond 2^±900 is computed on its points scaled by a
             # power of two (exact), then scaled back, so a representable p(t) is not lost to
             # an overflow or underflow in the coefficients (each curve by its own magnitude)
-            scales = _curve_scales(arr[lo:hi], lo)
+            scales = (
+                None
+                if compiled is not None and compiled.odd_curves(arr[lo:hi]) == 0
+                else _curve_scales(arr[lo:hi], lo)
+            )
             part = arr[lo:hi].reshape(hi - lo, size * dim)  # a copy only if arr is strided
             if scales is not None:
                 part = part / scales[:, None]

@@ -214,3 +214,23 @@ def energy_optimum(
         if final < count:
             return int(lo + final)
     return int(m)
+
+
+@numba.njit(**_JIT)
+def odd_curves(points: np.ndarray) -> int:
+    """How many curves of points (m, n+1, d) evaluate_many cannot take as they are: a
+    non-finite coordinate, or the largest |coordinate| at or above 2^900 or in (0, 2^-901)
+    (batch._curve_scales' rule: those are scaled by a power of two). One pass, no working
+    array: numpy's test of the same takes four passes and a temporary of the chunk's size,
+    a fifth of evaluate_many's time at 64 parameters."""
+    m, size, dim = points.shape
+    odd = 0
+    for j in range(m):
+        big = 0.0
+        for i in range(size):
+            for c in range(dim):
+                a = abs(points[j, i, c])
+                if a > big or a != a:  # a NaN is kept, and fails the test below
+                    big = a
+        odd += not (big < 2.0**900 and (big >= 2.0**-901 or big == 0.0))
+    return odd

@@ -14,6 +14,8 @@ arithmetic as a numpy path that stays as the tested fallback (issue #29).
   A polygon the pass cannot answer (a non-finite coefficient, or a₂ within its rounding
   bound: coordinates near the float limits, NaN, or λ without effect) is flagged and left to
   the careful path, which rescales it or names it in the error.
+- `odd_curves`: evaluate_many's test of the curves' magnitudes (batch._curve_scales' rule),
+  in one pass; the products themselves are BLAS's (batch._products_many).
 
 Both compute each polygon's sums in the order the previous kernel did (kept bit for bit, so
 a result does not depend on which of the two ran), and the optimum with the numpy path's

@@ -92,3 +92,84 @@ def test_compiled_and_numpy_first_levels_agree(monkeypatch):
         threshold = 1e-12 * total / arclength._PIECES
         far = np.abs(rejected[1][:, 0] - threshold) > 1e-15 * total  # not on the fence
         assert ((rejected[0][:, 0] > threshold) == (rejected[1][:, 0] > threshold))[far].all()
+
+
+def test_compiled_first_decisions_are_unit_integrals(monkeypatch):
+    """kernels_compiled.unit_first_level decides as unit_integral's Python steps on the
+    same level: a length at once (code 0: accepted, or 0 for a constant curve) exactly when
+    they return the level's total, scaling first (code 1) exactly when _scaled rescales,
+    and otherwise the same sums for the rule to go on from (code 2), on random curves of
+    degrees 2..12, near-cusps (rejected pieces) and huge and tiny coordinates among them."""
+    pytest.importorskip("numba")
+    rng = np.random.default_rng(13)
+    compiled = kernels.compiled() or pytest.fail("numba is installed but not used")
+    codes = set()
+    for trial in range(300):
+        degree, dim = int(rng.integers(2, 13)), int(rng.integers(1, 4))
+        pts = rng.normal(size=(degree + 1, dim))
+        if trial % 7 == 0:
+            pts[1:] = pts[1]  # a straight segment, then a stop
+        if trial % 11 == 0:
+            pts = np.repeat(pts[:1], degree + 1, axis=0)  # constant
+        if trial % 5 == 0:
+            curve, _ = kinked_curve(Fraction(int(rng.integers(1, 9)), 10), 0, seed=trial)
+            pts = np.array(curve.points, dtype=float)
+        coeffs = geometry._poly(lb.BezierCurve(pts))[0] * float(rng.choice([1.0, 2.0**500]))
+        first, weights, *_ = arclength._unit_levels(coeffs.shape[1])
+        unit = arclength._hidden_unit(coeffs.shape[1])
+        size = np.empty((arclength._PIECES, 2))
+        code, spent, total, least, peak = compiled.unit_first_level(
+            coeffs, first, weights, arclength._PIECES, 1e-12, unit, size
+        )
+        codes.add(code)
+        scaled, factor, want_peak = arclength._scaled(coeffs)
+        assert (code == 1) == (factor != 1.0)
+        if code == 1:
+            continue
+        assert peak == want_peak
+        level = np.empty((arclength._PIECES, 2))
+        want = compiled.first_level(coeffs, first, weights, arclength._PIECES, level)
+        assert (spent, total, least) == want
+        np.testing.assert_array_equal(size, level)
+        at_once = not want[1] > 0.0 or (
+            want[2] > unit * dim * peak / arclength._PIECES**2 and want[0] <= 1e-12 * want[1]
+        )
+        assert (code == 0) == at_once
+        hides = not want[2] > unit * dim * peak / arclength._PIECES**2
+        if want[1] > 0.0 and want[0] > 0.0 and not hides:
+            # a tolerance just either side of this curve's own spent / total
+            for scale, accepted in ((0.99, False), (1.01, True)):
+                rtol = want[0] / want[1] * scale
+                args = (coeffs, first, weights, arclength._PIECES, rtol, unit, size)
+                assert (compiled.unit_first_level(*args)[0] == 0) == accepted
+    assert codes == {0, 1, 2}
+
+
+def test_compiled_second_level_is_numpys():
+    """kernels_compiled.second_level against unit_integral's numpy steps on the same
+    rejected pieces (one, two or more of them): the parts' signed sums and least speeds to
+    rounding, the totals and the least speed likewise."""
+    pytest.importorskip("numba")
+    compiled = kernels.compiled() or pytest.fail("numba is installed but not used")
+    rng = np.random.default_rng(31)
+    seen = 0
+    for trial in range(60):
+        x = Fraction(int(rng.integers(1, 99)), 100)
+        curve, _ = kinked_curve(x, Fraction(1, 10 ** int(rng.integers(2, 6))), seed=trial)
+        coeffs = geometry._poly(curve)[0]
+        _, _, _, second, second_weights = arclength._unit_levels(coeffs.shape[1])
+        bad = np.unique(rng.integers(0, arclength._PIECES, size=int(rng.integers(1, 4))))
+        sums = np.empty((bad.size * arclength._SPLIT, 2))
+        low = np.empty(bad.size * arclength._SPLIT)
+        spent, total, least = compiled.second_level(coeffs, second, second_weights, bad, sums, low)
+        speed = arclength._norms(np.concatenate([coeffs.dot(second[k]) for k in bad], axis=-1))
+        want = speed.reshape(bad.size * arclength._SPLIT, -1).dot(second_weights)
+        scale = np.abs(want[:, 1]).sum()
+        np.testing.assert_allclose(sums, want, rtol=0, atol=1e-15 * scale)
+        # speeds to rounding relative to the largest (p' is a sum of cancelling terms)
+        top = speed.max()
+        np.testing.assert_allclose(low, speed.reshape(low.size, -1).min(axis=1), atol=1e-14 * top)
+        assert (spent, total) == pytest.approx(tuple(np.abs(want).sum(axis=0)), rel=1e-13)
+        assert least == pytest.approx(speed.min(), rel=0, abs=1e-14 * top)
+        seen += bad.size > 1
+    assert seen

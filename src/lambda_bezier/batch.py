@@ -148,105 +148,90 @@ def evaluate_many(
         lams = _lambdas(lam, cls, m, check_range)
     tables = [_float_matrix(cls._data, "centred", n, p).T for p in range(len(mats))]
     result = None if out is None else _checked_out(out, (m, tt.size, dim), scalar, points, arr, t)
+    values = np.empty((m, tt.size, dim)) if result is None else result
     check_needed = extrapolate or not check_range  # else nothing can overflow
-    compiled = alg.batch_compiled()
-    if compiled is None:  # numpy: (T, m·d), or into `out`
-        values = _numpy_many(arr, tables, lams, tt, k, check_needed, result)
-    else:
-        # Compiled: each curve's coefficients, Horner, and each element of the C-contiguous
-        # (m, T, d) result written once, in one pass with no working arrays
-        # (hazmat/batch_compiled.evaluate_batch). A curve it declines (a non-finite input,
-        # an overflow) is left to the numpy path, chunk by chunk, which names it.
-        values = np.empty((m, tt.size, dim)) if result is None else result
-        stacked = np.ascontiguousarray(np.stack(tables))
-        size_k = tables[0].shape[0] - k  # the Bézier degree N + 1 - k (N ≥ n), or ≤ 0
-        factors = differentiate_coefficients(np.ones(tables[0].shape[0]), k)
-        u = tt - 0.5
-        start = 0
-        while start < m:
-            declined = compiled.evaluate_batch(
-                arr[start:],
-                stacked,
-                lams[start:] if lams.size == m else lams,
-                max(k, 0) if size_k > 0 else 0,
-                factors,
-                u,
-                check_needed,
-                values[start:],
-            )
-            if declined < 0:
-                break
-            lo, hi = next(
-                c for c in chunk_ranges(m, tt.size * dim) if c[0] <= start + declined < c[1]
-            )
-            _numpy_many(arr[lo:hi], tables, lams[lo:hi] if lams.size == m else lams, tt, k,
-                        check_needed, values[lo:hi], lo)  # fmt: skip
-            start = hi
+    _products_many(arr, tables, lams, tt, k, check_needed, values)
     if out is not None:
         return out
     return values[:, 0] if scalar else values
 
 
-def _numpy_many(
+def _products_many(
     arr: np.ndarray,
     tables: list[np.ndarray],
     lams: np.ndarray,
     tt: np.ndarray,
     k: int,
     check_needed: bool,
-    result: np.ndarray | None,
-    first: int = 0,
-) -> np.ndarray:
-    """evaluate_many's numpy path on curves `arr` (the first is curve `first` of the batch):
-    into `result` (m, T, d) when given, else laid out (T, m·d) and returned as the (m, T, d)
-    view. Each chunk of curves is one product of the monomials with its coefficients,
-    written by BLAS straight into its columns (a transposing copy into an (m, T, d) array
-    costs three times as much; it is done only into a given `result`). Chunks keep the
-    working arrays in cache and the extra memory bounded at any m."""
+    values: np.ndarray,
+) -> None:
+    """evaluate_many on the tables, into `values` (m, T, d), C-contiguous: each block of
+    values is one matrix product written by BLAS straight into its place.
+
+    Row j of values, flattened to T·d numbers, is c_j K: c_j the curve's coefficients of the
+    k-th derivative in the centred monomials, flattened to (N+1-k)·d numbers, and K the
+    monomials (t - 1/2)^e of the block's parameters, Kronecker with the d × d identity, so
+    that the product's rows come out in the result's (T, d) order. With one table (the
+    classical curve) or one λ for every curve, the tables fold into K as well: the product
+    is then of the control points themselves, c_j never formed. The products are cut into
+    blocks of fewer than 2^18 multiply-adds: working memory bounded at any m or T, and
+    below OpenBLAS's threshold for threads (2^18 there), which on a loaded machine measured
+    slower, not faster (up to 10x). Issue #29: this replaced a compiled Horner loop per
+    curve (numba), which took more CPU time in the same runs (README, benchmark notes)."""
     m, size, dim = arr.shape
-    # Every curve shares the parameter grid: its monomials (t - 1/2)^e, once.
-    size_k = max(tables[0].shape[0] - k, 1)  # the Bézier degree N + 1 - k (N ≥ n)
-    u = tt - 0.5
-    powers = np.empty((tt.size, size_k))
-    powers[:, 0] = 1.0
-    for e in range(1, size_k):
-        np.multiply(powers[:, e - 1], u, out=powers[:, e])
-    wide = np.empty((tt.size, m * dim)) if result is None else None
+    total = tt.size
+    # per table p, the map from a curve's flattened points to its flattened coefficients of
+    # p^(k): kron(D_p, I_d), D_p (n+1, N+1-k) (at least one zero column past the degree)
+    maps = [np.kron(differentiate_coefficients(tab.T, k), np.eye(dim)) for tab in tables]
+    width = maps[0].shape[1]
+    per_lam = lams.size == m
+    if per_lam and m and (lams == lams[0]).all():
+        lams, per_lam = lams[:1], False  # one λ for every curve: fold it into the map
+    if not per_lam:
+        folded = sum((maps[p] * lams[0] ** p for p in range(1, len(maps))), maps[0])
+    inner = width if per_lam else size * dim
+    # parameters per block: the block of K (inner × span·d numbers) stays in the L2 cache
+    span = max(1, min(total, (alg.CHUNK_ELEMENTS // 4) // (inner * dim)))
+    flat = values.reshape(m, total * dim)
     what = "p(t)" if k == 0 else f"the derivative of order {k}"
-    for lo, hi in chunk_ranges(m, tt.size * dim):
-        part = arr[lo:hi]
-        # a curve with coordinates beyond 2^±900 is computed on its points scaled by a power
-        # of two (exact), then scaled back, so a representable p(t) is not lost to an
-        # overflow or underflow in the coefficients (each curve by its own magnitude)
-        scales = _curve_scales(part, first + lo)
-        with val.overflow_allowed():
-            # coefficients in the centred monomials, laid out (N+1, c·d): wide products
-            pt = part.transpose(1, 0, 2).reshape(size, (hi - lo) * dim)
-            if scales is not None:
-                scales = np.repeat(scales, dim)
-                pt = pt / scales
-            coeffs = tables[0] @ pt
-            for p in range(1, len(tables)):
-                coeffs += (tables[p] @ pt) * np.repeat(lams[lo:hi] ** p, dim)
-            if k:
-                coeffs = differentiate_coefficients(coeffs.T, k).T
-            block = (
-                wide[:, lo * dim : hi * dim]
-                if wide is not None
-                else np.empty((tt.size, (hi - lo) * dim))
+    compiled = alg.batch_compiled()  # numba's one-pass test of the curves' magnitudes
+    for s0 in range(0, total, span):
+        s1 = min(s0 + span, total)
+        u = tt[s0:s1] - 0.5
+        powers = np.empty((width // dim, s1 - s0))
+        powers[0] = 1.0
+        for e in range(1, width // dim):
+            np.multiply(powers[e - 1], u, out=powers[e])
+        basis = np.kron(powers, np.eye(dim)).reshape(width, (s1 - s0) * dim)
+        product = basis if per_lam else folded @ basis
+        # chunks of curves for the checks and the coefficients (a NumPy call has a fixed
+        # cost: per product block it would be most of the time), each cut into the blocks
+        # of the products
+        for lo, hi in chunk_ranges(m, size * dim):
+            # a curve with coordinates beyond 2^±900 is computed on its points scaled by a
+            # power of two (exact), then scaled back, so a representable p(t) is not lost to
+            # an overflow or underflow in the coefficients (each curve by its own magnitude)
+            scales = (
+                None
+                if compiled is not None and compiled.odd_curves(arr[lo:hi]) == 0
+                else _curve_scales(arr[lo:hi], lo)
             )
-            np.matmul(powers, coeffs, out=block)
+            part = arr[lo:hi].reshape(hi - lo, size * dim)  # a copy only if arr is strided
             if scales is not None:
-                block *= scales
-        if scales is not None or check_needed:
-            val.finite_result(block, what)
-        if result is not None:
-            result[lo:hi] = block.reshape(tt.size, hi - lo, dim).transpose(1, 0, 2)
-    if result is not None:
-        return result
-    assert wide is not None
-    values: np.ndarray = wide.reshape(tt.size, m, dim).transpose(1, 0, 2)
-    return values
+                part = part / scales[:, None]
+            block = flat[lo:hi, s0 * dim : s1 * dim]
+            with val.overflow_allowed():
+                if per_lam:
+                    coeffs = part @ maps[0]
+                    for p in range(1, len(maps)):
+                        coeffs += (part @ maps[p]) * (lams[lo:hi] ** p)[:, None]
+                    part = coeffs
+                for a, b in chunk_ranges(hi - lo, product.size):
+                    np.matmul(part[a:b], product, out=block[a:b])
+                if scales is not None:
+                    block *= scales[:, None]
+            if scales is not None or check_needed:
+                val.finite_result(block, what)
 
 
 def _checked_out(
@@ -281,11 +266,22 @@ def _into(out: object, values: np.ndarray, *inputs: npt.ArrayLike) -> np.ndarray
     return out  # type: ignore[return-value]
 
 
+_ODD_HIGH, _ODD_LOW = 2.0**900, 2.0**-900  # _curve_scales' fast test (its exponents: 900)
+
+
 def _curve_scales(part: np.ndarray, first: int) -> np.ndarray | None:
     """None when every curve of the chunk (the first is curve `first`) has ordinary
     coordinates, else the power of two per curve (1 for ordinary ones) that brings a curve
     with magnitudes beyond 2^±900 near 1 (`_validate.scale_for_magnitude`'s rule, per
     curve). A NaN or infinity is refused, named by its curve."""
+    if part.size:
+        # the common case first, in passes over the whole chunk (a maximum per curve of a
+        # few coordinates is several times slower): every coordinate finite and below
+        # 2^900, and none in (0, 2^-900), so that no curve's largest one is there either
+        mag = np.abs(part)
+        top = mag.max()
+        if top < _ODD_HIGH and np.count_nonzero(mag) == np.count_nonzero(mag >= _ODD_LOW):
+            return None
     big = np.abs(part).max(axis=(1, 2)) if part.shape[1] * part.shape[2] else np.zeros(0)
     if not np.isfinite(big).all():  # NaN propagates into the maximum
         idx = np.argwhere(~np.isfinite(part))[0]

@@ -9,10 +9,11 @@ ours (the name follows the `bezier` package's `hazmat`).
 
 - `kernels`: de Casteljau, subdivision, blocked Horner, exact matrix products; the chunking
   of batch operations, and the switch to their compiled kernels;
-- `kernels_compiled`: the first level of the arc-length rule, compiled (numba, the `fast`
-  extra; imported on use);
+- `kernels_compiled`: the first two levels of the arc-length rule and their decisions,
+  compiled (numba, the `fast` extra; imported on use);
 - `batch_compiled`: the batch operations compiled (numba, the `fast` extra; imported on use):
-  the energy coefficients and optimal λ of many polygons in one pass, and evaluate_many;
+  the energy coefficients and optimal λ of many polygons in one pass, and evaluate_many's
+  test of the curves' magnitudes;
 - `forms`: classical Bézier hodograph, elevation and blossoming at any degree;
 - `arclength`: adaptive Gauss-Lobatto/Kronrod quadrature of the speed;
 - `roots`: real roots in [0, 1] of polynomials about t = 1/2 (companion matrix, Newton);

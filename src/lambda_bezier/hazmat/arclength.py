@@ -251,23 +251,31 @@ def unit_integral(coeffs: np.ndarray, rtol: float) -> float:
     runs a complex product of 4096 entries or more on two threads, which with the other
     core busy doubled its time and once stretched a benchmark run of 100 curves to 0.8 s;
     cut into single-threaded blocks it was no faster than this.)"""
-    coeffs, factor, peak = _scaled(coeffs)
-    size = coeffs.shape[1]
-    first, weights, ones, second, second_weights = _unit_levels(size)
-    # a cheap bound on _hidden_bound (the coordinates' count times the largest coefficient)
-    hidden = _hidden_weights(size)[0] * float(coeffs.shape[0]) * peak * _unit_bound(size)
+    first, weights, ones, second, second_weights = _unit_levels(coeffs.shape[1])
+    unit = _hidden_unit(coeffs.shape[1])
     compiled = kernels.compiled()
-    if compiled is not None:  # the same first level in one compiled call (kernels_compiled)
+    factor, code = 1.0, 1
+    if compiled is not None:  # the level and the decisions below in one compiled call
         size = np.empty((_PIECES, 2))
-        spent, total, least = compiled.first_level(coeffs, first, weights, _PIECES, size)
-    else:
-        # (the .dot method: a little cheaper than np.dot, which is cheaper than @, on
-        # operands this small)
-        speed = _norms(coeffs.dot(first))
-        sums = speed.reshape(_PIECES, -1).dot(weights)
-        size = np.abs(sums)
-        spent, total = ones.dot(size).tolist()
-        least = speed.min()
+        code, spent, total, least, peak = compiled.unit_first_level(
+            coeffs, first, weights, _PIECES, rtol, unit, size
+        )
+        if code == 0:  # most curves: decided at once (the same tests as below)
+            return float(total)
+    if code == 1:  # numpy, or coefficients to scale first
+        coeffs, factor, peak = _scaled(coeffs)
+        if compiled is not None:  # (kernels_compiled.first_level: the same level)
+            spent, total, least = compiled.first_level(coeffs, first, weights, _PIECES, size)
+        else:
+            # (the .dot method: a little cheaper than np.dot, which is cheaper than @, on
+            # operands this small)
+            speed = _norms(coeffs.dot(first))
+            sums = speed.reshape(_PIECES, -1).dot(weights)
+            size = np.abs(sums)
+            spent, total = ones.dot(size).tolist()
+            least = speed.min()
+    # a cheap bound on _hidden_bound (the coordinates' count times the largest coefficient)
+    hidden = unit * float(coeffs.shape[0]) * peak
     if not total > 0.0:  # a constant curve
         return 0.0
     if least <= hidden / _PIECES**2:  # a near-double zero of p' may hide: the full rule
@@ -278,32 +286,41 @@ def unit_integral(coeffs: np.ndarray, rtol: float) -> float:
     for rejected, value in size[bad].tolist():
         spent -= rejected
         total -= value
-    # one piece as a rule, or two (a near-cusp by a joint): a product each (cheaper than one
-    # batched product of a fancy-indexed stack)
-    if bad.size == 1:
-        values = coeffs.dot(second[bad[0]])
+    if compiled is not None:  # the same steps in one compiled call (kernels_compiled)
+        sums = np.empty((bad.size * _SPLIT, 2))
+        low = np.empty(bad.size * _SPLIT)
+        new_spent, new_total, least = compiled.second_level(
+            coeffs, second, second_weights, bad, sums, low
+        )
     else:
-        values = np.concatenate([coeffs.dot(second[k]) for k in bad], axis=-1)
-    speed = _norms(values)
-    if speed.min() <= hidden / (_PIECES * _SPLIT) ** 2:
+        # one piece as a rule, or two (a near-cusp by a joint): a product each (cheaper
+        # than one batched product of a fancy-indexed stack)
+        if bad.size == 1:
+            values = coeffs.dot(second[bad[0]])
+        else:
+            values = np.concatenate([coeffs.dot(second[k]) for k in bad], axis=-1)
+        speed = _norms(values)
+        least = speed.min()
+        sums = speed.reshape(bad.size * _SPLIT, -1).dot(second_weights)
+        new_spent, new_total = np.abs(sums).sum(axis=0).tolist()
+        low = speed.reshape(bad.size * _SPLIT, -1).min(axis=1)
+    if least <= hidden / (_PIECES * _SPLIT) ** 2:
         return factor * _from_start(coeffs, 0.0, 1.0, rtol, None)
-    sums = speed.reshape(bad.size * _SPLIT, -1).dot(second_weights)
-    size = np.abs(sums)
-    new_spent, new_total = size.sum(axis=0).tolist()
     if spent + new_spent <= rtol * (total + new_total):
         return float(factor * (total + new_total))
     width = 1.0 / (_PIECES * _SPLIT)
     left = ((bad[:, None] * _SPLIT + np.arange(_SPLIT)) * width).ravel()
     widths = np.full(left.size, width)
-    low = speed.reshape(left.size, -1).min(axis=1)
     level = (left, widths, sums, low)
     return factor * _finish(coeffs, 0.0, 1.0, rtol, level, total, spent, None)
 
 
 @cache
-def _unit_bound(size: int) -> float:
-    """The sum of _hidden_weights' w: B <= (coordinates) · (largest |coefficient|) · this."""
-    return float(_hidden_weights(size)[1].sum())
+def _hidden_unit(size: int) -> float:
+    """_hidden_weights' h times the sum of its w: h · B <= (coordinates) · (largest
+    |coefficient|) · this."""
+    factor, w = _hidden_weights(size)
+    return factor * float(w.sum())
 
 
 def _from_start(

@@ -61,18 +61,24 @@ USE_COMPILED = importlib.util.find_spec("numba") is not None and not os.environ.
 )
 
 
+_LOADED: dict[str, ModuleType] = {}  # kernels_compiled once imported (per call: 0.6 us)
+
+
 def compiled() -> ModuleType | None:
     """hazmat.kernels_compiled when USE_COMPILED, else None (the numpy paths)."""
     if not USE_COMPILED:
         return None
-    from . import kernels_compiled  # numba compiles (or loads its cache) on first use
+    module = _LOADED.get("kernels")
+    if module is None:
+        from . import kernels_compiled  # numba compiles (or loads its cache) on first use
 
-    return kernels_compiled
+        module = _LOADED["kernels"] = kernels_compiled
+    return module
 
 
 def batch_compiled() -> ModuleType | None:
-    """hazmat.batch_compiled (evaluate_many's and optimal_lambda's kernels) when USE_COMPILED,
-    else None (the numpy paths)."""
+    """hazmat.batch_compiled (optimal_lambda's kernels) when USE_COMPILED, else None (the
+    numpy paths)."""
     if not USE_COMPILED:
         return None
     from . import batch_compiled as module  # numba compiles (or loads its cache) on first use

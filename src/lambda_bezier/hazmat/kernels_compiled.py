@@ -3,7 +3,13 @@ that stays as the tested fallback (the batch operations' kernels are in `batch_c
 
 - `first_level`: the first level of arclength.unit_integral (the speed at the fixed nodes,
   each piece's two rules, the accept test's sums, the least speed), which in numpy is about
-  ten calls on arrays of a few hundred values, most of an arc length's cost.
+  ten calls on arrays of a few hundred values, most of an arc length's cost;
+  `unit_first_level` adds unit_integral's decisions around it (whether the coefficients
+  need scaling, a hidden dip, a constant curve, acceptance at once), which in Python cost
+  about a third as much as the level itself;
+- `second_level`: unit_integral's refinement of the first level's rejected pieces on their
+  fixed nodes (about one random quintic in five: numpy's dozen calls there cost more than
+  the arithmetic).
 
 The sums run in a fixed order, so the results agree with the numpy paths to rounding, not bit
 for bit; tests/test_arclength.py runs both.
@@ -64,4 +70,97 @@ def first_level(
         size[p, 1] = abs(s1)
         spent += size[p, 0]
         total += size[p, 1]
+    return spent, total, least
+
+
+@numba.njit(**_JIT)
+def unit_first_level(
+    coeffs: np.ndarray,
+    powers: np.ndarray,
+    weights: np.ndarray,
+    pieces: int,
+    rtol: float,
+    hidden_unit: float,
+    size: np.ndarray,
+) -> tuple[int, float, float, float, float]:
+    """arclength.unit_integral up to its first decision, for coefficients as given (not
+    scaled): (code, spent, total, least, peak) with first_level's sums and the largest
+    |coefficient| but the constant terms, `size` written as there.
+    Code 0: the length is `total` (0.0 for a constant curve, else accepted at once); code 1:
+    the coefficients need arclength._scaled first (nothing else computed); code 2: the rule
+    goes on from this level (a piece rejected, or a near-double zero of p' may hide: least
+    within hidden_unit · (coordinates) · (largest coefficient) / pieces², arclength's
+    bound)."""
+    dim, count = coeffs.shape
+    peak = 0.0  # the largest |coefficient| but the constant terms (arclength._scaled's)
+    for c in range(dim):
+        for e in range(1, count):
+            peak = max(peak, abs(coeffs[c, e]))
+    if not (peak == 0.0 or 2.0**-400 <= peak <= 2.0**400):
+        return 1, 0.0, 0.0, 0.0, peak
+    spent, total, least = first_level(coeffs, powers, weights, pieces, size)
+    if not total > 0.0:
+        return 0, spent, 0.0, least, peak
+    if least <= hidden_unit * dim * peak / (pieces * pieces):
+        return 2, spent, total, least, peak
+    if spent <= rtol * total:
+        return 0, spent, total, least, peak
+    return 2, spent, total, least, peak
+
+
+@numba.njit(**_JIT)
+def second_level(
+    coeffs: np.ndarray,
+    powers: np.ndarray,
+    weights: np.ndarray,
+    bad: np.ndarray,
+    sums: np.ndarray,
+    low: np.ndarray,
+) -> tuple[float, float, float]:
+    """arclength.unit_integral's second level: the first-level pieces `bad` each cut in S
+    parts, powers (K, N+1, S·r) the derivative powers at the parts' nodes per first-level
+    piece, weights (r, 2) the parts' rules. Writes the signed sums (len(bad)·S, 2) (test −
+    value, value) and each part's least speed at its nodes into `low`; returns (Σ|test −
+    value|, Σ|value|, the least speed at a node)."""
+    dim, count = coeffs.shape
+    nodes = powers.shape[2]
+    per = weights.shape[0]
+    parts = nodes // per
+    square = np.empty(nodes)
+    value = np.empty(nodes)
+    spent = 0.0
+    total = 0.0
+    least = np.inf
+    for b in range(bad.size):
+        rows = powers[bad[b]]
+        for j in range(nodes):
+            square[j] = 0.0
+        for c in range(dim):
+            for j in range(nodes):
+                value[j] = 0.0
+            for e in range(1, count):  # row 0 of the derivative powers is zero
+                ce = coeffs[c, e]
+                row = rows[e]
+                for j in range(nodes):
+                    value[j] += ce * row[j]
+            for j in range(nodes):
+                square[j] += value[j] * value[j]
+        for j in range(nodes):
+            square[j] = np.sqrt(square[j])
+        for p in range(parts):
+            s0 = 0.0
+            s1 = 0.0
+            lo = np.inf
+            for q in range(per):
+                v = square[p * per + q]
+                s0 += v * weights[q, 0]
+                s1 += v * weights[q, 1]
+                lo = min(lo, v)
+            k = b * parts + p
+            sums[k, 0] = s0
+            sums[k, 1] = s1
+            low[k] = lo
+            spent += abs(s0)
+            total += abs(s1)
+            least = min(least, lo)
     return spent, total, least

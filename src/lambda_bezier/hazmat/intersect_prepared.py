@@ -24,6 +24,8 @@ class Prepared:
         self._given_rows = rows
         self.degree = self.pts.shape[0] - 1
         self.dim = self.pts.shape[1]
+        if rows is None:  # floats given: set here, not read through cached_property's lock
+            self.__dict__["floats_exact"] = True
 
     @functools.cached_property
     def _span(self) -> float:

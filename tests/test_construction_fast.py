@@ -93,3 +93,28 @@ def test_large_arrays_take_the_general_way():
         lb.BezierCurve(points)
     points[57, 1] = 2.0**1000
     assert val.power_of_two_scale(points) == 2.0**1000
+
+
+finite = st.floats(-1e300, 1e300) | st.sampled_from([0.0, -0.0, 5e-324, -5e-324])
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    st.integers(1, 40).flatmap(
+        lambda rows: st.integers(2, 3).flatmap(
+            lambda dim: st.lists(
+                st.lists(finite, min_size=dim, max_size=dim), min_size=rows, max_size=rows
+            )
+        )
+    )
+)
+def test_prepared_extent_is_numpys(rows):
+    """The intersection solvers' span and scale, over lists for a few points and by numpy
+    past that (40 rows of 2 or 3: both sides of the switch), are numpy's values."""
+    from lambda_bezier.hazmat.intersect_prepared import Prepared
+
+    pts = np.array(rows, dtype=float)
+    prepared = Prepared(pts, None)
+    assert prepared._span == float(np.ptp(pts, axis=0).max())
+    assert prepared.scale == float(max(np.ptp(pts, axis=0).max(), np.abs(pts).max(), 1e-300))
+    assert prepared.is_point == (float(np.ptp(pts, axis=0).max()) == 0.0)

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import sys
 from fractions import Fraction
-from functools import cache, cached_property
+from functools import cache
 from typing import TYPE_CHECKING, ClassVar, Literal, overload
 
 import numpy as np
@@ -406,10 +406,16 @@ class Curve:
     # ------------------------------------------------------------------ intersection, location
     # All of these work on the exact Bézier form (to_bezier keeps the parameter t), see
     # _intersect.py for the method; parameters are in this curve's own t.
-    @cached_property
+    @property
     def _prepared(self) -> _intersect.Prepared:
-        bez = self.to_bezier()
-        return _intersect.Prepared(bez.points, bez._exact_points)
+        # kept in the instance dict by hand: functools.cached_property takes a lock on every
+        # read in Python 3.11, a share of a small intersection's whole cost (issue #29)
+        prepared: _intersect.Prepared | None = self.__dict__.get("_prepared_cache")
+        if prepared is None:
+            bez = self.to_bezier()
+            prepared = _intersect.Prepared(bez.points, bez._exact_points)
+            self.__dict__["_prepared_cache"] = prepared
+        return prepared
 
     def intersect(self, other: Curve) -> list[_intersect.Intersection]:
         """Every intersection with another curve (any family), as Intersection(s, t, kind)

@@ -220,8 +220,28 @@ def exact_shape(rows: ExactRows, *, family: str, degrees: tuple[int, ...]) -> No
     check_point_shape((len(rows), widths.pop() if widths else 0), family=family, degrees=degrees)
 
 
+# float arrays up to this many coordinates take as_points' short way (Python's loops over a
+# list beat numpy's per-call cost there; past it numpy's reductions are cheaper)
+_SMALL = 64
+
+
 def as_points(points: object, *, family: str, degrees: tuple[int, ...]) -> np.ndarray:
     """(n+1, d) float array (a read-only copy), d >= 1, n in `degrees`, all finite."""
+    if (
+        type(points) is np.ndarray
+        and points.dtype == np.float64
+        and points.ndim == 2
+        and points.size <= _SMALL
+    ):
+        # the common case (a small float array; issue #29: a curve built to be intersected
+        # costs more than the intersection otherwise). A sum of floats is finite only when
+        # every term is (an inf or a NaN survives every addition); a sum that overflows
+        # although every term is finite takes the general way below, which says which
+        small = points.copy()
+        check_point_shape(small.shape, family=family, degrees=degrees)
+        if math.isfinite(sum(small.ravel().tolist())):
+            small.setflags(write=False)
+            return small
     arr = np.array(real_array(points, "control points"), dtype=float)
     check_point_shape(arr.shape, family=family, degrees=degrees)
     bad = ~np.isfinite(arr)
@@ -297,7 +317,10 @@ def power_of_two_scale(points: np.ndarray) -> float:
     """1.0 for ordinary coordinates; for magnitudes beyond 2^±900 the power of two that brings
     them near 1, so products with basis coefficients (up to ~1e20) neither overflow nor
     underflow. Dividing by a power of two is exact."""
-    return scale_for_magnitude(float(np.abs(points).max()) if points.size else 0.0)
+    if points.size <= _SMALL:  # as in as_points: a list's max beats numpy's per-call cost
+        flat = points.ravel().tolist()
+        return scale_for_magnitude(max(max(flat), -min(flat)) if flat else 0.0)
+    return scale_for_magnitude(float(np.abs(points).max()))
 
 
 def scale_for_magnitude(big: float) -> float:

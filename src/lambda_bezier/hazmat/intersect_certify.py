@@ -78,20 +78,31 @@ def in_use() -> bool:
     return _compiled() is not None
 
 
+# the kernels once imported: an import statement per call costs a share of a small pair's
+# whole intersection (issue #29)
+_kernels: dict[str, ModuleType] = {}
+
+
 def _compiled() -> ModuleType | None:
     if not sub.USE_COMPILED:
         return None
-    from . import certify_compiled
+    kernel = _kernels.get("certify")
+    if kernel is None:
+        from . import certify_compiled
 
-    return certify_compiled
+        kernel = _kernels["certify"] = certify_compiled
+    return kernel
 
 
 def _settle_compiled() -> ModuleType | None:
     if not (sub.USE_COMPILED and USE_SETTLE):
         return None
-    from . import settle_compiled
+    kernel = _kernels.get("settle")
+    if kernel is None:
+        from . import settle_compiled
 
-    return settle_compiled
+        kernel = _kernels["settle"] = settle_compiled
+    return kernel
 
 
 def settle_one(

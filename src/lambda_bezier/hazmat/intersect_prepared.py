@@ -14,6 +14,8 @@ import numpy as np
 from . import forms
 from . import kernels as alg
 
+_SMALL = 64  # control point arrays up to this many coordinates: _extent over Python lists
+
 
 class Prepared:
     """A classical Bézier curve as the solvers use it: float and exact control points and
@@ -24,10 +26,26 @@ class Prepared:
         self._given_rows = rows
         self.degree = self.pts.shape[0] - 1
         self.dim = self.pts.shape[1]
+        if rows is None:  # floats given: set here, not read through cached_property's lock
+            self.__dict__["floats_exact"] = True
 
     @functools.cached_property
+    def _extent(self) -> tuple[float, float]:
+        """(largest extent of the control points along an axis, largest |coordinate|). On a
+        few points Python's min and max over lists cost a fraction of numpy's per-call cost
+        (issue #29: these are read for every pair intersect_many or the careful path takes);
+        the same float operations, so the same values."""
+        if self.pts.size <= _SMALL:
+            columns = list(zip(*self.pts.tolist(), strict=True))
+            return (
+                max(max(c) - min(c) for c in columns),
+                max(max(max(c), -min(c)) for c in columns),
+            )
+        return float(np.ptp(self.pts, axis=0).max()), float(np.abs(self.pts).max())
+
+    @property
     def _span(self) -> float:
-        return float(np.ptp(self.pts, axis=0).max())
+        return self._extent[0]
 
     @property
     def is_point(self) -> bool:
@@ -37,7 +55,7 @@ class Prepared:
     @functools.cached_property
     def scale(self) -> float:
         """The control points' extent or largest coordinate, whichever is larger."""
-        return float(max(self._span, np.abs(self.pts).max(), 1e-300))
+        return float(max(self._span, self._extent[1], 1e-300))
 
     @functools.cached_property
     def _integer_rows(self) -> list[tuple[list[list[int]], int]]:

@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import importlib.util
 import os
+from collections.abc import Callable
 from types import ModuleType
 from typing import NamedTuple
 
@@ -262,10 +263,54 @@ def isolate(
                 half_matrices(bb_all.shape[1] - 1),
             )
         )
+
+    def isolate_pairs(
+        pa: np.ndarray, pb: np.ndarray, sl: np.ndarray, ia: np.ndarray, ib: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        # one-to-one pieces whose tangent cones share no line hold one root at most
+        axis_a, half_a = _cones(pa, sl)
+        axis_b, half_b = _cones(pb, sl)
+        between = np.arccos(np.clip(np.abs(np.einsum("kd,kd->k", axis_a, axis_b)), 0.0, 1.0))
+        isolated = _pointed(half_a) & _pointed(half_b) & (between > half_a + half_b + CONE_MARGIN)
+        if same:
+            isolated &= np.abs(ia - ib) > 1
+        idx = np.flatnonzero(isolated)
+        if not idx.size:
+            return idx, np.zeros(0), np.zeros(0), np.zeros(0, dtype=bool)
+        u, v, ok = local_newton(pa[idx], pb[idx])
+        return idx, u, v, ok
+
+    return _subdivide(a, bb_all, slack, isolate_pairs, same, skip or [], depth, max_rows)
+
+
+# one level's test of pairs of pieces for isolation: (pieces a, pieces b, slack, ia, ib) ->
+# (indices tested, u, v, converged)
+_Isolation = Callable[
+    [np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray],
+    tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
+]
+
+
+def _subdivide(
+    a: np.ndarray,
+    b: np.ndarray,
+    slack: np.ndarray,
+    isolation: _Isolation,
+    same: bool,
+    skip: list[tuple[int, float, float, float, float]],
+    depth: int,
+    max_rows: int,
+) -> Isolated:
+    """The numpy loop of isolate and isolate_points, level by level over every pair of pieces
+    of every pair: drop, stop at the depth or the row guard, isolate, set aside the flat,
+    halve. b of degree 0 (one point per pair, isolate_points) is not halved: each piece of a
+    has two children, not four, and only a's flatness counts."""
     planar = a.shape[2] == 2
+    fixed = b.shape[1] == 1
+    children = 2 if fixed else 4
     left_a, right_a = half_matrices(a.shape[1] - 1)
-    left_b, right_b = half_matrices(bb_all.shape[1] - 1)
-    pa, pb = a, bb_all
+    left_b, right_b = half_matrices(b.shape[1] - 1)
+    pa, pb = a, b
     pid = np.arange(a.shape[0])
     ia = np.zeros(a.shape[0], dtype=np.int64)
     ib = np.zeros(a.shape[0], dtype=np.int64)
@@ -274,16 +319,22 @@ def isolate(
     level = 0
     while True:
         sl = slack[pid]
-        keep = ~_boxes_apart(pa, pb, sl)
-        if planar:
-            keep &= ~_fat_line_apart(pa, pb, sl)
+        if fixed:  # the point within the piece's box, as the compiled loop writes it
+            target, margin = pb[:, 0], sl[:, None]
+            keep = np.all(
+                (pa.min(axis=1) <= target + margin) & (target - margin <= pa.max(axis=1)), axis=1
+            )
+        else:
+            keep = ~_boxes_apart(pa, pb, sl)
+        if planar:  # a point has no chord: only the piece's fat line can drop it
             keep &= ~_fat_line_apart(pb, pa, sl)
-        if skip:
-            width = 0.5**level
-            for pair, s0, s1, t0, t1 in skip:
-                inside = (pid == pair) & (ia * width >= s0) & ((ia + 1) * width <= s1)
-                inside &= (ib * width >= t0) & ((ib + 1) * width <= t1)
-                keep &= ~inside
+            if not fixed:
+                keep &= ~_fat_line_apart(pa, pb, sl)
+        width = 0.5**level
+        for pair, s0, s1, t0, t1 in skip:
+            inside = (pid == pair) & (ia * width >= s0) & ((ia + 1) * width <= s1)
+            inside &= (ib * width >= t0) & ((ib + 1) * width <= t1)
+            keep &= ~inside
         if same:
             near = np.abs(ia - ib) <= 1
             if near.any():
@@ -297,20 +348,11 @@ def isolate(
         pa, pb, pid, ia, ib = pa[keep], pb[keep], pid[keep], ia[keep], ib[keep]
         if not pid.size:
             break
-        if level == depth or 4 * pid.size > max_rows:
-            left.append((pid, ia * 0.5**level, ib * 0.5**level, np.full(pid.size, 0.5**level)))
+        if level == depth or children * pid.size > max_rows:
+            left.append((pid, ia * width, ib * width, np.full(pid.size, width)))
             break
-        # isolation: one-to-one pieces whose tangent cones share no line hold one root at most
-        axis_a, half_a = _cones(pa, slack[pid])
-        axis_b, half_b = _cones(pb, slack[pid])
-        between = np.arccos(np.clip(np.abs(np.einsum("kd,kd->k", axis_a, axis_b)), 0.0, 1.0))
-        isolated = _pointed(half_a) & _pointed(half_b) & (between > half_a + half_b + CONE_MARGIN)
-        if same:
-            isolated &= np.abs(ia - ib) > 1
-        if isolated.any():
-            idx = np.flatnonzero(isolated)
-            u, v, ok = local_newton(pa[idx], pb[idx])
-            width = 0.5**level
+        idx, u, v, ok = isolation(pa, pb, slack[pid], ia, ib)
+        if idx.size:
             hit = idx[ok]
             roots.append(
                 (
@@ -319,32 +361,37 @@ def isolate(
                     (ib[hit] + np.clip(v[ok], 0, 1)) * width,
                 )
             )
-            resolved = np.zeros_like(isolated)
-            resolved[hit] = True
-            rest = ~resolved
+            rest = np.ones(pid.size, dtype=bool)
+            rest[hit] = False
             pa, pb, pid, ia, ib = pa[rest], pb[rest], pid[rest], ia[rest], ib[rest]
             if not pid.size:
                 break
         # pieces flat to within the slack on both sides are as resolved as subdivision gets
         # (a tangency or a contact of higher order, within rounding of the input)
-        flat = (_thickness(pa) <= slack[pid]) & (_thickness(pb) <= slack[pid])
-        flat &= _runs_forward(pa) & _runs_forward(pb)
+        flat = (_thickness(pa) <= slack[pid]) & _runs_forward(pa)
+        if not fixed:
+            flat &= (_thickness(pb) <= slack[pid]) & _runs_forward(pb)
         if same:
             flat &= np.abs(ia - ib) > 1
         if flat.any():
-            w = 0.5**level
-            left.append((pid[flat], ia[flat] * w, ib[flat] * w, np.full(int(flat.sum()), w)))
+            count = int(flat.sum())
+            left.append((pid[flat], ia[flat] * width, ib[flat] * width, np.full(count, width)))
             rest = ~flat
             pa, pb, pid, ia, ib = pa[rest], pb[rest], pid[rest], ia[rest], ib[rest]
             if not pid.size:
                 break
         al, ar = np.matmul(left_a, pa), np.matmul(right_a, pa)
-        bl, br = np.matmul(left_b, pb), np.matmul(right_b, pb)
-        pa = np.concatenate([al, al, ar, ar])
-        pb = np.concatenate([bl, br, bl, br])
-        pid = np.concatenate([pid, pid, pid, pid])
-        ia = np.concatenate([2 * ia, 2 * ia, 2 * ia + 1, 2 * ia + 1])
-        ib = np.concatenate([2 * ib, 2 * ib + 1, 2 * ib, 2 * ib + 1])
+        if fixed:
+            pa, pb = np.concatenate([al, ar]), np.concatenate([pb, pb])
+            pid, ib = np.concatenate([pid, pid]), np.concatenate([ib, ib])
+            ia = np.concatenate([2 * ia, 2 * ia + 1])
+        else:
+            bl, br = np.matmul(left_b, pb), np.matmul(right_b, pb)
+            pa = np.concatenate([al, al, ar, ar])
+            pb = np.concatenate([bl, br, bl, br])
+            pid = np.concatenate([pid, pid, pid, pid])
+            ia = np.concatenate([2 * ia, 2 * ia, 2 * ia + 1, 2 * ia + 1])
+            ib = np.concatenate([2 * ib, 2 * ib + 1, 2 * ib, 2 * ib + 1])
         if same:
             ok_order = ia <= ib
             pa, pb, pid, ia, ib = (
@@ -423,63 +470,16 @@ def isolate_points(
             np.zeros_like(left_s0),
             left_width,
         )
-    planar = curves.shape[2] == 2
-    left_m, right_m = half_matrices(curves.shape[1] - 1)
-    pieces, pid = curves, np.arange(curves.shape[0])
-    index = np.zeros(curves.shape[0], dtype=np.int64)
-    roots: list[tuple[np.ndarray, np.ndarray]] = []
-    left: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
-    level = 0
-    while pid.size:
-        sl = slack[pid][:, None]
-        target = points[pid]
-        keep = np.all(
-            (pieces.min(axis=1) <= target + sl) & (target - sl <= pieces.max(axis=1)), axis=1
-        )
-        if planar:
-            keep &= ~_fat_line_apart(target[:, None, :], pieces, slack[pid])
-        pieces, pid, index, target = pieces[keep], pid[keep], index[keep], target[keep]
-        if not pid.size:
-            break
-        width = 0.5**level
-        if level == depth or 2 * pid.size > MAX_ROWS:
-            left.append((pid, index * width, np.full(pid.size, width)))
-            break
-        _, half = _cones(pieces, slack[pid])
-        one_to_one = _pointed(half)
-        if one_to_one.any():
-            idx = np.flatnonzero(one_to_one)
-            u, ok = _local_foot_newton(pieces[idx], target[idx], slack[pid[idx]])
-            hit = idx[ok]
-            roots.append((pid[hit], (index[hit] + np.clip(u[ok], 0, 1)) * width))
-            rest = np.ones(pid.size, dtype=bool)
-            rest[hit] = False
-            pieces, pid, index = pieces[rest], pid[rest], index[rest]
-        flat = (_thickness(pieces) <= slack[pid]) & _runs_forward(pieces)
-        if flat.any():  # a piece flat to rounding that still holds the point: Newton decides
-            left.append((pid[flat], index[flat] * width, np.full(int(flat.sum()), width)))
-            pieces, pid, index = pieces[~flat], pid[~flat], index[~flat]
-        if not pid.size:
-            break
-        pieces = np.concatenate([np.matmul(left_m, pieces), np.matmul(right_m, pieces)])
-        pid = np.concatenate([pid, pid])
-        index = np.concatenate([2 * index, 2 * index + 1])
-        level += 1
-    empty = np.zeros(0)
-    root_pair = np.concatenate([r[0] for r in roots]) if roots else np.zeros(0, dtype=np.int64)
-    root_s = np.concatenate([r[1] for r in roots]) if roots else empty
-    if left:
-        left_pair, left_s0, left_width = (
-            np.concatenate([part[k] for part in left]) for k in range(3)
-        )
-    else:
-        left_pair, left_s0, left_width = np.zeros(0, dtype=np.int64), empty, empty
-    return Isolated(
-        root_pair,
-        root_s,
-        np.zeros_like(root_s),
-        left_pair,
-        left_s0,
-        np.zeros_like(left_s0),
-        left_width,
-    )
+
+    def isolate_pieces(
+        pieces: np.ndarray, target: np.ndarray, sl: np.ndarray, ia: np.ndarray, ib: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        # a one-to-one piece (pointed hodograph cone) passes the point at most once
+        _, half = _cones(pieces, sl)
+        idx = np.flatnonzero(_pointed(half))
+        if not idx.size:
+            return idx, np.zeros(0), np.zeros(0), np.zeros(0, dtype=bool)
+        u, ok = _local_foot_newton(pieces[idx], target[idx, 0], sl[idx])
+        return idx, u, np.zeros_like(u), ok
+
+    return _subdivide(curves, points[:, None, :], slack, isolate_pieces, False, [], depth, MAX_ROWS)

@@ -1,0 +1,133 @@
+"""Non-negativity where a basis function touches zero inside its domain (issue #30): the cases
+the branch and bound of atom_nonnegative.py cannot settle, since no enclosure of b around a
+zero of b is > 0.
+
+**Trigonometric bases** (any dependence on the parameters). On each quarter period
+[x0, x0 + pi/(2w)] of the domain, b = N(u, x) / (1 + u^2)^M exactly, u = tan(w (t - x0)/2) in
+[0, 1] (atom_family.half_angle_numerator, one parameter monomial at a time), so b >= 0 there
+is N >= 0 on [0, 1] x box: a polynomial question decided exactly by real_box.nonnegative_poly
+(odd-multiplicity factors, cells off the discriminant locus, exact root isolation).
+
+**Any atom basis at a rational touching point** (`certified_touches`, used by the branch and
+bound for mixed bases). Candidates t0 come from where the search stalls (the middles of the
+boxes it could not settle, as rationals of small denominator); at a candidate, b^(j)(t0) is
+checked to be exactly zero as an element (every parameter value) for j < r, r even, and an
+arb enclosure of b^(r) on T x box is > 0, T an interval around t0. Then b >= 0 on T x box by
+Taylor's theorem (b = (t - t0)^r / r! b^(r)(xi)): t0 is a double (or higher even order) root,
+the only zero of b in T, and the search settles every box inside T.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import sympy as sp
+
+from ..algebra import atoms as A
+from ..families.definition import Definition
+from ..families.spaces import Space
+from . import real_box
+from .atom_family import _rate_text, _top_multiple, half_angle_numerator
+
+MAX_TOUCH_ORDER = 6  # the even orders looked for at a touching point
+DENOMINATORS = (2, 3, 4, 5, 6, 8, 10, 12, 16, 20, 24, 32, 64, 100, 128, 1000)
+
+
+def trig_nonnegative_exact(defn: Definition, space: Space) -> dict:
+    """{"nonnegative": True, "method": ...}, a counterexample, or a reason (module
+    docstring); for a trigonometric space."""
+    frame = space.frame
+    quarters = 2 * frame.rate * (frame.hi - frame.lo)
+    if quarters.denominator != 1:
+        return {"reason": "the domain is not a whole number of quarter periods"}
+    step = (frame.hi - frame.lo) / int(quarters)
+    top = _top_multiple(space)
+    u = sp.Symbol("u")
+    gens = (u, *defn.symbols)
+    box = [(Fraction(0), Fraction(1)), *[(q.lo, q.hi) for q in defn.params]]
+    monos = A.monomials(space.functions)
+    for idx, b in enumerate(space.functions):
+        for piece in range(int(quarters)):
+            x0 = frame.lo + piece * step
+            total = sp.Integer(0)
+            for mono in monos:
+                num = half_angle_numerator(A.part(b, mono), frame, x0, top)
+                weight = sp.Mul(*[s**e for s, e in zip(defn.symbols, mono, strict=True)])
+                total += weight * sum(
+                    (sp.Rational(c.numerator, c.denominator) * u**j for j, c in enumerate(num)),
+                    sp.Integer(0),
+                )
+            poly = sp.Poly(sp.expand(total), *gens)
+            try:
+                got = real_box.nonnegative_poly(poly, box)
+            except real_box.Undecided as exc:
+                return {"reason": f"b_{idx}: {exc}"}
+            if got["holds"]:
+                continue
+            uv, *values = got["point"]
+            where = f"{x0}*pi" if frame.dom_pi else str(x0)
+            value = Fraction(*_fraction(poly.eval(tuple(sp.Rational(v) for v in got["point"]))))
+            return {
+                "nonnegative": False,
+                "counterexample": {
+                    "n": len(space.functions) - 1,
+                    "i": idx,
+                    "t": f"{where} + 2*atan({uv})/({_rate_text(space, 1)})",
+                    **{q.name: str(v) for q, v in zip(defn.params, values, strict=True)},
+                    "value": str(value / (1 + uv**2) ** top),
+                },
+            }
+    return {
+        "nonnegative": True,
+        "method": "exact: per quarter period, the half-angle numerator N(tan, parameters) >= 0 "
+        "on [0, 1] x box by exact root isolation on the cells off its discriminant locus",
+    }
+
+
+def _fraction(x: sp.Rational) -> tuple[int, int]:
+    return int(x.p), int(x.q)
+
+
+def _order_at(b: A.Elem, frame: A.Frame, t0: Fraction) -> tuple[int, A.Elem] | None:
+    """(r, b^(r)) with b^(j)(t0) exactly zero for every parameter value for j < r, or None
+    (not a zero of b, or an exact value out of reach at t0)."""
+    d = b
+    try:
+        for r in range(MAX_TOUCH_ORDER + 1):
+            if A.value(d, frame, t0):
+                return (r, d) if r else None
+            d = A.diff(d, frame)
+    except A.AtomError:  # cos(m w t0) not rational: no exact test there
+        return None
+    return None
+
+
+def candidates(stalled: list[Fraction], lo: Fraction, hi: Fraction) -> list[Fraction]:
+    """Rationals of small denominator near the middles of the boxes the search stalled on."""
+    out: list[Fraction] = []
+    for mid in stalled:
+        for den in DENOMINATORS:
+            t0 = mid.limit_denominator(den)
+            if lo < t0 < hi and t0 not in out and abs(t0 - mid) <= (hi - lo) / 64:
+                out.append(t0)
+    return out
+
+
+def certified_touches(b, frame, lower, start, stalled, lo, hi):
+    """Intervals [t0 - r, t0 + r] (family units) on which b >= 0 is proved for every
+    parameter of the start box (module docstring); `lower(elem, d_elem, box)` is the
+    caller's enclosure of an element on a box."""
+    found = []
+    for t0 in candidates(stalled, lo, hi):
+        got = _order_at(b, frame, t0)
+        if got is None or got[0] % 2:
+            continue
+        r, dr = got
+        ddr = A.diff(dr, frame)
+        for k in range(6, 40):
+            rad = (hi - lo) / 2**k
+            t_box = (max(lo, t0 - rad), min(hi, t0 + rad))
+            if lower(dr, ddr, [t_box, *start]) > 0:
+                found.append(t_box)
+                break
+    return found

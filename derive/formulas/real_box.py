@@ -26,8 +26,10 @@ component inside the open box, on which x_j attains its least value at a point w
 every df/dx_i, i != j, vanish (a smooth point by Lagrange, or a singular one); when that
 system has finitely many solutions they are found exactly. `ideal_point` does the same for
 several polynomials: exact when the Groebner basis is {1}, finite or principal; otherwise a
-point found on a face or at a critical point counts, and no point is proved only by the
-Bernstein bound of the sum of squares > 0 on the box.
+point found on a face, or at a critical point of a coordinate on the zero set (the Jacobian's
+minors of the codimension added; finitely many solutions), counts, and "no point" is proved
+only by the Bernstein bound of the sum of squares > 0 on the box (a component of lower
+dimension can escape the critical points); else Undecided, naming the dimension.
 
 Points are tuples of SymPy numbers (rationals, radicals or CRootOf), compared exactly.
 """
@@ -176,7 +178,7 @@ def nonnegative_poly(p: sp.Poly, box: Box) -> dict:
     u, xs = p.gens[0], p.gens[1:]
     (a, b), xbox = box[0], box[1:]
     const, factors = p.factor_list()
-    odd = sp.Integer(const)
+    odd = sp.Rational(const)  # the content: a rational, never truncated
     for f, mult in factors:
         if mult % 2 == 0:
             continue
@@ -236,9 +238,12 @@ def inside(v: Any, lo: Fraction, hi: Fraction) -> bool:
 
 
 def dimension(basis: list[sp.Poly], gens: tuple) -> int:
-    """Krull dimension of the ideal from a graded Groebner basis: the largest set of
-    variables that no leading monomial lives on alone."""
-    leads = [f.monoms(order="grevlex")[0] for f in basis]
+    """Krull dimension of the ideal the polynomials generate: from a graded Groebner basis,
+    the largest set of variables that no leading monomial lives on alone."""
+    graded = sp.groebner([f.as_expr() for f in basis], *gens, order="grevlex")
+    if list(graded.exprs) == [1]:
+        return -1
+    leads = [sp.Poly(f, *gens).monoms(order="grevlex")[0] for f in graded.exprs]
     best = 0
     k = len(gens)
     for mask in range(1 << k):
@@ -350,6 +355,31 @@ def _face_point(f: sp.Poly, box: Box, search: _Search) -> tuple | None:
     return None
 
 
+def _critical_point(polys: list[sp.Poly], box: Box, search: _Search) -> tuple | None:
+    """A common zero inside the box where x_j is critical on the zero set: the ideal with
+    the c x c minors of its Jacobian without column j added (c its codimension), when that
+    has finitely many solutions. Finds the least x_j of a compact component of the top
+    dimension; a component of lower dimension can escape it, so None proves nothing."""
+    import itertools
+
+    gens = polys[0].gens
+    codim = len(gens) - dimension(polys, gens)
+    jac = [[p.diff(g) for g in gens] for p in polys]
+    for j in range(len(gens)):
+        cols = [i for i in range(len(gens)) if i != j]
+        minors = []
+        for rows in itertools.combinations(range(len(polys)), codim):
+            for sub in itertools.combinations(cols, codim):
+                mat = sp.Matrix([[jac[r][c].as_expr() for c in sub] for r in rows])
+                minors.append(sp.expand(mat.det(method="berkowitz")))
+        basis = sp.groebner([p.as_expr() for p in polys] + minors, *gens, order="grevlex")
+        if list(basis.exprs) != [1] and basis.is_zero_dimensional:
+            point = search.take(_finite_points(list(basis.exprs), gens, box))
+            if point is not None:
+                return point
+    return None
+
+
 def ideal_point(polys: list[sp.Poly], box: Box, accept: Accept | None = None) -> tuple | None:
     """A point of the closed box where every polynomial vanishes (one `accept` takes), or
     None when there is none; raises Undecided (module docstring)."""
@@ -388,6 +418,9 @@ def _ideal(polys: list[sp.Poly], box: Box, search: _Search) -> tuple | None:
                 continue
             if point is not None:
                 return _on_face(point, j, end)
+    point = _critical_point(polys, box, search)
+    if point is not None:
+        return point
     total = sp.Poly(sp.Add(*[p.as_expr() ** 2 for p in polys]), *gens)
     try:
         got = bern.sign_over_box(total, box, strict=True)

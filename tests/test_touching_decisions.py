@@ -62,6 +62,8 @@ def test_committed_documents_of_the_new_families_are_current():
         "touch_trig_quadratic",
         "touch_mixed_quadratic",
         "three_shape_trig_quadratic",
+        "line_three_trig_quadratic",
+        "touch_hyp_quadratic",
     ]:
         derived = derive_document(read_definition(DATA / f"{name}.toml"))
         assert json.loads(json.dumps(derived)) == _doc(name), name
@@ -175,6 +177,37 @@ def _time(text: str):
     return mp.pi * _mpq(text[: -len("*pi")]) if text.endswith("*pi") else _mpq(text)
 
 
+# --------------------------------------------------------------------------- hyperbolic
+
+
+def _touch_hyp(tv, lv):
+    q = (mp.sinh(tv) - lv * mp.cosh(tv)) ** 2 / 8
+    return [(1 - q) * mp.exp(-tv), q, (1 - q) * (1 - mp.exp(-tv))]
+
+
+def test_hyperbolic_touching_curve_is_decided_exactly():
+    verdict = _doc("touch_hyp_quadratic")["nonnegative_over_box"]
+    assert verdict["nonnegative"] is True
+    assert "e^(w t)" in verdict["method"]
+    for lv in mp.linspace(mp.mpf(1) / 4, mp.mpf(1) / 2, 9):
+        assert _touch_hyp(mp.atanh(lv), lv)[1] < mp.mpf(10) ** -35  # the touching point
+        for tv in mp.linspace(0, 1, 81):
+            assert min(_touch_hyp(tv, lv)) > -(mp.mpf(10) ** -30)
+
+
+def test_hyperbolic_touching_widened_gives_a_counterexample(tmp_path):
+    """lam up to 3: q = (sinh t - lam cosh t)^2/8 > 1 somewhere, and b_0 < 0 there (found by
+    the ball search or the exact form, whichever ends first)."""
+    text = (DATA / "touch_hyp_quadratic.toml").read_text(encoding="utf-8")
+    path = tmp_path / "w.toml"
+    path.write_text(text.replace('range = "[1/4, 1/2]"', 'range = "[1/4, 3]"'), encoding="utf-8")
+    cx = derive_document(read_definition(path))["nonnegative_over_box"]["counterexample"]
+    text = cx["t"]
+    tv = mp.log(_mpq(text[len("log(") : -1])) if text.startswith("log(") else _mpq(text)
+    assert 0 <= tv <= 1
+    assert _touch_hyp(tv, _mpq(cx["lam"]))[cx["i"]] < 0
+
+
 # --------------------------------------------------------------------------- mixed
 
 
@@ -234,6 +267,36 @@ def test_three_parameters_irrational_singular_point():
     lv, nv = _mpq(point["lam"]), _mpq(point["nu"])
     assert abs(_gram_det(lv, mp.sqrt(2), nv)) < mp.mpf(10) ** -30
     assert abs(_gram_det(lv, mp.sqrt(2) + mp.mpf(1) / 10, nv)) > mp.mpf(10) ** -6
+
+
+def _line(tv, lv, mv, nv):
+    b1 = (lv - mv) * (1 - mp.cos(tv)) + (mv - nv) * mp.sin(2 * tv)
+    return [1 - mp.sin(tv) - b1 / 2, b1, mp.sin(tv) - b1 / 2]
+
+
+def test_three_parameters_dependent_on_a_line():
+    """The rank drops on the segment lam = mu = nu (a curve: neither points nor a surface);
+    the point reported lies on it, where mpmath's Gram determinant vanishes, and off it the
+    determinant does not."""
+    verdict = _doc("line_three_trig_quadratic")["linear_independence"]
+    assert verdict["independent"] is False
+    (point,) = verdict["singular"]
+    lv, mv, nv = (Fraction(point[k]) for k in ("lam", "mu", "nu"))
+    assert lv == mv == nv and F(1, 2) <= nv <= 1
+
+    def gram(a, b, c):
+        g = mp.matrix(3, 3)
+        for i in range(3):
+            for j in range(3):
+                g[i, j] = mp.quad(
+                    lambda x, i=i, j=j: _line(x, a, b, c)[i] * _line(x, a, b, c)[j],
+                    [0, mp.pi / 2],
+                )
+        return mp.det(g)
+
+    assert abs(gram(*(mp.mpf(v.numerator) / v.denominator for v in (lv, mv, nv)))) < 1e-30
+    assert abs(gram(mp.mpf(1) / 2, mp.mpf(1) / 2, mp.mpf(3) / 4)) > 1e-8  # lam = mu only
+    assert abs(gram(mp.mpf(3) / 4, mp.mpf(1) / 2, mp.mpf(1) / 2)) > 1e-8  # mu = nu only
 
 
 def test_three_parameters_independent_box(tmp_path):

@@ -8,6 +8,12 @@ zero of b is > 0.
 is N >= 0 on [0, 1] x box: a polynomial question decided exactly by real_box.nonnegative_poly
 (odd-multiplicity factors, cells off the discriminant locus, exact root isolation).
 
+**Hyperbolic bases** (any dependence on the parameters): b = z^(-H) P(z, x) exactly with
+z = e^(w t), on z in [e^(w lo), e^(w hi)], whose ends are transcendental (except 1). P >= 0 on
+a rational interval enclosing the z-range proves b >= 0; a negative point inside a rational
+interval enclosed by it is a counterexample (real_box.nonnegative_poly on each; the ends are
+enclosed within 2^-250 by mpmath's interval arithmetic).
+
 **Any atom basis at a rational touching point** (`certified_touches`, used by the branch and
 bound for mixed bases). Candidates t0 come from where the search stalls (the middles of the
 boxes it could not settle, as rationals of small denominator); at a candidate, b^(j)(t0) is
@@ -81,6 +87,55 @@ def trig_nonnegative_exact(defn: Definition, space: Space) -> dict:
         "nonnegative": True,
         "method": "exact: per quarter period, the half-angle numerator N(tan, parameters) >= 0 "
         "on [0, 1] x box by exact root isolation on the cells off its discriminant locus",
+    }
+
+
+def hyperbolic_nonnegative_exact(defn: Definition, space: Space) -> dict:
+    """{"nonnegative": True, "method": ...}, a counterexample, or a reason (module
+    docstring); for a hyperbolic space."""
+    from .atom_family import _exp_enclosure
+
+    frame = space.frame
+    if any(key[1] or key[2] or key[4] for b in space.functions for key in b):
+        return {"reason": "not a polynomial in e^(w t) and e^(-w t)"}
+    top = max((abs(key[3]) for b in space.functions for key in b), default=0)
+    (a_lo, a_hi), (b_lo, b_hi) = (_exp_enclosure(frame.rate * x) for x in (frame.lo, frame.hi))
+    z = sp.Symbol("z")
+    gens = (z, *defn.symbols)
+    params = [(q.lo, q.hi) for q in defn.params]
+    for idx, b in enumerate(space.functions):
+        total = sp.Integer(0)
+        for (mono, _c, _k, h, _m, _kind), v in b.items():
+            weight = sp.Mul(*[s**e for s, e in zip(defn.symbols, mono, strict=True)])
+            total += sp.Rational(v.numerator, v.denominator) * weight * z ** (h + top)
+        poly = sp.Poly(sp.expand(total), *gens)
+        try:
+            if real_box.nonnegative_poly(poly, [(a_lo, b_hi), *params])["holds"]:
+                continue
+            got = real_box.nonnegative_poly(poly, [(a_hi, b_lo), *params])
+        except real_box.Undecided as exc:
+            return {"reason": f"b_{idx}: {exc}"}
+        if got["holds"]:
+            return {
+                "reason": f"b_{idx}: negative only within 2^-250 of a transcendental end of "
+                "the domain (e^(w t) there)"
+            }
+        zv, *values = got["point"]
+        return {
+            "nonnegative": False,
+            "counterexample": {
+                "n": len(space.functions) - 1,
+                "i": idx,
+                "t": f"log({zv})" + ("" if frame.rate == 1 else f"/{frame.rate}"),
+                **{q.name: str(v) for q, v in zip(defn.params, values, strict=True)},
+                "value_sign": "negative",
+            },
+        }
+    return {
+        "nonnegative": True,
+        "method": "exact: b = e^(-H w t) P(e^(w t), parameters) with P >= 0 on a rational "
+        "interval enclosing the range of e^(w t), by exact root isolation on the cells off "
+        "its discriminant locus",
     }
 
 

@@ -64,6 +64,7 @@ def test_committed_documents_of_the_new_families_are_current():
         "three_shape_trig_quadratic",
         "line_three_trig_quadratic",
         "touch_hyp_quadratic",
+        "touch_point_quadratic",
     ]:
         derived = derive_document(read_definition(DATA / f"{name}.toml"))
         assert json.loads(json.dumps(derived)) == _doc(name), name
@@ -109,6 +110,29 @@ def test_polynomial_touching_widened_gives_an_exact_counterexample(tmp_path):
         )
     )
     assert values[cx["i"]] < 0
+
+
+def test_polynomial_rank_drops_at_a_touching_point():
+    """touch_point_quadratic: c = (lam - 1/3)^2 + (mu - 1/3)^2 touches zero at one point of
+    the box. Both verdicts were reasons before; now the point is exact, SymPy confirms the
+    rank drops there (b_1 = 0), and mpmath that every function is >= 0."""
+    doc = _doc("touch_point_quadratic")
+    cx = doc["singular_parameters"]["counterexample"]
+    assert (cx["lam"], cx["mu"]) == ("1/3", "1/3")
+    defn = read_definition(DATA / "touch_point_quadratic.toml")
+    polys = basis_polys(defn, 2)
+    at = {lam: sp.Rational(1, 3), mu: sp.Rational(1, 3)}
+    rows = [sp.Poly(p.as_expr().xreplace(at), t).all_coeffs() for p in polys]
+    width = max(len(r) for r in rows)
+    mat = sp.Matrix([[0] * (width - len(r)) + r for r in rows])
+    assert mat.rank() < 3
+    assert doc["nonnegative_over_box"]["nonnegative"] is True
+    for lv in mp.linspace(0, 1, 7):
+        for mv in mp.linspace(0, 1, 7):
+            c = (lv - mp.mpf(1) / 3) ** 2 + (mv - mp.mpf(1) / 3) ** 2
+            for tv in mp.linspace(0, 1, 41):
+                values = [(1 - tv) * (1 - tv * c), 2 * tv * (1 - tv) * c, tv * (1 - (1 - tv) * c)]
+                assert min(values) >= 0
 
 
 @pytest.mark.parametrize(
@@ -310,9 +334,8 @@ def test_three_parameters_independent_box(tmp_path):
         assert abs(_gram_det(0, mv, 1)) > mp.mpf(10) ** -6
 
 
-def test_open_end_zero_is_not_a_counterexample(tmp_path):
-    """mu in [1, sqrt(2)-free (1, 3/2)) still contains sqrt(2); with mu in [1/2, 1) it does
-    not, and mu = 1 (excluded) is not a zero either: independent."""
+def test_half_open_range_without_the_zero(tmp_path):
+    """mu in [1/2, 1), which misses sqrt(2): independent."""
     text = (DATA / "three_shape_trig_quadratic.toml").read_text(encoding="utf-8")
     path = tmp_path / "w.toml"
     path.write_text(text.replace('mu = "[1, 2]"', 'mu = "[1/2, 1)"'), encoding="utf-8")

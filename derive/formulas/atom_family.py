@@ -497,14 +497,7 @@ def _negative_inside(poly: sp.Poly, encl: list[tuple[Fraction, Fraction]]) -> Fr
     return None
 
 
-# --------------------------------------------------------------------------- independence
-
-
-def independence(defn: Definition, space: Space) -> dict:
-    """Linear independence of b_0..b_n over the parameter box (atom_independence.py)."""
-    from .atom_independence import independence as decide
-
-    return decide(defn, space)
+# Linear independence over the parameter box: atom_independence.py (it uses the tables above).
 
 
 __all__ = ["space_of"]

@@ -21,11 +21,11 @@ continuity), so only the vertices are searched; otherwise the whole box is.
 
 The verdict: {"nonnegative": True}, or {"nonnegative": False, "counterexample": {...}} with a
 rational point (t, parameters inside their ranges) where b_i < 0 is proved. Where the search
-stalls (a zero of b inside the domain, where no enclosure is > 0), touching.py looks for
-rational touching points of even order with b >= 0 proved around them, and searches again;
-a trigonometric basis still undecided is then decided exactly through its half-angle form,
-a hyperbolic one through z = e^(w t) (touching.py). Otherwise a reason (an irrational
-touching point of a mixed basis, or an end order that changes with the parameters).
+stalls (a zero of b inside the domain, where no enclosure is > 0), touching_points.py looks
+for rational touching points of even order with b >= 0 proved around them, and it searches
+again. Otherwise a reason (then touching.py decides a trigonometric or hyperbolic basis
+exactly; a mixed one touching zero at an irrational point, or with an end order that changes
+with the parameters, keeps it).
 """
 
 from __future__ import annotations
@@ -38,7 +38,7 @@ import flint
 from ..algebra import atoms as A
 from ..families.definition import Definition
 from ..families.spaces import Space
-from .touching import certified_touches, hyperbolic_nonnegative_exact, trig_nonnegative_exact
+from .touching_points import certified_touches
 
 PREC = 128  # bits of the balls
 MAX_BOXES = 20_000  # boxes examined per function before the search gives up (undecided)
@@ -234,10 +234,6 @@ def nonnegative_elementary(defn: Definition, space: Space) -> dict:
                     }
                 if verdict == "undecided":
                     undecided.append(idx)
-        if undecided and space.name == "trigonometric":
-            return trig_nonnegative_exact(defn, space)
-        if undecided and space.name == "hyperbolic":
-            return hyperbolic_nonnegative_exact(defn, space)
         if undecided:
             return {
                 "reason": f"b_{sorted(set(undecided))[0]}: no sign proved in {MAX_BOXES} boxes "

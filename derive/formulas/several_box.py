@@ -9,12 +9,16 @@ a zero in the box, and so is each cofactor, one at a time: if one cofactor has n
 is no common zero. If every cofactor has a zero, their sum of squares is tested instead. All of
 this is exact (derive/formulas/box.py). A zero is reported as an exact point, or as a segment
 between two exact points together with an isolating interval of the root on that segment.
+Where a zero set only touches the box (the branch and bound's budget runs out), exact real
+algebra decides (real_box.py: a point on a face or a critical point, algebraic coordinates
+given exactly and as floats).
 
 **Non-negativity**, for a basis that is not affine in the parameters. This is checked for
 each function, over [0, 1] x box. Factors t and 1 - t are dropped, since they are >= 0 on
 [0, 1]. So are factors of even multiplicity. The product of the rest is then tested for
->= 0 by the same branch and bound. A basis that is affine in the parameters keeps the
-vertex argument of families/engine.py.
+>= 0 by the same branch and bound; where it touches zero and the budget runs out, by the
+exact cells off its discriminant locus (real_box.nonnegative_poly). A basis that is affine
+in the parameters keeps the vertex argument of families/engine.py.
 
 The box is the closure of the parameter ranges. A point on an open end is labelled as such.
 """

@@ -11,6 +11,7 @@ from __future__ import annotations
 from ..families.definition import Definition
 from ..families.spaces import space_of
 from ..formulas import atom_family as F
+from ..formulas import atom_independence, touching
 from ..formulas.joins_several import atom_end_forms, join_table
 from .parameters import parameter_table
 
@@ -23,7 +24,7 @@ def derive(defn: Definition) -> dict:
     n = len(space.functions) - 1
     atoms, tables = F.coefficient_tables(space)
     swap = F.symmetry(defn, space)
-    independence = F.independence(defn, space)
+    independence = atom_independence.independence(defn, space)
     checked = [
         f"the functions lie in the {space.name} space (atoms {', '.join(atoms)})",
         "partition of unity, exactly (atom coefficients)",
@@ -79,7 +80,7 @@ def derive(defn: Definition) -> dict:
         "endpoint_closed_orders": -1,
         "endpoint_closed_forms": None,
         "energy": F.energies(space),
-        "nonnegative_over_box": F.nonnegative_over_box(defn, space),
+        "nonnegative_over_box": touching.nonnegative_over_box(defn, space),
         "linear_independence": independence,
         "singular_parameters": singular,
         "joins": join_table(defn, n, atom_end_forms(defn, space), space.constant),

@@ -20,9 +20,12 @@ the parameters jointly, b at fixed t is least at a vertex of the box (an open en
 continuity), so only the vertices are searched; otherwise the whole box is.
 
 The verdict: {"nonnegative": True}, or {"nonnegative": False, "counterexample": {...}} with a
-rational point (t, parameters inside their ranges) where b_i < 0 is proved, or a reason when
-the search ends undecided (a zero of b inside the domain, where no enclosure can prove
-b >= 0, or one where b's end order changes with the parameters).
+rational point (t, parameters inside their ranges) where b_i < 0 is proved. Where the search
+stalls (a zero of b inside the domain, where no enclosure is > 0), touching_points.py looks
+for rational touching points of even order with b >= 0 proved around them, and it searches
+again. Otherwise a reason (then touching.py decides a trigonometric or hyperbolic basis
+exactly; a mixed one touching zero at an irrational point, or with an end order that changes
+with the parameters, keeps it).
 """
 
 from __future__ import annotations
@@ -35,6 +38,7 @@ import flint
 from ..algebra import atoms as A
 from ..families.definition import Definition
 from ..families.spaces import Space
+from .touching_points import certified_touches
 
 PREC = 128  # bits of the balls
 MAX_BOXES = 20_000  # boxes examined per function before the search gives up (undecided)
@@ -121,16 +125,34 @@ def _decide_one(
             r, dr = found
             ends[end] = (A.scale(dr, sign**r), A.diff(A.scale(dr, sign**r), frame))
     queue = [[(frame.lo, frame.hi), *start]]
-    seen = 0
+    seen, touches, tried = 0, [], False
     while queue:
         box = queue.pop()
         seen += 1
         if seen > MAX_BOXES:
             return "undecided", None
-        ps = tuple(_ball(lo, hi) for lo, hi in box[1:])
+        if seen > MAX_BOXES // 10 and not tried:
+            # stalled: look for rational touching points (touching.py) and search again
+            tried = True
+            stalled = [(x + y) / 2 for (x, y), *_ in [box, *queue]]
+            touches = certified_touches(
+                b,
+                frame,
+                lambda e, de, bx: _lower(e, de, fr, bx, tuple(_ball(x, y) for x, y in bx[1:])),
+                start,
+                stalled,
+                frame.lo,
+                frame.hi,
+            )
+            if touches:
+                queue, seen = [[(frame.lo, frame.hi), *start]], 0
+                continue
+        lo, hi = box[0]
+        if any(a <= lo and hi <= c for a, c in touches):
+            continue  # b >= 0 proved on that interval around a touching point
+        ps = tuple(_ball(x, y) for x, y in box[1:])
         if _lower(b, db, fr, box, ps) > 0:
             continue
-        lo, hi = box[0]
         settled = False
         for end, touch in ((frame.lo, lo == frame.lo), (frame.hi, hi == frame.hi)):
             if touch and end in ends and _lower(*ends[end], fr, box, ps) > 0:

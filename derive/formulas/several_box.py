@@ -9,12 +9,16 @@ a zero in the box, and so is each cofactor, one at a time: if one cofactor has n
 is no common zero. If every cofactor has a zero, their sum of squares is tested instead. All of
 this is exact (derive/formulas/box.py). A zero is reported as an exact point, or as a segment
 between two exact points together with an isolating interval of the root on that segment.
+Where a zero set only touches the box (the branch and bound's budget runs out), exact real
+algebra decides (real_box.py: a point on a face or a critical point, algebraic coordinates
+given exactly and as floats).
 
 **Non-negativity**, for a basis that is not affine in the parameters. This is checked for
 each function, over [0, 1] x box. Factors t and 1 - t are dropped, since they are >= 0 on
 [0, 1]. So are factors of even multiplicity. The product of the rest is then tested for
->= 0 by the same branch and bound. A basis that is affine in the parameters keeps the
-vertex argument of families/engine.py.
+>= 0 by the same branch and bound; where it touches zero and the budget runs out, by the
+exact cells off its discriminant locus (real_box.nonnegative_poly). A basis that is affine
+in the parameters keeps the vertex argument of families/engine.py.
 
 The box is the closure of the parameter ranges. A point on an open end is labelled as such.
 """
@@ -28,7 +32,7 @@ import sympy as sp
 
 from ..families.definition import Definition
 from ..families.engine import basis_polys, nonnegative_over_box
-from . import box
+from . import box, real_box
 
 MAX_MINORS = 400
 
@@ -61,6 +65,28 @@ def _found(defn: Definition, deg: int, found: dict, what: str) -> dict:
         "s_isolating": [str(lo), str(hi)],
         "text": "a zero at p + s (q - p) for an s in the isolating interval",
     }
+
+
+def _exact_point(defn: Definition, deg: int, point: tuple, factor: sp.Poly | None) -> dict:
+    """A counterexample at an exact (possibly algebraic) point, with its floats."""
+    where = "every maximal minor = 0" if factor is None else f"{factor.as_expr()} = 0"
+    out: dict = {"n": deg, "where": where}
+    for q, v in zip(defn.params, point, strict=True):
+        out[q.name] = str(v)
+        if not v.is_Rational:
+            out[f"{q.name}_float"] = f"{float(sp.N(v, 30)):.17g}"
+    excluded = [
+        q.name
+        for q, v in zip(defn.params, point, strict=True)
+        if v.is_Rational
+        and (
+            (v == real_box._q(q.lo) and not q.lo_closed)
+            or (v == real_box._q(q.hi) and not q.hi_closed)
+        )
+    ]
+    if excluded:
+        out["on_excluded_end"] = excluded
+    return out
 
 
 def _minors(polys: list[sp.Poly], gens: tuple, big: int) -> list[sp.Poly]:
@@ -109,11 +135,18 @@ def independence_over_box(defn: Definition) -> dict:
                         "counterexample": _found(defn, deg, found, f"{factor.as_expr()} = 0"),
                     }
                 if found["zero"] is None:
-                    return {
-                        "independent": None,
-                        "reason": f"n = {deg}: a zero of {factor.as_expr()} in the box: "
-                        + found.get("reason", "not decided"),
-                    }
+                    try:  # a touching zero: exact real algebra (real_box.py)
+                        point = real_box.hypersurface_point(factor, _box(defn))
+                    except real_box.Undecided as exc:
+                        return {
+                            "independent": None,
+                            "reason": f"n = {deg}: a zero of {factor.as_expr()} in the box: {exc}",
+                        }
+                    if point is not None:
+                        return {
+                            "independent": False,
+                            "counterexample": _exact_point(defn, deg, point, factor),
+                        }
             rest = [sp.Poly(sp.div(m, g)[0], *gens) for m in minors]
             if any(r.is_ground for r in rest):
                 parts.append(f"n = {deg}: the minors' gcd has no zero in the box")
@@ -137,7 +170,17 @@ def independence_over_box(defn: Definition) -> dict:
                     "counterexample": _found(defn, deg, found, "every maximal minor = 0"),
                 }
             if found["zero"] is None:
-                return {"independent": None, "reason": f"n = {deg}: not decided"}
+                try:  # common zeros where the sum of squares only touches 0: exact
+                    point = real_box.ideal_point(rest, _box(defn))
+                except real_box.Undecided as exc:
+                    return {"independent": None, "reason": f"n = {deg}: {exc}"}
+                if point is not None:
+                    return {
+                        "independent": False,
+                        "counterexample": _exact_point(defn, deg, point, None),
+                    }
+                parts.append(f"n = {deg}: the cofactors have no common zero in the box (exact)")
+                continue
             parts.append(f"n = {deg}: the cofactors' sum of squares has no zero in the box")
         except box.TooLarge as exc:
             return {"independent": None, "reason": f"n = {deg}: {exc}"}
@@ -189,15 +232,21 @@ def nonnegativity(defn: Definition) -> dict:
     if "reason" not in affine:
         return {**affine, "method": "affine in the parameters: every vertex, exact roots in t"}
     t_box = [(Fraction(0), Fraction(1)), *_box(defn)]
+    exact_cells: list[str] = []
     for deg in defn.degrees:
         for idx, p in enumerate(basis_polys(defn, deg)):
             odd, _ = _odd_part(p)
             try:
                 got = box.sign_over_box(odd, t_box, strict=False)
-            except box.TooLarge as exc:
-                return {"nonnegative": None, "reason": f"n = {deg}, b_{idx}: {exc}"}
-            if got["holds"] is None:
-                return {"nonnegative": None, "reason": f"n = {deg}, b_{idx}: not decided"}
+            except box.TooLarge:
+                got = {"holds": None}
+            if got["holds"] is None:  # a touching zero: the exact cells of real_box.py
+                try:
+                    got = real_box.nonnegative_poly(p, t_box)
+                except real_box.Undecided as exc:
+                    return {"nonnegative": None, "reason": f"n = {deg}, b_{idx}: {exc}"}
+                if got["holds"]:
+                    exact_cells.append(f"n = {deg}, b_{idx}")
             if got["holds"] is False:
                 point = _negative_near(p, got["point"], t_box)
                 tv, *values = point
@@ -212,8 +261,14 @@ def nonnegativity(defn: Definition) -> dict:
                         "value": str(p.as_expr().xreplace(at)),
                     },
                 }
-    return {
-        "nonnegative": True,
-        "method": "exact Bernstein branch and bound over [0, 1] x the box (factors t, 1 - t "
-        "and even powers set aside)",
-    }
+    method = (
+        "exact Bernstein branch and bound over [0, 1] x the box (factors t, 1 - t and even "
+        "powers set aside)"
+    )
+    if exact_cells:
+        method += (
+            "; where a function touches zero ("
+            + ", ".join(exact_cells)
+            + "), exact sample points of the cells off its discriminant locus"
+        )
+    return {"nonnegative": True, "method": method}

@@ -35,6 +35,7 @@ from ..algebra import atoms as A
 from ..families.definition import ENERGY_ORDERS, Definition, Parameter
 from ..families.spaces import HYP, TRIG, _convert, _rate, space_of
 from ..formulas import atom_family as F
+from ..formulas import atom_independence, touching
 from ..grammar import SYMBOLS, ParseError, parse_formula
 from ..grammar.interval import Interval
 
@@ -626,7 +627,7 @@ def nonnegative(record: dict, defn: Definition):
     if not isinstance(claimed, bool):
         raise RecordError("key nonnegative: true or false is required")
     boxed = _boxed(record, defn)
-    decided = F.nonnegative_over_box(boxed, space_of(boxed))
+    decided = touching.nonnegative_over_box(boxed, space_of(boxed))
     where = ", ".join(f"{q.name} in {q.range_text}" for q in boxed.params)
     if "reason" in decided:
         from .checks_core import Outcome
@@ -641,6 +642,7 @@ def nonnegative(record: dict, defn: Definition):
     how = (
         "certified (arb ball branch and bound)"
         if F.nonnegative_is_certified(space_of(boxed))
+        and not decided.get("method", "").startswith("exact")
         else "exact"
     )
     return _verdict(diffs, [f"b_i >= 0 on {defn.domain_text} for {where}: {how}"])
@@ -651,7 +653,7 @@ def independence(record: dict, defn: Definition):
     if not isinstance(claimed, bool):
         raise RecordError("key independent: true or false is required")
     boxed = _boxed(record, defn)
-    decided = F.independence(boxed, space_of(boxed))
+    decided = atom_independence.independence(boxed, space_of(boxed))
     if "reason" in decided:
         from .checks_core import Outcome
 

@@ -115,11 +115,19 @@ def _order_of(symbol: sp.Symbol, names: list[str]) -> tuple:
     return (names.index(symbol.name),) if symbol.name in names else (len(names), symbol.name)
 
 
-def join_table(defn: Definition, degree: int, forms: dict, constant: str | None = None) -> dict:
+def join_table(
+    defn: Definition,
+    degree: int,
+    forms: dict,
+    constant: str | None = None,
+    symbols: tuple[sp.Symbol, ...] | None = None,
+) -> dict:
     """The document's ``joins`` of the family `defn` at `degree` (its end `forms`), with every
-    built-in family and itself in both directions; `constant` names C ("pi", "exp(W)")."""
+    built-in family and itself in both directions; `constant` names C ("pi", "exp(W)").
+    `symbols`: the parameter symbols of the forms when they are not the definition's (forms
+    in closed form in n of an indexed family: lam(1), lam(n), ...)."""
     name = defn.name
-    syms = defn.symbols
+    syms = defn.symbols if symbols is None else symbols
     pairs: dict = {}
     used: set[sp.Symbol] = set()
     with joins.extra_family(name, forms, (degree,), True, 2, syms):

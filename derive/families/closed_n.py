@@ -21,8 +21,8 @@ itself, and the derivation is the proof:
    one by one against its own basis (the per-degree expansion); ``valid_from[r]`` is the
    least degree from which the forms of orders 0..r hold at every degree.
 4. A fit, as the one-parameter engine does it (a polynomial in n per parameter monomial
-   through all but the last two of the degrees from ``valid_from`` on, the last two held
-   out), must give the derived forms exactly.
+   through all but the last two of at least five degrees from ``proven_from`` on, the last
+   two held out), must give the derived forms exactly.
 
 A family defined by a seed and a recursion, or by a list of functions, has no formula in n:
 it is left per degree, with a reason.
@@ -257,10 +257,29 @@ def _per_degree(defn: Definition, degree: int) -> dict:
     return out
 
 
-def _agree(forms: dict, table: dict, degree: int, order: int) -> bool:
+def _absent(defn: Definition, symbols: tuple[sp.Symbol, ...], degree: int) -> dict:
+    """{symbol: 0} for the index-relative symbols with no index at this degree (lam(3) at
+    n = 2 reads as 0, the papers' convention)."""
+    spec = defn.indexed
+    if spec is None:
+        return {}
+    out = {}
+    for s in symbols:
+        inner = s.name[len(spec.name) + 1 : -1]
+        k = degree - int(inner[2:] or 0) if inner.startswith("n") else int(inner)
+        if k not in spec.indices(degree):
+            out[s] = sp.Integer(0)
+    return out
+
+
+def _agree(forms: dict, table: dict, degree: int, order: int, absent: dict) -> bool:
+    """The forms at n = degree are the degree's own end values (an entry of an index beyond
+    the degree must vanish)."""
     keys = {k for k in (*forms, *table) if k[1] <= order}
     return all(
-        sp.expand(forms.get(k, sp.Integer(0)).subs(_n, degree) - table.get(k, 0)) == 0 for k in keys
+        sp.expand(forms.get(k, sp.Integer(0)).subs(_n, degree).xreplace(absent) - table.get(k, 0))
+        == 0
+        for k in keys
     )
 
 
@@ -308,9 +327,13 @@ def _closed_forms(defn: Definition) -> ClosedForms | str:
     valid = []
     tables = {deg: _per_degree(defn, deg) for deg in checked}
     for r in range(ENDPOINT_ORDERS + 1):
-        bad = [deg for deg in checked if not _agree(forms, tables[deg], deg, r)]
+        bad = [
+            deg
+            for deg in checked
+            if not _agree(forms, tables[deg], deg, r, _absent(defn, symbols, deg))
+        ]
         if any(deg >= proven for deg in bad):
             raise AssertionError(f"{defn.name}: the derived forms fail at n = {bad[-1]}")
         valid.append(max(bad) + 1 if bad else low)
-    _fit(defn, forms, valid[-1], symbols)
+    _fit(defn, forms, max(valid[-1], proven), symbols)  # every symbol has its index there
     return ClosedForms(forms, symbols, proven, tuple(valid), checked)

@@ -316,3 +316,41 @@ def test_documents_are_current_under_two_hash_seeds():
                 check=False,
             )
             assert res.returncode == 0, (seed, name, res.stdout[-2000:], res.stderr[-2000:])
+
+
+@pytest.mark.parametrize(
+    ("rid", "key", "old", "new"),
+    [
+        (None, None, None, None),
+        ("te.tangents_n", ("equations", 1, "rhs"), "(n - mu)", "(n + mu)"),
+        ("te.join_g1_n", ("join_weights", "1,first,1"), "mu1", "lam1"),
+        ("te.join_g1_n", ("join_weights", "1,first,0"), "m + lam2", "n + lam2"),
+        ("te.join_c1_at_3", ("join_weights", "1,first,1"), "3 - mu1", "2 - mu1"),
+    ],
+)
+def test_two_end_records_and_one_changed_symbol(rid, key, old, new):
+    """two_end_bezier's records in n match; one changed symbol flips a verdict."""
+    records_mod = pytest.importorskip("derive.verify.records")
+    report_mod = pytest.importorskip("derive.verify.report")
+    files = [DATA / "two_end_bezier.toml", DATA / "two_end_bezier.records.toml"]
+    records = records_mod.load_paths(files)
+    if rid is None:
+        assert [report_mod.check_record(r).verdict for r in records] == ["match"] * 3
+        return
+    rec = next(r for r in records if r["id"] == rid)
+    holder = rec
+    for k in key[:-1]:
+        holder = holder[k]
+    assert old in holder[key[-1]]
+    holder[key[-1]] = holder[key[-1]].replace(old, new, 1)
+    assert report_mod.check_record(rec).verdict == "mismatch"
+
+
+def test_a_join_record_at_a_degree_outside_the_range_is_refused():
+    records_mod = pytest.importorskip("derive.verify.records")
+    report_mod = pytest.importorskip("derive.verify.report")
+    files = [DATA / "two_end_bezier.toml", DATA / "two_end_bezier.records.toml"]
+    rec = next(r for r in records_mod.load_paths(files) if r["id"] == "te.join_c1_at_3")
+    rec["n"] = 9
+    res = report_mod.check_record(rec)
+    assert res.error is not None and "key n" in str(res.error)

@@ -65,8 +65,10 @@ def check_several_join(record: dict, _context: object) -> Outcome:
         return checks_closed_n.check_join(record, defn, pair, continuity, claimed)
     if defn.indexed is not None and not isinstance(degree, int):
         raise RecordError("key n: the degree is required for an indexed family")
+    if degree is not None and (not isinstance(degree, int) or degree not in defn.degrees):
+        raise RecordError(f"key n: {degree!r} is not a degree of the family ({defn.degrees})")
     at = defn.at_degree(degree) if defn.indexed is not None else defn
-    forms, deg, constant = end_forms(defn, degree if defn.indexed is not None else None)
+    forms, deg, constant = end_forms(defn, degree)
     derived = pair_weights(at, deg, forms, pair, continuity)
     if isinstance(derived, str):
         return Outcome("mismatch", [f"derive finds no closed-form {continuity} weights: {derived}"])

@@ -22,6 +22,8 @@ from pathlib import Path
 import mpmath
 import pytest
 import sympy as sp
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from test_indexed_families import file_to_paper, paper_basis
 
 import lambda_bezier as lb
@@ -354,3 +356,63 @@ def test_a_join_record_at_a_degree_outside_the_range_is_refused():
     rec["n"] = 9
     res = report_mod.check_record(rec)
     assert res.error is not None and "key n" in str(res.error)
+
+
+@settings(max_examples=4, deadline=None)
+@given(
+    a=st.integers(1, 2),
+    b=st.integers(0, 1),
+    c=st.fractions(min_value=-3, max_value=3, max_denominator=5).filter(lambda x: x != 0),
+    n=st.integers(2, 12),
+)
+def test_random_families_against_a_direct_derivation(a, b, c, n):
+    """Random two-parameter families over degrees 2..6 (Bernstein plus a telescoping term in
+    lam at index a and mu at index n - b, so the functions sum to 1): the closed forms in n at
+    a random degree, inside or beyond the range, equal the end derivatives of the formula
+    expanded directly by SymPy at that degree (no derive code)."""
+    from derive.algebra import n as n_sym
+    from derive.families.closed_n import closed_forms
+    from derive.families.definition import definition_from_table
+
+    ell = f"(lam*binomial(0, {{k}} - {a}) + mu*binomial(0, n - {{k}} - {b}))"
+    text = (
+        f"t**i*(1 - t)**(n - i)*(binomial(n, i) + ({c})*({ell.format(k='i')}*(1 - t)"
+        f" - {ell.format(k='(i + 1)')}*t))"
+    )
+    table = {
+        "name": "random_two",
+        "parameters": ["lam", "mu"],
+        "range": {"lam": "[-1, 1]", "mu": "[-1, 1]"},
+        "degrees": "2..6",
+        "degree_offset": 1,
+        "basis": text,
+    }
+    closed = closed_forms(definition_from_table(table))
+    assert not isinstance(closed, str), closed
+    t, lam, mu = sp.symbols("t lam mu")
+
+    def paper_binomial(x, y):
+        x, y = int(x), int(y)
+        return sp.Integer(0) if not 0 <= y <= x else sp.binomial(x, y)
+
+    for r in range(4):
+        if n < closed.valid_from[r]:
+            continue
+        for i in range(n + 1):
+            ell_i = [
+                lam * paper_binomial(0, k - a) + mu * paper_binomial(0, n - k - b)
+                for k in (i, i + 1)
+            ]
+            bi = (
+                t**i
+                * (1 - t) ** (n - i)
+                * (
+                    sp.binomial(n, i)
+                    + sp.Rational(c.numerator, c.denominator) * (ell_i[0] * (1 - t) - ell_i[1] * t)
+                )
+            )
+            d = sp.diff(bi, t, r)
+            for key, at in ((("start", r, i)), 0), ((("end", r, n - i)), 1):
+                want = sp.expand(d.subs(t, at))
+                got = sp.expand(closed.forms.get(key, sp.Integer(0)).xreplace({n_sym: n}))
+                assert sp.expand(got - want) == 0, (key, n, got, want)

@@ -325,7 +325,10 @@ def _closed_forms(defn: Definition) -> ClosedForms | str:
     low = defn.degrees.start
     checked = tuple(range(low, max(defn.degrees.stop, proven)))
     valid = []
-    tables = {deg: _per_degree(defn, deg) for deg in checked}
+    try:  # degrees below the range or up to proven_from may not be the family's degrees
+        tables = {deg: _per_degree(defn, deg) for deg in checked}
+    except DefinitionError as exc:
+        return f"no closed forms in n: a degree the check needs is not defined ({exc})"
     for r in range(ENDPOINT_ORDERS + 1):
         bad = [
             deg
@@ -335,5 +338,8 @@ def _closed_forms(defn: Definition) -> ClosedForms | str:
         if any(deg >= proven for deg in bad):
             raise AssertionError(f"{defn.name}: the derived forms fail at n = {bad[-1]}")
         valid.append(max(bad) + 1 if bad else low)
-    _fit(defn, forms, max(valid[-1], proven), symbols)  # every symbol has its index there
+    try:
+        _fit(defn, forms, max(valid[-1], proven), symbols)  # every symbol has its index there
+    except DefinitionError as exc:
+        return f"no closed forms in n: a degree the fit needs is not defined ({exc})"
     return ClosedForms(forms, symbols, proven, tuple(valid), checked)

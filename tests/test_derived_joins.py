@@ -176,17 +176,22 @@ def test_bad_weight_text_is_refused():
 
 
 def test_an_indexed_family_joins_itself_at_another_degree(monkeypatch):
-    """Each degree's table of q_bezier holds that degree with itself only: a join from degree
-    3 into degree 4 is solved per degree, and it is C1 (exact derivatives)."""
+    """Each degree's table of q_bezier holds that degree with itself only; a join from degree
+    3 into degree 4 takes the document's weights in closed form in n and m (index-relative
+    symbols lam(n)1, lam(1)2, ...), exactly the per-degree solve's, and it is C1."""
     fam = lb.load_family(DATA / "q_bezier.toml")
     first = fam.curve([(0, 0), (1, 2), (3, 3), (4, 1)], lam=[Fraction(1, 2), 0, Fraction(-1, 3)])
     used = []
     real = _derived_joins.lookup
-    monkeypatch.setattr(_derived_joins, "lookup", lambda *a: used.append(a) or real(*a))
+    monkeypatch.setattr(_derived_joins, "lookup", lambda *a: used.append((a[1], a[2])) or real(*a))
     four = fam.at_degree(4)
     values = dict(zip(four.parameters, [Fraction(1, 4), 0, 0, Fraction(1, 5)], strict=True))
-    nxt = lb.join(first, "C1", 4, family=four, params=values, rest=[(7, 1), (8, -2), (9, 0)])
-    assert used == []
+    rest = [(7, 1), (8, -2), (9, 0)]
+    nxt = lb.join(first, "C1", 4, family=four, params=values, rest=rest)
+    assert used == [("q_bezier>q_bezier", "C1")]
+    monkeypatch.setattr(_derived_joins, "lookup", lambda *a: None)
+    solved = lb.join(first, "C1", 4, family=four, params=values, rest=rest)
+    assert nxt.points.tolist() == solved.points.tolist()
     assert [float(v) for v in nxt.derivative(0.0)] == pytest.approx(
         [float(v) for v in first.derivative(1.0)], abs=1e-12
     )

@@ -34,13 +34,17 @@ def results(records):
 
 
 def test_every_record_agrees_with_its_expectation(results):
-    assert len(results) == 12
+    assert len(results) == 18
     for rid, res in results.items():
         assert res.problems() == [], (rid, res.outcome, res.error)
     assert {rid for rid, r in results.items() if r.verdict == "mismatch"} == {
         "qb4.d1_misprint",
         "qb.optimum_bernstein",
+        "qb.ends_n_misprint",
     }
+    # the closed forms in n catch the misprint for a general n too
+    assert any("for general n" in d for d in results["qb.ends_n_misprint"].outcome.diffs)
+    assert results["qb.ends_n_misprint"].erratum.verdict == "match"
     assert "fails at n = 4" in results["qb4.d1_misprint"].outcome.diffs[0]
     assert results["qb4.d1_misprint"].erratum.verdict == "match"
 
@@ -55,6 +59,12 @@ def test_every_record_agrees_with_its_expectation(results):
         ("qb.gram2", ("gram", 1, 1), "4/3", "5/3"),
         ("qb4.energy", ("expression",), "13168/35", "13169/35"),
         ("qb.optimum", ("parameters", "lam(3)"), "5/4", "1"),
+        # closed forms in n (derive/verify/checks_closed_n.py): one symbol changed
+        ("qb.ends_n", ("equations", 1, "rhs"), "2*lam(n - 1)", "2*lam(n - 2)"),
+        ("qb.join_c1_n", ("join_weights", "1,first,1"), "lam1(n)", "lam1(n - 1)"),
+        ("qb.join_g1_n", ("join_weights", "1,first,0"), "lam2(1)", "lam2(2)"),
+        ("qb.join_c2_n", ("join_weights", "2,first,2"), "lam2(2)", "lam2(1)"),
+        ("qb.join_g1_bezier_n", ("join_weights", "1,first,1"), "alpha*m", "alpha*n"),
     ],
 )
 def test_one_changed_number_flips_the_verdict(records, rid, path, old, new):

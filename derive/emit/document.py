@@ -29,6 +29,7 @@ from ..formulas.family import (
 )
 from ..formulas.joins_several import join_table, polynomial_end_forms
 from ..formulas.several_box import independence_over_box, nonnegativity
+from .closed_n import section
 from .parameters import parameter_table
 
 # --------------------------------------------------------------------------- the document
@@ -55,6 +56,7 @@ def _several(defn: Definition, checked: list[str]) -> dict:
     swap = symmetry(defn)
     energy = energy_artifacts(defn)
     low = defn.degrees.start
+    closed, closed_joins = section(defn) if len(defn.degrees) > 1 else ({}, {})
     return {
         "generated_by": "lambda-bezier derive --family -- DO NOT EDIT; regenerate with "
         "`lambda-bezier derive --family FILE`",
@@ -84,16 +86,14 @@ def _several(defn: Definition, checked: list[str]) -> dict:
         "endpoints": endpoint_table(defn),
         "endpoint_closed_orders": -1,
         "endpoint_closed_forms": None,
+        **({"closed_n": closed} if closed else {}),
         "energy": energy,
         **({"energy_monomials": monomial_grams(defn)} if "reason" in energy else {}),
         "nonnegative_over_box": nonnegativity(defn),
         "singular_parameters": independence_over_box(defn),
         "joins": join_table(defn, low, polynomial_end_forms(defn, low))
         if len(defn.degrees) == 1
-        else {
-            "reason": "several parameters over a range of degrees: no closed forms in n; the "
-            "runtime joins per degree"
-        },
+        else closed_joins,
         "surface_joins": {"reason": "several parameters: the runtime joins per degree"},
     }
 
@@ -120,6 +120,11 @@ def _indexed(defn: Definition) -> dict:
         "degrees": [defn.degrees.start, defn.degrees.stop - 1],
         "degree_offset": defn.offset,
         "by_degree": by_degree,
+        **(
+            dict(zip(("closed_n", "joins"), section(defn), strict=True))
+            if len(defn.degrees) > 1
+            else {}
+        ),
     }
 
 

@@ -88,16 +88,24 @@ def end_forms(defn: Definition, degree: int | None = None) -> tuple[dict, int, s
     return polynomial_end_forms(at, deg), deg, None
 
 
-def pair_weights(defn: Definition, degree: int, forms: dict, pair: str, continuity: str):
+def pair_weights(
+    defn: Definition,
+    degree: int,
+    forms: dict,
+    pair: str,
+    continuity: str,
+    symbols: tuple[sp.Symbol, ...] | None = None,
+):
     """{"row,src,k": weight as an expression in the side symbols and C} of one ordered pair
     ("first>second", each the family's name or a built-in one), or a reason (str) where the
-    closed-form solve has none."""
+    closed-form solve has none. `symbols`: as for join_table."""
     first, _, second = pair.partition(">")
     known = (*builtin_names(), defn.name)
     if first not in known or second not in known or defn.name not in (first, second):
         return f"{pair!r} is not a pair of {defn.name} with itself or a built-in family"
     order = joins.ORDER[continuity]
-    with joins.extra_family(defn.name, forms, (degree,), True, 2, defn.symbols):
+    syms = defn.symbols if symbols is None else symbols
+    with joins.extra_family(defn.name, forms, (degree,), True, 2, syms):
         try:
             solved = joins.solve(first, second, order)
         except (AssertionError, KeyError, ZeroDivisionError) as exc:
@@ -115,11 +123,19 @@ def _order_of(symbol: sp.Symbol, names: list[str]) -> tuple:
     return (names.index(symbol.name),) if symbol.name in names else (len(names), symbol.name)
 
 
-def join_table(defn: Definition, degree: int, forms: dict, constant: str | None = None) -> dict:
+def join_table(
+    defn: Definition,
+    degree: int,
+    forms: dict,
+    constant: str | None = None,
+    symbols: tuple[sp.Symbol, ...] | None = None,
+) -> dict:
     """The document's ``joins`` of the family `defn` at `degree` (its end `forms`), with every
-    built-in family and itself in both directions; `constant` names C ("pi", "exp(W)")."""
+    built-in family and itself in both directions; `constant` names C ("pi", "exp(W)").
+    `symbols`: the parameter symbols of the forms when they are not the definition's (forms
+    in closed form in n of an indexed family: lam(1), lam(n), ...)."""
     name = defn.name
-    syms = defn.symbols
+    syms = defn.symbols if symbols is None else symbols
     pairs: dict = {}
     used: set[sp.Symbol] = set()
     with joins.extra_family(name, forms, (degree,), True, 2, syms):

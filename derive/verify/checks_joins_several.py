@@ -22,6 +22,7 @@ from ..families.definition import Definition
 from ..formulas import joins
 from ..formulas.joins_several import C, end_forms, pair_weights
 from ..grammar import ParseError, parse_formula
+from . import checks_closed_n
 from .checks_core import KIND_FAMILIES, Outcome, checker
 from .checks_elementary import RecordError
 from .claim_families import SEVERAL_FAMILIES
@@ -60,10 +61,14 @@ def check_several_join(record: dict, _context: object) -> Outcome:
     if not isinstance(claimed, dict) or not claimed:
         raise RecordError("key join_weights: a table {'row,src,k': formula} is required")
     degree = record.get("n")
+    if degree is None and len(defn.degrees) > 1:  # weights in closed form in n and m
+        return checks_closed_n.check_join(record, defn, pair, continuity, claimed)
     if defn.indexed is not None and not isinstance(degree, int):
         raise RecordError("key n: the degree is required for an indexed family")
+    if degree is not None and (not isinstance(degree, int) or degree not in defn.degrees):
+        raise RecordError(f"key n: {degree!r} is not a degree of the family ({defn.degrees})")
     at = defn.at_degree(degree) if defn.indexed is not None else defn
-    forms, deg, constant = end_forms(defn, degree if defn.indexed is not None else None)
+    forms, deg, constant = end_forms(defn, degree)
     derived = pair_weights(at, deg, forms, pair, continuity)
     if isinstance(derived, str):
         return Outcome("mismatch", [f"derive finds no closed-form {continuity} weights: {derived}"])

@@ -37,6 +37,7 @@ from ..families.definition import Definition
 from ..families.engine import basis_polys
 from ..formulas import box
 from ..grammar import SYMBOLS, ParseError, parse_formula
+from . import checks_closed_n as closed_n
 from . import checks_elementary as elementary
 from .checks_core import KIND_FAMILIES, Outcome, checker
 from .checks_elementary import RecordError
@@ -138,7 +139,7 @@ def _realise(defn: Definition, expr: sp.Basic, degree: int, idx: int | None) -> 
 
 def _equations(record: dict) -> Outcome:
     defn = _defn(record)
-    diffs, checked = [], []
+    diffs, checked, parsed = [], [], []
     for number, eq in enumerate(record.get("equations") or []):
         if "given" in eq or "where" in eq:
             raise RecordError(
@@ -147,6 +148,7 @@ def _equations(record: dict) -> Outcome:
             )
         lhs = _parse(defn, eq["lhs"], f"equations[{number}].lhs")
         rhs = _parse(defn, eq["rhs"], f"equations[{number}].rhs")
+        parsed.append((eq["lhs"], eq["rhs"], lhs, rhs))
         per_index = _I in (lhs.free_symbols | rhs.free_symbols)
         count = 0
         for degree in defn.degrees:
@@ -160,6 +162,9 @@ def _equations(record: dict) -> Outcome:
         checked.append(f"{eq['lhs']} = {eq['rhs']}: {count} instances, exact")
     if not checked:
         raise RecordError("key equations: no equation")
+    if record["claim"].endswith("several_end_conditions") and closed_n.has_closed_forms(defn):
+        more, also = closed_n.general_equations(defn, parsed)  # and for a general n
+        diffs, checked = diffs + more, checked + also
     return Outcome("mismatch" if diffs else "match", diffs, checked)
 
 

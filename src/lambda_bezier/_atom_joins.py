@@ -38,7 +38,9 @@ def involved(curve: object, family: object) -> bool:
     return isinstance(curve, AtomCurve) or getattr(family, "atom_data", None) is not None
 
 
-Side = tuple[str, dict[str, Any], Any, bool]  # family name, variables, joins table, table valid
+# family name, variables, joins table of its degree, that table valid, joins table in closed
+# form in n (several parameters over a range of degrees, indexed families) or None
+Side = tuple[str, dict[str, Any], Any, bool, Any]
 
 
 def join_side(thing: Any, side: int, degree: int, values: Any = None) -> Side:
@@ -51,17 +53,24 @@ def join_side(thing: Any, side: int, degree: int, values: Any = None) -> Side:
         given = thing.atom_parameter_values() if isinstance(thing, AtomCurve) else values
         names = tuple(data.NAMES)
         got = _derived_joins.side_values(side, names, tuple(given[x] for x in names))
-        return data.FAMILY, {letter: degree, **got}, data.JOINS, degree in data.DEGREES
+        return data.FAMILY, {letter: degree, **got}, data.JOINS, degree in data.DEGREES, None
     cls = thing if isinstance(thing, type) else type(thing)
     several = getattr(cls, "several_family", None)
     if several is not None:
         given = cls.parameter_values  # type: ignore[attr-defined]
         names = tuple(several.parameters)
         got = _derived_joins.side_values(side, names, tuple(given[x] for x in names))
+        table = several.several.JOINS
+        indexed = getattr(several, "indexed_family", None)
+        closed = table if _derived_joins.is_closed(table) else None
+        if indexed is not None and _derived_joins.is_closed(indexed.JOINS):
+            closed = indexed.JOINS
+            base = indexed.index_name
+            got.update(_derived_joins.relative_values(side, base, degree, names, given))
         ok = tuple(several.degrees) == (degree,)
-        return several.name, {letter: degree, **got}, several.several.JOINS, ok
+        return several.name, {letter: degree, **got}, table, ok, closed
     lam = thing.lam if not isinstance(thing, type) else values
-    return str(getattr(cls, "family", "")), {letter: degree, f"lam{side}": lam}, None, True
+    return str(getattr(cls, "family", "")), {letter: degree, f"lam{side}": lam}, None, True, None
 
 
 def derived_weights(
@@ -69,15 +78,26 @@ def derived_weights(
 ) -> dict[tuple[int, str, int], Number] | None:
     """The join's weights from the derived document of either side's family, or None."""
     pair = f"{first[0]}>{second[0]}"
-    if first[0] == second[0] and first[1]["n"] != second[1]["m"]:
-        return None  # an indexed family at two degrees: its tables hold each degree with itself
+    values = {**first[1], **second[1], "alpha": alpha, "d": d}
+    # an indexed family at two degrees: its per-degree tables hold each degree with itself
+    two_degrees = first[0] == second[0] and first[1]["n"] != second[1]["m"]
     for table in (first[2], second[2]):
-        if table is None or not (first[3] and second[3]):
+        if two_degrees or table is None or not (first[3] and second[3]):
             continue
-        values = {**first[1], **second[1], "alpha": alpha, "d": d}
         found = _derived_joins.lookup(table, pair, continuity, values)
         if found is not None:
             return found
+    # weights in closed form in n and m, where they hold at both curves' degrees
+    for owner in (first, second):
+        table = owner[4]
+        if table is None:
+            continue
+        mine = [side[1][letter] for side, letter in ((first, "n"), (second, "m"))]
+        mine = [deg for deg, side in zip(mine, (first, second), strict=True) if side[0] == owner[0]]
+        if all(_derived_joins.holds_at(table, continuity, deg) for deg in mine):
+            found = _derived_joins.lookup(table, pair, continuity, values)
+            if found is not None:
+                return found
     return None
 
 

@@ -37,6 +37,37 @@ def side_values(side: int, names: tuple[str, ...], values: tuple[Number, ...]) -
     return {f"{x}{side}": v for x, v in zip(names, values, strict=True)}
 
 
+def is_closed(table: object) -> bool:
+    """Whether a joins table is in closed form in n and m (it has ``valid_from``)."""
+    return isinstance(table, dict) and "pairs" in table and "valid_from" in table
+
+
+def holds_at(table: dict[str, Any], continuity: str, degree: int) -> bool:
+    """Whether a closed-form table's weights of `continuity` hold at this degree of the
+    family: derive proved them for every degree from ``valid_from`` on (per order: "1" for
+    C1/G1, "2" for C2/G2)."""
+    order = "2" if continuity in ("C2", "G2") else "1"
+    low = table["valid_from"].get(order) if isinstance(table["valid_from"], dict) else None
+    if not isinstance(low, int):
+        raise ValueError(f"joins: valid_from[{order!r}] must be a degree, got {low!r}")
+    return degree >= low
+
+
+def relative_values(
+    side: int, base: str, degree: int, names: tuple[str, ...], values: dict[str, Any]
+) -> dict[str, Any]:
+    """An indexed family's parameters at one degree under their index-relative names of a
+    closed-form table: name(k) and name(n-k) (name(n) for k = 0) with the side's suffix, for
+    every index of the degree (the names are `base_k`)."""
+    out = {}
+    for name in names:
+        k = int(name.rsplit("_", 1)[1])
+        back = degree - k
+        out[f"{base}({k}){side}"] = values[name]
+        out[f"{base}(n){side}" if back == 0 else f"{base}(n-{back}){side}"] = values[name]
+    return out
+
+
 def constant_value(text: object) -> float:
     """The float of a table's constant: "pi" or "exp(W)" with W rational."""
     found = _CONSTANT.match(text) if isinstance(text, str) else None

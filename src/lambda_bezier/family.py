@@ -472,6 +472,8 @@ class IndexedFamily:
         self.table: dict[str, Any] = dict(table)
         self.digest = definition_digest(self.table)
         self.several = None  # one Family per degree: `at_degree`
+        # join weights in closed form in n, m (index-relative symbols), read by _derived_joins
+        self.JOINS: Any = doc.get("joins")
         # what a curve's JSON form is read with (from_json): the lowest degree's class, whose
         # family_object leads back here through `indexed_family`
         self.curve_class = self.by_degree[min(self.by_degree)].curve_class

@@ -137,3 +137,22 @@ def test_atom_across_polynomial_is_refused_with_the_reason():
     for pair in ((TRIG, TWO), (TWO, TRIG)):
         with pytest.raises(ValueError, match=r"han_trig_cubic \(trigonometric\) across two_sh"):
             family_surface(NET, pair, params_u=pu, params_v=pu)
+
+
+def test_batch_engines_agree(monkeypatch):
+    """The compiled kernel (numba) and the numpy engine on the same nets."""
+    from lambda_bezier.hazmat import surface_kernels as ker
+    from lambda_bezier.param_surface_energy import _direction
+
+    nets = np.random.default_rng(11).normal(size=(200, 4, 4, 3))
+    nets[..., 0] += np.arange(4)[:, None]
+    d = _direction(AT, 3)
+    compiled = po.fixed_cost(nets, d, d, "thin_plate")
+    monkeypatch.setattr(ker, "USE_COMPILED", False)
+    plain = po.fixed_cost(nets, d, d, "thin_plate")
+    assert po._batch_compiled() is None
+    assert compiled[3].sum() > 100  # most nets certified
+    assert np.array_equal(compiled[3], plain[3])
+    ok = plain[3]
+    for a, b in zip(compiled[:3], plain[:3], strict=True):
+        assert np.allclose(a[ok], b[ok], rtol=1e-12, atol=1e-12)

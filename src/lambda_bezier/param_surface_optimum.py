@@ -16,14 +16,17 @@ them. The minimum is then param_surface_energy's certified one: a rational point
 energy, and a proven lower bound within 1e-12 (relative).
 
 **A batch** of float nets, shape (k, m+1, n+1, d), with one parameter in each direction: the
-energy's nine coefficients e_ab (x^a y^b, a, b <= 2) of every net at once, from each
-direction's Gram matrices in floats (the constant c at its float) contracted with the nets
-(numpy einsum, no loop over nets); then the fixed-cost certificate of one-parameter surfaces
-(hazmat.surface_certify.certified_minimum, vectorised: local strong convexity and a global
-clearing of the rest of the box, the minimiser within 1e-12 of the answer, for the float
-coefficients). The nets it declines (minima on an edge or a corner, or near one, or a family
-not affine in its parameter) take the one-net certified path above and are counted in
-``careful_fallbacks``. A family with several parameters in a
+energy's nine coefficients e_ab (x^a y^b, a, b <= 2) of every net at once, as weights on the
+nets' Gram products P_ij · P_kl (each direction's Gram matrices in floats, the constant c at
+its float, in Kronecker products); then the fixed-cost certificate of one-parameter surfaces.
+With numba both run in the one-parameter surfaces' compiled kernel
+(hazmat.surface_batch_compiled.optimise, which takes any such weights), else in numpy (one
+batched matrix product, then hazmat.surface_certify.certified_minimum on arrays;
+LAMBDA_BEZIER_NO_NUMBA=1 selects it, and the tests run both). The certificate (local
+strong convexity and a global clearing of the rest of the box) puts the minimiser within
+1e-12 of the answer, for the float coefficients. The nets it declines (minima on an edge or a
+corner, or near one, or a family not affine in its parameter) take the one-net certified path
+above and are counted in ``careful_fallbacks``. A family with several parameters in a
 direction is refused for batches, saying why: the fixed-cost certificate is for two variables.
 """
 
@@ -32,11 +35,14 @@ from __future__ import annotations
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from fractions import Fraction
+from functools import cache
+from types import ModuleType
 from typing import Any
 
 import numpy as np
 
 from . import _validate as val
+from .hazmat import surface_kernels as ker
 from .hazmat.constants import constant_bounds
 from .hazmat.surface_certify import certified_minimum
 from .param_surface_energy import Direction, SurfaceParameterOptimum, _direction
@@ -131,19 +137,98 @@ def _float_grams(d: Direction, k: int) -> dict[int, np.ndarray]:
     return out
 
 
-def energy_coefficients(nets: np.ndarray, du: Direction, dv: Direction, energy: str) -> Any:
-    """{(a, b): e_ab over the batch}: the energy of every net as Σ e_ab x^a y^b (floats)."""
+def energy_weights(du: Direction, dv: Direction, energy: str) -> dict[tuple[int, int], np.ndarray]:
+    """{(a, b): K} with e_ab = Σ K[ij, kl] P_ij · P_kl: the weight of x^a y^b on the Gram
+    products of a net read row by row, Σ_terms weight · G^(a)_u ⊗ G^(b)_v (floats; computed
+    once per pair of families and degrees)."""
+    return _energy_weights(du.family, du.degree, dv.family, dv.degree, energy)
+
+
+@cache
+def _energy_weights(
+    family_u: Any, m: int, family_v: Any, n: int, energy: str
+) -> dict[tuple[int, int], np.ndarray]:
+    du, dv = _direction(family_u, m), _direction(family_v, n)
     out: dict[tuple[int, int], np.ndarray] = {}
     for ku, kv, weight in ENERGIES[energy]:
         gu, gv = _float_grams(du, ku), _float_grams(dv, kv)
-        for b, mat_v in gv.items():
-            # T[z, i, k] = Σ_jl G_v[j, l] P_zij · P_zkl, then contracted with each G_u
-            side = np.einsum("jl,zkld->zkjd", mat_v, nets, optimize=True)
-            inner = np.einsum("zijd,zkjd->zik", nets, side, optimize=True)
-            for a, mat_u in gu.items():
-                term = float(weight) * np.einsum("ik,zik->z", mat_u, inner, optimize=True)
-                out[(a, b)] = out.get((a, b), 0.0) + term
+        for a, mat_u in gu.items():
+            for b, mat_v in gv.items():
+                out[(a, b)] = out.get((a, b), 0.0) + float(weight) * np.kron(mat_u, mat_v)
     return out
+
+
+def energy_coefficients(nets: np.ndarray, du: Direction, dv: Direction, energy: str) -> Any:
+    """{(a, b): e_ab over the batch}: the energy of every net as Σ e_ab x^a y^b (floats): the
+    nets' Gram products P_ij · P_kl (one batched matrix product) against each weight."""
+    weights = energy_weights(du, dv, energy)
+    count = nets.shape[0]
+    flat = nets.reshape(count, -1, nets.shape[-1])
+    with np.errstate(over="ignore", invalid="ignore"):
+        gram = np.matmul(flat, flat.transpose(0, 2, 1)).reshape(count, -1)
+        keys = sorted(weights)
+        stacked = np.stack([weights[key].ravel() for key in keys], axis=1)
+        values = gram @ stacked
+    return {key: values[:, i] for i, key in enumerate(keys)}
+
+
+def _batch_compiled() -> ModuleType | None:
+    """hazmat.surface_batch_compiled (numba; the switch of hazmat.surface_kernels), or None."""
+    if not ker.USE_COMPILED:
+        return None
+    from .hazmat import surface_batch_compiled
+
+    return surface_batch_compiled
+
+
+def _pair_weights(
+    weights: dict[tuple[int, int], np.ndarray],
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The kernel's form of the weights: pairs i <= j of control points with W[p, 3a + b] the
+    weight of x^a y^b on P_i · P_j (both orders of an off-diagonal pair: twice)."""
+    size = next(iter(weights.values())).shape[0]
+    rows_i, rows_j = np.triu_indices(size)
+    w = np.zeros((rows_i.size, 9))
+    for (a, b), mat in weights.items():
+        w[:, 3 * a + b] = mat[rows_i, rows_j] * np.where(rows_i == rows_j, 1.0, 2.0)
+    keep = w.any(axis=1)
+    return (
+        rows_i[keep].astype(np.int64),
+        rows_j[keep].astype(np.int64),
+        np.ascontiguousarray(w[keep]),
+    )
+
+
+def fixed_cost(
+    nets: np.ndarray, du: Direction, dv: Direction, energy: str
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(x, y, energy, certified) of every net by the fixed-cost certificate (compiled with its
+    coefficients when numba is there, else numpy); certified False where it declines."""
+    count = nets.shape[0]
+    (xlo, xhi), (ylo, yhi) = _box(du), _box(dv)
+    weights = energy_weights(du, dv, energy)
+    box = np.array([float(xlo), float(xhi), float(ylo), float(yhi)])
+    fast = _batch_compiled()
+    if max(max(a, b) for a, b in weights) > 2:  # not affine: the certificate is for degree 2
+        bx, by, bval, ok = np.zeros(count), np.zeros(count), np.zeros(count), np.zeros(count, bool)
+    elif fast is not None:  # the one-parameter surfaces' compiled kernel, on these weights
+        pair_i, pair_j, pair_w = _pair_weights(weights)
+        flat = np.ascontiguousarray(nets.reshape(count, -1), dtype=float)
+        bx, by, bval, _, ok, _valid = fast.optimise(
+            flat, nets.shape[-1], pair_i, pair_j, pair_w, box, CERTIFIED_TOLERANCE, MAX_COORDINATE
+        )
+    else:
+        coeffs = energy_coefficients(nets, du, dv, energy)
+        zero = np.zeros(count)
+        c = [coeffs.get((a, b), zero) for a in range(3) for b in range(3)]
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            bx, by, bval, _, ok = certified_minimum(
+                c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8],
+                box[0], box[1], box[2], box[3], CERTIFIED_TOLERANCE,
+            )  # fmt: skip
+        bx, by, bval = np.array(bx, float), np.array(by, float), np.array(bval, float)
+        ok = np.asarray(ok, bool)
+    return bx, by, bval, ok
 
 
 def optimal_parameters_batch(nets: np.ndarray, energy: str, family: Any) -> SurfaceParameterBatch:
@@ -168,20 +253,7 @@ def optimal_parameters_batch(nets: np.ndarray, energy: str, family: Any) -> Surf
                 f"{len(d.names)} ({', '.join(d.names)}): call optimal_parameters once per net"
             )
     count = nets.shape[0]
-    coeffs = energy_coefficients(nets, du, dv, energy)
-    (xlo, xhi), (ylo, yhi) = _box(du), _box(dv)
-    if max(max(a, b) for a, b in coeffs) <= 2:
-        zero = np.zeros(count)
-        c = [coeffs.get((a, b), zero) for a in range(3) for b in range(3)]
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            bx, by, bval, _, ok = certified_minimum(
-                c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8],
-                float(xlo), float(xhi), float(ylo), float(yhi), CERTIFIED_TOLERANCE,
-            )  # fmt: skip
-        bx, by, bval = np.array(bx, float), np.array(by, float), np.array(bval, float)
-        ok = np.asarray(ok, bool)
-    else:  # a family not affine in its parameter: the certificate is for degree 2
-        bx, by, bval, ok = np.zeros(count), np.zeros(count), np.zeros(count), np.zeros(count, bool)
+    bx, by, bval, ok = fixed_cost(nets, du, dv, energy)
     declined = np.flatnonzero(~ok)
     boundary = np.empty(count, dtype=object)
     boundary[:] = ""

@@ -186,3 +186,18 @@ def test_composite_evaluates_each_patch_on_its_domain():
     comp = lb.CompositeSurface([[a], [b]])
     assert np.allclose(comp.evaluate(0.5, 0.5), a.evaluate(math.pi / 4, math.pi / 4))
     assert np.allclose(comp.evaluate(1.25, 1.0), b.evaluate(math.pi / 8, math.pi / 2))
+
+
+def test_derived_join_into_another_family_names_the_missing_pair():
+    """two_shape_cubic's document holds its joins with the built-in families and itself, not
+    with nouri_saeidian: "derived" refuses, naming the pair; "solve" joins per degree."""
+    nouri = lb.load_family(examples.path("nouri_saeidian.toml"))
+    a = TWO.surface(NET, params_u={"lam": 0, "mu": 0}, params_v={"lam": 0, "mu": 0})
+    new = {"sigma": F(1, 2)}
+    with pytest.raises(ValueError, match="two_shape_cubic>nouri_saeidian at degrees 3 and 3"):
+        lb.join_surface(
+            a, "u", "C1", 3, rest=rest_rows(2, 0), family=nouri, params=new, conditions="derived"
+        )
+    b = lb.join_surface(a, "u", "C1", 3, rest=rest_rows(2, 0), family=nouri, params=new)
+    assert b.family == ("nouri_saeidian", "two_shape_cubic")
+    assert [r.continuity for r in lb.CompositeSurface([[a], [b]]).report()] == ["C1"]

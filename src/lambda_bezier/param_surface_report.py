@@ -157,8 +157,9 @@ def _close(a: list[Any], b: list[Any], tol: float) -> bool:
     )
 
 
-def _proportional(a: list[Any], b: list[Any], tol: float) -> bool:
-    """a = α b with one α > 0."""
+def proportional(a: list[Any], b: list[Any], tol: float) -> bool:
+    """a = α b with one α > 0, coordinate by coordinate within `tol` (the G1 test of
+    surface_joins' report too)."""
     flat_a = [x for p in a for x in p]
     flat_b = [x for p in b for x in p]
     k = max(range(len(flat_b)), key=lambda i: abs(flat_b[i]))
@@ -166,7 +167,7 @@ def _proportional(a: list[Any], b: list[Any], tol: float) -> bool:
         return False
     alpha = flat_a[k] / flat_b[k]
     return bool(alpha > 0) and all(
-        abs(x - alpha * y) <= tol * max(1, abs(alpha)) for x, y in zip(flat_a, flat_b, strict=True)
+        abs(x - alpha * y) <= tol for x, y in zip(flat_a, flat_b, strict=True)
     )
 
 
@@ -191,7 +192,7 @@ def continuity(a: Any, b: Any, axis: int, tol: float) -> str:
     if not _close(da[0], db[0], eps[0]):
         return "none"
     if not _close(da[1], db[1], eps[1]):
-        return "G1" if _proportional(da[1], db[1], eps[1]) else "C0"
+        return "G1" if proportional(da[1], db[1], eps[1]) else "C0"
     return "C2" if _close(da[2], db[2], eps[2]) else "C1"
 
 

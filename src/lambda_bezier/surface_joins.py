@@ -92,7 +92,8 @@ def join_surface(
 
     A patch of several-parameter, indexed or atom families (param_surfaces) takes the new
     patch's parameters by name, ``params={...}`` (default: the patch's own), and its
-    boundary is the end of its domain (param_surface_joins).
+    boundary is the end of its domain (param_surface_joins); with ``conditions="derived"``
+    the join weights come from those families' derived documents (their ``joins`` table).
 
     ``conditions="derived"`` takes the conditions from the derived document of a family
     defined by data (one of the two across the boundary; its ``surface_joins``) instead of
@@ -422,14 +423,7 @@ def _same(a: list[Any], b: list[Any], tol: float) -> bool:
 def _proportional(a: list[Any], b: list[Any], tol: float) -> bool:
     """a = α b with one α > 0."""
     size = max(len(a), len(b)) - 1
-    a, b = _elevate_to(a, size), _elevate_to(b, size)
-    flat_a = [x for p in a for x in p]
-    flat_b = [x for p in b for x in p]
-    k = max(range(len(flat_b)), key=lambda i: abs(flat_b[i]))
-    if not flat_b[k] or not flat_a[k]:
-        return False
-    alpha = flat_a[k] / flat_b[k]
-    return alpha > 0 and all(abs(x - alpha * y) <= tol for x, y in zip(flat_a, flat_b, strict=True))
+    return param_surface_report.proportional(_elevate_to(a, size), _elevate_to(b, size), tol)
 
 
 def _linear_factor(a: list[Any], b: list[Any], tol: float) -> bool:

@@ -892,6 +892,50 @@ def bench_compile() -> None:
     )
 
 
+def bench_param_surfaces(nets: int) -> None:
+    """Batch optimal parameters of a trigonometric family with one parameter a direction
+    (at_cubic, issue #30/#31): the fixed-cost stage (coefficients and certificate, compiled
+    with numba) against one read pass of the nets; one net the certificate declines, through
+    the certified path, against one net of a one-parameter family solved exactly."""
+    import lambda_bezier as lb
+    from lambda_bezier import param_surface_optimum as po
+    from lambda_bezier.param_surface_energy import _direction
+
+    fam = lb.load_family(Path(__file__).parent.parent / "tests/data/families/at_cubic.toml")
+    rng = np.random.default_rng(4)
+    batch = rng.normal(size=(nets, 4, 4, 3))
+    batch[..., 0] += np.arange(4)[:, None]
+    batch[..., 1] += np.arange(4)[None, :]
+    d = _direction(fam, 3)
+
+    def stage():
+        return po.fixed_cost(batch, d, d, "thin_plate")
+
+    stage()  # the energy weights, once
+    best = interleaved({"ours": stage, "read": batch.sum}, 9)
+    declined = np.flatnonzero(~stage()[3])
+    record(
+        f"optimal parameters of at_cubic (trig., one a direction), thin plate: {nets:,} "
+        f"bicubic nets, fixed-cost stage ({declined.size} declined)",
+        best["ours"],
+        "one read pass (arr.sum())",
+        best["read"],
+        "<= 10x",
+        best["ours"] / best["read"] <= 10,
+    )
+    one = batch[declined[0]] if declined.size else batch[0]
+    per_net = best_of(lambda: lb.optimal_parameters(one, "thin_plate", family=fam), repeat=3)
+    exact = best_of(lambda: lb.optimal_parameters(one, "thin_plate", "bernstein_like"), repeat=3)
+    record(
+        "the same: one declined net, certified path (Bernstein branch and bound)",
+        per_net,
+        "one bernstein_like net, exact optimum",
+        exact,
+        "-",
+        True,
+    )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="smaller sizes (smoke test)")
@@ -907,6 +951,7 @@ def main() -> None:
         "closest",
         "compile",
         "surfaces",
+        "param_surfaces",
         "derive",
         "verify",
         "import",
@@ -938,6 +983,7 @@ def main() -> None:
         "surfaces": lambda: bench_surfaces(
             300 if args.quick else 1000, 1000 if args.quick else 10_000, 10_000
         ),
+        "param_surfaces": lambda: bench_param_surfaces(1000 if args.quick else 10_000),
         "derive": bench_derive,
         "verify": bench_verify,
         "import": bench_import,

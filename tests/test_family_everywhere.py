@@ -271,6 +271,25 @@ def _call_param_optimal_parameters(fam):
     assert r.energy - r.lower_bound <= 1e-12 * max(1, r.energy)
 
 
+def _call_param_surface_optimum(fam):
+    from lambda_bezier.param_surface_optimum import optimal_parameters
+
+    r = optimal_parameters(NET, "membrane", fam)  # one net: the certified path, by name
+    one = lb.optimal_parameters(NET, "membrane", family=fam)  # exact: resultants, Sturm
+    assert r.method == "certified"
+    assert math.isclose(float(r["sigma_u"]), one["lam_u_float"], abs_tol=1e-5)
+
+
+def _call_param_surface_batch(fam):
+    from lambda_bezier.param_surface_optimum import optimal_parameters_batch
+
+    nets = np.random.default_rng(2).normal(size=(6, 4, 4, 2))
+    r = optimal_parameters_batch(nets, "membrane", fam)  # the fixed-cost certificate
+    exact = lb.optimal_parameters(nets, "membrane", family=fam)  # the one-parameter batch
+    assert np.allclose(r["sigma_u"], exact["lam_u"], atol=1e-5)
+    assert np.allclose(r.energy, exact["energy"], rtol=1e-10)
+
+
 # parameters named `family` that name something else
 NOT_A_FAMILY = {"curves.data_curve_class": "the new class's family name, not one to look up"}
 
@@ -295,6 +314,8 @@ CALLS = {
     "surface_optimum.optimal_parameters_batch": _call_optimal_parameters_batch,
     "param_surfaces.family_surface": _call_family_surface,
     "param_surface_energy.optimal_parameters": _call_param_optimal_parameters,
+    "param_surface_optimum.optimal_parameters": _call_param_surface_optimum,
+    "param_surface_optimum.optimal_parameters_batch": _call_param_surface_batch,
 }
 
 

@@ -325,9 +325,17 @@ class AtomSurface(Surface):
         return self._probes[axis].t_of_s(s)
 
     def to_bezier(self) -> NoReturn:
+        spaces = sorted({p.data.SPACE for p in self._probes})
+        hint = (
+            "to_rational_bezier() gives its rational Bézier form (exact for trigonometric "
+            "families, in floats for hyperbolic ones)"
+            if self._has_form()
+            else "a mixed algebraic-trigonometric/hyperbolic family has no rational form "
+            "either: evaluate it, or mesh it (surface_export.mesh)"
+        )
         raise ValueError(
-            f"to_bezier: a surface of {self.family_u.space} families is not a polynomial surface; "
-            "to_rational_bezier() gives its rational Bézier form where the families have one"
+            f"to_bezier: a surface of {' and '.join(spaces)} families is not a polynomial "
+            f"surface; {hint}"
         )
 
     def elevate_u(self) -> NoReturn:

@@ -291,19 +291,23 @@ class SurfaceParameterOptimum(Mapping[str, Any]):
     lower_bound: Any
     boundary: str
     certified: bool
+    method: str = "certified"  # or "exact": the closed form (param_surface_optimum)
 
     def __getitem__(self, key: str) -> Any:
         if key in self.parameters:
             return self.parameters[key]
-        if key in ("energy", "lower_bound", "boundary", "certified"):
+        if key in _FIELDS:
             return getattr(self, key)
         raise KeyError(f"{key!r}: the parameters are {', '.join(self.parameters)}")
 
     def __iter__(self) -> Iterator[str]:
-        return iter((*self.parameters, "energy", "lower_bound", "boundary", "certified"))
+        return iter((*self.parameters, *_FIELDS))
 
     def __len__(self) -> int:
-        return len(self.parameters) + 4
+        return len(self.parameters) + len(_FIELDS)
+
+
+_FIELDS = ("energy", "lower_bound", "boundary", "certified", "method")
 
 
 def _param_families(family: object) -> bool:
@@ -357,6 +361,18 @@ def optimal_parameters(net: NetLike, energy: str, family: Any) -> SurfaceParamet
             f"optimal_parameters: the minimum of the {energy} energy over the box was not "
             f"certified within the budget (best {float(value)}, lower bound {float(lower)})"
         )
+    energy_out = value if exact else float(value)
+    lower_out = lower if exact else float(lower)
+    values, where = named_point(du, dv, point, exact)
+    return SurfaceParameterOptimum(values, energy_out, lower_out, where, certified)
+
+
+def named_point(
+    du: Direction, dv: Direction, point: tuple[Any, ...], exact: bool
+) -> tuple[dict[str, Any], str]:
+    """({name_u: value, ...}, boundary note) of a point of both directions' parameters, in
+    the order of du.names then dv.names (floats unless `exact`; an indexed family's values
+    as one tuple)."""
     out: Any = (lambda x: x) if exact else float
     values: dict[str, Any] = {}
     where = []
@@ -365,7 +381,7 @@ def optimal_parameters(net: NetLike, energy: str, family: Any) -> SurfaceParamet
         vals = point[k : k + len(d.names)]
         for x, v in zip(d.names, vals, strict=True):
             lo_, hi_, lo_closed, hi_closed, _ = d.ranges[x]
-            if v in (lo_, hi_):
+            if isinstance(v, Fraction) and v in (lo_, hi_):
                 end = "lower" if v == lo_ else "upper"
                 closed = lo_closed if v == lo_ else hi_closed
                 note = "" if closed else ", excluded: not attained"
@@ -375,6 +391,4 @@ def optimal_parameters(net: NetLike, energy: str, family: Any) -> SurfaceParamet
         else:
             values.update({f"{x}_{suffix}": out(v) for x, v in zip(d.names, vals, strict=True)})
         k += len(d.names)
-    energy_out = value if exact else float(value)
-    lower_out = lower if exact else float(lower)
-    return SurfaceParameterOptimum(values, energy_out, lower_out, "; ".join(where), certified)
+    return values, "; ".join(where)

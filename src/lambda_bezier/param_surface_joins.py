@@ -8,6 +8,14 @@ solves these families' joins per degree (the end derivatives of the derived docu
 each family's own t). G1 has one constant α: A_u(end, v) = α B_u(start, v). The new patch
 is a surface of the same kind, with the new family's parameters by name across the boundary
 (default: the patch's own) and the patch's along it.
+
+``conditions="derived"`` reads the join's weights once from the derived document of either
+family across the boundary (its ``joins`` table, derive/formulas/joins_several.py, read by
+_derived_joins: the weights are data, never evaluated) and applies the same weights to every
+column; a pair the document does not hold is a ValueError naming it (conditions="solve" then
+joins each column with `join`, which takes the document's weights where it has them and
+otherwise solves the join per degree). The tests check the two against each other and against
+the per-degree solve.
 """
 
 from __future__ import annotations
@@ -16,6 +24,7 @@ from typing import Any
 
 import numpy as np
 
+from . import _atom_joins
 from . import _validate as val
 from .joins import join
 from .param_surfaces import family_surface
@@ -32,6 +41,7 @@ def _join_param_surface(
     family: Any,
     params: Any,
     check_range: bool,
+    conditions: str = "solve",
 ) -> Any:
     """The next patch across `patch`'s boundary at the end of direction `axis` (0: u)."""
     across = patch.family_u if axis == 0 else patch.family_v
@@ -66,8 +76,34 @@ def _join_param_surface(
         target_params = new_family.index_values(degree, new_params.get(new_family.index_name))
     new_columns: list[Any] = []
     net: Any
+    g1 = str(continuity).upper() == "G1"
+    weights = None
+    if conditions == "derived":
+        first = across.curve(columns[0], params=across_params, check_range=False)
+        second = _second_side(target, target_params, degree, check_range)
+        weights = _atom_joins.derived_weights(
+            _atom_joins.join_side(first, 1, first.degree), second, continuity, alpha if g1 else 1, 0
+        )
+        if weights is None:
+            raise ValueError(
+                f'conditions="derived": the derived documents of {across.name} and '
+                f"{getattr(new_family, 'name', new_family)} hold no {continuity} join "
+                f"{across.name}>{getattr(new_family, 'name', new_family)} at degrees "
+                f'{first.degree} and {degree} (use conditions="solve")'
+            )
+    order = 2 if continuity == "C2" else 1
     for j in range(count):
         curve = across.curve(columns[j], params=across_params, check_range=False)
+        if weights is not None:
+            given = list(rest_cols[j])
+            if len(given) != degree - order:
+                raise ValueError(
+                    f"rest must hold {degree - order} rows after the {order + 1} solved ones "
+                    f"(degree {degree}, {continuity}), got {len(given)}"
+                )
+            exact_given = val.exact_rows(given) if given else ()
+            new_columns.append(_atom_joins._apply(weights, curve, given, exact_given, order))
+            continue
         nxt = join(
             curve,
             continuity,
@@ -86,3 +122,22 @@ def _join_param_surface(
         net = new_columns
         pair, pu, pv = (along, new_family), along_params, new_params
     return family_surface(net, pair, params_u=pu, params_v=pv, check_range=False)
+
+
+def _second_side(target: Any, values: Any, degree: int, check_range: bool) -> Any:
+    """The new patch's side of a join as _atom_joins.derived_weights names it, as `join`
+    builds it: an atom family with its values (exact where given exactly), a polynomial family
+    in several parameters at its fixed values, a one-parameter family with its λ."""
+    if getattr(target, "atom_data", None) is not None:
+        given = target.parameter_values(None, values, {})
+        exact = target.exact_values(given, check_range)
+        shown = {
+            k: (x if val.is_exact_scalar(given[k]) else float(x))
+            for k, x in zip(target.parameters, exact, strict=True)
+        }
+        return _atom_joins.join_side(target, 2, degree, shown)
+    if getattr(target, "several", None) is not None:
+        cls = target._fixed_class(target.parameter_values(None, values, {}), check_range)
+        return _atom_joins.join_side(cls, 2, degree)
+    lam = next(iter(target.parameter_values(None, values, {}).values()))
+    return _atom_joins.join_side(target.curve_class, 2, degree, lam)

@@ -172,9 +172,12 @@ def family_surface(
     if _is_atom(fu) and _is_atom(fv):
         return AtomSurface(net, fu, given_u, fv, given_v, check_range=check_range)
     if _is_atom(fu) or _is_atom(fv):
+        atom, poly = (fu, fv) if _is_atom(fu) else (fv, fu)
         raise ValueError(
-            "family: a surface with a trigonometric, hyperbolic or mixed family in one direction "
-            "needs one in the other too (an atom family across a polynomial one is not "
-            "available yet)"
+            f"family: {atom.name} ({atom.space}) across {poly.name} (polynomial) is refused: a "
+            "surface of atom families reads each direction's basis, end values and rational "
+            "form from a trigonometric, hyperbolic or mixed family's derived document, which a "
+            "polynomial family does not have, and a polynomial surface needs polynomial bases "
+            "in both directions; give both directions atom families or both polynomial ones"
         )
     return ParamSurface(net, fu, given_u, fv, given_v, check_range=check_range)

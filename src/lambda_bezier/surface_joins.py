@@ -22,7 +22,10 @@ own basis); ``join_surface(..., conditions="derived")`` applies those instead of
 the tests check that the two agree.
 
 `CompositeSurface` holds a grid of patches and reports, for every interior boundary, the
-continuity achieved, found exactly on the Bézier forms (Fractions for exact patches).
+continuity achieved, found exactly on the Bézier forms (Fractions for exact patches); where a
+patch of trigonometric, hyperbolic or mixed families takes part, in the families' own
+parameters (param_surface_report). Each patch lives on its own domain (the unit square, or
+its families' domains), and `evaluate` maps the global parameters onto it.
 """
 
 from __future__ import annotations
@@ -36,6 +39,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _validate as val
+from . import param_surface_report
 from .curves import BezierCurve, Curve, family_class
 from .hazmat.forms import elevation_matrix, hodograph_matrix
 from .joins import join
@@ -88,7 +92,8 @@ def join_surface(
 
     A patch of several-parameter, indexed or atom families (param_surfaces) takes the new
     patch's parameters by name, ``params={...}`` (default: the patch's own), and its
-    boundary is the end of its domain (param_surface_joins).
+    boundary is the end of its domain (param_surface_joins); with ``conditions="derived"``
+    the join weights come from those families' derived documents (their ``joins`` table).
 
     ``conditions="derived"`` takes the conditions from the derived document of a family
     defined by data (one of the two across the boundary; its ``surface_joins``) instead of
@@ -111,14 +116,14 @@ def join_surface(
         raise TypeError(f"patch must be a lambda_bezier surface, got {type(patch).__name__}")
     axis = 0 if side == "u" else 1
     if hasattr(patch, "family_u"):  # ParamSurface, AtomSurface: parameters by name
-        if mu is not None or conditions != "solve" or lam is not None:
+        if mu is not None or lam is not None:
             raise ValueError(
-                "patch: a surface of several-parameter, indexed or atom families is joined by "
-                "solving the curve joins with a constant alpha; give the new parameters as "
-                "params={...} (not lam, mu or conditions)"
+                "patch: a surface of several-parameter, indexed or atom families is joined "
+                "with a constant alpha; give the new parameters as params={...} (not lam or mu)"
             )
+        conditions = val.choice(conditions, "conditions", CONDITIONS)
         return _join_param_surface(  # type: ignore[no-any-return]
-            patch, axis, continuity, degree, rest, alpha, family, params, check_range
+            patch, axis, continuity, degree, rest, alpha, family, params, check_range, conditions
         )
     if params is not None:
         raise ValueError("params is for patches of several-parameter or atom families")
@@ -418,14 +423,7 @@ def _same(a: list[Any], b: list[Any], tol: float) -> bool:
 def _proportional(a: list[Any], b: list[Any], tol: float) -> bool:
     """a = α b with one α > 0."""
     size = max(len(a), len(b)) - 1
-    a, b = _elevate_to(a, size), _elevate_to(b, size)
-    flat_a = [x for p in a for x in p]
-    flat_b = [x for p in b for x in p]
-    k = max(range(len(flat_b)), key=lambda i: abs(flat_b[i]))
-    if not flat_b[k] or not flat_a[k]:
-        return False
-    alpha = flat_a[k] / flat_b[k]
-    return alpha > 0 and all(abs(x - alpha * y) <= tol for x, y in zip(flat_a, flat_b, strict=True))
+    return param_surface_report.proportional(_elevate_to(a, size), _elevate_to(b, size), tol)
 
 
 def _linear_factor(a: list[Any], b: list[Any], tol: float) -> bool:
@@ -464,7 +462,8 @@ class BoundaryReport:
 
 class CompositeSurface:
     """A grid of patches: patches[r][c] meets patches[r + 1][c] along its boundary u = 1 and
-    patches[r][c + 1] along v = 1 (each patch on its own unit square)."""
+    patches[r][c + 1] along v = 1 (each patch on its own domain: the unit square, or its
+    families' domains for a patch of trigonometric, hyperbolic or mixed families)."""
 
     def __init__(self, patches: Sequence[Sequence[Surface]], *, tol: float = 1e-12) -> None:
         grid = [list(row) for row in patches]
@@ -503,6 +502,8 @@ class CompositeSurface:
         return out
 
     def _continuity(self, a: Surface, b: Surface, axis: int) -> str:
+        if param_surface_report.is_atom_patch(a) or param_surface_report.is_atom_patch(b):
+            return param_surface_report.continuity(a, b, axis, self.tol)  # no Bézier form
         exact = a.is_exact and b.is_exact
         size = max(
             float(np.abs(a.to_bezier().net).max()), float(np.abs(b.to_bezier().net).max()), 1.0
@@ -526,4 +527,5 @@ class CompositeSurface:
         if not (0 <= uu <= rows and 0 <= vv <= cols):
             raise ValueError(f"(u, v) = ({uu}, {vv}) is outside [0, {rows}] x [0, {cols}]")
         r, c = min(int(uu), rows - 1), min(int(vv), cols - 1)
-        return self.patches[r][c].evaluate(float(uu) - r, float(vv) - c)
+        patch = self.patches[r][c]
+        return patch.evaluate(*param_surface_report.local(patch, float(uu) - r, float(vv) - c))

@@ -45,7 +45,7 @@ from .hazmat.surface_certify import certified_minimum, edge_minimum
 from .hazmat.surface_kernels import OPTIMUM_STEP_TOLERANCE
 from .hazmat.surface_weights import BatchWeights, batch_weights
 from .param_surface_energy import _param_families
-from .param_surface_energy import optimal_parameters as param_optimal_parameters
+from .param_surface_optimum import optimal_parameters as param_optimal_parameters
 from .parameter_optimum import OptimalParameters as CurveOptimalParameters
 from .surface_energies import (
     ENERGIES,

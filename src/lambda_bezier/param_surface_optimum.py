@@ -1,0 +1,266 @@
+r"""Energy-optimal parameters of surfaces of several-parameter, indexed and
+trigonometric/hyperbolic/mixed families: one net, and batches of nets.
+
+**One net: certified, not a closed form.** For a given net the energy is a polynomial in
+every parameter of both directions (param_surface_energy.energy_polynomial), with
+coefficients in ℚ, or in ℚ[c, 1/c] for an atom family (c = π or e^W). One-parameter
+polynomial families get the exact minimum (surface_optimum: the resultants of E_x and E_y,
+exact real-root isolation). Here there is none, and the result says so (``method``
+"certified"): a family with two or more parameters in a direction makes the interior critical
+points the solutions of four or more polynomial equations (eliminating a direction's
+parameters, which enter E quadratically, leaves two rational equations of high degree in the
+other's, and every face of the box another such system), which the runtime cannot solve
+exactly; an atom family with one parameter per direction has coefficients in ℚ(π) or ℚ(e^W),
+so the resultants' roots are not algebraic over ℚ and the runtime has no exact arithmetic for
+them. The minimum is then param_surface_energy's certified one: a rational point, its exact
+energy, and a proven lower bound within 1e-12 (relative).
+
+**A batch** of float nets, shape (k, m+1, n+1, d), with one parameter in each direction: the
+energy's nine coefficients e_ab (x^a y^b, a, b <= 2) of every net at once, as weights on the
+nets' Gram products P_ij · P_kl (each direction's Gram matrices in floats, the constant c at
+its float, in Kronecker products); then the fixed-cost certificate of one-parameter surfaces.
+With numba both run in the one-parameter surfaces' compiled kernel
+(hazmat.surface_batch_compiled.optimise, which takes any such weights), else in numpy (one
+batched matrix product, then hazmat.surface_certify.certified_minimum on arrays;
+LAMBDA_BEZIER_NO_NUMBA=1 selects it, and the tests run both). The certificate (local
+strong convexity and a global clearing of the rest of the box) puts the minimiser within
+1e-12 of the answer, for the float coefficients. The nets it declines (minima on an edge or a
+corner, or near one, or a family not affine in its parameter) take the one-net certified path
+above and are counted in ``careful_fallbacks``. A family with several parameters in a
+direction is refused for batches, saying why: the fixed-cost certificate is for two variables.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass
+from fractions import Fraction
+from functools import cache
+from types import ModuleType
+from typing import Any
+
+import numpy as np
+
+from . import _validate as val
+from .hazmat import surface_kernels as ker
+from .hazmat.constants import constant_bounds
+from .hazmat.surface_certify import certified_minimum
+from .param_surface_energy import Direction, SurfaceParameterOptimum, _direction
+from .param_surface_energy import optimal_parameters as certified_parameters
+from .surface_energies import ENERGIES
+from .surfaces import NetLike
+
+CERTIFIED_TOLERANCE = 1e-12  # the batch certificate: the minimiser within this of its answer
+MAX_COORDINATE = 1e140  # above it the energy of a net overflows a float
+
+
+def _families(family: Any) -> tuple[Any, Any]:
+    fu, fv = family if isinstance(family, tuple | list) else (family, family)
+    for f in (fu, fv):
+        if not hasattr(f, "degrees") or not hasattr(f, "parameters"):
+            raise TypeError(
+                "family: a family from load_family is needed in each direction, got "
+                f"{type(f).__name__}"
+            )
+    return fu, fv
+
+
+def _directions(shape: tuple[int, ...], fu: Any, fv: Any) -> tuple[Direction, Direction]:
+    m, n = int(shape[0]) - 1, int(shape[1]) - 1
+    for fam, deg, name in ((fu, m, "u"), (fv, n, "v")):
+        if deg not in fam.degrees:
+            raise ValueError(
+                f"net, direction {name}: degree {deg}; {fam.name!r} has degrees "
+                f"{fam.degrees[0]}..{fam.degrees[-1]}"
+            )
+    return _direction(fu, m), _direction(fv, n)
+
+
+def _box(d: Direction) -> tuple[Fraction, Fraction]:
+    lo, hi, *_ = d.ranges[d.names[0]]
+    return Fraction(lo), Fraction(hi)
+
+
+def optimal_parameters(
+    net: NetLike, energy: str, family: Any
+) -> SurfaceParameterOptimum | SurfaceParameterBatch:
+    """The energy-optimal parameters of one net (certified) or of a batch of nets; see the
+    module's doc."""
+    energy = val.choice(energy, "energy", tuple(ENERGIES))
+    fu, fv = _families(family)
+    arr = np.asarray(val.real_array(net, "net"), dtype=float)
+    if arr.ndim == 4:
+        return optimal_parameters_batch(arr, energy, (fu, fv))
+    out: SurfaceParameterOptimum = certified_parameters(net, energy, (fu, fv))
+    return out
+
+
+# ---------------------------------------------------------------------- batches
+@dataclass(frozen=True)
+class SurfaceParameterBatch(Mapping[str, Any]):
+    """The optimal parameters of a batch of nets, by name (``r["lam_u"]``: an array of
+    length k), ``energy`` at them (floats), ``boundary`` per net (the parameters at an end of
+    their range, as the one-net result says it; "" inside), and how many nets the fixed-cost
+    certificate declined (``careful_fallbacks``, solved one by one)."""
+
+    parameters: dict[str, np.ndarray]
+    energy: np.ndarray
+    boundary: np.ndarray
+    careful_fallbacks: int
+
+    def __getitem__(self, key: str) -> Any:
+        if key in self.parameters:
+            return self.parameters[key]
+        if key in ("energy", "boundary", "careful_fallbacks"):
+            return getattr(self, key)
+        raise KeyError(f"{key!r}: the parameters are {', '.join(self.parameters)}")
+
+    def __iter__(self) -> Iterator[str]:
+        return iter((*self.parameters, "energy", "boundary", "careful_fallbacks"))
+
+    def __len__(self) -> int:
+        return len(self.parameters) + 3
+
+
+def _float_grams(d: Direction, k: int) -> dict[int, np.ndarray]:
+    """{s: G} with G = Σ_{a+b=s} G_(a,b) in floats: the order-k Gram matrix at x^s of a
+    direction of one parameter (the constant at its float)."""
+    c = 1.0
+    if d.constant is not None:
+        lo, hi = constant_bounds(d.constant, 64)
+        c = float((lo + hi) / 2)
+    out: dict[int, np.ndarray] = {}
+    for (a, b), mat in d.grams(k).items():
+        s = a[0] + b[0]
+        dense = np.array([[sum(float(v) * c**e for e, v in g.items()) for g in row] for row in mat])
+        out[s] = out.get(s, 0.0) + dense
+    return out
+
+
+def energy_weights(du: Direction, dv: Direction, energy: str) -> dict[tuple[int, int], np.ndarray]:
+    """{(a, b): K} with e_ab = Σ K[ij, kl] P_ij · P_kl: the weight of x^a y^b on the Gram
+    products of a net read row by row, Σ_terms weight · G^(a)_u ⊗ G^(b)_v (floats; computed
+    once per pair of families and degrees)."""
+    return _energy_weights(du.family, du.degree, dv.family, dv.degree, energy)
+
+
+@cache
+def _energy_weights(
+    family_u: Any, m: int, family_v: Any, n: int, energy: str
+) -> dict[tuple[int, int], np.ndarray]:
+    du, dv = _direction(family_u, m), _direction(family_v, n)
+    out: dict[tuple[int, int], np.ndarray] = {}
+    for ku, kv, weight in ENERGIES[energy]:
+        gu, gv = _float_grams(du, ku), _float_grams(dv, kv)
+        for a, mat_u in gu.items():
+            for b, mat_v in gv.items():
+                out[(a, b)] = out.get((a, b), 0.0) + float(weight) * np.kron(mat_u, mat_v)
+    return out
+
+
+def energy_coefficients(nets: np.ndarray, du: Direction, dv: Direction, energy: str) -> Any:
+    """{(a, b): e_ab over the batch}: the energy of every net as Σ e_ab x^a y^b (floats): the
+    nets' Gram products P_ij · P_kl (one batched matrix product) against each weight."""
+    weights = energy_weights(du, dv, energy)
+    count = nets.shape[0]
+    flat = nets.reshape(count, -1, nets.shape[-1])
+    with np.errstate(over="ignore", invalid="ignore"):
+        gram = np.matmul(flat, flat.transpose(0, 2, 1)).reshape(count, -1)
+        keys = sorted(weights)
+        stacked = np.stack([weights[key].ravel() for key in keys], axis=1)
+        values = gram @ stacked
+    return {key: values[:, i] for i, key in enumerate(keys)}
+
+
+def _batch_compiled() -> ModuleType | None:
+    """hazmat.surface_batch_compiled (numba; the switch of hazmat.surface_kernels), or None."""
+    if not ker.USE_COMPILED:
+        return None
+    from .hazmat import surface_batch_compiled
+
+    return surface_batch_compiled
+
+
+def _pair_weights(
+    weights: dict[tuple[int, int], np.ndarray],
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The kernel's form of the weights: pairs i <= j of control points with W[p, 3a + b] the
+    weight of x^a y^b on P_i · P_j (both orders of an off-diagonal pair: twice)."""
+    size = next(iter(weights.values())).shape[0]
+    rows_i, rows_j = np.triu_indices(size)
+    w = np.zeros((rows_i.size, 9))
+    for (a, b), mat in weights.items():
+        w[:, 3 * a + b] = mat[rows_i, rows_j] * np.where(rows_i == rows_j, 1.0, 2.0)
+    keep = w.any(axis=1)
+    return (
+        rows_i[keep].astype(np.int64),
+        rows_j[keep].astype(np.int64),
+        np.ascontiguousarray(w[keep]),
+    )
+
+
+def fixed_cost(
+    nets: np.ndarray, du: Direction, dv: Direction, energy: str
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(x, y, energy, certified) of every net by the fixed-cost certificate (compiled with its
+    coefficients when numba is there, else numpy); certified False where it declines."""
+    count = nets.shape[0]
+    (xlo, xhi), (ylo, yhi) = _box(du), _box(dv)
+    weights = energy_weights(du, dv, energy)
+    box = np.array([float(xlo), float(xhi), float(ylo), float(yhi)])
+    fast = _batch_compiled()
+    if max(max(a, b) for a, b in weights) > 2:  # not affine: the certificate is for degree 2
+        bx, by, bval, ok = np.zeros(count), np.zeros(count), np.zeros(count), np.zeros(count, bool)
+    elif fast is not None:  # the one-parameter surfaces' compiled kernel, on these weights
+        pair_i, pair_j, pair_w = _pair_weights(weights)
+        flat = np.ascontiguousarray(nets.reshape(count, -1), dtype=float)
+        bx, by, bval, _, ok, _valid = fast.optimise(
+            flat, nets.shape[-1], pair_i, pair_j, pair_w, box, CERTIFIED_TOLERANCE, MAX_COORDINATE
+        )
+    else:
+        coeffs = energy_coefficients(nets, du, dv, energy)
+        zero = np.zeros(count)
+        c = [coeffs.get((a, b), zero) for a in range(3) for b in range(3)]
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            bx, by, bval, _, ok = certified_minimum(
+                c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8],
+                box[0], box[1], box[2], box[3], CERTIFIED_TOLERANCE,
+            )  # fmt: skip
+        bx, by, bval = np.array(bx, float), np.array(by, float), np.array(bval, float)
+        ok = np.asarray(ok, bool)
+    return bx, by, bval, ok
+
+
+def optimal_parameters_batch(nets: np.ndarray, energy: str, family: Any) -> SurfaceParameterBatch:
+    """optimal_parameters for (k, m+1, n+1, d) float nets; see the module's doc."""
+    energy = val.choice(energy, "energy", tuple(ENERGIES))
+    fu, fv = _families(family)
+    if nets.ndim != 4 or nets.shape[0] == 0:
+        raise ValueError(f"a batch of nets must have shape (k, m+1, n+1, d), got {nets.shape}")
+    if not np.isfinite(nets).all():
+        raise ValueError("the nets contain NaN or infinity")
+    if np.abs(nets).max() > MAX_COORDINATE:
+        raise ValueError(
+            f"the nets have coordinates above {MAX_COORDINATE:.0e}, where the energy overflows "
+            "a float; scale them down (the optimal parameters do not depend on the scale)"
+        )
+    du, dv = _directions(nets.shape[1:], fu, fv)
+    for d, name in ((du, "u"), (dv, "v")):
+        if len(d.names) != 1:
+            raise ValueError(
+                f"net: a batch of nets is solved vectorised for one parameter in each direction "
+                f"(the fixed-cost certificate is for two variables); direction {name} has "
+                f"{len(d.names)} ({', '.join(d.names)}): call optimal_parameters once per net"
+            )
+    count = nets.shape[0]
+    bx, by, bval, ok = fixed_cost(nets, du, dv, energy)
+    declined = np.flatnonzero(~ok)
+    boundary = np.empty(count, dtype=object)
+    boundary[:] = ""
+    for i in declined:
+        one = certified_parameters(nets[i], energy, (fu, fv))
+        got = [float(np.ravel(v)[0]) for v in one.parameters.values()]
+        bx[i], by[i], bval[i] = got[0], got[1], float(one.energy)
+        boundary[i] = one.boundary
+    values = {f"{du.names[0]}_u": bx, f"{dv.names[0]}_v": by}
+    return SurfaceParameterBatch(values, bval, boundary, int(declined.size))

@@ -24,8 +24,10 @@ With numba both run in the one-parameter surfaces' compiled kernel
 batched matrix product, then hazmat.surface_certify.certified_minimum on arrays;
 LAMBDA_BEZIER_NO_NUMBA=1 selects it, and the tests run both). The certificate (local
 strong convexity and a global clearing of the rest of the box) puts the minimiser within
-1e-12 of the answer, for the float coefficients. The nets it declines (minima on an edge or a
-corner, or near one, or a family not affine in its parameter) take the one-net certified path
+1e-12 of the answer, for the float coefficients; where it declines, its fixed-cost edge
+certificate (surface_certify.edge_minimum) certifies most minima on an edge or at a corner
+(``boundary`` then names the ends, as for one net). The nets both decline (minima near an
+edge or corner, or a family not affine in its parameter) take the one-net certified path
 above and are counted in ``careful_fallbacks``. A family with several parameters in a
 direction is refused for batches, saying why: the fixed-cost certificate is for two variables.
 """
@@ -44,8 +46,9 @@ import numpy as np
 from . import _validate as val
 from .hazmat import surface_kernels as ker
 from .hazmat.constants import constant_bounds
-from .hazmat.surface_certify import certified_minimum
-from .param_surface_energy import Direction, SurfaceParameterOptimum, _direction
+from .hazmat.surface_certify import certified_minimum, edge_minimum
+from .hazmat.surface_weights import plain_weights
+from .param_surface_energy import Direction, SurfaceParameterOptimum, _direction, named_point
 from .param_surface_energy import optimal_parameters as certified_parameters
 from .surface_energies import ENERGIES
 from .surfaces import NetLike
@@ -74,6 +77,12 @@ def _directions(shape: tuple[int, ...], fu: Any, fv: Any) -> tuple[Direction, Di
                 f"{fam.degrees[0]}..{fam.degrees[-1]}"
             )
     return _direction(fu, m), _direction(fv, n)
+
+
+def _at_end(x: float, d: Direction) -> float | Fraction:
+    """x, or the exact end of d's range it is the float of (named_point names ends by them)."""
+    lo, hi = _box(d)
+    return lo if x == float(lo) else hi if x == float(hi) else x
 
 
 def _box(d: Direction) -> tuple[Fraction, Fraction]:
@@ -201,9 +210,10 @@ def _pair_weights(
 
 def fixed_cost(
     nets: np.ndarray, du: Direction, dv: Direction, energy: str
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """(x, y, energy, certified) of every net by the fixed-cost certificate (compiled with its
-    coefficients when numba is there, else numpy); certified False where it declines."""
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(x, y, energy, certified, on_edge) of every net by the fixed-cost certificate and, where
+    that declines, its edge_minimum (compiled with the coefficients when numba is there, else
+    numpy); certified False where both decline, on_edge True where the edge one certified."""
     count = nets.shape[0]
     (xlo, xhi), (ylo, yhi) = _box(du), _box(dv)
     weights = energy_weights(du, dv, energy)
@@ -211,12 +221,18 @@ def fixed_cost(
     fast = _batch_compiled()
     if max(max(a, b) for a, b in weights) > 2:  # not affine: the certificate is for degree 2
         bx, by, bval, ok = np.zeros(count), np.zeros(count), np.zeros(count), np.zeros(count, bool)
-    elif fast is not None:  # the one-parameter surfaces' compiled kernel, on these weights
-        pair_i, pair_j, pair_w = _pair_weights(weights)
+        return bx, by, bval, ok, np.zeros(count, bool)
+    if fast is not None:  # the one-parameter surfaces' compiled kernel, on these weights
         flat = np.ascontiguousarray(nets.reshape(count, -1), dtype=float)
-        bx, by, bval, _, ok, _valid = fast.optimise(
-            flat, nets.shape[-1], pair_i, pair_j, pair_w, box, CERTIFIED_TOLERANCE, MAX_COORDINATE
+        bx, by, bval, _, status, _valid = fast.optimise(
+            flat,
+            nets.shape[-1],
+            plain_weights(*_pair_weights(weights)),
+            box,
+            CERTIFIED_TOLERANCE,
+            MAX_COORDINATE,
         )
+        return bx, by, bval, status > 0.5, status > 1.5
     else:
         coeffs = energy_coefficients(nets, du, dv, energy)
         zero = np.zeros(count)
@@ -226,9 +242,20 @@ def fixed_cost(
                 c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8],
                 box[0], box[1], box[2], box[3], CERTIFIED_TOLERANCE,
             )  # fmt: skip
-        bx, by, bval = np.array(bx, float), np.array(by, float), np.array(bval, float)
-        ok = np.asarray(ok, bool)
-    return bx, by, bval, ok
+            bx, by, bval = np.array(bx, float), np.array(by, float), np.array(bval, float)
+            ok = np.asarray(ok, bool)
+            on_edge = np.zeros(count, bool)
+            undecided = np.flatnonzero(~ok)
+            if undecided.size:  # the declined nets' edge and corner minima, as compiled
+                d = [v[undecided] for v in c]
+                ex, ey, eval_, _, eok = edge_minimum(
+                    d[0], d[1], d[2], d[3], d[4], d[5], d[6], d[7], d[8],
+                    box[0], box[1], box[2], box[3], CERTIFIED_TOLERANCE,
+                )  # fmt: skip
+                done = undecided[eok]
+                bx[done], by[done], bval[done] = ex[eok], ey[eok], eval_[eok]
+                ok[done] = on_edge[done] = True
+    return bx, by, bval, ok, on_edge
 
 
 def optimal_parameters_batch(nets: np.ndarray, energy: str, family: Any) -> SurfaceParameterBatch:
@@ -253,10 +280,13 @@ def optimal_parameters_batch(nets: np.ndarray, energy: str, family: Any) -> Surf
                 f"{len(d.names)} ({', '.join(d.names)}): call optimal_parameters once per net"
             )
     count = nets.shape[0]
-    bx, by, bval, ok = fixed_cost(nets, du, dv, energy)
+    bx, by, bval, ok, on_edge = fixed_cost(nets, du, dv, energy)
     declined = np.flatnonzero(~ok)
     boundary = np.empty(count, dtype=object)
     boundary[:] = ""
+    for i in np.flatnonzero(on_edge):  # certified on an edge or at a corner: name the ends
+        point = (_at_end(float(bx[i]), du), _at_end(float(by[i]), dv))
+        boundary[i] = named_point(du, dv, point, exact=False)[1]
     for i in declined:
         one = certified_parameters(nets[i], energy, (fu, fv))
         got = [float(np.ravel(v)[0]) for v in one.parameters.values()]

@@ -122,13 +122,6 @@ def batch_weights(
             powers = tuple(int(t) for t in np.flatnonzero(w))
             if powers:
                 entries.append((powers, i, j, w))
-    # pairs with the same powers side by side: most blocks then update only their own powers
-    entries.sort(key=lambda e: (-len(e[0]), e[0], e[1], e[2]))
-    block_start, block_powers = [0], []
-    for start in range(0, len(entries), BLOCK):
-        union = sorted({t for e in entries[start : start + BLOCK] for t in e[0]})
-        block_powers.extend(union)
-        block_start.append(len(block_powers))
     mix: list[tuple[int, int, Fraction]] = []
     for p, row in pu:  # Z = M_u P first (rows), then Z M_vᵀ (columns)
         for k in range(m1):
@@ -140,6 +133,32 @@ def batch_weights(
             if k != p and row[k]:
                 mix += [((i * n1 + p) * dim + c, (i * n1 + k) * dim + c, row[k])
                         for i in range(m1) for c in range(dim)]  # fmt: skip
+    return _blocked(entries, mix)
+
+
+def plain_weights(pair_i: np.ndarray, pair_j: np.ndarray, weights: np.ndarray) -> BatchWeights:
+    """BatchWeights of Gram products in the net's own basis (no change of basis): pairs
+    (pair_i[p], pair_j[p]) with weights[p, 3a + b] the weight of λ_u^a λ_v^b, for energies
+    whose λ-part has no sparse basis here (param_surface_optimum's atom families)."""
+    entries = [
+        (tuple(int(t) for t in np.flatnonzero(w)), int(i), int(j), np.asarray(w, dtype=float))
+        for i, j, w in zip(pair_i, pair_j, weights, strict=True)
+    ]
+    return _blocked([e for e in entries if e[0]], [])
+
+
+def _blocked(
+    entries: list[tuple[tuple[int, ...], int, int, np.ndarray]],
+    mix: list[tuple[int, int, Fraction]],
+) -> BatchWeights:
+    """The kernel's layout of (powers, i, j, weights) pairs and a change of basis `mix`."""
+    # pairs with the same powers side by side: most blocks then update only their own powers
+    entries = sorted(entries, key=lambda e: (-len(e[0]), e[0], e[1], e[2]))
+    block_start, block_powers = [0], []
+    for start in range(0, len(entries), BLOCK):
+        union = sorted({t for e in entries[start : start + BLOCK] for t in e[0]})
+        block_powers.extend(union)
+        block_start.append(len(block_powers))
     ints: Any = np.int64
     return BatchWeights(
         np.array([e[1] for e in entries], dtype=ints),

@@ -153,6 +153,34 @@ def test_batch_engines_agree(monkeypatch):
     assert po._batch_compiled() is None
     assert compiled[3].sum() > 100  # most nets certified
     assert np.array_equal(compiled[3], plain[3])
+    assert np.array_equal(compiled[4], plain[4])  # the same nets certified on an edge
     ok = plain[3]
     for a, b in zip(compiled[:3], plain[:3], strict=True):
         assert np.allclose(a[ok], b[ok], rtol=1e-12, atol=1e-12)
+
+
+def test_edge_certified_nets_name_their_ends_and_meet_the_one_net_bound():
+    """Nets the interior certificate declines and the edge certificate takes (status 2 of the
+    kernel): the point is the one-net certified path's (which stops within its tolerance of the
+    edge, so its own note is empty), the energy lies between that path's proven lower bound and
+    its energy, and the boundary note names the end the point is on."""
+    from lambda_bezier.param_surface_energy import _direction
+
+    nets = np.random.default_rng(1).normal(size=(300, 4, 4, 3))
+    d = _direction(AT, 3)
+    *_, on_edge = po.fixed_cost(nets, d, d, "thin_plate")
+    assert on_edge.sum() >= 5
+    got = lb.optimal_parameters(nets, "thin_plate", family=AT)
+    for i in np.flatnonzero(on_edge)[:5]:
+        one = lb.optimal_parameters(nets[i], "thin_plate", family=AT)
+        assert abs(got["lam_u"][i] - float(one["lam_u"])) <= 1e-9
+        assert abs(got["lam_v"][i] - float(one["lam_v"])) <= 1e-9
+        lower, best = float(one.lower_bound), float(one.energy)
+        slack = 1e-12 * abs(best) + 1e-13
+        assert lower - slack <= got.energy[i] <= best + slack
+        ends = [
+            f"lam_{s} = {int(v)} ({'upper' if v > 0 else 'lower'} end)"
+            for s, v in (("u", got["lam_u"][i]), ("v", got["lam_v"][i]))
+            if abs(v) == 1.0
+        ]
+        assert ends and got.boundary[i] == "; ".join(ends)

@@ -62,6 +62,7 @@ from __future__ import annotations
 __all__ = [
     "arclength",
     "atom_bounds",
+    "atom_intersect",
     "atom_pieces",
     "atom_pieces_compiled",
     "atoms",

@@ -12,10 +12,16 @@ The accuracy promises are those of the polynomial and rational curves, reached d
   sign leaves at most one candidate in it, found by bisection to the last bit of t. So no
   extreme is missed however narrow (a spike between the points of any fixed grid is found),
   up to the enclosures' rounding allowance (a few ulps of the curve's size);
-- `intersect`: the curve is approximated piece by piece by polynomial Bézier curves
-  (Chebyshev interpolation of degree `DEGREE`, pieces halved until the approximation is
-  within 1e-13 of the curve's size at a check grid), those are intersected exactly by the
-  polynomial code, and every candidate is polished by Newton's method on the exact curves.
+- `intersect` and `self_intersections` of a curve without a rational form, in 2D and 3D:
+  certified, by the branch and bound of hazmat.atom_intersect (every crossing found, proven
+  single by Krawczyk's test or reported once per unresolved cluster as a tangency). Curves
+  that share a stretch (the search gives up) and curves with a rational form: the curve is
+  approximated piece by piece by polynomial Bézier curves (Chebyshev interpolation of degree
+  `DEGREE`, pieces halved until the approximation is within 1e-13 of the curve's size at a
+  check grid), those are intersected by the polynomial code, and every candidate is
+  polished by Newton's method on the exact curves;
+- export (`certified_pieces`): pieces within a chosen tolerance, the bound certified by
+  hazmat.atom_deviation.
 """
 
 from __future__ import annotations

@@ -364,10 +364,8 @@ def _krawczyk(p: Part, q: Part, pr: Pairs) -> tuple[np.ndarray, np.ndarray, Boun
         k_hi.append(hi_i)
     box = [(xs0, xs1), (xt0, xt1)]
     inside = ok.copy()
-    empty = ok.copy()
     for i in range(2):
         inside &= (k_lo[i] > box[i][0]) & (k_hi[i] < box[i][1])
-        empty &= (k_lo[i] > box[i][1]) | (k_hi[i] < box[i][0])
     empty_any = np.zeros(m, dtype=bool)
     for i in range(2):
         empty_any |= ok & ((k_lo[i] > box[i][1]) | (k_hi[i] < box[i][0]))
@@ -564,8 +562,16 @@ def _settle(p: Part, q: Part, found: list[Found], stuck: Pairs) -> list[Found]:
     size = max(p.size, q.size)
     ws, wt = p.hi - p.lo, q.hi - q.lo
     out = list(found)
+    proven = [(f.s, f.t) for f in found]
     if stuck.size:
         for members in _clusters(stuck):
+            # a cluster next to a proven root is that root's neighbourhood, where the
+            # curves are within the enclosures' width of each other: not another root
+            reach_s, reach_t = 8 * TINY * ws, 8 * TINY * wt
+            s_lo, s_hi = stuck.s0[members].min() - reach_s, stuck.s1[members].max() + reach_s
+            t_lo, t_hi = stuck.t0[members].min() - reach_t, stuck.t1[members].max() + reach_t
+            if any(s_lo <= x <= s_hi and t_lo <= y <= t_hi for x, y in proven):
+                continue
             sm = 0.5 * (stuck.s0[members] + stuck.s1[members])
             tm = 0.5 * (stuck.t0[members] + stuck.t1[members])
             res = np.linalg.norm(p.values(0, sm) - q.values(0, tm), axis=0)

@@ -40,7 +40,7 @@ POINTS = (
 
 # ------------------------------------------------------------------------------ references
 def mp_line_roots(curve, a, b, count: int = 3000) -> list[mp.mpf]:
-    """Every s where the curve crosses the line through a and b: the sign changes of the
+    """Every s where the curve crosses the segment from a to b: the sign changes of the
     cross product (C(s) − a) × (b − a) on a dense grid, each refined by mpmath's bracketing
     root finder."""
     lo, hi = curve.domain
@@ -60,7 +60,13 @@ def mp_line_roots(curve, a, b, count: int = 3000) -> list[mp.mpf]:
     out = []
     for i in np.nonzero(np.sign(side[:-1]) * np.sign(side[1:]) < 0)[0]:
         x0, x1 = mp.mpf(float(ts[i])), mp.mpf(float(ts[i + 1])) if i + 1 < count else top
-        out.append(mp.findroot(g, (x0, x1), "illinois"))
+        root = mp.findroot(g, (x0, x1), "illinois")
+        c = mp_curve(curve, root)
+        along = ((c[0] - a[0]) * (b[0] - a[0]) + (c[1] - a[1]) * (b[1] - a[1])) / (
+            (b[0] - a[0]) ** 2 + (b[1] - a[1]) ** 2
+        )
+        if 0 <= along <= 1:  # on the segment, not only on its line
+            out.append(root)
     return out
 
 

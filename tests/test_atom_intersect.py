@@ -123,6 +123,17 @@ def test_line_crossings_match_mpmath(at_family, pts, lam, y0, y1, angle):
     line = lb.BezierCurve([a, b])
     got = curve.intersect(line)
     want = mp_line_roots(curve, a, b)
+    # as for polynomial curves, an end of the curve within 1e-10 of the size of the other
+    # curve meets it (a root of F just past the domain): the reference has no sign change
+    if len(got) == len(want) + 1:
+        lo, hi = curve.domain
+        end = [x for x in got if x.s in (lo, hi)]
+        assert (
+            end
+            and min(float(np.abs(line.evaluate(x.t) - curve.evaluate(x.s)).max()) for x in end)
+            <= 1e-10 * 4
+        )
+        got = [x for x in got if x not in end[:1]]
     assert len(got) == len(want), (got, want)
     for x, s in zip(got, want, strict=True):
         assert abs(x.s - float(s)) <= ROOT

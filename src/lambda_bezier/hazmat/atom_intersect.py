@@ -567,7 +567,7 @@ def _settle(p: Part, q: Part, found: list[Found], stuck: Pairs) -> list[Found]:
         for members in _clusters(stuck):
             # a cluster next to a proven root is that root's neighbourhood, where the
             # curves are within the enclosures' width of each other: not another root
-            reach_s, reach_t = 8 * TINY * ws, 8 * TINY * wt
+            reach_s, reach_t = 64 * TINY * ws, 64 * TINY * wt
             s_lo, s_hi = stuck.s0[members].min() - reach_s, stuck.s1[members].max() + reach_s
             t_lo, t_hi = stuck.t0[members].min() - reach_t, stuck.t1[members].max() + reach_t
             if any(s_lo <= x <= s_hi and t_lo <= y <= t_hi for x, y in proven):

@@ -12,10 +12,16 @@ The accuracy promises are those of the polynomial and rational curves, reached d
   sign leaves at most one candidate in it, found by bisection to the last bit of t. So no
   extreme is missed however narrow (a spike between the points of any fixed grid is found),
   up to the enclosures' rounding allowance (a few ulps of the curve's size);
-- `intersect`: the curve is approximated piece by piece by polynomial Bézier curves
-  (Chebyshev interpolation of degree `DEGREE`, pieces halved until the approximation is
-  within 1e-13 of the curve's size at a check grid), those are intersected exactly by the
-  polynomial code, and every candidate is polished by Newton's method on the exact curves.
+- `intersect` and `self_intersections` of a curve without a rational form, in 2D and 3D:
+  certified, by the branch and bound of hazmat.atom_intersect (every crossing found, proven
+  single by Krawczyk's test or reported once per unresolved cluster as a tangency). Curves
+  that share a stretch (the search gives up) and curves with a rational form: the curve is
+  approximated piece by piece by polynomial Bézier curves (Chebyshev interpolation of degree
+  `DEGREE`, pieces halved until the approximation is within 1e-13 of the curve's size at a
+  check grid), those are intersected by the polynomial code, and every candidate is
+  polished by Newton's method on the exact curves;
+- export (`certified_pieces`): pieces within a chosen tolerance, the bound certified by
+  hazmat.atom_deviation.
 """
 
 from __future__ import annotations
@@ -29,6 +35,7 @@ from . import _validate as val
 from .curves import BezierCurve, Curve
 from .geometry import ClosestPoint
 from .hazmat import atom_bounds as ab
+from .hazmat import atom_intersect as ai
 from .hazmat.intersect import Intersection
 from .rational import RationalBezierCurve
 
@@ -265,11 +272,42 @@ def _dom(c: Any) -> tuple[float, float]:
     return c.domain if _is_atom(c) else (0.0, 1.0)
 
 
+def _numeric(c: Any) -> bool:
+    return _is_atom(c) and not c.has_rational_form
+
+
+def _part(c: Any) -> tuple[Any, float]:
+    """(hazmat.atom_intersect part, the offset from its parameter to the curve's t)."""
+    if _is_atom(c):
+        lo, hi = c.domain
+        return ai.AtomPart(_bounds_data(c), lo - c._mid, hi - c._mid, c._scale), c._mid
+    if isinstance(c, RationalBezierCurve):
+        rows = np.asarray(c.to_homogeneous().points, dtype=float)
+    else:
+        pts = np.asarray(c.to_bezier().points, dtype=float)
+        rows = np.hstack([pts, np.ones((pts.shape[0], 1))])
+    return ai.BernsteinPart(rows), 0.0
+
+
 def intersect(p: AtomCurve, q: Any) -> list[Intersection]:
     if getattr(q, "dimension", None) != p.dimension:
         if not isinstance(q, Curve | RationalBezierCurve) and not _is_atom(q):
             raise TypeError(f"other must be a curve, got {type(q).__name__}")
         raise ValueError(f"the curves have different dimensions ({p.dimension} and {q.dimension})")
+    for name, c in (("the first", p), ("the second", q)):
+        pts = np.asarray(c.points if hasattr(c, "points") else c.to_bezier().points, float)
+        if not np.ptp(pts, axis=0).any():
+            raise ValueError(f"{name} curve is a single point: use locate() on the other")
+    if (_numeric(p) or _numeric(q)) and p.dimension in (2, 3):
+        (pp, ps), (qq, qs) = _part(p), _part(q)
+        certified = ai.pairs(pp, qq)
+        if certified is not None:
+            return [Intersection(f.s + ps, f.t + qs, f.kind) for f in certified]
+    return _pieces_intersect(p, q)
+
+
+def _pieces_intersect(p: AtomCurve, q: Any) -> list[Intersection]:
+    """Through polynomial pieces (curves that share a stretch, or with a rational form)."""
     found: list[tuple[float, float, str]] = []
     for pc, pmap in _as_parts(p):
         for qc, qmap in _as_parts(q):
@@ -296,6 +334,17 @@ def _boxes_meet(p: BezierCurve, q: BezierCurve) -> bool:
 
 
 def self_intersections(curve: AtomCurve) -> list[Intersection]:
+    """Pairs s < t with C(s) = C(t): certified (hazmat.atom_intersect.self_pairs) in 2D and
+    3D, else (a curve running over itself) from the polynomial pieces."""
+    if curve.dimension in (2, 3):
+        part, shift = _part(curve)
+        certified = ai.self_pairs(part)
+        if certified is not None:
+            return [Intersection(f.s + shift, f.t + shift, f.kind) for f in certified]
+    return _pieces_self_intersections(curve)
+
+
+def _pieces_self_intersections(curve: AtomCurve) -> list[Intersection]:
     """Pairs s < t with C(s) = C(t), from the polynomial pieces (every pair of pieces, and
     each piece with itself), polished by Newton's method on the exact curve."""
     parts = pieces(curve)
@@ -323,3 +372,55 @@ def self_intersections(curve: AtomCurve) -> list[Intersection]:
             continue
         out.append(Intersection(s, t, kind))
     return out
+
+
+# ---------------------------------------------------------------------- export
+def certified_pieces(
+    curve: AtomCurve, tolerance: float, degree: int = EXPORT_DEGREE
+) -> tuple[list[tuple[float, float, BezierCurve]], float]:
+    """(pieces, bound): polynomial Bézier pieces (a, b, B) of `degree` (B(u), u ∈ [0, 1] ↔
+    t = a + u (b − a)) whose distance from the curve is at most `bound` <= `tolerance` at
+    every t, certified (hazmat.atom_deviation): interpolation at Chebyshev points on four
+    pieces, each halved until its certified bound is within the tolerance. ValueError when
+    a tolerance below what rounding allows (about 1e-13 of the size) is asked for."""
+    from fractions import Fraction
+
+    from .hazmat import atom_deviation as adv
+
+    tol = float(tolerance)
+    if not np.isfinite(tol) or tol <= 0:
+        raise ValueError(f"tolerance must be a positive distance, got {tolerance}")
+    data = _bounds_data(curve)
+    mid = Fraction(curve._mid)
+    scale = float(curve._scale)
+    u_nodes = _nodes(0.0, 1.0, degree + 1)
+    colloc = np.linalg.inv(_bernstein_collocation(u_nodes, degree))
+    lo, hi = curve.domain
+    edges = np.linspace(lo, hi, 5)
+    edges[0], edges[-1] = lo, hi
+    todo = []
+    for x, y in zip(edges[:-1], edges[1:], strict=True):
+        ctrl = colloc @ curve.evaluate(x + (y - x) * u_nodes, extrapolate=True)
+        todo.append((float(x), float(y), BezierCurve(ctrl)))
+    out: list[tuple[float, float, BezierCurve]] = []
+    worst = 0.0
+    while todo:
+        a, b, piece = todo.pop()
+        rows = np.asarray(piece.points, dtype=float) / scale
+        tau_a, tau_b = Fraction(a) - mid, Fraction(b) - mid
+        bound = adv.deviation(data, rows, tau_a, tau_b, tol / scale) * scale
+        if bound <= tol:
+            out.append((a, b, piece))
+            worst = max(worst, bound)
+            continue
+        if b - a <= 1e-6 * (curve.domain[1] - curve.domain[0]):
+            raise ValueError(
+                f"tolerance={tol} is below what the pieces reach here (certified {bound:.3g} "
+                f"on a piece of width {b - a:.3g}): ask for at least about 1e-12 of the size"
+            )
+        m = 0.5 * (a + b)
+        for x, y in ((m, b), (a, m)):
+            ctrl = colloc @ curve.evaluate(x + (y - x) * u_nodes, extrapolate=True)
+            todo.append((x, y, BezierCurve(ctrl)))
+    out.sort(key=lambda p: p[0])
+    return out, worst

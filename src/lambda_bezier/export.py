@@ -308,7 +308,7 @@ def _assemble(
     return spline
 
 
-def _exportable(obj: Any) -> Any:
+def _exportable(obj: Any, tolerance: float | None = None) -> Any:
     """A curve of a trigonometric, hyperbolic or mixed family (atom_family) as what the
     writers take: its exact rational form where it has one (tan(t/2): a NURBS equal to the
     curve), a hyperbolic curve's rational form in floats (tanh(t/2), within about 1e-15 of
@@ -317,7 +317,11 @@ def _exportable(obj: Any) -> Any:
     (_atom_geometry.pieces, checked on a grid of 37 points per piece). A composite with such
     segments: each of them by its polynomial pieces, in one polynomial CompositeCurve (so the
     B-spline's parameter runs over the pieces, one unit each, not over the composite's u).
-    Anything else unchanged."""
+    Anything else unchanged.
+
+    The pieces of a curve without a rational form are within `tolerance` (a distance in the
+    curve's units; default DEFAULT_DEVIATION times its size) of it at every t, certified
+    (_atom_geometry.certified_pieces)."""
     from .atom_family import AtomCurve
     from .composite import CompositeCurve
 
@@ -329,32 +333,54 @@ def _exportable(obj: Any) -> Any:
             [
                 p
                 for seg in obj.segments
-                for p in (_pieces_of(seg) if isinstance(seg, AtomCurve) else [seg])
+                for p in (_pieces_of(seg, tolerance) if isinstance(seg, AtomCurve) else [seg])
             ]
         )
     if not isinstance(obj, AtomCurve):
         return obj
     if obj.has_rational_form or obj.data.SPACE == "hyperbolic":  # hyperbolic: in floats
         return obj.to_rational_bezier()
-    return CompositeCurve(_pieces_of(obj))
+    return CompositeCurve(_pieces_of(obj, tolerance))
 
 
-def _pieces_of(curve: Any) -> list[Any]:
-    """An AtomCurve's polynomial Bézier pieces of degree EXPORT_DEGREE (_atom_geometry.pieces)."""
-    from . import _atom_geometry
+def _has_mixed(obj: Any) -> bool:
+    """Whether obj is, or has a segment that is, a curve without a rational form."""
+    from .atom_family import AtomCurve
 
-    return [piece for _, _, piece in _atom_geometry.pieces(curve, _atom_geometry.EXPORT_DEGREE)]
+    segs = getattr(obj, "segments", [obj])
+    return any(
+        isinstance(c, AtomCurve) and not c.has_rational_form and c.data.SPACE != "hyperbolic"
+        for c in segs
+    )
 
 
-def to_bspline(obj: Shape, *, tol: float = 1e-9) -> BSpline:
+DEFAULT_DEVIATION = 1e-10  # relative to the curve's size: the export's default tolerance
+
+
+def _pieces_of(curve: Any, tolerance: float | None = None) -> list[Any]:
+    """An AtomCurve's polynomial Bézier pieces of degree EXPORT_DEGREE: those of
+    _atom_geometry.pieces when it has a rational form (a composite's segment), else within
+    `tolerance` of it, certified (_atom_geometry.certified_pieces)."""
+    from . import _atom_geometry as ag
+
+    if curve.has_rational_form or curve.data.SPACE == "hyperbolic":
+        return [piece for _, _, piece in ag.pieces(curve, ag.EXPORT_DEGREE)]
+    if tolerance is None:
+        tolerance = DEFAULT_DEVIATION * max(float(np.abs(curve.points).max()), 1e-300)
+    found, _ = ag.certified_pieces(curve, tolerance, ag.EXPORT_DEGREE)
+    return [piece for _, _, piece in found]
+
+
+def to_bspline(obj: Shape, *, tol: float = 1e-9, tolerance: float | None = None) -> BSpline:
     """One clamped B-spline equal to the curve or composite (on t ∈ [0, 1] or u ∈ [0, N]):
     the Bernstein pieces at a common degree p, the knot at each joint repeated p − k times
     where the joint is C^k in u (exactly, for exact input; within the relative tolerance
     `tol` otherwise). Exact (Fractions) when every segment is exact. A composite with a
     gap at a joint raises ValueError. A RationalBezierCurve is one rational span with its
     weights; a curve of a trigonometric family is its exact rational form, of a family
-    without one its approximation by polynomial pieces (`_exportable`)."""
-    obj = _exportable(obj)
+    without one its approximation by polynomial pieces within `tolerance` (a distance;
+    default 1e-10 of its size), certified (`_exportable`)."""
+    obj = _exportable(obj, tolerance)
     rational = _rational(obj)
     if rational is not None:
         n = rational.degree
@@ -415,11 +441,13 @@ def _write_step(writer: Any, target: Path) -> Path:
     return target
 
 
-def to_step(obj: Shape, path: str | Path) -> Path:
+def to_step(obj: Shape, path: str | Path, *, tolerance: float | None = None) -> Path:
     """Write the curve or composite as one B-spline edge (B_SPLINE_CURVE_WITH_KNOTS) to a
     STEP file through OCCT (OCP); 2D curves lie in the plane z = 0. Every number is written
     with 17 significant digits: the file holds the B-spline's floats (`to_bspline`, exact
-    Fractions rounded once) exactly, and OCCT reads back the same doubles."""
+    Fractions rounded once) exactly, and OCCT reads back the same doubles. A curve of a
+    mixed family (no rational form) is written as polynomial pieces within `tolerance` of it
+    (a distance in its units; default 1e-10 of its size), a certified bound."""
     feature = "to_step"
     _optional("OCP", "cadquery-ocp-novtk (OCP)", feature)
     from OCP import Message
@@ -430,7 +458,7 @@ def to_step(obj: Shape, path: str | Path) -> Path:
     from OCP.IFSelect import IFSelect_ReturnStatus
     from OCP.STEPControl import STEPControl_StepModelType, STEPControl_Writer
 
-    spline = to_bspline(obj)
+    spline = to_bspline(obj, tolerance=tolerance)
     _quiet_occt(Message)
     values, mults = spline.breakpoints()
     poles = Array1_gp_Pnt(1, len(spline.control_points))
@@ -458,12 +486,13 @@ def to_step(obj: Shape, path: str | Path) -> Path:
 
 
 # ---------------------------------------------------------------------- DXF (ezdxf)
-def to_dxf(obj: Shape, path: str | Path) -> Path:
+def to_dxf(obj: Shape, path: str | Path, *, tolerance: float | None = None) -> Path:
     """Write the curve or composite as one DXF SPLINE entity (DXF R2010) through ezdxf;
     2D curves lie in the plane z = 0. Degrees up to 10: ezdxf's own construction_tool()
-    evaluates no higher (order 12 and above is refused by its B-spline basis)."""
+    evaluates no higher (order 12 and above is refused by its B-spline basis). `tolerance`:
+    as for to_step."""
     ezdxf = _optional("ezdxf", "ezdxf", "to_dxf")
-    spline = to_bspline(obj)
+    spline = to_bspline(obj, tolerance=tolerance)
     if spline.degree > DXF_MAX_DEGREE:
         raise ValueError(
             f"a DXF SPLINE is written for degrees up to {DXF_MAX_DEGREE} (the highest ezdxf reads "
@@ -530,7 +559,10 @@ def to_svg(obj: Shape, *, tolerance: float | None = None, stroke_width: float | 
     `tolerance`: they become cubics within that distance of the curve at every parameter
     (checked on the Bernstein form of the difference), else ValueError. A rational curve
     whose weights differ always needs `tolerance` (SVG has no rational segments)."""
-    obj = _exportable(obj)
+    if tolerance is not None and _has_mixed(obj):
+        # half the tolerance to the polynomial pieces (certified), half to their cubics
+        tolerance = float(tolerance) / 2
+    obj = _exportable(obj, tolerance)
     rational = _rational(obj)
     if rational is not None:
         if rational.dimension != 2:

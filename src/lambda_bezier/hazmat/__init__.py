@@ -50,6 +50,10 @@ ours (the name follows the `bezier` package's `hazmat`).
   extra; imported on use);
 - `atom_bounds`: certified enclosures of such a curve and its derivatives on t-intervals
   (Taylor forms), and the branch and bound of its bounding box and closest point;
+- `atom_intersect`: certified intersections of such a curve with another, with a polynomial
+  or rational Bézier curve, and with itself (branch and bound on parameter pairs, Krawczyk);
+- `atom_deviation`: a certified bound of the distance between such a curve and a polynomial
+  piece approximating it (export within a chosen tolerance);
 - `surface_certify`: the fixed-cost certificate of the batch optimum of (λ_u, λ_v) (one
   elementwise source: numpy on arrays, or compiled by `surface_batch_compiled`, numba, the
   `fast` extra; imported on use);
@@ -65,6 +69,8 @@ from __future__ import annotations
 __all__ = [
     "arclength",
     "atom_bounds",
+    "atom_deviation",
+    "atom_intersect",
     "atom_pieces",
     "atom_pieces_compiled",
     "atoms",

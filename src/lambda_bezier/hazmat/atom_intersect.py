@@ -1,0 +1,678 @@
+r"""Certified intersections of curves given by enclosures: a curve over centred atoms (mixed
+families, hazmat.atom_bounds) with another such curve, with a polynomial or rational Bézier
+curve, or with itself.
+
+Every curve taking part is a `Part`: its parameter interval, point values and derivatives, and
+*enclosures* of the curve and of its first derivative over many parameter intervals at once
+(rigorous, every rounding included):
+
+- `AtomPart`: the Taylor-form enclosures of hazmat.atom_bounds, in τ = t − mid, coordinates
+  divided by a power-of-two scale (so they are exact);
+- `BernsteinPart`: a polynomial or rational Bézier curve with positive weights, through its
+  homogeneous control rows (w_i P_i, w_i). On [a, b] the rows of the restriction are the
+  blossoms H[a^(n−i) b^i], and the curve there lies in the convex hull of their projections
+  (the weights stay positive); the derivative is (A' w − A w') / w² in interval arithmetic
+  with A', w' from the hodograph's rows, restricted the same way. The blossoms' rounding
+  (n de Casteljau steps, each a few ulps of the rows' size) is added.
+
+**Branch and bound** on pairs of parameter intervals (S, T), all of a round at once:
+
+1. *Exclusion.* With x̃ = (s̃, t̃) the middles, r_s, r_t the half widths, and a direction n,
+   the mean value form n·F(S, T) ⊂ n·F(x̃) ± (|n·P'(S)| r_s + |n·Q'(T)| r_t), F(s, t) =
+   P(s) − Q(t), n·F(x̃) enclosed at the point. The pair is dropped when this excludes 0 for
+   one of the directions: the coordinate axes, and the normals of the two tangents at x̃
+   (in 3D, the common normal P' × Q' and the normals in each tangent's plane). Along the
+   normals the form is of second order in the widths, so at a tangency the surviving pairs
+   stay few per level instead of growing as the band where the curves are within the
+   enclosures' width.
+2. *Uniqueness* (Krawczyk). On X, the pair inflated by 1/8 of its widths on each side (so
+   that a root on the edge of a pair, or at the end of a domain, is inside one X):
+   K = x̃ − Y F(x̃) + (I − Y J(X))(X − x̃), Y ≈ J(x̃)^-1, J(X) = [P'(S) | −Q'(T)] enclosed.
+   K ⊂ interior X proves exactly one root of F in X (and it lies in K); K ∩ X = ∅ proves
+   none. In 3D, F has three rows: Krawczyk runs on the two rows of J(x̃) with the largest
+   determinant, and a unique root of those two is an intersection when the third row's
+   enclosure over K holds 0 and Newton's root has |F| within ON_CURVE of the size (the
+   third row excluding 0 proves it is not).
+3. Every proven root is polished by Newton's method (it stays in K) and kept when it lies
+   in the domains; roots closer than SAME (relative) are one.
+4. Pairs that neither test settles are halved in s and t. Below TINY (relative to each
+   domain) they are *unresolved*: the curves are within the enclosures' width there but
+   no single root is proven, i.e. a tangency or crossings closer than TINY. Each cluster of
+   touching unresolved pairs gives one intersection (the pair with the least |F| at its
+   middle, polished by Gauss-Newton), kind "tangent" when the tangents there are parallel
+   within TANGENT_SINE, else "transversal"; a cluster whose least |F| is above ON_CURVE of
+   the size gives none.
+
+So every crossing of the curves is found: each lies in a pair that is never excluded, and
+ends either in a proven box (one root, reported once) or in an unresolved cluster (reported
+once). Shared stretches (the curves coincide along an arc) make the pairs multiply without
+end: past MAX_PAIRS open pairs the search returns None and the caller takes another route.
+
+**Self-intersections** (`self_pairs`): pairs S ≤ T of one curve. A pair whose intervals
+touch or overlap (the diagonal s = t is always a root there) is dropped when the curve is
+injective on the hull of the two intervals, proven by a direction v with v·C'(I) > 0
+(v = C' at the middle); diagonal pairs (S = T) are split into three (the halves with
+themselves and with each other).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+
+from . import atom_bounds as ab
+
+_U = 2.0**-53
+TINY = 2.0**-30  # pairs narrower than this (relative to each domain) are unresolved
+INFLATE = 0.125  # Krawczyk's box: the pair widened by this fraction of its width each side
+MAX_PAIRS = 1 << 13  # open pairs beyond this: a shared stretch, the search gives up (None)
+MAX_ROUNDS = 200
+SAME = 1e-9  # relative to the domain: roots this close are one
+ON_CURVE = 1e-10  # relative to the size: |P(s) − Q(t)| below this is a meeting point
+TANGENT_SINE = 1e-6  # below this sine of the angle between the tangents: "tangent"
+START = 8  # intervals per domain at the first level
+
+Bounds = tuple[np.ndarray, np.ndarray]
+
+
+class Part(Protocol):
+    """A curve as the branch and bound sees it: parameter interval [lo, hi], and for arrays
+    of parameters (intervals [a, b]) values (d, m) and enclosures (lower, upper), each (d, m),
+    of the curve (k = 0) and its derivative (k = 1)."""
+
+    lo: float
+    hi: float
+    size: float
+
+    def values(self, k: int, x: np.ndarray) -> np.ndarray: ...
+
+    def enclose(self, k: int, a: np.ndarray, b: np.ndarray) -> Bounds: ...
+
+
+@dataclass
+class AtomPart:
+    """A curve over centred atoms: parameter τ ∈ [lo, hi], coordinates `data` × `scale`
+    (a power of two)."""
+
+    data: ab.AtomCurveData
+    lo: float
+    hi: float
+    scale: float
+
+    @property
+    def size(self) -> float:
+        return float(self.scale * np.abs(self.data.coefficients).sum(axis=0).max()) or 1e-300
+
+    def values(self, k: int, x: np.ndarray) -> np.ndarray:
+        return self.data.values(k, np.asarray(x, dtype=float)) * self.scale
+
+    def enclose(self, k: int, a: np.ndarray, b: np.ndarray) -> Bounds:
+        low, high = self.data.enclose(k, a, b)
+        return low * self.scale, high * self.scale
+
+
+def _blossoms(rows: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """(m, n+1, e): the Bernstein rows of the polynomial with rows (n+1, e) restricted to
+    [a_j, b_j]: row i is the blossom at (a^(n−i), b^i), by de Casteljau steps."""
+    n = rows.shape[0] - 1
+    out = np.empty((a.size, n + 1, rows.shape[1]))
+    for i in range(n + 1):
+        arr = np.broadcast_to(rows, (a.size, *rows.shape))
+        for step in range(n):
+            x = (b if step < i else a)[:, None, None]
+            arr = (1 - x) * arr[:, :-1] + x * arr[:, 1:]
+        out[:, i] = arr[:, 0]
+    return out
+
+
+@dataclass
+class BernsteinPart:
+    """A polynomial or rational Bézier curve on [0, 1] by its homogeneous rows (n+1, d+1),
+    (w_i P_i, w_i) with w_i > 0 (a polynomial curve: w_i = 1)."""
+
+    rows: np.ndarray
+    lo: float = 0.0
+    hi: float = 1.0
+
+    def __post_init__(self) -> None:
+        self.rows = np.asarray(self.rows, dtype=float)
+        n = self.rows.shape[0] - 1
+        self._hodograph = n * np.diff(self.rows, axis=0) if n else np.zeros((1, self.rows.shape[1]))
+        top = float(np.abs(self.rows).max())
+        # the hodograph's own rounding (one difference, one product by n), absolute
+        self._hodo_pad = 4 * _U * max(n, 1) * top
+
+    @property
+    def size(self) -> float:
+        pts = self.rows[:, :-1] / self.rows[:, -1:]
+        return float(np.abs(pts).max()) or 1e-300
+
+    def values(self, k: int, x: np.ndarray) -> np.ndarray:
+        x = np.asarray(x, dtype=float)
+        h = _blossoms(self.rows, x, x)[:, 0]  # (m, e)
+        if k == 0:
+            value: np.ndarray = (h[:, :-1] / h[:, -1:]).T
+            return value
+        dh = _blossoms(self._hodograph, x, x)[:, 0]
+        w = h[:, -1:]
+        out: np.ndarray = ((dh[:, :-1] * w - h[:, :-1] * dh[:, -1:]) / (w * w)).T
+        return out
+
+    @staticmethod
+    def _pad(rows: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """(m,): the blossoms' rounding, absolute: n steps of a few ulps of the rows' size,
+        amplified by (|1 − x| + |x|) per step outside [0, 1]."""
+        n = rows.shape[0] - 1
+        reach = np.maximum(np.abs(a), np.abs(b))
+        grow = (2 * np.maximum(reach, 1.0) - 1) ** n
+        out: np.ndarray = 6 * (n + 1) * _U * float(np.abs(rows).max()) * grow + 1e-300
+        return out
+
+    def _homogeneous(self, a: np.ndarray, b: np.ndarray) -> tuple[Bounds, Bounds, Bounds, Bounds]:
+        """Intervals (lower, upper) of A (d, m), w (1, m), A' and w' on [a, b]."""
+        sub = _blossoms(self.rows, a, b)
+        pad = self._pad(self.rows, a, b)[None, :]
+        dsub = _blossoms(self._hodograph, a, b)
+        dpad = self._pad(self._hodograph, a, b)[None, :] + self._hodo_pad
+        lo, hi = sub.min(axis=1).T - pad, sub.max(axis=1).T + pad
+        dlo, dhi = dsub.min(axis=1).T - dpad, dsub.max(axis=1).T + dpad
+        return (lo[:-1], hi[:-1]), (lo[-1:], hi[-1:]), (dlo[:-1], dhi[:-1]), (dlo[-1:], dhi[-1:])
+
+    def enclose(self, k: int, a: np.ndarray, b: np.ndarray) -> Bounds:
+        sub = _blossoms(self.rows, a, b)  # (m, n+1, e)
+        pad = self._pad(self.rows, a, b)
+        w = sub[:, :, -1]
+        wmin = w.min(axis=1) - pad
+        bad = wmin <= 0  # weights not proven positive: no enclosure
+        d = self.rows.shape[1] - 1
+        if k == 0:
+            # the hull of the projections A_i / w_i, each |A_i| ± pad over w_i ∓ pad
+            num = sub[:, :, :-1]
+            wl, wh = (w - pad[:, None])[:, :, None], (w + pad[:, None])[:, :, None]
+            nl, nh = num - pad[:, None, None], num + pad[:, None, None]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                cand = np.stack([nl / wl, nl / wh, nh / wl, nh / wh])
+            low = cand.min(axis=(0, 2)).T
+            high = cand.max(axis=(0, 2)).T
+            low = low - 4 * _U * np.abs(low)
+            high = high + 4 * _U * np.abs(high)
+        else:
+            (al, ah), (wl_, wh_), (dal, dah), (dwl, dwh) = self._homogeneous(a, b)
+            wl_ = np.maximum(wl_, 0.0)
+            n1 = _mul(dal, dah, wl_, wh_)
+            n2 = _mul(al, ah, dwl, dwh)
+            num_lo, num_hi = _add(n1[0], n1[1], -n2[1], -n2[0])
+            den_lo, den_hi = _mul(wl_, wh_, wl_, wh_)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                low, high = _div_positive(num_lo, num_hi, den_lo, den_hi)
+        low = np.where(bad[None, :], -np.inf, low)
+        high = np.where(bad[None, :], np.inf, high)
+        return low.reshape(d, -1), high.reshape(d, -1)
+
+
+# ---------------------------------------------------------------------- interval arithmetic
+def _widen(low: np.ndarray, high: np.ndarray) -> Bounds:
+    pad = 4 * _U * np.maximum(np.abs(low), np.abs(high)) + 1e-300
+    return low - pad, high + pad
+
+
+def _add(alo: np.ndarray, ahi: np.ndarray, blo: np.ndarray, bhi: np.ndarray) -> Bounds:
+    return _widen(alo + blo, ahi + bhi)
+
+
+def _mul(alo: np.ndarray, ahi: np.ndarray, blo: np.ndarray, bhi: np.ndarray) -> Bounds:
+    with np.errstate(invalid="ignore"):
+        p = np.stack(np.broadcast_arrays(alo * blo, alo * bhi, ahi * blo, ahi * bhi))
+    p = np.where(np.isnan(p), np.inf, p)
+    return _widen(p.min(axis=0), p.max(axis=0))
+
+
+def _div_positive(alo: np.ndarray, ahi: np.ndarray, blo: np.ndarray, bhi: np.ndarray) -> Bounds:
+    """[a] / [b] for b > 0 (b's lower end 0 gives an unbounded quotient)."""
+    p = np.stack(np.broadcast_arrays(alo / blo, alo / bhi, ahi / blo, ahi / bhi))
+    p = np.where(np.isnan(p), np.inf, p)
+    low, high = p.min(axis=0), p.max(axis=0)
+    low = np.where(blo > 0, low, -np.inf)
+    high = np.where(blo > 0, high, np.inf)
+    return _widen(low, high)
+
+
+def _mag(lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    out: np.ndarray = np.maximum(np.abs(lo), np.abs(hi))
+    return out
+
+
+def _dot(n: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> Bounds:
+    """n (d, m) · [lo, hi] (d, m), elementwise per column, as an interval (m,)."""
+    a, b = n * lo, n * hi
+    low, high = np.minimum(a, b).sum(axis=0), np.maximum(a, b).sum(axis=0)
+    pad = 2 * n.shape[0] * _U * (np.abs(a) + np.abs(b)).sum(axis=0) + 1e-300
+    return low - pad, high + pad
+
+
+# ---------------------------------------------------------------------- one round
+@dataclass
+class Pairs:
+    """Open pairs of intervals [s0, s1] × [t0, t1]."""
+
+    s0: np.ndarray
+    s1: np.ndarray
+    t0: np.ndarray
+    t1: np.ndarray
+
+    def take(self, keep: np.ndarray) -> Pairs:
+        return Pairs(self.s0[keep], self.s1[keep], self.t0[keep], self.t1[keep])
+
+    @property
+    def size(self) -> int:
+        return int(self.s0.size)
+
+
+def _directions(dp: np.ndarray, dq: np.ndarray) -> list[np.ndarray]:
+    """Unit directions (d, m) for the exclusion test: the axes, and the tangents' normals."""
+    d, m = dp.shape
+    out = [np.broadcast_to(np.eye(d)[:, [c]], (d, m)) for c in range(d)]
+
+    def unit(v: np.ndarray) -> np.ndarray:
+        norm = np.linalg.norm(v, axis=0)
+        return np.where(norm > 0, v / np.where(norm > 0, norm, 1.0), 0.0)
+
+    if d == 2:
+        out += [unit(np.stack([-dp[1], dp[0]])), unit(np.stack([-dq[1], dq[0]]))]
+    elif d == 3:
+        common = np.cross(dp.T, dq.T).T
+        out += [unit(common), unit(np.cross(dp.T, common.T).T), unit(np.cross(dq.T, common.T).T)]
+    return out
+
+
+def _excluded(p: Part, q: Part, pr: Pairs) -> np.ndarray:
+    """(m,) bool: pairs proven to hold no root of P(s) − Q(t) (mean value forms)."""
+    sm, tm = 0.5 * (pr.s0 + pr.s1), 0.5 * (pr.t0 + pr.t1)
+    rs = np.maximum(pr.s1 - sm, sm - pr.s0) * (1 + 4 * _U)
+    rt = np.maximum(pr.t1 - tm, tm - pr.t0) * (1 + 4 * _U)
+    plo, phi = p.enclose(0, pr.s0, pr.s1)
+    qlo, qhi = q.enclose(0, pr.t0, pr.t1)
+    out: np.ndarray = np.asarray(((plo > qhi) | (qlo > phi)).any(axis=0))
+    pc_lo, pc_hi = p.enclose(0, sm, sm)
+    qc_lo, qc_hi = q.enclose(0, tm, tm)
+    f_lo, f_hi = _add(pc_lo, pc_hi, -qc_hi, -qc_lo)
+    dp_lo, dp_hi = p.enclose(1, pr.s0, pr.s1)
+    dq_lo, dq_hi = q.enclose(1, pr.t0, pr.t1)
+    for n in _directions(p.values(1, sm), q.values(1, tm)):
+        c_lo, c_hi = _dot(n, f_lo, f_hi)
+        a = _mag(*_dot(n, dp_lo, dp_hi)) * rs
+        b = _mag(*_dot(n, dq_lo, dq_hi)) * rt
+        reach = (a + b) * (1 + 8 * _U)
+        out |= (c_lo - reach > 0) | (c_hi + reach < 0)
+    return out
+
+
+def _krawczyk(p: Part, q: Part, pr: Pairs) -> tuple[np.ndarray, np.ndarray, Bounds, Bounds]:
+    """(unique, empty, K_s, K_t) per pair: Krawczyk's test on the pair inflated by INFLATE
+    (on the two rows of J with the largest determinant at the middle, in 3D)."""
+    ws, wt = pr.s1 - pr.s0, pr.t1 - pr.t0
+    xs0, xs1 = pr.s0 - INFLATE * ws, pr.s1 + INFLATE * ws
+    xt0, xt1 = pr.t0 - INFLATE * wt, pr.t1 + INFLATE * wt
+    sm, tm = 0.5 * (xs0 + xs1), 0.5 * (xt0 + xt1)
+    rs = np.maximum(xs1 - sm, sm - xs0) * (1 + 4 * _U)
+    rt = np.maximum(xt1 - tm, tm - xt0) * (1 + 4 * _U)
+    pc_lo, pc_hi = p.enclose(0, sm, sm)
+    qc_lo, qc_hi = q.enclose(0, tm, tm)
+    f_lo, f_hi = _add(pc_lo, pc_hi, -qc_hi, -qc_lo)  # F(x̃), (d, m)
+    dp_lo, dp_hi = p.enclose(1, xs0, xs1)
+    dq_lo, dq_hi = q.enclose(1, xt0, xt1)
+    jp, jq = p.values(1, sm), -q.values(1, tm)  # J(x̃) columns, (d, m)
+    d, m = jp.shape
+    cols = np.arange(m)
+    if d == 2:
+        rows = np.zeros((m, 2), dtype=int)
+        rows[:, 1] = 1
+    else:
+        choices = [(i, j) for i in range(d) for j in range(i + 1, d)]
+        dets = np.stack([np.abs(jp[i] * jq[j] - jp[j] * jq[i]) for i, j in choices])
+        best = np.argmax(dets, axis=0)
+        rows = np.array(choices)[best]
+    r0, r1 = rows[:, 0], rows[:, 1]
+    a, b = jp[r0, cols], jq[r0, cols]
+    c, e = jp[r1, cols], jq[r1, cols]
+    det = a * e - b * c
+    ok = np.isfinite(det) & (np.abs(det) > 0)
+    safe = np.where(ok, det, 1.0)
+    y = np.array([[e, -b], [-c, a]]) / safe  # (2, 2, m)
+    # J(X) rows r0, r1: [P'_r(S), −Q'_r(T)] intervals
+    jl = np.array([[dp_lo[r0, cols], -dq_hi[r0, cols]], [dp_lo[r1, cols], -dq_hi[r1, cols]]])
+    jh = np.array([[dp_hi[r0, cols], -dq_lo[r0, cols]], [dp_hi[r1, cols], -dq_lo[r1, cols]]])
+    fl = np.array([f_lo[r0, cols], f_lo[r1, cols]])
+    fh = np.array([f_hi[r0, cols], f_hi[r1, cols]])
+    radius = np.array([rs, rt])
+    centre = np.array([sm, tm])
+    k_lo, k_hi = [], []
+    for i in range(2):
+        yf_lo, yf_hi = _dot(y[i], fl, fh)  # (Y F(x̃))_i
+        reach = np.zeros(m)
+        for k in range(2):
+            # (I − Y J)_ik = δ_ik − Σ_j Y_ij J_jk, an interval; times [−r_k, r_k]
+            s_lo, s_hi = _dot(y[i], jl[:, k], jh[:, k])
+            e_lo, e_hi = _add(np.full(m, float(i == k)), np.full(m, float(i == k)), -s_hi, -s_lo)
+            reach = reach + _mag(e_lo, e_hi) * radius[k]
+        reach = reach * (1 + 8 * _U)
+        lo_i, hi_i = _add(centre[i] - yf_hi, centre[i] - yf_lo, -reach, reach)
+        k_lo.append(lo_i)
+        k_hi.append(hi_i)
+    box = [(xs0, xs1), (xt0, xt1)]
+    inside = ok.copy()
+    for i in range(2):
+        inside &= (k_lo[i] > box[i][0]) & (k_hi[i] < box[i][1])
+    empty_any = np.zeros(m, dtype=bool)
+    for i in range(2):
+        empty_any |= ok & ((k_lo[i] > box[i][1]) | (k_hi[i] < box[i][0]))
+    inside &= np.isfinite(np.array(k_lo)).all(axis=0) & np.isfinite(np.array(k_hi)).all(axis=0)
+    if d > 2:
+        # a unique root of two rows: an intersection only if the other rows can vanish on K
+        ks = (np.maximum(k_lo[0], xs0), np.minimum(k_hi[0], xs1))
+        kt = (np.maximum(k_lo[1], xt0), np.minimum(k_hi[1], xt1))
+        sel = np.nonzero(inside)[0]
+        if sel.size:
+            plo, phi = p.enclose(0, ks[0][sel], ks[1][sel])
+            qlo, qhi = q.enclose(0, kt[0][sel], kt[1][sel])
+            apart = ((plo > qhi) | (qlo > phi)).any(axis=0)
+            empty_any[sel[apart]] = True
+            inside[sel[apart]] = False
+    return inside, empty_any, (np.array(k_lo[0]), np.array(k_hi[0])), (k_lo[1], k_hi[1])
+
+
+# ---------------------------------------------------------------------- Newton
+def _newton(
+    p: Part, q: Part, s: float, t: float, box: tuple[float, float, float, float]
+) -> tuple[float, float]:
+    """Gauss-Newton on P(s) − Q(t) = 0 from (s, t), kept in box (s0, s1, t0, t1)."""
+    for _ in range(40):
+        sx, tx = np.array([s]), np.array([t])
+        f = p.values(0, sx)[:, 0] - q.values(0, tx)[:, 0]
+        jac = np.stack([p.values(1, sx)[:, 0], -q.values(1, tx)[:, 0]], axis=1)
+        step, *_ = np.linalg.lstsq(jac, -f, rcond=None)
+        if not np.isfinite(step).all():
+            break
+        ns = min(max(s + float(step[0]), box[0]), box[1])
+        nt = min(max(t + float(step[1]), box[2]), box[3])
+        if ns == s and nt == t:
+            break
+        s, t = ns, nt
+    return s, t
+
+
+def _tangent_system(p: Part, q: Part, s: float, t: float) -> np.ndarray:
+    """F(s, t) = P(s) − Q(t) stacked with the tangents' cross product(s), scaled to F's
+    units: at a tangency of different curvatures its root is regular."""
+    sx, tx = np.array([s]), np.array([t])
+    a, b = p.values(1, sx)[:, 0], q.values(1, tx)[:, 0]
+    f = p.values(0, sx)[:, 0] - q.values(0, tx)[:, 0]
+    cross = np.atleast_1d(np.cross(a, b)) / max(float(np.linalg.norm(b)), 1e-300)
+    return np.concatenate([f, cross])
+
+
+def _tangent_newton(
+    p: Part, q: Part, s: float, t: float, box: tuple[float, float, float, float]
+) -> tuple[float, float]:
+    """Gauss-Newton on the tangent system (Jacobian by central differences: the residual is
+    the system itself, so the root is the system's), kept in box."""
+    hs = 1e-7 * max(box[1] - box[0], 1e-300) + 1e-9 * (p.hi - p.lo)
+    ht = 1e-7 * max(box[3] - box[2], 1e-300) + 1e-9 * (q.hi - q.lo)
+    for _ in range(40):
+        g = _tangent_system(p, q, s, t)
+        jac = np.stack(
+            [
+                (_tangent_system(p, q, s + hs, t) - _tangent_system(p, q, s - hs, t)) / (2 * hs),
+                (_tangent_system(p, q, s, t + ht) - _tangent_system(p, q, s, t - ht)) / (2 * ht),
+            ],
+            axis=1,
+        )
+        step, *_ = np.linalg.lstsq(jac, -g, rcond=None)
+        if not np.isfinite(step).all():
+            break
+        ns = min(max(s + float(step[0]), box[0]), box[1])
+        nt = min(max(t + float(step[1]), box[2]), box[3])
+        if ns == s and nt == t:
+            break
+        s, t = ns, nt
+    return s, t
+
+
+def _residual(p: Part, q: Part, s: float, t: float) -> float:
+    return float(
+        np.linalg.norm(p.values(0, np.array([s]))[:, 0] - q.values(0, np.array([t]))[:, 0])
+    )
+
+
+def _sine(p: Part, q: Part, s: float, t: float) -> float:
+    a, b = p.values(1, np.array([s]))[:, 0], q.values(1, np.array([t]))[:, 0]
+    na, nb = float(np.linalg.norm(a)), float(np.linalg.norm(b))
+    if na == 0 or nb == 0:
+        return 0.0
+    if a.size == 2:
+        return abs(float(a[0] * b[1] - a[1] * b[0])) / (na * nb)
+    return float(np.linalg.norm(np.cross(a, b))) / (na * nb)
+
+
+# ---------------------------------------------------------------------- the search
+@dataclass
+class Found:
+    """An intersection (s, t, kind), and whether a single root was proven there."""
+
+    s: float
+    t: float
+    kind: str
+    proven: bool
+
+
+def _clusters(pr: Pairs) -> list[np.ndarray]:
+    from .intersect import _interval_clusters
+
+    width = np.maximum(pr.s1 - pr.s0, pr.t1 - pr.t0)
+    return _interval_clusters(pr.s0, pr.t0, width)
+
+
+def _search(
+    p: Part,
+    q: Part,
+    pr: Pairs,
+    split: Callable[[Pairs], Pairs],
+    near: Callable[[Pairs], np.ndarray],
+    stats: ab.Stats,
+) -> tuple[list[Found], Pairs] | None:
+    """The branch and bound from the open pairs `pr`: the proven roots, and the unresolved
+    pairs. `near` marks pairs settled otherwise (self-intersections: the diagonal)."""
+    ws, wt = p.hi - p.lo, q.hi - q.lo
+    found: list[Found] = []
+    stuck: list[Pairs] = []
+    size = max(p.size, q.size)
+    for _ in range(MAX_ROUNDS):
+        if pr.size == 0:
+            break
+        if pr.size > MAX_PAIRS:
+            return None
+        stats.rounds += 1
+        stats.intervals += pr.size
+        keep = ~near(pr)
+        pr = pr.take(keep)
+        if pr.size == 0:
+            break
+        pr = pr.take(~_excluded(p, q, pr))
+        if pr.size == 0:
+            break
+        unique, empty, ks, kt = _krawczyk(p, q, pr)
+        for j in np.nonzero(unique)[0]:
+            box = (float(ks[0][j]), float(ks[1][j]), float(kt[0][j]), float(kt[1][j]))
+            s, t = _newton(p, q, 0.5 * (box[0] + box[1]), 0.5 * (box[2] + box[3]), box)
+            if not (p.lo - SAME * ws <= s <= p.hi + SAME * ws):
+                continue
+            if not (q.lo - SAME * wt <= t <= q.hi + SAME * wt):
+                continue
+            if p.values(0, np.array([s])).shape[0] > 2 and _residual(p, q, s, t) > ON_CURVE * size:
+                continue  # 3D: the two rows' root, not a meeting point
+            s, t = min(max(s, p.lo), p.hi), min(max(t, q.lo), q.hi)
+            kind = "tangent" if _sine(p, q, s, t) <= TANGENT_SINE else "transversal"
+            found.append(Found(s, t, kind, True))
+        pr = pr.take(~(unique | empty))
+        small = ((pr.s1 - pr.s0) <= TINY * ws) & ((pr.t1 - pr.t0) <= TINY * wt)
+        if small.any():
+            stuck.append(pr.take(small))
+            pr = pr.take(~small)
+        pr = split(pr)
+    else:
+        if pr.size:
+            stuck.append(pr)
+            stats.narrow += pr.size
+    empty_pairs = Pairs(*(np.empty(0) for _ in range(4)))
+    rest = _concat(stuck) if stuck else empty_pairs
+    return found, rest
+
+
+def _concat(parts: list[Pairs]) -> Pairs:
+    return Pairs(
+        np.concatenate([x.s0 for x in parts]),
+        np.concatenate([x.s1 for x in parts]),
+        np.concatenate([x.t0 for x in parts]),
+        np.concatenate([x.t1 for x in parts]),
+    )
+
+
+def _halve(pr: Pairs) -> Pairs:
+    """Each pair into four (both intervals halved)."""
+    sm, tm = 0.5 * (pr.s0 + pr.s1), 0.5 * (pr.t0 + pr.t1)
+    s0 = np.concatenate([pr.s0, pr.s0, sm, sm])
+    s1 = np.concatenate([sm, sm, pr.s1, pr.s1])
+    t0 = np.concatenate([pr.t0, tm, pr.t0, tm])
+    t1 = np.concatenate([tm, pr.t1, tm, pr.t1])
+    return Pairs(s0, s1, t0, t1)
+
+
+def _grid(lo: float, hi: float) -> tuple[np.ndarray, np.ndarray]:
+    edges = np.linspace(lo, hi, START + 1)
+    edges[0], edges[-1] = lo, hi
+    return edges[:-1], edges[1:]
+
+
+def _settle(p: Part, q: Part, found: list[Found], stuck: Pairs) -> list[Found]:
+    """One intersection per cluster of unresolved pairs (see the module's step 4); proven
+    roots closer than SAME are one."""
+    size = max(p.size, q.size)
+    ws, wt = p.hi - p.lo, q.hi - q.lo
+    out = list(found)
+    proven = [(f.s, f.t) for f in found]
+    if stuck.size:
+        for members in _clusters(stuck):
+            # a cluster next to a proven root is that root's neighbourhood, where the
+            # curves are within the enclosures' width of each other: not another root
+            reach_s, reach_t = 64 * TINY * ws, 64 * TINY * wt
+            s_lo, s_hi = stuck.s0[members].min() - reach_s, stuck.s1[members].max() + reach_s
+            t_lo, t_hi = stuck.t0[members].min() - reach_t, stuck.t1[members].max() + reach_t
+            if any(s_lo <= x <= s_hi and t_lo <= y <= t_hi for x, y in proven):
+                continue
+            sm = 0.5 * (stuck.s0[members] + stuck.s1[members])
+            tm = 0.5 * (stuck.t0[members] + stuck.t1[members])
+            res = np.linalg.norm(p.values(0, sm) - q.values(0, tm), axis=0)
+            k = int(np.argmin(res))
+            box = (
+                float(stuck.s0[members].min()),
+                float(stuck.s1[members].max()),
+                float(stuck.t0[members].min()),
+                float(stuck.t1[members].max()),
+            )
+            s, t = float(sm[k]), float(tm[k])
+            s2, t2 = _newton(p, q, s, t, box)
+            if _residual(p, q, s2, t2) <= _residual(p, q, s, t):
+                s, t = s2, t2
+            if _sine(p, q, s, t) <= TANGENT_SINE:
+                s2, t2 = _tangent_newton(p, q, s, t, box)
+                if _residual(p, q, s2, t2) <= max(_residual(p, q, s, t), 4 * _U * size):
+                    s, t = s2, t2
+            if _residual(p, q, s, t) > ON_CURVE * size:
+                continue
+            s, t = min(max(s, p.lo), p.hi), min(max(t, q.lo), q.hi)
+            kind = "tangent" if _sine(p, q, s, t) <= TANGENT_SINE else "transversal"
+            out.append(Found(s, t, kind, False))
+    out.sort(key=lambda f: (f.s, f.t))
+    merged: list[Found] = []
+    for f in out:
+        same = [g for g in merged if abs(g.s - f.s) <= SAME * ws and abs(g.t - f.t) <= SAME * wt]
+        if same:
+            if f.proven and not same[0].proven:
+                merged[merged.index(same[0])] = f
+            continue
+        merged.append(f)
+    return merged
+
+
+def pairs(p: Part, q: Part, stats: ab.Stats | None = None) -> list[Found] | None:
+    """Every intersection of P(s), s ∈ [p.lo, p.hi], and Q(t), t ∈ [q.lo, q.hi] (sorted by
+    s), or None when the curves share a stretch (see the module's note)."""
+    stats = stats if stats is not None else ab.Stats()
+    a, b = _grid(p.lo, p.hi)
+    c, e = _grid(q.lo, q.hi)
+    i, j = np.meshgrid(np.arange(a.size), np.arange(c.size), indexing="ij")
+    start = Pairs(a[i.ravel()], b[i.ravel()], c[j.ravel()], e[j.ravel()])
+    got = _search(p, q, start, _halve, lambda pr: np.zeros(pr.size, dtype=bool), stats)
+    if got is None:
+        return None
+    return _settle(p, q, *got)
+
+
+# ---------------------------------------------------------------------- self-intersections
+def _injective(p: Part, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """(m,) bool: proven that C is one-to-one on [lo, hi]: v·C'(I) > 0 for v = C'(middle)."""
+    mid = 0.5 * (lo + hi)
+    v = p.values(1, mid)
+    d_lo, d_hi = p.enclose(1, lo, hi)
+    low, _ = _dot(v, d_lo, d_hi)
+    out: np.ndarray = low > 0
+    return out
+
+
+def _self_split(pr: Pairs) -> Pairs:
+    """Halve every pair; a diagonal pair (S = T) keeps only its halves with S ≤ T."""
+    diag = (pr.s0 == pr.t0) & (pr.s1 == pr.t1)
+    four = _halve(pr.take(~diag))
+    d = pr.take(diag)
+    m = 0.5 * (d.s0 + d.s1)
+    three = Pairs(
+        np.concatenate([d.s0, d.s0, m]),
+        np.concatenate([m, m, d.s1]),
+        np.concatenate([d.s0, m, m]),
+        np.concatenate([m, d.s1, d.s1]),
+    )
+    return _concat([four, three])
+
+
+def self_pairs(p: Part, stats: ab.Stats | None = None) -> list[Found] | None:
+    """Every pair s < t with C(s) = C(t) (sorted by s), or None when the curve runs over a
+    stretch of itself."""
+    stats = stats if stats is not None else ab.Stats()
+    width = p.hi - p.lo
+    a, b = _grid(p.lo, p.hi)
+    i, j = np.triu_indices(a.size)
+    start = Pairs(a[i], b[i], a[j], b[j])
+
+    def near(pr: Pairs) -> np.ndarray:
+        touching = pr.s1 >= pr.t0
+        out = np.zeros(pr.size, dtype=bool)
+        sel = np.nonzero(touching)[0]
+        if sel.size:
+            lo = np.minimum(pr.s0[sel], pr.t0[sel])
+            hi = np.maximum(pr.s1[sel], pr.t1[sel])
+            out[sel] = _injective(p, lo, hi)
+            # narrower than TINY and still not injective: a cusp, not a crossing
+            out[sel] |= (hi - lo) <= 2 * TINY * width
+        return out
+
+    got = _search(p, p, start, _self_split, near, stats)
+    if got is None:
+        return None
+    found, stuck = got
+    found = [f for f in found if f.t - f.s > SAME * width]
+    stuck = stuck.take(stuck.t0 - stuck.s1 > 0)
+    out = _settle(p, p, found, stuck)
+    return [f for f in out if f.t - f.s > SAME * width]

@@ -1,0 +1,407 @@
+"""Certified intersections of mixed (algebraic-trigonometric) curves, which have no rational
+form (issue #30, hazmat.atom_intersect): against mpmath roots at 40 digits, near-double
+crossings and tangencies built by construction (a line moved off a tangent, a curve reflected
+in its own tangent), rational and polynomial partners, 3D, and self-intersections."""
+
+from __future__ import annotations
+
+import mpmath as mp
+import numpy as np
+import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+from test_atom_certified_geometry import AT, AT_PI, mp_curve
+
+import lambda_bezier as lb
+from lambda_bezier import _atom_geometry as ag
+from lambda_bezier.hazmat import atom_bounds as ab
+from lambda_bezier.hazmat import atom_intersect as ai
+
+mp.mp.dps = 40
+ROOT = 1e-12  # the reported parameters against mpmath's
+
+
+@pytest.fixture(scope="module")
+def at_family():
+    return lb.load_family(AT)
+
+
+@pytest.fixture(scope="module")
+def at_pi_family():
+    return lb.load_family(AT_PI)
+
+
+POINTS = (
+    st.lists(st.floats(-4, 4, allow_nan=False), min_size=8, max_size=8)
+    .map(lambda r: np.array(r).reshape(4, 2))
+    .filter(lambda a: np.ptp(a, axis=0).min() > 0.5)
+)
+
+
+# ------------------------------------------------------------------------------ references
+def mp_line_roots(curve, a, b, count: int = 3000) -> list[mp.mpf]:
+    """Every s where the curve crosses the segment from a to b: the sign changes of the
+    cross product (C(s) − a) × (b − a) on a dense grid, each refined by mpmath's bracketing
+    root finder."""
+    lo, hi = curve.domain
+    top = mp.pi / 2 if abs(hi - float(mp.pi / 2)) < 1e-15 else mp.mpf(hi)
+    a = [mp.mpf(float(x)) for x in a]
+    b = [mp.mpf(float(x)) for x in b]
+
+    def g(s):
+        c = mp_curve(curve, s)
+        return (c[0] - a[0]) * (b[1] - a[1]) - (c[1] - a[1]) * (b[0] - a[0])
+
+    ts = np.linspace(lo, hi, count + 1)
+    pts = curve.evaluate(ts)
+    side = (pts[:, 0] - float(a[0])) * float(b[1] - a[1]) - (pts[:, 1] - float(a[1])) * float(
+        b[0] - a[0]
+    )
+    out = []
+    for i in np.nonzero(np.sign(side[:-1]) * np.sign(side[1:]) < 0)[0]:
+        x0, x1 = mp.mpf(float(ts[i])), mp.mpf(float(ts[i + 1])) if i + 1 < count else top
+        root = mp.findroot(g, (x0, x1), "illinois")
+        c = mp_curve(curve, root)
+        along = ((c[0] - a[0]) * (b[0] - a[0]) + (c[1] - a[1]) * (b[1] - a[1])) / (
+            (b[0] - a[0]) ** 2 + (b[1] - a[1]) ** 2
+        )
+        if 0 <= along <= 1:  # on the segment, not only on its line
+            out.append(root)
+    return out
+
+
+def mp_pair_root(p, q, s, t):
+    """mpmath's root of P(s) = Q(t) near (s, t) (two curves of families in the plane)."""
+
+    def f(x, y):
+        a, b = mp_curve(p, x), mp_curve(q, y)
+        return [a[0] - b[0], a[1] - b[1]]
+
+    return mp.findroot(f, (mp.mpf(s), mp.mpf(t)))
+
+
+def polyline_crossings(p, q, count: int = 1500):
+    """Approximate (s, t) of the crossings of two curves: crossings of their polylines."""
+    s = np.linspace(*p.domain, count + 1)
+    t = np.linspace(*_dom(q), count + 1)
+    a, b = p.evaluate(s), q.evaluate(t)
+    pa, da = a[:-1], np.diff(a, axis=0)
+    qb, db = b[:-1], np.diff(b, axis=0)
+    den = da[:, None, 0] * db[None, :, 1] - da[:, None, 1] * db[None, :, 0]
+    w = qb[None, :, :] - pa[:, None, :]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u = (w[..., 0] * db[None, :, 1] - w[..., 1] * db[None, :, 0]) / den
+        v = (w[..., 0] * da[:, None, 1] - w[..., 1] * da[:, None, 0]) / den
+    i, j = np.nonzero((u >= 0) & (u < 1) & (v >= 0) & (v < 1))
+    return [
+        (s[k] + u[k, m] * (s[k + 1] - s[k]), t[m] + v[k, m] * (t[m + 1] - t[m]))
+        for k, m in zip(i, j, strict=True)
+    ]
+
+
+def _dom(c):
+    return c.domain if hasattr(c, "domain") else (0.0, 1.0)
+
+
+def _offset_line(curve, t0, eps):
+    """A line along the tangent at C(t0), moved by eps along the normal (towards the centre of
+    curvature for eps > 0), long enough to reach past the neighbourhood of t0."""
+    p, d = curve.evaluate(t0), curve.derivative(t0)
+    n = np.array([-d[1], d[0]]) / np.linalg.norm(d)
+    if curve.curvature(t0) < 0:
+        n = -n
+    return p - 0.3 * d + eps * n, p + 0.3 * d + eps * n
+
+
+# ------------------------------------------------------------------------------ lines
+@settings(max_examples=25)
+@given(POINTS, st.floats(-1, 1), st.floats(-3, 3), st.floats(-3, 3), st.floats(0, 3.1))
+def test_line_crossings_match_mpmath(at_family, pts, lam, y0, y1, angle):
+    curve = at_family.curve(pts, lam=lam)
+    a = np.array([-10 * np.cos(angle), y0])
+    b = np.array([10 * np.cos(angle) + 1e-3, y1])
+    line = lb.BezierCurve([a, b])
+    got = curve.intersect(line)
+    want = mp_line_roots(curve, a, b)
+    # as for polynomial curves, an end of the curve within 1e-10 of the size of the other
+    # curve meets it (a root of F just past the domain): the reference has no sign change
+    if len(got) == len(want) + 1:
+        lo, hi = curve.domain
+        end = [x for x in got if x.s in (lo, hi)]
+        assert (
+            end
+            and min(float(np.abs(line.evaluate(x.t) - curve.evaluate(x.s)).max()) for x in end)
+            <= 1e-10 * 4
+        )
+        got = [x for x in got if x not in end[:1]]
+    assert len(got) == len(want), (got, want)
+    for x, s in zip(got, want, strict=True):
+        assert abs(x.s - float(s)) <= ROOT
+        assert np.linalg.norm(curve.evaluate(x.s) - line.evaluate(x.t)) <= 1e-12 * 10
+
+
+@settings(max_examples=25)
+@given(POINTS, st.floats(-1, 1), st.floats(0.05, 1.52), st.floats(-11, -3))
+def test_near_double_crossings(at_family, pts, lam, t0, log_eps):
+    """A line moved off the tangent at C(t0) by eps towards the centre of curvature crosses
+    the curve twice near t0 (crossings about sqrt(eps) apart); moved away, not at all near
+    t0. Every crossing is proven and matches mpmath."""
+    curve = at_family.curve(pts, lam=lam)
+    size = float(np.abs(pts).max())
+    kappa = abs(float(curve.curvature(t0)))
+    speed = float(np.linalg.norm(curve.derivative(t0)))
+    if kappa * size < 1e-3 or speed < 1e-3 * size:
+        return  # nearly straight or nearly stopped there: no well-defined pair of crossings
+    eps = 10.0**log_eps * size
+    for sign in (1, -1):
+        a, b = _offset_line(curve, t0, sign * eps)
+        line = lb.BezierCurve([a, b])
+        got = curve.intersect(line)
+        want = mp_line_roots(curve, a, b, count=2000)
+        if sign > 0:
+            # the reference grid cannot split crossings closer than its step: the two
+            # nearest t0 are bracketed from t0 itself
+            near = _roots_about(curve, a, b, t0)
+            assume(near is not None)
+            assert near[0] < t0 < near[1]
+            want = sorted([x for x in want if min(abs(x - y) for y in near) > 1e-6] + near)
+            assert sum(1 for x in got if near[0] - 1e-9 <= x.s <= near[1] + 1e-9) == 2
+        assert len(got) == len(want), (got, want, eps)
+        for x, s in zip(got, want, strict=True):
+            # the two crossings near t0 meet at an angle of about kappa * |C'| * their
+            # distance apart: their float residual (ulps of the size) over that sine
+            if sign > 0 and min(abs(s - y) for y in near) < 1e-20:
+                sine = kappa * speed * float(abs(near[1] - near[0]))
+                assert abs(x.s - float(s)) <= max(ROOT, 64 * 2.0**-52 * size / sine)
+            else:
+                assert abs(x.s - float(s)) <= ROOT
+
+
+def _roots_about(curve, a, b, t0):
+    a = [mp.mpf(float(x)) for x in a]
+    b = [mp.mpf(float(x)) for x in b]
+
+    def g(s):
+        c = mp_curve(curve, s)
+        return (c[0] - a[0]) * (b[1] - a[1]) - (c[1] - a[1]) * (b[0] - a[0])
+
+    out = []
+    x0 = mp.mpf(t0)
+    for direction in (-1, 1):
+        step = mp.mpf("1e-7")
+        x1 = x0 + direction * step
+        lo, hi = curve.domain
+        while mp.sign(g(x1)) == mp.sign(g(x0)):
+            step *= 2
+            x1 = x0 + direction * step
+            if not lo <= x1 <= hi:
+                return None  # the pair of crossings reaches past the domain
+        out.append(mp.findroot(g, (x0 + direction * step / 2, x1), "illinois"))
+    return out
+
+
+@pytest.mark.parametrize("t0", [0.2, 0.75, 1.3])
+def test_tangent_line_is_one_tangency(at_family, t0):
+    curve = at_family.curve([(0, 0), (1, 3), (3, -2), (4, 1)], lam=0.3)
+    a, b = _offset_line(curve, t0, 0.0)
+    got = curve.intersect(lb.BezierCurve([a, b]))
+    at = [x for x in got if abs(x.s - t0) < 1e-3]
+    assert len(at) == 1 and at[0].kind == "tangent"
+    assert abs(at[0].s - t0) < 1e-9
+    assert abs(at[0].t - 0.5) < 1e-9
+
+
+# ------------------------------------------------------------------------------ curves
+@settings(max_examples=15)
+@given(POINTS, POINTS, st.floats(-1, 1), st.floats(0, 0.99))
+def test_two_mixed_curves_match_mpmath(at_family, at_pi_family, p_pts, q_pts, lam, mu):
+    p = at_family.curve(p_pts, lam=lam)
+    q = at_pi_family.curve(q_pts + 0.25, lam=mu)
+    got = p.intersect(q)
+    approx = polyline_crossings(p, q)
+    roots = []
+    for s, t in approx:
+        r = mp_pair_root(p, q, s, t)
+        key = (float(r[0]), float(r[1]))
+        if not any(abs(key[0] - x[0]) < 1e-9 and abs(key[1] - x[1]) < 1e-9 for x in roots):
+            roots.append(key)
+    roots.sort()
+    # the polyline can miss a pair of crossings closer than its step, never report one that
+    # is not there: every reference root is found, and every reported one is a root
+    for s, t in roots:
+        assert any(abs(x.s - s) <= ROOT and abs(x.t - t) <= ROOT for x in got), (roots, got)
+    for x in got:
+        assert np.linalg.norm(p.evaluate(x.s) - q.evaluate(x.t)) <= 1e-11
+    assert len(got) >= len(roots)
+
+
+@settings(max_examples=15)
+@given(POINTS, st.floats(-1, 1), st.floats(0.1, 1.47))
+def test_reflected_curve_touches_once(at_family, pts, lam, t0):
+    """The curve reflected in its tangent line at C(t0) touches it at (t0, t0), reported once
+    as a tangency; it also meets it at (s, s) wherever C crosses that line."""
+    curve = at_family.curve(pts, lam=lam)
+    size = float(np.abs(pts).max())
+    if abs(float(curve.curvature(t0))) * size < 1e-2:
+        return
+    c, d = curve.evaluate(t0), curve.derivative(t0)
+    u = d / np.linalg.norm(d)
+    mirror = 2 * np.outer(u, u) - np.eye(2)
+    twin = at_family.curve((pts - c) @ mirror.T + c, lam=lam)
+    got = curve.intersect(twin)
+    touch = [x for x in got if abs(x.s - t0) < 1e-4 and abs(x.t - t0) < 1e-4]
+    assert len(touch) == 1 and touch[0].kind == "tangent", got
+    assert abs(touch[0].s - t0) < 1e-7 and abs(touch[0].t - t0) < 1e-7
+    for s in mp_line_roots(curve, c - 10 * d, c + 10 * d):
+        if abs(float(s) - t0) > 1e-4:
+            assert any(abs(x.s - float(s)) <= 1e-10 and abs(x.t - float(s)) <= 1e-10 for x in got)
+    for x in got:
+        assert np.linalg.norm(curve.evaluate(x.s) - twin.evaluate(x.t)) <= 1e-10
+
+
+def test_with_a_rational_curve_matches_mpmath(at_family):
+    curve = at_family.curve([(0, 0), (1, 3), (3, -2), (4, 1)], lam=0.3)
+    weights = [mp.mpf(1), mp.mpf(3), mp.mpf(1)]
+    pts = [(0, -1), (2, 5), (4, -1)]
+    arc = lb.RationalBezierCurve(pts, [1, 3, 1])
+
+    def f(s, t):
+        b = [(1 - t) ** 2, 2 * t * (1 - t), t**2]
+        den = mp.fsum(bi * wi for bi, wi in zip(b, weights, strict=True))
+        r = [
+            mp.fsum(bi * wi * pt[k] for bi, wi, pt in zip(b, weights, pts, strict=True)) / den
+            for k in (0, 1)
+        ]
+        c = mp_curve(curve, s)
+        return [c[0] - r[0], c[1] - r[1]]
+
+    got = curve.intersect(arc)
+    approx = polyline_crossings(curve, arc)
+    assert len(got) == len(approx) >= 2
+    for x, (s0, t0) in zip(got, sorted(approx), strict=True):
+        s, t = mp.findroot(f, (mp.mpf(s0), mp.mpf(t0)))
+        assert abs(x.s - float(s)) <= ROOT and abs(x.t - float(t)) <= ROOT
+        assert x.kind == "transversal"
+
+
+def test_in_3d(at_family):
+    curve = at_family.curve([(0, 0, 0), (1, 3, 1), (3, -2, 2), (4, 1, 0)], lam=0.3)
+    c, d = curve.evaluate(0.7), curve.derivative(0.7)
+    other = np.array([0.3, -1.0, 2.0])
+    hit = lb.BezierCurve([c - other, c + other])
+    got = curve.intersect(hit)
+    assert len(got) == 1 and abs(got[0].s - 0.7) < 1e-12 and abs(got[0].t - 0.5) < 1e-12
+    # moved off along the common normal by 1e-7 of the size: skew lines, no meeting point
+    normal = np.cross(d, other)
+    normal /= np.linalg.norm(normal)
+    off = 4e-7 * normal
+    assert curve.intersect(lb.BezierCurve([c - other + off, c + other + off])) == []
+
+
+def test_endpoint_shared_and_stats(at_family):
+    """Curves that share an end point meet there (a root at the corner of the domains, which
+    Krawczyk's inflated box proves)."""
+    p = at_family.curve([(0, 0), (1, 3), (3, -2), (4, 1)], lam=0.3)
+    end = p.evaluate(p.domain[1])
+    q = lb.BezierCurve([end, end + (2, -1), end + (1, -4)])
+    got = p.intersect(q)
+    ends = [x for x in got if abs(x.s - p.domain[1]) < 1e-12 and abs(x.t) < 1e-12]
+    assert len(ends) == 1
+    stats = ab.Stats()
+    pp, _ = ag._part(p)
+    qq, _ = ag._part(q)
+    found = ai.pairs(pp, qq, stats)
+    assert found is not None and all(f.proven for f in found)
+    assert stats.narrow == 0
+
+
+def test_shared_stretch_takes_the_pieces(at_family):
+    p = at_family.curve([(0, 0), (1, 3), (3, -2), (4, 1)], lam=0.3)
+    pp, _ = ag._part(p)
+    assert ai.pairs(pp, pp) is None  # the search gives up, the pieces answer
+    got = p.intersect(p)
+    assert got and all(x.kind == "coincident" for x in got)
+
+
+# ------------------------------------------------------------------------------ self
+LOOP = ([(2.022, -3.168), (-2.689, -0.333), (0.865, -8.834), (0.211, 0.693)], -0.95)
+
+
+def test_self_intersection_matches_mpmath(at_family):
+    pts, lam = LOOP
+    curve = at_family.curve(pts, lam=lam)
+    got = curve.self_intersections()
+    assert len(got) == 1
+    s, t = mp_pair_root(curve, curve, got[0].s, got[0].t)
+    assert abs(got[0].s - float(s)) <= ROOT and abs(got[0].t - float(t)) <= ROOT
+    assert got[0].t - got[0].s > 0.1
+
+
+@settings(max_examples=20)
+@given(POINTS, st.floats(-1, 1))
+def test_self_intersections_against_polyline(at_family, pts, lam):
+    curve = at_family.curve(pts * np.array([3.0, 1.0]), lam=lam)
+    t = np.linspace(*curve.domain, 2001)
+    a = curve.evaluate(t)
+    approx = [(s, u) for s, u in polyline_crossings_self(a, t) if u - s > 1e-3]
+    got = curve.self_intersections()
+    if any(x.kind == "coincident" for x in got):
+        return  # the curve runs back over itself (symmetric points, lam = 0): not this test
+    for s, u in approx:
+        r = mp_pair_root(curve, curve, s, u)
+        assert any(abs(x.s - float(r[0])) <= ROOT and abs(x.t - float(r[1])) <= ROOT for x in got)
+    for x in got:
+        assert x.t - x.s > 1e-9
+        assert np.linalg.norm(curve.evaluate(x.s) - curve.evaluate(x.t)) <= 1e-11
+
+
+def polyline_crossings_self(a, t):
+    pa, da = a[:-1], np.diff(a, axis=0)
+    den = da[:, None, 0] * da[None, :, 1] - da[:, None, 1] * da[None, :, 0]
+    w = pa[None, :, :] - pa[:, None, :]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u = (w[..., 0] * da[None, :, 1] - w[..., 1] * da[None, :, 0]) / den
+        v = (w[..., 0] * da[:, None, 1] - w[..., 1] * da[:, None, 0]) / den
+    i, j = np.nonzero((u >= 0) & (u < 1) & (v >= 0) & (v < 1))
+    keep = j > i + 1
+    return [
+        (t[k] + u[k, m] * (t[k + 1] - t[k]), t[m] + v[k, m] * (t[m + 1] - t[m]))
+        for k, m in zip(i[keep], j[keep], strict=True)
+    ]
+
+
+# ------------------------------------------------------------------------------ enclosures
+@settings(max_examples=30)
+@given(
+    st.lists(st.floats(-4, 4), min_size=8, max_size=8),
+    st.lists(st.floats(0.2, 5), min_size=4, max_size=4),
+    st.floats(-0.1, 0.9),
+    st.floats(1e-9, 0.2),
+    st.integers(0, 1),
+)
+def test_bernstein_enclosures_hold(raw, weights, left, width, k):
+    """A rational cubic's enclosures of C and C' on [lo, hi] hold at 17 points, each exact
+    (mpmath) for the float rows."""
+    pts = np.array(raw).reshape(4, 2)
+    w = np.array(weights)
+    rows = np.hstack([pts * w[:, None], w[:, None]])
+    part = ai.BernsteinPart(rows)
+    lo, hi = left, left + width
+    low, high = part.enclose(k, np.array([lo]), np.array([hi]))
+    for x in np.linspace(lo, hi, 17):
+        u = mp.mpf(float(x))
+        b = [(1 - u) ** 3, 3 * u * (1 - u) ** 2, 3 * u**2 * (1 - u), u**3]
+        db = [
+            -3 * (1 - u) ** 2,
+            3 * (1 - u) ** 2 - 6 * u * (1 - u),
+            6 * u * (1 - u) - 3 * u**2,
+            3 * u**2,
+        ]
+        r = [[mp.mpf(float(v)) for v in row] for row in rows]
+        den = mp.fsum(bi * ri[2] for bi, ri in zip(b, r, strict=True))
+        dden = mp.fsum(bi * ri[2] for bi, ri in zip(db, r, strict=True))
+        for c in range(2):
+            num = mp.fsum(bi * ri[c] for bi, ri in zip(b, r, strict=True))
+            dnum = mp.fsum(bi * ri[c] for bi, ri in zip(db, r, strict=True))
+            val = num / den if k == 0 else (dnum * den - num * dden) / den**2
+            assert low[c, 0] <= val <= high[c, 0]

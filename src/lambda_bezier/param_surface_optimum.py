@@ -46,7 +46,7 @@ import numpy as np
 from . import _validate as val
 from .hazmat import surface_kernels as ker
 from .hazmat.constants import constant_bounds
-from .hazmat.surface_certify import certified_minimum, edge_minimum
+from .hazmat.surface_fixed_cost import fixed_cost_minimum
 from .hazmat.surface_weights import plain_weights
 from .param_surface_energy import Direction, SurfaceParameterOptimum, _direction, named_point
 from .param_surface_energy import optimal_parameters as certified_parameters
@@ -233,29 +233,10 @@ def fixed_cost(
             MAX_COORDINATE,
         )
         return bx, by, bval, status > 0.5, status > 1.5
-    else:
-        coeffs = energy_coefficients(nets, du, dv, energy)
-        zero = np.zeros(count)
-        c = [coeffs.get((a, b), zero) for a in range(3) for b in range(3)]
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            bx, by, bval, _, ok = certified_minimum(
-                c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8],
-                box[0], box[1], box[2], box[3], CERTIFIED_TOLERANCE,
-            )  # fmt: skip
-            bx, by, bval = np.array(bx, float), np.array(by, float), np.array(bval, float)
-            ok = np.asarray(ok, bool)
-            on_edge = np.zeros(count, bool)
-            undecided = np.flatnonzero(~ok)
-            if undecided.size:  # the declined nets' edge and corner minima, as compiled
-                d = [v[undecided] for v in c]
-                ex, ey, eval_, _, eok = edge_minimum(
-                    d[0], d[1], d[2], d[3], d[4], d[5], d[6], d[7], d[8],
-                    box[0], box[1], box[2], box[3], CERTIFIED_TOLERANCE,
-                )  # fmt: skip
-                done = undecided[eok]
-                bx[done], by[done], bval[done] = ex[eok], ey[eok], eval_[eok]
-                ok[done] = on_edge[done] = True
-    return bx, by, bval, ok, on_edge
+    coeffs = energy_coefficients(nets, du, dv, energy)
+    zero = np.zeros(count)
+    c = [coeffs.get((a, b), zero) for a in range(3) for b in range(3)]
+    return fixed_cost_minimum(c, box, CERTIFIED_TOLERANCE)
 
 
 def optimal_parameters_batch(nets: np.ndarray, energy: str, family: Any) -> SurfaceParameterBatch:

@@ -41,7 +41,7 @@ import numpy as np
 from . import _validate as val
 from .energy import optimal_parameters as curve_optimal_parameters
 from .hazmat import surface_kernels as ker
-from .hazmat.surface_certify import certified_minimum, edge_minimum
+from .hazmat.surface_fixed_cost import fixed_cost_minimum
 from .hazmat.surface_kernels import OPTIMUM_STEP_TOLERANCE
 from .hazmat.surface_weights import BatchWeights, batch_weights
 from .param_surface_energy import _param_families
@@ -180,24 +180,9 @@ def optimal_parameters_batch(
         ok, on_edge = status > 0.5, status > 1.5
     else:
         coeffs = _float_polynomial(mats, nets.reshape(count, m1 * n1, dim))
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            zero = np.zeros(count)  # a power λ_u^a λ_v^b the energy lacks
-            c = [coeffs.get((a, b), zero) for a in range(3) for b in range(3)]
-            bx, by, bval, _, ok = certified_minimum(
-                c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8],
-                box[0], box[1], box[2], box[3], CERTIFIED_TOLERANCE,
-            )  # fmt: skip
-            on_edge = np.zeros(count, bool)
-            undecided = np.flatnonzero(~ok)
-            if undecided.size:  # the declined nets' edge and corner minima
-                d = [v[undecided] for v in c]
-                ex, ey, eval_, _, eok = edge_minimum(
-                    d[0], d[1], d[2], d[3], d[4], d[5], d[6], d[7], d[8],
-                    box[0], box[1], box[2], box[3], CERTIFIED_TOLERANCE,
-                )  # fmt: skip
-                done = undecided[eok]
-                bx[done], by[done], bval[done] = ex[eok], ey[eok], eval_[eok]
-                ok[done] = on_edge[done] = True
+        zero = np.zeros(count)  # a power λ_u^a λ_v^b the energy lacks
+        c = [coeffs.get((a, b), zero) for a in range(3) for b in range(3)]
+        bx, by, bval, ok, on_edge = fixed_cost_minimum(c, box, CERTIFIED_TOLERANCE)
     declined = np.flatnonzero(~ok)
     where = np.empty(count, dtype=object)
     where[:] = "interior"  # (np.full of a str into an object array is 6x slower)

@@ -57,6 +57,8 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `surface_certify`: the fixed-cost certificate of the batch optimum of (λ_u, λ_v) (one
   elementwise source: numpy on arrays, or compiled by `surface_batch_compiled`, numba, the
   `fast` extra; imported on use);
+- `surface_fixed_cost`: that certificate and its edge and corner one, run in numpy in the
+  compiled kernel's order (the batch optima's numpy engine);
 - `surface_weights`: the energy's weights for that kernel, in the basis where each
   direction's λ-part is sparse (exact change of basis);
 - `constants`: exact numbers in ℚ(π) and ℚ(e^W) (`ConstantFraction`), signs decided exactly.
@@ -101,6 +103,7 @@ __all__ = [
     "surface_batch_compiled",
     "surface_certify",
     "surface_compiled",
+    "surface_fixed_cost",
     "surface_kernels",
     "surface_weights",
 ]

@@ -320,10 +320,8 @@ def _param_families(family: object) -> bool:
     )
 
 
-def optimal_parameters(net: NetLike, energy: str, family: Any) -> SurfaceParameterOptimum:
-    """The certified global minimum of the surface energy over both directions' parameter
-    boxes (`family` one family from load_family or a pair); see the module's doc."""
-    energy = val.choice(energy, "energy", tuple(ENERGIES))
+def _family_pair(family: Any) -> tuple[Any, Any]:
+    """(u family, v family) of `family`: one family from load_family, or a pair of them."""
     fu, fv = family if isinstance(family, tuple | list) else (family, family)
     for f in (fu, fv):
         if not hasattr(f, "degrees") or not hasattr(f, "parameters"):
@@ -331,6 +329,14 @@ def optimal_parameters(net: NetLike, energy: str, family: Any) -> SurfaceParamet
                 "family: a family from load_family is needed in each direction, got "
                 f"{type(f).__name__}"
             )
+    return fu, fv
+
+
+def optimal_parameters(net: NetLike, energy: str, family: Any) -> SurfaceParameterOptimum:
+    """The certified global minimum of the surface energy over both directions' parameter
+    boxes (`family` one family from load_family or a pair); see the module's doc."""
+    energy = val.choice(energy, "energy", tuple(ENERGIES))
+    fu, fv = _family_pair(family)
     if np.ndim(val.real_array(net, "net")) == 4:
         raise ValueError(
             "net: a batch of nets is solved vectorised for one-parameter families only; "

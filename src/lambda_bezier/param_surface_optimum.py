@@ -48,24 +48,19 @@ from .hazmat import surface_kernels as ker
 from .hazmat.constants import constant_bounds
 from .hazmat.surface_fixed_cost import fixed_cost_minimum
 from .hazmat.surface_weights import plain_weights
-from .param_surface_energy import Direction, SurfaceParameterOptimum, _direction, named_point
+from .param_surface_energy import (
+    Direction,
+    SurfaceParameterOptimum,
+    _direction,
+    _family_pair,
+    named_point,
+)
 from .param_surface_energy import optimal_parameters as certified_parameters
 from .surface_energies import ENERGIES
 from .surfaces import NetLike
 
 CERTIFIED_TOLERANCE = 1e-12  # the batch certificate: the minimiser within this of its answer
 MAX_COORDINATE = 1e140  # above it the energy of a net overflows a float
-
-
-def _families(family: Any) -> tuple[Any, Any]:
-    fu, fv = family if isinstance(family, tuple | list) else (family, family)
-    for f in (fu, fv):
-        if not hasattr(f, "degrees") or not hasattr(f, "parameters"):
-            raise TypeError(
-                "family: a family from load_family is needed in each direction, got "
-                f"{type(f).__name__}"
-            )
-    return fu, fv
 
 
 def _directions(shape: tuple[int, ...], fu: Any, fv: Any) -> tuple[Direction, Direction]:
@@ -96,7 +91,7 @@ def optimal_parameters(
     """The energy-optimal parameters of one net (certified) or of a batch of nets; see the
     module's doc."""
     energy = val.choice(energy, "energy", tuple(ENERGIES))
-    fu, fv = _families(family)
+    fu, fv = _family_pair(family)
     arr = np.asarray(val.real_array(net, "net"), dtype=float)
     if arr.ndim == 4:
         return optimal_parameters_batch(arr, energy, (fu, fv))
@@ -242,7 +237,7 @@ def fixed_cost(
 def optimal_parameters_batch(nets: np.ndarray, energy: str, family: Any) -> SurfaceParameterBatch:
     """optimal_parameters for (k, m+1, n+1, d) float nets; see the module's doc."""
     energy = val.choice(energy, "energy", tuple(ENERGIES))
-    fu, fv = _families(family)
+    fu, fv = _family_pair(family)
     if nets.ndim != 4 or nets.shape[0] == 0:
         raise ValueError(f"a batch of nets must have shape (k, m+1, n+1, d), got {nets.shape}")
     if not np.isfinite(nets).all():

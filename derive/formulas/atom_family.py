@@ -449,17 +449,26 @@ def _nonnegative_hyperbolic(defn: Definition, space: Space) -> dict:
             )
             at = _negative_inside(poly, encl)
             if at is not None:
-                return {
-                    "nonnegative": False,
-                    "counterexample": {
-                        "n": len(space.functions) - 1,
-                        "i": idx,
-                        "t": f"log({at})" + ("" if frame.rate == 1 else f"/{frame.rate}"),
-                        **{q.name: str(v) for q, v in zip(defn.params, vertex, strict=True)},
-                        "value_sign": "negative",
-                    },
-                }
+                return negative_at_log(defn, space, idx, at, vertex)
     return {"nonnegative": True}
+
+
+def negative_at_log(
+    defn: Definition, space: Space, idx: int, z: object, values: tuple | list
+) -> dict:
+    """The verdict that b_idx of a hyperbolic space is negative at t = log(z)/w with the
+    parameters at `values` (z a rational or algebraic number, as a string)."""
+    rate = space.frame.rate
+    return {
+        "nonnegative": False,
+        "counterexample": {
+            "n": len(space.functions) - 1,
+            "i": idx,
+            "t": f"log({z})" + ("" if rate == 1 else f"/{rate}"),
+            **{q.name: str(v) for q, v in zip(defn.params, values, strict=True)},
+            "value_sign": "negative",
+        },
+    }
 
 
 def _negative_inside(poly: sp.Poly, encl: list[tuple[Fraction, Fraction]]) -> Fraction | None:

@@ -125,16 +125,7 @@ def hyperbolic_nonnegative_exact(defn: Definition, space: Space) -> dict:
                 "the domain (e^(w t) there)"
             }
         zv, *values = got["point"]
-        return {
-            "nonnegative": False,
-            "counterexample": {
-                "n": len(space.functions) - 1,
-                "i": idx,
-                "t": f"log({zv})" + ("" if frame.rate == 1 else f"/{frame.rate}"),
-                **{q.name: str(v) for q, v in zip(defn.params, values, strict=True)},
-                "value_sign": "negative",
-            },
-        }
+        return F.negative_at_log(defn, space, idx, zv, values)
     return {
         "nonnegative": True,
         "method": "exact: b = e^(-H w t) P(e^(w t), parameters) with P >= 0 on a rational "

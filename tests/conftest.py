@@ -70,3 +70,15 @@ def intersect_engine(request):
     intersect_subdivide.USE_COMPILED = request.param == "numba"
     yield request.param
     intersect_subdivide.USE_COMPILED = before
+
+
+# the two mixed-family test families (tests/data/families/at_cubic.toml, at_pi_cubic.toml),
+# loaded once per module: the certified geometry, intersection and export tests use both
+@pytest.fixture(scope="module")
+def at_family():
+    return lb.load_family(ROOT / "tests" / "data" / "families" / "at_cubic.toml")
+
+
+@pytest.fixture(scope="module")
+def at_pi_family():
+    return lb.load_family(ROOT / "tests" / "data" / "families" / "at_pi_cubic.toml")

@@ -14,7 +14,6 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from test_trig_runtime import DATA
 
-import lambda_bezier as lb
 from lambda_bezier import _atom_geometry as ag
 from lambda_bezier.hazmat import atom_bounds as ab
 from lambda_bezier.hazmat import atoms as ak
@@ -22,16 +21,6 @@ from lambda_bezier.hazmat import atoms as ak
 AT = DATA / "at_cubic.toml"
 AT_PI = DATA / "at_pi_cubic.toml"
 mp.mp.dps = 40
-
-
-@pytest.fixture(scope="module")
-def at_family():
-    return lb.load_family(AT)
-
-
-@pytest.fixture(scope="module")
-def at_pi_family():
-    return lb.load_family(AT_PI)
 
 
 # ------------------------------------------------------------------------------ references

@@ -12,23 +12,12 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from test_atom_certified_geometry import AT, AT_PI, mp_curve
+from test_atom_certified_geometry import mp_curve
 
-import lambda_bezier as lb
 from lambda_bezier import _atom_geometry as ag
 from lambda_bezier import export
 
 mp.mp.dps = 40
-
-
-@pytest.fixture(scope="module")
-def at_family():
-    return lb.load_family(AT)
-
-
-@pytest.fixture(scope="module")
-def at_pi_family():
-    return lb.load_family(AT_PI)
 
 
 def mp_bezier(rows, u):

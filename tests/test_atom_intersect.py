@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
-from test_atom_certified_geometry import AT, AT_PI, mp_curve
+from test_atom_certified_geometry import mp_curve
 
 import lambda_bezier as lb
 from lambda_bezier import _atom_geometry as ag
@@ -19,16 +19,6 @@ from lambda_bezier.hazmat import atom_intersect as ai
 
 mp.mp.dps = 40
 ROOT = 1e-12  # the reported parameters against mpmath's
-
-
-@pytest.fixture(scope="module")
-def at_family():
-    return lb.load_family(AT)
-
-
-@pytest.fixture(scope="module")
-def at_pi_family():
-    return lb.load_family(AT_PI)
 
 
 POINTS = (

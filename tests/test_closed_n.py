@@ -12,10 +12,7 @@ the range, the runtime's joins by the closed-form weights equal the per-degree s
 from __future__ import annotations
 
 import json
-import os
 import random
-import subprocess
-import sys
 from fractions import Fraction
 from pathlib import Path
 
@@ -24,7 +21,7 @@ import pytest
 import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from test_indexed_families import file_to_paper, paper_basis
+from test_indexed_families import assert_documents_current, file_to_paper, paper_basis
 
 import lambda_bezier as lb
 from lambda_bezier import _derived_joins
@@ -299,53 +296,7 @@ def test_a_claim_true_on_the_range_but_not_for_general_n_is_caught():
 
 
 def test_documents_are_current_under_two_hash_seeds():
-    for seed in ("0", "4242"):
-        for name in ("two_end_bezier", "q_bezier"):
-            res = subprocess.run(
-                [
-                    sys.executable,
-                    "-m",
-                    "lambda_bezier",
-                    "derive",
-                    "-q",
-                    "--check",
-                    "--family",
-                    str(DATA / f"{name}.toml"),
-                ],
-                env={**os.environ, "PYTHONHASHSEED": seed},
-                capture_output=True,
-                text=True,
-                check=False,
-            )
-            assert res.returncode == 0, (seed, name, res.stdout[-2000:], res.stderr[-2000:])
-
-
-@pytest.mark.parametrize(
-    ("rid", "key", "old", "new"),
-    [
-        (None, None, None, None),
-        ("te.tangents_n", ("equations", 1, "rhs"), "(n - mu)", "(n + mu)"),
-        ("te.join_g1_n", ("join_weights", "1,first,1"), "mu1", "lam1"),
-        ("te.join_g1_n", ("join_weights", "1,first,0"), "m + lam2", "n + lam2"),
-        ("te.join_c1_at_3", ("join_weights", "1,first,1"), "3 - mu1", "2 - mu1"),
-    ],
-)
-def test_two_end_records_and_one_changed_symbol(rid, key, old, new):
-    """two_end_bezier's records in n match; one changed symbol flips a verdict."""
-    records_mod = pytest.importorskip("derive.verify.records")
-    report_mod = pytest.importorskip("derive.verify.report")
-    files = [DATA / "two_end_bezier.toml", DATA / "two_end_bezier.records.toml"]
-    records = records_mod.load_paths(files)
-    if rid is None:
-        assert [report_mod.check_record(r).verdict for r in records] == ["match"] * 3
-        return
-    rec = next(r for r in records if r["id"] == rid)
-    holder = rec
-    for k in key[:-1]:
-        holder = holder[k]
-    assert old in holder[key[-1]]
-    holder[key[-1]] = holder[key[-1]].replace(old, new, 1)
-    assert report_mod.check_record(rec).verdict == "mismatch"
+    assert_documents_current(*(DATA / f"{name}.toml" for name in ("two_end_bezier", "q_bezier")))
 
 
 def test_a_join_record_at_a_degree_outside_the_range_is_refused():

@@ -229,10 +229,14 @@ def odd_curves(points: np.ndarray) -> int:
     odd = 0
     for j in range(m):
         big = 0.0
+        nan = False
         for i in range(size):
             for c in range(dim):
+                # without a branch per coordinate (a compare-and-keep that may hold a NaN):
+                # the maximum and a NaN flag, selects the compiler keeps in registers, twice
+                # as fast (issue #29)
                 a = abs(points[j, i, c])
-                if a > big or a != a:  # a NaN is kept, and fails the test below
-                    big = a
-        odd += not (big < 2.0**900 and (big >= 2.0**-901 or big == 0.0))
+                big = max(big, a)
+                nan |= a != a
+        odd += nan or not (big < 2.0**900 and (big >= 2.0**-901 or big == 0.0))
     return odd

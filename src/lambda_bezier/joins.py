@@ -354,7 +354,7 @@ def join(
         :math:`C_1''(1) = \alpha^2 C_2''(0) + d \, C_2'(0)`); C joints take 1 and 0.
     rest : array_like
         The control points after the solved ones.
-    family : str or family, optional
+    family : str or Family, optional
         The new segment's family; default that of `curve`. A family with one parameter per
         index (``lam(i)``, an IndexedFamily) takes its values as one sequence, one per index
         of `degree`: ``lam=[...]`` or ``params={"lam": [...]}``.

@@ -148,10 +148,9 @@ class AtomCurve:
     # ------------------------------------------------------------------ evaluation
     def _parameters(self, t: ParamLike, extrapolate: bool) -> tuple[np.ndarray, bool]:
         extrapolate = val.flag(extrapolate, "extrapolate")
-        tt, scalar = val.as_parameters(t, extrapolate=True)
+        tt, scalar, small, big = val.parameter_range(t)
         lo, hi = self.data.DOMAIN
         if not extrapolate and tt.size:
-            small, big = float(tt.min()), float(tt.max())
             # the domain's ends are rounded (π/2): allow them to a few ulps
             slack = 4 * np.spacing(max(abs(lo), abs(hi), 1.0))
             if small < lo - slack or big > hi + slack:

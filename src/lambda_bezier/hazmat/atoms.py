@@ -203,10 +203,17 @@ def half_angle_coefficients(coefficients: np.ndarray, harmonics: int) -> np.ndar
     return out
 
 
-# parameters per block of evaluate_half_angle: its (2J+1, block) powers of u stay in cache.
-# Measured at 1e6 parameters (CPU time, interleaved, loaded 2-core machine): 4096 fastest,
-# 8192 5-15% slower, 2048 about 40% slower (the matrix product's cost per call)
-_HALF_ANGLE_BLOCK = 4096
+# parameters per block of evaluate_half_angle: its (2J+1, block) powers of u stay in L2 (1.25
+# MiB a core here). Per block about ten numpy calls of ~1.4 µs overhead each; at 1e6
+# parameters (han_trig_cubic, J = 3, 2026-11-24, load 2.5-3 on 2 cores, best of 25, wall and
+# CPU time) 6144-12288 were within noise of each other and 0.8-2 ms (8-15%) faster than 4096,
+# 16384 about 1 ms slower than 8192 (the powers leave L2) and 2048 slower still (the
+# per-call overhead); an earlier measurement at a higher load had 4096 ahead of 8192, so the
+# choice between them is within what the load moves. Tried and not kept: powers by repeated
+# squaring in fewer, 2-D calls (no faster at 8192, slower at 4096), u for the whole array at
+# once (an extra full pass), one reciprocal and a product instead of the division (no
+# faster: the division streams)
+_HALF_ANGLE_BLOCK = 8192
 
 
 def evaluate_half_angle(

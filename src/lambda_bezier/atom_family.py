@@ -194,8 +194,8 @@ class AtomCurve:
         kernel, arrays of at least ap.PIECES_FROM parameters inside the domain go through
         the certified piecewise form. Without it the atoms are faster: in numpy the piecewise
         form measured 4-7x a polynomial cubic's evaluation (one gather per coefficient and
-        parameter), a trigonometric curve's half-angle form 1.7x by CPU time (wall: 1.4-2.3x
-        at load 5-6, median 1.9x; issue #30, README "Benchmarks")."""
+        parameter), a trigonometric curve's half-angle form 1.7-2.1x (issue #30, README
+        "Benchmarks")."""
         fast = inside and tt.size >= ap.PIECES_FROM and ap.compiled() is not None
         pieces = self._piece_table(order) if fast else None
         if pieces is not None:

@@ -232,9 +232,9 @@ def evaluate_half_angle(
     the product in BLAS, so the 2J multiply-add passes of Horner's rule per coordinate (each
     a pass of its own in numpy) become one call: with J = 3, about half the time of Horner's
     rule (issue #30, the evaluation without numba). At 1e6 parameters (J = 3, d = 2) the
-    steps cost, relative to a polynomial cubic's whole evaluation: the tan 0.25-0.35x (its
-    floor; sin and cos cost 1.5x each), the shift and scale 0.1x, the powers 0.3x, the
-    product 0.4-0.5x, the division 0.2x, numpy's per-call overhead included (2026-11-24).
+    steps cost, relative to a polynomial cubic's whole evaluation: the tan 0.2-0.3x (its
+    floor; sin and cos cost 1.5x each), the shift and scale 0.1x, the powers 0.3-0.4x, the
+    product 0.4-0.55x, the division 0.2-0.35x, per-call overhead included (2026-11-24).
     With |u| <= 1 every power is at most 1, and the sums are as accurate as Horner's (a few
     ulps of Σ |c_e| |u|^e)."""
     dim = table.shape[1] - 1

@@ -193,6 +193,26 @@ def test_parameters_are_the_familys_t(families):
         families[HAN].curve(PTS, lam=0)
 
 
+@pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf])
+def test_parameters_checked_once_refuse_non_finite(families, bad):
+    """One pair of min/max reductions (val.parameter_range) checks finiteness and the domain:
+    a NaN or infinity anywhere in the array is named, with or without extrapolate; the
+    smallest and largest values are what the domain check reports."""
+    curve = families[HAN].curve(PTS, lam=0.5, mu=-1)
+    t = np.linspace(0.0, 1.5, 9)
+    t[4] = bad
+    for extrapolate in (False, True):
+        with pytest.raises(ValueError, match="t contains NaN or infinity"):
+            curve.evaluate(t, extrapolate=extrapolate)
+    t[4] = -0.25
+    with pytest.raises(ValueError, match=r"t = -0\.25 is outside the han_trig_cubic domain"):
+        curve.derivative(t, 1)
+    t[4] = 1.75
+    with pytest.raises(ValueError, match=r"t = 1\.75 is outside the han_trig_cubic domain"):
+        curve.evaluate(t)
+    assert curve.evaluate(np.empty(0)).shape == (0, 2)
+
+
 def test_half_angle_kernel_equals_the_recurrences(families):
     curve = families[HAN].curve(np.random.default_rng(3).normal(size=(4, 2)), lam=-1.5, mu=0.7)
     t = np.random.default_rng(4).random(1000) * math.pi / 2

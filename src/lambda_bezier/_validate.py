@@ -276,24 +276,33 @@ def as_lambda(
     return value
 
 
-def as_parameters(t: object, *, extrapolate: bool, name: str = "t") -> tuple[np.ndarray, bool]:
-    """Parameter values as a 1-D float array, and whether the input was a scalar."""
-    extrapolate = flag(extrapolate, "extrapolate")
+def parameter_range(t: object, name: str = "t") -> tuple[np.ndarray, bool, float, float]:
+    """Parameter values as a 1-D float array, whether the input was a scalar, and the array's
+    least and greatest values (0.0, 0.0 when empty): checked finite, so a caller with its own
+    domain needs no second pass over the array."""
     arr = real_array(t, name)
     if arr.ndim > 1:
         raise ValueError(f"{name} must be a number or a 1-D array, got shape {arr.shape}")
     scalar = arr.ndim == 0
     arr = np.atleast_1d(arr)
+    lo = hi = 0.0
     if arr.size:
         # min and max propagate NaN and expose ±inf: two reductions check everything
         lo, hi = float(arr.min()), float(arr.max())
         if not (math.isfinite(lo) and math.isfinite(hi)):
             raise ValueError(f"{name} contains NaN or infinity")
-        if not extrapolate and (lo < 0.0 or hi > 1.0):
-            bad = lo if lo < 0.0 else hi
-            raise ValueError(
-                f"{name} = {bad} is outside [0, 1]; pass extrapolate=True to evaluate there"
-            )
+    return arr, scalar, lo, hi
+
+
+def as_parameters(t: object, *, extrapolate: bool, name: str = "t") -> tuple[np.ndarray, bool]:
+    """Parameter values as a 1-D float array, and whether the input was a scalar."""
+    extrapolate = flag(extrapolate, "extrapolate")
+    arr, scalar, lo, hi = parameter_range(t, name)
+    if arr.size and not extrapolate and (lo < 0.0 or hi > 1.0):
+        bad = lo if lo < 0.0 else hi
+        raise ValueError(
+            f"{name} = {bad} is outside [0, 1]; pass extrapolate=True to evaluate there"
+        )
     return arr, scalar
 
 

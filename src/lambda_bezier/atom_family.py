@@ -148,10 +148,9 @@ class AtomCurve:
     # ------------------------------------------------------------------ evaluation
     def _parameters(self, t: ParamLike, extrapolate: bool) -> tuple[np.ndarray, bool]:
         extrapolate = val.flag(extrapolate, "extrapolate")
-        tt, scalar = val.as_parameters(t, extrapolate=True)
+        tt, scalar, small, big = val.parameter_range(t)
         lo, hi = self.data.DOMAIN
         if not extrapolate and tt.size:
-            small, big = float(tt.min()), float(tt.max())
             # the domain's ends are rounded (π/2): allow them to a few ulps
             slack = 4 * np.spacing(max(abs(lo), abs(hi), 1.0))
             if small < lo - slack or big > hi + slack:
@@ -195,7 +194,8 @@ class AtomCurve:
         kernel, arrays of at least ap.PIECES_FROM parameters inside the domain go through
         the certified piecewise form. Without it the atoms are faster: in numpy the piecewise
         form measured 4-7x a polynomial cubic's evaluation (one gather per coefficient and
-        parameter), a trigonometric curve's half-angle form about 2x (issue #30)."""
+        parameter), a trigonometric curve's half-angle form 1.7-2.1x (issue #30, README
+        "Benchmarks")."""
         fast = inside and tt.size >= ap.PIECES_FROM and ap.compiled() is not None
         pieces = self._piece_table(order) if fast else None
         if pieces is not None:

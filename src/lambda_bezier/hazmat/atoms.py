@@ -203,10 +203,18 @@ def half_angle_coefficients(coefficients: np.ndarray, harmonics: int) -> np.ndar
     return out
 
 
-# parameters per block of evaluate_half_angle: its (2J+1, block) powers of u stay in cache.
-# Measured at 1e6 parameters (CPU time, interleaved, loaded 2-core machine): 4096 fastest,
-# 8192 5-15% slower, 2048 about 40% slower (the matrix product's cost per call)
-_HALF_ANGLE_BLOCK = 4096
+# parameters per block of evaluate_half_angle: its (2J+1, block) powers of u stay in L2 (1.25
+# MiB a core here). Per block about ten numpy calls of ~1.4 µs overhead each; at 1e6
+# parameters (han_trig_cubic, J = 3, 2026-11-24, load 2.5-3 on 2 cores, best of 25, wall and
+# CPU time) 6144-12288 were within noise of each other and 0.8-2 ms (8-15%) faster than 4096,
+# 16384 about 1 ms slower than 8192 (the powers leave L2) and 2048 slower still (the
+# per-call overhead); an earlier measurement at a higher load had 4096 ahead of 8192, so the
+# choice between them is within what the load moves. Tried and not kept: powers by repeated
+# squaring in fewer, 2-D calls (no faster at 8192, slower at 4096), u for the whole array at
+# once (an extra full pass), one reciprocal and a product instead of the division (no
+# faster: the division streams), the even/odd split N = A(u²) + u B(u²) (3 products for the
+# powers instead of 5, a 5x4 product instead of 3x7, two more passes: no faster)
+_HALF_ANGLE_BLOCK = 8192
 
 
 def evaluate_half_angle(
@@ -216,13 +224,19 @@ def evaluate_half_angle(
     with τ = tau − centre (subtracted per block: no array of τ is made); for |ωτ| <= π/2
     (then |u| <= 1 and the denominator is in [1, 2^J]).
 
-    Blocked over τ: per block one tan, the powers 1, u, …, u^2J (2J − 1 products), then the
-    d numerators and the denominator at once as one matrix product of the table's columns
-    with those powers, and one division. numpy runs the product in BLAS, so the 2J
-    multiply-add passes of Horner's rule per coordinate (each a pass of its own in numpy)
-    become one call: with J = 3, about half the time of Horner's rule (issue #30, the
-    evaluation without numba). With |u| <= 1 every power is at most 1, and the sums are as
-    accurate as Horner's (a few ulps of Σ |c_e| |u|^e)."""
+    Blocked over τ (`_HALF_ANGLE_BLOCK` parameters, sized so the powers stay in L2): per
+    block one tan, the powers 1, u, …, u^2J (2J − 1 products), then the d numerators and the
+    denominator at once as one matrix product of the table's columns with those powers, and
+    one division written straight into the (d, len(tau)) result (the caller's transpose is
+    the (len(tau), d) Fortran-order array a polynomial curve returns: no copy). numpy runs
+    the product in BLAS, so the 2J multiply-add passes of Horner's rule per coordinate (each
+    a pass of its own in numpy) become one call: with J = 3, about half the time of Horner's
+    rule (issue #30, the evaluation without numba). At 1e6 parameters (J = 3, d = 2) the
+    steps cost, relative to a polynomial cubic's whole evaluation: the tan 0.2-0.3x (its
+    floor; sin and cos cost 1.5x each), the shift and scale 0.1x, the powers 0.3-0.4x, the
+    product 0.4-0.55x, the division 0.2-0.35x, per-call overhead included (2026-11-24).
+    With |u| <= 1 every power is at most 1, and the sums are as accurate as Horner's (a few
+    ulps of Σ |c_e| |u|^e)."""
     dim = table.shape[1] - 1
     size = table.shape[0]
     columns = np.ascontiguousarray(table.T)  # (d+1, 2J+1): the numerators, the denominator

@@ -458,6 +458,68 @@ def _sine(p: Part, q: Part, s: float, t: float) -> float:
 
 
 # ---------------------------------------------------------------------- the search
+def _inflated(pr: Pairs, j: int) -> tuple[float, float, float, float]:
+    """Krawczyk's box X for pair j: the pair widened by INFLATE of its widths each side."""
+    ws, wt = float(pr.s1[j] - pr.s0[j]), float(pr.t1[j] - pr.t0[j])
+    return (
+        float(pr.s0[j]) - INFLATE * ws,
+        float(pr.s1[j]) + INFLATE * ws,
+        float(pr.t0[j]) - INFLATE * wt,
+        float(pr.t1[j]) + INFLATE * wt,
+    )
+
+
+def _inside(a: tuple[float, ...], b: tuple[float, ...]) -> bool:
+    """Box a (s0, s1, t0, t1) within box b."""
+    return b[0] <= a[0] and a[1] <= b[1] and b[2] <= a[2] and a[3] <= b[3]
+
+
+def _same_root(f: Found, g: Found) -> bool:
+    """Proven roots f and g are one when either's K lies in the other's X (where the root
+    is unique): ill-conditioned crossings are polished by Newton to points far apart."""
+    if f.k is None or g.k is None or f.x is None or g.x is None:
+        return False
+    return _inside(f.k, g.x) or _inside(g.k, f.x)
+
+
+def _in_domains(
+    p: Part, q: Part, s: float, t: float, box: tuple[float, float, float, float], pr: Pairs, j: int
+) -> bool:
+    """Whether the root proven in K = `box` (unique in pair j of `pr` inflated by INFLATE,
+    Newton's approximation (s, t)) lies in the domains. K inside them: yes; K outside: no.
+    K across an end: Krawczyk again on a box about (s, t) too small to reach that end (half
+    the distance to it), inside the first box, so that the root it proves is the same one;
+    when that settles nothing the root is within the rounding of F of the end (the float
+    input does not decide) and it is kept: a meeting point that cannot be excluded."""
+    lo_s, hi_s, lo_t, hi_t = box
+    if hi_s < p.lo or lo_s > p.hi or hi_t < q.lo or lo_t > q.hi:
+        return False
+    if p.lo <= lo_s and hi_s <= p.hi and q.lo <= lo_t and hi_t <= q.hi:
+        return True
+    ws, wt = p.hi - p.lo, q.hi - q.lo
+    ds = min(s - p.lo, p.hi - s)  # signed: negative outside the domain
+    dt = min(t - q.lo, q.hi - t)
+    rho = 0.5 * min(abs(ds) / ws, abs(dt) / wt)
+    if rho == 0:
+        return True
+    hs, ht = rho * ws, rho * wt
+    tight = Pairs(np.array([s - hs]), np.array([s + hs]), np.array([t - ht]), np.array([t + ht]))
+    # Krawczyk's box (the pair inflated by INFLATE) inside the first one, whose root is unique
+    reach_s, reach_t = (1 + 2 * INFLATE) * hs, (1 + 2 * INFLATE) * ht
+    first = _inflated(pr, j)
+    if not (
+        first[0] < s - reach_s
+        and s + reach_s < first[1]
+        and first[2] < t - reach_t
+        and t + reach_t < first[3]
+    ):
+        return True
+    unique, _, _, _ = _krawczyk(p, q, tight)
+    if not unique[0]:
+        return True  # not settled: within the rounding of the end
+    return ds > 0 and dt > 0
+
+
 @dataclass
 class Found:
     """An intersection (s, t, kind), and whether a single root was proven there."""
@@ -466,6 +528,10 @@ class Found:
     t: float
     kind: str
     proven: bool
+    # a proven root: Krawczyk's K (s0, s1, t0, t1) that holds it and the box X in which it is
+    # the only root
+    k: tuple[float, float, float, float] | None = None
+    x: tuple[float, float, float, float] | None = None
 
 
 def _clusters(pr: Pairs) -> list[np.ndarray]:
@@ -507,15 +573,13 @@ def _search(
         for j in np.nonzero(unique)[0]:
             box = (float(ks[0][j]), float(ks[1][j]), float(kt[0][j]), float(kt[1][j]))
             s, t = _newton(p, q, 0.5 * (box[0] + box[1]), 0.5 * (box[2] + box[3]), box)
-            if not (p.lo - SAME * ws <= s <= p.hi + SAME * ws):
-                continue
-            if not (q.lo - SAME * wt <= t <= q.hi + SAME * wt):
+            if not _in_domains(p, q, s, t, box, pr, int(j)):
                 continue
             if p.values(0, np.array([s])).shape[0] > 2 and _residual(p, q, s, t) > ON_CURVE * size:
                 continue  # 3D: the two rows' root, not a meeting point
             s, t = min(max(s, p.lo), p.hi), min(max(t, q.lo), q.hi)
             kind = "tangent" if _sine(p, q, s, t) <= TANGENT_SINE else "transversal"
-            found.append(Found(s, t, kind, True))
+            found.append(Found(s, t, kind, True, box, _inflated(pr, int(j))))
         pr = pr.take(~(unique | empty))
         small = ((pr.s1 - pr.s0) <= TINY * ws) & ((pr.t1 - pr.t0) <= TINY * wt)
         if small.any():
@@ -598,7 +662,11 @@ def _settle(p: Part, q: Part, found: list[Found], stuck: Pairs) -> list[Found]:
     out.sort(key=lambda f: (f.s, f.t))
     merged: list[Found] = []
     for f in out:
-        same = [g for g in merged if abs(g.s - f.s) <= SAME * ws and abs(g.t - f.t) <= SAME * wt]
+        same = [
+            g
+            for g in merged
+            if (abs(g.s - f.s) <= SAME * ws and abs(g.t - f.t) <= SAME * wt) or _same_root(f, g)
+        ]
         if same:
             if f.proven and not same[0].proven:
                 merged[merged.index(same[0])] = f

@@ -8,7 +8,7 @@ from __future__ import annotations
 import mpmath as mp
 import numpy as np
 import pytest
-from hypothesis import assume, given, settings
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 from test_atom_certified_geometry import AT, AT_PI, mp_curve
 
@@ -273,8 +273,14 @@ def test_two_mixed_curves_match_mpmath(at_family, at_pi_family, p_pts, q_pts, la
     assert len(got) >= len(roots)
 
 
+# found by fuzzing: a flat tangency (the float twin crosses the curve twice, 4e-8 apart,
+# mpmath) whose band of unresolved pairs broke into two clusters 3.4e-7 apart, both reported
+FLAT_TANGENCY = np.array([0.0, 2.75, 3.5, 0.0, 1.0, 0.03125, 1.625, -1.0]).reshape(4, 2)
+
+
 @settings(max_examples=15)
 @given(POINTS, st.floats(-1, 1), st.floats(0.1, 1.47))
+@example(FLAT_TANGENCY, 0.75, 0.5)
 def test_reflected_curve_touches_once(at_family, pts, lam, t0):
     """The curve reflected in its tangent line at C(t0) touches it at (t0, t0), reported once
     as a tangency; it also meets it at (s, s) wherever C crosses that line."""
@@ -295,6 +301,17 @@ def test_reflected_curve_touches_once(at_family, pts, lam, t0):
             assert any(abs(x.s - float(s)) <= 1e-10 and abs(x.t - float(s)) <= 1e-10 for x in got)
     for x in got:
         assert np.linalg.norm(curve.evaluate(x.s) - twin.evaluate(x.t)) <= 1e-10
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="known limit: a very flat tangency (curvature 0.004, size 2.75) makes the "
+    "certified search give up (past MAX_PAIRS) and the polynomial pieces answer 1.2e-7 off",
+)
+def test_reflected_flatter_tangency(at_family):
+    """Found by fuzzing, not mended: mpmath's crossings of the float twin are t0 ± 3e-8."""
+    pts = np.array([0.0, 2.75, 2.5, 1.0, 0.03125, 1.0, 1.625, -1.0]).reshape(4, 2)
+    test_reflected_curve_touches_once.hypothesis.inner_test(at_family, pts, 0.75, 0.5)
 
 
 def test_with_a_rational_curve_matches_mpmath(at_family):

@@ -74,6 +74,10 @@ SAME = 1e-9  # relative to the domain: roots this close are one
 ON_CURVE = 1e-10  # relative to the size: |P(s) − Q(t)| below this is a meeting point
 TANGENT_SINE = 1e-6  # below this sine of the angle between the tangents: "tangent"
 START = 8  # intervals per domain at the first level
+# a tangency's unresolved clusters are polished over this many TINY each side: where the
+# curves part slowly (curvatures alike) the band within the enclosures' width of the other
+# curve is that wide, and it can break into clusters (found by fuzzing, 3.4e-7 apart)
+BAND = 1024
 
 Bounds = tuple[np.ndarray, np.ndarray]
 
@@ -651,7 +655,13 @@ def _settle(p: Part, q: Part, found: list[Found], stuck: Pairs) -> list[Found]:
             if _residual(p, q, s2, t2) <= _residual(p, q, s, t):
                 s, t = s2, t2
             if _sine(p, q, s, t) <= TANGENT_SINE:
-                s2, t2 = _tangent_newton(p, q, s, t, box)
+                # a flat tangency's band of unresolved pairs can break into clusters (the
+                # float curves cross twice there, closer than the band is wide): each is
+                # polished over the band's reach, to the one point of tangency
+                span_s = max(box[1] - box[0], BAND * TINY * ws)
+                span_t = max(box[3] - box[2], BAND * TINY * wt)
+                wide = (box[0] - span_s, box[1] + span_s, box[2] - span_t, box[3] + span_t)
+                s2, t2 = _tangent_newton(p, q, s, t, wide)
                 if _residual(p, q, s2, t2) <= max(_residual(p, q, s, t), 4 * _U * size):
                     s, t = s2, t2
             if _residual(p, q, s, t) > ON_CURVE * size:

@@ -34,14 +34,18 @@ Every curve taking part is a `Part`: its parameter interval, point values and de
    enclosure over K holds 0 and Newton's root has |F| within ON_CURVE of the size (the
    third row excluding 0 proves it is not).
 3. Every proven root is polished by Newton's method (it stays in K) and kept when it lies
-   in the domains; roots closer than SAME (relative) are one.
+   in the domains: K inside them, or, K across an end, a second Krawczyk box about Newton's
+   point too small to reach the end proves on which side it is (`_in_domains`; only within
+   the rounding of F of the end, about 1e-14 of the domain, is it undecided, and kept).
+   Roots closer than SAME (relative) are one, and so are two whose K lies in the other's X.
 4. Pairs that neither test settles are halved in s and t. Below TINY (relative to each
    domain) they are *unresolved*: the curves are within the enclosures' width there but
    no single root is proven, i.e. a tangency or crossings closer than TINY. Each cluster of
    touching unresolved pairs gives one intersection (the pair with the least |F| at its
    middle, polished by Gauss-Newton), kind "tangent" when the tangents there are parallel
-   within TANGENT_SINE, else "transversal"; a cluster whose least |F| is above ON_CURVE of
-   the size gives none.
+   within TANGENT_SINE (then polished on the tangent system over BAND × TINY each side, so
+   the clusters of one flat tangency meet at one point), else "transversal"; a cluster whose
+   least |F| is above ON_CURVE of the size gives none.
 
 So every crossing of the curves is found: each lies in a pair that is never excluded, and
 ends either in a proven box (one root, reported once) or in an unresolved cluster (reported

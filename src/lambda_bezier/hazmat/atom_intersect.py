@@ -418,7 +418,10 @@ def _tangent_system(p: Part, q: Part, s: float, t: float) -> np.ndarray:
     sx, tx = np.array([s]), np.array([t])
     a, b = p.values(1, sx)[:, 0], q.values(1, tx)[:, 0]
     f = p.values(0, sx)[:, 0] - q.values(0, tx)[:, 0]
-    cross = np.atleast_1d(np.cross(a, b)) / max(float(np.linalg.norm(b)), 1e-300)
+    # in 2D the scalar cross product by hand: numpy 2 deprecates np.cross of 2-vectors
+    cross = (np.array([a[0] * b[1] - a[1] * b[0]]) if a.size == 2 else np.cross(a, b)) / max(
+        float(np.linalg.norm(b)), 1e-300
+    )
     return np.concatenate([f, cross])
 
 

@@ -1,6 +1,7 @@
 """Kernels compiled with numba (the `fast` extra), each the same arithmetic as a numpy path
 that stays as the tested fallback (the batch operations' kernels are in `batch_compiled`).
 
+- `speeds`: |p'| at fixed nodes, the inner loop of both levels below;
 - `first_level`: the first level of arclength.unit_integral (the speed at the fixed nodes,
   each piece's two rules, the accept test's sums, the least speed), which in numpy is about
   ten calls on arrays of a few hundred values, most of an arc length's cost;
@@ -30,18 +31,14 @@ _JIT: dict[str, Any] = {"cache": True, "error_model": "numpy", "nogil": True}
 
 
 @numba.njit(**_JIT)
-def first_level(
-    coeffs: np.ndarray, powers: np.ndarray, weights: np.ndarray, pieces: int, size: np.ndarray
-) -> tuple[float, float, float]:
-    """arclength.unit_integral's first level: coeffs (d, N+1) the Taylor coefficients of p,
-    powers (N+1, pieces·r) the derivative powers at the nodes, weights (r, 2) the pieces'
-    rules (difference, value). Writes |sums| (pieces, 2) into `size`; returns (Σ|difference|,
-    Σ|value|, the least speed at a node)."""
+def speeds(coeffs: np.ndarray, powers: np.ndarray, square: np.ndarray, value: np.ndarray) -> None:
+    """The speed |p'| at the nodes into `square`: coeffs (d, N+1) the Taylor coefficients of
+    p, powers (N+1, nodes) the derivative powers at the nodes (row 0 zero, so skipped);
+    `value` is scratch of the nodes' size. Both levels' inner loop, in one fixed order."""
     dim, count = coeffs.shape
-    nodes = powers.shape[1]
-    per = nodes // pieces
-    square = np.zeros(nodes)
-    value = np.empty(nodes)
+    nodes = square.size
+    for j in range(nodes):
+        square[j] = 0.0
     for c in range(dim):
         for j in range(nodes):
             value[j] = 0.0
@@ -52,9 +49,24 @@ def first_level(
                 value[j] += ce * row[j]
         for j in range(nodes):
             square[j] += value[j] * value[j]
-    least = np.inf
     for j in range(nodes):
         square[j] = np.sqrt(square[j])
+
+
+@numba.njit(**_JIT)
+def first_level(
+    coeffs: np.ndarray, powers: np.ndarray, weights: np.ndarray, pieces: int, size: np.ndarray
+) -> tuple[float, float, float]:
+    """arclength.unit_integral's first level: coeffs (d, N+1) the Taylor coefficients of p,
+    powers (N+1, pieces·r) the derivative powers at the nodes, weights (r, 2) the pieces'
+    rules (difference, value). Writes |sums| (pieces, 2) into `size`; returns (Σ|difference|,
+    Σ|value|, the least speed at a node)."""
+    nodes = powers.shape[1]
+    per = nodes // pieces
+    square = np.empty(nodes)
+    speeds(coeffs, powers, square, np.empty(nodes))
+    least = np.inf
+    for j in range(nodes):
         if square[j] < least:
             least = square[j]
     spent = 0.0
@@ -122,7 +134,6 @@ def second_level(
     piece, weights (r, 2) the parts' rules. Writes the signed sums (len(bad)·S, 2) (test −
     value, value) and each part's least speed at its nodes into `low`; returns (Σ|test −
     value|, Σ|value|, the least speed at a node)."""
-    dim, count = coeffs.shape
     nodes = powers.shape[2]
     per = weights.shape[0]
     parts = nodes // per
@@ -132,21 +143,7 @@ def second_level(
     total = 0.0
     least = np.inf
     for b in range(bad.size):
-        rows = powers[bad[b]]
-        for j in range(nodes):
-            square[j] = 0.0
-        for c in range(dim):
-            for j in range(nodes):
-                value[j] = 0.0
-            for e in range(1, count):  # row 0 of the derivative powers is zero
-                ce = coeffs[c, e]
-                row = rows[e]
-                for j in range(nodes):
-                    value[j] += ce * row[j]
-            for j in range(nodes):
-                square[j] += value[j] * value[j]
-        for j in range(nodes):
-            square[j] = np.sqrt(square[j])
+        speeds(coeffs, powers[bad[b]], square, value)
         for p in range(parts):
             s0 = 0.0
             s1 = 0.0

@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import itertools
+import os
 import sys
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 import numpy.typing as npt
@@ -141,7 +144,7 @@ def evaluate_many(
     if not cls._has_lambda:
         if lam is not None:
             raise ValueError("a classical Bézier curve takes no shape parameter")
-        lams = np.zeros(1)  # unused: one table, no λ (not one zero per curve: memory)
+        lams = np.zeros(())  # unused: one table, no λ (not one zero per curve: memory)
     else:
         if lam is None:
             raise ValueError(f"a {family} curve needs a shape parameter lam")
@@ -150,10 +153,68 @@ def evaluate_many(
     result = None if out is None else _checked_out(out, (m, tt.size, dim), scalar, points, arr, t)
     values = np.empty((m, tt.size, dim)) if result is None else result
     check_needed = extrapolate or not check_range  # else nothing can overflow
-    _products_many(arr, tables, lams, tt, k, check_needed, values)
+    if lams.ndim == 1 and m and (lams == lams[0]).all():
+        lams = lams[0, ...]  # one λ for every curve (0-d): folded into the products' matrix
+    _products_threaded(arr, tables, lams, tt, k, check_needed, values)
     if out is not None:
         return out
     return values[:, 0] if scalar else values
+
+
+# Threads for evaluate_many's products: None for one per CPU this process may run on
+# (os.sched_getaffinity), 1 for none. Each thread takes a slab of whole curves and runs
+# _products_many on it (BLAS, numpy's passes and numba's magnitude test all release the GIL),
+# so the page faults of a fresh result (the operating system zeroing its pages) are taken by
+# the thread that writes them, and the arithmetic is split. Slabs are cut between the chunks
+# of curves _products_many takes in one thread, so every BLAS call sees the same rows and the
+# answers do not depend on the number of threads (BLAS's order of sums does depend on the
+# rows it is given: one row takes its vector path).
+THREADS: int | None = None
+_MIN_SLAB = 1 << 20  # result elements a thread's slab at least gets: below, one thread
+_POOL: list[ThreadPoolExecutor] = []
+
+
+def _products_threaded(
+    arr: np.ndarray,
+    tables: list[np.ndarray],
+    lams: np.ndarray,
+    tt: np.ndarray,
+    k: int,
+    check_needed: bool,
+    values: np.ndarray,
+) -> None:
+    """_products_many over slabs of curves, one per thread (THREADS). An error is the one
+    the first failing slab raises, as the slabs run in order one thread after another."""
+    m, size, dim = arr.shape
+    chunks = chunk_ranges(m, size * dim)  # _products_many's chunks of curves
+    cpus = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    workers = min(THREADS or cpus or 1, values.size // _MIN_SLAB, len(chunks))
+    if workers <= 1:
+        _products_many(arr, tables, lams, tt, k, check_needed, values)
+        return
+    if not _POOL or _POOL[0]._max_workers < workers:
+        _POOL[:] = [ThreadPoolExecutor(workers, thread_name_prefix="evaluate_many")]
+    cuts = [chunks[len(chunks) * w // workers][0] for w in range(workers)] + [m]
+    jobs = [
+        _POOL[0].submit(
+            _products_many,
+            arr[a:b],
+            tables,
+            lams[a:b] if lams.ndim else lams,
+            tt,
+            k,
+            check_needed,
+            values[a:b],
+            a,
+        )
+        for a, b in itertools.pairwise(cuts)
+    ]
+    # every slab finished before returning (none writes into the result later), and the
+    # first slab's error raised, as in one thread
+    errors = [job.exception() for job in jobs]
+    for error in errors:
+        if error is not None:
+            raise error
 
 
 def _products_many(
@@ -164,6 +225,7 @@ def _products_many(
     k: int,
     check_needed: bool,
     values: np.ndarray,
+    first: int = 0,
 ) -> None:
     """evaluate_many on the tables, into `values` (m, T, d), C-contiguous: each block of
     values is one matrix product written by BLAS straight into its place.
@@ -177,18 +239,19 @@ def _products_many(
     blocks of fewer than 2^18 multiply-adds: working memory bounded at any m or T, and
     below OpenBLAS's threshold for threads (2^18 there), which on a loaded machine measured
     slower, not faster (up to 10x). Issue #29: this replaced a compiled Horner loop per
-    curve (numba), which took more CPU time in the same runs (README, benchmark notes)."""
+    curve (numba), which took more CPU time in the same runs (README, benchmark notes).
+
+    `lams` holds one λ per curve (shape (m,)), or one λ for all (0-d, folded into K);
+    `first` is the index of arr's first curve in the caller's batch (named in errors)."""
     m, size, dim = arr.shape
     total = tt.size
     # per table p, the map from a curve's flattened points to its flattened coefficients of
     # p^(k): kron(D_p, I_d), D_p (n+1, N+1-k) (at least one zero column past the degree)
     maps = [np.kron(differentiate_coefficients(tab.T, k), np.eye(dim)) for tab in tables]
     width = maps[0].shape[1]
-    per_lam = lams.size == m
-    if per_lam and m and (lams == lams[0]).all():
-        lams, per_lam = lams[:1], False  # one λ for every curve: fold it into the map
+    per_lam = lams.ndim == 1
     if not per_lam:
-        folded = sum((maps[p] * lams[0] ** p for p in range(1, len(maps))), maps[0])
+        folded = sum((maps[p] * float(lams) ** p for p in range(1, len(maps))), maps[0])
     inner = width if per_lam else size * dim
     # parameters per block: the block of K (inner × span·d numbers) stays in the L2 cache
     span = max(1, min(total, (alg.CHUNK_ELEMENTS // 4) // (inner * dim)))
@@ -214,7 +277,7 @@ def _products_many(
             scales = (
                 None
                 if compiled is not None and compiled.odd_curves(arr[lo:hi]) == 0
-                else _curve_scales(arr[lo:hi], lo)
+                else _curve_scales(arr[lo:hi], first + lo)
             )
             part = arr[lo:hi].reshape(hi - lo, size * dim)  # a copy only if arr is strided
             if scales is not None:

@@ -109,7 +109,7 @@ def test_small_results_stay_on_one_thread(monkeypatch):
 
     monkeypatch.setattr(batch, "_products_many", counted)
     monkeypatch.setattr(batch, "THREADS", 2)
-    monkeypatch.setattr(kernels, "CHUNK_ELEMENTS", 120)  # chunks of 10 curves
+    monkeypatch.setattr(kernels, "CHUNK_ELEMENTS", 480)  # chunks of 10 curves
     pts = np.random.default_rng(1).normal(size=(100, 6, 2))
     lb.evaluate_many(pts, np.linspace(0, 1, 64), "bezier")
     assert calls == [100]

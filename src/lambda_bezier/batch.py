@@ -174,6 +174,13 @@ _MIN_SLAB = 1 << 20  # result elements a thread's slab at least gets: below, one
 _POOL: list[ThreadPoolExecutor] = []
 
 
+def _curve_chunks(m: int, per_curve: int) -> list[tuple[int, int]]:
+    """_products_many's chunks of curves (a quarter of CHUNK_ELEMENTS each: at 10^5 quintics
+    about 18 of them, so that slabs of whole chunks share the work between threads within a
+    chunk, while a chunk's fixed cost stays small)."""
+    return chunk_ranges(m, 4 * per_curve)
+
+
 def _products_threaded(
     arr: np.ndarray,
     tables: list[np.ndarray],
@@ -186,7 +193,7 @@ def _products_threaded(
     """_products_many over slabs of curves, one per thread (THREADS). An error is the one
     the first failing slab raises, as the slabs run in order one thread after another."""
     m, size, dim = arr.shape
-    chunks = chunk_ranges(m, size * dim)  # _products_many's chunks of curves
+    chunks = _curve_chunks(m, size * dim)  # _products_many's chunks of curves
     cpus = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
     workers = min(THREADS or cpus or 1, values.size // _MIN_SLAB, len(chunks))
     if workers <= 1:
@@ -270,7 +277,7 @@ def _products_many(
         # chunks of curves for the checks and the coefficients (a NumPy call has a fixed
         # cost: per product block it would be most of the time), each cut into the blocks
         # of the products
-        for lo, hi in chunk_ranges(m, size * dim):
+        for lo, hi in _curve_chunks(m, size * dim):
             # a curve with coordinates beyond 2^±900 is computed on its points scaled by a
             # power of two (exact), then scaled back, so a representable p(t) is not lost to
             # an overflow or underflow in the coefficients (each curve by its own magnitude)

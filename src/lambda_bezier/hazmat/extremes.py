@@ -14,7 +14,7 @@ from types import ModuleType
 import numpy as np
 
 from . import kernels as alg
-from .roots import candidate_roots, newton, significant
+from .roots import candidate_roots, newton, newton_pair, significant
 
 
 def _eval(coeffs: np.ndarray, t: np.ndarray) -> np.ndarray:
@@ -130,23 +130,22 @@ def _closest_roots(c0: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarra
         g[:, : size - 1] -= q @ dp
         roots = candidate_roots(g)
         d2 = alg.differentiate_coefficients(p, 2)
+        # p, p' and p'' as the rows of one table (the derivatives' missing top coefficients
+        # zero: Horner then gives the same numbers as on their own), so that a Newton step
+        # evaluates once, not five times: the per-call cost of numpy's passes is most of a
+        # single query's time (issue #29)
+        rows = np.zeros((3 * dim, size))
+        rows[:dim], rows[dim : 2 * dim, : dp.shape[1]], rows[2 * dim :, : d2.shape[1]] = p, dp, d2
 
-        def gval(t: np.ndarray) -> np.ndarray:
-            shape = t.shape
-            pts = _eval(p, t).reshape(*shape, dim)
-            der = _eval(dp, t).reshape(*shape, dim)
-            g: np.ndarray = ((pts - q[:, None, :]) * der).sum(-1)
-            return g
+        def g_and_gprime(t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            values = _eval(rows, t).reshape(*t.shape, 3 * dim)
+            pts, der, sec = values[..., :dim], values[..., dim : 2 * dim], values[..., 2 * dim :]
+            off = pts - q[:, None, :]
+            g: np.ndarray = (off * der).sum(-1)
+            dg: np.ndarray = (der * der).sum(-1) + (off * sec).sum(-1)
+            return g, dg
 
-        def gprime(t: np.ndarray) -> np.ndarray:
-            shape = t.shape
-            pts = _eval(p, t).reshape(*shape, dim)
-            der = _eval(dp, t).reshape(*shape, dim)
-            sec = _eval(d2, t).reshape(*shape, dim)
-            dg: np.ndarray = (der * der).sum(-1) + ((pts - q[:, None, :]) * sec).sum(-1)
-            return dg
-
-        polished = newton(roots.copy(), gval, gprime)
+        polished = newton_pair(roots.copy(), g_and_gprime)
         cands += [np.nan_to_num(roots, nan=0.0), np.nan_to_num(polished, nan=0.0)]
     t = np.concatenate(cands, axis=1)
     pts = _eval(c0, t).reshape(*t.shape, dim)

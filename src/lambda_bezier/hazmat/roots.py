@@ -55,10 +55,20 @@ def newton(
     steps: int = 4,
 ) -> np.ndarray:
     """A few guarded Newton steps on every finite candidate (kept inside [0, 1])."""
+    return newton_pair(t, lambda tt: (f(tt), fprime(tt)), steps)
+
+
+def newton_pair(
+    t: np.ndarray,
+    f_and_fprime: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
+    steps: int = 4,
+) -> np.ndarray:
+    """`newton` with f and f' from one call (which can share their evaluations)."""
     for _ in range(steps):
         good = np.isfinite(t)
         tt = np.where(good, t, 0.5)
+        value, slope = f_and_fprime(tt)
         with np.errstate(divide="ignore", invalid="ignore"):
-            step = f(tt) / fprime(tt)
+            step = value / slope
         t = np.where(good & np.isfinite(step), np.clip(tt - step, 0.0, 1.0), t)
     return t

@@ -146,7 +146,11 @@ def _closest_roots(c0: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarra
             return g, dg
 
         polished = newton_pair(roots.copy(), g_and_gprime)
-        cands += [np.nan_to_num(roots, nan=0.0), np.nan_to_num(polished, nan=0.0)]
+        # a missing root (NaN) becomes the end t = 0, a candidate already; roots and polished
+        # roots are otherwise finite (clipped to [0, 1], and Newton keeps them there), so
+        # np.where does nan_to_num's work here, at a fraction of its cost (issue #29)
+        found = np.concatenate([roots, polished], axis=1)
+        cands.append(np.where(np.isnan(found), 0.0, found))
     t = np.concatenate(cands, axis=1)
     pts = _eval(c0, t).reshape(*t.shape, dim)
     dist2 = np.square(pts - q[:, None, :]).sum(-1)

@@ -117,3 +117,21 @@ def test_small_results_stay_on_one_thread(monkeypatch):
     monkeypatch.setattr(batch, "_MIN_SLAB", 1000)
     lb.evaluate_many(pts, np.linspace(0, 1, 64), "bezier")
     assert calls == [50, 50]
+
+
+def test_a_forked_child_makes_its_own_threads(monkeypatch):
+    """After fork the child has the parent's pool object but none of its threads: the child
+    must start its own (else its jobs never run and evaluate_many waits for ever)."""
+    import multiprocessing
+
+    if "fork" not in multiprocessing.get_all_start_methods():
+        pytest.skip("no fork on this platform")
+    monkeypatch.setattr(batch, "_MIN_SLAB", 1)
+    monkeypatch.setattr(batch, "THREADS", 2)
+    monkeypatch.setattr(kernels, "CHUNK_ELEMENTS", 48)
+    pts = np.random.default_rng(4).normal(size=(20, 4, 3))
+    t = np.linspace(0, 1, 9)
+    want = lb.evaluate_many(pts, t, "bezier")  # the parent's pool now has threads
+    with multiprocessing.get_context("fork").Pool(1) as child:
+        got = child.apply_async(lb.evaluate_many, (pts, t, "bezier")).get(timeout=120)
+    np.testing.assert_array_equal(got, want)

@@ -171,7 +171,9 @@ def evaluate_many(
 # rows it is given: one row takes its vector path).
 THREADS: int | None = None
 _MIN_SLAB = 1 << 20  # result elements a thread's slab at least gets: below, one thread
-_POOL: list[ThreadPoolExecutor] = []
+# the pools by (process, threads): a child made by fork inherits the parent's pool without
+# its threads (its jobs would never run), so each process makes its own
+_POOLS: dict[tuple[int, int], ThreadPoolExecutor] = {}
 
 
 def _curve_chunks(m: int, per_curve: int) -> list[tuple[int, int]]:
@@ -199,11 +201,13 @@ def _products_threaded(
     if workers <= 1:
         _products_many(arr, tables, lams, tt, k, check_needed, values)
         return
-    if not _POOL or _POOL[0]._max_workers < workers:
-        _POOL[:] = [ThreadPoolExecutor(workers, thread_name_prefix="evaluate_many")]
+    key = (os.getpid(), workers)
+    pool = _POOLS.get(key) or _POOLS.setdefault(
+        key, ThreadPoolExecutor(workers, thread_name_prefix="evaluate_many")
+    )
     cuts = [chunks[len(chunks) * w // workers][0] for w in range(workers)] + [m]
     jobs = [
-        _POOL[0].submit(
+        pool.submit(
             _products_many,
             arr[a:b],
             tables,

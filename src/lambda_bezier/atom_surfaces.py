@@ -205,6 +205,19 @@ class AtomSurface(Surface):
             out: np.ndarray = np.einsum("ki,ijd,kj->kd", bu, self.net, bv, optimize=True)
         return out
 
+    def _partial_magnitude(self, uu: np.ndarray, vv: np.ndarray, du: int, dv: int) -> np.ndarray:
+        # the basis values carry their own rounding, relative to the largest of them (a
+        # value that is zero at an end comes out as noise of that size), so each is bounded
+        # by its size plus the largest
+        bu, bv = (
+            np.abs(b) + np.abs(b).max(axis=1, keepdims=True)
+            for b in (self._basis(0, uu, du), self._basis(1, vv, dv))
+        )
+        with val.overflow_allowed():
+            terms = np.einsum("ki,ijd,kj->kd", bu, np.abs(self.net), bv, optimize=True)
+        out: np.ndarray = terms.max(axis=-1)
+        return out
+
     def derivative(
         self, u: ParamLike, v: ParamLike, du: int = 1, dv: int = 0, *, extrapolate: bool = False
     ) -> np.ndarray:

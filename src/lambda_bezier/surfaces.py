@@ -312,6 +312,15 @@ class Surface:
         out: np.ndarray = ker.evaluate_points(self._derivative_coefficients(du, dv), uu, vv)
         return out
 
+    def _partial_magnitude(self, uu: np.ndarray, vv: np.ndarray, du: int, dv: int) -> np.ndarray:
+        """(k,): the sum of the absolute terms that `_partial` adds up (its largest coordinate),
+        so that its rounding error is a small multiple of eps times this."""
+        coeffs = np.abs(self._derivative_coefficients(du, dv))
+        with val.overflow_allowed():
+            terms = ker.evaluate_points(coeffs, 0.5 + np.abs(uu - 0.5), 0.5 + np.abs(vv - 0.5))
+        out: np.ndarray = terms.max(axis=-1)
+        return out
+
     def _frame(self, u: ParamLike, v: ParamLike) -> tuple[np.ndarray, ...]:
         if self.dimension != 3:
             raise ValueError(
@@ -331,13 +340,22 @@ class Surface:
         su, sv = su / safe, sv / safe
         cross = np.cross(su, sv)
         size = np.linalg.norm(cross, axis=-1)
-        lengths = np.linalg.norm(su, axis=-1) * np.linalg.norm(sv, axis=-1)
-        bad = ~(size > 1e-14 * lengths) | (scale == 0)
+        len_u, len_v = np.linalg.norm(su, axis=-1), np.linalg.norm(sv, axis=-1)
+        # a partial that is zero in exact arithmetic (a collapsed edge) comes out as rounding
+        # noise, about eps times the terms summed; the cross product of noise is a normal in
+        # an arbitrary direction, so the normal counts as undefined unless |S_u x S_v| clears
+        # the rounding of both partials by far (the direction is then good to about 1e-7)
+        with val.overflow_allowed():
+            mag_u = self._partial_magnitude(uu, vv, 1, 0) / safe[:, 0]
+            mag_v = self._partial_magnitude(uu, vv, 0, 1) / safe[:, 0]
+        noise = 1e-9 * (mag_u * len_v + len_u * mag_v)
+        bad = ~(size > 1e-14 * len_u * len_v) | ~(size > noise) | (scale == 0)
         if bad.any():
             k = int(np.argmax(bad))
             raise ValueError(
                 f"the normal is undefined at (u, v) = ({uu[k]}, {vv[k]}): S_u x S_v vanishes "
-                "there (a degenerate point of the surface)"
+                "there, or is within the rounding of S_u and S_v (a degenerate point of the "
+                "surface, such as a collapsed edge)"
             )
         return uu, vv, su, sv, cross / size[:, None], np.array(scalar), safe
 

@@ -225,7 +225,7 @@ class AtomSurface(Surface):
         derivatives of the basis)."""
         if extrapolate:
             raise ValueError("extrapolate: an atom surface is evaluated on its domain only")
-        du, dv = val.as_order(du), val.as_order(dv)
+        du, dv = val.as_order(du, "du"), val.as_order(dv, "dv")
         uu, vv, scalar = self._pair(u, v)
         out = val.finite_result(self._partial(uu, vv, du, dv), "the surface value")
         return out[0] if scalar else out
@@ -236,7 +236,7 @@ class AtomSurface(Surface):
         """S (or a partial derivative) on the grid us × vs: (len(us), len(vs), d)."""
         if extrapolate:
             raise ValueError("extrapolate: an atom surface is evaluated on its domain only")
-        du, dv = val.as_order(du), val.as_order(dv)
+        du, dv = val.as_order(du, "du"), val.as_order(dv, "dv")
         uu, _ = _on_domain(self._probes[0], us, "us")
         vv, _ = _on_domain(self._probes[1], vs, "vs")
         bu, bv = self._basis(0, uu, du), self._basis(1, vv, dv)

@@ -247,14 +247,19 @@ def surface_energy_matrices(
         raise ValueError(f"degrees must be a pair (m, n), got {val.describe(degrees)}")
     m, n = (val.integer(d, "degrees") for d in degrees)
     u_cls, v_cls = _as_family_pair(family)
-    _check_degree(u_cls, m, "u")
-    _check_degree(v_cls, n, "v")
+    try:
+        _check_degree(u_cls, m, "u")
+        _check_degree(v_cls, n, "v")
+    except ValueError as exc:  # the check speaks of a net; here the degrees were given
+        raise ValueError(f"degrees = ({m}, {n}): {str(exc).removeprefix('net, ')}") from None
     classes: tuple[Any, Any] = (u_cls, v_cls)  # hashable: classes hash by identity
     return _cached_matrices(*classes, m, n, energy)
 
 
 def surface_energy(surf: Surface, energy: str = "thin_plate") -> Fraction | float:
     """The energy of a surface (exact for an exact surface)."""
+    if not isinstance(surf, Surface):
+        raise TypeError(f"surf must be a lambda_bezier surface, got {type(surf).__name__}")
     if not hasattr(surf, "_u_cls"):  # an AtomSurface: param_surface_energy (lb.surface_energy)
         raise TypeError(
             "surf: the energy of a surface of trigonometric, hyperbolic or mixed families is "

@@ -279,7 +279,7 @@ class Surface:
         self, u: ParamLike, v: ParamLike, du: int = 1, dv: int = 0, *, extrapolate: bool = False
     ) -> np.ndarray:
         """The partial derivative ∂^(du+dv) S / ∂u^du ∂v^dv at paired parameters."""
-        du, dv = val.as_order(du), val.as_order(dv)
+        du, dv = val.as_order(du, "du"), val.as_order(dv, "dv")
         uu, vv, scalar = _parameter_pair(u, v, extrapolate)
         with val.overflow_allowed():
             out = ker.evaluate_points(self._derivative_coefficients(du, dv), uu, vv)
@@ -290,7 +290,7 @@ class Surface:
         self, us: ParamLike, vs: ParamLike, du: int = 0, dv: int = 0, *, extrapolate: bool = False
     ) -> np.ndarray:
         """S (or a partial derivative) on the grid us × vs: (len(us), len(vs), d)."""
-        du, dv = val.as_order(du), val.as_order(dv)
+        du, dv = val.as_order(du, "du"), val.as_order(dv, "dv")
         uu, _ = val.as_parameters(us, extrapolate=extrapolate, name="us")
         vv, _ = val.as_parameters(vs, extrapolate=extrapolate, name="vs")
         coeffs = self._derivative_coefficients(du, dv)

@@ -192,3 +192,24 @@ def test_bad_input_names_the_argument():
         lb.surface_energy([[(0, 0)]], "membrane")
     with pytest.raises(ValueError, match=r"degrees = \(-1, 3\)"):
         lb.surface_energy_matrices((-1, 3), "membrane")
+
+
+@pytest.mark.parametrize(
+    "net",
+    [
+        [[i * j - 2 * i for j in range(4)] for i in range(4)],  # a scalar field as a 2-D grid
+        np.arange(16).reshape(4, 4),
+        np.arange(48).reshape(4, 4, 3),  # integers in numpy are exact, as for curves
+    ],
+    ids=["grid-of-ints", "int-array-2d", "int-array-3d"],
+)
+def test_integer_nets_give_exact_surfaces(net):
+    """Before: a 2-D grid of ints or an integer array gave a float surface (exact in, float out)."""
+    s = lb.SameDegreeSurface(net, F(1, 2), F(-1, 3))
+    assert s.is_exact
+    rows = np.asarray(net).reshape(4, 4, -1)
+    assert s.control_net() == tuple(tuple(tuple(F(int(c)) for c in p) for p in r) for r in rows)
+    # the corner interpolates, the iso-curve and the Bézier form are Fractions, the energy too
+    assert s.to_bezier().control_net()[3][3] == tuple(F(int(c)) for c in rows[3][3])
+    assert all(isinstance(c, F) for p in s.curve_at_u(F(1, 3)).control_points() for c in p)
+    assert isinstance(lb.surface_energy(s, "membrane"), F)

@@ -77,18 +77,31 @@ def _as_family_pair(family: object) -> tuple[type[Curve], type[Curve]]:
 
 
 def _exact_net(net: object) -> ExactNet | None:
-    """The net as Fractions when every coordinate is an int or a Fraction, else None."""
-    if isinstance(net, np.ndarray) and net.dtype != object:
-        return None
+    """The net as Fractions when every coordinate is an int or a Fraction, else None (an
+    integer array is exact, as for curves; a 2-D grid of numbers is a net of points in d = 1)."""
+    if isinstance(net, np.ndarray):
+        if net.dtype.kind in "iu":
+            net = net.tolist()
+        elif net.dtype != object:
+            return None
     if not isinstance(net, Sequence | np.ndarray):
         return None
     rows = []
     for row in net:
         exact = val.exact_rows(row)
+        if exact is None and _is_numbers(row):
+            exact = val.exact_rows([(x,) for x in row])
         if exact is None:
             return None
         rows.append(exact)
     return tuple(rows)
+
+
+def _is_numbers(row: object) -> bool:
+    """A row given as plain numbers (a scalar field's row), not as points."""
+    if isinstance(row, str | bytes) or not isinstance(row, Sequence | np.ndarray):
+        return False
+    return all(val.is_exact_scalar(x) for x in row)
 
 
 def _as_net(net: object) -> np.ndarray:
@@ -179,7 +192,7 @@ class Surface:
             and self.net.ndim == 3
             and len(self._exact[0][0]) != self.net.shape[2]
         ):
-            self._exact = None  # a 2-D grid of numbers (d = 1) given without inner tuples
+            self._exact = None  # not a net of points (the shape check above names it)
         check_range = val.flag(check_range, "check_range")
         _check_degree(self._u_cls, self.net.shape[0] - 1, "u")
         _check_degree(self._v_cls, self.net.shape[1] - 1, "v")

@@ -545,7 +545,10 @@ class Surface:
 
         u, v, best, lower = ker.minimise_scalar_net(np.asarray(f_net), value, polish, gap)
         at = ker.evaluate_points(self._coefficients, np.array([u]), np.array([v]))[0]
-        return SurfaceClosestPoint(u, v, at, float(np.sqrt(best)), float(np.sqrt(max(lower, 0.0))))
+        # the net's least coefficient is rounded too: at a corner, where it is the attained
+        # value itself, it can come out an ulp above it; a lower bound lowered stays one
+        lower = min(max(lower, 0.0), best)
+        return SurfaceClosestPoint(u, v, at, float(np.sqrt(best)), float(np.sqrt(lower)))
 
     # ------------------------------------------------------------------ degree elevation
     def elevate_u(self) -> BezierSurface:

@@ -232,3 +232,19 @@ def test_closest_point_lower_bound_never_exceeds_the_distance(seed):
         assert cp.lower_bound <= cp.distance
         assert cp.distance <= np.linalg.norm(points - q, axis=1).min() + 1e-12
         assert cp.distance - cp.lower_bound <= 1e-11
+
+
+def test_atom_closest_point_lower_bound_never_exceeds_the_distance():
+    """The same through the rational form (han_trig_cubic): before, 3.6e-15 above at (0, 0)."""
+    trig = lb.load_family(examples.path("han_trig_cubic.toml"))
+    rng = np.random.default_rng(1)
+    for _ in range(6):
+        t = trig.surface(
+            rng.normal(size=(4, 4, 3)),
+            params_u={"lam": 0.5, "mu": -1},
+            params_v={"lam": 0, "mu": 0.3},
+        )
+        for q in rng.normal(size=(5, 3)) * 2:
+            cp = t.closest_point(q)
+            assert cp.lower_bound <= cp.distance
+            assert abs(np.linalg.norm(t.evaluate(cp.u, cp.v) - q) - cp.distance) < 1e-12

@@ -476,7 +476,8 @@ class AtomSurface(Surface):
         )
         u, v = float(self.t_of_s(0, s)), float(self.t_of_s(1, t))
         at = self.evaluate(u, v)
-        return SurfaceClosestPoint(u, v, at, float(np.sqrt(best)), float(np.sqrt(max(lower, 0.0))))
+        lower = min(max(lower, 0.0), best)  # rounded at a corner: never above the value (surfaces)
+        return SurfaceClosestPoint(u, v, at, float(np.sqrt(best)), float(np.sqrt(lower)))
 
     # numeric fallbacks of a mixed family (no rational form): not certified
     def _grid(self, count: int = 65) -> tuple[np.ndarray, np.ndarray]:

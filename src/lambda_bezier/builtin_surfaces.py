@@ -46,17 +46,17 @@ def most_specific(
     lam_u: Fraction | float | None,
     lam_v: Fraction | float | None,
     *,
-    family: tuple[type[Curve], type[Curve]],
+    classes: tuple[type[Curve], type[Curve]],
     check_range: bool = True,
 ) -> Surface:
-    """The surface of `family` (a pair of curve classes) as the class a user builds it with:
+    """The surface of the curve classes (u, v) as the class a user builds it with:
     SameDegreeSurface, BernsteinLikeSurface or BezierSurface when one built-in family runs in
     both directions, else the generic Surface (so that a JSON round trip keeps the class)."""
-    u_cls, v_cls = family
+    u_cls, v_cls = classes
     if u_cls is v_cls is SameDegreeCurve:
         return SameDegreeSurface(net, lam_u, lam_v, check_range=check_range)  # type: ignore[arg-type]
     if u_cls is v_cls is BernsteinLikeCurve:
         return BernsteinLikeSurface(net, lam_u, lam_v, check_range=check_range)  # type: ignore[arg-type]
     if u_cls is v_cls is BezierCurve and lam_u is None and lam_v is None:
         return BezierSurface(net)
-    return Surface(net, lam_u, lam_v, family=family, check_range=check_range)
+    return Surface(net, lam_u, lam_v, family=classes, check_range=check_range)

@@ -327,7 +327,7 @@ def surface_from_json(text: str, *, family: object = None, check_range: bool = T
         return _param_surface_from(doc, classes, rows, check_range)
     lu, lv = (None if x is None else _number_in(x, "surface.lambda") for x in lams)  # type: ignore[union-attr]
     return most_specific(
-        rows, lu, lv, family=(classes[fams[0]], classes[fams[1]]), check_range=check_range
+        rows, lu, lv, classes=(classes[fams[0]], classes[fams[1]]), check_range=check_range
     )
 
 

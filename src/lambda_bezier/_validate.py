@@ -306,9 +306,11 @@ def as_parameters(t: object, *, extrapolate: bool, name: str = "t") -> tuple[np.
     return arr, scalar
 
 
-def as_order(k: object) -> int:
+def as_order(k: object, name: str = "k") -> int:
     if isinstance(k, bool | np.bool_) or not isinstance(k, numbers.Integral) or int(k) < 0:
-        raise ValueError(f"derivative order k must be a non-negative integer, got {describe(k)}")
+        raise ValueError(
+            f"derivative order {name} must be a non-negative integer, got {describe(k)}"
+        )
     return int(k)
 
 

@@ -205,6 +205,19 @@ class AtomSurface(Surface):
             out: np.ndarray = np.einsum("ki,ijd,kj->kd", bu, self.net, bv, optimize=True)
         return out
 
+    def _partial_magnitude(self, uu: np.ndarray, vv: np.ndarray, du: int, dv: int) -> np.ndarray:
+        # the basis values carry their own rounding, relative to the largest of them (a
+        # value that is zero at an end comes out as noise of that size), so each is bounded
+        # by its size plus the largest
+        bu, bv = (
+            np.abs(b) + np.abs(b).max(axis=1, keepdims=True)
+            for b in (self._basis(0, uu, du), self._basis(1, vv, dv))
+        )
+        with val.overflow_allowed():
+            terms = np.einsum("ki,ijd,kj->kd", bu, np.abs(self.net), bv, optimize=True)
+        out: np.ndarray = terms.max(axis=-1)
+        return out
+
     def derivative(
         self, u: ParamLike, v: ParamLike, du: int = 1, dv: int = 0, *, extrapolate: bool = False
     ) -> np.ndarray:
@@ -212,7 +225,7 @@ class AtomSurface(Surface):
         derivatives of the basis)."""
         if extrapolate:
             raise ValueError("extrapolate: an atom surface is evaluated on its domain only")
-        du, dv = val.as_order(du), val.as_order(dv)
+        du, dv = val.as_order(du, "du"), val.as_order(dv, "dv")
         uu, vv, scalar = self._pair(u, v)
         out = val.finite_result(self._partial(uu, vv, du, dv), "the surface value")
         return out[0] if scalar else out
@@ -223,7 +236,7 @@ class AtomSurface(Surface):
         """S (or a partial derivative) on the grid us × vs: (len(us), len(vs), d)."""
         if extrapolate:
             raise ValueError("extrapolate: an atom surface is evaluated on its domain only")
-        du, dv = val.as_order(du), val.as_order(dv)
+        du, dv = val.as_order(du, "du"), val.as_order(dv, "dv")
         uu, _ = _on_domain(self._probes[0], us, "us")
         vv, _ = _on_domain(self._probes[1], vs, "vs")
         bu, bv = self._basis(0, uu, du), self._basis(1, vv, dv)
@@ -463,7 +476,8 @@ class AtomSurface(Surface):
         )
         u, v = float(self.t_of_s(0, s)), float(self.t_of_s(1, t))
         at = self.evaluate(u, v)
-        return SurfaceClosestPoint(u, v, at, float(np.sqrt(best)), float(np.sqrt(max(lower, 0.0))))
+        lower = min(max(lower, 0.0), best)  # rounded at a corner: never above the value (surfaces)
+        return SurfaceClosestPoint(u, v, at, float(np.sqrt(best)), float(np.sqrt(lower)))
 
     # numeric fallbacks of a mixed family (no rational form): not certified
     def _grid(self, count: int = 65) -> tuple[np.ndarray, np.ndarray]:

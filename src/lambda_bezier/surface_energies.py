@@ -247,14 +247,19 @@ def surface_energy_matrices(
         raise ValueError(f"degrees must be a pair (m, n), got {val.describe(degrees)}")
     m, n = (val.integer(d, "degrees") for d in degrees)
     u_cls, v_cls = _as_family_pair(family)
-    _check_degree(u_cls, m, "u")
-    _check_degree(v_cls, n, "v")
+    try:
+        _check_degree(u_cls, m, "u")
+        _check_degree(v_cls, n, "v")
+    except ValueError as exc:  # the check speaks of a net; here the degrees were given
+        raise ValueError(f"degrees = ({m}, {n}): {str(exc).removeprefix('net, ')}") from None
     classes: tuple[Any, Any] = (u_cls, v_cls)  # hashable: classes hash by identity
     return _cached_matrices(*classes, m, n, energy)
 
 
 def surface_energy(surf: Surface, energy: str = "thin_plate") -> Fraction | float:
     """The energy of a surface (exact for an exact surface)."""
+    if not isinstance(surf, Surface):
+        raise TypeError(f"surf must be a lambda_bezier surface, got {type(surf).__name__}")
     if not hasattr(surf, "_u_cls"):  # an AtomSurface: param_surface_energy (lb.surface_energy)
         raise TypeError(
             "surf: the energy of a surface of trigonometric, hyperbolic or mixed families is "
@@ -486,10 +491,25 @@ def _least(e: xp.Bivariate, cands: list[Any]) -> tuple[Algebraic, Algebraic, str
 
 
 def _algebraic(r: Any, poly: list[Fraction] | None) -> Algebraic:
+    """The root of `poly` in the isolating interval r, as a Fraction when it is rational:
+    IsolatedRoot promises an irrational number (an edge's quadratic has a rational vertex)."""
     if isinstance(r, Fraction):
         return r
     assert poly is not None
-    return IsolatedRoot(r[0], r[1], xp.integer_coefficients(xp.squarefree(poly)))
+    factor = xp.squarefree(poly)
+    coefficients = xp.integer_coefficients(factor)
+    if len(coefficients) == 2:
+        return Fraction(-coefficients[0], coefficients[1])
+    # a rational root p/q with q <= 2^64 is the only fraction of such a denominator within
+    # 2^-129 of any point 2^-140 from it (two of them differ by at least 2^-128), so the
+    # best approximation of the narrowed interval's middle finds it; an exact zero proves it
+    narrow = xp.refine(factor, r, Fraction(1, 2**140))
+    if isinstance(narrow, Fraction):
+        return narrow
+    guess = ((narrow[0] + narrow[1]) / 2).limit_denominator(2**64)
+    if r[0] < guess < r[1] and xp.evaluate(factor, guess) == 0:
+        return guess
+    return IsolatedRoot(r[0], r[1], coefficients)
 
 
 def _float(x: Algebraic) -> float:

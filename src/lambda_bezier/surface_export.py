@@ -16,6 +16,7 @@ import numpy as np
 
 from . import _validate as val
 from ._json_io import _own_classes, class_definitions
+from .builtin_surfaces import most_specific
 from .export import (
     FORMAT_VERSION,
     _number_in,
@@ -325,8 +326,8 @@ def surface_from_json(text: str, *, family: object = None, check_range: bool = T
     if "parameters" in doc:
         return _param_surface_from(doc, classes, rows, check_range)
     lu, lv = (None if x is None else _number_in(x, "surface.lambda") for x in lams)  # type: ignore[union-attr]
-    return Surface(
-        rows, lu, lv, family=(classes[fams[0]], classes[fams[1]]), check_range=check_range
+    return most_specific(
+        rows, lu, lv, classes=(classes[fams[0]], classes[fams[1]]), check_range=check_range
     )
 
 

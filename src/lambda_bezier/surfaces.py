@@ -77,18 +77,31 @@ def _as_family_pair(family: object) -> tuple[type[Curve], type[Curve]]:
 
 
 def _exact_net(net: object) -> ExactNet | None:
-    """The net as Fractions when every coordinate is an int or a Fraction, else None."""
-    if isinstance(net, np.ndarray) and net.dtype != object:
-        return None
+    """The net as Fractions when every coordinate is an int or a Fraction, else None (an
+    integer array is exact, as for curves; a 2-D grid of numbers is a net of points in d = 1)."""
+    if isinstance(net, np.ndarray):
+        if net.dtype.kind in "iu":
+            net = net.tolist()
+        elif net.dtype != object:
+            return None
     if not isinstance(net, Sequence | np.ndarray):
         return None
     rows = []
     for row in net:
         exact = val.exact_rows(row)
+        if exact is None and _is_numbers(row):
+            exact = val.exact_rows([(x,) for x in row])
         if exact is None:
             return None
         rows.append(exact)
     return tuple(rows)
+
+
+def _is_numbers(row: object) -> bool:
+    """A row given as plain numbers (a scalar field's row), not as points."""
+    if isinstance(row, str | bytes) or not isinstance(row, Sequence | np.ndarray):
+        return False
+    return all(val.is_exact_scalar(x) for x in row)
 
 
 def _as_net(net: object) -> np.ndarray:
@@ -179,7 +192,7 @@ class Surface:
             and self.net.ndim == 3
             and len(self._exact[0][0]) != self.net.shape[2]
         ):
-            self._exact = None  # a 2-D grid of numbers (d = 1) given without inner tuples
+            self._exact = None  # not a net of points (the shape check above names it)
         check_range = val.flag(check_range, "check_range")
         _check_degree(self._u_cls, self.net.shape[0] - 1, "u")
         _check_degree(self._v_cls, self.net.shape[1] - 1, "v")
@@ -279,7 +292,7 @@ class Surface:
         self, u: ParamLike, v: ParamLike, du: int = 1, dv: int = 0, *, extrapolate: bool = False
     ) -> np.ndarray:
         """The partial derivative ∂^(du+dv) S / ∂u^du ∂v^dv at paired parameters."""
-        du, dv = val.as_order(du), val.as_order(dv)
+        du, dv = val.as_order(du, "du"), val.as_order(dv, "dv")
         uu, vv, scalar = _parameter_pair(u, v, extrapolate)
         with val.overflow_allowed():
             out = ker.evaluate_points(self._derivative_coefficients(du, dv), uu, vv)
@@ -290,7 +303,7 @@ class Surface:
         self, us: ParamLike, vs: ParamLike, du: int = 0, dv: int = 0, *, extrapolate: bool = False
     ) -> np.ndarray:
         """S (or a partial derivative) on the grid us × vs: (len(us), len(vs), d)."""
-        du, dv = val.as_order(du), val.as_order(dv)
+        du, dv = val.as_order(du, "du"), val.as_order(dv, "dv")
         uu, _ = val.as_parameters(us, extrapolate=extrapolate, name="us")
         vv, _ = val.as_parameters(vs, extrapolate=extrapolate, name="vs")
         coeffs = self._derivative_coefficients(du, dv)
@@ -312,6 +325,15 @@ class Surface:
         out: np.ndarray = ker.evaluate_points(self._derivative_coefficients(du, dv), uu, vv)
         return out
 
+    def _partial_magnitude(self, uu: np.ndarray, vv: np.ndarray, du: int, dv: int) -> np.ndarray:
+        """(k,): the sum of the absolute terms that `_partial` adds up (its largest coordinate),
+        so that its rounding error is a small multiple of eps times this."""
+        coeffs = np.abs(self._derivative_coefficients(du, dv))
+        with val.overflow_allowed():
+            terms = ker.evaluate_points(coeffs, 0.5 + np.abs(uu - 0.5), 0.5 + np.abs(vv - 0.5))
+        out: np.ndarray = terms.max(axis=-1)
+        return out
+
     def _frame(self, u: ParamLike, v: ParamLike) -> tuple[np.ndarray, ...]:
         if self.dimension != 3:
             raise ValueError(
@@ -331,13 +353,22 @@ class Surface:
         su, sv = su / safe, sv / safe
         cross = np.cross(su, sv)
         size = np.linalg.norm(cross, axis=-1)
-        lengths = np.linalg.norm(su, axis=-1) * np.linalg.norm(sv, axis=-1)
-        bad = ~(size > 1e-14 * lengths) | (scale == 0)
+        len_u, len_v = np.linalg.norm(su, axis=-1), np.linalg.norm(sv, axis=-1)
+        # a partial that is zero in exact arithmetic (a collapsed edge) comes out as rounding
+        # noise, about eps times the terms summed; the cross product of noise is a normal in
+        # an arbitrary direction, so the normal counts as undefined unless |S_u x S_v| clears
+        # the rounding of both partials by far (the direction is then good to about 1e-7)
+        with val.overflow_allowed():
+            mag_u = self._partial_magnitude(uu, vv, 1, 0) / safe[:, 0]
+            mag_v = self._partial_magnitude(uu, vv, 0, 1) / safe[:, 0]
+        noise = 1e-9 * (mag_u * len_v + len_u * mag_v)
+        bad = ~(size > 1e-14 * len_u * len_v) | ~(size > noise) | (scale == 0)
         if bad.any():
             k = int(np.argmax(bad))
             raise ValueError(
                 f"the normal is undefined at (u, v) = ({uu[k]}, {vv[k]}): S_u x S_v vanishes "
-                "there (a degenerate point of the surface)"
+                "there, or is within the rounding of S_u and S_v (a degenerate point of the "
+                "surface, such as a collapsed edge)"
             )
         return uu, vv, su, sv, cross / size[:, None], np.array(scalar), safe
 
@@ -514,7 +545,10 @@ class Surface:
 
         u, v, best, lower = ker.minimise_scalar_net(np.asarray(f_net), value, polish, gap)
         at = ker.evaluate_points(self._coefficients, np.array([u]), np.array([v]))[0]
-        return SurfaceClosestPoint(u, v, at, float(np.sqrt(best)), float(np.sqrt(max(lower, 0.0))))
+        # the net's least coefficient is rounded too: at a corner, where it is the attained
+        # value itself, it can come out an ulp above it; a lower bound lowered stays one
+        lower = min(max(lower, 0.0), best)
+        return SurfaceClosestPoint(u, v, at, float(np.sqrt(best)), float(np.sqrt(lower)))
 
     # ------------------------------------------------------------------ degree elevation
     def elevate_u(self) -> BezierSurface:

@@ -20,6 +20,11 @@ exact polynomials:
    When two such end point pairs bound pieces that are the same curve, the curves are
    coincident there: the two pairs are reported with kind "coincident", and subdivision
    skips the shared stretch (where boxes would never separate).
+
+Meeting points: the curves meet only where they are within the rounding of evaluating them,
+a bound from the control points (never a fixed 1e-10): a Newton hit's exact residual within
+_root_bound, an end within _rounding_at of the other curve where it is located; shared
+stretches and common lines at _root_bound. The certificate holds its roots to _root_bound.
 """
 
 from __future__ import annotations
@@ -40,7 +45,10 @@ from .intersect_prepared import _exact_difference, _integer_point
 # It covers the rounding of repeated halving (a few ulps of the control points' size per
 # level and degree) and no more, so that curves 1e-13 of their size apart are still told apart
 BOX_SLACK = 64 * float(np.finfo(float).eps)
-ON_CURVE = 1e-10  # relative distance below which a point counts as on a curve
+# relative distance below which `locate` counts a user's point as on a curve. Intersection
+# does not use it: two curves meet only where they are within the rounding of evaluating
+# them, _root_bound (see "Meeting points" in the module's note)
+ON_CURVE = 1e-10
 SAME_ROOT = 1e-9  # parameters closer than this are one intersection
 ISOLATED_SAME = 1e-13  # two polished roots of isolated pieces this close are one (a shared edge)
 MERGE_RADIUS = 1e-3  # hits closer than this are compared for being one (see _add)
@@ -327,14 +335,21 @@ def _solve_from(
 
 # ---------------------------------------------------------------------------- locate
 def locate_all(
-    p: Prepared, point: np.ndarray, exact_point: Sequence[Fraction | int | float] | None = None
+    p: Prepared,
+    point: np.ndarray,
+    exact_point: Sequence[Fraction | int | float] | None = None,
+    within: float | None = None,
+    exact_end: bool = False,
 ) -> list[float]:
-    """Every t in [0, 1] with p(t) = point (within ON_CURVE of the curve's scale)."""
+    """Every t in [0, 1] with p(t) = point: within ON_CURVE of the curve's scale, or within
+    the distance `within`, or (exact_end: the point is exact, an end of another curve)
+    within the rounding of evaluating p at t (_rounding_at)."""
     point = np.asarray(point, dtype=float)
     exact_target = _integer_point(exact_point if exact_point is not None else point.tolist())
     scale = max(p.scale, float(np.abs(point).max(initial=0.0)))
     tol = ON_CURVE * scale
     on_curve = ON_CURVE * max(p.size, float(np.abs(point).max(initial=0.0)))
+    accept = on_curve if within is None else within
     found: list[float] = []
     if p.is_point:
         if np.linalg.norm(p.pts[0] - point) <= tol:
@@ -365,7 +380,7 @@ def locate_all(
             continue
         # on the curve: the exact distance, relative to the curve's own size (its control
         # polygon can be far larger: a Chebyshev polynomial's Bernstein coefficients)
-        if _exact_distance(p, t, exact_target) > on_curve:
+        if _exact_distance(p, t, exact_target) > (_rounding_at(p, t) if exact_end else accept):
             continue
         # one location if the curve stays at the point all the way between (a flat
         # spot, p' = p'' = 0, leaves the residual below tolerance around the root, over
@@ -383,6 +398,15 @@ def locate_all(
         elif _exact_distance(p, t, exact_target) < _exact_distance(p, found[same[0]], exact_target):
             found[same[0]] = float(t)
     return sorted(found)
+
+
+def _rounding_at(p: Prepared, t: float) -> float:
+    """How far p(t) can be off when evaluated at a float t: ROOT_RESIDUAL times n sum |b_i|
+    B_i(t) (de Casteljau's rounding, from the control points) plus |p'(t)| (t's own)."""
+    work = np.linalg.norm(p.pts, axis=1)
+    while work.size > 1:
+        work = work[:-1] + t * (work[1:] - work[:-1])
+    return float(ROOT_RESIDUAL * (p.degree * work[0] + np.linalg.norm(p.at(t, 1))))
 
 
 def _chord_bracket(p: Prepared, point: np.ndarray, s0: float, s1: float) -> float:
@@ -432,7 +456,7 @@ def _same_piece(p: Prepared, q: Prepared, s0: float, s1: float, t0: float, t1: f
     """p over [s0, s1] and q over [t0, t1] are one curve: the polynomials agree at
     max degree + 2 points."""
     u = np.linspace(0.05, 0.95, max(p.degree, q.degree) + 2)
-    tol = ON_CURVE * max(p.scale, q.scale) * 10
+    tol = _root_bound(p, q)
     return all(
         np.linalg.norm(p.at(s0 + x * (s1 - s0)) - q.at(t0 + x * (t1 - t0))) <= tol for x in u
     )
@@ -456,7 +480,8 @@ def _runs_along(p: Prepared, q: Prepared, s0: float, s1: float, t0: float, t1: f
     lo, hi = min(t0, t1) - SAME_ROOT, max(t0, t1) + SAME_ROOT
     located: dict[int, float] = {}
     for k in middle_first:
-        on_q = [t for t in locate_all(q, p.at(s0 + fractions[k] * (s1 - s0))) if lo <= t <= hi]
+        point = p.at(s0 + fractions[k] * (s1 - s0))
+        on_q = [t for t in locate_all(q, point, within=_root_bound(p, q)) if lo <= t <= hi]
         if len(on_q) != 1:
             return False
         located[k] = on_q[0]
@@ -585,12 +610,16 @@ def _pair_setup(p: Prepared, q: Prepared) -> tuple[list[Intersection], list[Box]
     (hits so far, rectangles of shared stretches for subdivision to skip)."""
     ends: list[Intersection] = []
     for s_end in (0, 1):
-        for t in locate_all(q, p.pts[-1 if s_end else 0], p.exact_row(-1 if s_end else 0)):
+        for t in locate_all(
+            q, p.pts[-1 if s_end else 0], p.exact_row(-1 if s_end else 0), None, True
+        ):
             cand = Intersection(float(s_end), t, "transversal")
             if not _dedupe(ends, cand):
                 ends.append(cand)
     for t_end in (0, 1):
-        for s in locate_all(p, q.pts[-1 if t_end else 0], q.exact_row(-1 if t_end else 0)):
+        for s in locate_all(
+            p, q.pts[-1 if t_end else 0], q.exact_row(-1 if t_end else 0), None, True
+        ):
             cand = Intersection(s, float(t_end), "transversal")
             if not _dedupe(ends, cand):
                 ends.append(cand)
@@ -670,8 +699,8 @@ def _quality(p: Prepared, q: Prepared, hit: Intersection) -> float:
     return float(np.linalg.norm(_tangent_residual(p, q, hit.s, hit.t, 1.0, True)))
 
 
-def _common_line(pts: np.ndarray, scale: float) -> tuple[np.ndarray, float] | None:
-    """(unit direction, extent) of the line all the points lie on (within ON_CURVE), or None."""
+def _common_line(pts: np.ndarray, tol: float) -> tuple[np.ndarray, float] | None:
+    """(unit direction, extent) of the line all the points lie on (within tol), or None."""
     base = pts[0]
     far = pts[np.argmax(np.linalg.norm(pts - base, axis=1))]
     length = float(np.linalg.norm(far - base))
@@ -680,14 +709,14 @@ def _common_line(pts: np.ndarray, scale: float) -> tuple[np.ndarray, float] | No
     unit = (far - base) / length
     rel = pts - base
     off_line = np.linalg.norm(rel - np.outer(rel @ unit, unit), axis=1).max()
-    return (unit, length) if off_line <= ON_CURVE * scale else None
+    return (unit, length) if off_line <= tol else None
 
 
 def _refuse_collinear_overlap(p: Prepared, q: Prepared) -> None:
     """Two curves on one line whose images overlap along an interval meet in a continuum of
     parameter pairs; unless they are one curve up to an affine change of parameter
     (reported as coincident above) there are no end pairs to report, so say so."""
-    line = _common_line(np.vstack([p.pts, q.pts]), max(p.scale, q.scale))
+    line = _common_line(np.vstack([p.pts, q.pts]), _root_bound(p, q))
     if line is None:
         return
     unit, length = line
@@ -716,7 +745,7 @@ def self_intersections(p: Prepared) -> list[Intersection]:
     found: list[Intersection] = []
     if p.degree < 2 or p.is_point:
         return found
-    line = _common_line(p.pts, p.scale)
+    line = _common_line(p.pts, ON_CURVE * p.scale)
     if line is not None:  # on a line: none if it runs one way, a continuum if it turns back
         image = np.array([p.at(x) for x in np.linspace(0.0, 1.0, 1025)]) @ line[0]
         steps = np.diff(image)

@@ -317,6 +317,20 @@ def _distance(c: Curve, t: float, point: np.ndarray) -> float:
 
 
 @numba.njit(**_JIT)
+def _rounding_at(c: Curve, t: float, root_residual: float) -> float:
+    """intersect._rounding_at: root_residual (n sum |b_i| B_i(t) + |c'(t)|)."""
+    pts = c[0]
+    n = pts.shape[0] - 1
+    work = np.empty(n + 1)
+    for i in range(n + 1):
+        work[i] = _norm(pts[i])
+    for level in range(n):
+        for i in range(n - level):
+            work[i] = work[i] + t * (work[i + 1] - work[i])
+    return float(root_residual * (n * work[0] + _norm(_d(c, t, 1))))
+
+
+@numba.njit(**_JIT)
 def _chord_bracket(c: Curve, point: np.ndarray, s0: float, s1: float, wide: float) -> float:
     chord = _d(c, s1, 0) - _d(c, s0, 0)
     while s1 - s0 > wide:
@@ -334,9 +348,17 @@ def _chord_bracket(c: Curve, point: np.ndarray, s0: float, s1: float, wide: floa
 
 @numba.njit(**_JIT)
 def _locate_all(
-    c: Curve, scale: float, size: float, point: np.ndarray, knobs: Knobs, halves: Halves
+    c: Curve,
+    scale: float,
+    size: float,
+    point: np.ndarray,
+    accept: float,
+    exact_end: bool,
+    knobs: Knobs,
+    halves: Halves,
 ) -> np.ndarray:
-    """intersect.locate_all for a float point: every t with c(t) = point."""
+    """intersect.locate_all for a float point, within=accept or exact_end: every t with
+    c(t) = point."""
     on_curve_rel, same_root, wide = knobs[0], knobs[1], knobs[7]
     depth, max_rows, steps, inside, margin = knobs[10], knobs[11], knobs[12], knobs[13], knobs[14]
     pts = c[0]
@@ -391,7 +413,7 @@ def _locate_all(
         if near:
             continue
         here = _distance(c, t, point)
-        if here > on_curve:
+        if here > (_rounding_at(c, t, knobs[5]) if exact_end else accept):
             continue
         same = -1
         for j in range(len(found)):
@@ -469,13 +491,7 @@ def settle(
     neither a point: (count, s, t, kind), sorted as the careful path sorts its hits, or
     count -1 where it declines (a stretch between end hits that may be shared; control
     points on one line; more hits than room)."""
-    on_curve, same_root, isolated_same, radius, merge_gap = (
-        knobs[0],
-        knobs[1],
-        knobs[2],
-        knobs[3],
-        knobs[4],
-    )
+    same_root, isolated_same, radius, merge_gap = knobs[1], knobs[2], knobs[3], knobs[4]
     root_residual, box_slack, tangent_sine = knobs[5], knobs[6], knobs[9]
     depth, max_rows, steps, inside, margin = knobs[10], knobs[11], knobs[12], knobs[13], knobs[14]
     p, q = _curve(a), _curve(b)
@@ -492,7 +508,8 @@ def settle(
     es, et = np.zeros(room), np.zeros(room)
     ends = 0
     for s_end in range(2):
-        hits = _locate_all(q, scale_q, size_q, a[a.shape[0] - 1 if s_end else 0], knobs, halves_b)
+        end = a[a.shape[0] - 1 if s_end else 0]
+        hits = _locate_all(q, scale_q, size_q, end, 0.0, True, knobs, halves_b)
         for t in hits:
             if ends == room:
                 return -1, fs, ft, fk
@@ -500,7 +517,8 @@ def settle(
                 es[ends], et[ends] = float(s_end), t
                 ends += 1
     for t_end in range(2):
-        hits = _locate_all(p, scale_p, size_p, b[b.shape[0] - 1 if t_end else 0], knobs, halves_a)
+        end = b[b.shape[0] - 1 if t_end else 0]
+        hits = _locate_all(p, scale_p, size_p, end, 0.0, True, knobs, halves_a)
         for s in hits:
             if ends == room:
                 return -1, fs, ft, fk
@@ -517,12 +535,12 @@ def settle(
         for j in range(i + 1, ends):
             if abs(es[i] - es[j]) < same_root or abs(et[i] - et[j]) < same_root:
                 continue
-            if _same_piece(p, q, es[i], es[j], et[i], et[j], on_curve * scale * 10):
+            if _same_piece(p, q, es[i], es[j], et[i], et[j], bound):
                 return -1, fs, ft, fk
             probe = _d(p, es[i] + middle * (es[j] - es[i]), 0)
             lo, hi = min(et[i], et[j]) - same_root, max(et[i], et[j]) + same_root
             on_q = 0
-            for t in _locate_all(q, scale_q, size_q, probe, knobs, halves_b):
+            for t in _locate_all(q, scale_q, size_q, probe, bound, False, knobs, halves_b):
                 if lo <= t <= hi:
                     on_q += 1
             if on_q == 1:
@@ -532,7 +550,7 @@ def settle(
     for k in range(ends):
         if not _near(es[k], et[k], fs, ft, count, same_root):
             count = _add(p, q, fs, ft, fk, count, es[k], et[k], ek[k], gap_bound, radius)
-    if _collinear(a, b, on_curve * scale):
+    if _collinear(a, b, bound):
         return -1, fs, ft, fk
     # the subdivision, then refinement from its roots and from the starts it leaves
     ok, root_s, root_t, left_s0, left_t0, left_width = _isolate(

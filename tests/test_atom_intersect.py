@@ -8,7 +8,7 @@ from __future__ import annotations
 import mpmath as mp
 import numpy as np
 import pytest
-from hypothesis import assume, given, settings
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 from test_atom_certified_geometry import mp_curve
 
@@ -113,16 +113,12 @@ def test_line_crossings_match_mpmath(at_family, pts, lam, y0, y1, angle):
     line = lb.BezierCurve([a, b])
     got = curve.intersect(line)
     want = mp_line_roots(curve, a, b)
-    # as for polynomial curves, an end of the curve within 1e-10 of the size of the other
-    # curve meets it (a root of F just past the domain): the reference has no sign change
+    # an end of the curve is a meeting point only when proven, or when it is within the
+    # rounding of F of the line (the float input does not decide, hazmat.atom_intersect's
+    # _in_domains): then the reference may have no sign change
     if len(got) == len(want) + 1:
-        lo, hi = curve.domain
-        end = [x for x in got if x.s in (lo, hi)]
-        assert (
-            end
-            and min(float(np.abs(line.evaluate(x.t) - curve.evaluate(x.s)).max()) for x in end)
-            <= 1e-10 * 4
-        )
+        end = [x for x in got if x.s in curve.domain]
+        assert end and min(_mp_gap(curve, a, b, x.s) for x in end) <= UNDECIDED * 8, (got, want)
         got = [x for x in got if x not in end[:1]]
     assert len(got) == len(want), (got, want)
     for x, s in zip(got, want, strict=True):
@@ -167,6 +163,19 @@ def test_near_double_crossings(at_family, pts, lam, t0, log_eps):
                 assert abs(x.s - float(s)) <= ROOT
 
 
+UNDECIDED = 1e-13  # relative to the size: an end this close to the other curve is undecided
+
+
+def _mp_gap(curve, a, b, s):
+    """mpmath's distance from C(s) to the line through a and b, relative to the size."""
+    c = mp_curve(curve, mp.pi / 2 if abs(s - float(mp.pi / 2)) < 1e-15 else mp.mpf(s))
+    a = [mp.mpf(float(x)) for x in a]
+    b = [mp.mpf(float(x)) for x in b]
+    cross = (c[0] - a[0]) * (b[1] - a[1]) - (c[1] - a[1]) * (b[0] - a[0])
+    size = max(abs(float(x)) for x in np.ravel(curve.points))
+    return float(abs(cross) / mp.sqrt((b[0] - a[0]) ** 2 + (b[1] - a[1]) ** 2)) / size
+
+
 def _roots_about(curve, a, b, t0):
     a = [mp.mpf(float(x)) for x in a]
     b = [mp.mpf(float(x)) for x in b]
@@ -188,6 +197,35 @@ def _roots_about(curve, a, b, t0):
                 return None  # the pair of crossings reaches past the domain
         out.append(mp.findroot(g, (x0 + direction * step / 2, x1), "illinois"))
     return out
+
+
+@pytest.mark.parametrize("end", ["lo", "hi"])
+@pytest.mark.parametrize("rel", [1e-9, 1e-11, 1e-12, -1e-12, -1e-11])
+def test_line_across_an_end(at_family, end, rel):
+    """A line across the curve's extension just past an end (rel > 0, that far past it,
+    relative to the domain) does not meet the curve; just before the end (rel < 0) it
+    meets it once, where mpmath's root is. Krawczyk's box across the end is not enough to
+    decide: once it reported the end as a meeting point for roots up to 1e-9 past it."""
+    curve = at_family.curve([(0, 0), (1, 3), (3, -2), (4, 1)], lam=0.3)
+    lo = mp.mpf(curve.domain[0])
+    top = mp.pi / 2  # the domain's end, exactly
+    edge, sign = (top, 1) if end == "hi" else (lo, -1)
+    x = edge + sign * mp.mpf(rel) * (top - lo)
+    c, d = mp_curve(curve, x), mp_curve(curve, x, 1)
+    a = np.array([float(c[0] + d[1]), float(c[1] - d[0])])  # along the normal there
+    b = np.array([float(c[0] - d[1]), float(c[1] + d[0])])
+    aa, bb = [mp.mpf(float(v)) for v in a], [mp.mpf(float(v)) for v in b]
+
+    def g(s):
+        p = mp_curve(curve, s)
+        return (p[0] - aa[0]) * (bb[1] - aa[1]) - (p[1] - aa[1]) * (bb[0] - aa[0])
+
+    root = mp.findroot(g, x)
+    got = curve.intersect(lb.BezierCurve([a, b]))
+    if lo <= root <= top:
+        assert len(got) == 1 and abs(got[0].s - float(root)) <= ROOT, (got, root)
+    else:
+        assert got == [], (got, root)
 
 
 @pytest.mark.parametrize("t0", [0.2, 0.75, 1.3])
@@ -225,8 +263,14 @@ def test_two_mixed_curves_match_mpmath(at_family, at_pi_family, p_pts, q_pts, la
     assert len(got) >= len(roots)
 
 
+# found by fuzzing: a flat tangency (the float twin crosses the curve twice, 4e-8 apart,
+# mpmath) whose band of unresolved pairs broke into two clusters 3.4e-7 apart, both reported
+FLAT_TANGENCY = np.array([0.0, 2.75, 3.5, 0.0, 1.0, 0.03125, 1.625, -1.0]).reshape(4, 2)
+
+
 @settings(max_examples=15)
 @given(POINTS, st.floats(-1, 1), st.floats(0.1, 1.47))
+@example(FLAT_TANGENCY, 0.75, 0.5)
 def test_reflected_curve_touches_once(at_family, pts, lam, t0):
     """The curve reflected in its tangent line at C(t0) touches it at (t0, t0), reported once
     as a tangency; it also meets it at (s, s) wherever C crosses that line."""
@@ -247,6 +291,26 @@ def test_reflected_curve_touches_once(at_family, pts, lam, t0):
             assert any(abs(x.s - float(s)) <= 1e-10 and abs(x.t - float(s)) <= 1e-10 for x in got)
     for x in got:
         assert np.linalg.norm(curve.evaluate(x.s) - twin.evaluate(x.t)) <= 1e-10
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="known limit: at these tangencies of a curve and its mirror the certified search "
+    "gives up (past MAX_PAIRS) and the polynomial pieces answer: 1.2e-7 or 7.6e-7 off, or "
+    "the tangency missed",
+)
+@pytest.mark.parametrize(
+    ("raw", "lam", "t0"),
+    [
+        ([0.0, 2.75, 2.5, 1.0, 0.03125, 1.0, 1.625, -1.0], 0.75, 0.5),
+        ([0.0, 2.25, 0.0, -1.5, -2.875, 4.0, -2.25, 0.0], -0.5, 0.125),
+        ([0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 0.0625, 0.0], 1.0, 1.0),
+    ],
+)
+def test_reflected_tangency_search_gives_up(at_family, raw, lam, t0):
+    """Found by fuzzing, not mended (curvature × size 0.01 to 0.2)."""
+    pts = np.array(raw).reshape(4, 2)
+    test_reflected_curve_touches_once.hypothesis.inner_test(at_family, pts, lam, t0)
 
 
 def test_with_a_rational_curve_matches_mpmath(at_family):

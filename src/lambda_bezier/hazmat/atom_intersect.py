@@ -34,14 +34,18 @@ Every curve taking part is a `Part`: its parameter interval, point values and de
    enclosure over K holds 0 and Newton's root has |F| within ON_CURVE of the size (the
    third row excluding 0 proves it is not).
 3. Every proven root is polished by Newton's method (it stays in K) and kept when it lies
-   in the domains; roots closer than SAME (relative) are one.
+   in the domains: K inside them, or, K across an end, a second Krawczyk box about Newton's
+   point too small to reach the end proves on which side it is (`_in_domains`; only within
+   the rounding of F of the end, about 1e-14 of the domain, is it undecided, and kept).
+   Roots closer than SAME (relative) are one, and so are two whose K lies in the other's X.
 4. Pairs that neither test settles are halved in s and t. Below TINY (relative to each
    domain) they are *unresolved*: the curves are within the enclosures' width there but
    no single root is proven, i.e. a tangency or crossings closer than TINY. Each cluster of
    touching unresolved pairs gives one intersection (the pair with the least |F| at its
    middle, polished by Gauss-Newton), kind "tangent" when the tangents there are parallel
-   within TANGENT_SINE, else "transversal"; a cluster whose least |F| is above ON_CURVE of
-   the size gives none.
+   within TANGENT_SINE (then polished on the tangent system over BAND × TINY each side, so
+   the clusters of one flat tangency meet at one point), else "transversal"; a cluster whose
+   least |F| is above ON_CURVE of the size gives none.
 
 So every crossing of the curves is found: each lies in a pair that is never excluded, and
 ends either in a proven box (one root, reported once) or in an unresolved cluster (reported
@@ -74,6 +78,10 @@ SAME = 1e-9  # relative to the domain: roots this close are one
 ON_CURVE = 1e-10  # relative to the size: |P(s) − Q(t)| below this is a meeting point
 TANGENT_SINE = 1e-6  # below this sine of the angle between the tangents: "tangent"
 START = 8  # intervals per domain at the first level
+# a tangency's unresolved clusters are polished over this many TINY each side: where the
+# curves part slowly (curvatures alike) the band within the enclosures' width of the other
+# curve is that wide, and it can break into clusters (found by fuzzing, 3.4e-7 apart)
+BAND = 1024
 
 Bounds = tuple[np.ndarray, np.ndarray]
 
@@ -461,6 +469,68 @@ def _sine(p: Part, q: Part, s: float, t: float) -> float:
 
 
 # ---------------------------------------------------------------------- the search
+def _inflated(pr: Pairs, j: int) -> tuple[float, float, float, float]:
+    """Krawczyk's box X for pair j: the pair widened by INFLATE of its widths each side."""
+    ws, wt = float(pr.s1[j] - pr.s0[j]), float(pr.t1[j] - pr.t0[j])
+    return (
+        float(pr.s0[j]) - INFLATE * ws,
+        float(pr.s1[j]) + INFLATE * ws,
+        float(pr.t0[j]) - INFLATE * wt,
+        float(pr.t1[j]) + INFLATE * wt,
+    )
+
+
+def _inside(a: tuple[float, ...], b: tuple[float, ...]) -> bool:
+    """Box a (s0, s1, t0, t1) within box b."""
+    return b[0] <= a[0] and a[1] <= b[1] and b[2] <= a[2] and a[3] <= b[3]
+
+
+def _same_root(f: Found, g: Found) -> bool:
+    """Proven roots f and g are one when either's K lies in the other's X (where the root
+    is unique): ill-conditioned crossings are polished by Newton to points far apart."""
+    if f.k is None or g.k is None or f.x is None or g.x is None:
+        return False
+    return _inside(f.k, g.x) or _inside(g.k, f.x)
+
+
+def _in_domains(
+    p: Part, q: Part, s: float, t: float, box: tuple[float, float, float, float], pr: Pairs, j: int
+) -> bool:
+    """Whether the root proven in K = `box` (unique in pair j of `pr` inflated by INFLATE,
+    Newton's approximation (s, t)) lies in the domains. K inside them: yes; K outside: no.
+    K across an end: Krawczyk again on a box about (s, t) too small to reach that end (half
+    the distance to it), inside the first box, so that the root it proves is the same one;
+    when that settles nothing the root is within the rounding of F of the end (the float
+    input does not decide) and it is kept: a meeting point that cannot be excluded."""
+    lo_s, hi_s, lo_t, hi_t = box
+    if hi_s < p.lo or lo_s > p.hi or hi_t < q.lo or lo_t > q.hi:
+        return False
+    if p.lo <= lo_s and hi_s <= p.hi and q.lo <= lo_t and hi_t <= q.hi:
+        return True
+    ws, wt = p.hi - p.lo, q.hi - q.lo
+    ds = min(s - p.lo, p.hi - s)  # signed: negative outside the domain
+    dt = min(t - q.lo, q.hi - t)
+    rho = 0.5 * min(abs(ds) / ws, abs(dt) / wt)
+    if rho == 0:
+        return True
+    hs, ht = rho * ws, rho * wt
+    tight = Pairs(np.array([s - hs]), np.array([s + hs]), np.array([t - ht]), np.array([t + ht]))
+    # Krawczyk's box (the pair inflated by INFLATE) inside the first one, whose root is unique
+    reach_s, reach_t = (1 + 2 * INFLATE) * hs, (1 + 2 * INFLATE) * ht
+    first = _inflated(pr, j)
+    if not (
+        first[0] < s - reach_s
+        and s + reach_s < first[1]
+        and first[2] < t - reach_t
+        and t + reach_t < first[3]
+    ):
+        return True
+    unique, _, _, _ = _krawczyk(p, q, tight)
+    if not unique[0]:
+        return True  # not settled: within the rounding of the end
+    return ds > 0 and dt > 0
+
+
 @dataclass
 class Found:
     """An intersection (s, t, kind), and whether a single root was proven there."""
@@ -469,6 +539,10 @@ class Found:
     t: float
     kind: str
     proven: bool
+    # a proven root: Krawczyk's K (s0, s1, t0, t1) that holds it and the box X in which it is
+    # the only root
+    k: tuple[float, float, float, float] | None = None
+    x: tuple[float, float, float, float] | None = None
 
 
 def _clusters(pr: Pairs) -> list[np.ndarray]:
@@ -510,15 +584,13 @@ def _search(
         for j in np.nonzero(unique)[0]:
             box = (float(ks[0][j]), float(ks[1][j]), float(kt[0][j]), float(kt[1][j]))
             s, t = _newton(p, q, 0.5 * (box[0] + box[1]), 0.5 * (box[2] + box[3]), box)
-            if not (p.lo - SAME * ws <= s <= p.hi + SAME * ws):
-                continue
-            if not (q.lo - SAME * wt <= t <= q.hi + SAME * wt):
+            if not _in_domains(p, q, s, t, box, pr, int(j)):
                 continue
             if p.values(0, np.array([s])).shape[0] > 2 and _residual(p, q, s, t) > ON_CURVE * size:
                 continue  # 3D: the two rows' root, not a meeting point
             s, t = min(max(s, p.lo), p.hi), min(max(t, q.lo), q.hi)
             kind = "tangent" if _sine(p, q, s, t) <= TANGENT_SINE else "transversal"
-            found.append(Found(s, t, kind, True))
+            found.append(Found(s, t, kind, True, box, _inflated(pr, int(j))))
         pr = pr.take(~(unique | empty))
         small = ((pr.s1 - pr.s0) <= TINY * ws) & ((pr.t1 - pr.t0) <= TINY * wt)
         if small.any():
@@ -590,7 +662,13 @@ def _settle(p: Part, q: Part, found: list[Found], stuck: Pairs) -> list[Found]:
             if _residual(p, q, s2, t2) <= _residual(p, q, s, t):
                 s, t = s2, t2
             if _sine(p, q, s, t) <= TANGENT_SINE:
-                s2, t2 = _tangent_newton(p, q, s, t, box)
+                # a flat tangency's band of unresolved pairs can break into clusters (the
+                # float curves cross twice there, closer than the band is wide): each is
+                # polished over the band's reach, to the one point of tangency
+                span_s = max(box[1] - box[0], BAND * TINY * ws)
+                span_t = max(box[3] - box[2], BAND * TINY * wt)
+                wide = (box[0] - span_s, box[1] + span_s, box[2] - span_t, box[3] + span_t)
+                s2, t2 = _tangent_newton(p, q, s, t, wide)
                 if _residual(p, q, s2, t2) <= max(_residual(p, q, s, t), 4 * _U * size):
                     s, t = s2, t2
             if _residual(p, q, s, t) > ON_CURVE * size:
@@ -601,7 +679,11 @@ def _settle(p: Part, q: Part, found: list[Found], stuck: Pairs) -> list[Found]:
     out.sort(key=lambda f: (f.s, f.t))
     merged: list[Found] = []
     for f in out:
-        same = [g for g in merged if abs(g.s - f.s) <= SAME * ws and abs(g.t - f.t) <= SAME * wt]
+        same = [
+            g
+            for g in merged
+            if (abs(g.s - f.s) <= SAME * ws and abs(g.t - f.t) <= SAME * wt) or _same_root(f, g)
+        ]
         if same:
             if f.proven and not same[0].proven:
                 merged[merged.index(same[0])] = f

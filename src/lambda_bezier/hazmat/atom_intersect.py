@@ -393,15 +393,16 @@ def _krawczyk(p: Part, q: Part, pr: Pairs) -> tuple[np.ndarray, np.ndarray, Boun
 
 
 # ---------------------------------------------------------------------- Newton
-def _newton(
-    p: Part, q: Part, s: float, t: float, box: tuple[float, float, float, float]
-) -> tuple[float, float]:
-    """Gauss-Newton on P(s) − Q(t) = 0 from (s, t), kept in box (s0, s1, t0, t1)."""
+System = Callable[[float, float], tuple[np.ndarray, np.ndarray]]
+Box = tuple[float, float, float, float]
+
+
+def _gauss_newton(system: System, s: float, t: float, box: Box) -> tuple[float, float]:
+    """Gauss-Newton on `system` (s, t) ↦ (residual, Jacobian) from (s, t), each step kept in
+    box (s0, s1, t0, t1); it stops when a step no longer moves the point."""
     for _ in range(40):
-        sx, tx = np.array([s]), np.array([t])
-        f = p.values(0, sx)[:, 0] - q.values(0, tx)[:, 0]
-        jac = np.stack([p.values(1, sx)[:, 0], -q.values(1, tx)[:, 0]], axis=1)
-        step, *_ = np.linalg.lstsq(jac, -f, rcond=None)
+        g, jac = system(s, t)
+        step, *_ = np.linalg.lstsq(jac, -g, rcond=None)
         if not np.isfinite(step).all():
             break
         ns = min(max(s + float(step[0]), box[0]), box[1])
@@ -410,6 +411,17 @@ def _newton(
             break
         s, t = ns, nt
     return s, t
+
+
+def _newton(p: Part, q: Part, s: float, t: float, box: Box) -> tuple[float, float]:
+    """Gauss-Newton on P(s) − Q(t) = 0 from (s, t), kept in box (s0, s1, t0, t1)."""
+
+    def system(s: float, t: float) -> tuple[np.ndarray, np.ndarray]:
+        sx, tx = np.array([s]), np.array([t])
+        f = p.values(0, sx)[:, 0] - q.values(0, tx)[:, 0]
+        return f, np.stack([p.values(1, sx)[:, 0], -q.values(1, tx)[:, 0]], axis=1)
+
+    return _gauss_newton(system, s, t, box)
 
 
 def _tangent_system(p: Part, q: Part, s: float, t: float) -> np.ndarray:
@@ -425,31 +437,18 @@ def _tangent_system(p: Part, q: Part, s: float, t: float) -> np.ndarray:
     return np.concatenate([f, cross])
 
 
-def _tangent_newton(
-    p: Part, q: Part, s: float, t: float, box: tuple[float, float, float, float]
-) -> tuple[float, float]:
+def _tangent_newton(p: Part, q: Part, s: float, t: float, box: Box) -> tuple[float, float]:
     """Gauss-Newton on the tangent system (Jacobian by central differences: the residual is
     the system itself, so the root is the system's), kept in box."""
     hs = 1e-7 * max(box[1] - box[0], 1e-300) + 1e-9 * (p.hi - p.lo)
     ht = 1e-7 * max(box[3] - box[2], 1e-300) + 1e-9 * (q.hi - q.lo)
-    for _ in range(40):
-        g = _tangent_system(p, q, s, t)
-        jac = np.stack(
-            [
-                (_tangent_system(p, q, s + hs, t) - _tangent_system(p, q, s - hs, t)) / (2 * hs),
-                (_tangent_system(p, q, s, t + ht) - _tangent_system(p, q, s, t - ht)) / (2 * ht),
-            ],
-            axis=1,
-        )
-        step, *_ = np.linalg.lstsq(jac, -g, rcond=None)
-        if not np.isfinite(step).all():
-            break
-        ns = min(max(s + float(step[0]), box[0]), box[1])
-        nt = min(max(t + float(step[1]), box[2]), box[3])
-        if ns == s and nt == t:
-            break
-        s, t = ns, nt
-    return s, t
+
+    def system(s: float, t: float) -> tuple[np.ndarray, np.ndarray]:
+        ds = _tangent_system(p, q, s + hs, t) - _tangent_system(p, q, s - hs, t)
+        dt = _tangent_system(p, q, s, t + ht) - _tangent_system(p, q, s, t - ht)
+        return _tangent_system(p, q, s, t), np.stack([ds / (2 * hs), dt / (2 * ht)], axis=1)
+
+    return _gauss_newton(system, s, t, box)
 
 
 def _residual(p: Part, q: Part, s: float, t: float) -> float:
@@ -469,7 +468,7 @@ def _sine(p: Part, q: Part, s: float, t: float) -> float:
 
 
 # ---------------------------------------------------------------------- the search
-def _inflated(pr: Pairs, j: int) -> tuple[float, float, float, float]:
+def _inflated(pr: Pairs, j: int) -> Box:
     """Krawczyk's box X for pair j: the pair widened by INFLATE of its widths each side."""
     ws, wt = float(pr.s1[j] - pr.s0[j]), float(pr.t1[j] - pr.t0[j])
     return (
@@ -493,9 +492,7 @@ def _same_root(f: Found, g: Found) -> bool:
     return _inside(f.k, g.x) or _inside(g.k, f.x)
 
 
-def _in_domains(
-    p: Part, q: Part, s: float, t: float, box: tuple[float, float, float, float], pr: Pairs, j: int
-) -> bool:
+def _in_domains(p: Part, q: Part, s: float, t: float, box: Box, pr: Pairs, j: int) -> bool:
     """Whether the root proven in K = `box` (unique in pair j of `pr` inflated by INFLATE,
     Newton's approximation (s, t)) lies in the domains. K inside them: yes; K outside: no.
     K across an end: Krawczyk again on a box about (s, t) too small to reach that end (half
@@ -541,8 +538,8 @@ class Found:
     proven: bool
     # a proven root: Krawczyk's K (s0, s1, t0, t1) that holds it and the box X in which it is
     # the only root
-    k: tuple[float, float, float, float] | None = None
-    x: tuple[float, float, float, float] | None = None
+    k: Box | None = None
+    x: Box | None = None
 
 
 def _clusters(pr: Pairs) -> list[np.ndarray]:

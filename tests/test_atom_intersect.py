@@ -198,6 +198,12 @@ def assert_line_answer(curve, a, b) -> None:
 DYADIC = st.integers(-24, 24).map(lambda k: k / 8)  # sums of a few are exact in floats
 
 
+# found by fuzzing: a triple root at s = 0 (the certified search gives up there, the
+# polynomial pieces answer) reported at s = 0 with t = 0.4999998 instead of 1/2, 9e-7 off the
+# curve: Newton's point lay past the end and only s was clamped (now t is re-solved)
+TRIPLE_SMALL = ([0.0, 0.25], [1 / 8, 0.25], [0.0, -1 / 8], [1 / 8, 0.0, 0.0], -1.0, True)
+
+
 @settings(max_examples=25)
 @given(
     st.lists(DYADIC, min_size=2, max_size=2),
@@ -207,6 +213,7 @@ DYADIC = st.integers(-24, 24).map(lambda k: k / 8)  # sums of a few are exact in
     st.sampled_from([-1.0, -0.5, -0.3125, 0.25, 0.75, 1.0]),
     st.booleans(),
 )
+@example(*TRIPLE_SMALL)
 def test_roots_at_an_end_match_mpmath(at_family, start, d, e, alpha, lam, triple):
     """Lines through an end of the curve, exactly (dyadic points): with C(0) = P0, C'(0) =
     (P1 + P2)/2 − P0 and C''(0) = P3 − (P1 + P2)/2 all along the line, a triple root at s = 0
@@ -259,6 +266,19 @@ def test_triple_root_at_an_end_is_one_meeting_point(at_family):
     got = curve.intersect(lb.BezierCurve([a, b]))
     assert len(got) == 1 and abs(got[0].s) <= tol
     assert abs(got[0].t - (a[0] + 0.75) / (a[0] - b[0])) <= 1e-12
+
+
+def test_a_root_held_at_an_end_keeps_its_partner(at_family):
+    """TRIPLE_SMALL exactly: C(0) = (0, 1/4) = the middle of the segment, so (s, t) = (0, 1/2);
+    s within the triple root's conditioning, t then within ROOT of 1/2."""
+    start, d, e, alpha, lam, _ = TRIPLE_SMALL
+    p0, d, e = np.array(start), np.array(d), np.array(e)
+    pts = [p0, p0 + alpha[0] * d + e, p0 + alpha[0] * d - e, p0 + alpha[0] * d]
+    curve = at_family.curve(np.array(pts), lam=lam)
+    a, b = p0 - 8 * d, p0 + 8 * d
+    got = curve.intersect(lb.BezierCurve([a, b]))
+    tol = mp_root_tolerance(curve, a, b, mp.mpf(0))
+    assert len(got) == 1 and abs(got[0].s) <= tol and abs(got[0].t - 0.5) <= ROOT, got
 
 
 @settings(max_examples=25)

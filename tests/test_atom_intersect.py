@@ -281,6 +281,26 @@ def test_a_root_held_at_an_end_keeps_its_partner(at_family):
     assert len(got) == 1 and abs(got[0].s) <= tol and abs(got[0].t - 0.5) <= ROOT, got
 
 
+def test_onto_domains_re_solves_the_partner():
+    """P(s) = (s, s²) meets Q(t) = (t, 0) at (0, 0) (a double root): from Newton's point
+    (−1e-6, −1e-6), past the end s = 0, s is held at 0 and t re-solved to 0, not left at
+    −1e-6; a point inside the domains is not moved."""
+
+    def system(s, t):
+        return np.array([s - t, s * s]), np.array([[1.0, -1.0], [2 * s, 0.0]])
+
+    domains = (0.0, 1.0, -1.0, 1.0)
+    s, t = ai.onto_domains(system, -1e-6, -1e-6, domains)
+    assert s == 0.0 and abs(t) <= 1e-15
+
+    def swapped(s, t):  # the same with the roles of s and t exchanged
+        return np.array([t - s, t * t]), np.array([[-1.0, 1.0], [0.0, 2 * t]])
+
+    s, t = ai.onto_domains(swapped, -1e-6, -1e-6, (-1.0, 1.0, 0.0, 1.0))
+    assert t == 0.0 and abs(s) <= 1e-15
+    assert ai.onto_domains(system, 0.5, 0.25, domains) == (0.5, 0.25)
+
+
 @settings(max_examples=25)
 @given(POINTS, st.floats(-1, 1), st.floats(0.05, 1.52), st.floats(-11, -3))
 def test_near_double_crossings(at_family, pts, lam, t0, log_eps):

@@ -250,17 +250,19 @@ def _polish(p: Any, q: Any, s: float, t: float) -> tuple[float, float]:
             c.derivative(x, k, extrapolate=True) if k else c.evaluate(x, extrapolate=True)
         )
 
-    for _ in range(30):
+    def system(s: float, t: float) -> tuple[np.ndarray, np.ndarray]:
         f = ev(p, s, 0) - ev(q, t, 0)
-        jac = np.stack([ev(p, s, 1), -ev(q, t, 1)], axis=1)
+        return f, np.stack([ev(p, s, 1), -ev(q, t, 1)], axis=1)
+
+    for _ in range(30):
+        f, jac = system(s, t)
         step, *_ = np.linalg.lstsq(jac, -f, rcond=None)
         if not np.isfinite(step).all():
             break
         s, t = s + float(step[0]), t + float(step[1])
         if abs(step).max() <= 1e-15:
             break
-    (plo, phi), (qlo, qhi) = _dom(p), _dom(q)
-    return min(max(s, plo), phi), min(max(t, qlo), qhi)
+    return ai.onto_domains(system, s, t, (*_dom(p), *_dom(q)))
 
 
 def _is_atom(c: object) -> bool:

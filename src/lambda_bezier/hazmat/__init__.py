@@ -52,6 +52,8 @@ ours (the name follows the `bezier` package's `hazmat`).
   (Taylor forms), and the branch and bound of its bounding box and closest point;
 - `atom_intersect`: certified intersections of such a curve with another, with a polynomial
   or rational Bézier curve, and with itself (branch and bound on parameter pairs, Krawczyk);
+- `atom_intersect_parts`: the curves that search sees (enclosures of atom curves and of
+  polynomial and rational Bézier curves) and its interval arithmetic;
 - `atom_deviation`: a certified bound of the distance between such a curve and a polynomial
   piece approximating it (export within a chosen tolerance);
 - `surface_certify`: the fixed-cost certificate of the batch optimum of (λ_u, λ_v) (one
@@ -73,6 +75,7 @@ __all__ = [
     "atom_bounds",
     "atom_deviation",
     "atom_intersect",
+    "atom_intersect_parts",
     "atom_pieces",
     "atom_pieces_compiled",
     "atoms",

@@ -2,18 +2,9 @@ r"""Certified intersections of curves given by enclosures: a curve over centred 
 families, hazmat.atom_bounds) with another such curve, with a polynomial or rational Bézier
 curve, or with itself.
 
-Every curve taking part is a `Part`: its parameter interval, point values and derivatives, and
-*enclosures* of the curve and of its first derivative over many parameter intervals at once
-(rigorous, every rounding included):
-
-- `AtomPart`: the Taylor-form enclosures of hazmat.atom_bounds, in τ = t − mid, coordinates
-  divided by a power-of-two scale (so they are exact);
-- `BernsteinPart`: a polynomial or rational Bézier curve with positive weights, through its
-  homogeneous control rows (w_i P_i, w_i). On [a, b] the rows of the restriction are the
-  blossoms H[a^(n−i) b^i], and the curve there lies in the convex hull of their projections
-  (the weights stay positive); the derivative is (A' w − A w') / w² in interval arithmetic
-  with A', w' from the hodograph's rows, restricted the same way. The blossoms' rounding
-  (n de Casteljau steps, each a few ulps of the rows' size) is added.
+Every curve taking part is a `Part` (hazmat.atom_intersect_parts): its parameter interval,
+point values and derivatives, and rigorous enclosures of the curve and of its first
+derivative over many parameter intervals at once (`AtomPart`, `BernsteinPart`).
 
 **Branch and bound** on pairs of parameter intervals (S, T), all of a round at once:
 
@@ -34,14 +25,20 @@ Every curve taking part is a `Part`: its parameter interval, point values and de
    enclosure over K holds 0 and Newton's root has |F| within ON_CURVE of the size (the
    third row excluding 0 proves it is not).
 3. Every proven root is polished by Newton's method (it stays in K) and kept when it lies
-   in the domains; roots closer than SAME (relative) are one.
+   in the domains: K inside them, or, K across an end, a second Krawczyk box about Newton's
+   point too small to reach the end proves on which side it is (`_in_domains`; only within
+   the rounding of F of the end, about 1e-14 of the domain, is it undecided, and kept).
+   Roots closer than SAME (relative) are one, and so are two whose K lies in the other's X.
+   A root reported at an end (clamped) keeps its partner: the other parameter is re-solved
+   with the first held at the end (`onto_domains`).
 4. Pairs that neither test settles are halved in s and t. Below TINY (relative to each
    domain) they are *unresolved*: the curves are within the enclosures' width there but
    no single root is proven, i.e. a tangency or crossings closer than TINY. Each cluster of
    touching unresolved pairs gives one intersection (the pair with the least |F| at its
    middle, polished by Gauss-Newton), kind "tangent" when the tangents there are parallel
-   within TANGENT_SINE, else "transversal"; a cluster whose least |F| is above ON_CURVE of
-   the size gives none.
+   within TANGENT_SINE (then polished on the tangent system over BAND × TINY each side, so
+   the clusters of one flat tangency meet at one point), else "transversal"; a cluster whose
+   least |F| is above ON_CURVE of the size gives none.
 
 So every crossing of the curves is found: each lies in a pair that is never excluded, and
 ends either in a proven box (one root, reported once) or in an unresolved cluster (reported
@@ -59,11 +56,21 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Protocol
 
 import numpy as np
 
 from . import atom_bounds as ab
+from .atom_intersect_parts import (
+    AtomPart,
+    BernsteinPart,
+    Bounds,
+    Part,
+    _add,
+    _dot,
+    _mag,
+)
+
+__all__ = ["AtomPart", "BernsteinPart", "Found", "Part", "pairs", "self_pairs"]
 
 _U = 2.0**-53
 TINY = 2.0**-30  # pairs narrower than this (relative to each domain) are unresolved
@@ -74,183 +81,10 @@ SAME = 1e-9  # relative to the domain: roots this close are one
 ON_CURVE = 1e-10  # relative to the size: |P(s) − Q(t)| below this is a meeting point
 TANGENT_SINE = 1e-6  # below this sine of the angle between the tangents: "tangent"
 START = 8  # intervals per domain at the first level
-
-Bounds = tuple[np.ndarray, np.ndarray]
-
-
-class Part(Protocol):
-    """A curve as the branch and bound sees it: parameter interval [lo, hi], and for arrays
-    of parameters (intervals [a, b]) values (d, m) and enclosures (lower, upper), each (d, m),
-    of the curve (k = 0) and its derivative (k = 1)."""
-
-    lo: float
-    hi: float
-    size: float
-
-    def values(self, k: int, x: np.ndarray) -> np.ndarray: ...
-
-    def enclose(self, k: int, a: np.ndarray, b: np.ndarray) -> Bounds: ...
-
-
-@dataclass
-class AtomPart:
-    """A curve over centred atoms: parameter τ ∈ [lo, hi], coordinates `data` × `scale`
-    (a power of two)."""
-
-    data: ab.AtomCurveData
-    lo: float
-    hi: float
-    scale: float
-
-    @property
-    def size(self) -> float:
-        return float(self.scale * np.abs(self.data.coefficients).sum(axis=0).max()) or 1e-300
-
-    def values(self, k: int, x: np.ndarray) -> np.ndarray:
-        return self.data.values(k, np.asarray(x, dtype=float)) * self.scale
-
-    def enclose(self, k: int, a: np.ndarray, b: np.ndarray) -> Bounds:
-        low, high = self.data.enclose(k, a, b)
-        return low * self.scale, high * self.scale
-
-
-def _blossoms(rows: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """(m, n+1, e): the Bernstein rows of the polynomial with rows (n+1, e) restricted to
-    [a_j, b_j]: row i is the blossom at (a^(n−i), b^i), by de Casteljau steps."""
-    n = rows.shape[0] - 1
-    out = np.empty((a.size, n + 1, rows.shape[1]))
-    for i in range(n + 1):
-        arr = np.broadcast_to(rows, (a.size, *rows.shape))
-        for step in range(n):
-            x = (b if step < i else a)[:, None, None]
-            arr = (1 - x) * arr[:, :-1] + x * arr[:, 1:]
-        out[:, i] = arr[:, 0]
-    return out
-
-
-@dataclass
-class BernsteinPart:
-    """A polynomial or rational Bézier curve on [0, 1] by its homogeneous rows (n+1, d+1),
-    (w_i P_i, w_i) with w_i > 0 (a polynomial curve: w_i = 1)."""
-
-    rows: np.ndarray
-    lo: float = 0.0
-    hi: float = 1.0
-
-    def __post_init__(self) -> None:
-        self.rows = np.asarray(self.rows, dtype=float)
-        n = self.rows.shape[0] - 1
-        self._hodograph = n * np.diff(self.rows, axis=0) if n else np.zeros((1, self.rows.shape[1]))
-        top = float(np.abs(self.rows).max())
-        # the hodograph's own rounding (one difference, one product by n), absolute
-        self._hodo_pad = 4 * _U * max(n, 1) * top
-
-    @property
-    def size(self) -> float:
-        pts = self.rows[:, :-1] / self.rows[:, -1:]
-        return float(np.abs(pts).max()) or 1e-300
-
-    def values(self, k: int, x: np.ndarray) -> np.ndarray:
-        x = np.asarray(x, dtype=float)
-        h = _blossoms(self.rows, x, x)[:, 0]  # (m, e)
-        if k == 0:
-            value: np.ndarray = (h[:, :-1] / h[:, -1:]).T
-            return value
-        dh = _blossoms(self._hodograph, x, x)[:, 0]
-        w = h[:, -1:]
-        out: np.ndarray = ((dh[:, :-1] * w - h[:, :-1] * dh[:, -1:]) / (w * w)).T
-        return out
-
-    @staticmethod
-    def _pad(rows: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        """(m,): the blossoms' rounding, absolute: n steps of a few ulps of the rows' size,
-        amplified by (|1 − x| + |x|) per step outside [0, 1]."""
-        n = rows.shape[0] - 1
-        reach = np.maximum(np.abs(a), np.abs(b))
-        grow = (2 * np.maximum(reach, 1.0) - 1) ** n
-        out: np.ndarray = 6 * (n + 1) * _U * float(np.abs(rows).max()) * grow + 1e-300
-        return out
-
-    def _homogeneous(self, a: np.ndarray, b: np.ndarray) -> tuple[Bounds, Bounds, Bounds, Bounds]:
-        """Intervals (lower, upper) of A (d, m), w (1, m), A' and w' on [a, b]."""
-        sub = _blossoms(self.rows, a, b)
-        pad = self._pad(self.rows, a, b)[None, :]
-        dsub = _blossoms(self._hodograph, a, b)
-        dpad = self._pad(self._hodograph, a, b)[None, :] + self._hodo_pad
-        lo, hi = sub.min(axis=1).T - pad, sub.max(axis=1).T + pad
-        dlo, dhi = dsub.min(axis=1).T - dpad, dsub.max(axis=1).T + dpad
-        return (lo[:-1], hi[:-1]), (lo[-1:], hi[-1:]), (dlo[:-1], dhi[:-1]), (dlo[-1:], dhi[-1:])
-
-    def enclose(self, k: int, a: np.ndarray, b: np.ndarray) -> Bounds:
-        sub = _blossoms(self.rows, a, b)  # (m, n+1, e)
-        pad = self._pad(self.rows, a, b)
-        w = sub[:, :, -1]
-        wmin = w.min(axis=1) - pad
-        bad = wmin <= 0  # weights not proven positive: no enclosure
-        d = self.rows.shape[1] - 1
-        if k == 0:
-            # the hull of the projections A_i / w_i, each |A_i| ± pad over w_i ∓ pad
-            num = sub[:, :, :-1]
-            wl, wh = (w - pad[:, None])[:, :, None], (w + pad[:, None])[:, :, None]
-            nl, nh = num - pad[:, None, None], num + pad[:, None, None]
-            with np.errstate(divide="ignore", invalid="ignore"):
-                cand = np.stack([nl / wl, nl / wh, nh / wl, nh / wh])
-            low = cand.min(axis=(0, 2)).T
-            high = cand.max(axis=(0, 2)).T
-            low = low - 4 * _U * np.abs(low)
-            high = high + 4 * _U * np.abs(high)
-        else:
-            (al, ah), (wl_, wh_), (dal, dah), (dwl, dwh) = self._homogeneous(a, b)
-            wl_ = np.maximum(wl_, 0.0)
-            n1 = _mul(dal, dah, wl_, wh_)
-            n2 = _mul(al, ah, dwl, dwh)
-            num_lo, num_hi = _add(n1[0], n1[1], -n2[1], -n2[0])
-            den_lo, den_hi = _mul(wl_, wh_, wl_, wh_)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                low, high = _div_positive(num_lo, num_hi, den_lo, den_hi)
-        low = np.where(bad[None, :], -np.inf, low)
-        high = np.where(bad[None, :], np.inf, high)
-        return low.reshape(d, -1), high.reshape(d, -1)
-
-
-# ---------------------------------------------------------------------- interval arithmetic
-def _widen(low: np.ndarray, high: np.ndarray) -> Bounds:
-    pad = 4 * _U * np.maximum(np.abs(low), np.abs(high)) + 1e-300
-    return low - pad, high + pad
-
-
-def _add(alo: np.ndarray, ahi: np.ndarray, blo: np.ndarray, bhi: np.ndarray) -> Bounds:
-    return _widen(alo + blo, ahi + bhi)
-
-
-def _mul(alo: np.ndarray, ahi: np.ndarray, blo: np.ndarray, bhi: np.ndarray) -> Bounds:
-    with np.errstate(invalid="ignore"):
-        p = np.stack(np.broadcast_arrays(alo * blo, alo * bhi, ahi * blo, ahi * bhi))
-    p = np.where(np.isnan(p), np.inf, p)
-    return _widen(p.min(axis=0), p.max(axis=0))
-
-
-def _div_positive(alo: np.ndarray, ahi: np.ndarray, blo: np.ndarray, bhi: np.ndarray) -> Bounds:
-    """[a] / [b] for b > 0 (b's lower end 0 gives an unbounded quotient)."""
-    p = np.stack(np.broadcast_arrays(alo / blo, alo / bhi, ahi / blo, ahi / bhi))
-    p = np.where(np.isnan(p), np.inf, p)
-    low, high = p.min(axis=0), p.max(axis=0)
-    low = np.where(blo > 0, low, -np.inf)
-    high = np.where(blo > 0, high, np.inf)
-    return _widen(low, high)
-
-
-def _mag(lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
-    out: np.ndarray = np.maximum(np.abs(lo), np.abs(hi))
-    return out
-
-
-def _dot(n: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> Bounds:
-    """n (d, m) · [lo, hi] (d, m), elementwise per column, as an interval (m,)."""
-    a, b = n * lo, n * hi
-    low, high = np.minimum(a, b).sum(axis=0), np.maximum(a, b).sum(axis=0)
-    pad = 2 * n.shape[0] * _U * (np.abs(a) + np.abs(b)).sum(axis=0) + 1e-300
-    return low - pad, high + pad
+# a tangency's unresolved clusters are polished over this many TINY each side: where the
+# curves part slowly (curvatures alike) the band within the enclosures' width of the other
+# curve is that wide, and it can break into clusters (found by fuzzing, 3.4e-7 apart)
+BAND = 1024
 
 
 # ---------------------------------------------------------------------- one round
@@ -288,21 +122,50 @@ def _directions(dp: np.ndarray, dq: np.ndarray) -> list[np.ndarray]:
     return out
 
 
-def _excluded(p: Part, q: Part, pr: Pairs) -> np.ndarray:
+@dataclass
+class Centres:
+    """At the pairs' middles x̃ = (s̃, t̃): F(x̃) enclosed, (d, m) each, and the tangents
+    P'(s̃), Q'(t̃) (d, m). The exclusion and Krawczyk's test share them (x̃ lies in both
+    boxes; Krawczyk's radii are measured from it)."""
+
+    sm: np.ndarray
+    tm: np.ndarray
+    f_lo: np.ndarray
+    f_hi: np.ndarray
+    dp: np.ndarray
+    dq: np.ndarray
+
+    @staticmethod
+    def of(p: Part, q: Part, pr: Pairs) -> Centres:
+        sm, tm = 0.5 * (pr.s0 + pr.s1), 0.5 * (pr.t0 + pr.t1)
+        pc_lo, pc_hi = p.enclose(0, sm, sm)
+        qc_lo, qc_hi = q.enclose(0, tm, tm)
+        f_lo, f_hi = _add(pc_lo, pc_hi, -qc_hi, -qc_lo)
+        return Centres(sm, tm, f_lo, f_hi, p.values(1, sm), q.values(1, tm))
+
+    def take(self, keep: np.ndarray) -> Centres:
+        return Centres(
+            self.sm[keep],
+            self.tm[keep],
+            self.f_lo[:, keep],
+            self.f_hi[:, keep],
+            self.dp[:, keep],
+            self.dq[:, keep],
+        )
+
+
+def _excluded(p: Part, q: Part, pr: Pairs, c: Centres) -> np.ndarray:
     """(m,) bool: pairs proven to hold no root of P(s) − Q(t) (mean value forms)."""
-    sm, tm = 0.5 * (pr.s0 + pr.s1), 0.5 * (pr.t0 + pr.t1)
+    sm, tm = c.sm, c.tm
     rs = np.maximum(pr.s1 - sm, sm - pr.s0) * (1 + 4 * _U)
     rt = np.maximum(pr.t1 - tm, tm - pr.t0) * (1 + 4 * _U)
     plo, phi = p.enclose(0, pr.s0, pr.s1)
     qlo, qhi = q.enclose(0, pr.t0, pr.t1)
     out: np.ndarray = np.asarray(((plo > qhi) | (qlo > phi)).any(axis=0))
-    pc_lo, pc_hi = p.enclose(0, sm, sm)
-    qc_lo, qc_hi = q.enclose(0, tm, tm)
-    f_lo, f_hi = _add(pc_lo, pc_hi, -qc_hi, -qc_lo)
     dp_lo, dp_hi = p.enclose(1, pr.s0, pr.s1)
     dq_lo, dq_hi = q.enclose(1, pr.t0, pr.t1)
-    for n in _directions(p.values(1, sm), q.values(1, tm)):
-        c_lo, c_hi = _dot(n, f_lo, f_hi)
+    for n in _directions(c.dp, c.dq):
+        c_lo, c_hi = _dot(n, c.f_lo, c.f_hi)
         a = _mag(*_dot(n, dp_lo, dp_hi)) * rs
         b = _mag(*_dot(n, dq_lo, dq_hi)) * rt
         reach = (a + b) * (1 + 8 * _U)
@@ -310,21 +173,23 @@ def _excluded(p: Part, q: Part, pr: Pairs) -> np.ndarray:
     return out
 
 
-def _krawczyk(p: Part, q: Part, pr: Pairs) -> tuple[np.ndarray, np.ndarray, Bounds, Bounds]:
+def _krawczyk(
+    p: Part, q: Part, pr: Pairs, centres: Centres | None = None
+) -> tuple[np.ndarray, np.ndarray, Bounds, Bounds]:
     """(unique, empty, K_s, K_t) per pair: Krawczyk's test on the pair inflated by INFLATE
-    (on the two rows of J with the largest determinant at the middle, in 3D)."""
+    (on the two rows of J with the largest determinant at the middle, in 3D), about the
+    pairs' middles (computed when not given)."""
+    ctr = centres if centres is not None else Centres.of(p, q, pr)
     ws, wt = pr.s1 - pr.s0, pr.t1 - pr.t0
     xs0, xs1 = pr.s0 - INFLATE * ws, pr.s1 + INFLATE * ws
     xt0, xt1 = pr.t0 - INFLATE * wt, pr.t1 + INFLATE * wt
-    sm, tm = 0.5 * (xs0 + xs1), 0.5 * (xt0 + xt1)
+    sm, tm = ctr.sm, ctr.tm
     rs = np.maximum(xs1 - sm, sm - xs0) * (1 + 4 * _U)
     rt = np.maximum(xt1 - tm, tm - xt0) * (1 + 4 * _U)
-    pc_lo, pc_hi = p.enclose(0, sm, sm)
-    qc_lo, qc_hi = q.enclose(0, tm, tm)
-    f_lo, f_hi = _add(pc_lo, pc_hi, -qc_hi, -qc_lo)  # F(x̃), (d, m)
+    f_lo, f_hi = ctr.f_lo, ctr.f_hi  # F(x̃), (d, m)
     dp_lo, dp_hi = p.enclose(1, xs0, xs1)
     dq_lo, dq_hi = q.enclose(1, xt0, xt1)
-    jp, jq = p.values(1, sm), -q.values(1, tm)  # J(x̃) columns, (d, m)
+    jp, jq = ctr.dp, -ctr.dq  # J(x̃) columns, (d, m)
     d, m = jp.shape
     cols = np.arange(m)
     if d == 2:
@@ -385,15 +250,16 @@ def _krawczyk(p: Part, q: Part, pr: Pairs) -> tuple[np.ndarray, np.ndarray, Boun
 
 
 # ---------------------------------------------------------------------- Newton
-def _newton(
-    p: Part, q: Part, s: float, t: float, box: tuple[float, float, float, float]
-) -> tuple[float, float]:
-    """Gauss-Newton on P(s) − Q(t) = 0 from (s, t), kept in box (s0, s1, t0, t1)."""
+System = Callable[[float, float], tuple[np.ndarray, np.ndarray]]
+Box = tuple[float, float, float, float]
+
+
+def _gauss_newton(system: System, s: float, t: float, box: Box) -> tuple[float, float]:
+    """Gauss-Newton on `system` (s, t) ↦ (residual, Jacobian) from (s, t), each step kept in
+    box (s0, s1, t0, t1); it stops when a step no longer moves the point."""
     for _ in range(40):
-        sx, tx = np.array([s]), np.array([t])
-        f = p.values(0, sx)[:, 0] - q.values(0, tx)[:, 0]
-        jac = np.stack([p.values(1, sx)[:, 0], -q.values(1, tx)[:, 0]], axis=1)
-        step, *_ = np.linalg.lstsq(jac, -f, rcond=None)
+        g, jac = system(s, t)
+        step, *_ = np.linalg.lstsq(jac, -g, rcond=None)
         if not np.isfinite(step).all():
             break
         ns = min(max(s + float(step[0]), box[0]), box[1])
@@ -402,6 +268,42 @@ def _newton(
             break
         s, t = ns, nt
     return s, t
+
+
+def onto_domains(system: System, s: float, t: float, domains: Box) -> tuple[float, float]:
+    """(s, t) clamped into the domains (s0, s1, t0, t1); when only one parameter moves onto
+    its end it is held there and the other re-solved (Gauss-Newton, the held parameter's
+    column zero), so that the pair stays a meeting point: at a multiple root next to an end
+    Newton's point can lie 1e-6 past it, and the other parameter with it."""
+    cs = min(max(s, domains[0]), domains[1])
+    ct = min(max(t, domains[2]), domains[3])
+    if (cs == s) == (ct == t):
+        return cs, ct
+    free = np.array([0.0, 1.0]) if cs != s else np.array([1.0, 0.0])
+
+    def held(s: float, t: float) -> tuple[np.ndarray, np.ndarray]:
+        g, jac = system(s, t)
+        return g, jac * free
+
+    return _gauss_newton(
+        held, cs, ct, (cs, cs, *domains[2:]) if cs != s else (*domains[:2], ct, ct)
+    )
+
+
+def _f_system(p: Part, q: Part) -> System:
+    """(s, t) ↦ (P(s) − Q(t), its Jacobian [P'(s) | −Q'(t)])."""
+
+    def system(s: float, t: float) -> tuple[np.ndarray, np.ndarray]:
+        sx, tx = np.array([s]), np.array([t])
+        f = p.values(0, sx)[:, 0] - q.values(0, tx)[:, 0]
+        return f, np.stack([p.values(1, sx)[:, 0], -q.values(1, tx)[:, 0]], axis=1)
+
+    return system
+
+
+def _newton(p: Part, q: Part, s: float, t: float, box: Box) -> tuple[float, float]:
+    """Gauss-Newton on P(s) − Q(t) = 0 from (s, t), kept in box (s0, s1, t0, t1)."""
+    return _gauss_newton(_f_system(p, q), s, t, box)
 
 
 def _tangent_system(p: Part, q: Part, s: float, t: float) -> np.ndarray:
@@ -417,31 +319,18 @@ def _tangent_system(p: Part, q: Part, s: float, t: float) -> np.ndarray:
     return np.concatenate([f, cross])
 
 
-def _tangent_newton(
-    p: Part, q: Part, s: float, t: float, box: tuple[float, float, float, float]
-) -> tuple[float, float]:
+def _tangent_newton(p: Part, q: Part, s: float, t: float, box: Box) -> tuple[float, float]:
     """Gauss-Newton on the tangent system (Jacobian by central differences: the residual is
     the system itself, so the root is the system's), kept in box."""
     hs = 1e-7 * max(box[1] - box[0], 1e-300) + 1e-9 * (p.hi - p.lo)
     ht = 1e-7 * max(box[3] - box[2], 1e-300) + 1e-9 * (q.hi - q.lo)
-    for _ in range(40):
-        g = _tangent_system(p, q, s, t)
-        jac = np.stack(
-            [
-                (_tangent_system(p, q, s + hs, t) - _tangent_system(p, q, s - hs, t)) / (2 * hs),
-                (_tangent_system(p, q, s, t + ht) - _tangent_system(p, q, s, t - ht)) / (2 * ht),
-            ],
-            axis=1,
-        )
-        step, *_ = np.linalg.lstsq(jac, -g, rcond=None)
-        if not np.isfinite(step).all():
-            break
-        ns = min(max(s + float(step[0]), box[0]), box[1])
-        nt = min(max(t + float(step[1]), box[2]), box[3])
-        if ns == s and nt == t:
-            break
-        s, t = ns, nt
-    return s, t
+
+    def system(s: float, t: float) -> tuple[np.ndarray, np.ndarray]:
+        ds = _tangent_system(p, q, s + hs, t) - _tangent_system(p, q, s - hs, t)
+        dt = _tangent_system(p, q, s, t + ht) - _tangent_system(p, q, s, t - ht)
+        return _tangent_system(p, q, s, t), np.stack([ds / (2 * hs), dt / (2 * ht)], axis=1)
+
+    return _gauss_newton(system, s, t, box)
 
 
 def _residual(p: Part, q: Part, s: float, t: float) -> float:
@@ -461,6 +350,66 @@ def _sine(p: Part, q: Part, s: float, t: float) -> float:
 
 
 # ---------------------------------------------------------------------- the search
+def _inflated(pr: Pairs, j: int) -> Box:
+    """Krawczyk's box X for pair j: the pair widened by INFLATE of its widths each side."""
+    ws, wt = float(pr.s1[j] - pr.s0[j]), float(pr.t1[j] - pr.t0[j])
+    return (
+        float(pr.s0[j]) - INFLATE * ws,
+        float(pr.s1[j]) + INFLATE * ws,
+        float(pr.t0[j]) - INFLATE * wt,
+        float(pr.t1[j]) + INFLATE * wt,
+    )
+
+
+def _inside(a: tuple[float, ...], b: tuple[float, ...]) -> bool:
+    """Box a (s0, s1, t0, t1) within box b."""
+    return b[0] <= a[0] and a[1] <= b[1] and b[2] <= a[2] and a[3] <= b[3]
+
+
+def _same_root(f: Found, g: Found) -> bool:
+    """Proven roots f and g are one when either's K lies in the other's X (where the root
+    is unique): ill-conditioned crossings are polished by Newton to points far apart."""
+    if f.k is None or g.k is None or f.x is None or g.x is None:
+        return False
+    return _inside(f.k, g.x) or _inside(g.k, f.x)
+
+
+def _in_domains(p: Part, q: Part, s: float, t: float, box: Box, pr: Pairs, j: int) -> bool:
+    """Whether the root proven in K = `box` (unique in pair j of `pr` inflated by INFLATE,
+    Newton's approximation (s, t)) lies in the domains. K inside them: yes; K outside: no.
+    K across an end: Krawczyk again on a box about (s, t) too small to reach that end (half
+    the distance to it), inside the first box, so that the root it proves is the same one;
+    when that settles nothing the root is within the rounding of F of the end (the float
+    input does not decide) and it is kept: a meeting point that cannot be excluded."""
+    lo_s, hi_s, lo_t, hi_t = box
+    if hi_s < p.lo or lo_s > p.hi or hi_t < q.lo or lo_t > q.hi:
+        return False
+    if p.lo <= lo_s and hi_s <= p.hi and q.lo <= lo_t and hi_t <= q.hi:
+        return True
+    ws, wt = p.hi - p.lo, q.hi - q.lo
+    ds = min(s - p.lo, p.hi - s)  # signed: negative outside the domain
+    dt = min(t - q.lo, q.hi - t)
+    rho = 0.5 * min(abs(ds) / ws, abs(dt) / wt)
+    if rho == 0:
+        return True
+    hs, ht = rho * ws, rho * wt
+    tight = Pairs(np.array([s - hs]), np.array([s + hs]), np.array([t - ht]), np.array([t + ht]))
+    # Krawczyk's box (the pair inflated by INFLATE) inside the first one, whose root is unique
+    reach_s, reach_t = (1 + 2 * INFLATE) * hs, (1 + 2 * INFLATE) * ht
+    first = _inflated(pr, j)
+    if not (
+        first[0] < s - reach_s
+        and s + reach_s < first[1]
+        and first[2] < t - reach_t
+        and t + reach_t < first[3]
+    ):
+        return True
+    unique, _, _, _ = _krawczyk(p, q, tight)
+    if not unique[0]:
+        return True  # not settled: within the rounding of the end
+    return ds > 0 and dt > 0
+
+
 @dataclass
 class Found:
     """An intersection (s, t, kind), and whether a single root was proven there."""
@@ -469,6 +418,10 @@ class Found:
     t: float
     kind: str
     proven: bool
+    # a proven root: Krawczyk's K (s0, s1, t0, t1) that holds it and the box X in which it is
+    # the only root
+    k: Box | None = None
+    x: Box | None = None
 
 
 def _clusters(pr: Pairs) -> list[np.ndarray]:
@@ -503,22 +456,22 @@ def _search(
         pr = pr.take(keep)
         if pr.size == 0:
             break
-        pr = pr.take(~_excluded(p, q, pr))
+        centres = Centres.of(p, q, pr)
+        kept = ~_excluded(p, q, pr, centres)
+        pr = pr.take(kept)
         if pr.size == 0:
             break
-        unique, empty, ks, kt = _krawczyk(p, q, pr)
+        unique, empty, ks, kt = _krawczyk(p, q, pr, centres.take(kept))
         for j in np.nonzero(unique)[0]:
             box = (float(ks[0][j]), float(ks[1][j]), float(kt[0][j]), float(kt[1][j]))
             s, t = _newton(p, q, 0.5 * (box[0] + box[1]), 0.5 * (box[2] + box[3]), box)
-            if not (p.lo - SAME * ws <= s <= p.hi + SAME * ws):
-                continue
-            if not (q.lo - SAME * wt <= t <= q.hi + SAME * wt):
+            if not _in_domains(p, q, s, t, box, pr, int(j)):
                 continue
             if p.values(0, np.array([s])).shape[0] > 2 and _residual(p, q, s, t) > ON_CURVE * size:
                 continue  # 3D: the two rows' root, not a meeting point
-            s, t = min(max(s, p.lo), p.hi), min(max(t, q.lo), q.hi)
+            s, t = onto_domains(_f_system(p, q), s, t, (p.lo, p.hi, q.lo, q.hi))
             kind = "tangent" if _sine(p, q, s, t) <= TANGENT_SINE else "transversal"
-            found.append(Found(s, t, kind, True))
+            found.append(Found(s, t, kind, True, box, _inflated(pr, int(j))))
         pr = pr.take(~(unique | empty))
         small = ((pr.s1 - pr.s0) <= TINY * ws) & ((pr.t1 - pr.t0) <= TINY * wt)
         if small.any():
@@ -590,18 +543,28 @@ def _settle(p: Part, q: Part, found: list[Found], stuck: Pairs) -> list[Found]:
             if _residual(p, q, s2, t2) <= _residual(p, q, s, t):
                 s, t = s2, t2
             if _sine(p, q, s, t) <= TANGENT_SINE:
-                s2, t2 = _tangent_newton(p, q, s, t, box)
+                # a flat tangency's band of unresolved pairs can break into clusters (the
+                # float curves cross twice there, closer than the band is wide): each is
+                # polished over the band's reach, to the one point of tangency
+                span_s = max(box[1] - box[0], BAND * TINY * ws)
+                span_t = max(box[3] - box[2], BAND * TINY * wt)
+                wide = (box[0] - span_s, box[1] + span_s, box[2] - span_t, box[3] + span_t)
+                s2, t2 = _tangent_newton(p, q, s, t, wide)
                 if _residual(p, q, s2, t2) <= max(_residual(p, q, s, t), 4 * _U * size):
                     s, t = s2, t2
             if _residual(p, q, s, t) > ON_CURVE * size:
                 continue
-            s, t = min(max(s, p.lo), p.hi), min(max(t, q.lo), q.hi)
+            s, t = onto_domains(_f_system(p, q), s, t, (p.lo, p.hi, q.lo, q.hi))
             kind = "tangent" if _sine(p, q, s, t) <= TANGENT_SINE else "transversal"
             out.append(Found(s, t, kind, False))
     out.sort(key=lambda f: (f.s, f.t))
     merged: list[Found] = []
     for f in out:
-        same = [g for g in merged if abs(g.s - f.s) <= SAME * ws and abs(g.t - f.t) <= SAME * wt]
+        same = [
+            g
+            for g in merged
+            if (abs(g.s - f.s) <= SAME * ws and abs(g.t - f.t) <= SAME * wt) or _same_root(f, g)
+        ]
         if same:
             if f.proven and not same[0].proven:
                 merged[merged.index(same[0])] = f

@@ -76,7 +76,8 @@ def _unit(
         big = float(np.abs(curve.points).max()) if big is None else big
         factor = 1.0
         if big != 0.0 and not 2.0**-400 <= big <= 2.0**400:
-            factor = math.ldexp(1.0, math.frexp(big)[1])
+            # 2^1024 is not a float: coordinates near the top of the range get 2^1023
+            factor = math.ldexp(1.0, min(math.frexp(big)[1], 1023))
             rows = unit.control_points()
             points = (
                 [[v / Fraction(factor) for v in row] for row in rows]

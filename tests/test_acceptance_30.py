@@ -1,0 +1,221 @@
+"""Issue #30 tried as a new user would, from the issue's text alone: the failures found that way,
+each with an independent reference (mpmath quadrature, direct evaluation) or the refusal the
+issue asks for (a ValueError/TypeError naming the argument, the key and the term)."""
+
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+from pathlib import Path
+
+import mpmath as mp
+import pytest
+
+import lambda_bezier as lb
+from derive.emit.document import derive as derive_document
+from derive.families.definition import DefinitionError, definition_from_table
+from lambda_bezier import cli, examples
+
+# A one-parameter quadratic trigonometric family on [0, pi/2], written by a new user
+ONE_TRIG = """\
+[family]
+name = "{name}"
+title = "one-parameter quadratic trigonometric basis"
+parameter = "lam"
+range = "{range}"
+domain = "[0, pi/2]"
+degrees = "2"
+functions = [
+  "(1 - sin(t))*(1 - lam*sin(t))",
+  "1 - (1 - sin(t))*(1 - lam*sin(t)) - (1 - cos(t))*(1 - lam*cos(t))",
+  "(1 - cos(t))*(1 - lam*cos(t))",
+]
+"""
+POINTS = [(0, 0), (1, 3), (4, 0)]
+
+
+def _family(tmp_path: Path, name: str, lam_range: str) -> lb.Family:
+    path = tmp_path / f"{name}.toml"
+    path.write_text(ONE_TRIG.format(name=name, range=lam_range), encoding="utf-8")
+    assert cli.main(["derive", "--family", str(path)]) == 0
+    return lb.load_family(path)
+
+
+def _energy(lam: mp.mpf, k: int) -> mp.mpf:
+    """E_k of the POINTS curve by mpmath quadrature of the basis as written (40 digits)."""
+
+    def coordinate(t: mp.mpf, d: int) -> mp.mpf:
+        s, c = mp.sin(t), mp.cos(t)
+        b0, b2 = (1 - s) * (1 - lam * s), (1 - c) * (1 - lam * c)
+        return b0 * POINTS[0][d] + (1 - b0 - b2) * POINTS[1][d] + b2 * POINTS[2][d]
+
+    return mp.quad(
+        lambda t: sum(mp.diff(lambda x, d=d: coordinate(x, d), t, k) ** 2 for d in range(2)),
+        [0, mp.pi / 4, mp.pi / 2],
+    )
+
+
+@pytest.mark.parametrize("k", [1, 2, 3])
+def test_optimal_lambda_of_a_one_parameter_trigonometric_family(tmp_path, k):
+    # "optimal_lambda keeps working for one-parameter families": it raised TypeError for a
+    # trigonometric one. E_k is a quadratic in lam: its vertex from three mpmath energies.
+    fam = _family(tmp_path, "trig_one", "[-1, 1]")
+    mp.mp.dps = 40
+    e = [_energy(mp.mpf(x), k) for x in (-1, 0, 1)]
+    a2, a1 = (e[2] + e[0]) / 2 - e[1], (e[2] - e[0]) / 2
+    vertex = -a1 / (2 * a2)
+    got = lb.optimal_lambda(POINTS, k, family=fam)
+    assert abs(float(got.lam) - float(vertex)) < 1e-12
+    assert abs(float(got.energy) - float(e[1] + a1 * vertex + a2 * vertex**2)) < 1e-10
+    assert got.unconstrained_admissible == (-1 <= vertex <= 1)
+    floats = lb.optimal_lambda([(0.0, 0.0), (1.0, 3.0), (4.0, 0.0)], k, family=fam)
+    assert isinstance(floats.lam, float) and abs(floats.lam - float(vertex)) < 1e-12
+    both = lb.optimal_parameters(POINTS, k, family=fam)
+    assert both["lam"] == got.lam and both.energy == got.energy
+
+
+def test_optimal_lambda_clamped_to_an_open_end(tmp_path):
+    # the free optimum (-7/23 for k = 2, exact: the basis is symmetric) lies left of (0, 1/2]:
+    # clamped to the excluded end 0, as for polynomial families, with E_2 there exact
+    fam = _family(tmp_path, "trig_narrow", "(0, 1/2]")
+    free = lb.optimal_lambda(POINTS, 2, family=fam)
+    assert free.lam == free.unconstrained == Fraction(-7, 23) and not free.admissible
+    got = lb.optimal_lambda(POINTS, 2, family=fam, clamp=True)
+    assert got.lam == 0 and not got.admissible and got.unconstrained == Fraction(-7, 23)
+    mp.mp.dps = 40
+    assert abs(float(got.energy) - float(_energy(mp.mpf(0), 2))) < 1e-12
+    assert abs(float(got.unconstrained_energy) - float(_energy(mp.mpf(-7) / 23, 2))) < 1e-12
+    assert got.energy == fam.curve(POINTS, lam=0, check_range=False).energy(2)
+
+
+def test_optimal_lambda_refuses_several_parameters_and_batches(tmp_path):
+    fam = _family(tmp_path, "trig_one_b", "[-1, 1]")
+    with pytest.raises(ValueError, match="points: a batch of polygons"):
+        lb.optimal_lambda([POINTS, POINTS], 2, family=fam)
+    two = lb.load_family(examples.path("han_trig_cubic.toml"))
+    with pytest.raises(TypeError, match="one parameter; 'han_trig_cubic' has lam, mu"):
+        lb.optimal_lambda([(0, 0), (1, 2), (3, 2), (4, 0)], 2, family=two)
+
+
+@pytest.fixture(scope="module")
+def trig_curve():
+    fam = lb.load_family(examples.path("han_trig_cubic.toml"))
+    return fam.curve([(0, 0), (1, 2), (3, 2), (4, 0)], lam=Fraction(1, 2), mu=-1)
+
+
+@pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf])
+def test_parameter_maps_refuse_non_finite_values(trig_curve, bad):
+    # s_of_t and t_of_s answered NaN for NaN and inf
+    with pytest.raises(ValueError, match="t contains NaN or infinity"):
+        trig_curve.s_of_t(bad)
+    with pytest.raises(ValueError, match="s contains NaN or infinity"):
+        trig_curve.t_of_s([0.5, bad])
+
+
+def test_parameter_maps_refuse_values_off_their_interval(trig_curve):
+    # t_of_s(2) answered 2 atan(2), a t outside [0, pi/2]; the hyperbolic inverse has poles
+    with pytest.raises(ValueError, match=r"s = 2.0 is outside \[0, 1\]"):
+        trig_curve.t_of_s(2)
+    with pytest.raises(ValueError, match=r"t = -0.5 is outside \[0, pi/2\]"):
+        trig_curve.s_of_t([0.1, -0.5])
+    # the ends themselves, and rounding just past them, stay accepted
+    assert trig_curve.s_of_t(math.pi / 2) == pytest.approx(1.0, abs=1e-15)
+    assert trig_curve.t_of_s([0.0, 0.5, 1.0]) == pytest.approx(
+        [0.0, 2 * math.atan(0.5), math.pi / 2], abs=1e-15
+    )
+
+
+@pytest.mark.parametrize("t", [0.0, math.pi / 2])
+def test_split_at_an_end_of_the_domain_is_refused(trig_curve, t):
+    # split(pi/2) gave a degenerate piece (tan(pi/4) rounds below 1); RationalBezierCurve
+    # refuses split(1) the same way
+    with pytest.raises(ValueError, match=r"split needs t inside the domain \[0, pi/2\]"):
+        trig_curve.split(t)
+
+
+def _table(**change: object) -> dict:
+    return {
+        "name": "user_fam",
+        "parameters": ["lam", "mu"],
+        "range": {"lam": "[-1, 1]", "mu": "[-1, 1]"},
+        "domain": "[0, pi/2]",
+        "degrees": "2",
+        "functions": [
+            "(1 - sin(t))*(1 - lam*sin(t))",
+            "1 - (1 - sin(t))*(1 - lam*sin(t)) - (1 - cos(t))*(1 - mu*cos(t))",
+            "(1 - cos(t))*(1 - mu*cos(t))",
+        ],
+        **change,
+    }
+
+
+@pytest.mark.parametrize(
+    ("term", "needle"),
+    [
+        ("tan(t)", "key functions[0]: unknown name 'tan'"),
+        ("sin(t)**2 + foo", "key functions[0]: unknown name 'foo'"),
+    ],
+)
+def test_a_term_outside_the_grammar_is_named_before_the_domain(term, needle):
+    # with domain [0, pi/2] and no other function in sin, cos, ..., a function that did not
+    # parse was blamed on the domain ("a polynomial basis is derived on [0, 1] only"), and
+    # the term went unnamed
+    table = _table(functions=[term, f"1 - ({term}) - t**2", "t**2"])
+    with pytest.raises(DefinitionError) as info:
+        definition_from_table(table, "fam.toml")
+    assert needle in str(info.value), str(info.value)
+
+
+def test_an_indexed_trigonometric_basis_is_refused_with_the_reason():
+    table = {
+        "name": "idx_trig",
+        "parameters": ["lam(i)"],
+        "range": {"lam": "[-1, 1]"},
+        "domain": "[0, pi/2]",
+        "degrees": "2",
+        "functions": ["cos(t)**2*(1 - lam(0))", "lam(0)*cos(t)**2", "sin(t)**2"],
+    }
+    with pytest.raises(DefinitionError) as info:
+        definition_from_table(table, "fam.toml")
+    assert "key functions[0]: unknown name 'cos'" in str(info.value)
+    assert "an indexed family (lam(i)) is polynomial in this version" in str(info.value)
+
+
+def test_an_indexed_family_its_parameters_never_enter_derives():
+    # the closed-form fit called sp.Poly with no generators: a SymPy traceback
+    table = {
+        "name": "idx_unused",
+        "parameters": ["lam(i)"],
+        "range": {"lam": "[-1, 1]"},
+        "degrees": "2..4",
+        "basis": "binomial(n, i)*t**i*(1 - t)**(n - i)",
+    }
+    doc = derive_document(definition_from_table(table))
+    closed = doc["closed_n"]["forms"]
+    assert closed["start,1,0"] == "-n" and closed["end,1,0"] == "n"
+
+
+@pytest.mark.parametrize("continuity", ["C1", "C2", "G1", "G2"])
+def test_join_from_a_trigonometric_curve_into_an_indexed_family(trig_curve, continuity):
+    # "joins between any two families with their own parameters": into q_bezier (lam(i)) the
+    # values are one per index, as from a polynomial curve; the atom path passed the list on
+    # as one number ("lam_1 must be a real number, got [1, 0, -1]")
+    q = lb.load_family(Path(__file__).parent / "data" / "families" / "q_bezier.toml")
+    order = int(continuity[1])
+    rest = [(10, 1), (11, 0)][: 3 - order]
+    alpha = {"alpha": Fraction(2)} if continuity[0] == "G" else {}
+    nxt = lb.join(trig_curve, continuity, 3, family=q, lam=[1, 0, -1], rest=rest, **alpha)
+    assert repr(nxt) == "QBezierCurve(degree=3, dimension=2, lam_1=1, lam_2=0, lam_3=-1)"
+    end = math.pi / 2
+    scale = 2.0 if continuity[0] == "G" else 1.0
+    assert nxt.evaluate(0.0) == pytest.approx(trig_curve.evaluate(end), abs=1e-13)
+    assert trig_curve.derivative(end, 1) == pytest.approx(scale * nxt.derivative(0.0, 1), abs=1e-12)
+    if order == 2:
+        a1, a2 = trig_curve.derivative(end, 1), trig_curve.derivative(end, 2)
+        b1, b2 = nxt.derivative(0.0, 1), nxt.derivative(0.0, 2)
+        if continuity == "C2":
+            assert a2 == pytest.approx(b2, abs=1e-12)
+        else:  # G2: the same curvature
+            k1 = (a1[0] * a2[1] - a1[1] * a2[0]) / math.hypot(*a1) ** 3
+            k2 = (b1[0] * b2[1] - b1[1] * b2[0]) / math.hypot(*b1) ** 3
+            assert k1 == pytest.approx(k2, abs=1e-12)

@@ -157,7 +157,7 @@ def arc_length(curve: RationalBezierCurve, t0: Fraction | float, t1: Fraction | 
     if a == b:
         return 0.0
     if a == 0.0 and b == 1.0:
-        return float(_length_table(curve)[1][-1])
+        return _finite_length(float(_length_table(curve)[1][-1]))
     curve, factor, rho = _unit(curve)
     a, b = float(_to_unit(rho, a)), float(_to_unit(rho, b))
     if a >= b:
@@ -169,7 +169,16 @@ def arc_length(curve: RationalBezierCurve, t0: Fraction | float, t1: Fraction | 
         out: np.ndarray = speed(a + (b - a) * u) * (b - a)
         return out
 
-    return factor * float(_table(scaled, kinks)[1][-1])
+    return _finite_length(factor * float(_table(scaled, kinks)[1][-1]))
+
+
+def _finite_length(length: float) -> float:
+    if not math.isfinite(length):
+        raise ValueError(
+            "the arc length overflows the float range (above 1.798e+308) for these control "
+            "points; scale them down"
+        )
+    return length
 
 
 def _length_table(curve: RationalBezierCurve) -> tuple[np.ndarray, np.ndarray]:
@@ -178,7 +187,8 @@ def _length_table(curve: RationalBezierCurve) -> tuple[np.ndarray, np.ndarray]:
     if cached is None:
         unit, factor, _ = _unit(curve)  # the table is in the unit curve's parameter
         edges, cum = _table(_speed(unit), _kinks(unit))
-        cached = (edges, cum * factor)
+        with np.errstate(over="ignore"):  # a length beyond the floats: arc_length says so
+            cached = (edges, cum * factor)
         curve.__dict__["_length_table"] = cached
     return cached
 

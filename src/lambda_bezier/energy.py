@@ -441,7 +441,8 @@ def optimal_lambda(
         The energy order: 1 stretch, 2 strain, 3 jerk.
     family : str or Family
         ``"same_degree"`` (range (−2, 1]), ``"bernstein_like"`` (range [−1, 1]), or a family
-        from `load_family`.
+        of one parameter from `load_family` (a trigonometric, hyperbolic or mixed one too: its
+        minimiser is exact in ℚ(π) or ℚ(e^W), one polygon per call).
     clamp : bool
         Return the minimiser over the family's closed range instead of over all real λ
         (the unconstrained one is still reported).

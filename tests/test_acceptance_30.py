@@ -266,3 +266,12 @@ def test_a_rational_arc_length_beyond_the_floats_is_refused():
     with pytest.raises(ValueError, match="the arc length overflows the float range"):
         big.arc_length()
     assert math.isfinite(big.arc_length(0, 0.5))
+
+
+@pytest.mark.parametrize(
+    ("args", "needle"), [((3,), "path must be"), (("x.toml", 5), "derived must")]
+)
+def test_load_family_names_a_path_that_is_no_path(args, needle):
+    # load_family(3) raised pathlib's "expected str, bytes or os.PathLike object, not int"
+    with pytest.raises(TypeError, match=f"{needle} a file path \\(str or Path\\), got int"):
+        lb.load_family(*args)

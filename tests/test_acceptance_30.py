@@ -269,7 +269,7 @@ def test_a_rational_arc_length_beyond_the_floats_is_refused():
 
 
 @pytest.mark.parametrize(
-    ("args", "needle"), [((3,), "path must be"), (("x.toml", 5), "derived must")]
+    ("args", "needle"), [((3,), "path must be"), (("x.toml", 5), "derived must be")]
 )
 def test_load_family_names_a_path_that_is_no_path(args, needle):
     # load_family(3) raised pathlib's "expected str, bytes or os.PathLike object, not int"

@@ -231,8 +231,11 @@ def test_random_spaces_evaluate_as_the_sum_of_their_atoms(tmp_path_factory, case
 
 def test_polynomial_only_functions_say_so(families):
     fam = families[AT]
-    with pytest.raises(TypeError, match="mixed-trigonometric .not polynomial."):
-        lb.optimal_lambda(PTS, 2, family=fam)
+    # optimal_lambda keeps working for a family of one parameter (issue #30): the same
+    # minimiser as optimal_parameters, exact in Q(pi); tests/test_acceptance_30.py checks it
+    # against mpmath
+    one = lb.optimal_lambda(PTS, 2, family=fam, clamp=True)
+    assert one.lam == lb.optimal_parameters(PTS, 2, family=fam)["lam"]
     with pytest.raises(TypeError, match="not polynomial"):
         lb.energy_coefficients(PTS, 2, family=fam)
     with pytest.raises(ValueError, match="it has parameters lam, not one lam"):

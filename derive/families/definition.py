@@ -394,12 +394,6 @@ def definition_from_table(table: object, where: str = "", *, builtin: bool = Fal
         for text in table["functions"]
         if _parses(text, tuple(names))
     )
-    if not elementary and (dom_lo, dom_hi, dom_unit) != (0, 1, "1"):
-        raise fail(
-            "domain",
-            f"{table['domain']!r}: a polynomial basis is derived on [0, 1] only (a basis "
-            "with sin, cos, sinh, cosh or exp may have a domain of its own)",
-        )
     d = _DEGREES.match(table["degrees"])
     single = re.match(r"^\s*([0-9]{1,3})\s*$", table["degrees"])
     if not d and not single:
@@ -427,6 +421,13 @@ def definition_from_table(table: object, where: str = "", *, builtin: bool = Fal
     )
     for key, text, recursive in formulas:
         _check_formula(fail, key, text, tuple(names), recursive)
+    # after the formulas: a term outside the grammar is named before the domain it voids
+    if not elementary and (dom_lo, dom_hi, dom_unit) != (0, 1, "1"):
+        raise fail(
+            "domain",
+            f"{table['domain']!r}: a polynomial basis is derived on [0, 1] only (a basis "
+            "with sin, cos, sinh, cosh or exp may have a domain of its own)",
+        )
     for key in ("bernstein_at", "degree_offset"):
         if elementary and key in table:
             raise fail(key, "not used by a trigonometric or hyperbolic basis (leave it out)")

@@ -189,7 +189,18 @@ def _check_indexed_formula(fail, key: str, text: str, name: str) -> None:
     try:
         expr = _parse_indexed(text, name)
     except ParseError as exc:
-        raise fail(key, f"{exc} (a basis is a formula in i, n, t and {name}(index))") from None
+        try:  # the term is fine elsewhere: say why not here rather than "unknown name"
+            parse_formula(
+                text, {"i": _I, "n": _N, "t": _T}, {name: sp.Function(name)}, elementary=True
+            )
+        except ParseError:
+            raise fail(key, f"{exc} (a basis is a formula in i, n, t and {name}(index))") from None
+        raise fail(
+            key,
+            f"{exc}: an indexed family ({name}(i)) is polynomial in this version; pi, sin, cos, "
+            'sinh, cosh and exp belong to a family with named parameters (parameters = ["lam", '
+            '"mu"]) and a list of functions',
+        ) from None
     extra = sorted(s.name for s in expr.free_symbols if s not in {_I, _N, _T})
     if extra:
         raise fail(

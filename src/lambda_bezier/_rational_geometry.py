@@ -76,7 +76,8 @@ def _unit(
         big = float(np.abs(curve.points).max()) if big is None else big
         factor = 1.0
         if big != 0.0 and not 2.0**-400 <= big <= 2.0**400:
-            factor = math.ldexp(1.0, math.frexp(big)[1])
+            # 2^1024 is not a float: coordinates near the top of the range get 2^1023
+            factor = math.ldexp(1.0, min(math.frexp(big)[1], 1023))
             rows = unit.control_points()
             points = (
                 [[v / Fraction(factor) for v in row] for row in rows]
@@ -156,7 +157,7 @@ def arc_length(curve: RationalBezierCurve, t0: Fraction | float, t1: Fraction | 
     if a == b:
         return 0.0
     if a == 0.0 and b == 1.0:
-        return float(_length_table(curve)[1][-1])
+        return _finite_length(float(_length_table(curve)[1][-1]))
     curve, factor, rho = _unit(curve)
     a, b = float(_to_unit(rho, a)), float(_to_unit(rho, b))
     if a >= b:
@@ -168,7 +169,16 @@ def arc_length(curve: RationalBezierCurve, t0: Fraction | float, t1: Fraction | 
         out: np.ndarray = speed(a + (b - a) * u) * (b - a)
         return out
 
-    return factor * float(_table(scaled, kinks)[1][-1])
+    return _finite_length(factor * float(_table(scaled, kinks)[1][-1]))
+
+
+def _finite_length(length: float) -> float:
+    if not math.isfinite(length):
+        raise ValueError(
+            "the arc length overflows the float range (above 1.798e+308) for these control "
+            "points; scale them down"
+        )
+    return length
 
 
 def _length_table(curve: RationalBezierCurve) -> tuple[np.ndarray, np.ndarray]:
@@ -177,7 +187,8 @@ def _length_table(curve: RationalBezierCurve) -> tuple[np.ndarray, np.ndarray]:
     if cached is None:
         unit, factor, _ = _unit(curve)  # the table is in the unit curve's parameter
         edges, cum = _table(_speed(unit), _kinks(unit))
-        cached = (edges, cum * factor)
+        with np.errstate(over="ignore"):  # a length beyond the floats: arc_length says so
+            cached = (edges, cum * factor)
         curve.__dict__["_length_table"] = cached
     return cached
 

@@ -367,7 +367,9 @@ class AtomCurve:
     def s_of_t(self, t: npt.ArrayLike) -> np.ndarray | float:
         """The rational form's parameter s at the family's t."""
         form = self._form("s_of_t")
-        s = form.s_of_t(np.asarray(t, dtype=float) if np.ndim(t) else float(t))  # type: ignore[arg-type]
+        lo, hi = self.data.DOMAIN
+        x = self._within(t, "t", lo, hi, self.data.DOMAIN_TEXT)
+        s = form.s_of_t(x)
         if form.weights:  # the exact form
             return s
         # the float form's scale is tanh(hi) rounded: the domain's end may map to 1 + 1 ulp
@@ -377,7 +379,18 @@ class AtomCurve:
     def t_of_s(self, s: npt.ArrayLike) -> np.ndarray | float:
         """The family's t at the rational form's parameter s."""
         form = self._form("t_of_s")
-        return form.t_of_s(np.asarray(s, dtype=float) if np.ndim(s) else float(s))  # type: ignore[arg-type]
+        return form.t_of_s(self._within(s, "s", 0.0, 1.0, "[0, 1]"))
+
+    @staticmethod
+    def _within(x: npt.ArrayLike, name: str, lo: float, hi: float, text: str) -> Any:
+        """Finite values within [lo, hi] (to 1e-12 of its width), a float for a scalar: the
+        maps are monotone on the domain only, and tanh's inverse has poles just beyond."""
+        arr, scalar, least, most = val.parameter_range(x, name)
+        slack = 1e-12 * (hi - lo)
+        if arr.size and (least < lo - slack or most > hi + slack):
+            bad = least if least < lo - slack else most
+            raise ValueError(f"{name} = {bad} is outside {text}")
+        return float(arr[0]) if scalar else arr
 
     def _form(self, what: str) -> RationalForm:
         form = self.data.RATIONAL.get(self.degree)
@@ -538,6 +551,8 @@ class AtomCurve:
         parameter on [0, 1] (the rational form split at s(t), in floats: s(t) = tan(t/2) is
         irrational at most t)."""
         x = self._t(t, "t")
+        if not self.data.DOMAIN[0] < x < self.data.DOMAIN[1]:
+            raise ValueError(f"split needs t inside the domain {self.data.DOMAIN_TEXT}, got {t}")
         rat = self._rational_or_none()
         if rat is None:
             _not_available("split", f"it has no rational form ({self.data.RATIONAL_REASON})")

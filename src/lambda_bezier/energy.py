@@ -26,9 +26,11 @@ from .hazmat import kernels
 from .hazmat.kernels import chunk_ranges
 from .parameter_optimum import (
     OptimalParameters,
+    _exact_value,
     _optimal_atoms,
     _optimal_indexed,
     _optimal_several,
+    atom_energy_form,
 )
 
 _energy = generated("energy")
@@ -445,7 +447,8 @@ def optimal_lambda(
         The energy order: 1 stretch, 2 strain, 3 jerk.
     family : str or Family
         ``"same_degree"`` (range (−2, 1]), ``"bernstein_like"`` (range [−1, 1]), or a family
-        from `load_family`.
+        of one parameter from `load_family` (a trigonometric, hyperbolic or mixed one too: its
+        minimiser is exact in ℚ(π) or ℚ(e^W), one polygon per call).
     clamp : bool
         Return the minimiser over the family's closed range instead of over all real λ
         (the unconstrained one is still reported).
@@ -469,6 +472,9 @@ def optimal_lambda(
     >>> optimal_lambda([(0, 6), (0, 2), (5, 2), (7, 0), (2, 0), (6, 8)], k=2, clamp=True).lam
     Fraction(-2, 1)
     """
+    atom = getattr(family, "atom_data", None)
+    if atom is not None:  # a trigonometric, hyperbolic or mixed family of one parameter
+        return _optimal_lambda_atoms(points, _check_order(k), atom, val.flag(clamp, "clamp"))
     data = _family_data(family)
     k = _check_order(k)
     clamp = val.flag(clamp, "clamp")
@@ -497,6 +503,56 @@ def optimal_lambda(
     )
 
 
+def _optimal_lambda_atoms(points: PointsLike, k: int, atom: Any, clamp: bool) -> OptimalLambda:
+    """optimal_lambda of a one-parameter atom family: E_k = S00 + 2 S01 λ + S11 λ² with
+    entries in ℚ[π] or ℚ[e^W] (parameter_optimum.atom_energy_form), solved as 000's quadratic
+    in that field: exact (ConstantFraction) for exact points, floats otherwise."""
+    if len(atom.NAMES) != 1:
+        raise TypeError(
+            f"optimal_lambda takes a family of one parameter; {atom.FAMILY!r} has "
+            f"{', '.join(atom.NAMES)}: use optimal_parameters(points, k, family=...)"
+        )
+    if np.ndim(val.real_array(points, "points")) == 3:
+        raise ValueError(
+            f"points: a batch of polygons is solved for polynomial families; call "
+            f"optimal_lambda once per polygon for {atom.FAMILY!r}"
+        )
+    form = atom_energy_form(points, k, atom)
+    if isinstance(form, OptimalParameters):  # E_k no quadratic in λ: no closed minimiser
+        raise ValueError(
+            f"optimal_lambda: {atom.FAMILY!r} is not affine in {atom.NAMES[0]}, so E_{k} is "
+            "no quadratic in it; optimal_parameters gives its certified minimum over the range"
+        )
+    (s00, s01), (_, s11) = form[0]
+    if s11 == 0:
+        raise ValueError(_no_effect_message(k))
+    lo, hi, lo_closed, hi_closed, text = atom.RANGES[atom.NAMES[0]]
+    data = _RangeData((lo, hi), (lo_closed, hi_closed))
+    got = _optimum((s00, 2 * s01, s11), clamp, data)
+    out: Any = _exact_value if form[1] else float
+    lam, best, ok, ok_best, energy, unconstrained_energy = got
+    return OptimalLambda(
+        lam=out(lam),
+        unconstrained=out(best),
+        admissible=bool(ok),
+        unconstrained_admissible=bool(ok_best),
+        energy=out(energy),
+        unconstrained_energy=out(unconstrained_energy),
+        k=k,
+        family=atom.FAMILY,
+        range_text=text,
+        clamped=clamp,
+    )
+
+
+@dataclass(frozen=True)
+class _RangeData:
+    """The two range attributes _optimum reads of a family's tables."""
+
+    LAMBDA_RANGE: tuple[Any, Any]
+    LAMBDA_CLOSED: tuple[bool, bool]
+
+
 def _optimum(coefficients: tuple[Any, Any, Any], clamp: bool, data: Any) -> tuple[Any, ...]:
     """(λ, λ*, λ admissible, λ* admissible, E_k(λ), E_k(λ*)) from E_k's coefficients, in
     their arithmetic: Fractions (exact), or arrays over a chunk of polygons. (Any: mypy
@@ -507,7 +563,7 @@ def _optimum(coefficients: tuple[Any, Any, Any], clamp: bool, data: Any) -> tupl
     best = -a1 / (2 * a2)
     if not clamp:
         lam = best
-    elif isinstance(best, Fraction):
+    elif not isinstance(best, (np.ndarray, float)):  # exact: a Fraction, or one in ℚ(π)
         lam = min(max(best, Fraction(lo)), Fraction(hi))
     else:  # float bounds: a user family's range is in Fractions (an object array otherwise)
         lam = np.clip(best, float(lo), float(hi))

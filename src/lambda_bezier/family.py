@@ -16,6 +16,7 @@ array([2.  , 0.75])
 
 from __future__ import annotations
 
+import os
 import re
 import sys
 from collections.abc import Mapping
@@ -744,6 +745,9 @@ def load_family(path: str | Path, derived: str | Path | None = None) -> Family |
 
     Refuses, naming the command to run, when the derived document is missing or was derived
     from another version of the definition."""
+    for value, what in ((path, "path"), (derived, "derived")):
+        if value is not None and not isinstance(value, str | os.PathLike):
+            raise TypeError(f"{what} must be a file path (str or Path), got {type(value).__name__}")
     path = Path(path)
     table = read_family_table(path)
     name = _family_name(table, str(path))

@@ -382,6 +382,8 @@ def join(
 
     if _atom_joins.involved(curve, family):  # a trigonometric, hyperbolic or mixed family
         spec = Joint(continuity, alpha, d)
+        # into an indexed family (lam(i)): its Family of `degree`, the values spread by index
+        family, lam, params, named = _indexed_target(curve, family, degree, lam, params, named)
         return _atom_joins.join(  # type: ignore[no-any-return]
             curve,
             spec.continuity,

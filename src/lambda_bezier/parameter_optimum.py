@@ -127,6 +127,19 @@ def _optimal_atoms(points: PointsLike, k: int, data: Any) -> OptimalParameters:
     E_k = Σ over monomial pairs params^(m1+m2) P^T G P with entries in ℚ[π] or ℚ[e^W], a
     quadratic in the parameters when each monomial has degree <= 1 (the family is affine in
     them): then the box minimum is exact, in ℚ(π) (ConstantFraction) for exact points."""
+    form = atom_energy_form(points, k, data)
+    if isinstance(form, OptimalParameters):
+        return form
+    s_mat, exact = form
+    return _box_minimum(s_mat, data.NAMES, data.RANGES, exact, k, data.FAMILY)
+
+
+def atom_energy_form(
+    points: PointsLike, k: int, data: Any
+) -> tuple[list[list[Any]], bool] | OptimalParameters:
+    """(S, exact): E_k = w^T S w, w = (1, x_1..x_J), of one polygon of an atom family affine
+    in its parameters (entries in ℚ[π] or ℚ[e^W]); for a family not affine in them, the
+    certified box minimum instead (E_k is then no quadratic)."""
     names = data.NAMES
     if data.ENERGY_REASON is not None and not data.GRAM:
         raise ValueError(f"optimal_parameters: {data.ENERGY_REASON}")
@@ -167,7 +180,7 @@ def _optimal_atoms(points: PointsLike, k: int, data: Any) -> OptimalParameters:
         # E = Σ_(a,b) w_a w_b S[a][b] over ordered pairs: S symmetric, the cross term halved
         s_mat[a][b] = s_mat[a][b] + total / 2
         s_mat[b][a] = s_mat[b][a] + total / 2
-    return _box_minimum(s_mat, names, data.RANGES, exact, k, data.FAMILY)
+    return s_mat, exact
 
 
 def _box_minimum(

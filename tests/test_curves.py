@@ -119,7 +119,13 @@ def test_curvature(name, data):
     want = (cross[:, 2] if curve.dimension == 2 else np.linalg.norm(cross, axis=1))[ok] / speed[
         ok
     ] ** 3
-    np.testing.assert_allclose(curve.curvature(t)[ok], want, rtol=1e-9, atol=1e-12)
+    kappa = curve._curvature(t)  # NaN where p'(t) = 0 exactly
+    np.testing.assert_allclose(kappa[ok], want, rtol=1e-9, atol=1e-12)
+    if np.isnan(kappa).any():  # the public method names such a t instead of returning NaN
+        with pytest.raises(ValueError, match="undefined at t"):
+            curve.curvature(t)
+    else:
+        np.testing.assert_array_equal(curve.curvature(t), kappa)
 
 
 def test_curvature_of_circle_like_and_line():
@@ -130,7 +136,13 @@ def test_curvature_of_circle_like_and_line():
     assert (arc.curvature(TS) > 0).all()
     assert (lb.BezierCurve([(0, 1), (1, 1), (1, 0)]).curvature(TS) < 0).all()
     still = lb.BezierCurve([(0, 0), (0, 0), (0, 0)])
-    assert np.isnan(still.curvature(0.5))
+    with pytest.raises(ValueError, match=r"undefined at t = 0\.5"):
+        still.curvature(0.5)
+    # a cusp at t = 1/2 only: the error names that t, the other values are finite
+    cusp = lb.BezierCurve([(0, 0), (1, 1), (0, 0)])
+    with pytest.raises(ValueError, match=r"undefined at t = 0\.5"):
+        cusp.curvature([0.25, 0.5, 0.75])
+    assert np.isfinite(cusp.curvature([0.25, 0.75])).all()
 
 
 def test_shapes(family):

@@ -291,7 +291,13 @@ class Curve:
         return out[0] if scalar else out
 
     def curvature(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
-        """Signed curvature in 2D, unsigned in 3D; NaN where p'(t) = 0 (undefined there)."""
+        """Signed curvature in 2D, unsigned in 3D; a ValueError naming t where p'(t) = 0
+        (undefined there: a cusp, or a curve that stops)."""
+        kappa = val.defined_curvature(self._curvature(t, extrapolate), t)
+        return kappa[()] if np.ndim(kappa) == 0 else kappa
+
+    def _curvature(self, t: ParamLike, extrapolate: bool = False) -> np.ndarray:
+        """The curvature as an array, NaN where p'(t) = 0 (for plots and joint reports)."""
         if self.dimension not in (2, 3):
             raise ValueError(
                 f"curvature is defined here for planar and space curves (dimension 2 or 3), "
@@ -319,7 +325,7 @@ class Curve:
             kappa = np.where(speed > 0, cross / speed / speed / speed, np.nan) / c / self._scale
         if np.isinf(kappa).any():  # a curve of size ~1e-310
             raise ValueError("the curvature overflows the float range for these control points")
-        return kappa[()] if np.ndim(kappa) == 0 else kappa
+        return np.asarray(kappa)
 
     def energy(self, k: int) -> Fraction | float:
         r"""The energy :math:`E_k = \int_0^1 \lVert p^{(k)}(t) \rVert^2 \, dt`.

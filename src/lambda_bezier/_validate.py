@@ -324,6 +324,19 @@ def finite_result(out: np.ndarray, what: str) -> np.ndarray:
     return out
 
 
+def defined_curvature(kappa: np.ndarray, t: object, name: str = "t") -> np.ndarray:
+    """`kappa`, or a ValueError naming the first parameter where it is NaN: p' = 0 there, so
+    the curvature is undefined (a cusp, or a curve that stops), never returned as NaN."""
+    bad = np.isnan(kappa)
+    if bad.any():
+        at = np.asarray(t, dtype=object).ravel()[int(np.argmax(np.ravel(bad)))]
+        raise ValueError(
+            f"the curvature is undefined at {name} = {at}: the first derivative vanishes "
+            "there (a cusp, or a curve that stops)"
+        )
+    return kappa
+
+
 def power_of_two_scale(points: np.ndarray) -> float:
     """1.0 for ordinary coordinates; for magnitudes beyond 2^±900 the power of two that brings
     them near 1, so products with basis coefficients (up to ~1e20) neither overflow nor

@@ -248,7 +248,13 @@ class AtomCurve:
         return out.T[0] if scalar else out.T
 
     def curvature(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
-        """Signed curvature in 2D, unsigned in 3D (in t; curvature does not depend on it)."""
+        """Signed curvature in 2D, unsigned in 3D (in t; curvature does not depend on it);
+        a ValueError naming t where C'(t) = 0 (undefined there)."""
+        kappa = val.defined_curvature(self._curvature(t, extrapolate), t)
+        return kappa[()] if np.ndim(kappa) == 0 else kappa
+
+    def _curvature(self, t: ParamLike, extrapolate: bool = False) -> np.ndarray:
+        """The curvature as an array, NaN where C'(t) = 0 (for plots and joint reports)."""
         from .hazmat import rational_kernels as rk
 
         if self.dimension not in (2, 3):
@@ -257,8 +263,7 @@ class AtomCurve:
             )
         d1 = self.derivative(t, 1, extrapolate=extrapolate)
         d2 = self.derivative(t, 2, extrapolate=extrapolate)
-        kappa = rk.curvature_from_derivatives(d1, d2)
-        return kappa[()] if np.ndim(kappa) == 0 else kappa
+        return rk.curvature_from_derivatives(d1, d2)
 
     def tangent(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray:
         """The unit tangent C'/‖C'‖; ValueError where C'(t) = 0."""

@@ -157,7 +157,8 @@ def measure(
     p1, p2 = left.evaluate(end), right.evaluate(start)
     d1, e1 = left.derivative(end, 1), right.derivative(start, 1)
     d2, e2 = left.derivative(end, 2), right.derivative(start, 2)
-    k1, k2 = float(left.curvature(end)), float(right.curvature(start))
+    # NaN where a segment's speed vanishes at the joint: the report says "undefined"
+    k1, k2 = float(left._curvature(end)), float(right._curvature(start))
     size = max(1.0, float(np.abs(left.points).max()), float(np.abs(right.points).max()))
     gap = _gap(p1, p2)
     angle = _angle(d1, e1)
@@ -465,12 +466,14 @@ class CompositeCurve:
         return self.derivative(u, 0, extrapolate=extrapolate)
 
     def curvature(self, u: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
-        """Signed in 2D, unsigned in 3D (as the segments' curvature)."""
+        """Signed in 2D, unsigned in 3D (as the segments' curvature); a ValueError naming u
+        where the curve's first derivative vanishes (undefined there)."""
         arr, idx, t, scalar = self._locate(u, extrapolate)
         out = np.zeros(arr.size)
         for s in np.unique(idx):
             mask = idx == s
-            out[mask] = self.segments[s].curvature(t[mask], extrapolate=extrapolate)
+            out[mask] = self.segments[s]._curvature(t[mask], extrapolate=extrapolate)
+        val.defined_curvature(out, arr, "u")
         return out[0] if scalar else out
 
     # ------------------------------------------------------------------ geometry

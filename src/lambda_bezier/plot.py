@@ -83,7 +83,7 @@ def plot_curvature(
     """Curvature against t (signed in 2D)."""
     ax = _axes(ax)
     t = np.linspace(0.0, 1.0, samples)
-    ax.plot(t, curve.curvature(t), label=label, **line_kwargs)
+    ax.plot(t, curve._curvature(t), label=label, **line_kwargs)  # gaps where undefined
     ax.set_xlabel("t")
     ax.set_ylabel("curvature")
     return ax

@@ -314,7 +314,13 @@ class RationalBezierCurve:
         return out[0] if scalar else out
 
     def curvature(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
-        """Signed curvature in 2D, unsigned in 3D; NaN where C'(t) = 0 (undefined there)."""
+        """Signed curvature in 2D, unsigned in 3D; a ValueError naming t where C'(t) = 0
+        (undefined there)."""
+        kappa = val.defined_curvature(self._curvature(t, extrapolate), t)
+        return kappa[()] if np.ndim(kappa) == 0 else kappa
+
+    def _curvature(self, t: ParamLike, extrapolate: bool = False) -> np.ndarray:
+        """The curvature as an array, NaN where C'(t) = 0 (for plots and joint reports)."""
         if self.dimension not in (2, 3):
             raise ValueError(
                 f"curvature is defined here for planar and space curves (dimension 2 or 3), "
@@ -322,8 +328,7 @@ class RationalBezierCurve:
             )
         d1 = self.derivative(t, 1, extrapolate=extrapolate)
         d2 = self.derivative(t, 2, extrapolate=extrapolate)
-        kappa = rk.curvature_from_derivatives(d1, d2)
-        return kappa[()] if np.ndim(kappa) == 0 else kappa
+        return rk.curvature_from_derivatives(d1, d2)
 
     def torsion(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
         """Signed torsion of a 3D curve; ValueError where undefined (2D, or C' x C'' = 0)."""

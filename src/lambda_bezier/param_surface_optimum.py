@@ -43,6 +43,7 @@ from typing import Any
 
 import numpy as np
 
+from . import _poly_direction as pd
 from . import _validate as val
 from .hazmat import surface_kernels as ker
 from .hazmat.constants import constant_bounds
@@ -66,11 +67,7 @@ MAX_COORDINATE = 1e140  # above it the energy of a net overflows a float
 def _directions(shape: tuple[int, ...], fu: Any, fv: Any) -> tuple[Direction, Direction]:
     m, n = int(shape[0]) - 1, int(shape[1]) - 1
     for fam, deg, name in ((fu, m, "u"), (fv, n, "v")):
-        if deg not in fam.degrees:
-            raise ValueError(
-                f"net, direction {name}: degree {deg}; {fam.name!r} has degrees "
-                f"{fam.degrees[0]}..{fam.degrees[-1]}"
-            )
+        pd.checked_degree(fam, deg, name)
     return _direction(fu, m), _direction(fv, n)
 
 

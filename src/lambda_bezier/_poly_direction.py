@@ -19,7 +19,8 @@ closest point, split and STEP export of `AtomSurface` go through it unchanged.
 from __future__ import annotations
 
 from fractions import Fraction
-from typing import Any
+from itertools import pairwise
+from typing import Any, TypeGuard
 
 import numpy as np
 import numpy.typing as npt
@@ -38,22 +39,27 @@ def is_indexed(family: object) -> bool:
     return hasattr(family, "index_name") and hasattr(family, "at_degree")
 
 
+def is_class(family: object) -> TypeGuard[type[Curve]]:
+    """Whether a direction's family is a built-in curve class (not a family object)."""
+    return isinstance(family, type) and issubclass(family, Curve)
+
+
 def polynomial_family(family: object) -> Any:
     """A direction's polynomial family as the surfaces keep it: a family from load_family
     as given, a built-in family's name (or curve class) as its curve class."""
-    if isinstance(family, str) or (isinstance(family, type) and issubclass(family, Curve)):
+    if isinstance(family, str) or is_class(family):
         return family_class(family)
     return family
 
 
 def family_name(family: Any) -> str:
     """The name of a direction's family (a Family's `name`, a curve class's `family`)."""
-    return str(family.family if isinstance(family, type) else family.name)
+    return str(family.family if is_class(family) else family.name)
 
 
 def family_degrees(family: Any) -> tuple[int, ...] | None:
     """The degrees a direction's family has (None: any degree, the classical Bézier)."""
-    if isinstance(family, type):
+    if is_class(family):
         return None if family._any_degree else tuple(family._data.DEGREES)
     return tuple(family.degrees)
 
@@ -86,7 +92,7 @@ def direction_class(
 ) -> tuple[type[Curve], Fraction | float | None]:
     """(curve class, λ) of a polynomial direction of `degree` at its parameters: the class
     of the family at those values (λ None) or, for a one-parameter family, its class and λ."""
-    if isinstance(family, type):
+    if is_class(family):
         lam = next(iter(given.values()), None)
         return family, _lam(family, lam, family.parameter_name, check_range)
     if is_indexed(family):
@@ -167,6 +173,19 @@ class PolyProbe:
     def t_of_s(self, s: npt.ArrayLike) -> Any:
         return s
 
+    def end_derivatives(self, order: int, at_end: bool) -> list[list[Any]]:
+        """w[r][i] = b_i^(r) at t = 1 (at_end) or 0, r = 0..order: exact Fractions for exact
+        parameters (the r-th hodograph's Bernstein coefficient at that end), else floats."""
+        b: Any = self.bernstein()
+        rows = [list(r) for r in b] if self.exact else np.asarray(b, dtype=float).tolist()
+        zero: Any = Fraction(0) if self.exact else 0.0
+        big = len(rows[0]) - 1
+        out = []
+        for r in range(order + 1):
+            out.append([(row[-1] if at_end else row[0]) if row else zero for row in rows])
+            rows = [[(big - r) * (x - y) for y, x in pairwise(row)] for row in rows]
+        return out
+
     def crude_sup(self, order: int) -> np.ndarray:
         """A bound of sup |b_i^(order)| over [0, 1] per i: the largest |coefficient| of the
         order-th hodograph's Bernstein form (the convex hull property)."""
@@ -200,3 +219,12 @@ def shown(x: object) -> Fraction | float:
     """A parameter value as a surface reports it: exact as a Fraction, else a float."""
     got = val.real_number(x, "parameter")
     return got if val.is_exact_scalar(x) else float(got)
+
+
+def direction_curve(family: Any, points: Any, given: dict[str, object]) -> Any:
+    """The curve of a direction's family at its parameters on `points` (a column of a
+    surface's net): `fam.curve` for a family from load_family; a built-in class with its λ."""
+    if is_class(family):
+        lam: Any = next(iter(given.values()), None)
+        return family(points, lam, check_range=False) if family._has_lambda else family(points)
+    return family.curve(points, params=given, check_range=False)

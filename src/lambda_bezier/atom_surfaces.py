@@ -165,11 +165,13 @@ class AtomSurface(Surface):
 
     @property
     def domain_u(self) -> tuple[float, float]:
-        return self._probes[0].domain
+        out: tuple[float, float] = self._probes[0].domain
+        return out
 
     @property
     def domain_v(self) -> tuple[float, float]:
-        return self._probes[1].domain
+        out: tuple[float, float] = self._probes[1].domain
+        return out
 
     @property
     def is_exact(self) -> bool:
@@ -178,15 +180,12 @@ class AtomSurface(Surface):
     def parameters(self) -> dict[str, Fraction | float]:
         """Every parameter by direction: ``{"lam_u": .., "mu_u": .., "lam_v": ..}``."""
         out: dict[str, Fraction | float] = {}
-        for suffix, given, values in (
-            ("u", self.params_u, self._values[0]),
-            ("v", self.params_v, self._values[1]),
-        ):
-            for (k, x), exact in zip(given.items(), values, strict=True):
+        for suffix, given in (("u", self.params_u), ("v", self.params_v)):
+            for k, x in given.items():
                 if isinstance(x, list | tuple):  # an indexed polynomial direction
                     out[f"{k}_{suffix}"] = tuple(pd.shown(y) for y in x)  # type: ignore[assignment]
                 else:
-                    out[f"{k}_{suffix}"] = pd.shown(exact) if val.is_exact_scalar(x) else float(x)
+                    out[f"{k}_{suffix}"] = pd.shown(x)
         return out
 
     def __repr__(self) -> str:

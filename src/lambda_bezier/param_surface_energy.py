@@ -77,7 +77,7 @@ def _direction(family: Any, degree: int) -> Direction:
         entries = (g for grams in data.GRAM.values() for m in grams.values() for r in m for g in r)
         constant = next((g.constant for g in entries if hasattr(g, "constant")), None)
         return Direction(family, degree, data.NAMES, dict(data.RANGES), constant, None)
-    if isinstance(family, type):  # a built-in class across an atom family (_poly_direction)
+    if pd.is_class(family):  # a built-in class across an atom family (_poly_direction)
         if not family._has_lambda:
             return Direction(family, degree, (), {}, None, None)
         data = family._data
@@ -114,7 +114,7 @@ def _grams(
             pair: tuple(tuple(_laurent(g) for g in row) for row in mat)
             for pair, mat in data.GRAM[(degree, k)].items()
         }
-    if isinstance(family, type):  # a built-in class: its tables split by powers of λ
+    if pd.is_class(family):  # a built-in class: its tables split by powers of λ
         split = basis_to_bernstein_split(family, degree)
         by_mono = {((p,) if family._has_lambda else ()): m for p, m in enumerate(split)}
     elif family.several is not None:
@@ -124,7 +124,7 @@ def _grams(
         by_mono = {(p,): m for p, m in enumerate(split)}
     big = len(next(iter(by_mono.values()))[0]) - 1
     inner = hodograph_gram(big, k)
-    out = {}
+    out: dict[tuple[Mono, Mono], tuple[tuple[Laurent, ...], ...]] = {}
     for a, ba in by_mono.items():
         left = _matmul(ba, inner)
         for b, bb in by_mono.items():
@@ -339,7 +339,7 @@ def _family_pair(family: Any) -> tuple[Any, Any]:
     if pd.is_atom(fu) or pd.is_atom(fv):  # a built-in polynomial direction may be named
         fu, fv = pd.polynomial_family(fu), pd.polynomial_family(fv)
     for f in (fu, fv):
-        if isinstance(f, type):
+        if pd.is_class(f):
             continue
         if not hasattr(f, "degrees") or not hasattr(f, "parameters"):
             raise TypeError(

@@ -22,7 +22,6 @@ from . import _validate as val
 from .atom_surfaces import AtomSurface
 from .surfaces import NetLike, Surface, _as_net
 
-
 _is_atom, _is_indexed = pd.is_atom, pd.is_indexed
 
 
@@ -33,7 +32,7 @@ def _given(family: Any, lam: object, params: object, name: str) -> dict[str, obj
             f"params_{name} must be a dict {{name: value}}, not {type(params).__name__}"
         )
     try:
-        if isinstance(family, type):  # a built-in family across an atom one
+        if pd.is_class(family):  # a built-in family across an atom one
             given = pd.builtin_given(family, lam, params)
             return {k: _normalised(v) for k, v in given.items()}
         if _is_indexed(family):

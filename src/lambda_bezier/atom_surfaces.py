@@ -16,6 +16,12 @@ the families' t. The box and the closest point are certified as for polynomial s
 branch and bound in which a patch's bound is the least ratio of the numerator's and the
 (positive) denominator's Bernstein coefficients. Mixed families have no rational form; their
 box and closest point are numeric (a dense grid, then Newton), **not certified**.
+
+One direction may be a polynomial family instead (`_poly_direction.PolyProbe`: its basis on
+[0, 1], and its Bernstein form as a rational form with every weight 1 and s = t), so that a
+trigonometric or hyperbolic family across a polynomial one goes through the rational form as
+above; a mixed family across a polynomial one refuses the box and the closest point, naming
+the reason (no rational form, and no certified enclosure of such surfaces yet).
 """
 
 from __future__ import annotations

@@ -9,7 +9,9 @@ polynomial family at fixed parameter values is a family without a parameter (the
 curve class of `Family.curve`), so its surface is a `ParamSurface`: the generic `Surface`
 on those classes, with every method of the polynomial surfaces (the exact Bézier form,
 certified box and closest point, iso-curves of the family) and the parameters kept by name.
-Atom families give an `AtomSurface` (atom_surfaces).
+Atom families give an `AtomSurface` (atom_surfaces), also with a polynomial family in the
+other direction (a pair ``(family_u, family_v)``, a built-in family by name;
+``fam.surface(..., family_v=...)``).
 """
 
 from __future__ import annotations

@@ -35,6 +35,12 @@ _WEIGHT_KEY = re.compile(r"^([0-2]),(first|second),([0-9]{1,3})$")
 _CONSTANT = re.compile(r"^(?:pi|exp\((-?[0-9]+(?:/[0-9]+)?)\))$")
 
 
+class SingularWeight(ValueError):
+    """A weight of the document's closed form has a vanishing denominator at these values:
+    the join may still exist there (a removable singularity) or not; a per-degree solve
+    decides and names the point it cannot determine (joins._generic_weights)."""
+
+
 def side_values(side: int, names: tuple[str, ...], values: tuple[Number, ...]) -> dict[str, Any]:
     """The variables of one curve of the join: a one-parameter family's parameter is lam1 or
     lam2 whatever its name (derive's symbol `lam`), several parameters keep their names."""
@@ -125,7 +131,7 @@ def lookup(
             raise ValueError(f"{where}: {key!r}: not a weight 'row,src,k': 'num / den'")
         num, den = (_value(h, point, variables) for h in _halves(text, len(point), where, key))
         if den == 0:
-            raise ValueError(
+            raise SingularWeight(
                 f"cannot solve {continuity}: the derived weight of P_{{{found.group(1)},2}} in "
                 f"{pair} has a vanishing denominator at these degrees and parameters "
                 "(choose another degree or parameters)"

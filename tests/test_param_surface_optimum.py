@@ -90,7 +90,7 @@ def test_batch_refusals_name_the_problem():
         lb.optimal_parameters(nets, "membrane", family=TRIG)
     with pytest.raises(ValueError, match="NaN"):
         lb.optimal_parameters(np.full((2, 4, 4, 3), np.nan), "membrane", family=AT)
-    with pytest.raises(ValueError, match="direction u: degree 4"):
+    with pytest.raises(ValueError, match="direction u: 5 control points make degree 4"):
         lb.optimal_parameters(np.zeros((2, 5, 4, 3)), "membrane", family=AT)
     with pytest.raises(ValueError, match="energy"):
         lb.optimal_parameters(nets, "bending", family=AT)
@@ -132,11 +132,16 @@ def test_to_bezier_of_atom_surfaces_says_what_to_use(fam, words):
         s.to_bezier()
 
 
-def test_atom_across_polynomial_is_refused_with_the_reason():
+def test_atom_across_polynomial_is_an_atom_surface_either_way():
+    """Once refused; now the surface of each direction's family (tests/test_mixed_surfaces.py
+    checks its quantities)."""
     pu = {"lam": 0, "mu": 0}
-    for pair in ((TRIG, TWO), (TWO, TRIG)):
-        with pytest.raises(ValueError, match=r"han_trig_cubic \(trigonometric\) across two_sh"):
-            family_surface(NET, pair, params_u=pu, params_v=pu)
+    for pair, fams in (
+        ((TRIG, TWO), ("han_trig_cubic", "two_shape_cubic")),
+        ((TWO, TRIG), ("two_shape_cubic", "han_trig_cubic")),
+    ):
+        s = family_surface(NET, pair, params_u=pu, params_v=pu)
+        assert s.family == fams
 
 
 def test_batch_engines_agree(monkeypatch):

@@ -70,7 +70,11 @@ def join_side(thing: Any, side: int, degree: int, values: Any = None) -> Side:
         ok = tuple(several.degrees) == (degree,)
         return several.name, {letter: degree, **got}, table, ok, closed
     lam = thing.lam if not isinstance(thing, type) else values
-    return str(getattr(cls, "family", "")), {letter: degree, f"lam{side}": lam}, None, True, None
+    # a one-parameter family defined by data: its document's weights (surface_joins, the
+    # column-wise curve joins in closed form in n, m) hold at every degree; built-ins: none
+    table = getattr(cls._data, "SURFACE_JOINS", None) if hasattr(cls, "_data") else None
+    closed = table if isinstance(table, dict) and "pairs" in table else None
+    return str(getattr(cls, "family", "")), {letter: degree, f"lam{side}": lam}, None, True, closed
 
 
 def derived_weights(

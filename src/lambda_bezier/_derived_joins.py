@@ -9,6 +9,12 @@ table's ``variables`` (n, m, lam1, lam2, alpha, d, each parameter x of the first
 curve as x1 and x2, and the constant C of an atom family: pi or e^W). The text of a weight is
 data ("coefficient@exponents ... / ..."), split here, never evaluated as an expression.
 
+A one-parameter family's document (format 3) holds the same weights as polynomial data in its
+``surface_joins`` table (the column-wise curve joins, in closed form in n and m: C1 and G1,
+and C2 where derive found one), [num, den] of [coefficient, e1, ...] terms; `lookup` reads
+both forms, so the curves' joins (_atom_joins.join_side) and the surfaces' derived joins
+(surface_joins) take those weights through this one evaluation.
+
 `lookup` gives the weights of a join at given values, or None where the document has none
 (another family on the other side, a pair the derivation could not solve in closed form):
 the callers then solve the join per degree (_join_engine, _atom_joins).
@@ -29,6 +35,12 @@ _WEIGHT_KEY = re.compile(r"^([0-2]),(first|second),([0-9]{1,3})$")
 _CONSTANT = re.compile(r"^(?:pi|exp\((-?[0-9]+(?:/[0-9]+)?)\))$")
 
 
+class SingularWeight(ValueError):
+    """A weight of the document's closed form has a vanishing denominator at these values:
+    the join may still exist there (a removable singularity) or not; a per-degree solve
+    decides and names the point it cannot determine (joins._generic_weights)."""
+
+
 def side_values(side: int, names: tuple[str, ...], values: tuple[Number, ...]) -> dict[str, Any]:
     """The variables of one curve of the join: a one-parameter family's parameter is lam1 or
     lam2 whatever its name (derive's symbol `lam`), several parameters keep their names."""
@@ -46,6 +58,8 @@ def holds_at(table: dict[str, Any], continuity: str, degree: int) -> bool:
     """Whether a closed-form table's weights of `continuity` hold at this degree of the
     family: derive proved them for every degree from ``valid_from`` on (per order: "1" for
     C1/G1, "2" for C2/G2)."""
+    if "valid_from" not in table:  # a one-parameter family's, derived for a general n and m
+        return True
     order = "2" if continuity in ("C2", "G2") else "1"
     low = table["valid_from"].get(order) if isinstance(table["valid_from"], dict) else None
     if not isinstance(low, int):
@@ -113,12 +127,11 @@ def lookup(
     out: dict[Key, Number] = {}
     for key, text in entry[continuity].items():
         found = _WEIGHT_KEY.match(key)
-        halves = text.split(" / ") if isinstance(text, str) else []
-        if found is None or len(halves) != 2:
+        if found is None:
             raise ValueError(f"{where}: {key!r}: not a weight 'row,src,k': 'num / den'")
-        num, den = (_value(_polynomial(h, len(point), where), point, variables) for h in halves)
+        num, den = (_value(h, point, variables) for h in _halves(text, len(point), where, key))
         if den == 0:
-            raise ValueError(
+            raise SingularWeight(
                 f"cannot solve {continuity}: the derived weight of P_{{{found.group(1)},2}} in "
                 f"{pair} has a vanishing denominator at these degrees and parameters "
                 "(choose another degree or parameters)"
@@ -127,6 +140,35 @@ def lookup(
     if any(isinstance(w, float) for w in out.values()):
         return {k: float(w) for k, w in out.items()}
     return out
+
+
+def _halves(
+    weight: object, size: int, where: str, key: str
+) -> tuple[list[tuple[Fraction, tuple[int, ...]]], list[tuple[Fraction, tuple[int, ...]]]]:
+    """(numerator, denominator) of one weight as [(coefficient, exponents)]: the ``joins``
+    text "num / den" of "coefficient@e1,...", or the ``surface_joins`` data [num, den] of
+    [coefficient, e1, ...] terms (a one-parameter family's document); data, never evaluated."""
+    if isinstance(weight, str):
+        halves = weight.split(" / ")
+        if len(halves) == 2:
+            return _polynomial(halves[0], size, where), _polynomial(halves[1], size, where)
+    elif isinstance(weight, list) and len(weight) == 2:
+        out = []
+        for half in weight:
+            if not isinstance(half, list) or not all(
+                isinstance(t, list)
+                and len(t) == size + 1
+                and isinstance(t[0], str)
+                and all(isinstance(e, int) and 0 <= e <= 64 for e in t[1:])
+                for t in half
+            ):
+                break
+            out.append([(Fraction(t[0]), tuple(t[1:])) for t in half])
+        if len(out) == 2:
+            return out[0], out[1]
+    raise ValueError(
+        f"{where}: {key!r}: not a weight 'num / den' or [num, den] of {size} variables"
+    )
 
 
 def _value(

@@ -16,6 +16,12 @@ the families' t. The box and the closest point are certified as for polynomial s
 branch and bound in which a patch's bound is the least ratio of the numerator's and the
 (positive) denominator's Bernstein coefficients. Mixed families have no rational form; their
 box and closest point are numeric (a dense grid, then Newton), **not certified**.
+
+One direction may be a polynomial family instead (`_poly_direction.PolyProbe`: its basis on
+[0, 1], and its Bernstein form as a rational form with every weight 1 and s = t), so that a
+trigonometric or hyperbolic family across a polynomial one goes through the rational form as
+above; a mixed family across a polynomial one refuses the box and the closest point, naming
+the reason (no rational form, and no certified enclosure of such surfaces yet).
 """
 
 from __future__ import annotations
@@ -27,6 +33,7 @@ from typing import Any, NoReturn
 import numpy as np
 import numpy.typing as npt
 
+from . import _poly_direction as pd
 from . import _validate as val
 from ._validate import ParamLike
 from .atom_family import AtomCurve
@@ -129,10 +136,20 @@ class AtomSurface(Surface):
         self.params_u, self.params_v = dict(params_u), dict(params_v)
         self._values = []
         self._exact_params = []
-        self._probes: list[AtomCurve] = []
+        self._probes: list[Any] = []
         for axis, (fam, given) in enumerate(((family_u, params_u), (family_v, params_v))):
             name = "u" if axis == 0 else "v"
             degree = self.net.shape[axis] - 1
+            if not pd.is_atom(fam):  # a polynomial direction across an atom one
+                pd.checked_degree(fam, degree, name)
+                try:
+                    probe = pd.PolyProbe(fam, dict(given), degree, check_range)
+                except (TypeError, ValueError) as exc:
+                    raise type(exc)(f"params_{name}: {exc}") from None
+                self._values.append(tuple(given.values()))
+                self._exact_params.append(all(pd.exact_value(x) for x in given.values()))
+                self._probes.append(probe)
+                continue
             if degree not in fam.degrees:
                 raise ValueError(
                     f"net, direction {name}: {degree + 1} control points make degree {degree}; "
@@ -149,16 +166,18 @@ class AtomSurface(Surface):
     # ------------------------------------------------------------------ description
     @property
     def family(self) -> str | tuple[str, str]:
-        fu, fv = self.family_u.name, self.family_v.name
+        fu, fv = pd.family_name(self.family_u), pd.family_name(self.family_v)
         return fu if fu == fv else (fu, fv)
 
     @property
     def domain_u(self) -> tuple[float, float]:
-        return self._probes[0].domain
+        out: tuple[float, float] = self._probes[0].domain
+        return out
 
     @property
     def domain_v(self) -> tuple[float, float]:
-        return self._probes[1].domain
+        out: tuple[float, float] = self._probes[1].domain
+        return out
 
     @property
     def is_exact(self) -> bool:
@@ -167,21 +186,19 @@ class AtomSurface(Surface):
     def parameters(self) -> dict[str, Fraction | float]:
         """Every parameter by direction: ``{"lam_u": .., "mu_u": .., "lam_v": ..}``."""
         out: dict[str, Fraction | float] = {}
-        for suffix, given, values in (
-            ("u", self.params_u, self._values[0]),
-            ("v", self.params_v, self._values[1]),
-        ):
-            for (k, x), exact in zip(given.items(), values, strict=True):
-                out[f"{k}_{suffix}"] = exact if val.is_exact_scalar(x) else float(exact)
+        for suffix, given in (("u", self.params_u), ("v", self.params_v)):
+            for k, x in given.items():
+                if isinstance(x, list | tuple):  # an indexed polynomial direction
+                    out[f"{k}_{suffix}"] = tuple(pd.shown(y) for y in x)  # type: ignore[assignment]
+                else:
+                    out[f"{k}_{suffix}"] = pd.shown(x)
         return out
 
     def __repr__(self) -> str:
         m, n = self.degrees
         shown = ", ".join(f"{k}={v}" for k, v in self.parameters().items())
-        return (
-            f"AtomSurface({self.family_u.name} x {self.family_v.name}, degrees=({m}, {n}), "
-            f"dimension={self.dimension}, {shown})"
-        )
+        fu, fv = pd.family_name(self.family_u), pd.family_name(self.family_v)
+        return f"AtomSurface({fu} x {fv}, degrees=({m}, {n}), dimension={self.dimension}, {shown})"
 
     # ------------------------------------------------------------------ evaluation
     def _pair(self, u: ParamLike, v: ParamLike) -> tuple[np.ndarray, np.ndarray, bool]:
@@ -250,6 +267,8 @@ class AtomSurface(Surface):
         probe = self._probes[axis]
         if (t is None) == (s is None):
             raise TypeError(f"give {name} (the family's t) or s= (the rational form's), once")
+        if s is None and isinstance(probe, pd.PolyProbe) and val.is_exact_scalar(t):
+            s = t  # a polynomial direction's rational form has s = t: exact at exact t
         if s is not None:
             rat = probe.to_rational_bezier()
             x: Any = Fraction(val.real_number(s, "s"))
@@ -276,6 +295,9 @@ class AtomSurface(Surface):
         exact = self._exact is not None and all(isinstance(w, Fraction) for w in weights)
         pts = self._contract(axis, weights, exact)
         fam, given = (self.family_v, self.params_v) if axis == 0 else (self.family_u, self.params_u)
+        other = self._probes[1 - axis]
+        if isinstance(other, pd.PolyProbe):
+            return other.make_curve(pts)  # type: ignore[return-value]
         curve: AtomCurve = fam.curve(pts, params=given, check_range=False)
         return curve
 
@@ -389,6 +411,9 @@ class AtomSurface(Surface):
         |τ^p| <= h^p, |cosh|, |sinh| <= cosh(m ω0 h) on the centred domain |τ| <= h)."""
         crude = []
         for probe in self._probes:
+            if isinstance(probe, pd.PolyProbe):
+                crude.append([probe.crude_sup(k) for k in range(4)])
+                continue
             sh = probe.shape
             lo, hi = probe.domain
             half = 0.5 * (hi - lo)
@@ -421,6 +446,7 @@ class AtomSurface(Surface):
         ratio of the homogeneous net's coordinate and weight). A mixed family: numeric."""
         tol = val.tolerance(tol)
         if not self._has_form():
+            self._refuse_uncertified("bounding_box")
             return self._numeric_box()
         h = self.to_rational_bezier().homogeneous.net
         w = h[:, :, -1]
@@ -449,6 +475,7 @@ class AtomSurface(Surface):
     def _closest(self, q: object, tol: float) -> SurfaceClosestPoint:
         point = val.as_point(q, self.dimension)
         if not self._has_form():
+            self._refuse_uncertified("closest_point")
             return self._numeric_closest(point)
         rat = self.to_rational_bezier()
         h = rat.homogeneous.net
@@ -478,6 +505,20 @@ class AtomSurface(Surface):
         at = self.evaluate(u, v)
         lower = min(max(lower, 0.0), best)  # rounded at a corner: never above the value (surfaces)
         return SurfaceClosestPoint(u, v, at, float(np.sqrt(best)), float(np.sqrt(lower)))
+
+    def _refuse_uncertified(self, what: str) -> None:
+        """A mixed atom family across a polynomial one: no rational form, and the numeric
+        fallback of two mixed directions is not offered for these new surfaces (a certified
+        enclosure of mixed-family surfaces is hazmat work not in this runtime yet)."""
+        poly = [p.family for p in self._probes if isinstance(p, pd.PolyProbe)]
+        if poly:
+            atom = next(p.family for p in self._probes if not isinstance(p, pd.PolyProbe))
+            raise ValueError(
+                f"{what}: {atom} is a mixed algebraic-trigonometric/hyperbolic family (no "
+                f"rational form) across {poly[0]}, so there is no certified {what} of this "
+                "surface yet (the certified enclosures of mixed-family surfaces are not "
+                "built); evaluate it on a grid, or mesh it (surface_export.mesh)"
+            )
 
     # numeric fallbacks of a mixed family (no rational form): not certified
     def _grid(self, count: int = 65) -> tuple[np.ndarray, np.ndarray]:

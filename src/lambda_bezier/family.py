@@ -301,20 +301,25 @@ class Family:
         *,
         params_u: dict[str, Any] | None = None,
         params_v: dict[str, Any] | None = None,
+        family_v: object = None,
         check_range: bool = True,
     ) -> Surface:
         """The tensor-product surface Σ P_ij b_i(u; x_u) b_j(v; x_v) of this family on a net
         of (m+1) x (n+1) control points: ``lam_u, lam_v`` for one parameter, or each
         direction's parameters by name, ``params_u={"lam": .., "mu": ..}``; an indexed family
-        one sequence per direction; an atom family u, v in its own domain (param_surfaces)."""
+        one sequence per direction; an atom family u, v in its own domain (param_surfaces).
+        `family_v`: another family in v (a family from load_family or a built-in family's
+        name), e.g. a trigonometric family across a polynomial one; default this family."""
         from .param_surfaces import family_surface
 
+        pair: Any = self if family_v is None else (self, family_v)
         if type(self) is Family and self.several is None and params_u is params_v is None:
             from .surfaces import Surface
 
-            return Surface(net, lam_u, lam_v, family=self, check_range=check_range)
+            if family_v is None or not hasattr(family_v, "atom_data"):
+                return Surface(net, lam_u, lam_v, family=pair, check_range=check_range)
         return family_surface(
-            net, self, lam_u, lam_v, params_u=params_u, params_v=params_v, check_range=check_range
+            net, pair, lam_u, lam_v, params_u=params_u, params_v=params_v, check_range=check_range
         )
 
     def parameter_values(

@@ -197,11 +197,14 @@ def _generic_weights(
             f"the first curve's end is degenerate: C1'(1) = 0 for this {curve.family} curve "
             f"of degree {curve.degree} with lam = {curve.lam}, so there is no tangent to continue"
         )
-    from . import _atom_joins  # a family's derived document may hold the weights
+    from . import _atom_joins, _derived_joins  # a family's document may hold the weights
 
     first = _atom_joins.join_side(curve, 1, curve.degree)
     second = _atom_joins.join_side(cls, 2, degree, lam)
-    derived = _atom_joins.derived_weights(first, second, joint.continuity, joint.alpha, joint.d)
+    try:
+        derived = _atom_joins.derived_weights(first, second, joint.continuity, joint.alpha, joint.d)
+    except _derived_joins.SingularWeight:  # the closed form's pole: the solve decides, naming
+        derived = None  # the point it cannot determine where the join does not exist
     if derived is not None:
         return derived
     try:

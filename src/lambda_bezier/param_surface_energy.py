@@ -37,12 +37,13 @@ from typing import Any
 
 import numpy as np
 
+from . import _poly_direction as pd
 from . import _validate as val
 from . import surface_energies
 from ._optimal_box import BUDGET, CONSTANT_BITS, TOLERANCE, _laurent
 from .hazmat import box_bernstein
 from .surface_energies import ENERGIES, _matmul, hodograph_gram
-from .surfaces import NetLike, _as_net, _exact_net
+from .surfaces import NetLike, _as_net, _exact_net, basis_to_bernstein_split
 
 Laurent = dict[int, Fraction]
 Mono = tuple[int, ...]
@@ -76,6 +77,15 @@ def _direction(family: Any, degree: int) -> Direction:
         entries = (g for grams in data.GRAM.values() for m in grams.values() for r in m for g in r)
         constant = next((g.constant for g in entries if hasattr(g, "constant")), None)
         return Direction(family, degree, data.NAMES, dict(data.RANGES), constant, None)
+    if pd.is_class(family):  # a built-in class across an atom family (_poly_direction)
+        if not family._has_lambda:
+            return Direction(family, degree, (), {}, None, None)
+        data = family._data
+        lo, hi = data.LAMBDA_RANGE
+        rng = (Fraction(lo), Fraction(hi), *data.LAMBDA_CLOSED, data.LAMBDA_RANGE_TEXT)
+        return Direction(
+            family, degree, (family.parameter_name,), {family.parameter_name: rng}, None, None
+        )
     if family.several is not None:
         sev = family.several
         return Direction(family, degree, sev.NAMES, dict(sev.RANGES), None, None)
@@ -104,14 +114,17 @@ def _grams(
             pair: tuple(tuple(_laurent(g) for g in row) for row in mat)
             for pair, mat in data.GRAM[(degree, k)].items()
         }
-    if family.several is not None:
+    if pd.is_class(family):  # a built-in class: its tables split by powers of λ
+        split = basis_to_bernstein_split(family, degree)
+        by_mono = {((p,) if family._has_lambda else ()): m for p, m in enumerate(split)}
+    elif family.several is not None:
         by_mono = family.several.TABLES["bernstein"][degree]
     else:
         split = family.data.BERNSTEIN[degree]
         by_mono = {(p,): m for p, m in enumerate(split)}
     big = len(next(iter(by_mono.values()))[0]) - 1
     inner = hodograph_gram(big, k)
-    out = {}
+    out: dict[tuple[Mono, Mono], tuple[tuple[Laurent, ...], ...]] = {}
     for a, ba in by_mono.items():
         left = _matmul(ba, inner)
         for b, bb in by_mono.items():
@@ -323,7 +336,11 @@ def _param_families(family: object) -> bool:
 def _family_pair(family: Any) -> tuple[Any, Any]:
     """(u family, v family) of `family`: one family from load_family, or a pair of them."""
     fu, fv = family if isinstance(family, tuple | list) else (family, family)
+    if pd.is_atom(fu) or pd.is_atom(fv):  # a built-in polynomial direction may be named
+        fu, fv = pd.polynomial_family(fu), pd.polynomial_family(fv)
     for f in (fu, fv):
+        if pd.is_class(f):
+            continue
         if not hasattr(f, "degrees") or not hasattr(f, "parameters"):
             raise TypeError(
                 "family: a family from load_family is needed in each direction, got "
@@ -345,11 +362,7 @@ def optimal_parameters(net: NetLike, energy: str, family: Any) -> SurfaceParamet
     grid = _as_net(net)
     m, n = int(grid.shape[0]) - 1, int(grid.shape[1]) - 1
     for fam, deg, name in ((fu, m, "u"), (fv, n, "v")):
-        if deg not in fam.degrees:
-            raise ValueError(
-                f"net, direction {name}: degree {deg}; {fam.name!r} has degrees "
-                f"{fam.degrees[0]}..{fam.degrees[-1]}"
-            )
+        pd.checked_degree(fam, deg, name)
     du, dv = _direction(fu, m), _direction(fv, n)
     rows, exact = _exact_rows(net)
     poly, constant = energy_polynomial(rows, du, dv, energy)

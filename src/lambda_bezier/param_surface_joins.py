@@ -25,6 +25,7 @@ from typing import Any
 import numpy as np
 
 from . import _atom_joins
+from . import _poly_direction as pd
 from . import _validate as val
 from .joins import join
 from .param_surfaces import family_surface
@@ -79,21 +80,21 @@ def _join_param_surface(
     g1 = str(continuity).upper() == "G1"
     weights = None
     if conditions == "derived":
-        first = across.curve(columns[0], params=across_params, check_range=False)
+        first = pd.direction_curve(across, columns[0], across_params)
         second = _second_side(target, target_params, degree, check_range)
         weights = _atom_joins.derived_weights(
             _atom_joins.join_side(first, 1, first.degree), second, continuity, alpha if g1 else 1, 0
         )
         if weights is None:
             raise ValueError(
-                f'conditions="derived": the derived documents of {across.name} and '
-                f"{getattr(new_family, 'name', new_family)} hold no {continuity} join "
-                f"{across.name}>{getattr(new_family, 'name', new_family)} at degrees "
+                f'conditions="derived": the derived documents of {pd.family_name(across)} and '
+                f"{pd.family_name(new_family)} hold no {continuity} join "
+                f"{pd.family_name(across)}>{pd.family_name(new_family)} at degrees "
                 f'{first.degree} and {degree} (use conditions="solve")'
             )
     order = 2 if continuity == "C2" else 1
     for j in range(count):
-        curve = across.curve(columns[j], params=across_params, check_range=False)
+        curve = pd.direction_curve(across, columns[j], across_params)
         if weights is not None:
             given = list(rest_cols[j])
             if len(given) != degree - order:
@@ -104,14 +105,16 @@ def _join_param_surface(
             exact_given = val.exact_rows(given) if given else ()
             new_columns.append(_atom_joins._apply(weights, curve, given, exact_given, order))
             continue
+        builtin = pd.is_class(target)  # a built-in class takes its λ positionally
         nxt = join(
             curve,
             continuity,
             degree,
+            next(iter(target_params.values()), None) if builtin else None,
             alpha=alpha if str(continuity).upper() == "G1" else 1,
             rest=rest_cols[j],
             family=target,
-            params=target_params,
+            params=None if builtin else target_params,
             check_range=check_range,
         )
         new_columns.append(list(nxt.control_points()))
@@ -128,6 +131,8 @@ def _second_side(target: Any, values: Any, degree: int, check_range: bool) -> An
     """The new patch's side of a join as _atom_joins.derived_weights names it, as `join`
     builds it: an atom family with its values (exact where given exactly), a polynomial family
     in several parameters at its fixed values, a one-parameter family with its λ."""
+    if pd.is_class(target):  # a built-in class across an atom family
+        return _atom_joins.join_side(target, 2, degree, next(iter(values.values()), None))
     if getattr(target, "atom_data", None) is not None:
         given = target.parameter_values(None, values, {})
         exact = target.exact_values(given, check_range)

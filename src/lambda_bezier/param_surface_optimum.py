@@ -43,11 +43,12 @@ from typing import Any
 
 import numpy as np
 
+from . import _poly_direction as pd
 from . import _validate as val
 from .hazmat import surface_kernels as ker
 from .hazmat.constants import constant_bounds
 from .hazmat.surface_fixed_cost import fixed_cost_minimum
-from .hazmat.surface_weights import plain_weights
+from .hazmat.surface_weights import pair_weights, plain_weights
 from .param_surface_energy import (
     Direction,
     SurfaceParameterOptimum,
@@ -66,11 +67,7 @@ MAX_COORDINATE = 1e140  # above it the energy of a net overflows a float
 def _directions(shape: tuple[int, ...], fu: Any, fv: Any) -> tuple[Direction, Direction]:
     m, n = int(shape[0]) - 1, int(shape[1]) - 1
     for fam, deg, name in ((fu, m, "u"), (fv, n, "v")):
-        if deg not in fam.degrees:
-            raise ValueError(
-                f"net, direction {name}: degree {deg}; {fam.name!r} has degrees "
-                f"{fam.degrees[0]}..{fam.degrees[-1]}"
-            )
+        pd.checked_degree(fam, deg, name)
     return _direction(fu, m), _direction(fv, n)
 
 
@@ -185,24 +182,6 @@ def _batch_compiled() -> ModuleType | None:
     return surface_batch_compiled
 
 
-def _pair_weights(
-    weights: dict[tuple[int, int], np.ndarray],
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The kernel's form of the weights: pairs i <= j of control points with W[p, 3a + b] the
-    weight of x^a y^b on P_i · P_j (both orders of an off-diagonal pair: twice)."""
-    size = next(iter(weights.values())).shape[0]
-    rows_i, rows_j = np.triu_indices(size)
-    w = np.zeros((rows_i.size, 9))
-    for (a, b), mat in weights.items():
-        w[:, 3 * a + b] = mat[rows_i, rows_j] * np.where(rows_i == rows_j, 1.0, 2.0)
-    keep = w.any(axis=1)
-    return (
-        rows_i[keep].astype(np.int64),
-        rows_j[keep].astype(np.int64),
-        np.ascontiguousarray(w[keep]),
-    )
-
-
 def fixed_cost(
     nets: np.ndarray, du: Direction, dv: Direction, energy: str
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -219,10 +198,12 @@ def fixed_cost(
         return bx, by, bval, ok, np.zeros(count, bool)
     if fast is not None:  # the one-parameter surfaces' compiled kernel, on these weights
         flat = np.ascontiguousarray(nets.reshape(count, -1), dtype=float)
+        size = next(iter(weights.values())).shape[0]
+        forms = {3 * a + b: w for (a, b), w in weights.items()}
         bx, by, bval, _, status, _valid = fast.optimise(
             flat,
             nets.shape[-1],
-            plain_weights(*_pair_weights(weights)),
+            plain_weights(*pair_weights(forms, size)),
             box,
             CERTIFIED_TOLERANCE,
             MAX_COORDINATE,

@@ -31,6 +31,7 @@ from typing import Any
 
 import numpy as np
 
+from . import _poly_direction as pd
 from ._atom_joins import _atom_at_zero
 from .atom_family import _combine
 
@@ -76,6 +77,9 @@ def _end_weights(surf: Any, axis: int, at_end: bool, order: int) -> list[list[Nu
     """w[r][i] = b_i^(r) at the end (at_end) or start of direction `axis`: exact Fractions
     where the atoms' values there are rational and the parameters exact, else floats."""
     probe = surf._probes[axis]
+    if isinstance(probe, pd.PolyProbe):  # a polynomial direction: its Bernstein form's ends
+        out_poly: list[list[Number]] = probe.end_derivatives(order, at_end)
+        return out_poly
     data = probe.data
     lo, hi, unit = data.DOMAIN_EXACT
     where = hi if at_end else lo
@@ -129,7 +133,7 @@ def _same_along(a: Any, b: Any, axis: int) -> bool:
     fa = a.family_v if axis == 0 else a.family_u
     fb = b.family_v if axis == 0 else b.family_u
     return bool(
-        fa.name == fb.name
+        pd.family_name(fa) == pd.family_name(fb)
         and a.net.shape[along] == b.net.shape[along]
         and tuple(a._values[along]) == tuple(b._values[along])
     )

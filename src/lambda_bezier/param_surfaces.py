@@ -9,7 +9,9 @@ polynomial family at fixed parameter values is a family without a parameter (the
 curve class of `Family.curve`), so its surface is a `ParamSurface`: the generic `Surface`
 on those classes, with every method of the polynomial surfaces (the exact Bézier form,
 certified box and closest point, iso-curves of the family) and the parameters kept by name.
-Atom families give an `AtomSurface` (atom_surfaces).
+Atom families give an `AtomSurface` (atom_surfaces), also with a polynomial family in the
+other direction (a pair ``(family_u, family_v)``, a built-in family by name;
+``fam.surface(..., family_v=...)``).
 """
 
 from __future__ import annotations
@@ -17,17 +19,12 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any
 
+from . import _poly_direction as pd
 from . import _validate as val
 from .atom_surfaces import AtomSurface
 from .surfaces import NetLike, Surface, _as_net
 
-
-def _is_atom(family: Any) -> bool:
-    return hasattr(family, "atom_data")
-
-
-def _is_indexed(family: Any) -> bool:
-    return hasattr(family, "index_name") and hasattr(family, "at_degree")
+_is_atom, _is_indexed = pd.is_atom, pd.is_indexed
 
 
 def _given(family: Any, lam: object, params: object, name: str) -> dict[str, object]:
@@ -37,6 +34,9 @@ def _given(family: Any, lam: object, params: object, name: str) -> dict[str, obj
             f"params_{name} must be a dict {{name: value}}, not {type(params).__name__}"
         )
     try:
+        if pd.is_class(family):  # a built-in family across an atom one
+            given = pd.builtin_given(family, lam, params)
+            return {k: _normalised(v) for k, v in given.items()}
         if _is_indexed(family):
             index = family.index_name
             given = dict(params or {})
@@ -95,19 +95,11 @@ class ParamSurface(Surface):
             name = "u" if axis == 0 else "v"
             degree = int(grid.shape[axis]) - 1
             try:
-                if _is_indexed(fam):
-                    at = fam.at_degree(degree)
-                    values = fam.index_values(degree, given[fam.index_name])
-                    classes.append(at._fixed_class(values, check_range))
-                    lams.append(None)
-                elif fam.several is not None:
-                    classes.append(fam._fixed_class(given, check_range))
-                    lams.append(None)
-                else:
-                    classes.append(fam.curve_class)
-                    lams.append(next(iter(given.values())))
+                cls, lam = pd.direction_class(fam, given, degree, check_range)
             except (TypeError, ValueError) as exc:
                 raise type(exc)(f"params_{name}: {exc}") from None
+            classes.append(cls)
+            lams.append(lam)
         super().__init__(net, lams[0], lams[1], family=tuple(classes), check_range=check_range)
 
     @property
@@ -118,7 +110,7 @@ class ParamSurface(Surface):
     @property
     def is_exact(self) -> bool:
         return super().is_exact and all(
-            _exact_value(x) for x in (*self.params_u.values(), *self.params_v.values())
+            pd.exact_value(x) for x in (*self.params_u.values(), *self.params_v.values())
         )
 
     def parameters(self) -> dict[str, Any]:
@@ -128,9 +120,9 @@ class ParamSurface(Surface):
         for suffix, given in (("u", self.params_u), ("v", self.params_v)):
             for k, x in given.items():
                 if isinstance(x, list | tuple):
-                    out[f"{k}_{suffix}"] = tuple(_shown(y) for y in x)
+                    out[f"{k}_{suffix}"] = tuple(pd.shown(y) for y in x)
                 else:
-                    out[f"{k}_{suffix}"] = _shown(x)
+                    out[f"{k}_{suffix}"] = pd.shown(x)
         return out
 
     def __repr__(self) -> str:
@@ -141,17 +133,6 @@ class ParamSurface(Surface):
         )
         dims = f"degrees=({m}, {n}), dimension={self.dimension}"
         return f"ParamSurface({self.family!r}, {dims}, {shown})"
-
-
-def _exact_value(x: object) -> bool:
-    if isinstance(x, list | tuple):
-        return all(val.is_exact_scalar(y) for y in x)
-    return val.is_exact_scalar(x)
-
-
-def _shown(x: object) -> Fraction | float:
-    got = val.real_number(x, "parameter")
-    return got if val.is_exact_scalar(x) else float(got)
 
 
 def family_surface(
@@ -167,17 +148,12 @@ def family_surface(
     """The surface of `family` (or a pair (family_u, family_v) of families from load_family)
     with each direction's parameters by name; see the module's doc."""
     fu, fv = family if isinstance(family, tuple | list) else (family, family)
+    if isinstance(family, tuple | list) and len(family) != 2:
+        raise ValueError(f"family must be one family or a pair (u, v), got {len(family)} items")
+    if _is_atom(fu) or _is_atom(fv):  # a built-in polynomial direction may be named
+        fu, fv = pd.polynomial_family(fu), pd.polynomial_family(fv)
     given_u = _given(fu, lam_u, params_u, "u")
     given_v = _given(fv, lam_v, params_v, "v")
-    if _is_atom(fu) and _is_atom(fv):
+    if _is_atom(fu) or _is_atom(fv):  # both atom families, or one across a polynomial one
         return AtomSurface(net, fu, given_u, fv, given_v, check_range=check_range)
-    if _is_atom(fu) or _is_atom(fv):
-        atom, poly = (fu, fv) if _is_atom(fu) else (fv, fu)
-        raise ValueError(
-            f"family: {atom.name} ({atom.space}) across {poly.name} (polynomial) is refused: a "
-            "surface of atom families reads each direction's basis, end values and rational "
-            "form from a trigonometric, hyperbolic or mixed family's derived document, which a "
-            "polynomial family does not have, and a polynomial surface needs polynomial bases "
-            "in both directions; give both directions atom families or both polynomial ones"
-        )
     return ParamSurface(net, fu, given_u, fv, given_v, check_range=check_range)

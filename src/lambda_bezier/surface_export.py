@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from . import _poly_direction as pd
 from . import _validate as val
 from ._json_io import _own_classes, class_definitions
 from .builtin_surfaces import most_specific
@@ -238,11 +239,12 @@ def _param_surface_json(surf: Any, indent: int | None) -> str:
     doc: dict[str, Any] = {
         "lambda_bezier": FORMAT_VERSION,
         "kind": "surface",
-        "family": [surf.family_u.name, surf.family_v.name],
+        "family": [pd.family_name(surf.family_u), pd.family_name(surf.family_v)],
         "parameters": [values(surf.params_u), values(surf.params_v)],
         "net": [[[_number_out(c) for c in p] for p in row] for row in surf.control_net()],
     }
-    definitions = class_definitions([surf.family_u.curve_class, surf.family_v.curve_class])
+    fams = (surf.family_u, surf.family_v)  # a built-in direction across an atom one: a class
+    definitions = class_definitions([f if pd.is_class(f) else f.curve_class for f in fams])
     if definitions:
         doc["definitions"] = definitions
     return json.dumps(doc, indent=indent, ensure_ascii=False)
@@ -261,9 +263,11 @@ def _param_surface_from(
     fams = []
     for name in doc["family"]:
         fam = getattr(classes[name], "family_object", None)
-        if fam is None:
-            raise ValueError(f"surface.family: {name!r} takes no parameters by name")
-        fams.append(getattr(fam, "indexed_family", fam))
+        fams.append(classes[name] if fam is None else getattr(fam, "indexed_family", fam))
+    if not any(pd.is_atom(f) for f in fams):
+        for f in fams:
+            if pd.is_class(f):  # a built-in direction by name only across an atom one
+                raise ValueError(f"surface.family: {f.family!r} takes no parameters by name")
 
     def value(v: object, where: str) -> Any:
         if isinstance(v, list):

@@ -38,8 +38,8 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from . import _derived_joins, param_surface_report
 from . import _validate as val
-from . import param_surface_report
 from .curves import BezierCurve, Curve, family_class
 from .hazmat.forms import elevation_matrix, hodograph_matrix
 from .joins import join
@@ -237,30 +237,10 @@ def _derived_weights(
         reason = entry.get("reason", "the pair is not in the document")
         raise ValueError(f"no derived {continuity} conditions for {key}: {reason}")
     lam1, lam2, alpha = (Fraction(0) if x is None else x for x in values)
-    if isinstance(alpha, int):
-        alpha = Fraction(alpha)
-    point = (Fraction(n), Fraction(m), lam1, lam2, alpha)
-
-    def value(terms: Any) -> Any:
-        total: Any = Fraction(0)
-        for coef, *exps in terms:
-            term: Any = Fraction(coef)
-            for x, e in zip(point, exps, strict=True):
-                term *= x**e
-            total += term
-        return total
-
-    out = {}
-    for text, (num, den) in entry[continuity].items():
-        row, src, k = text.split(",")
-        bottom = value(den)
-        if not bottom:
-            raise ValueError(
-                f"the derived {continuity} weight {text} of {key} is singular at n = {n}, "
-                f"m = {m}, (lam1, lam2, alpha) = ({lam1}, {lam2}, {alpha})"
-            )
-        out[(int(row), src, int(k))] = value(num) / bottom
-    return out
+    point = {"n": n, "m": m, "lam1": lam1, "lam2": lam2, "alpha": alpha}
+    found = _derived_joins.lookup(table, key, continuity, point)
+    assert found is not None  # the pair and continuity are in the table (checked above)
+    return found
 
 
 def _apply_weights(weights: Any, first: list[Any], rest: list[Any], order: int) -> list[Any]:

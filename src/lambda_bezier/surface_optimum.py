@@ -43,7 +43,7 @@ from .energy import optimal_parameters as curve_optimal_parameters
 from .hazmat import surface_kernels as ker
 from .hazmat.surface_fixed_cost import fixed_cost_minimum
 from .hazmat.surface_kernels import OPTIMUM_STEP_TOLERANCE
-from .hazmat.surface_weights import BatchWeights, batch_weights
+from .hazmat.surface_weights import BatchWeights, batch_weights, pair_weights
 from .param_surface_energy import _param_families
 from .param_surface_optimum import optimal_parameters as param_optimal_parameters
 from .parameter_optimum import OptimalParameters as CurveOptimalParameters
@@ -84,24 +84,9 @@ def _batch_compiled() -> ModuleType | None:
 @cache
 def _pair_weights(mats: SurfaceEnergyMatrices) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The energy matrices as weights of the Gram products g_ij = P_i · P_j, i <= j:
-    (pair_i, pair_j, W) with E = Σ_p W[p, 3a + b] g_p λ_u^a λ_v^b (pairs where every W is 0
-    dropped)."""
+    (pair_i, pair_j, W) with E = Σ_p W[p, 3a + b] g_p λ_u^a λ_v^b (surface_weights)."""
     size = len(next(iter(mats.full.values())))
-    rows_i, rows_j, rows_w = [], [], []
-    for i in range(size):
-        for j in range(i, size):
-            w = np.zeros(9)
-            for (a, b), q in mats.full.items():
-                w[3 * a + b] = float(q[i][j]) * (1 if i == j else 2)
-            if w.any():
-                rows_i.append(i)
-                rows_j.append(j)
-                rows_w.append(w)
-    return (
-        np.array(rows_i, dtype=np.int64),
-        np.array(rows_j, dtype=np.int64),
-        np.array(rows_w).reshape(-1, 9),
-    )
+    return pair_weights({3 * a + b: q for (a, b), q in mats.full.items()}, size)
 
 
 @cache

@@ -38,7 +38,7 @@ from . import surface_certify as sc
 # editing this file too (tests/test_surfaces_certify.py checks the two agree). Where they
 # differ anyway (an edit without the tests), the kernels compile afresh, uncached, rather
 # than load code of the old certificate.
-CERTIFY_SHA256 = "48f2f0f0cbc844d5d26cf9553c7136494e133535e2135946ff27fe8a894c1cad"
+CERTIFY_SHA256 = "c02161d03b67cb79196a80b0b22a5518d3109e1956af7eaa467ace1fac6bfedd"
 
 
 def certify_source_sha256() -> str:
@@ -77,6 +77,8 @@ def _recompiled(names: tuple[str, ...]) -> dict[str, Callable[..., Any]]:
 _CERTIFY = _recompiled(
     (
         "_clip",
+        "_at",
+        "_slope",
         "_step",
         "_sweep",
         "_newton",
@@ -91,7 +93,43 @@ _CERTIFY = _recompiled(
         "edge_minimum",
     )
 )
+
+
+def _lane(
+    acc: np.ndarray, k: int, xlo: float, xhi: float, ylo: float, yhi: float, tol: float
+) -> Any:
+    """`_target` (certified_minimum or edge_minimum, bound by _on_lane) on net k's nine
+    energy coefficients acc[0..8, k] and the box."""
+    return _target(  # type: ignore[name-defined]  # noqa: F821  (bound by _on_lane)
+        acc[0, k],
+        acc[1, k],
+        acc[2, k],
+        acc[3, k],
+        acc[4, k],
+        acc[5, k],
+        acc[6, k],
+        acc[7, k],
+        acc[8, k],
+        xlo,
+        xhi,
+        ylo,
+        yhi,
+        tol,
+    )
+
+
+def _on_lane(target: Callable[..., Any], name: str) -> Callable[..., Any]:
+    """_lane with `_target` bound to a compiled certificate (the same code object, its own
+    globals, as _recompiled does): one spelled-out call for both certificates."""
+    copy = types.FunctionType(_lane.__code__, {"_target": target}, name)
+    copy.__qualname__ = f"surface_batch_compiled.{name}"
+    fn: Callable[..., Any] = numba.njit(inline="always", error_model="numpy")(copy)
+    return fn
+
+
 _certified_minimum, _edge_minimum = _CERTIFY["certified_minimum"], _CERTIFY["edge_minimum"]
+_certified_at = _on_lane(_certified_minimum, "_certified_at")
+_edge_at = _on_lane(_edge_minimum, "_edge_at")
 
 
 @numba.njit(**_JIT)
@@ -103,22 +141,7 @@ def _certify_chunk(acc: np.ndarray, n: int, box: np.ndarray, tol: float, out: np
     60), status 2.0 where it certifies an edge or corner minimum."""
     xlo, xhi, ylo, yhi = box[0], box[1], box[2], box[3]
     for k in range(n):
-        x, y, e, d, ok = _certified_minimum(
-            acc[0, k],
-            acc[1, k],
-            acc[2, k],
-            acc[3, k],
-            acc[4, k],
-            acc[5, k],
-            acc[6, k],
-            acc[7, k],
-            acc[8, k],
-            xlo,
-            xhi,
-            ylo,
-            yhi,
-            tol,
-        )
+        x, y, e, d, ok = _certified_at(acc, k, xlo, xhi, ylo, yhi, tol)
         out[0, k] = x
         out[1, k] = y
         out[2, k] = e
@@ -126,22 +149,7 @@ def _certify_chunk(acc: np.ndarray, n: int, box: np.ndarray, tol: float, out: np
         out[4, k] = 1.0 if ok else 0.0
     for k in range(n):
         if out[4, k] == 0.0:
-            x, y, e, d, ok = _edge_minimum(
-                acc[0, k],
-                acc[1, k],
-                acc[2, k],
-                acc[3, k],
-                acc[4, k],
-                acc[5, k],
-                acc[6, k],
-                acc[7, k],
-                acc[8, k],
-                xlo,
-                xhi,
-                ylo,
-                yhi,
-                tol,
-            )
+            x, y, e, d, ok = _edge_at(acc, k, xlo, xhi, ylo, yhi, tol)
             if ok:
                 out[0, k] = x
                 out[1, k] = y

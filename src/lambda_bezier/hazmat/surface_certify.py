@@ -57,13 +57,24 @@ def _clip(t: F, lo: float, hi: float) -> F:
     return np.minimum(np.maximum(t, lo), hi)
 
 
+def _at(c0: F, c1: F, c2: F, t: F) -> F:
+    """c0 + c1 t + c2 t² by Horner: E's coefficients along one variable (A, B, C at the other's
+    value, an edge's q_k, a quadratic's ends), the one shape every such step shares."""
+    return c0 + (c1 + c2 * t) * t
+
+
+def _slope(c1: F, c2: F, t: F) -> F:
+    """d/dt (c0 + c1 t + c2 t²) = c1 + 2 c2 t."""
+    return c1 + 2 * c2 * t
+
+
 def _step(
     a0: F, a1: F, a2: F, b0: F, b1: F, b2: F, fixed: F, current: F, lo: float, hi: float
 ) -> F:
     """The minimiser over [lo, hi] of A(fixed) s² + B(fixed) s (A, B quadratics, low first):
     one direction's half of an alternating step (`current` where A(fixed) is not positive)."""
-    a = a0 + (a1 + a2 * fixed) * fixed
-    b = b0 + (b1 + b2 * fixed) * fixed
+    a = _at(a0, a1, a2, fixed)
+    b = _at(b0, b1, b2, fixed)
     pos = a > 0
     return _where(pos, _clip(-b / _where(pos, 2 * a, 1.0), lo, hi), current)
 
@@ -109,14 +120,12 @@ def _newton(
 ) -> tuple[F, F]:
     """One Newton step on ∇E = 0, clipped to the box (none where the Hessian is not
     positive definite)."""
-    a = e20 + (e21 + e22 * y) * y
-    da = e21 + 2 * e22 * y
-    b = e10 + (e11 + e12 * y) * y
-    db = e11 + 2 * e12 * y
-    f = e02 + (e12 + e22 * x) * x
-    g = e01 + (e11 + e21 * x) * x
-    gx = 2 * a * x + b
-    gy = 2 * f * y + g
+    a, da = _at(e20, e21, e22, y), _slope(e21, e22, y)
+    b, db = _at(e10, e11, e12, y), _slope(e11, e12, y)
+    f = _at(e02, e12, e22, x)
+    g = _at(e01, e11, e21, x)
+    gx = _slope(b, a, x)
+    gy = _slope(g, f, y)
     hxx = 2 * a
     hyy = 2 * f
     hxy = db + 2 * x * da
@@ -159,8 +168,8 @@ def _quartic_positive(p0: F, p1: F, p2: F, p3: F, p4: F, a: F, b: F, slack: F) -
 
 def _quadratic_positive(q0: F, q1: F, q2: F, a: F, b: F, slack: F) -> F:
     """q0 + q1 t + q2 t² > slack on [a, b], by its Bernstein coefficients there."""
-    at_a = q0 + a * (q1 + a * q2)
-    at_b = q0 + b * (q1 + b * q2)
+    at_a = _at(q0, q1, q2, a)
+    at_b = _at(q0, q1, q2, b)
     middle = at_a + (b - a) * (q1 + 2 * a * q2) / 2
     return (at_a > slack) & (at_b > slack) & (middle > slack)
 
@@ -255,15 +264,15 @@ def _direction(
       terms' sizes);
     - whether every t of [lo, hi] at least r from `other` has min over s of E above `level`
       (the global exclusion: no point there can be the minimum)."""
-    a = a0 + (a1 + a2 * other) * other
-    da = a1 + 2 * a2 * other
-    b = b0 + (b1 + b2 * other) * other
+    a = _at(a0, a1, a2, other)
+    da = _slope(a1, a2, other)
+    b = _at(b0, b1, b2, other)
     lower = 2 * (a - np.abs(da) * r - np.abs(a2) * r * r) - slack
     s, t = np.abs(at), np.abs(other)
     size = 2 * (np.abs(a0) + (np.abs(a1) + np.abs(a2) * t) * t) * s + (
         np.abs(b0) + (np.abs(b1) + np.abs(b2) * t) * t
     )
-    gradient = np.abs(2 * a * at + b) + GRADIENT_ROUND * size
+    gradient = np.abs(_slope(b, a, at)) + GRADIENT_ROUND * size
     clear = _side_clear(a0, a1, a2, b0, b1, b2, c0, c1, c2, level, other, r, lo, hi, emax)
     return lower, gradient, clear
 
@@ -303,10 +312,10 @@ def certified_minimum(
     emax = _largest(e00, e01, e02, e10, e11, e12, e20, e21, e22)
     ax, ay = np.abs(x) + r, np.abs(y) + r
     slack = ROUND * emax * (1 + ax + ax * ax) * (1 + ay + ay * ay)
-    a = e20 + (e21 + e22 * y) * y  # E = a x² + b x + c along this y
-    b = e10 + (e11 + e12 * y) * y
-    c = e00 + (e01 + e02 * y) * y
-    energy = (a * x + b) * x + c
+    a = _at(e20, e21, e22, y)  # E = a x² + b x + c along this y
+    b = _at(e10, e11, e12, y)
+    c = _at(e00, e01, e02, y)
+    energy = _at(c, b, a, x)
     level = energy + slack
     lo_xx, ex, clear_y = _direction(
         e20, e21, e22, e10, e11, e12, e00, e01, e02, x, y, r, ylo, yhi, level, emax, slack
@@ -368,9 +377,9 @@ def _edge(
     m = max(1.0, abs(lo), abs(hi))
     reach = emax * (1 + abs(s0) + s0 * s0)  # the size of every q_k and of E_s's coefficients
     slack = ROUND * reach * (1 + m + m * m)
-    q0 = (a0 * s0 + b0) * s0 + c0
-    q1 = (a1 * s0 + b1) * s0 + c1
-    q2 = (a2 * s0 + b2) * s0 + c2
+    q0 = _at(c0, b0, a0, s0)
+    q1 = _at(c1, b1, a1, s0)
+    q2 = _at(c2, b2, a2, s0)
     # q_k = (a_k s0 + b_k) s0 + c_k: four roundings, each of at most reach (4x that, for safety)
     err = GRADIENT_ROUND * reach
     cup = q2 > err
@@ -381,12 +390,12 @@ def _edge(
     delta = err * (1 + 2 * np.abs(vertex)) / _where(
         cup, 2 * (q2 - err), 1.0
     ) + GRADIENT_ROUND * np.abs(vertex)
-    energy = (q2 * t + q1) * t + q0
+    energy = _at(q0, q1, q2, t)
     level = energy + slack
     g0, g1, g2 = (
-        inward * (2 * a0 * s0 + b0),
-        inward * (2 * a1 * s0 + b1),
-        inward * (2 * a2 * s0 + b2),
+        inward * _slope(b0, a0, s0),
+        inward * _slope(b1, a1, s0),
+        inward * _slope(b2, a2, s0),
     )
     ok = cup & (delta <= tol) & _quadratic_positive(a0, a1, a2, lo, hi, slack)
     ok = ok & _quadratic_positive(g0, g1, g2, np.maximum(t - r, lo), np.minimum(t + r, hi), slack)

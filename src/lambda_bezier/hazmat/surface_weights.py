@@ -16,6 +16,7 @@ unimodular (determinant 1) and M⁻¹ = 2I − M, so Q'_ab = M⁻ᵀ Q_ab M⁻¹
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from fractions import Fraction
 from typing import Any, NamedTuple
 
@@ -113,15 +114,7 @@ def batch_weights(
             [sum((w * qk[t][s] for t, w in cols[r]), Fraction(0)) for s in range(size)]
             for r in range(size)
         ]
-    entries: list[tuple[tuple[int, ...], int, int, np.ndarray]] = []
-    for i in range(size):
-        for j in range(i, size):
-            w = np.zeros(9)
-            for t, mat in transformed.items():
-                w[t] = float(mat[i][j] * (1 if i == j else 2))
-            powers = tuple(int(t) for t in np.flatnonzero(w))
-            if powers:
-                entries.append((powers, i, j, w))
+    entries = _entries(*pair_weights(transformed, size))
     mix: list[tuple[int, int, Fraction]] = []
     for p, row in pu:  # Z = M_u P first (rows), then Z M_vᵀ (columns)
         for k in range(m1):
@@ -136,15 +129,37 @@ def batch_weights(
     return _blocked(entries, mix)
 
 
+def pair_weights(forms: Mapping[int, Any], size: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The energy's forms {3a + b: Q_ab} (size x size, Fractions or floats, read at i <= j)
+    as weights of the Gram products P_i · P_j: (pair_i, pair_j, W) with W[p, 3a + b] the
+    weight of λ_u^a λ_v^b on pair p (off the diagonal doubled: both orders), each rounded to a
+    float once; the pairs whose weights are all 0 dropped. The one place both batch optima
+    (exact matrices in surface_optimum, float ones in param_surface_optimum) build them."""
+    rows_i, rows_j = np.triu_indices(size)
+    twice = np.where(rows_i == rows_j, 1.0, 2.0)
+    w = np.zeros((rows_i.size, 9))
+    for t, mat in forms.items():
+        w[:, t] = twice * np.array([float(mat[i][j]) for i, j in zip(rows_i, rows_j, strict=True)])
+    keep = w.any(axis=1)
+    ints: Any = np.int64
+    return rows_i[keep].astype(ints), rows_j[keep].astype(ints), np.ascontiguousarray(w[keep])
+
+
+def _entries(
+    pair_i: np.ndarray, pair_j: np.ndarray, weights: np.ndarray
+) -> list[tuple[tuple[int, ...], int, int, np.ndarray]]:
+    return [
+        (tuple(int(t) for t in np.flatnonzero(w)), int(i), int(j), np.asarray(w, dtype=float))
+        for i, j, w in zip(pair_i, pair_j, weights, strict=True)
+        if w.any()
+    ]
+
+
 def plain_weights(pair_i: np.ndarray, pair_j: np.ndarray, weights: np.ndarray) -> BatchWeights:
     """BatchWeights of Gram products in the net's own basis (no change of basis): pairs
     (pair_i[p], pair_j[p]) with weights[p, 3a + b] the weight of λ_u^a λ_v^b, for energies
     whose λ-part has no sparse basis here (param_surface_optimum's atom families)."""
-    entries = [
-        (tuple(int(t) for t in np.flatnonzero(w)), int(i), int(j), np.asarray(w, dtype=float))
-        for i, j, w in zip(pair_i, pair_j, weights, strict=True)
-    ]
-    return _blocked([e for e in entries if e[0]], [])
+    return _blocked(_entries(pair_i, pair_j, weights), [])
 
 
 def _blocked(

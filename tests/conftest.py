@@ -1,6 +1,7 @@
 from __future__ import annotations
 
 import sys
+from functools import cache
 from pathlib import Path
 
 import pytest
@@ -72,6 +73,34 @@ def intersect_engine(request):
     intersect_subdivide.USE_COMPILED = before
 
 
+def on_both_subdivision_paths(call):
+    """(numpy answer, numba answer) of `call()`, run once with intersect_subdivide's numpy loop
+    and once with its compiled twin; the flag is restored afterwards."""
+    from lambda_bezier.hazmat import intersect_subdivide
+
+    saved = intersect_subdivide.USE_COMPILED
+    try:
+        intersect_subdivide.USE_COMPILED = False
+        slow = call()
+        intersect_subdivide.USE_COMPILED = True
+        fast = call()
+    finally:
+        intersect_subdivide.USE_COMPILED = saved
+    return slow, fast
+
+
+def assert_same_isolated(slow, fast) -> None:
+    """Two `intersect_subdivide.Isolated` agree: the same root pairs (parameters to rounding,
+    since sums run in another order) and the same unresolved pieces, bit for bit."""
+    import numpy as np
+
+    assert np.array_equal(slow.root_pair, fast.root_pair)
+    assert slow.root_s == pytest.approx(fast.root_s, abs=1e-12)
+    assert slow.root_t == pytest.approx(fast.root_t, abs=1e-12)
+    for name in ("left_pair", "left_s0", "left_t0", "left_width"):
+        assert np.array_equal(getattr(slow, name), getattr(fast, name)), name
+
+
 # the two mixed-family test families (tests/data/families/at_cubic.toml, at_pi_cubic.toml),
 # loaded once per module: the certified geometry, intersection and export tests use both
 @pytest.fixture(scope="module")
@@ -82,3 +111,20 @@ def at_family():
 @pytest.fixture(scope="module")
 def at_pi_family():
     return lb.load_family(ROOT / "tests" / "data" / "families" / "at_pi_cubic.toml")
+
+
+@cache
+def surface_families():
+    """(TRIG, TWO, QB, HYP, MIXED): han_trig_cubic and two_shape_cubic (the examples),
+    q_bezier, hyp_two_shape_cubic and at_pi_cubic (tests/data/families), the families of the
+    surface tests; loaded once per process, since parametrize needs them at collection."""
+    from lambda_bezier import examples
+
+    data = ROOT / "tests" / "data" / "families"
+    return (
+        lb.load_family(examples.path("han_trig_cubic.toml")),
+        lb.load_family(examples.path("two_shape_cubic.toml")),
+        lb.load_family(data / "q_bezier.toml"),
+        lb.load_family(data / "hyp_two_shape_cubic.toml"),
+        lb.load_family(data / "at_pi_cubic.toml"),
+    )

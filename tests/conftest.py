@@ -34,6 +34,49 @@ settings.load_profile("default")
 ROOT = Path(__file__).resolve().parents[1]
 
 
+def examples_per_profile(default: int, fuzz: int) -> int:
+    """max_examples for a property whose examples cost seconds each (an mpmath reference):
+    `default` in the reproducible run (CI's), `fuzz` under --hypothesis-profile=fuzz. Read when
+    the test module is collected, after pytest has loaded the profile the command line names;
+    every failure found is pinned with @example, so the default run keeps each of them."""
+    return fuzz if settings.get_current_profile_name() == "fuzz" else default
+
+
+def pytest_configure(config):
+    """Under pytest-xdist, the controller fills numba's on-disk cache first, in one process per
+    worker (tests/numba_warmup.py says why), so that the workers load the kernels instead of
+    each compiling them. Not in the workers, not without numba or with it switched off; a
+    failing warm-up only warns: the tests themselves run every path and report its errors."""
+    import os
+    import subprocess
+    from importlib.util import find_spec
+
+    workers = getattr(config.option, "numprocesses", None)
+    if (
+        hasattr(config, "workerinput")
+        or not isinstance(workers, int)
+        or workers < 2
+        or find_spec("numba") is None
+        or os.environ.get("LAMBDA_BEZIER_NO_NUMBA")
+    ):
+        return
+    script = Path(__file__).with_name("numba_warmup.py")
+    runs = [
+        subprocess.Popen(
+            [sys.executable, str(script), str(k), str(workers)],
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
+        for k in range(workers)
+    ]
+    for run in runs:
+        _, err = run.communicate()
+        if run.returncode:
+            message = f"the numba warm-up failed (the tests compile instead): {err[-2000:]}"
+            config.issue_config_time_warning(pytest.PytestWarning(message), stacklevel=2)
+
+
 @pytest.fixture(params=list(FAMILIES), ids=list(FAMILIES))
 def family(request) -> Family:
     return FAMILIES[request.param]

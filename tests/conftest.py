@@ -1,6 +1,7 @@
 from __future__ import annotations
 
 import sys
+from functools import cache
 from pathlib import Path
 
 import pytest
@@ -31,6 +32,49 @@ settings.register_profile(
 settings.load_profile("default")
 
 ROOT = Path(__file__).resolve().parents[1]
+
+
+def examples_per_profile(default: int, fuzz: int) -> int:
+    """max_examples for a property whose examples cost seconds each (an mpmath reference):
+    `default` in the reproducible run (CI's), `fuzz` under --hypothesis-profile=fuzz. Read when
+    the test module is collected, after pytest has loaded the profile the command line names;
+    every failure found is pinned with @example, so the default run keeps each of them."""
+    return fuzz if settings.get_current_profile_name() == "fuzz" else default
+
+
+def pytest_configure(config):
+    """Under pytest-xdist, the controller fills numba's on-disk cache first, in one process per
+    worker (tests/numba_warmup.py says why), so that the workers load the kernels instead of
+    each compiling them. Not in the workers, not without numba or with it switched off; a
+    failing warm-up only warns: the tests themselves run every path and report its errors."""
+    import os
+    import subprocess
+    from importlib.util import find_spec
+
+    workers = getattr(config.option, "numprocesses", None)
+    if (
+        hasattr(config, "workerinput")
+        or not isinstance(workers, int)
+        or workers < 2
+        or find_spec("numba") is None
+        or os.environ.get("LAMBDA_BEZIER_NO_NUMBA")
+    ):
+        return
+    script = Path(__file__).with_name("numba_warmup.py")
+    runs = [
+        subprocess.Popen(
+            [sys.executable, str(script), str(k), str(workers)],
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
+        for k in range(workers)
+    ]
+    for run in runs:
+        _, err = run.communicate()
+        if run.returncode:
+            message = f"the numba warm-up failed (the tests compile instead): {err[-2000:]}"
+            config.issue_config_time_warning(pytest.PytestWarning(message), stacklevel=2)
 
 
 @pytest.fixture(params=list(FAMILIES), ids=list(FAMILIES))
@@ -72,6 +116,34 @@ def intersect_engine(request):
     intersect_subdivide.USE_COMPILED = before
 
 
+def on_both_subdivision_paths(call):
+    """(numpy answer, numba answer) of `call()`, run once with intersect_subdivide's numpy loop
+    and once with its compiled twin; the flag is restored afterwards."""
+    from lambda_bezier.hazmat import intersect_subdivide
+
+    saved = intersect_subdivide.USE_COMPILED
+    try:
+        intersect_subdivide.USE_COMPILED = False
+        slow = call()
+        intersect_subdivide.USE_COMPILED = True
+        fast = call()
+    finally:
+        intersect_subdivide.USE_COMPILED = saved
+    return slow, fast
+
+
+def assert_same_isolated(slow, fast) -> None:
+    """Two `intersect_subdivide.Isolated` agree: the same root pairs (parameters to rounding,
+    since sums run in another order) and the same unresolved pieces, bit for bit."""
+    import numpy as np
+
+    assert np.array_equal(slow.root_pair, fast.root_pair)
+    assert slow.root_s == pytest.approx(fast.root_s, abs=1e-12)
+    assert slow.root_t == pytest.approx(fast.root_t, abs=1e-12)
+    for name in ("left_pair", "left_s0", "left_t0", "left_width"):
+        assert np.array_equal(getattr(slow, name), getattr(fast, name)), name
+
+
 # the two mixed-family test families (tests/data/families/at_cubic.toml, at_pi_cubic.toml),
 # loaded once per module: the certified geometry, intersection and export tests use both
 @pytest.fixture(scope="module")
@@ -82,3 +154,20 @@ def at_family():
 @pytest.fixture(scope="module")
 def at_pi_family():
     return lb.load_family(ROOT / "tests" / "data" / "families" / "at_pi_cubic.toml")
+
+
+@cache
+def surface_families():
+    """(TRIG, TWO, QB, HYP, MIXED): han_trig_cubic and two_shape_cubic (the examples),
+    q_bezier, hyp_two_shape_cubic and at_pi_cubic (tests/data/families), the families of the
+    surface tests; loaded once per process, since parametrize needs them at collection."""
+    from lambda_bezier import examples
+
+    data = ROOT / "tests" / "data" / "families"
+    return (
+        lb.load_family(examples.path("han_trig_cubic.toml")),
+        lb.load_family(examples.path("two_shape_cubic.toml")),
+        lb.load_family(data / "q_bezier.toml"),
+        lb.load_family(data / "hyp_two_shape_cubic.toml"),
+        lb.load_family(data / "at_pi_cubic.toml"),
+    )

@@ -15,6 +15,7 @@ import mpmath
 import numpy as np
 import pytest
 import sympy
+from conftest import examples_per_profile
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
@@ -219,7 +220,9 @@ def near_double_zero(x, y0, y1, degree, dim, seed):
     return curve_from_derivative(deriv), deriv
 
 
-def test_a_near_double_zero_between_the_nodes():
+# one test per end b (21 near the dip, and 1): each is an mpmath reference, spread by xdist
+@pytest.mark.parametrize("b", [*np.linspace(0.94, 0.96, 21), 1.0])
+def test_a_near_double_zero_between_the_nodes(b):
     # the curve of issue #28: p' = ((t − x)² g, (t − x)² h + 1e-8), degree 12; the dip at x
     # (width about 1e-4) fell between the first level's nodes, both rules integrated
     # (t − x)² |(g, h)| alike and missed up to 1.16e-12 of [0, b] (measured before the fix)
@@ -234,12 +237,15 @@ def test_a_near_double_zero_between_the_nodes():
                 row[j + k] += fj * sk
     deriv[1][0] += Fraction(1, 10**8)
     curve = curve_from_derivative(deriv)
-    for b in np.linspace(0.94, 0.96, 21):
+    if b == 1.0:
+        assert_close(curve.arc_length(), reference_length(deriv, 0, 1, x))
+    else:
         assert_close(curve.arc_length(0, b), reference_length(deriv, 0, b, x))
-    assert_close(curve.arc_length(), reference_length(deriv, 0, 1, x))
 
 
-@settings(max_examples=12, deadline=None)
+# the costliest property of the suite (about 5 s an example, quiet): half its examples in the
+# reproducible run, all under --hypothesis-profile=fuzz; the failures found are pinned below
+@settings(max_examples=examples_per_profile(6, fuzz=12), deadline=None)
 @example(
     x=Fraction(3, 40),
     y0=Fraction(1, 10**5),

@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import sympy
+from conftest import assert_same_isolated, on_both_subdivision_paths
 from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
@@ -541,17 +542,6 @@ def test_compiled_subdivision_matches_numpy():
         pytest.skip("numba is not installed (pip install '.[fast]'): nothing to compare")
     rng = np.random.default_rng(29)
 
-    def both(call):
-        saved = sub.USE_COMPILED
-        try:
-            sub.USE_COMPILED = False
-            slow = call()
-            sub.USE_COMPILED = True
-            fast = call()
-        finally:
-            sub.USE_COMPILED = saved
-        return slow, fast
-
     compared = 0
     for n, m, d in [(2, 3, 2), (3, 3, 2), (5, 4, 2), (3, 2, 3), (7, 7, 2)]:
         a = rng.normal(size=(40, n + 1, d))
@@ -562,11 +552,7 @@ def test_compiled_subdivision_matches_numpy():
             calls.append(lambda a=a, s=slack: sub.isolate(a, None, s))
         calls.append(lambda a=a, b=b, s=slack: sub.isolate_points(a, b[:, 0], s))
         for call in calls:
-            slow, fast = both(call)
-            assert np.array_equal(slow.root_pair, fast.root_pair)
-            assert slow.root_s == pytest.approx(fast.root_s, abs=1e-12)
-            assert slow.root_t == pytest.approx(fast.root_t, abs=1e-12)
-            for name in ("left_pair", "left_s0", "left_t0", "left_width"):
-                assert np.array_equal(getattr(slow, name), getattr(fast, name)), name
+            slow, fast = on_both_subdivision_paths(call)
+            assert_same_isolated(slow, fast)
             compared += slow.root_pair.size
     assert compared > 100  # the random pairs do cross

@@ -10,18 +10,14 @@ from fractions import Fraction as F
 
 import numpy as np
 import pytest
+from conftest import surface_families
 
 import lambda_bezier as lb
 from lambda_bezier import _atom_joins, examples
 from lambda_bezier import param_surface_report as pr
 from lambda_bezier.atom_surfaces import AtomSurface
 
-DATA = "tests/data/families/"
-TRIG = lb.load_family(examples.path("han_trig_cubic.toml"))
-TWO = lb.load_family(examples.path("two_shape_cubic.toml"))
-QB = lb.load_family(DATA + "q_bezier.toml")
-HYP = lb.load_family(DATA + "hyp_two_shape_cubic.toml")
-MIXED = lb.load_family(DATA + "at_pi_cubic.toml")
+TRIG, TWO, QB, HYP, MIXED = surface_families()
 
 NET = [[(i, j, F((i * j) % 3, 2) - F(i, 4)) for j in range(4)] for i in range(4)]
 

@@ -10,18 +10,15 @@ from fractions import Fraction as F
 
 import numpy as np
 import pytest
+from conftest import surface_families
 
 import lambda_bezier as lb
-from lambda_bezier import examples
 from lambda_bezier import param_surface_optimum as po
 from lambda_bezier.param_surfaces import ParamSurface, family_surface
 
 DATA = "tests/data/families/"
-TRIG = lb.load_family(examples.path("han_trig_cubic.toml"))
-TWO = lb.load_family(examples.path("two_shape_cubic.toml"))
-QB = lb.load_family(DATA + "q_bezier.toml")
+TRIG, TWO, QB, _, MIXED = surface_families()  # MIXED: at_pi_cubic, one parameter in [0, 1)
 AT = lb.load_family(DATA + "at_cubic.toml")  # trigonometric, one parameter, [0, π/2]
-MIXED = lb.load_family(DATA + "at_pi_cubic.toml")  # mixed, one parameter in [0, 1)
 
 NET = [[(i, j, F((i * j) % 3, 2) - F(i, 4)) for j in range(4)] for i in range(4)]
 

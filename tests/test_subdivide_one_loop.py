@@ -8,30 +8,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from conftest import assert_same_isolated as same
+from conftest import on_both_subdivision_paths as both
 
 from lambda_bezier.hazmat import intersect_subdivide as sub
 
 pytest.importorskip("numba", reason="numba is not installed (pip install '.[fast]'): no twin")
-
-
-def both(call):
-    saved = sub.USE_COMPILED
-    try:
-        sub.USE_COMPILED = False
-        slow = call()
-        sub.USE_COMPILED = True
-        fast = call()
-    finally:
-        sub.USE_COMPILED = saved
-    return slow, fast
-
-
-def same(slow: sub.Isolated, fast: sub.Isolated) -> None:
-    assert np.array_equal(slow.root_pair, fast.root_pair)
-    assert slow.root_s == pytest.approx(fast.root_s, abs=1e-12)
-    assert slow.root_t == pytest.approx(fast.root_t, abs=1e-12)
-    for name in ("left_pair", "left_s0", "left_t0", "left_width"):
-        assert np.array_equal(getattr(slow, name), getattr(fast, name)), name
 
 
 def on_curve(curves: np.ndarray, t: np.ndarray) -> np.ndarray:

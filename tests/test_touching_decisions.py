@@ -270,13 +270,14 @@ def _three(tv, lv, mv, nv):
     return [b0, b1, 1 - b0 - b1]
 
 
-def _gram_det(lv, mv, nv):
-    """det of the Gram matrix of the three functions on [0, pi/2] by mpmath quadrature."""
+def _gram_det(functions, lv, mv, nv):
+    """det of the Gram matrix of the three `functions(t, lam, mu, nu)` on [0, pi/2] by mpmath
+    quadrature (the matrix is symmetric: each product is integrated once)."""
     gram = mp.matrix(3, 3)
     for i in range(3):
-        for j in range(3):
-            gram[i, j] = mp.quad(
-                lambda x, i=i, j=j: _three(x, lv, mv, nv)[i] * _three(x, lv, mv, nv)[j],
+        for j in range(i, 3):
+            gram[i, j] = gram[j, i] = mp.quad(
+                lambda x, i=i, j=j: functions(x, lv, mv, nv)[i] * functions(x, lv, mv, nv)[j],
                 [0, mp.pi / 2],
             )
     return mp.det(gram)
@@ -289,8 +290,8 @@ def test_three_parameters_irrational_singular_point():
     assert sp.sympify(point["mu"]) == sp.sqrt(2)  # our own output, a plain number
     assert abs(float(point["mu_float"]) - 2**0.5) < 1e-15
     lv, nv = _mpq(point["lam"]), _mpq(point["nu"])
-    assert abs(_gram_det(lv, mp.sqrt(2), nv)) < mp.mpf(10) ** -30
-    assert abs(_gram_det(lv, mp.sqrt(2) + mp.mpf(1) / 10, nv)) > mp.mpf(10) ** -6
+    assert abs(_gram_det(_three, lv, mp.sqrt(2), nv)) < mp.mpf(10) ** -30
+    assert abs(_gram_det(_three, lv, mp.sqrt(2) + mp.mpf(1) / 10, nv)) > mp.mpf(10) ** -6
 
 
 def _line(tv, lv, mv, nv):
@@ -308,19 +309,11 @@ def test_three_parameters_dependent_on_a_line():
     lv, mv, nv = (Fraction(point[k]) for k in ("lam", "mu", "nu"))
     assert lv == mv == nv and F(1, 2) <= nv <= 1
 
-    def gram(a, b, c):
-        g = mp.matrix(3, 3)
-        for i in range(3):
-            for j in range(3):
-                g[i, j] = mp.quad(
-                    lambda x, i=i, j=j: _line(x, a, b, c)[i] * _line(x, a, b, c)[j],
-                    [0, mp.pi / 2],
-                )
-        return mp.det(g)
-
-    assert abs(gram(*(mp.mpf(v.numerator) / v.denominator for v in (lv, mv, nv)))) < 1e-30
-    assert abs(gram(mp.mpf(1) / 2, mp.mpf(1) / 2, mp.mpf(3) / 4)) > 1e-8  # lam = mu only
-    assert abs(gram(mp.mpf(3) / 4, mp.mpf(1) / 2, mp.mpf(1) / 2)) > 1e-8  # mu = nu only
+    half, three_quarters = mp.mpf(1) / 2, mp.mpf(3) / 4
+    on_line = (mp.mpf(v.numerator) / v.denominator for v in (lv, mv, nv))
+    assert abs(_gram_det(_line, *on_line)) < 1e-30
+    assert abs(_gram_det(_line, half, half, three_quarters)) > 1e-8  # lam = mu only
+    assert abs(_gram_det(_line, three_quarters, half, half)) > 1e-8  # mu = nu only
 
 
 def test_three_parameters_independent_box(tmp_path):
@@ -331,7 +324,7 @@ def test_three_parameters_independent_box(tmp_path):
     verdict = derive_document(read_definition(path))["linear_independence"]
     assert verdict == {"independent": True, "singular": []}
     for mv in mp.linspace(mp.mpf(3) / 2, 2, 5):
-        assert abs(_gram_det(0, mv, 1)) > mp.mpf(10) ** -6
+        assert abs(_gram_det(_three, 0, mv, 1)) > mp.mpf(10) ** -6
 
 
 def test_half_open_range_without_the_zero(tmp_path):

@@ -15,7 +15,9 @@ bounding box, the closest point and STEP export go through it, with parameters r
 the families' t. The box and the closest point are certified as for polynomial surfaces: a
 branch and bound in which a patch's bound is the least ratio of the numerator's and the
 (positive) denominator's Bernstein coefficients. Mixed families have no rational form; their
-box and closest point are numeric (a dense grid, then Newton), **not certified**.
+box and closest point are certified by a branch and bound over (u, v) on rigorous Taylor
+enclosures of S and its partial derivatives (hazmat.atom_surface_bounds, built on each
+direction's enclosures of its basis functions, hazmat.atom_bounds).
 """
 
 from __future__ import annotations
@@ -29,7 +31,9 @@ import numpy.typing as npt
 
 from . import _validate as val
 from ._validate import ParamLike
+from ._atom_geometry import _bounds_data
 from .atom_family import AtomCurve
+from .hazmat import atom_surface_bounds as asb
 from .hazmat import surface_kernels as ker
 from .surfaces import BezierSurface, NetLike, Surface, SurfaceClosestPoint, _as_net, _exact_net
 
@@ -405,10 +409,12 @@ class AtomSurface(Surface):
     def bounding_box(self, tol: float = 1e-12) -> tuple[np.ndarray, np.ndarray]:
         """(lo, hi): the axis-aligned box of the surface over its domain. Through the rational
         form: each bound certified within `tol` times the net's size (branch and bound on the
-        ratio of the homogeneous net's coordinate and weight). A mixed family: numeric."""
+        ratio of the homogeneous net's coordinate and weight). A mixed family: certified bounds
+        (hazmat.atom_surface_bounds), beyond the extremes attained by at most a few hundred
+        ulps of the surface's size; `tol` is not used there."""
         tol = val.tolerance(tol)
         if not self._has_form():
-            return self._numeric_box()
+            return self._certified_box()
         h = self.to_rational_bezier().homogeneous.net
         w = h[:, :, -1]
         size = float(np.abs(h[:, :, :-1] / w[:, :, None]).max()) or 1.0
@@ -430,13 +436,16 @@ class AtomSurface(Surface):
         """The global nearest point to q ((d,), or a batch (k, d)), u and v in the families' t.
         Through the rational form: certified as for polynomial surfaces (``lower_bound``),
         the squared distance's bound on a patch being the least ratio of the Bernstein
-        coefficients of Σ_c (X_c − q_c W)² and W². A mixed family: numeric (lower_bound 0)."""
+        coefficients of Σ_c (X_c − q_c W)² and W². A mixed family: certified by a branch and
+        bound on Taylor enclosures (hazmat.atom_surface_bounds), the squared distance within
+        a few hundred ulps of the surface's size (times the distance) of the global minimum,
+        refined by Newton; `tol` is not used there."""
         return super().closest_point(q, tol)
 
     def _closest(self, q: object, tol: float) -> SurfaceClosestPoint:
         point = val.as_point(q, self.dimension)
         if not self._has_form():
-            return self._numeric_closest(point)
+            return self._certified_closest(point)
         rat = self.to_rational_bezier()
         h = rat.homogeneous.net
         w = h[:, :, -1]
@@ -465,44 +474,34 @@ class AtomSurface(Surface):
         at = self.evaluate(u, v)
         return SurfaceClosestPoint(u, v, at, float(np.sqrt(best)), float(np.sqrt(max(lower, 0.0))))
 
-    # numeric fallbacks of a mixed family (no rational form): not certified
-    def _grid(self, count: int = 65) -> tuple[np.ndarray, np.ndarray]:
-        (a, b), (c, d) = self.domain_u, self.domain_v
-        return np.linspace(a, b, count), np.linspace(c, d, count)
-
-    def _numeric_box(self) -> tuple[np.ndarray, np.ndarray]:
-        us, vs = self._grid()
-        vals = self.evaluate_grid(us, vs).reshape(-1, self.dimension)
-        return vals.min(axis=0), vals.max(axis=0)
-
-    def _numeric_closest(self, point: np.ndarray) -> SurfaceClosestPoint:
-        us, vs = self._grid()
-        vals = self.evaluate_grid(us, vs)
-        d2 = ((vals - point) ** 2).sum(axis=-1)
-        i, j = np.unravel_index(int(np.argmin(d2)), d2.shape)
-        u, v = float(us[i]), float(vs[j])
-        (ua, ub), (va, vb) = self.domain_u, self.domain_v
-        for _ in range(30):  # Newton on the gradient of |S - q|², kept in the domain
-            su, sv = self.derivative(u, v, 1, 0), self.derivative(u, v, 0, 1)
-            r = self.evaluate(u, v) - point
-            suu, suv, svv = (self.derivative(u, v, a, b) for a, b in ((2, 0), (1, 1), (0, 2)))
-            g = np.array([r @ su, r @ sv])
-            hm = np.array(
-                [[su @ su + r @ suu, su @ sv + r @ suv], [su @ sv + r @ suv, sv @ sv + r @ svv]]
+    # a mixed family (no rational form): hazmat.atom_surface_bounds
+    def _surface_data(self) -> asb.SurfaceData:
+        cached: asb.SurfaceData | None = self.__dict__.get("_surface_bounds")
+        if cached is None:
+            pu, pv = self._probes
+            (ua, ub), (va, vb) = pu.domain, pv.domain
+            cached = asb.SurfaceData(
+                _bounds_data(pu),
+                _bounds_data(pv),
+                (ua - pu._mid, ub - pu._mid),
+                (va - pv._mid, vb - pv._mid),
+                self.net * (pu._scale * pv._scale),
             )
-            if not np.isfinite(hm).all() or abs(np.linalg.det(hm)) < 1e-300:
-                break
-            step = np.linalg.solve(hm, g)
-            nu, nv = min(max(u - step[0], ua), ub), min(max(v - step[1], va), vb)
-            if math.isclose(nu, u, abs_tol=1e-16) and math.isclose(nv, v, abs_tol=1e-16):
-                break
-            u, v = nu, nv
+            self.__dict__["_surface_bounds"] = cached
+        return cached
+
+    def _certified_box(self) -> tuple[np.ndarray, np.ndarray]:
+        *_, lo, hi = asb.coordinate_extremes(self._surface_data())
+        return lo, hi
+
+    def _certified_closest(self, point: np.ndarray) -> SurfaceClosestPoint:
+        pu, pv = self._probes
+        tu, tv, best, lower = asb.closest(self._surface_data(), point)
+        (ua, ub), (va, vb) = self.domain_u, self.domain_v
+        u, v = min(max(tu + pu._mid, ua), ub), min(max(tv + pv._mid, va), vb)
         at = self.evaluate(u, v)
         dist = float(np.linalg.norm(at - point))
-        best = float(np.sqrt(d2[i, j]))
-        if best < dist:
-            u, v, at, dist = float(us[i]), float(vs[j]), vals[i, j], best
-        return SurfaceClosestPoint(u, v, at, dist, 0.0)
+        return SurfaceClosestPoint(u, v, at, dist, min(float(np.sqrt(max(lower, 0.0))), dist))
 
 
 def _no_polish(u: float, v: float) -> tuple[float, float]:

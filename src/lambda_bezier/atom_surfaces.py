@@ -30,8 +30,8 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _validate as val
-from ._validate import ParamLike
 from ._atom_geometry import _bounds_data
+from ._validate import ParamLike
 from .atom_family import AtomCurve
 from .hazmat import atom_surface_bounds as asb
 from .hazmat import surface_kernels as ker
@@ -409,12 +409,12 @@ class AtomSurface(Surface):
     def bounding_box(self, tol: float = 1e-12) -> tuple[np.ndarray, np.ndarray]:
         """(lo, hi): the axis-aligned box of the surface over its domain. Through the rational
         form: each bound certified within `tol` times the net's size (branch and bound on the
-        ratio of the homogeneous net's coordinate and weight). A mixed family: certified bounds
-        (hazmat.atom_surface_bounds), beyond the extremes attained by at most a few hundred
-        ulps of the surface's size; `tol` is not used there."""
+        ratio of the homogeneous net's coordinate and weight). A mixed family: certified by a
+        branch and bound on Taylor enclosures (hazmat.atom_surface_bounds), each bound within
+        `tol` times the net's size of the extreme (or a few hundred ulps, if more)."""
         tol = val.tolerance(tol)
         if not self._has_form():
-            return self._certified_box()
+            return self._certified_box(tol)
         h = self.to_rational_bezier().homogeneous.net
         w = h[:, :, -1]
         size = float(np.abs(h[:, :, :-1] / w[:, :, None]).max()) or 1.0
@@ -437,15 +437,15 @@ class AtomSurface(Surface):
         Through the rational form: certified as for polynomial surfaces (``lower_bound``),
         the squared distance's bound on a patch being the least ratio of the Bernstein
         coefficients of Σ_c (X_c − q_c W)² and W². A mixed family: certified by a branch and
-        bound on Taylor enclosures (hazmat.atom_surface_bounds), the squared distance within
-        a few hundred ulps of the surface's size (times the distance) of the global minimum,
-        refined by Newton; `tol` is not used there."""
+        bound on Taylor enclosures (hazmat.atom_surface_bounds), the distance within `tol`
+        times the size (the net's and q's) of ``lower_bound`` (or a few hundred ulps, if
+        more), refined by Newton."""
         return super().closest_point(q, tol)
 
     def _closest(self, q: object, tol: float) -> SurfaceClosestPoint:
         point = val.as_point(q, self.dimension)
         if not self._has_form():
-            return self._certified_closest(point)
+            return self._certified_closest(point, tol)
         rat = self.to_rational_bezier()
         h = rat.homogeneous.net
         w = h[:, :, -1]
@@ -486,22 +486,36 @@ class AtomSurface(Surface):
                 (ua - pu._mid, ub - pu._mid),
                 (va - pv._mid, vb - pv._mid),
                 self.net * (pu._scale * pv._scale),
+                _sums_to_one(pu) and _sums_to_one(pv),
             )
             self.__dict__["_surface_bounds"] = cached
         return cached
 
-    def _certified_box(self) -> tuple[np.ndarray, np.ndarray]:
-        *_, lo, hi = asb.coordinate_extremes(self._surface_data())
+    def _certified_box(self, tol: float) -> tuple[np.ndarray, np.ndarray]:
+        *_, lo, hi = asb.coordinate_extremes(self._surface_data(), tol)
         return lo, hi
 
-    def _certified_closest(self, point: np.ndarray) -> SurfaceClosestPoint:
+    def _certified_closest(self, point: np.ndarray, tol: float) -> SurfaceClosestPoint:
         pu, pv = self._probes
-        tu, tv, best, lower = asb.closest(self._surface_data(), point)
+        tu, tv, _, lower = asb.closest(self._surface_data(), point, tol)
         (ua, ub), (va, vb) = self.domain_u, self.domain_v
         u, v = min(max(tu + pu._mid, ua), ub), min(max(tv + pv._mid, va), vb)
         at = self.evaluate(u, v)
         dist = float(np.linalg.norm(at - point))
         return SurfaceClosestPoint(u, v, at, dist, min(float(np.sqrt(max(lower, 0.0))), dist))
+
+
+def _sums_to_one(probe: AtomCurve) -> bool:
+    """Whether the direction's basis functions sum to one exactly (their exact atom
+    coefficients summed: 1 on the constant atom, 0 on every other)."""
+    rows = probe.basis_coefficients
+    try:
+        sums = [sum(col) for col in zip(*rows, strict=True)]
+        return all(
+            s == (1 if a.kind == "1" else 0) for s, a in zip(sums, probe.shape.atoms, strict=True)
+        )
+    except (TypeError, ValueError):
+        return False
 
 
 def _no_polish(u: float, v: float) -> tuple[float, float]:

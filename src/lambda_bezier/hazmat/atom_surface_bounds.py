@@ -7,44 +7,57 @@ rational form.
 **Enclosures.** On a cell [u0, u1] × [v0, v1], atom_bounds encloses every b_i^(a) on [u0, u1]
 and b_j^(b) on [v0, v1] (Taylor form, widened for rounding); S^(a, b) is then enclosed by
 interval arithmetic, Σ_ij P_ij [b_i^(a)] [b_j^(b)], every product and sum widened by its
-rounding. That enclosure is first order (it forgets that Σ b_i = 1), so the bound used for a
-scalar f (a coordinate, or D = |S − q|²) is the better of it and the second-order form
+rounding. That enclosure is first order with a constant that ignores cancellation (Σ b_i = 1,
+say), so the bound used for a scalar f (a coordinate, or D = |S − q|²) is the better of it and
+the second-order form (Taylor with Lagrange's remainder in two variables)
 
-    f(c + δ) ≤ f(c) + |f_u(c)| h_u + |f_v(c)| h_v + (M_uu h_u² + 2 M_uv h_u h_v + M_vv h_v²)/2,
+    f(c + δ) ∈ f(c) ± (|f_u(c)| h_u + |f_v(c)| h_v + (M_uu h_u² + 2 M_uv h_u h_v + M_vv h_v²)/2),
 
-(Taylor with Lagrange's remainder in two variables), f and ∇f enclosed at the centre c and
-M_ab ≥ sup |f_ab| over the cell, with D_uu = 2 (S_u·S_u + (S − q)·S_uu) and so on.
+f and ∇f enclosed at the centre c (an interval of rounding width only) and M_ab ≥ sup |f_ab|
+over the cell, with D_uu = 2 (S_u·S_u + (S − q)·S_uu) and so on. Its width is the centre's
+rounding radius plus terms that shrink with the cell, each charged to the direction it comes
+from (`_Scalar.share_u`, `share_v`).
 
 **Faces.** The domain is the union of its interior, its four open edges and its four
-corners. The global maximum p of f lies in the relative interior of one of them, where the
-derivatives of f along that face's free directions vanish. So the branch and bound runs on
-cells of every face together (an edge's cells have width 0 across it): a cell is dropped when
-a free direction's derivative has one sign on it (p is not in it), or when its bound is within
-the slack of the best value found (f ≤ that bound there); otherwise it is halved in its free
-directions and its centre becomes a candidate. The corners are candidates.
+corners; the global minimum p of f lies in the relative interior of one of them, where the
+derivatives of f along that face's free directions vanish. So the branch and bound runs on the
+cells of every face together (an edge's cells have width 0 across it), and the corners are
+candidates. A cell is
+
+- **dropped** when a free direction's derivative has one sign on it (p is not in it), or when
+  its lower bound is at least the best value found (f there is no better);
+- **settled** when its enclosure is narrower than the tolerance (a *width* test: the cell's
+  lower bound is then within the tolerance of a value f takes in it, its centre, which becomes
+  a candidate);
+- otherwise **halved**, in the free directions whose share of the enclosure's width is at
+  least a third of the larger share (a direction in which f is flat, e.g. a coordinate that
+  depends on u only, is not cut, so a line of minima costs a few cells, not millions).
 
 **What is returned** is the best value found (attained, at a point returned with it) and the
-certified bound: the largest bound of a cell dropped by its value, so the true extreme lies
-between the two, and they differ by at most the slack (`SurfaceData.slack`, a few hundred ulps
-of the surface's size; for the closest point, that slack carried into D). Cells narrower than
-NARROW that are still open are settled by their bound (still certified, but maybe looser than
-the slack; `Stats.narrow` counts them, 0 in every answer the tests check).
+certified lower bound: the least of the settled cells' lower bounds and of the enclosure of f
+at the best point, so the true minimum lies between the two, and they differ by at most the
+tolerance (or the enclosure's rounding radius at a point, a few hundred ulps of the surface's
+size, if that is larger: `SurfaceData.floor`). A coordinate whose net is constant, in a
+basis that sums to one exactly (`SurfaceData.unity`), is that constant, exactly. Should the
+search exceed MAX_ROUNDS or MAX_OPEN open cells, the open cells are settled by their lower
+bounds: still certified, maybe looser than the tolerance; `Stats.narrow` counts them (0 in
+every answer the tests check).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from .atom_bounds import AtomCurveData, Stats, _products, _squares, _sum
 
 START = 8  # cells per direction of the first level
-NARROW = 2.0**-40  # a cell this narrow (relative to the domain) in every free direction is settled
-MAX_ROUNDS = 120
+MAX_ROUNDS = 160
 MAX_OPEN = 1 << 15
 NEWTON_STEPS = 12
+SHARE = 1.0 / 3.0  # a direction is cut when its share of the width is this much of the larger
 _U = 2.0**-53
 
 Pair = tuple[np.ndarray, np.ndarray]
@@ -64,13 +77,17 @@ def _times_net(lo: np.ndarray, hi: np.ndarray, net: np.ndarray) -> Pair:
 @dataclass
 class SurfaceData:
     """A surface over centred atoms: each direction's basis as an AtomCurveData (coordinates
-    = basis functions) on its centred domain [lo, hi], and the net (n+1, q+1, d) in floats."""
+    = basis functions) on its centred domain [lo, hi], the net (n+1, q+1, d) in floats, and
+    whether each direction's basis sums to one exactly (then a coordinate with a constant net
+    is that constant)."""
 
     basis_u: AtomCurveData
     basis_v: AtomCurveData
     domain_u: tuple[float, float]
     domain_v: tuple[float, float]
     net: np.ndarray
+    unity: bool = False
+    _tensors: dict[tuple[int, int], np.ndarray] = field(default_factory=dict)
 
     def values(self, a: int, b: int, u: np.ndarray, v: np.ndarray) -> np.ndarray:
         """(m, d): S^(a, b) at paired centred parameters, in floats."""
@@ -87,19 +104,52 @@ class SurfaceData:
         plo, phi = _products(ulo[:, None, :], uhi[:, None, :], vlo[None, :, :], vhi[None, :, :])
         return _times_net(plo, phi, self.net)
 
-    def slack(self) -> np.ndarray:
-        """(d,): the value tests' slack per coordinate: twice the rounding allowance of a
-        value (each direction's, relative to Σ|terms|) times a bound of |S| on the domain."""
-        lo, hi = self.enclose(0, 0, *_whole(self.domain_u), *_whole(self.domain_v))
-        top = np.maximum(np.abs(lo), np.abs(hi))[:, 0]
-        reach = np.array([max(map(abs, self.domain_u)), max(map(abs, self.domain_v))])
-        allow = self.basis_u._allowance(reach[:1])[0] + self.basis_v._allowance(reach[1:])[0]
-        out: np.ndarray = 4 * top * allow + 1e-300
+    def _tensor(self, a: int, b: int) -> np.ndarray:
+        """(A_u, A_v, d): bounds of |coefficients| of S^(a, b) over the atom products
+        α_k(u) β_l(v), the float contraction Σ_ij B^(a)_ki P_ij B^(b)_lj plus its rounding."""
+        key = (a, b)
+        if key not in self._tensors:
+            bu, bv = self.basis_u.order(a), self.basis_v.order(b)
+            exact = np.einsum("ki,ijd,lj->kld", bu, self.net, bv, optimize=True)
+            spread = np.einsum("ki,ijd,lj->kld", np.abs(bu), np.abs(self.net), np.abs(bv))
+            terms = self.net.shape[0] + self.net.shape[1] + 4
+            self._tensors[key] = np.abs(exact) + spread * (4 * terms * _U) + 1e-300
+        return self._tensors[key]
+
+    def second_sup(self, cells: _Cells) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Bounds of |S_uu|, |S_uv|, |S_vv| over the cells, each (d, m), from the atom
+        tensor: Σ_kl |G_kl| sup|α_k| sup|β_l|. Crude but blind to no cancellation inside a
+        direction: where S does not depend on v, G's v-derivative is rounding only."""
+        ru = np.maximum(np.abs(cells.u0), np.abs(cells.u1))
+        rv = np.maximum(np.abs(cells.v0), np.abs(cells.v1))
+        au, av = self.basis_u._sup_atoms(ru), self.basis_v._sup_atoms(rv)
+        out = []
+        for a, b in ((2, 0), (1, 1), (0, 2)):
+            top = np.einsum("km,kld,lm->dm", au, self._tensor(a, b), av, optimize=True)
+            out.append(top * (1 + 64 * _U))
+        return out[0], out[1], out[2]
+
+    def size(self) -> float:
+        """The net's size, max |P_ij|: the unit of the tolerances."""
+        return float(np.abs(self.net).max()) if self.net.size else 0.0
+
+    def floor(self) -> np.ndarray:
+        """(d,): the widest enclosure of a coordinate at a single point (its rounding radius,
+        twice), over the corners and the centre: below this no width test can pass."""
+        (ua, ub), (va, vb) = self.domain_u, self.domain_v
+        u = np.array([ua, ua, ub, ub, 0.5 * (ua + ub)])
+        v = np.array([va, vb, va, vb, 0.5 * (va + vb)])
+        lo, hi = self.enclose(0, 0, u, u, v, v)
+        out: np.ndarray = (hi - lo).max(axis=1)
         return out
 
-
-def _whole(dom: tuple[float, float]) -> tuple[np.ndarray, np.ndarray]:
-    return np.array([dom[0]]), np.array([dom[1]])
+    def constant(self, c: int) -> float | None:
+        """The coordinate's value if it is exactly constant (a constant net, a basis that sums
+        to one in each direction), else None."""
+        col = self.net[:, :, c]
+        if self.unity and col.size and (col == col.flat[0]).all():
+            return float(col.flat[0])
+        return None
 
 
 @dataclass
@@ -125,20 +175,24 @@ class _Cells:
     def centres(self) -> tuple[np.ndarray, np.ndarray]:
         return 0.5 * (self.u0 + self.u1), 0.5 * (self.v0 + self.v1)
 
-    def halves(self) -> _Cells:
-        """Every cell cut in two in each free direction (four, two or one pieces)."""
+    def halves(self, cut_u: np.ndarray, cut_v: np.ndarray) -> _Cells:
+        """Every cell cut in two in each direction marked (four, two or one pieces)."""
         uc, vc = self.centres()
-        parts = []
-        for ua, ub in ((self.u0, uc), (uc, self.u1)):
-            for va, vb in ((self.v0, vc), (vc, self.v1)):
-                parts.append((ua, ub, va, vb))
-        pieces = [np.concatenate(x) for x in zip(*parts, strict=True)]
-        cells = _Cells(*pieces)
-        # a direction that is not free gives two equal pieces: keep one
-        n = self.u0.size
-        dup_u = np.tile(~self.free_u, 4) & (np.repeat(np.arange(4), n) // 2 == 1)
-        dup_v = np.tile(~self.free_v, 4) & (np.repeat(np.arange(4), n) % 2 == 1)
-        return cells.take(~(dup_u | dup_v))
+        # the first piece of each direction: [u0, uc] if cut, else the whole [u0, u1]
+        u_first = (self.u0, np.where(cut_u, uc, self.u1))
+        u_second = (uc, self.u1)
+        v_first = (self.v0, np.where(cut_v, vc, self.v1))
+        v_second = (vc, self.v1)
+        parts = [
+            (u_first, v_first, np.ones_like(cut_u)),
+            (u_second, v_first, cut_u),
+            (u_first, v_second, cut_v),
+            (u_second, v_second, cut_u & cut_v),
+        ]
+        pieces = [_Cells(uu[0][k], uu[1][k], vv[0][k], vv[1][k]) for uu, vv, k in parts]
+        return _Cells(
+            *(np.concatenate([getattr(p, f) for p in pieces]) for f in ("u0", "u1", "v0", "v1"))
+        )
 
 
 def _initial_cells(data: SurfaceData) -> tuple[_Cells, np.ndarray, np.ndarray]:
@@ -158,47 +212,122 @@ def _initial_cells(data: SurfaceData) -> tuple[_Cells, np.ndarray, np.ndarray]:
 @dataclass
 class _Scalar:
     """A scalar's bounds on cells: (lower, upper) of f over each cell, of f_u and f_v over
-    each cell, and the second-order form's (lower, upper)."""
+    each cell, and the shares of the second-order form's width due to u and to v."""
 
     lo: np.ndarray
     hi: np.ndarray
     du: Pair
     dv: Pair
+    share_u: np.ndarray
+    share_v: np.ndarray
+
+    def negated(self) -> _Scalar:
+        return _Scalar(-self.hi, -self.lo, self.du, self.dv, self.share_u, self.share_v)
 
 
-def _second_order(
-    cells: _Cells, at: Pair, grad_u: Pair, grad_v: Pair, huu: Pair, huv: Pair, hvv: Pair
-) -> Pair:
-    """The second-order form's (lower, upper) of f on the cells from enclosures of f, f_u,
-    f_v at the centres and of the Hessian over the cells."""
-    hu = 0.5 * (cells.u1 - cells.u0) * (1 + 4 * _U)
-    hv = 0.5 * (cells.v1 - cells.v0) * (1 + 4 * _U)
+def _mag(p: Pair) -> np.ndarray:
+    out: np.ndarray = np.maximum(np.abs(p[0]), np.abs(p[1]))
+    return out
 
-    def mag(p: Pair) -> np.ndarray:
-        out: np.ndarray = np.maximum(np.abs(p[0]), np.abs(p[1]))
-        return out
 
-    spread = mag(grad_u) * hu + mag(grad_v) * hv
-    spread = spread + 0.5 * (mag(huu) * hu * hu + 2 * mag(huv) * hu * hv + mag(hvv) * hv * hv)
-    spread = spread * (1 + 16 * _U)
-    lo, hi = at[0] - spread, at[1] + spread
-    pad = 8 * _U * (np.abs(lo) + np.abs(hi))
+def _meet(a: Pair, b: Pair) -> Pair:
+    """The intersection of two enclosures of the same quantity."""
+    return np.maximum(a[0], b[0]), np.minimum(a[1], b[1])
+
+
+def _around(centre: Pair, radius: np.ndarray) -> Pair:
+    lo, hi = centre[0] - radius, centre[1] + radius
+    pad = 4 * _U * (np.abs(lo) + np.abs(hi))
     return lo - pad, hi + pad
 
 
-def _coordinate(data: SurfaceData, cells: _Cells, c: int) -> _Scalar:
+@dataclass
+class _Parts:
+    """Enclosures of S and its partial derivatives on cells, each (d, m): S, S_u, S_v over
+    the cells; at the centres; and S_uu, S_uv, S_vv over the cells with their magnitudes."""
+
+    half_u: np.ndarray
+    half_v: np.ndarray
+    s: Pair
+    su: Pair
+    sv: Pair
+    at: Pair
+    at_u: Pair
+    at_v: Pair
+    second: tuple[Pair, Pair, Pair]
+    sups: tuple[np.ndarray, np.ndarray, np.ndarray]
+
+
+def _parts(data: SurfaceData, cells: _Cells) -> _Parts:
+    """Every enclosure the bounds need. The second derivatives are the better of interval
+    arithmetic on the bases and the atom-tensor bound (`SurfaceData.second_sup`, which sees a
+    direction S does not depend on), and S_u, S_v over a cell the better of interval arithmetic
+    and the mean-value form about the centre."""
     args = (cells.u0, cells.u1, cells.v0, cells.v1)
     uc, vc = cells.centres()
     mid = (uc, uc, vc, vc)
-    lo, hi = data.enclose(0, 0, *args)
-    du, dv = data.enclose(1, 0, *args), data.enclose(0, 1, *args)
-    at = data.enclose(0, 0, *mid)
-    gu, gv = data.enclose(1, 0, *mid), data.enclose(0, 1, *mid)
-    hs = [data.enclose(a, b, *args) for a, b in ((2, 0), (1, 1), (0, 2))]
-    pick = [(p[0][c], p[1][c]) for p in (at, gu, gv, *hs)]
-    slo, shi = _second_order(cells, *pick)  # type: ignore[arg-type]
-    return _Scalar(
-        np.maximum(lo[c], slo), np.minimum(hi[c], shi), (du[0][c], du[1][c]), (dv[0][c], dv[1][c])
+    hu = 0.5 * (cells.u1 - cells.u0) * (1 + 4 * _U)
+    hv = 0.5 * (cells.v1 - cells.v0) * (1 + 4 * _U)
+    at, at_u, at_v = (data.enclose(a, b, *mid) for a, b in ((0, 0), (1, 0), (0, 1)))
+    tensor = data.second_sup(cells)
+    second = []
+    sups = []
+    for (a, b), top in zip(((2, 0), (1, 1), (0, 2)), tensor, strict=True):
+        box = _meet(data.enclose(a, b, *args), (-top, top))
+        second.append(box)
+        sups.append(_mag(box))
+    muu, muv, mvv = sups
+    su = _meet(data.enclose(1, 0, *args), _around(at_u, (muu * hu + muv * hv) * (1 + 8 * _U)))
+    sv = _meet(data.enclose(0, 1, *args), _around(at_v, (muv * hu + mvv * hv) * (1 + 8 * _U)))
+    s_cells = data.enclose(0, 0, *args)
+    return _Parts(
+        hu, hv, s_cells, su, sv, at, at_u, at_v, (second[0], second[1], second[2]), (muu, muv, mvv)
+    )
+
+
+def _second_order(
+    parts: _Parts,
+    at: Pair,
+    grad_u: Pair,
+    grad_v: Pair,
+    muu: np.ndarray,
+    muv: np.ndarray,
+    mvv: np.ndarray,
+    first: Pair,
+    du: Pair,
+    dv: Pair,
+) -> _Scalar:
+    """f's bounds on the cells: the better of the first-order enclosure `first` and the
+    second-order form from enclosures of f, f_u, f_v at the centres and bounds of |f_uu|,
+    |f_uv|, |f_vv| over the cells."""
+    hu, hv = parts.half_u, parts.half_v
+    cross = 0.5 * muv * hu * hv
+    share_u = (_mag(grad_u) * hu + 0.5 * muu * hu * hu + cross) * (1 + 16 * _U)
+    share_v = (_mag(grad_v) * hv + 0.5 * mvv * hv * hv + cross) * (1 + 16 * _U)
+    spread = (share_u + share_v) * (1 + 4 * _U)
+    lo, hi = at[0] - spread, at[1] + spread
+    pad = 8 * _U * (np.abs(lo) + np.abs(hi))
+    lo, hi = np.maximum(first[0], lo - pad), np.minimum(first[1], hi + pad)
+    return _Scalar(lo, hi, du, dv, share_u, share_v)
+
+
+def _row(p: Pair, c: int) -> Pair:
+    return p[0][c], p[1][c]
+
+
+def _coordinate(parts: _Parts, c: int) -> _Scalar:
+    muu, muv, mvv = (m[c] for m in parts.sups)
+    return _second_order(
+        parts,
+        _row(parts.at, c),
+        _row(parts.at_u, c),
+        _row(parts.at_v, c),
+        muu,
+        muv,
+        mvv,
+        _row(parts.s, c),
+        _row(parts.su, c),
+        _row(parts.sv, c),
     )
 
 
@@ -206,36 +335,40 @@ def _dot(a: Pair, b: Pair) -> Pair:
     return _sum(*_products(a[0], a[1], b[0], b[1]))
 
 
-def _distance(data: SurfaceData, cells: _Cells, q: np.ndarray) -> _Scalar:
+def _plus(a: Pair, b: Pair) -> Pair:
+    lo, hi = a[0] + b[0], a[1] + b[1]
+    pad = 4 * _U * (np.abs(lo) + np.abs(hi))
+    return lo - pad, hi + pad
+
+
+def _twice(p: Pair) -> Pair:
+    return 2 * p[0], 2 * p[1]
+
+
+def _distance(parts: _Parts, q: np.ndarray) -> _Scalar:
     """Bounds of D = |S − q|² (and of D_u / 2, D_v / 2) on the cells."""
-    args = (cells.u0, cells.u1, cells.v0, cells.v1)
-    uc, vc = cells.centres()
-    mid = (uc, uc, vc, vc)
 
     def shifted(p: Pair) -> Pair:
         return p[0] - q[:, None], p[1] - q[:, None]
 
-    r = shifted(data.enclose(0, 0, *args))
-    su, sv = data.enclose(1, 0, *args), data.enclose(0, 1, *args)
-    suu, suv, svv = (data.enclose(a, b, *args) for a, b in ((2, 0), (1, 1), (0, 2)))
-    rc = shifted(data.enclose(0, 0, *mid))
-    suc, svc = data.enclose(1, 0, *mid), data.enclose(0, 1, *mid)
-
-    def twice(p: Pair) -> Pair:
-        return 2 * p[0], 2 * p[1]
-
-    def plus(a: Pair, b: Pair) -> Pair:
-        lo, hi = a[0] + b[0], a[1] + b[1]
-        pad = 4 * _U * (np.abs(lo) + np.abs(hi))
-        return lo - pad, hi + pad
-
-    huu = twice(plus(_sum(*_squares(*su)), _dot(r, suu)))
-    huv = twice(plus(_dot(su, sv), _dot(r, suv)))
-    hvv = twice(plus(_sum(*_squares(*sv)), _dot(r, svv)))
-    at = _sum(*_squares(*rc))
-    slo, shi = _second_order(cells, at, twice(_dot(rc, suc)), twice(_dot(rc, svc)), huu, huv, hvv)
-    lo, hi = _sum(*_squares(*r))
-    return _Scalar(np.maximum(lo, slo), np.minimum(hi, shi), _dot(r, su), _dot(r, sv))
+    r, rc = shifted(parts.s), shifted(parts.at)
+    su, sv = parts.su, parts.sv
+    suu, suv, svv = parts.second
+    huu = _twice(_plus(_sum(*_squares(*su)), _dot(r, suu)))
+    huv = _twice(_plus(_dot(su, sv), _dot(r, suv)))
+    hvv = _twice(_plus(_sum(*_squares(*sv)), _dot(r, svv)))
+    return _second_order(
+        parts,
+        _sum(*_squares(*rc)),
+        _twice(_dot(rc, parts.at_u)),
+        _twice(_dot(rc, parts.at_v)),
+        _mag(huu),
+        _mag(huv),
+        _mag(hvv),
+        _sum(*_squares(*r)),
+        _dot(r, su),
+        _dot(r, sv),
+    )
 
 
 def _one_signed(cells: _Cells, s: _Scalar) -> np.ndarray:
@@ -246,107 +379,133 @@ def _one_signed(cells: _Cells, s: _Scalar) -> np.ndarray:
     return out
 
 
+def _cuts(cells: _Cells, s: _Scalar) -> tuple[np.ndarray, np.ndarray]:
+    """The directions to cut: free ones whose share of the width is at least SHARE of the
+    larger share (both free directions when neither share is positive)."""
+    top = np.maximum(s.share_u, s.share_v)
+    cut_u = cells.free_u & (s.share_u >= SHARE * top)
+    cut_v = cells.free_v & (s.share_v >= SHARE * top)
+    neither = ~(cut_u | cut_v)
+    return cut_u | (neither & cells.free_u), cut_v | (neither & cells.free_v)
+
+
+Polish = Callable[[float, float], tuple[float, float]]
+
+
 def _minimise(
     data: SurfaceData,
     bounds: Callable[[_Cells], _Scalar],
     value: Callable[[np.ndarray, np.ndarray], np.ndarray],
-    slack: Callable[[float], float],
-    polish: Callable[[float, float], tuple[float, float]] | None,
+    tolerance: Callable[[float], float],
+    polish: Polish | None,
     stats: Stats,
 ) -> tuple[float, float, float, float]:
     """(u, v, best, lower): the least value of f found (at centred (u, v)) and the certified
-    lower bound of f over the domain. `bounds` gives f's bounds on cells, `value` f at
-    points, `slack(best)` the value test's slack."""
+    lower bound of f over the domain, within tolerance(best) of best (see the module's
+    docstring). `bounds` gives f's bounds on cells, `value` f at points."""
     cells, cu, cv = _initial_cells(data)
-    cand_u, cand_v = [cu], [cv]
-    cand_f = [value(cu, cv)]
-    # the corners (faces of dimension 0) are candidates, and their enclosures bound f there
+    cand_u, cand_v, cand_f = [cu], [cv], [value(cu, cv)]
+    # the corners (faces of dimension 0) are candidates, bounded by their enclosures
     lower = float(bounds(_Cells(cu, cu, cv, cv)).lo.min())
-    width = max(data.domain_u[1] - data.domain_u[0], data.domain_v[1] - data.domain_v[0])
+    polished: tuple[float, float] | None = None
     rounds = 0
     while cells.u0.size:
         rounds += 1
         stats.rounds += 1
         stats.intervals += cells.u0.size
-        allf = np.concatenate(cand_f)
-        k = int(np.argmin(allf))
-        best = float(allf[k])
-        if polish is not None:
-            pu, pv = polish(float(np.concatenate(cand_u)[k]), float(np.concatenate(cand_v)[k]))
+        us, vs, fs = (np.concatenate(x) for x in (cand_u, cand_v, cand_f))
+        k = int(np.argmin(fs))
+        best = float(fs[k])
+        if polish is not None and polished != (us[k], vs[k]):
+            pu, pv = polish(float(us[k]), float(vs[k]))
+            polished = (pu, pv)
             cand_u.append(np.array([pu]))
             cand_v.append(np.array([pv]))
             cand_f.append(value(cand_u[-1], cand_v[-1]))
             best = min(best, float(cand_f[-1][0]))
         s = bounds(cells)
-        settled = s.lo >= best - slack(best)
+        settled = (s.hi - s.lo) <= tolerance(best)
+        if rounds >= MAX_ROUNDS or cells.u0.size > MAX_OPEN:
+            stats.narrow += int((~settled).sum())
+            settled = np.ones_like(settled)
+        dropped = (s.lo >= best) | _one_signed(cells, s)
+        settled &= ~dropped
         if settled.any():
             lower = min(lower, float(s.lo[settled].min()))
-        keep = ~(settled | _one_signed(cells, s))
-        cells, low = cells.take(keep), s.lo[keep]
-        narrow = np.maximum(cells.u1 - cells.u0, cells.v1 - cells.v0) <= NARROW * width
-        if rounds >= MAX_ROUNDS or cells.u0.size > MAX_OPEN:
-            narrow = np.ones_like(narrow)
-        if narrow.any():
-            stats.narrow += int(narrow.sum())
-            lower = min(lower, float(low[narrow].min()))
-            cells = cells.take(~narrow)
         uc, vc = cells.centres()
-        cand_u.append(uc)
-        cand_v.append(vc)
-        cand_f.append(value(uc, vc))
-        cells = cells.halves()
-    allf = np.concatenate(cand_f)
-    k = int(np.argmin(allf))
-    best = float(allf[k])
-    return float(np.concatenate(cand_u)[k]), float(np.concatenate(cand_v)[k]), best, min(lower, best)
+        cand_u.append(uc[settled])
+        cand_v.append(vc[settled])
+        cand_f.append(value(uc[settled], vc[settled]))
+        keep = ~(settled | dropped)
+        if keep.any():
+            cand_u.append(uc[keep])
+            cand_v.append(vc[keep])
+            cand_f.append(value(uc[keep], vc[keep]))
+        cut_u, cut_v = _cuts(cells, s)
+        cells = cells.take(keep).halves(cut_u[keep], cut_v[keep])
+    us, vs, fs = (np.concatenate(x) for x in (cand_u, cand_v, cand_f))
+    k = int(np.argmin(fs))
+    u, v, best = float(us[k]), float(vs[k]), float(fs[k])
+    # the best point's own enclosure bounds the dropped cells (their bounds were >= best)
+    at = bounds(_Cells(us[k : k + 1], us[k : k + 1], vs[k : k + 1], vs[k : k + 1]))
+    return u, v, best, min(lower, best, float(at.lo[0]))
 
 
 def coordinate_extremes(
-    data: SurfaceData, stats: Stats | None = None
+    data: SurfaceData, tol: float = 1e-12, stats: Stats | None = None
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """(inner min, inner max, outer min, outer max), each (d,): for every coordinate the
-    least and greatest values attained (at points of the surface) and certified bounds of
-    it over the domain, within `SurfaceData.slack` of them."""
+    least and greatest values attained (at points of the surface, in floats) and certified
+    bounds of it over the domain, within max(tol × the net's size, `SurfaceData.floor`) of
+    the true extremes."""
     stats = stats if stats is not None else Stats()
-    slacks = data.slack()
+    floors = data.floor()
+    size = data.size()
     dim = data.net.shape[2]
     out = np.empty((4, dim))
     for c in range(dim):
+        fixed = data.constant(c)
+        if fixed is not None:
+            out[:, c] = fixed
+            continue
+        allowed = max(tol * size, float(floors[c]))
         for sign, inner, outer in ((1.0, 0, 2), (-1.0, 1, 3)):
 
             def bounds(cells: _Cells, c: int = c, sign: float = sign) -> _Scalar:
-                s = _coordinate(data, cells, c)
-                if sign > 0:
-                    return s
-                return _Scalar(-s.hi, -s.lo, s.du, s.dv)
+                s = _coordinate(_parts(data, cells), c)
+                return s if sign > 0 else s.negated()
 
             def value(u: np.ndarray, v: np.ndarray, c: int = c, sign: float = sign) -> np.ndarray:
                 out: np.ndarray = sign * data.values(0, 0, u, v)[:, c]
                 return out
 
-            slack = float(slacks[c])
-            *_, best, lower = _minimise(data, bounds, value, lambda _b: slack, None, stats)
+            def tolerance(_best: float, allowed: float = allowed) -> float:
+                return allowed
+
+            *_, best, lower = _minimise(data, bounds, value, tolerance, None, stats)
             out[inner, c], out[outer, c] = sign * best, sign * lower
     return out[0], out[1], out[2], out[3]
 
 
 def closest(
-    data: SurfaceData, q: np.ndarray, stats: Stats | None = None
+    data: SurfaceData, q: np.ndarray, tol: float = 1e-12, stats: Stats | None = None
 ) -> tuple[float, float, float, float]:
     """(u, v, squared distance, certified lower bound of it): the point of the surface
-    (centred parameters) nearest q, the global minimum of |S − q|² within the slack of the
-    coordinates' rounding carried into D, refined by Newton from the best point found."""
+    (centred parameters) nearest q, the distance within max(tol × size, the floor) of the
+    certified lower bound's, size being the net's plus |q|'s (as for polynomial surfaces),
+    refined by Newton from the best point found."""
     stats = stats if stats is not None else Stats()
-    tol = float(data.slack().max())
-    dim = q.size
+    size = data.size() + float(np.abs(q).max(initial=0.0))
+    gap = max(tol * size, float(data.floor().max()))
     (ua, ub), (va, vb) = data.domain_u, data.domain_v
 
     def value(u: np.ndarray, v: np.ndarray) -> np.ndarray:
         out: np.ndarray = np.square(data.values(0, 0, u, v) - q).sum(axis=1)
         return out
 
-    def slack(best: float) -> float:
-        return dim * (2 * np.sqrt(max(best, 0.0)) * tol + tol * tol) + 16 * dim * _U * best
+    def tolerance(best: float) -> float:
+        # a squared distance within this of best is a distance within gap of sqrt(best)
+        return float(2 * np.sqrt(max(best, 0.0)) * gap + gap * gap)
 
     def polish(u: float, v: float) -> tuple[float, float]:
         """Newton on ∇D = 0 from (u, v), kept in the domain."""
@@ -368,4 +527,6 @@ def closest(
             u, v = nu, nv
         return u, v
 
-    return _minimise(data, lambda cells: _distance(data, cells, q), value, slack, polish, stats)
+    return _minimise(
+        data, lambda cells: _distance(_parts(data, cells), q), value, tolerance, polish, stats
+    )

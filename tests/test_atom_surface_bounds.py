@@ -281,7 +281,9 @@ def test_closest_point_on_the_surface_and_batch(families):
     batch = s.closest_point(qs)
     for k, q in enumerate(qs):
         one = s.closest_point(q)
-        assert batch.distance[k] == one.distance and batch.u[k] == one.u
+        # the same search; a batch's evaluations round differently in the last bits
+        assert abs(batch.distance[k] - one.distance) <= 1e-13
+        assert abs(batch.u[k] - one.u) <= 1e-6 and abs(batch.v[k] - one.v) <= 1e-6
 
 
 def test_mixed_surface_refuses_bad_queries(families):

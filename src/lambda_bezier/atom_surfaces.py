@@ -23,6 +23,7 @@ direction's enclosures of its basis functions, hazmat.atom_bounds).
 from __future__ import annotations
 
 import math
+from dataclasses import astuple
 from fractions import Fraction
 from typing import Any, NoReturn
 
@@ -439,13 +440,21 @@ class AtomSurface(Surface):
         coefficients of Σ_c (X_c − q_c W)² and W². A mixed family: certified by a branch and
         bound on Taylor enclosures (hazmat.atom_surface_bounds), the distance within `tol`
         times the size (the net's and q's) of ``lower_bound`` (or a few hundred ulps, if
-        more), refined by Newton."""
-        return super().closest_point(q, tol)
+        more), refined by Newton; a batch's queries are searched together."""
+        if self._has_form():
+            return super().closest_point(q, tol)
+        tol = val.tolerance(tol)
+        arr = np.asarray(val.real_array(q, "q"), dtype=float)
+        if arr.ndim == 2:
+            return self._certified_closest(
+                np.array([val.as_point(r, self.dimension) for r in arr]), tol
+            )
+        one = self._certified_closest(val.as_point(q, self.dimension)[None, :], tol)
+        u, v, at, dist, low = (np.asarray(x)[0] for x in astuple(one))
+        return SurfaceClosestPoint(float(u), float(v), at, float(dist), float(low))
 
     def _closest(self, q: object, tol: float) -> SurfaceClosestPoint:
         point = val.as_point(q, self.dimension)
-        if not self._has_form():
-            return self._certified_closest(point, tol)
         rat = self.to_rational_bezier()
         h = rat.homogeneous.net
         w = h[:, :, -1]
@@ -495,14 +504,20 @@ class AtomSurface(Surface):
         *_, lo, hi = asb.coordinate_extremes(self._surface_data(), tol)
         return lo, hi
 
-    def _certified_closest(self, point: np.ndarray, tol: float) -> SurfaceClosestPoint:
+    def _certified_closest(self, points: np.ndarray, tol: float) -> SurfaceClosestPoint:
+        """The nearest points to every query of points (k, d), as arrays over the batch."""
         pu, pv = self._probes
-        tu, tv, _, lower = asb.closest(self._surface_data(), point, tol)
+        if not points.size:
+            empty = np.empty(0)
+            return SurfaceClosestPoint(empty, empty, np.empty((0, self.dimension)), empty, empty)
+        tu, tv, _, lower = asb.closest(self._surface_data(), points, tol)
         (ua, ub), (va, vb) = self.domain_u, self.domain_v
-        u, v = min(max(tu + pu._mid, ua), ub), min(max(tv + pv._mid, va), vb)
+        u, v = np.clip(tu + pu._mid, ua, ub), np.clip(tv + pv._mid, va, vb)
         at = self.evaluate(u, v)
-        dist = float(np.linalg.norm(at - point))
-        return SurfaceClosestPoint(u, v, at, dist, min(float(np.sqrt(max(lower, 0.0))), dist))
+        dist = np.linalg.norm(at - points, axis=1)
+        return SurfaceClosestPoint(
+            u, v, at, dist, np.minimum(np.sqrt(np.maximum(lower, 0.0)), dist)
+        )
 
 
 def _sums_to_one(probe: AtomCurve) -> bool:

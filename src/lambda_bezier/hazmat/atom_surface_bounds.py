@@ -74,6 +74,14 @@ def _times_net(lo: np.ndarray, hi: np.ndarray, net: np.ndarray) -> Pair:
     return _sum(low.reshape(rows, *low.shape[2:]), high.reshape(rows, *high.shape[2:]))
 
 
+def _bilinear(a: np.ndarray, tensor: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """(d, m): Σ_kl a_km T_kld b_lm for a (K, m), T (K, L, d), b (L, m) (two BLAS products;
+    einsum's path search costs more than the sums at these sizes)."""
+    inner = np.tensordot(tensor, b, axes=(1, 0))  # (K, d, m)
+    out: np.ndarray = (inner * a[:, None, :]).sum(axis=0)
+    return out
+
+
 @dataclass
 class SurfaceData:
     """A surface over centred atoms: each direction's basis as an AtomCurveData (coordinates
@@ -92,8 +100,7 @@ class SurfaceData:
     def values(self, a: int, b: int, u: np.ndarray, v: np.ndarray) -> np.ndarray:
         """(m, d): S^(a, b) at paired centred parameters, in floats."""
         bu, bv = self.basis_u.values(a, u), self.basis_v.values(b, v)
-        out: np.ndarray = np.einsum("im,ijd,jm->md", bu, self.net, bv, optimize=True)
-        return out
+        return _bilinear(bu, self.net, bv).T
 
     def enclose(
         self, a: int, b: int, u0: np.ndarray, u1: np.ndarray, v0: np.ndarray, v1: np.ndarray
@@ -125,7 +132,7 @@ class SurfaceData:
         au, av = self.basis_u._sup_atoms(ru), self.basis_v._sup_atoms(rv)
         out = []
         for a, b in ((2, 0), (1, 1), (0, 2)):
-            top = np.einsum("km,kld,lm->dm", au, self._tensor(a, b), av, optimize=True)
+            top = _bilinear(au, self._tensor(a, b), av)
             out.append(top * (1 + 64 * _U))
         return out[0], out[1], out[2]
 
@@ -154,10 +161,14 @@ class SurfaceData:
 
 @dataclass
 class _Cells:
+    """Cells [u0, u1] × [v0, v1], each of one search (`group`: a query, or a coordinate and
+    a sign): several searches run as one, their cells side by side."""
+
     u0: np.ndarray
     u1: np.ndarray
     v0: np.ndarray
     v1: np.ndarray
+    group: np.ndarray
 
     @property
     def free_u(self) -> np.ndarray:
@@ -170,7 +181,7 @@ class _Cells:
         return out
 
     def take(self, keep: np.ndarray) -> _Cells:
-        return _Cells(self.u0[keep], self.u1[keep], self.v0[keep], self.v1[keep])
+        return _Cells(self.u0[keep], self.u1[keep], self.v0[keep], self.v1[keep], self.group[keep])
 
     def centres(self) -> tuple[np.ndarray, np.ndarray]:
         return 0.5 * (self.u0 + self.u1), 0.5 * (self.v0 + self.v1)
@@ -180,23 +191,21 @@ class _Cells:
         uc, vc = self.centres()
         # the first piece of each direction: [u0, uc] if cut, else the whole [u0, u1]
         u_first = (self.u0, np.where(cut_u, uc, self.u1))
-        u_second = (uc, self.u1)
         v_first = (self.v0, np.where(cut_v, vc, self.v1))
-        v_second = (vc, self.v1)
         parts = [
             (u_first, v_first, np.ones_like(cut_u)),
-            (u_second, v_first, cut_u),
-            (u_first, v_second, cut_v),
-            (u_second, v_second, cut_u & cut_v),
+            ((uc, self.u1), v_first, cut_u),
+            (u_first, (vc, self.v1), cut_v),
+            ((uc, self.u1), (vc, self.v1), cut_u & cut_v),
         ]
-        pieces = [_Cells(uu[0][k], uu[1][k], vv[0][k], vv[1][k]) for uu, vv, k in parts]
-        return _Cells(
-            *(np.concatenate([getattr(p, f) for p in pieces]) for f in ("u0", "u1", "v0", "v1"))
-        )
+        pieces = [(uu[0][k], uu[1][k], vv[0][k], vv[1][k], self.group[k]) for uu, vv, k in parts]
+        u0, u1, v0, v1, group = (np.concatenate(col) for col in zip(*pieces, strict=True))
+        return _Cells(u0, u1, v0, v1, group)
 
 
-def _initial_cells(data: SurfaceData) -> tuple[_Cells, np.ndarray, np.ndarray]:
-    """The cells of the interior and of the four edges, and the corners (u, v)."""
+def _initial_cells(data: SurfaceData, groups: int) -> tuple[_Cells, _Cells]:
+    """The cells of the interior and of the four edges, and the corners (as cells of width
+    0), for each of `groups` searches."""
     (ua, ub), (va, vb) = data.domain_u, data.domain_v
     us, vs = np.linspace(ua, ub, START + 1), np.linspace(va, vb, START + 1)
     gu0, gv0 = np.meshgrid(us[:-1], vs[:-1], indexing="ij")
@@ -206,7 +215,14 @@ def _initial_cells(data: SurfaceData) -> tuple[_Cells, np.ndarray, np.ndarray]:
     u1 = np.concatenate([gu1.ravel(), ua * k, ub * k, us[1:], us[1:]])
     v0 = np.concatenate([gv0.ravel(), vs[:-1], vs[:-1], va * k, vb * k])
     v1 = np.concatenate([gv1.ravel(), vs[1:], vs[1:], va * k, vb * k])
-    return _Cells(u0, u1, v0, v1), np.array([ua, ua, ub, ub]), np.array([va, vb, va, vb])
+    cu, cv = np.array([ua, ua, ub, ub]), np.array([va, vb, va, vb])
+
+    def each(a: np.ndarray, b: np.ndarray, c: np.ndarray, d: np.ndarray) -> _Cells:
+        group = np.repeat(np.arange(groups), a.size)
+        a, b, c, d = (np.tile(x, groups) for x in (a, b, c, d))
+        return _Cells(a, b, c, d, group)
+
+    return each(u0, u1, v0, v1), each(cu, cu, cv, cv)
 
 
 @dataclass
@@ -311,12 +327,16 @@ def _second_order(
     return _Scalar(lo, hi, du, dv, share_u, share_v)
 
 
-def _row(p: Pair, c: int) -> Pair:
-    return p[0][c], p[1][c]
+def _row(p: Pair, c: np.ndarray) -> Pair:
+    """Coordinate c[m] of every cell m."""
+    cols = np.arange(c.size)
+    return p[0][c, cols], p[1][c, cols]
 
 
-def _coordinate(parts: _Parts, c: int) -> _Scalar:
-    muu, muv, mvv = (m[c] for m in parts.sups)
+def _coordinate(parts: _Parts, c: np.ndarray) -> _Scalar:
+    """Bounds of coordinate c[m] on cell m."""
+    cols = np.arange(c.size)
+    muu, muv, mvv = (m[c, cols] for m in parts.sups)
     return _second_order(
         parts,
         _row(parts.at, c),
@@ -346,10 +366,10 @@ def _twice(p: Pair) -> Pair:
 
 
 def _distance(parts: _Parts, q: np.ndarray) -> _Scalar:
-    """Bounds of D = |S − q|² (and of D_u / 2, D_v / 2) on the cells."""
+    """Bounds of D = |S − q_m|² (and of D_u / 2, D_v / 2) on the cells m, q (d, m)."""
 
     def shifted(p: Pair) -> Pair:
-        return p[0] - q[:, None], p[1] - q[:, None]
+        return p[0] - q, p[1] - q
 
     r, rc = shifted(parts.s), shifted(parts.at)
     su, sv = parts.su, parts.sv
@@ -389,66 +409,85 @@ def _cuts(cells: _Cells, s: _Scalar) -> tuple[np.ndarray, np.ndarray]:
     return cut_u | (neither & cells.free_u), cut_v | (neither & cells.free_v)
 
 
-Polish = Callable[[float, float], tuple[float, float]]
+Polish = Callable[[np.ndarray, np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]
+
+
+def _best_of_groups(
+    groups: np.ndarray,
+    f: np.ndarray,
+    best: np.ndarray,
+    at_u: np.ndarray,
+    at_v: np.ndarray,
+    u: np.ndarray,
+    v: np.ndarray,
+) -> np.ndarray:
+    """Takes every candidate (u, v, value f, of search `groups`) better than its search's best
+    into (best, at_u, at_v), in place; returns the searches improved (a mask)."""
+    order = np.lexsort((f, groups))
+    first = np.ones(order.size, dtype=bool)
+    first[1:] = groups[order][1:] != groups[order][:-1]
+    pick = order[first]
+    g = groups[pick]
+    better = f[pick] < best[g]
+    g, pick = g[better], pick[better]
+    best[g], at_u[g], at_v[g] = f[pick], u[pick], v[pick]
+    improved = np.zeros(best.size, dtype=bool)
+    improved[g] = True
+    return improved
 
 
 def _minimise(
     data: SurfaceData,
+    groups: int,
     bounds: Callable[[_Cells], _Scalar],
-    value: Callable[[np.ndarray, np.ndarray], np.ndarray],
-    tolerance: Callable[[float], float],
+    value: Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray],
+    tolerance: Callable[[np.ndarray], np.ndarray],
     polish: Polish | None,
     stats: Stats,
-) -> tuple[float, float, float, float]:
-    """(u, v, best, lower): the least value of f found (at centred (u, v)) and the certified
-    lower bound of f over the domain, within tolerance(best) of best (see the module's
-    docstring). `bounds` gives f's bounds on cells, `value` f at points."""
-    cells, cu, cv = _initial_cells(data)
-    cand_u, cand_v, cand_f = [cu], [cv], [value(cu, cv)]
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(u, v, best, lower), each (groups,): for each search g the least value of f_g found
+    (at centred (u, v)) and the certified lower bound of f_g over the domain, within
+    tolerance(best)_g of best (see the module's docstring). `bounds` gives f's bounds on
+    cells (each of its search), `value(u, v, g)` f_g at points."""
+    cells, corners = _initial_cells(data, groups)
+    best = np.full(groups, np.inf)
+    at_u, at_v = np.zeros(groups), np.zeros(groups)
+    cf = value(corners.u0, corners.v0, corners.group)
+    _best_of_groups(corners.group, cf, best, at_u, at_v, corners.u0, corners.v0)
     # the corners (faces of dimension 0) are candidates, bounded by their enclosures
-    lower = float(bounds(_Cells(cu, cu, cv, cv)).lo.min())
-    polished: tuple[float, float] | None = None
+    lower = np.full(groups, np.inf)
+    np.minimum.at(lower, corners.group, bounds(corners).lo)
+    fresh = np.ones(groups, dtype=bool)  # searches whose best point is not yet polished
     rounds = 0
     while cells.u0.size:
         rounds += 1
         stats.rounds += 1
         stats.intervals += cells.u0.size
-        us, vs, fs = (np.concatenate(x) for x in (cand_u, cand_v, cand_f))
-        k = int(np.argmin(fs))
-        best = float(fs[k])
-        if polish is not None and polished != (us[k], vs[k]):
-            pu, pv = polish(float(us[k]), float(vs[k]))
-            polished = (pu, pv)
-            cand_u.append(np.array([pu]))
-            cand_v.append(np.array([pv]))
-            cand_f.append(value(cand_u[-1], cand_v[-1]))
-            best = min(best, float(cand_f[-1][0]))
+        if polish is not None and fresh.any():
+            g = np.flatnonzero(fresh)
+            pu, pv = polish(at_u[g], at_v[g], g)
+            _best_of_groups(g, value(pu, pv, g), best, at_u, at_v, pu, pv)
+            fresh[:] = False
         s = bounds(cells)
-        settled = (s.hi - s.lo) <= tolerance(best)
+        settled = (s.hi - s.lo) <= tolerance(best)[cells.group]
         if rounds >= MAX_ROUNDS or cells.u0.size > MAX_OPEN:
             stats.narrow += int((~settled).sum())
             settled = np.ones_like(settled)
-        dropped = (s.lo >= best) | _one_signed(cells, s)
+        dropped = (s.lo >= best[cells.group]) | _one_signed(cells, s)
         settled &= ~dropped
-        if settled.any():
-            lower = min(lower, float(s.lo[settled].min()))
+        np.minimum.at(lower, cells.group[settled], s.lo[settled])
+        # every centre not dropped is a candidate (a settled cell's is within tol of its bound)
+        live = ~dropped
         uc, vc = cells.centres()
-        cand_u.append(uc[settled])
-        cand_v.append(vc[settled])
-        cand_f.append(value(uc[settled], vc[settled]))
+        uc, vc, gc = uc[live], vc[live], cells.group[live]
+        fresh |= _best_of_groups(gc, value(uc, vc, gc), best, at_u, at_v, uc, vc)
         keep = ~(settled | dropped)
-        if keep.any():
-            cand_u.append(uc[keep])
-            cand_v.append(vc[keep])
-            cand_f.append(value(uc[keep], vc[keep]))
         cut_u, cut_v = _cuts(cells, s)
         cells = cells.take(keep).halves(cut_u[keep], cut_v[keep])
-    us, vs, fs = (np.concatenate(x) for x in (cand_u, cand_v, cand_f))
-    k = int(np.argmin(fs))
-    u, v, best = float(us[k]), float(vs[k]), float(fs[k])
-    # the best point's own enclosure bounds the dropped cells (their bounds were >= best)
-    at = bounds(_Cells(us[k : k + 1], us[k : k + 1], vs[k : k + 1], vs[k : k + 1]))
-    return u, v, best, min(lower, best, float(at.lo[0]))
+    # the best points' own enclosures bound the dropped cells (their bounds were >= best)
+    idx = np.arange(groups)
+    at = bounds(_Cells(at_u, at_u, at_v, at_v, idx))
+    return at_u, at_v, best, np.minimum(np.minimum(lower, best), at.lo)
 
 
 def coordinate_extremes(
@@ -457,76 +496,92 @@ def coordinate_extremes(
     """(inner min, inner max, outer min, outer max), each (d,): for every coordinate the
     least and greatest values attained (at points of the surface, in floats) and certified
     bounds of it over the domain, within max(tol × the net's size, `SurfaceData.floor`) of
-    the true extremes."""
+    the true extremes. The 2d searches (coordinate c, sign ±: search 2c or 2c + 1, of sign ×
+    x_c) run as one."""
     stats = stats if stats is not None else Stats()
-    floors = data.floor()
-    size = data.size()
     dim = data.net.shape[2]
+    fixed = [data.constant(c) for c in range(dim)]
+    free = np.array([c for c in range(dim) if fixed[c] is None], dtype=int)
+    allowed = np.maximum(tol * data.size(), data.floor())
+    coord = np.repeat(free, 2)  # search -> coordinate
+    sign = np.tile([1.0, -1.0], free.size)  # search -> sign
+
+    def bounds(cells: _Cells) -> _Scalar:
+        f = _coordinate(_parts(data, cells), coord[cells.group])
+        neg = sign[cells.group] < 0
+        return _Scalar(
+            np.where(neg, -f.hi, f.lo),
+            np.where(neg, -f.lo, f.hi),
+            f.du,
+            f.dv,
+            f.share_u,
+            f.share_v,
+        )
+
+    def value(u: np.ndarray, v: np.ndarray, g: np.ndarray) -> np.ndarray:
+        out: np.ndarray = sign[g] * data.values(0, 0, u, v)[np.arange(g.size), coord[g]]
+        return out
+
+    def tolerance(_best: np.ndarray) -> np.ndarray:
+        out: np.ndarray = allowed[coord]
+        return out
+
     out = np.empty((4, dim))
+    if free.size:
+        *_, best, lower = _minimise(data, 2 * free.size, bounds, value, tolerance, None, stats)
+        out[0, free], out[2, free] = best[0::2], lower[0::2]
+        out[1, free], out[3, free] = -best[1::2], -lower[1::2]
     for c in range(dim):
-        fixed = data.constant(c)
-        if fixed is not None:
-            out[:, c] = fixed
-            continue
-        allowed = max(tol * size, float(floors[c]))
-        for sign, inner, outer in ((1.0, 0, 2), (-1.0, 1, 3)):
-
-            def bounds(cells: _Cells, c: int = c, sign: float = sign) -> _Scalar:
-                s = _coordinate(_parts(data, cells), c)
-                return s if sign > 0 else s.negated()
-
-            def value(u: np.ndarray, v: np.ndarray, c: int = c, sign: float = sign) -> np.ndarray:
-                out: np.ndarray = sign * data.values(0, 0, u, v)[:, c]
-                return out
-
-            def tolerance(_best: float, allowed: float = allowed) -> float:
-                return allowed
-
-            *_, best, lower = _minimise(data, bounds, value, tolerance, None, stats)
-            out[inner, c], out[outer, c] = sign * best, sign * lower
+        if fixed[c] is not None:
+            out[:, c] = fixed[c]
     return out[0], out[1], out[2], out[3]
 
 
 def closest(
     data: SurfaceData, q: np.ndarray, tol: float = 1e-12, stats: Stats | None = None
-) -> tuple[float, float, float, float]:
-    """(u, v, squared distance, certified lower bound of it): the point of the surface
-    (centred parameters) nearest q, the distance within max(tol × size, the floor) of the
-    certified lower bound's, size being the net's plus |q|'s (as for polynomial surfaces),
-    refined by Newton from the best point found."""
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(u, v, squared distance, certified lower bound of it), each (k,): for each query q_k
+    of q (k, d), the point of the surface (centred parameters) nearest q_k, the distance
+    within max(tol × size, the floor) of the certified lower bound's, size being the net's
+    plus |q_k|'s (as for polynomial surfaces), refined by Newton from the best point found.
+    The k searches run as one."""
     stats = stats if stats is not None else Stats()
-    size = data.size() + float(np.abs(q).max(initial=0.0))
-    gap = max(tol * size, float(data.floor().max()))
+    q = np.atleast_2d(q)
+    size = data.size() + np.abs(q).max(axis=1, initial=0.0)
+    gap = np.maximum(tol * size, float(data.floor().max()))
     (ua, ub), (va, vb) = data.domain_u, data.domain_v
 
-    def value(u: np.ndarray, v: np.ndarray) -> np.ndarray:
-        out: np.ndarray = np.square(data.values(0, 0, u, v) - q).sum(axis=1)
+    def value(u: np.ndarray, v: np.ndarray, g: np.ndarray) -> np.ndarray:
+        out: np.ndarray = np.square(data.values(0, 0, u, v) - q[g]).sum(axis=1)
         return out
 
-    def tolerance(best: float) -> float:
+    def tolerance(best: np.ndarray) -> np.ndarray:
         # a squared distance within this of best is a distance within gap of sqrt(best)
-        return float(2 * np.sqrt(max(best, 0.0)) * gap + gap * gap)
+        out: np.ndarray = 2 * np.sqrt(np.maximum(best, 0.0)) * gap + gap * gap
+        return out
 
-    def polish(u: float, v: float) -> tuple[float, float]:
-        """Newton on ∇D = 0 from (u, v), kept in the domain."""
+    def polish(u: np.ndarray, v: np.ndarray, g: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Newton on ∇D = 0 from (u, v), kept in the domain (a singular step stops)."""
         for _ in range(NEWTON_STEPS):
-            x, y = np.array([u]), np.array([v])
-            r = data.values(0, 0, x, y)[0] - q
-            su, sv = data.values(1, 0, x, y)[0], data.values(0, 1, x, y)[0]
-            suu, suv, svv = (data.values(a, b, x, y)[0] for a, b in ((2, 0), (1, 1), (0, 2)))
-            g = np.array([r @ su, r @ sv])
-            h = np.array(
-                [[su @ su + r @ suu, su @ sv + r @ suv], [su @ sv + r @ suv, sv @ sv + r @ svv]]
-            )
-            if not np.isfinite(h).all() or abs(np.linalg.det(h)) < 1e-300:
-                break
-            step = np.linalg.solve(h, g)
-            nu, nv = min(max(u - step[0], ua), ub), min(max(v - step[1], va), vb)
-            if nu == u and nv == v:
+            r = data.values(0, 0, u, v) - q[g]
+            su, sv = data.values(1, 0, u, v), data.values(0, 1, u, v)
+            suu, suv, svv = (data.values(a, b, u, v) for a, b in ((2, 0), (1, 1), (0, 2)))
+            gu, gv = (r * su).sum(1), (r * sv).sum(1)
+            huu = (su * su + r * suu).sum(1)
+            huv = (su * sv + r * suv).sum(1)
+            hvv = (sv * sv + r * svv).sum(1)
+            det = huu * hvv - huv * huv
+            ok = np.isfinite(det) & (np.abs(det) > 1e-300)
+            safe = np.where(ok, det, 1.0)
+            du = np.where(ok, (hvv * gu - huv * gv) / safe, 0.0)
+            dv = np.where(ok, (huu * gv - huv * gu) / safe, 0.0)
+            nu, nv = np.clip(u - du, ua, ub), np.clip(v - dv, va, vb)
+            if np.array_equal(nu, u) and np.array_equal(nv, v):
                 break
             u, v = nu, nv
         return u, v
 
-    return _minimise(
-        data, lambda cells: _distance(_parts(data, cells), q), value, tolerance, polish, stats
-    )
+    def bounds(cells: _Cells) -> _Scalar:
+        return _distance(_parts(data, cells), q[cells.group].T)
+
+    return _minimise(data, q.shape[0], bounds, value, tolerance, polish, stats)

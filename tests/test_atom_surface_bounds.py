@@ -281,6 +281,8 @@ def check_box(s) -> None:
 @given(nets, lams, lams, st.integers(0, 1), shapes)
 @example(PINNED_NET, 0.0, 0.0, 0, "random")
 @example(U_ONLY_NET, 0.0, 0.0, 1, "u_only")
+@example(U_ONLY_NET, 0.5, 0.25, 0, "v_only")
+@example(U_ONLY_NET, 0.5, 0.25, 1, "point")
 def test_box_is_certified_and_tight(families, raw, lam_u, lam_v, pick, shape):
     """Each bound is outside the extreme found by mpmath, and within max(1e-12 × size, the
     rounding floor) of it, on random, flat and degenerate nets of both families."""
@@ -312,6 +314,9 @@ def test_box_of_constant_and_one_direction_coordinates(families, pick):
     nets, lams, lams, st.integers(0, 1), shapes, st.lists(st.floats(-4, 4), min_size=3, max_size=3)
 )
 @example(PINNED_NET, 0.0, 0.0, 0, "random", [0.5, 0.5, 0.5])
+@example(U_ONLY_NET, 0.5, 0.25, 1, "point", [0.5, 0.5, 0.5])
+@example(U_ONLY_NET, 0.5, 0.25, 0, "plane", [1.5, 0.75, 2.0])
+@example(U_ONLY_NET, 0.0, 0.0, 1, "u_only", [0.0, -0.5, 1.0])
 def test_closest_point_is_the_global_minimum(families, raw, lam_u, lam_v, pick, shape, q):
     """The distance is within max(1e-12 × size, the floor) of the global minimum found by
     mpmath, and the certified lower bound is below it."""

@@ -16,7 +16,13 @@ the second-order form (Taylor with Lagrange's remainder in two variables)
 f and ∇f enclosed at the centre c (an interval of rounding width only) and M_ab ≥ sup |f_ab|
 over the cell, with D_uu = 2 (S_u·S_u + (S − q)·S_uu) and so on. Its width is the centre's
 rounding radius plus terms that shrink with the cell, each charged to the direction it comes
-from (`_Scalar.share_u`, `share_v`).
+from (`_Scalar.share_u`, `share_v`). The bounds M of S's second derivatives are the better
+of interval arithmetic and the surface written over products of atoms, S^(a, b) = Σ_kl G_kl
+α_k(u) β_l(v) with |S^(a, b)| ≤ Σ_kl |G_kl| sup|α_k| sup|β_l| (`SurfaceData.second_sup`, G
+computed in floats and widened by its rounding): where S does not depend on v, G's
+v-derivative is rounding only, which interval arithmetic on the bases cannot see (it forgets
+Σ_j b_j'' = 0). S_u and S_v over a cell are the better of interval arithmetic and the mean
+value form about the centre, S_u(c) ± (M_uu h_u + M_uv h_v).
 
 **Faces.** The domain is the union of its interior, its four open edges and its four
 corners; the global minimum p of f lies in the relative interior of one of them, where the
@@ -41,7 +47,8 @@ size, if that is larger: `SurfaceData.floor`). A coordinate whose net is constan
 basis that sums to one exactly (`SurfaceData.unity`), is that constant, exactly. Should the
 search exceed MAX_ROUNDS or MAX_OPEN open cells, the open cells are settled by their lower
 bounds: still certified, maybe looser than the tolerance; `Stats.narrow` counts them (0 in
-every answer the tests check).
+every answer the tests check). Several searches (a box's 2d ones: each coordinate, each sign;
+a batch of closest-point queries) run as one, their cells side by side (`_Cells.group`).
 """
 
 from __future__ import annotations

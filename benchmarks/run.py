@@ -936,6 +936,76 @@ def bench_param_surfaces(nets: int) -> None:
     )
 
 
+def bench_surface_bounds(queries: int) -> None:
+    """Certified bounding box and closest points of a bicubic at_cubic surface (a mixed
+    family: no rational form; hazmat.atom_surface_bounds) against dense sampling at 1e-9 of
+    the net's size. That reference is the grid whose spacing h makes M h²/4 <= 1e-9 × size
+    (M the sampled max of |S_uu| + 2|S_uv| + |S_vv|: the error of a grid's best point near a
+    smooth extreme), far too many points to evaluate here, so it is timed on a 1000 × 1000
+    grid and scaled by the count (a lower estimate: a distance near the surface needs more)."""
+    import lambda_bezier as lb
+
+    fam = lb.load_family(Path(__file__).parent.parent / "tests/data/families/at_cubic.toml")
+    rng = np.random.default_rng(31)
+    net = rng.normal(size=(4, 4, 3))
+    net[..., 0] += np.arange(4)[:, None]
+    net[..., 1] += np.arange(4)[None, :]
+    s = fam.surface(net, params_u={"lam": 0.5}, params_v={"lam": -0.25})
+    qs = rng.normal(size=(queries, 3)) * 2 + [1.5, 1.5, 0]
+    (ua, ub), (va, vb) = s.domain_u, s.domain_v
+    probe = np.linspace(ua, ub, 201), np.linspace(va, vb, 201)
+    uu, vv = (g.ravel() for g in np.meshgrid(*probe, indexing="ij"))
+    bend = sum(
+        w * np.abs(s.derivative(uu, vv, a, b)).max()
+        for (a, b), w in (((2, 0), 1), ((1, 1), 2), ((0, 2), 1))
+    )
+    size = float(np.abs(net).max())
+    h = math.sqrt(4e-9 * size / bend)
+    count = (math.ceil((ub - ua) / h) + 1) * (math.ceil((vb - va) / h) + 1)
+    side = 1000
+    us, vs = np.linspace(ua, ub, side), np.linspace(va, vb, side)
+    s.bounding_box()  # the atom tensors, once per surface
+
+    def sampled_box():
+        g = s.evaluate_grid(us, vs)
+        return g.min(axis=(0, 1)), g.max(axis=(0, 1))
+
+    grid = s.evaluate_grid(us, vs)
+    q0 = qs[0]
+    t = interleaved(
+        {"box": s.bounding_box, "grid": sampled_box, "one": lambda: s.closest_point(q0)}, 3
+    )
+    per_query = best_of(lambda: ((grid - q0) ** 2).sum(axis=-1).min(), 3)
+    scale = count / side**2
+    many = best_of(lambda: s.closest_point(qs), 1)
+    note = f"dense sampling at 1e-9, {count:.2g} points (scaled from {side}x{side})"
+    record(
+        "at_cubic bicubic surface: certified bounding box",
+        t["box"],
+        note,
+        t["grid"] * scale,
+        "faster",
+        t["box"] <= t["grid"] * scale,
+    )
+    record(
+        "the same: one certified closest point",
+        t["one"],
+        note + ", one query",
+        (t["grid"] + per_query) * scale,
+        "faster",
+        t["one"] <= (t["grid"] + per_query) * scale,
+    )
+    ref_many = (t["grid"] + queries * per_query) * scale
+    record(
+        f"the same: {queries:,} closest points (one batch)",
+        many,
+        note + f", {queries:,} queries",
+        ref_many,
+        "faster",
+        many <= ref_many,
+    )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="smaller sizes (smoke test)")
@@ -952,6 +1022,7 @@ def main() -> None:
         "compile",
         "surfaces",
         "param_surfaces",
+        "surface_bounds",
         "derive",
         "verify",
         "import",
@@ -984,6 +1055,7 @@ def main() -> None:
             300 if args.quick else 1000, 1000 if args.quick else 10_000, 10_000
         ),
         "param_surfaces": lambda: bench_param_surfaces(1000 if args.quick else 10_000),
+        "surface_bounds": lambda: bench_surface_bounds(100 if args.quick else 1000),
         "derive": bench_derive,
         "verify": bench_verify,
         "import": bench_import,

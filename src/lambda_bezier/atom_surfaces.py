@@ -15,18 +15,21 @@ bounding box, the closest point and STEP export go through it, with parameters r
 the families' t. The box and the closest point are certified as for polynomial surfaces: a
 branch and bound in which a patch's bound is the least ratio of the numerator's and the
 (positive) denominator's Bernstein coefficients. Mixed families have no rational form; their
-box and closest point are numeric (a dense grid, then Newton), **not certified**.
+box and closest point are certified by a branch and bound over (u, v) on rigorous Taylor
+enclosures of S and its partial derivatives (hazmat.atom_surface_bounds, built on each
+direction's enclosures of its basis functions, hazmat.atom_bounds).
 
 One direction may be a polynomial family instead (`_poly_direction.PolyProbe`: its basis on
 [0, 1], and its Bernstein form as a rational form with every weight 1 and s = t), so that a
 trigonometric or hyperbolic family across a polynomial one goes through the rational form as
 above; a mixed family across a polynomial one refuses the box and the closest point, naming
-the reason (no rational form, and no certified enclosure of such surfaces yet).
+the reason (no rational form, and the Taylor enclosures take two atom directions only).
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import astuple
 from fractions import Fraction
 from typing import Any, NoReturn
 
@@ -35,8 +38,10 @@ import numpy.typing as npt
 
 from . import _poly_direction as pd
 from . import _validate as val
+from ._atom_geometry import _bounds_data
 from ._validate import ParamLike
 from .atom_family import AtomCurve
+from .hazmat import atom_surface_bounds as asb
 from .hazmat import surface_kernels as ker
 from .surfaces import BezierSurface, NetLike, Surface, SurfaceClosestPoint, _as_net, _exact_net
 
@@ -443,11 +448,13 @@ class AtomSurface(Surface):
     def bounding_box(self, tol: float = 1e-12) -> tuple[np.ndarray, np.ndarray]:
         """(lo, hi): the axis-aligned box of the surface over its domain. Through the rational
         form: each bound certified within `tol` times the net's size (branch and bound on the
-        ratio of the homogeneous net's coordinate and weight). A mixed family: numeric."""
+        ratio of the homogeneous net's coordinate and weight). A mixed family: certified by a
+        branch and bound on Taylor enclosures (hazmat.atom_surface_bounds), each bound within
+        `tol` times the net's size of the extreme (or a few hundred ulps, if more)."""
         tol = val.tolerance(tol)
         if not self._has_form():
             self._refuse_uncertified("bounding_box")
-            return self._numeric_box()
+            return self._certified_box(tol)
         h = self.to_rational_bezier().homogeneous.net
         w = h[:, :, -1]
         size = float(np.abs(h[:, :, :-1] / w[:, :, None]).max()) or 1.0
@@ -469,14 +476,25 @@ class AtomSurface(Surface):
         """The global nearest point to q ((d,), or a batch (k, d)), u and v in the families' t.
         Through the rational form: certified as for polynomial surfaces (``lower_bound``),
         the squared distance's bound on a patch being the least ratio of the Bernstein
-        coefficients of Σ_c (X_c − q_c W)² and W². A mixed family: numeric (lower_bound 0)."""
-        return super().closest_point(q, tol)
+        coefficients of Σ_c (X_c − q_c W)² and W². A mixed family: certified by a branch and
+        bound on Taylor enclosures (hazmat.atom_surface_bounds), the distance within `tol`
+        times the size (the net's and q's) of ``lower_bound`` (or a few hundred ulps, if
+        more), refined by Newton; a batch's queries are searched together."""
+        if self._has_form():
+            return super().closest_point(q, tol)
+        self._refuse_uncertified("closest_point")
+        tol = val.tolerance(tol)
+        arr = np.asarray(val.real_array(q, "q"), dtype=float)
+        if arr.ndim == 2:
+            return self._certified_closest(
+                np.array([val.as_point(r, self.dimension) for r in arr]), tol
+            )
+        one = self._certified_closest(val.as_point(q, self.dimension)[None, :], tol)
+        u, v, at, dist, low = (np.asarray(x)[0] for x in astuple(one))
+        return SurfaceClosestPoint(float(u), float(v), at, float(dist), float(low))
 
     def _closest(self, q: object, tol: float) -> SurfaceClosestPoint:
         point = val.as_point(q, self.dimension)
-        if not self._has_form():
-            self._refuse_uncertified("closest_point")
-            return self._numeric_closest(point)
         rat = self.to_rational_bezier()
         h = rat.homogeneous.net
         w = h[:, :, -1]
@@ -507,57 +525,66 @@ class AtomSurface(Surface):
         return SurfaceClosestPoint(u, v, at, float(np.sqrt(best)), float(np.sqrt(lower)))
 
     def _refuse_uncertified(self, what: str) -> None:
-        """A mixed atom family across a polynomial one: no rational form, and the numeric
-        fallback of two mixed directions is not offered for these new surfaces (a certified
-        enclosure of mixed-family surfaces is hazmat work not in this runtime yet)."""
+        """A mixed atom family across a polynomial one: no rational form, and the Taylor
+        enclosures of hazmat.atom_surface_bounds take two atom directions only."""
         poly = [p.family for p in self._probes if isinstance(p, pd.PolyProbe)]
         if poly:
             atom = next(p.family for p in self._probes if not isinstance(p, pd.PolyProbe))
             raise ValueError(
                 f"{what}: {atom} is a mixed algebraic-trigonometric/hyperbolic family (no "
                 f"rational form) across {poly[0]}, so there is no certified {what} of this "
-                "surface yet (the certified enclosures of mixed-family surfaces are not "
-                "built); evaluate it on a grid, or mesh it (surface_export.mesh)"
+                "surface yet (the certified enclosures of mixed-family surfaces take two "
+                "atom directions only); evaluate it on a grid, or mesh it (surface_export.mesh)"
             )
 
-    # numeric fallbacks of a mixed family (no rational form): not certified
-    def _grid(self, count: int = 65) -> tuple[np.ndarray, np.ndarray]:
-        (a, b), (c, d) = self.domain_u, self.domain_v
-        return np.linspace(a, b, count), np.linspace(c, d, count)
+    # a mixed family (no rational form): hazmat.atom_surface_bounds
+    def _surface_data(self) -> asb.SurfaceData:
+        cached: asb.SurfaceData | None = self.__dict__.get("_surface_bounds")
+        if cached is None:
+            pu, pv = self._probes
+            (ua, ub), (va, vb) = pu.domain, pv.domain
+            cached = asb.SurfaceData(
+                _bounds_data(pu),
+                _bounds_data(pv),
+                (ua - pu._mid, ub - pu._mid),
+                (va - pv._mid, vb - pv._mid),
+                self.net * (pu._scale * pv._scale),
+                _sums_to_one(pu) and _sums_to_one(pv),
+            )
+            self.__dict__["_surface_bounds"] = cached
+        return cached
 
-    def _numeric_box(self) -> tuple[np.ndarray, np.ndarray]:
-        us, vs = self._grid()
-        vals = self.evaluate_grid(us, vs).reshape(-1, self.dimension)
-        return vals.min(axis=0), vals.max(axis=0)
+    def _certified_box(self, tol: float) -> tuple[np.ndarray, np.ndarray]:
+        *_, lo, hi = asb.coordinate_extremes(self._surface_data(), tol)
+        return lo, hi
 
-    def _numeric_closest(self, point: np.ndarray) -> SurfaceClosestPoint:
-        us, vs = self._grid()
-        vals = self.evaluate_grid(us, vs)
-        d2 = ((vals - point) ** 2).sum(axis=-1)
-        i, j = np.unravel_index(int(np.argmin(d2)), d2.shape)
-        u, v = float(us[i]), float(vs[j])
+    def _certified_closest(self, points: np.ndarray, tol: float) -> SurfaceClosestPoint:
+        """The nearest points to every query of points (k, d), as arrays over the batch."""
+        pu, pv = self._probes
+        if not points.size:
+            empty = np.empty(0)
+            return SurfaceClosestPoint(empty, empty, np.empty((0, self.dimension)), empty, empty)
+        tu, tv, _, lower = asb.closest(self._surface_data(), points, tol)
         (ua, ub), (va, vb) = self.domain_u, self.domain_v
-        for _ in range(30):  # Newton on the gradient of |S - q|², kept in the domain
-            su, sv = self.derivative(u, v, 1, 0), self.derivative(u, v, 0, 1)
-            r = self.evaluate(u, v) - point
-            suu, suv, svv = (self.derivative(u, v, a, b) for a, b in ((2, 0), (1, 1), (0, 2)))
-            g = np.array([r @ su, r @ sv])
-            hm = np.array(
-                [[su @ su + r @ suu, su @ sv + r @ suv], [su @ sv + r @ suv, sv @ sv + r @ svv]]
-            )
-            if not np.isfinite(hm).all() or abs(np.linalg.det(hm)) < 1e-300:
-                break
-            step = np.linalg.solve(hm, g)
-            nu, nv = min(max(u - step[0], ua), ub), min(max(v - step[1], va), vb)
-            if math.isclose(nu, u, abs_tol=1e-16) and math.isclose(nv, v, abs_tol=1e-16):
-                break
-            u, v = nu, nv
+        u, v = np.clip(tu + pu._mid, ua, ub), np.clip(tv + pv._mid, va, vb)
         at = self.evaluate(u, v)
-        dist = float(np.linalg.norm(at - point))
-        best = float(np.sqrt(d2[i, j]))
-        if best < dist:
-            u, v, at, dist = float(us[i]), float(vs[j]), vals[i, j], best
-        return SurfaceClosestPoint(u, v, at, dist, 0.0)
+        dist = np.linalg.norm(at - points, axis=1)
+        return SurfaceClosestPoint(
+            u, v, at, dist, np.minimum(np.sqrt(np.maximum(lower, 0.0)), dist)
+        )
+
+
+def _sums_to_one(probe: AtomCurve) -> bool:
+    """Whether the direction's basis functions sum to one exactly (their exact atom
+    coefficients summed: 1 on the constant atom, 0 on every other)."""
+    rows = probe.basis_coefficients
+    try:
+        sums = [sum(col) for col in zip(*rows, strict=True)]
+        return all(
+            s == (1 if a.kind == "1" else 0) for s, a in zip(sums, probe.shape.atoms, strict=True)
+        )
+    except (TypeError, ValueError):
+        return False
 
 
 def _no_polish(u: float, v: float) -> tuple[float, float]:

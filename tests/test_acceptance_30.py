@@ -275,3 +275,11 @@ def test_load_family_names_a_path_that_is_no_path(args, needle):
     # load_family(3) raised pathlib's "expected str, bytes or os.PathLike object, not int"
     with pytest.raises(TypeError, match=f"{needle} a file path \\(str or Path\\), got int"):
         lb.load_family(*args)
+
+
+def test_a_curve_energy_order_given_as_text_is_named():
+    # a polygon with k = "2": the order of E_k, not a surface energy's name
+    with pytest.raises(TypeError, match=r"energy: a control polygon .* as an int, got '2'"):
+        lb.optimal_parameters([(0, 0), (1, 2), (3, 1), (4, 0)], "2")
+    with pytest.raises(ValueError, match="unknown energy 'bad'"):  # a net: the names offered
+        lb.optimal_parameters([[(0, 0, 0), (1, 0, 0)], [(0, 1, 0), (1, 1, 1)]], "bad")

@@ -390,6 +390,14 @@ def _all_exact(
     )
 
 
+def _is_polygon(points: object) -> bool:
+    """Whether `points` reads as one curve's control polygon (n+1, d), not a surface's net."""
+    try:
+        return np.ndim(np.asarray(points, dtype=object)) == 2
+    except ValueError:  # ragged: not a polygon either
+        return False
+
+
 def optimal_parameters(
     net: NetLike,
     energy: str | int = "thin_plate",
@@ -414,6 +422,11 @@ def optimal_parameters(
         if k is not None and energy != "thin_plate":
             raise TypeError("give the curve energy's order once: as energy or as k")
         return curve_optimal_parameters(net, cast(int, order), family)  # type: ignore[arg-type]
+    if isinstance(energy, str) and energy not in ENERGIES and _is_polygon(net):
+        raise TypeError(
+            f"energy: a control polygon (n+1 points) takes the order k of the curve energy "
+            f"E_k as an int, got {energy!r}; a surface's net takes 'thin_plate' or 'membrane'"
+        )
     energy = val.choice(energy, "energy", tuple(ENERGIES))
     if _param_families(family):  # several/indexed parameters, trigonometric...: certified
         return param_optimal_parameters(net, energy, family)  # type: ignore[return-value]

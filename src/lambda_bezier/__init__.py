@@ -23,6 +23,7 @@ if TYPE_CHECKING:
     from .atom_family import AtomCurve
     from .batch import evaluate_many
     from .builtin_curves import BernsteinLikeCurve, SameDegreeCurve
+    from .builtin_family import BuiltinFamily, builtin_family
     from .builtin_surfaces import BernsteinLikeSurface, SameDegreeSurface
     from .composite import CompositeCurve, JointReport
     from .curves import FAMILIES, BezierCurve, Curve
@@ -66,6 +67,8 @@ _EXPORTS = {
     "OptimalParameters": "parameter_optimum",
     "Family": "family",
     "load_family": "family",
+    "BuiltinFamily": "builtin_family",
+    "builtin_family": "builtin_family",
     "intersect_exact": "intersection",
     "intersect_many": "intersection",
     "Joint": "joins",
@@ -93,6 +96,7 @@ __all__ = [
     "BernsteinLikeSurface",
     "BezierCurve",
     "BezierSurface",
+    "BuiltinFamily",
     "CompositeCurve",
     "CompositeSurface",
     "ConstantFraction",
@@ -110,6 +114,7 @@ __all__ = [
     "SurfaceOptimalParameters",
     "energy_coefficients",
     "energy_matrices",
+    "builtin_family",
     "evaluate_many",
     "intersect_exact",
     "intersect_many",

@@ -24,6 +24,7 @@ from fractions import Fraction
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from . import curves as _curves
 from ._atom_document import AtomData, _fraction
 
 # re-exported: they lived here before derive needed them without numpy (issue #29)
@@ -753,6 +754,11 @@ def load_family(path: str | Path, derived: str | Path | None = None) -> Family |
     for value, what in ((path, "path"), (derived, "derived")):
         if value is not None and not isinstance(value, str | os.PathLike):
             raise TypeError(f"{what} must be a file path (str or Path), got {type(value).__name__}")
+    if isinstance(path, str) and path in _curves.FAMILIES and not Path(path).exists():
+        raise FamilyFileError(
+            f"{path}: a built-in family, not a file: lambda_bezier.builtin_family({path!r}) "
+            "gives it as a family object (curve, surface)"
+        )
     path = Path(path)
     table = read_family_table(path)
     name = _family_name(table, str(path))

@@ -93,7 +93,7 @@ class BuiltinFamily(str):
         lam = self._value(value, named, params)
         if not self.parameters:
             return self.curve_class(points)
-        return self.curve_class(points, lam, check_range=check_range)  # type: ignore[call-arg]
+        return self.curve_class(points, lam, check_range=check_range)
 
     def surface(
         self,

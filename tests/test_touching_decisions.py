@@ -56,8 +56,9 @@ def test_no_document_is_left_undecided(path):
             assert verdict.get("independent", True) is not None
 
 
-def test_committed_documents_of_the_new_families_are_current():
-    for name in [
+@pytest.mark.parametrize(
+    "name",
+    [
         "touch_two_shape_quadratic",
         "touch_trig_quadratic",
         "touch_mixed_quadratic",
@@ -65,9 +66,12 @@ def test_committed_documents_of_the_new_families_are_current():
         "line_three_trig_quadratic",
         "touch_hyp_quadratic",
         "touch_point_quadratic",
-    ]:
-        derived = derive_document(read_definition(DATA / f"{name}.toml"))
-        assert json.loads(json.dumps(derived)) == _doc(name), name
+    ],
+)
+def test_committed_documents_of_the_new_families_are_current(name):
+    # one derivation per test, so that pytest-xdist spreads the seven over the workers
+    derived = derive_document(read_definition(DATA / f"{name}.toml"))
+    assert json.loads(json.dumps(derived)) == _doc(name), name
 
 
 # --------------------------------------------------------------------------- polynomial, touching

@@ -14,6 +14,19 @@ from reference import FAMILIES, Family  # noqa: E402
 
 import lambda_bezier as lb  # noqa: E402
 
+
+@pytest.fixture(autouse=True)
+def _mpmath_precision_restored():
+    """Each test leaves mpmath's global precision as it found it: a test that sets mp.dps in
+    its body would otherwise change the references of whichever test pytest-xdist runs next
+    in the same worker (a comparison with mp.pi failed that way on CI only)."""
+    import mpmath
+
+    dps = mpmath.mp.dps
+    yield
+    mpmath.mp.dps = dps
+
+
 # The default run is reproducible: the same examples on every run and every machine (CI
 # included), so a red run is a bug to fix, not a draw. `pytest --hypothesis-profile=fuzz`
 # draws new random examples on every run (run it when changing an algorithm).

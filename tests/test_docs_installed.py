@@ -49,7 +49,10 @@ NOT_RUNNABLE = {
 
 def _clean_env(**extra: str) -> dict[str, str]:
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
-    return {**env, "MPLBACKEND": "Agg", **extra}
+    # the wheel's examples on the numpy fallbacks: its numba kernels would compile anew in
+    # the throwaway venv (minutes of CPU, nothing the checkout's own doctests do not run
+    # compiled already), and the fallbacks' answers are the documented ones too
+    return {**env, "MPLBACKEND": "Agg", "LAMBDA_BEZIER_NO_NUMBA": "1", **extra}
 
 
 @pytest.fixture(scope="session")

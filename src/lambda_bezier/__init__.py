@@ -23,7 +23,7 @@ if TYPE_CHECKING:
     from .atom_family import AtomCurve
     from .batch import evaluate_many
     from .builtin_curves import BernsteinLikeCurve, SameDegreeCurve
-    from .builtin_family import BuiltinFamily, builtin_family
+    from .builtin_families import BuiltinFamily, builtin_family
     from .builtin_surfaces import BernsteinLikeSurface, SameDegreeSurface
     from .composite import CompositeCurve, JointReport
     from .curves import FAMILIES, BezierCurve, Curve
@@ -67,8 +67,8 @@ _EXPORTS = {
     "OptimalParameters": "parameter_optimum",
     "Family": "family",
     "load_family": "family",
-    "BuiltinFamily": "builtin_family",
-    "builtin_family": "builtin_family",
+    "BuiltinFamily": "builtin_families",
+    "builtin_family": "builtin_families",
     "intersect_exact": "intersection",
     "intersect_many": "intersection",
     "Joint": "joins",

@@ -12,9 +12,9 @@ Examples
 >>> import lambda_bezier as lb
 >>> fam = lb.builtin_family("same_degree")
 >>> fam
-BuiltinFamily('same_degree', lam in [-2, 1])
+BuiltinFamily('same_degree', lam in (-2, 1])
 >>> fam.curve([(0, 0), (1, 2), (3, 2), (4, 0)], lam=0).evaluate(0.5)
-array([2. , 1.5])
+array([2., 1.])
 >>> net = [[(i, j, (i * j) % 3) for j in range(4)] for i in range(4)]
 >>> surf = fam.surface(net, 0, 0.5)
 >>> type(surf).__name__, surf.evaluate(0.5, 0.5).shape

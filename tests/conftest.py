@@ -184,3 +184,21 @@ def surface_families():
         lb.load_family(data / "hyp_two_shape_cubic.toml"),
         lb.load_family(data / "at_pi_cubic.toml"),
     )
+
+
+def occt_surface(path):
+    """The first face's Geom surface of the STEP file `path`, read back by OCCT (OCP); the
+    read must succeed. Skips where OCP is not installed."""
+    pytest.importorskip("OCP")
+    from OCP.BRep import BRep_Tool
+    from OCP.IFSelect import IFSelect_ReturnStatus
+    from OCP.STEPControl import STEPControl_Reader
+    from OCP.TopAbs import TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+
+    reader = STEPControl_Reader()
+    assert reader.ReadFile(str(path)) == IFSelect_ReturnStatus.IFSelect_RetDone
+    reader.TransferRoots()
+    face = TopoDS.Face(TopExp_Explorer(reader.OneShape(), TopAbs_FACE).Current())
+    return BRep_Tool.Surface_s(face)

@@ -12,7 +12,7 @@ from fractions import Fraction as F
 import mpmath
 import numpy as np
 import pytest
-from conftest import surface_families
+from conftest import occt_surface, surface_families
 
 import lambda_bezier as lb
 from lambda_bezier import examples
@@ -375,21 +375,9 @@ def test_json_round_trip(fam, pu, pv):
 
 
 def test_step_export_read_back_by_occt(tmp_path):
-    pytest.importorskip("OCP")
-    from OCP.BRep import BRep_Tool
-    from OCP.IFSelect import IFSelect_ReturnStatus
-    from OCP.STEPControl import STEPControl_Reader
-    from OCP.TopAbs import TopAbs_FACE
-    from OCP.TopExp import TopExp_Explorer
-    from OCP.TopoDS import TopoDS
-
     s = trig_surface()
     path = se.to_step_surface(s, tmp_path / "trig.step")
-    reader = STEPControl_Reader()
-    assert reader.ReadFile(str(path)) == IFSelect_ReturnStatus.IFSelect_RetDone
-    reader.TransferRoots()
-    exp = TopExp_Explorer(reader.OneShape(), TopAbs_FACE)
-    surf = BRep_Tool.Surface_s(TopoDS.Face(exp.Current()))
+    surf = occt_surface(path)
     assert surf.IsURational() and surf.IsVRational()  # the weights are kept
     for u, v in ((0.1, 0.2), (1.0, 0.4), (0.7, 1.5)):
         p = surf.Value(float(s.s_of_t(0, u)), float(s.s_of_t(1, v)))

@@ -361,16 +361,16 @@ def overflow_allowed() -> np.errstate:
     return np.errstate(over="ignore", invalid="ignore")
 
 
-def as_point(point: object, dimension: int) -> np.ndarray:
+def as_point(point: object, dimension: int, name: str = "point") -> np.ndarray:
     """One point as a (d,) float array matching the curve's dimension, all finite."""
     try:
         arr = np.array(point, dtype=float)
     except (TypeError, ValueError):
         raise ValueError(
-            f"point must be a sequence of {dimension} numbers, got {point!r}"
+            f"{name} must be a sequence of {dimension} numbers, got {point!r}"
         ) from None
     if arr.shape != (dimension,):
-        raise ValueError(f"point must have shape ({dimension},), got shape {arr.shape}")
+        raise ValueError(f"{name} must have shape ({dimension},), got shape {arr.shape}")
     if not np.all(np.isfinite(arr)):
-        raise ValueError(f"point has a non-finite coordinate: {arr.tolist()}")
+        raise ValueError(f"{name} has a non-finite coordinate: {arr.tolist()}")
     return arr

@@ -313,6 +313,13 @@ class Family:
         name), e.g. a trigonometric family across a polynomial one; default this family."""
         from .param_surfaces import family_surface
 
+        if isinstance(family_v, str):
+            from .curves import family_class
+
+            try:
+                family_class(family_v)
+            except ValueError as exc:
+                raise ValueError(f"family_v: {exc}") from None
         pair: Any = self if family_v is None else (self, family_v)
         if type(self) is Family and self.several is None and params_u is params_v is None:
             from .surfaces import Surface

@@ -287,6 +287,8 @@ def surface_from_json(text: str, *, family: object = None, check_range: bool = T
     how to get it (`lambda-bezier export --format family` writes the embedded definition)."""
     from .curves import FAMILIES
 
+    if not isinstance(text, str | bytes | bytearray):
+        raise TypeError(f"text must be a JSON string, got {type(text).__name__}")
     try:
         doc = json.loads(text)
     except (TypeError, json.JSONDecodeError) as exc:

@@ -122,6 +122,7 @@ def join_surface(
                 "with a constant alpha; give the new parameters as params={...} (not lam or mu)"
             )
         conditions = val.choice(conditions, "conditions", CONDITIONS)
+        degree = val.integer(degree, "degree")
         return _join_param_surface(  # type: ignore[no-any-return]
             patch, axis, continuity, degree, rest, alpha, family, params, check_range, conditions
         )
@@ -446,17 +447,24 @@ class CompositeSurface:
     families' domains for a patch of trigonometric, hyperbolic or mixed families)."""
 
     def __init__(self, patches: Sequence[Sequence[Surface]], *, tol: float = 1e-12) -> None:
-        grid = [list(row) for row in patches]
+        try:  # a surface, or a row of them, is not iterable
+            grid = [list(row) for row in patches]
+        except TypeError:
+            raise TypeError(
+                "patches must be a grid of surfaces, a list of rows: [[patch]] for one patch, "
+                "[[a], [b]] for b across a's boundary u = 1, [[a, b]] across v = 1"
+            ) from None
         if not grid or not grid[0] or any(len(row) != len(grid[0]) for row in grid):
             raise ValueError("patches must be a non-empty rectangular grid (a list of equal rows)")
         for row in grid:
             for p in row:
                 if not isinstance(p, Surface):
                     raise TypeError(
-                        f"every patch must be a lambda_bezier surface, got {type(p).__name__}"
+                        f"patches: every patch must be a lambda_bezier surface, got "
+                        f"{type(p).__name__}"
                     )
         if len({p.dimension for row in grid for p in row}) != 1:
-            raise ValueError("all patches must have the same dimension")
+            raise ValueError("patches: all patches must have the same dimension")
         self.patches = grid
         self.tol = val.tolerance(tol)
 

@@ -433,7 +433,9 @@ def optimal_parameters(
     u_cls, v_cls = _as_family_pair(family)
     u_box, v_box = _box(u_cls), _box(v_cls)
     if u_box is None and v_box is None:
-        raise ValueError("neither direction of a classical Bézier surface has a shape parameter")
+        raise ValueError(
+            "family: neither direction of a classical Bézier surface has a shape parameter"
+        )
     arr = np.asarray(val.real_array(net, "net"), dtype=float)
     if arr.ndim == 4:
         return optimal_parameters_batch(arr, energy, family)

@@ -27,6 +27,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from . import _surface_shapes as _shapes
 from . import _validate as val
 from ._validate import ParamLike
 from .curves import BezierCurve, Curve, Matrix, _identity, _tables, family_class
@@ -175,6 +176,10 @@ class Surface:
     the classical Bézier family takes no parameter (pass None).
     """
 
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        _shapes.wrap_overrides(cls)  # an overridden derivative takes meshgrids too
+
     def __init__(
         self,
         net: NetLike,
@@ -285,9 +290,11 @@ class Surface:
     # ------------------------------------------------------------------ evaluation
     def evaluate(self, u: ParamLike, v: ParamLike, *, extrapolate: bool = False) -> np.ndarray:
         """S(u, v) at paired parameters: (d,) for scalars, (k, d) for arrays of length k (a
-        scalar pairs with every entry of the other)."""
+        scalar pairs with every entry of the other); u, v of any shapes that broadcast
+        together (a meshgrid): their shape + (d,)."""
         return self.derivative(u, v, 0, 0, extrapolate=extrapolate)
 
+    @_shapes.grid_shaped
     def derivative(
         self, u: ParamLike, v: ParamLike, du: int = 1, dv: int = 0, *, extrapolate: bool = False
     ) -> np.ndarray:
@@ -372,11 +379,13 @@ class Surface:
             )
         return uu, vv, su, sv, cross / size[:, None], np.array(scalar), safe
 
+    @_shapes.grid_shaped
     def normal(self, u: ParamLike, v: ParamLike) -> np.ndarray:
         """The unit normal S_u × S_v / ‖S_u × S_v‖ (3D); a ValueError where it vanishes."""
         *_, n, scalar, _ = self._frame(u, v)
         return n[0] if scalar else n
 
+    @_shapes.grid_shaped
     def curvatures(self, u: ParamLike, v: ParamLike) -> tuple[np.ndarray, np.ndarray]:
         """(K, H): Gaussian and mean curvature (H's sign follows the normal S_u x S_v); a
         ValueError where the normal is undefined."""
@@ -505,17 +514,18 @@ class Surface:
         tol = val.tolerance(tol)
         arr = np.asarray(val.real_array(q, "q"), dtype=float)
         if arr.ndim == 2:
-            found = [self._closest(row, tol) for row in arr]
+            rows = [val.as_point(row, self.dimension, "q") for row in arr]
+            found = [self._closest(row, tol) for row in rows]
             return SurfaceClosestPoint(
                 *(
                     np.array([getattr(r, f) for r in found])
                     for f in ("u", "v", "point", "distance", "lower_bound")
                 )
             )
-        return self._closest(q, tol)
+        return self._closest(val.as_point(q, self.dimension, "q"), tol)
 
     def _closest(self, q: object, tol: float) -> SurfaceClosestPoint:
-        point = val.as_point(q, self.dimension)
+        point = val.as_point(q, self.dimension, "q")
         net = self._bezier_net - point
         size = float(np.abs(self._bezier_net).max()) + float(np.abs(point).max()) or 1.0
         f_net = sum(

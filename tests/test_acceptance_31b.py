@@ -363,3 +363,44 @@ def test_verify_finds_a_misprinted_surface_claim(tmp_path: Path):
     assert verdict == {"b.ok": "match", "b.misprint": "mismatch", "c.misprint": "mismatch"}
     assert f"B_21('1/3', '1/4'): printed {bad[2][1]}, derived {vals[2][1]}" in run.stdout
     assert "S(0, 1): printed P_01, derived weights at [(0, 2)]" in run.stdout
+
+
+# ---------------------------------------------------------------------- plots
+# row 0 of the net is one point: the edge u = 0 collapses (the normal is undefined on it)
+COLLAPSED = [[(0, 0, 0)] * 4] + [[(i, j, (i * j) % 3) for j in range(4)] for i in range(1, 4)]
+
+
+@pytest.mark.parametrize(
+    "surf",
+    [
+        lb.SameDegreeSurface(COLLAPSED, F(1, 2), F(-1, 3)),
+        lb.BezierSurface(COLLAPSED),
+        lb.load_family(examples.path("nouri_saeidian.toml")).surface(COLLAPSED, F(1, 2), 1),
+        _fam("han_trig_cubic").surface(
+            COLLAPSED, params_u={"lam": F(1, 2), "mu": -1}, params_v={"lam": 0, "mu": 0}
+        ),
+    ],
+    ids=["same_degree", "bezier", "nouri_saeidian", "han_trig_cubic"],
+)
+@pytest.mark.parametrize("curvature", ["gaussian", "mean"])
+def test_curvature_colouring_of_a_surface_with_a_collapsed_edge(surf, curvature):
+    """Before: plot_surface(surf) raised "the normal is undefined at (u, v) = (0.0, 0.0)" for
+    any surface with one degenerate sample point. Now those points are left uncoloured (NaN,
+    drawn grey) and every other point has the surface's own curvature there."""
+    matplotlib = pytest.importorskip("matplotlib")
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from lambda_bezier.surface_plot import _curvature_values, plot_surface
+
+    ax = plot_surface(surf, curvature=curvature, samples=12)
+    assert ax.collections  # the surface was drawn
+    plt.close("all")
+    (u0, u1), (v0, v1) = getattr(surf, "domain_u", (0, 1)), getattr(surf, "domain_v", (0, 1))
+    uu, vv = np.meshgrid(np.linspace(u0, u1, 12), np.linspace(v0, v1, 12), indexing="ij")
+    values = _curvature_values(surf, uu, vv, curvature == "gaussian")
+    assert np.isnan(values[0]).all()  # the collapsed edge u = u0
+    assert np.isfinite(values[1:]).all()
+    pick = 0 if curvature == "gaussian" else 1
+    for idx in [(1, 0), (5, 7), (11, 11)]:
+        assert values[idx] == surf.curvatures(uu[idx], vv[idx])[pick]

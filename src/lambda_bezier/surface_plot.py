@@ -6,6 +6,7 @@ optionally with its control net and coloured by Gaussian or mean curvature, and 
 
 from __future__ import annotations
 
+import contextlib
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -61,12 +62,12 @@ def plot_surface(
     kwargs: dict[str, Any] = {"linewidth": 0, "antialiased": True, "alpha": 0.9}
     if curvature != "none":
         uu, vv = np.meshgrid(tu, tv, indexing="ij")
-        gauss, mean = surf.curvatures(uu.ravel(), vv.ravel())
-        values = (gauss if curvature == "gaussian" else mean).reshape(samples, samples)
+        values = _curvature_values(surf, uu, vv, curvature == "gaussian")
         # the colour of a quad is that of its first corner: centre the map on zero
-        top = float(np.abs(values).max()) or 1.0
-        norm = colors.Normalize(-top, top)
-        kwargs["facecolors"] = plt.get_cmap(cmap)(norm(values))
+        top = float(np.nanmax(np.abs(values))) if np.isfinite(values).any() else 0.0
+        norm = colors.Normalize(-(top or 1.0), top or 1.0)
+        colour_map = plt.get_cmap(cmap).with_extremes(bad="0.6")
+        kwargs["facecolors"] = colour_map(norm(np.ma.masked_invalid(values)))
         mappable = cm.ScalarMappable(norm=norm, cmap=cmap)
         mappable.set_array(values)
         ax.figure.colorbar(mappable, ax=ax, shrink=0.6, label=f"{curvature} curvature")
@@ -81,3 +82,18 @@ def plot_surface(
         for j in range(p.shape[1]):
             surface_ax.plot(p[:, j, 0], p[:, j, 1], p[:, j, 2], **style)
     return ax
+
+
+def _curvature_values(surf: Surface, uu: np.ndarray, vv: np.ndarray, gaussian: bool) -> np.ndarray:
+    """K or H on the grid; NaN (drawn grey) at the points where the normal is undefined (a
+    collapsed edge, S_u parallel to S_v), which `curvatures` refuses with a ValueError."""
+    pick = 0 if gaussian else 1
+    try:
+        out: np.ndarray = np.asarray(surf.curvatures(uu, vv)[pick], dtype=float)
+        return out
+    except ValueError:
+        values = np.full(uu.shape, np.nan)
+        for idx in np.ndindex(uu.shape):
+            with contextlib.suppress(ValueError):  # undefined here: left NaN
+                values[idx] = float(surf.curvatures(uu[idx], vv[idx])[pick])
+        return values

@@ -20,6 +20,8 @@ Method = TypeVar("Method", bound=Callable[..., Any])
 def _shape(x: object) -> tuple[int, ...] | None:
     """x's array shape, or None when numpy cannot read it as an array (the pointwise path's
     own checks then name the problem)."""
+    if isinstance(x, np.ndarray):  # no object copy of a large float array
+        return x.shape
     try:
         return tuple(np.shape(np.asarray(x, dtype=object)))
     except (TypeError, ValueError):

@@ -303,3 +303,23 @@ def test_the_polynomial_direction_on_the_dense_grid(at_pi_family):
     assert np.allclose(lo, dense.min(axis=0), atol=1e-4) and np.allclose(
         hi, dense.max(axis=0), atol=1e-4
     )
+
+
+@pytest.mark.parametrize("poly", [None, "same_degree"])
+def test_a_level_curve_in_one_dimension_ends_certified(at_family, poly):
+    """In one dimension a query inside the surface's range is at distance 0 on a whole level
+    curve S = q, where no cell is ever narrow (|S − q|² is ~ |∇S|² h² wide on a cell of size
+    h): the value test settles those cells. Before it, this search ended at its cell limit
+    with 46,510 cells settled uncertified (two atom directions, 5 s)."""
+    rng = np.random.default_rng(3)
+    net = rng.normal(size=(4, 4, 1))
+    if poly is None:
+        s = at_family.surface(net, params_u={"lam": 0.5}, params_v={"lam": 0.2})
+    else:
+        s = at_family.surface(net, params_u={"lam": 0.5}, lam_v=F(1, 3), family_v=poly)
+    q = s.evaluate(0.7, 0.6)
+    stats = ab.Stats()
+    asb.closest(s._surface_data(), np.atleast_2d(q), TOL, stats)
+    assert stats.narrow == 0 and stats.rounds < 10
+    cp = s.closest_point(q)
+    assert cp.lower_bound <= cp.distance <= TOL * (float(np.abs(net).max()) + abs(q[0]))

@@ -19,6 +19,7 @@ import sys
 import textwrap
 import time
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -938,11 +939,13 @@ def bench_param_surfaces(nets: int) -> None:
 
 def bench_surface_bounds(queries: int) -> None:
     """Certified bounding box and closest points of a bicubic at_cubic surface (a mixed
-    family: no rational form; hazmat.atom_surface_bounds) against dense sampling at 1e-9 of
-    the net's size. That reference is the grid whose spacing h makes M h²/4 <= 1e-9 × size
-    (M the sampled max of |S_uu| + 2|S_uv| + |S_vv|: the error of a grid's best point near a
-    smooth extreme), far too many points to evaluate here, so it is timed on a 1000 × 1000
-    grid and scaled by the count (a lower estimate: a distance near the surface needs more)."""
+    family: no rational form; hazmat.atom_surface_bounds), and of at_cubic across the
+    polynomial same_degree family (the polynomial direction over the powers of t − 1/2),
+    against dense sampling at 1e-9 of the net's size. That reference is the grid whose
+    spacing h makes M h²/4 <= 1e-9 × size (M the sampled max of |S_uu| + 2|S_uv| + |S_vv|:
+    the error of a grid's best point near a smooth extreme), far too many points to evaluate
+    here, so it is timed on a 1000 × 1000 grid and scaled by the count (a lower estimate: a
+    distance near the surface needs more)."""
     import lambda_bezier as lb
 
     fam = lb.load_family(Path(__file__).parent.parent / "tests/data/families/at_cubic.toml")
@@ -950,8 +953,18 @@ def bench_surface_bounds(queries: int) -> None:
     net = rng.normal(size=(4, 4, 3))
     net[..., 0] += np.arange(4)[:, None]
     net[..., 1] += np.arange(4)[None, :]
-    s = fam.surface(net, params_u={"lam": 0.5}, params_v={"lam": -0.25})
     qs = rng.normal(size=(queries, 3)) * 2 + [1.5, 1.5, 0]
+    _surface_bounds_rows(
+        "at_cubic bicubic surface",
+        fam.surface(net, params_u={"lam": 0.5}, params_v={"lam": -0.25}),
+        qs,
+    )
+    mixed = fam.surface(net, params_u={"lam": 0.5}, lam_v=0.25, family_v="same_degree")
+    _surface_bounds_rows("at_cubic x same_degree (mixed x polynomial) surface", mixed, qs[:100])
+
+
+def _surface_bounds_rows(label: str, s: Any, qs: np.ndarray) -> None:
+    queries = len(qs)
     (ua, ub), (va, vb) = s.domain_u, s.domain_v
     probe = np.linspace(ua, ub, 201), np.linspace(va, vb, 201)
     uu, vv = (g.ravel() for g in np.meshgrid(*probe, indexing="ij"))
@@ -959,7 +972,7 @@ def bench_surface_bounds(queries: int) -> None:
         w * np.abs(s.derivative(uu, vv, a, b)).max()
         for (a, b), w in (((2, 0), 1), ((1, 1), 2), ((0, 2), 1))
     )
-    size = float(np.abs(net).max())
+    size = float(np.abs(s.net).max())
     h = math.sqrt(4e-9 * size / bend)
     count = (math.ceil((ub - ua) / h) + 1) * (math.ceil((vb - va) / h) + 1)
     side = 1000
@@ -980,7 +993,7 @@ def bench_surface_bounds(queries: int) -> None:
     many = best_of(lambda: s.closest_point(qs), 1)
     note = f"dense sampling at 1e-9, {count:.2g} points (scaled from {side}x{side})"
     record(
-        "at_cubic bicubic surface: certified bounding box",
+        f"{label}: certified bounding box",
         t["box"],
         note,
         t["grid"] * scale,

@@ -22,8 +22,10 @@ direction's enclosures of its basis functions, hazmat.atom_bounds).
 One direction may be a polynomial family instead (`_poly_direction.PolyProbe`: its basis on
 [0, 1], and its Bernstein form as a rational form with every weight 1 and s = t), so that a
 trigonometric or hyperbolic family across a polynomial one goes through the rational form as
-above; a mixed family across a polynomial one refuses the box and the closest point, naming
-the reason (no rational form, and the Taylor enclosures take two atom directions only).
+above. A mixed family across a polynomial one has no rational form: its box and closest
+point go through hazmat.atom_surface_bounds with the polynomial direction's basis written
+over the centred powers of t − 1/2 (`asb.bernstein_direction`: a polynomial basis is in the
+algebraic part of an atom space), so the two-atom enclosures apply unchanged.
 """
 
 from __future__ import annotations
@@ -41,6 +43,7 @@ from . import _validate as val
 from ._atom_geometry import _bounds_data
 from ._validate import ParamLike
 from .atom_family import AtomCurve
+from .hazmat import atom_bounds as ab
 from .hazmat import atom_surface_bounds as asb
 from .hazmat import surface_kernels as ker
 from .surfaces import BezierSurface, NetLike, Surface, SurfaceClosestPoint, _as_net, _exact_net
@@ -448,12 +451,12 @@ class AtomSurface(Surface):
     def bounding_box(self, tol: float = 1e-12) -> tuple[np.ndarray, np.ndarray]:
         """(lo, hi): the axis-aligned box of the surface over its domain. Through the rational
         form: each bound certified within `tol` times the net's size (branch and bound on the
-        ratio of the homogeneous net's coordinate and weight). A mixed family: certified by a
-        branch and bound on Taylor enclosures (hazmat.atom_surface_bounds), each bound within
+        ratio of the homogeneous net's coordinate and weight). A mixed family (across an atom
+        or a polynomial family): certified by a branch and bound on Taylor enclosures
+        (hazmat.atom_surface_bounds), each bound within
         `tol` times the net's size of the extreme (or a few hundred ulps, if more)."""
         tol = val.tolerance(tol)
         if not self._has_form():
-            self._refuse_uncertified("bounding_box")
             return self._certified_box(tol)
         h = self.to_rational_bezier().homogeneous.net
         w = h[:, :, -1]
@@ -476,13 +479,13 @@ class AtomSurface(Surface):
         """The global nearest point to q ((d,), or a batch (k, d)), u and v in the families' t.
         Through the rational form: certified as for polynomial surfaces (``lower_bound``),
         the squared distance's bound on a patch being the least ratio of the Bernstein
-        coefficients of Σ_c (X_c − q_c W)² and W². A mixed family: certified by a branch and
+        coefficients of Σ_c (X_c − q_c W)² and W². A mixed family (across an atom or a
+        polynomial family): certified by a branch and
         bound on Taylor enclosures (hazmat.atom_surface_bounds), the distance within `tol`
         times the size (the net's and q's) of ``lower_bound`` (or a few hundred ulps, if
         more), refined by Newton; a batch's queries are searched together."""
         if self._has_form():
             return super().closest_point(q, tol)
-        self._refuse_uncertified("closest_point")
         tol = val.tolerance(tol)
         arr = np.asarray(val.real_array(q, "q"), dtype=float)
         if arr.ndim == 2:
@@ -524,32 +527,20 @@ class AtomSurface(Surface):
         lower = min(max(lower, 0.0), best)  # rounded at a corner: never above the value (surfaces)
         return SurfaceClosestPoint(u, v, at, float(np.sqrt(best)), float(np.sqrt(lower)))
 
-    def _refuse_uncertified(self, what: str) -> None:
-        """A mixed atom family across a polynomial one: no rational form, and the Taylor
-        enclosures of hazmat.atom_surface_bounds take two atom directions only."""
-        poly = [p.family for p in self._probes if isinstance(p, pd.PolyProbe)]
-        if poly:
-            atom = next(p.family for p in self._probes if not isinstance(p, pd.PolyProbe))
-            raise ValueError(
-                f"{what}: {atom} is a mixed algebraic-trigonometric/hyperbolic family (no "
-                f"rational form) across {poly[0]}, so there is no certified {what} of this "
-                "surface yet (the certified enclosures of mixed-family surfaces take two "
-                "atom directions only); evaluate it on a grid, or mesh it (surface_export.mesh)"
-            )
-
-    # a mixed family (no rational form): hazmat.atom_surface_bounds
+    # no rational form (a mixed family): hazmat.atom_surface_bounds; a polynomial direction
+    # across is an atom direction there (its basis over the centred powers of t − 1/2)
     def _surface_data(self) -> asb.SurfaceData:
         cached: asb.SurfaceData | None = self.__dict__.get("_surface_bounds")
         if cached is None:
-            pu, pv = self._probes
-            (ua, ub), (va, vb) = pu.domain, pv.domain
+            (du, one_u, mu, su), (dv, one_v, mv, sv) = (_direction_data(p) for p in self._probes)
+            (ua, ub), (va, vb) = self.domain_u, self.domain_v
             cached = asb.SurfaceData(
-                _bounds_data(pu),
-                _bounds_data(pv),
-                (ua - pu._mid, ub - pu._mid),
-                (va - pv._mid, vb - pv._mid),
-                self.net * (pu._scale * pv._scale),
-                _sums_to_one(pu) and _sums_to_one(pv),
+                du,
+                dv,
+                (ua - mu, ub - mu),
+                (va - mv, vb - mv),
+                self.net * (su * sv),
+                one_u and one_v,
             )
             self.__dict__["_surface_bounds"] = cached
         return cached
@@ -560,18 +551,34 @@ class AtomSurface(Surface):
 
     def _certified_closest(self, points: np.ndarray, tol: float) -> SurfaceClosestPoint:
         """The nearest points to every query of points (k, d), as arrays over the batch."""
-        pu, pv = self._probes
         if not points.size:
             empty = np.empty(0)
             return SurfaceClosestPoint(empty, empty, np.empty((0, self.dimension)), empty, empty)
         tu, tv, _, lower = asb.closest(self._surface_data(), points, tol)
         (ua, ub), (va, vb) = self.domain_u, self.domain_v
-        u, v = np.clip(tu + pu._mid, ua, ub), np.clip(tv + pv._mid, va, vb)
+        mid_u, mid_v = (_centre(p) for p in self._probes)
+        u, v = np.clip(tu + mid_u, ua, ub), np.clip(tv + mid_v, va, vb)
         at = self.evaluate(u, v)
         dist = np.linalg.norm(at - points, axis=1)
         return SurfaceClosestPoint(
             u, v, at, dist, np.minimum(np.sqrt(np.maximum(lower, 0.0)), dist)
         )
+
+
+def _direction_data(probe: Any) -> tuple[ab.AtomCurveData, bool, float, float]:
+    """(the direction's basis over centred atoms, whether it sums to one exactly, the centre
+    of its domain, the power-of-two scale its coefficients are divided by) for
+    hazmat.atom_surface_bounds: an atom direction's own (`_bounds_data`), or a polynomial
+    direction's Bernstein form over the powers of t − 1/2 (`asb.bernstein_direction`)."""
+    if isinstance(probe, pd.PolyProbe):
+        data, unity = asb.bernstein_direction(probe.bernstein())
+        return data, unity, _centre(probe), 1.0
+    return _bounds_data(probe), _sums_to_one(probe), _centre(probe), probe._scale
+
+
+def _centre(probe: Any) -> float:
+    """The centre of a direction's domain, where its centred atoms have τ = 0."""
+    return 0.5 if isinstance(probe, pd.PolyProbe) else float(probe._mid)
 
 
 def _sums_to_one(probe: AtomCurve) -> bool:

@@ -104,7 +104,7 @@ class ParamSurface(Surface):
 
     @property
     def family(self) -> str | tuple[str, str]:
-        fu, fv = self.family_u.name, self.family_v.name
+        fu, fv = pd.family_name(self.family_u), pd.family_name(self.family_v)
         return fu if fu == fv else (fu, fv)
 
     @property
@@ -150,7 +150,8 @@ def family_surface(
     fu, fv = family if isinstance(family, tuple | list) else (family, family)
     if isinstance(family, tuple | list) and len(family) != 2:
         raise ValueError(f"family must be one family or a pair (u, v), got {len(family)} items")
-    if _is_atom(fu) or _is_atom(fv):  # a built-in polynomial direction may be named
+    if any(_is_atom(f) or isinstance(f, str) or pd.is_class(f) for f in (fu, fv)):
+        # a built-in direction by name (or class), across an atom family or any other
         fu, fv = pd.polynomial_family(fu), pd.polynomial_family(fv)
     given_u = _given(fu, lam_u, params_u, "u")
     given_v = _given(fv, lam_v, params_v, "v")

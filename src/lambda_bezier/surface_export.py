@@ -264,10 +264,6 @@ def _param_surface_from(
     for name in doc["family"]:
         fam = getattr(classes[name], "family_object", None)
         fams.append(classes[name] if fam is None else getattr(fam, "indexed_family", fam))
-    if not any(pd.is_atom(f) for f in fams):
-        for f in fams:
-            if pd.is_class(f):  # a built-in direction by name only across an atom one
-                raise ValueError(f"surface.family: {f.family!r} takes no parameters by name")
 
     def value(v: object, where: str) -> Any:
         if isinstance(v, list):

@@ -51,7 +51,8 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `atom_bounds`: certified enclosures of such a curve and its derivatives on t-intervals
   (Taylor forms), and the branch and bound of its bounding box and closest point;
 - `atom_surface_bounds`: the same for tensor-product surfaces of such bases (mixed families,
-  no rational form): certified bounding box and closest points, branch and bound over (u, v);
+  no rational form, across another atom family or a polynomial one): certified bounding box
+  and closest points, branch and bound over (u, v);
 - `atom_intersect`: certified intersections of such a curve with another, with a polynomial
   or rational Bézier curve, and with itself (branch and bound on parameter pairs, Krawczyk);
 - `atom_intersect_parts`: the curves that search sees (enclosures of atom curves and of

@@ -2,7 +2,11 @@ r"""Certified extremes of tensor-product surfaces over centred atoms: the boundi
 closest point of S(u, v) = Σ_i Σ_j b_i(u) b_j(v) P_ij, each direction's basis functions b_i
 given as a curve over centred atoms (`atom_bounds.AtomCurveData` with one "coordinate" per
 basis function), for the mixed (algebraic-trigonometric/hyperbolic) families that have no
-rational form.
+rational form. A polynomial direction across a mixed one is an atom direction of the same
+kind, its basis over 1, τ, …, τ^N and no harmonics (`bernstein_direction`), so every
+enclosure below serves both pairs. (Measured against the Bernstein hull of the polynomial
+basis on a cell: the Taylor enclosures are 12–17% wider at cell width 1/8, under 2% from
+1/64 on, and the searches take as many cells as with two atom directions.)
 
 **Enclosures.** On a cell [u0, u1] × [v0, v1], atom_bounds encloses every b_i^(a) on [u0, u1]
 and b_j^(b) on [v0, v1] (Taylor form, widened for rounding); S^(a, b) is then enclosed by
@@ -34,7 +38,10 @@ candidates. A cell is
   its lower bound is at least the best value found (f there is no better);
 - **settled** when its enclosure is narrower than the tolerance (a *width* test: the cell's
   lower bound is then within the tolerance of a value f takes in it, its centre, which becomes
-  a candidate);
+  a candidate), or when its lower bound is within the tolerance of the best value found (a
+  *value* test: nothing in it is better by more than the tolerance; this ends the search on a
+  curve of minima no cell can be narrow on, such as the level curve S = q of a surface in one
+  dimension, where |S − q|² has width ~ |∇S|² h² on a cell of size h);
 - otherwise **halved**, in the free directions whose share of the enclosure's width is at
   least a third of the larger share (a direction in which f is flat, e.g. a coordinate that
   depends on u only, is not cut, so a line of minima costs a few cells, not millions).
@@ -53,8 +60,11 @@ a batch of closest-point queries) run as one, their cells side by side (`_Cells.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from fractions import Fraction
+from functools import cache
+from math import comb
 
 import numpy as np
 
@@ -87,6 +97,47 @@ def _bilinear(a: np.ndarray, tensor: np.ndarray, b: np.ndarray) -> np.ndarray:
     inner = np.tensordot(tensor, b, axes=(1, 0))  # (K, d, m)
     out: np.ndarray = (inner * a[:, None, :]).sum(axis=0)
     return out
+
+
+@cache
+def _centred_bernstein(degree: int) -> tuple[tuple[Fraction, ...], ...]:
+    """M (N+1, N+1), exact: B_k^N(1/2 + τ) = Σ_p M_kp τ^p, from C(N, k) (1/2 + τ)^k
+    (1/2 − τ)^(N−k) multiplied out."""
+    half = Fraction(1, 2)
+    rows = []
+    for k in range(degree + 1):
+        poly = [Fraction(comb(degree, k))]
+        for factor in [(half, Fraction(1))] * k + [(half, Fraction(-1))] * (degree - k):
+            nxt = [Fraction(0)] * (len(poly) + 1)
+            for p, c in enumerate(poly):
+                nxt[p] += c * factor[0]
+                nxt[p + 1] += c * factor[1]
+            poly = nxt
+        rows.append(tuple(poly))
+    return tuple(rows)
+
+
+def bernstein_direction(
+    bernstein: Sequence[Sequence[Fraction | float]],
+) -> tuple[AtomCurveData, bool]:
+    """A polynomial direction on [0, 1] as an atom direction: basis function b_i = Σ_k B_ik
+    B_k^N(t) (`bernstein` (n+1) × (N+1), Fractions or floats) over the centred atoms 1, τ, …,
+    τ^N, τ = t − 1/2 (no harmonics), so that a mixed family across a polynomial one is
+    enclosed by the same tensor enclosures as two atom directions: the polynomials of degree
+    N are the algebraic part of the atom space. The coefficients are computed exactly (each
+    float entry as the rational it is) and rounded once; also returned is whether the basis
+    sums to one exactly (Σ_i B_ik = 1 for every k, in exact arithmetic on the entries)."""
+    rows = [[Fraction(x) for x in row] for row in bernstein]
+    degree = len(rows[0]) - 1
+    m = _centred_bernstein(degree)
+    coefficients = np.array(
+        [
+            [float(sum((row[k] * m[k][p] for k in range(degree + 1)), Fraction(0))) for row in rows]
+            for p in range(degree + 1)
+        ]
+    )
+    unity = all(sum(col) == 1 for col in zip(*rows, strict=True))
+    return AtomCurveData(coefficients, 1.0, degree, 0, False), unity
 
 
 @dataclass
@@ -451,11 +502,13 @@ def _minimise(
     tolerance: Callable[[np.ndarray], np.ndarray],
     polish: Polish | None,
     stats: Stats,
+    enough: Callable[[np.ndarray], np.ndarray] | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """(u, v, best, lower), each (groups,): for each search g the least value of f_g found
     (at centred (u, v)) and the certified lower bound of f_g over the domain, within
     tolerance(best)_g of best (see the module's docstring). `bounds` gives f's bounds on
-    cells (each of its search), `value(u, v, g)` f_g at points."""
+    cells (each of its search), `value(u, v, g)` f_g at points; `enough(best)` the least
+    lower bound that settles a cell by the value test (default best − tolerance(best))."""
     cells, corners = _initial_cells(data, groups)
     best = np.full(groups, np.inf)
     at_u, at_v = np.zeros(groups), np.zeros(groups)
@@ -476,7 +529,12 @@ def _minimise(
             _best_of_groups(g, value(pu, pv, g), best, at_u, at_v, pu, pv)
             fresh[:] = False
         s = bounds(cells)
-        settled = (s.hi - s.lo) <= tolerance(best)[cells.group]
+        # settled: the enclosure is narrow (its centre is within tol of its bound), or its
+        # lower bound is within tol of the best value found (nothing in it is better by more
+        # than tol: a level curve of D = 0 in one dimension, where no cell is ever narrow)
+        allowed = tolerance(best)
+        floor = best - allowed if enough is None else enough(best)
+        settled = ((s.hi - s.lo) <= allowed[cells.group]) | (s.lo >= floor[cells.group])
         if rounds >= MAX_ROUNDS or cells.u0.size > MAX_OPEN:
             stats.narrow += int((~settled).sum())
             settled = np.ones_like(settled)
@@ -567,6 +625,13 @@ def closest(
         out: np.ndarray = 2 * np.sqrt(np.maximum(best, 0.0)) * gap + gap * gap
         return out
 
+    def enough(best: np.ndarray) -> np.ndarray:
+        # a cell whose squared distance is at least (|q − S(best point)| − gap)², rounded
+        # up, holds no point nearer by more than gap; any cell does, once that is <= gap
+        near = np.sqrt(np.maximum(best, 0.0)) - gap
+        out: np.ndarray = np.where(near > 0, np.square(near) * (1 + 8 * _U), -np.inf)
+        return out
+
     def polish(u: np.ndarray, v: np.ndarray, g: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Newton on ∇D = 0 from (u, v), kept in the domain (a singular step stops)."""
         for _ in range(NEWTON_STEPS):
@@ -591,4 +656,4 @@ def closest(
     def bounds(cells: _Cells) -> _Scalar:
         return _distance(_parts(data, cells), q[cells.group].T)
 
-    return _minimise(data, q.shape[0], bounds, value, tolerance, polish, stats)
+    return _minimise(data, q.shape[0], bounds, value, tolerance, polish, stats, enough)

@@ -282,17 +282,37 @@ def test_optimal_parameters_of_a_bezier_surface_names_family():
         lb.optimal_parameters(_net(3, 3, 3), "membrane", family="bezier")
 
 
-# ---------------------------------------------------------------------- known failure
-@pytest.mark.xfail(
-    strict=True,
-    reason="atom_surfaces._closest (the rational form) has no Newton polish: a query on the "
-    "surface comes back 2e-7..4e-7 away; atom_surfaces.py is another helper's this round",
-)
-def test_a_point_on_a_trigonometric_surface_is_its_own_closest_point():
-    surf = CASES["trigonometric"][0]
-    q = surf.evaluate(0.7, 0.4)
+# ------------------------------------------------------- closest point on the surface
+@pytest.mark.parametrize("name", ["trigonometric", "hyperbolic", "trigonometric x same_degree"])
+@pytest.mark.parametrize("at", [(0.7, 0.4), (0.05, 0.93), (0.5, 0.0)])
+def test_a_point_on_an_atom_surface_is_its_own_closest_point(name, at):
+    """Before: the rational form's branch and bound had no Newton polish, so its rounding
+    floor on the squared distance (about 1e-13 of the size squared) left a query on the
+    surface 2e-7..4e-7 away from itself."""
+    surf, *_, domains = CASES[name]
+    u, v = (lo + f * (hi - lo) for f, (lo, hi) in zip(at, domains, strict=True))
+    q = surf.evaluate(u, v)
     cp = surf.closest_point(q)
     assert cp.distance < 1e-12 * (1 + np.abs(q).max())
+    assert cp.lower_bound <= cp.distance
+
+
+@pytest.mark.parametrize("name", ["trigonometric", "hyperbolic", "trigonometric x same_degree"])
+def test_no_parameters_give_empty_results_on_an_atom_surface(name):
+    """Before: evaluate([], []) raised numpy's "cannot reshape array of size 0"."""
+    surf = CASES[name][0]
+    assert surf.evaluate([], []).shape == (0, 3)
+    assert surf.derivative([], [], 1, 1).shape == (0, 3)
+    assert surf.evaluate(np.zeros((0, 2)), np.zeros((0, 2))).shape == (0, 2, 3)
+
+
+def test_a_mixed_family_surface_names_q():
+    """Before: the two-atom (no rational form) path said "point" for the argument q."""
+    at = _fam("at_cubic")
+    surf = at.surface(_net(3, 3, 3), F(1, 2), F(-1, 3))
+    for bad in ([1.0, 2.0], [[1.0, 2.0]]):
+        with pytest.raises(ValueError, match="^q"):
+            surf.closest_point(bad)
 
 
 # ---------------------------------------------------------------------- verify

@@ -21,7 +21,7 @@ def _shape(x: object) -> tuple[int, ...] | None:
     """x's array shape, or None when numpy cannot read it as an array (the pointwise path's
     own checks then name the problem)."""
     if isinstance(x, np.ndarray):  # no object copy of a large float array
-        return x.shape
+        return tuple(x.shape)
     try:
         return tuple(np.shape(np.asarray(x, dtype=object)))
     except (TypeError, ValueError):

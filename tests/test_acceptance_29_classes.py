@@ -248,3 +248,21 @@ def test_a_shared_stretch_is_still_told_from_a_flat_contact():
         a.intersect(b)
     lo, hi = np.array([0.0, 0.5, 0.1, 2.0]), np.array([0.2, 0.6, 0.3, 2.5])
     assert ai._covered(lo, hi) == pytest.approx(0.9)
+
+
+def test_closest_point_of_an_empty_batch_is_empty_on_every_class():
+    """q of shape (0, 2): empty answers, as numpy's batch rules give (it was numpy's "zero-size
+    array to reduction operation maximum" from the polynomial and rational paths)."""
+    bz = lb.BezierCurve([(0, 0), (1, 2), (3, 1)])
+    curves = [
+        bz,
+        lb.SameDegreeCurve([(0, 0), (1, 2), (2, -1), (3, 1)], lam=F(1, 2)),
+        lb.RationalBezierCurve([(0, 0), (1, 2), (3, 1)], [1, 2, 1]),
+        _family("at_cubic").curve([(0, 0), (1, 2), (2, -1), (3, 1)], lam=F(1, 2)),
+        lb.CompositeCurve([bz, lb.BezierCurve([(3, 1), (4, 0)])], joints=[None]),
+    ]
+    for curve in curves:
+        got = curve.closest_point(np.empty((0, 2)))
+        assert got.t.shape == (0,) and got.point.shape == (0, 2) and got.distance.shape == (0,)
+        with pytest.raises(ValueError, match=r"q must have shape \(2,\) or \(m, 2\)"):
+            curve.closest_point(np.empty((0, 3)))

@@ -209,6 +209,19 @@ def test_trig_curve_against_a_line_just_above_a_minimum(heights):
     _assert_parameters([h.s for h in got], want, 1e-9)
 
 
+def test_trig_curve_and_a_line_crossing_3_6e_4_apart():
+    """Found by this round's acceptance script: Newton from the rational form's subdivision
+    starts reached one of the two crossings from both starts, and one was dropped."""
+    fam = _family("han_trig_cubic")
+    pts = [(F(0), F(3, 2)), (F(1), F(-3, 4)), (F(2), F(-1, 4)), (F(3), F(5, 4))]
+    curve = fam.curve(pts, **ATOM_PARAMS["han_trig_cubic"])
+    level = F(-0.23679928634437228)
+    want = _trig_pair_reference(curve, level)
+    assert len(want) == 2 and 3e-4 < want[1] - want[0] < 4e-4
+    got = curve.intersect(lb.BezierCurve([(-10, level), (10, level)]))
+    _assert_parameters([h.s for h in got], want, 1e-9)
+
+
 # ---------------------------------------------------------------------- entry points
 def test_intersect_takes_every_curve_class_both_ways_and_in_batches():
     fam = _family("at_cubic")

@@ -109,6 +109,24 @@ def test_rational_parabola_and_line_1e3_apart():
         _assert_parameters([h.s for h in got], want, 1e-12)
 
 
+@pytest.mark.parametrize(("ra", "rb"), [(F(1, 2), F(51, 100)), (F(7, 10), F(141, 200))])
+def test_rational_self_crossings_0_005_apart_under_a_mobius_map(ra, rb):
+    """(t², t (t² − a²)(t² − b²)), t = 2u − 1, with weights 2^i: it crosses itself at
+    u = (1 ∓ a)/2 and (1 ∓ b)/2, i.e. at s = φ⁻¹(u) = u / (2 − u)."""
+    t = [F(-1), F(2)]
+    x = _compose([F(0), F(0), F(1)], t)
+    y = _compose([F(0), ra**2 * rb**2, F(0), -(ra**2 + rb**2), F(0), F(1)], t)
+    x += [F(0)] * (len(y) - len(x))
+    poly = _power_to_bezier(list(zip(x, y, strict=True)))
+    curve = lb.RationalBezierCurve(poly.control_points(), [2**i for i in range(6)])
+    got = curve.self_intersections()
+    pairs = sorted(((1 - r) / 2, (1 + r) / 2) for r in (ra, rb))
+    want = [(float(a / (2 - a)), float(b / (2 - b))) for a, b in pairs]
+    assert len(got) == 2, got
+    for h, (a, b) in zip(got, want, strict=True):
+        assert abs(h.s - a) < 1e-9 and abs(h.t - b) < 1e-9 and h.kind == "transversal"
+
+
 # ---------------------------------------------------------------------- atom families
 def _mirror(pts, p0, d):
     """pts reflected in the line through p0 along d, exactly."""

@@ -127,6 +127,40 @@ def test_rational_self_crossings_0_005_apart_under_a_mobius_map(ra, rb):
         assert abs(h.s - a) < 1e-9 and abs(h.t - b) < 1e-9 and h.kind == "transversal"
 
 
+@settings(max_examples=25, deadline=None)
+@given(
+    heights=st.lists(st.integers(-20, 20), min_size=4, max_size=6),
+    weights=st.lists(st.integers(1, 6), min_size=6, max_size=6),
+)
+@example(heights=[10, -12, -12, 10], weights=[1, 1, 1, 1, 1, 1])
+@example(heights=[1, 2, -20, 0, 0, 14], weights=[1, 1, 1, 1, 1, 1])  # one of two dropped before
+def test_rational_curve_against_a_line_just_above_a_minimum(heights, weights):
+    """A rational graph-like curve against y = its least interior value + 1e-7: every
+    crossing (about 1e-3 apart at the minimum), against the exact roots of
+    Σ w_i (y_i − level) B_i(s)."""
+    n = len(heights) - 1
+    pts = [(F(i, n), F(h, 10)) for i, h in enumerate(heights)]
+    curve = lb.RationalBezierCurve(pts, weights[: n + 1])
+    u = np.linspace(0, 1, 4001)
+    y = curve.evaluate(u)[:, 1]
+    inner = [i for i in range(1, u.size - 1) if y[i] < y[i - 1] and y[i] <= y[i + 1]]
+    if not inner:
+        return
+    a, b = u[inner[0] - 1], u[inner[0] + 1]
+    for _ in range(80):  # golden section: the level only needs to be near the minimum
+        m1, m2 = a + 0.382 * (b - a), b - 0.382 * (b - a)
+        if curve.evaluate(m1)[1] < curve.evaluate(m2)[1]:
+            b = m2
+        else:
+            a = m1
+    level = F(float(curve.evaluate(0.5 * (a + b))[1])) + F(1, 10**7)
+    num = [F(w) * (p[1] - level) for w, p in zip(weights, pts, strict=False)]
+    mp.mp.dps = 50
+    want = [float(r) for r in _real_roots(_bernstein_to_power(num), 0, 1)]
+    got = curve.intersect(lb.BezierCurve([(-1, level), (2, level)]))
+    _assert_parameters([h.s for h in got], want, 1e-9)
+
+
 # ---------------------------------------------------------------------- atom families
 def _mirror(pts, p0, d):
     """pts reflected in the line through p0 along d, exactly."""

@@ -107,6 +107,19 @@ def _tables(data: object, kind: str) -> dict[int, tuple[Matrix, ...]]:
     return tables
 
 
+def _swapped_intersect(other: object, curve: object) -> list[_intersect.Intersection] | None:
+    """curve(s) = other(t) when `other` is a curve class of a higher layer whose own
+    intersect takes polynomial curves (rational Bézier, trigonometric/hyperbolic/mixed: they
+    set ``intersects_curves``): asked the other way round, the same answer with s and t
+    exchanged. None for anything else."""
+    if not getattr(type(other), "intersects_curves", False):
+        return None
+    found = other.intersect(curve)  # type: ignore[attr-defined]
+    return sorted(
+        (_intersect.Intersection(h.t, h.s, h.kind) for h in found), key=lambda h: (h.s, h.t)
+    )
+
+
 class Curve:
     """Behaviour shared by every family (the role numpy.polynomial's ABCPolyBase plays).
 
@@ -426,9 +439,13 @@ class Curve:
     def intersect(self, other: Curve) -> list[_intersect.Intersection]:
         """Every intersection with another curve (any family), as Intersection(s, t, kind)
         sorted by s: self(s) = other(t). kind is "transversal", "tangent" or "coincident";
-        a shared stretch is reported by its two end pairs, both "coincident"."""
+        a shared stretch is reported by its two end pairs, both "coincident". A rational or
+        trigonometric/hyperbolic/mixed `other` answers through its own intersect."""
         if not isinstance(other, Curve):
-            raise TypeError(f"other must be a curve, got {type(other).__name__}")
+            swapped = _swapped_intersect(other, self)
+            if swapped is None:
+                raise TypeError(f"other must be a curve, got {type(other).__name__}")
+            return swapped
         return _intersect.intersect(self._prepared, other._prepared)
 
     def self_intersections(self) -> list[_intersect.Intersection]:

@@ -68,6 +68,9 @@ class AtomCurve:
     the family's domain (e.g. [0, π/2]). Made by ``Family.curve``; exact control points and
     parameter values (ints, Fractions) keep `to_rational_bezier` and `energy` exact."""
 
+    # Curve.intersect(this) asks this class's intersect, with s and t exchanged
+    intersects_curves = True
+
     _has_lambda = False
     lam = None
 

@@ -291,6 +291,11 @@ def _queries(q: npt.ArrayLike, dimension: int) -> tuple[np.ndarray, bool]:
     return np.atleast_2d(arr), arr.ndim == 1
 
 
+def no_queries(dimension: int) -> ClosestPoint:
+    """The answer to an empty batch of queries (0, d): empty arrays, as numpy gives."""
+    return ClosestPoint(np.empty(0), np.empty((0, dimension)), np.empty(0))
+
+
 def _curve_closest(curve: Curve, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Parameters, points and distances of the nearest points to each row of q."""
     poly = _poly(curve)
@@ -312,6 +317,8 @@ def closest_point(obj: Curve | CompositeCurve, q: npt.ArrayLike) -> ClosestPoint
     (d,) or a batch (m, d)."""
     segs = _segments(obj)
     queries, single = _queries(q, segs[0].dimension)
+    if not queries.shape[0]:
+        return no_queries(segs[0].dimension)
     best_t, best_pt, dist = _curve_closest(segs[0], queries)
     for i, seg in enumerate(segs[1:], start=1):
         t, pt, d = _curve_closest(seg, queries)

@@ -25,10 +25,15 @@ ExactCrossing = _exact.ExactCrossing
 def _curves(curves: object, name: str) -> list[Curve]:
     from .curves import Curve
 
-    if isinstance(curves, Curve) or not isinstance(curves, Sequence):
+    if (
+        isinstance(curves, Curve)
+        or getattr(type(curves), "intersects_curves", False)
+        or not isinstance(curves, Sequence)
+    ):
         raise TypeError(f"{name} must be a sequence of curves, got {type(curves).__name__}")
     for k, c in enumerate(curves):
-        if not isinstance(c, Curve):
+        # rational Bézier and trigonometric/hyperbolic/mixed curves take their own engine
+        if not isinstance(c, Curve) and not getattr(type(c), "intersects_curves", False):
             raise TypeError(f"{name}[{k}] must be a curve, got {type(c).__name__}")
     return list(curves)
 
@@ -40,6 +45,8 @@ def intersect_many(
 ) -> list[list[Intersection]] | list[list[list[Intersection]]]:
     """Intersections of many curve pairs at once.
 
+    Any curve class: polynomial families together, rational Bézier and trigonometric,
+    hyperbolic or mixed curves through their own intersect, pair by pair.
     mode "pairs": curves_a[k] against curves_b[k] (equal lengths); returns one list of
     Intersection(s, t, kind) per pair, as curves_a[k].intersect(curves_b[k]) gives it.
     mode "all": every curve of curves_a against every curve of curves_b; returns
@@ -66,9 +73,23 @@ def intersect_many(
         index = [(i, j) for i in range(len(a)) for j in range(len(b))]
     else:
         raise ValueError(f"mode must be 'pairs' or 'all', got {mode!r}")
-    prepared_a = [c._prepared for c in a]
-    prepared_b = [c._prepared for c in b]
-    found = _intersect.intersect_pairs([(prepared_a[i], prepared_b[j]) for i, j in index])
+    from .curves import Curve
+
+    # polynomial pairs together (each curve prepared once); a pair with a rational or
+    # trigonometric/hyperbolic/mixed curve through that curve's own intersect
+    poly = [
+        k for k, (i, j) in enumerate(index) if isinstance(a[i], Curve) and isinstance(b[j], Curve)
+    ]
+    prepared_a = {i: a[i]._prepared for i, _ in (index[k] for k in poly)}
+    prepared_b = {j: b[j]._prepared for _, j in (index[k] for k in poly)}
+    together = _intersect.intersect_pairs(
+        [(prepared_a[index[k][0]], prepared_b[index[k][1]]) for k in poly]
+    )
+    found: list[list[Intersection]] = [[] for _ in index]
+    for k, hits in zip(poly, together, strict=True):
+        found[k] = hits
+    for k in sorted(set(range(len(index))) - set(poly)):
+        found[k] = a[index[k][0]].intersect(b[index[k][1]])
     if mode == "pairs":
         return found
     return [found[i * len(b) : (i + 1) * len(b)] for i in range(len(a))]

@@ -41,6 +41,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _validate as val
+from ._curve_base import _swapped_intersect
 from ._validate import ParamLike, PointsLike
 from .curves import BezierCurve, Curve
 from .hazmat import kernels as alg
@@ -96,6 +97,9 @@ class RationalBezierCurve:
     r"""A rational Bézier curve :math:`C(t) = \sum_i w_i P_i B_{i,n}(t) / \sum_i w_i
     B_{i,n}(t)` on t ∈ [0, 1], any degree n >= 0, any dimension d >= 1, positive weights.
     All weights equal: the classical Bézier curve, exactly."""
+
+    # Curve.intersect(this) asks this class's intersect, with s and t exchanged
+    intersects_curves = True
 
     family = "rational_bezier"
     lam = None  # no shape parameter
@@ -467,7 +471,10 @@ class RationalBezierCurve:
         if isinstance(other, Curve):
             other = RationalBezierCurve.from_bezier(other)
         if not isinstance(other, RationalBezierCurve):
-            raise TypeError(f"other must be a curve, got {type(other).__name__}")
+            swapped = _swapped_intersect(other, self)  # a trigonometric/hyperbolic/mixed curve
+            if swapped is None:
+                raise TypeError(f"other must be a curve, got {type(other).__name__}")
+            return swapped
         if other.dimension != self.dimension:
             raise ValueError(
                 f"the curves have different dimensions ({self.dimension} and {other.dimension})"

@@ -75,7 +75,12 @@ __all__ = ["AtomPart", "BernsteinPart", "Found", "Part", "pairs", "self_pairs"]
 _U = 2.0**-53
 TINY = 2.0**-30  # pairs narrower than this (relative to each domain) are unresolved
 INFLATE = 0.125  # Krawczyk's box: the pair widened by this fraction of its width each side
-MAX_PAIRS = 1 << 13  # open pairs beyond this: a shared stretch, the search gives up (None)
+MAX_PAIRS = 1 << 13  # open pairs beyond this, spread along the curves: a shared stretch (None)
+# past MAX_PAIRS, open pairs within SPREAD of each domain are a flat contact, not a shared
+# stretch (a curve and its mirror in its tangent near an inflection: 11,196 open at most),
+# and the search goes on, up to HARD_MAX_PAIRS
+SPREAD = 1e-3
+HARD_MAX_PAIRS = 1 << 15
 MAX_ROUNDS = 200
 SAME = 1e-9  # relative to the domain: roots this close are one
 ON_CURVE = 1e-10  # relative to the size: |P(s) − Q(t)| below this is a meeting point
@@ -448,7 +453,7 @@ def _search(
     for _ in range(MAX_ROUNDS):
         if pr.size == 0:
             break
-        if pr.size > MAX_PAIRS:
+        if pr.size > MAX_PAIRS and (pr.size > HARD_MAX_PAIRS or _spread(pr, ws, wt)):
             return None
         stats.rounds += 1
         stats.intervals += pr.size
@@ -485,6 +490,21 @@ def _search(
     empty_pairs = Pairs(*(np.empty(0) for _ in range(4)))
     rest = _concat(stuck) if stuck else empty_pairs
     return found, rest
+
+
+def _covered(lo: np.ndarray, hi: np.ndarray) -> float:
+    """The length of the union of the intervals [lo, hi]."""
+    order = np.argsort(lo)
+    lo, hi = lo[order], np.maximum.accumulate(hi[order])
+    # each interval adds what reaches past the furthest end before it
+    before = np.concatenate([[lo[0]], hi[:-1]])
+    return float(np.maximum(hi - np.maximum(lo, before), 0.0).sum())
+
+
+def _spread(pr: Pairs, ws: float, wt: float) -> bool:
+    """Whether the open pairs cover more than SPREAD of either domain: a shared stretch
+    (whose pairs line its whole length) rather than one contact point's band."""
+    return _covered(pr.s0, pr.s1) > SPREAD * ws or _covered(pr.t0, pr.t1) > SPREAD * wt
 
 
 def _concat(parts: list[Pairs]) -> Pairs:
@@ -563,14 +583,32 @@ def _settle(p: Part, q: Part, found: list[Found], stuck: Pairs) -> list[Found]:
         same = [
             g
             for g in merged
-            if (abs(g.s - f.s) <= SAME * ws and abs(g.t - f.t) <= SAME * wt) or _same_root(f, g)
+            if (abs(g.s - f.s) <= SAME * ws and abs(g.t - f.t) <= SAME * wt)
+            or _same_root(f, g)
+            or _same_contact(p, q, f, g)
         ]
         if same:
-            if f.proven and not same[0].proven:
-                merged[merged.index(same[0])] = f
+            g = same[0]
+            if (f.proven and not g.proven) or (
+                not g.proven and _residual(p, q, f.s, f.t) < _residual(p, q, g.s, g.t)
+            ):
+                merged[merged.index(g)] = f
             continue
         merged.append(f)
     return merged
+
+
+def _same_contact(p: Part, q: Part, f: Found, g: Found) -> bool:
+    """Two unresolved clusters are one contact when the curves stay within ON_CURVE of
+    each other all the way between them (sampled on the segment from one (s, t) to the
+    other): a contact of high order (a triple root at an end: clusters 7e-5 apart) breaks
+    into clusters wherever the enclosures cannot tell the curves apart."""
+    if f.proven or g.proven:
+        return False
+    u = np.linspace(0.0, 1.0, 33)
+    s, t = f.s + u * (g.s - f.s), f.t + u * (g.t - f.t)
+    gap = np.linalg.norm(p.values(0, s) - q.values(0, t), axis=0)
+    return bool(gap.max() <= ON_CURVE * max(p.size, q.size))
 
 
 def pairs(p: Part, q: Part, stats: ab.Stats | None = None) -> list[Found] | None:

@@ -36,7 +36,9 @@ class Part(Protocol):
 
     lo: float
     hi: float
-    size: float
+
+    @property
+    def size(self) -> float: ...  # read only: a field, or BernsteinPart's computed property
 
     def values(self, k: int, x: np.ndarray) -> np.ndarray: ...
 

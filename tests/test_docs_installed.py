@@ -25,10 +25,6 @@ from conftest import ROOT
 
 pytestmark = [
     pytest.mark.wheel,
-    # one worker runs the whole module under CI's `--dist loadgroup`: the session fixtures
-    # (the wheel, its venv, every page's doctests) are then built once, not once per worker,
-    # and a command line two pages show runs once (_PASSED)
-    pytest.mark.xdist_group("wheel"),
     pytest.mark.skipif(
         not (ROOT / "pyproject.toml").is_file(), reason="builds the wheel from the checkout"
     ),

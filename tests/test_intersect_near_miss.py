@@ -152,6 +152,8 @@ coords = st.floats(-4, 4, allow_nan=False).map(lambda x: round(x, 3))
 )
 @example(b0=(0.0, 1.0), b1=(0.0, 2.0), u=0.0, away=(1.0, 1.0), gap=-1.0)  # the issue's case
 @example(b0=(0.0, 0.0), b1=(2.0, 0.0), u=0.5, away=(1.0, 0.0), gap=1e-15)  # within: one hit
+# a root just past the end, clamped to it, was reported beside the located end (1e-13 apart)
+@example(b0=(0.0, 0.0), b1=(0.0, 1.0), u=0.25, away=(0.2, 2.0), gap=1e-14)
 def test_an_end_near_a_segment(b0, b1, u, away, gap):
     """A segment ending gap (relative) beside another, on its normal: no hit beyond the
     rounding bound. gap < 0 builds the issue's pair: a segment from the origin to

@@ -493,6 +493,22 @@ def _dedupe(found: list[Intersection], new: Intersection, same: float = SAME_ROO
     return any(abs(new.s - old.s) < same and abs(new.t - old.t) < same for old in found)
 
 
+def _dedupe_isolated(found: list[Intersection], new: Intersection) -> bool:
+    """An isolated piece's root is one already found within ISOLATED_SAME; or, held at an
+    end of one curve where a hit at that same end was already located, within SAME_ROOT
+    in the other parameter: the other curve passes through that end point once there
+    (twice within 1e-9 would need a cusp). Without this, a piece whose root lies just past
+    an end (a segment ending 1e-14 beside another) was clamped to the end and reported a
+    second time, 1e-13 from the located end."""
+    if _dedupe(found, new, ISOLATED_SAME):
+        return True
+    return any(
+        (new.s == old.s and new.s in (0.0, 1.0) and abs(new.t - old.t) < SAME_ROOT)
+        or (new.t == old.t and new.t in (0.0, 1.0) and abs(new.s - old.s) < SAME_ROOT)
+        for old in found
+    )
+
+
 Box = tuple[float, float, float, float]  # s0, s1, t0, t1 of a coincident stretch
 
 
@@ -657,7 +673,7 @@ def _pair_finish(
     Newton from the starts of unresolved pieces (tangencies), into found."""
     for s, t in isolated:
         hit = _solve_from(p, q, s, t, found, isolated=True)
-        if hit is not None and not _dedupe(found, hit, ISOLATED_SAME):
+        if hit is not None and not _dedupe_isolated(found, hit):
             found.append(hit)
     for s, t in starts:
         if any(s0 <= s <= s1 and t0 <= t <= t1 for s0, s1, t0, t1 in skip):
@@ -763,7 +779,7 @@ def self_intersections(p: Prepared) -> list[Intersection]:
             continue
         if hit.s > hit.t:
             hit = Intersection(hit.t, hit.s, hit.kind)
-        if not _dedupe(found, hit, ISOLATED_SAME):
+        if not _dedupe_isolated(found, hit):
             found.append(hit)
     # unresolved pieces on the diagonal are not one-to-one even at width 2^-DEPTH: a cusp
     # (p' = 0), where p(s) - p(t) vanishes to third order, not a crossing

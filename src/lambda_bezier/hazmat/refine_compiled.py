@@ -380,6 +380,22 @@ def _near(s: float, t: float, fs: np.ndarray, ft: np.ndarray, count: int, radius
 
 
 @numba.njit(**_JIT)
+def _near_isolated(
+    s: float, t: float, fs: np.ndarray, ft: np.ndarray, count: int, same: float, radius: float
+) -> bool:
+    """intersect._dedupe_isolated: within `same` in both parameters, or at the same end of
+    one curve as a found hit and within `radius` in the other parameter."""
+    if _near(s, t, fs, ft, count, same):
+        return True
+    for k in range(count):
+        if s == fs[k] and (s == 0.0 or s == 1.0) and abs(t - ft[k]) < radius:
+            return True
+        if t == ft[k] and (t == 0.0 or t == 1.0) and abs(s - fs[k]) < radius:
+            return True
+    return False
+
+
+@numba.njit(**_JIT)
 def _on_both(p: Curve, q: Curve, s: float, t: float, bound: float) -> bool:
     f = np.empty(p[0].shape[1])
     _residual(p, q, s, t, f)

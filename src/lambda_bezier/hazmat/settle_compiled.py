@@ -48,6 +48,7 @@ from .refine_compiled import (
     _curve,
     _d,
     _near,
+    _near_isolated,
     _norm,
     _sine,
     _size,
@@ -562,7 +563,7 @@ def settle(
         ok, s, t, kind = _solve_from(
             p, q, root_s[k], root_t[k], fs, ft, count, True, scale, bound, knobs
         )
-        if ok and not _near(s, t, fs, ft, count, isolated_same):
+        if ok and not _near_isolated(s, t, fs, ft, count, isolated_same, same_root):
             if count == room:
                 return -1, fs, ft, fk
             fs[count], ft[count], fk[count] = s, t, kind

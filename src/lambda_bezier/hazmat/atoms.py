@@ -239,7 +239,8 @@ def evaluate_half_angle(
     floor; sin and cos cost 1.5x each), the shift and scale 0.1x, the powers 0.3-0.4x, the
     product 0.4-0.55x, the division 0.2-0.35x, per-call overhead included (2026-11-24).
     With |u| <= 1 every power is at most 1, and the sums are as accurate as Horner's (a few
-    ulps of Σ |c_e| |u|^e)."""
+    ulps of Σ |c_e| |u|^e). The blocks are shared out on threads (`HALF_ANGLE_THREADS`),
+    whole blocks each: the answer does not depend on their number."""
     dim = table.shape[1] - 1
     columns = np.ascontiguousarray(table.T)  # (d+1, 2J+1): the numerators, the denominator
     out = np.empty((dim, tau.size))

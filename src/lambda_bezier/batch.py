@@ -3,9 +3,7 @@
 from __future__ import annotations
 
 import itertools
-import os
 import sys
-from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 import numpy.typing as npt
@@ -171,9 +169,6 @@ def evaluate_many(
 # rows it is given: one row takes its vector path).
 THREADS: int | None = None
 _MIN_SLAB = 1 << 20  # result elements a thread's slab at least gets: below, one thread
-# the pools by (process, threads): a child made by fork inherits the parent's pool without
-# its threads (its jobs would never run), so each process makes its own
-_POOLS: dict[tuple[int, int], ThreadPoolExecutor] = {}
 
 
 def _curve_chunks(m: int, per_curve: int) -> list[tuple[int, int]]:
@@ -196,15 +191,11 @@ def _products_threaded(
     the first failing slab raises, as the slabs run in order one thread after another."""
     m, size, dim = arr.shape
     chunks = _curve_chunks(m, size * dim)  # _products_many's chunks of curves
-    cpus = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
-    workers = min(THREADS or cpus or 1, values.size // _MIN_SLAB, len(chunks))
+    workers = min(THREADS or alg.cpu_count(), values.size // _MIN_SLAB, len(chunks))
     if workers <= 1:
         _products_many(arr, tables, lams, tt, k, check_needed, values)
         return
-    key = (os.getpid(), workers)
-    pool = _POOLS.get(key) or _POOLS.setdefault(
-        key, ThreadPoolExecutor(workers, thread_name_prefix="evaluate_many")
-    )
+    pool = alg.thread_pool(workers)
     cuts = [chunks[len(chunks) * w // workers][0] for w in range(workers)] + [m]
     jobs = [
         pool.submit(

@@ -22,7 +22,7 @@ from . import _validate as val
 from ._lazy import generated
 from ._validate import PointsLike
 from .curves import FAMILIES, Curve, family_class
-from .hazmat import kernels
+from .hazmat import batch_numpy, kernels
 from .hazmat.kernels import chunk_ranges
 from .parameter_optimum import (
     OptimalParameters,
@@ -602,23 +602,24 @@ def _float_optimum(
     result = (lam, best, ok, ok_best, energy, energy_best)
     compiled = kernels.batch_compiled()
     chunks = _chunks(arr, k, family)
-    if compiled is not None:  # one compiled pass; only the chunks it declines are redone
-        compact, rows, a2_weight = _compact_forms(family, arr.shape[1] - 1, k)
-        bounds = _admissible_bounds(data)
-        start, stop = 0, 0
-        while start < m:
-            stop = start + compiled.energy_optimum(
-                arr[start:], compact, rows, 1e-12 * a2_weight, bounds, clamp, best[start:],
-                ok_best[start:], energy_best[start:], lam[start:], ok[start:], energy[start:]
-            )  # fmt: skip
-            if stop == m:
-                break
-            lo, hi = next(c for c in chunks if c[0] <= stop < c[1])
-            _float_optimum_chunk(arr, lo, hi, k, family, clamp, data, single, result)
-            start = hi
-    else:
-        for lo, hi in chunks:
-            _float_optimum_chunk(arr, lo, hi, k, family, clamp, data, single, result)
+    if compiled is not None:  # one compiled pass
+        form, rows, a2_weight = _compact_forms(family, arr.shape[1] - 1, k)
+        kernel = compiled.energy_optimum
+    else:  # numpy, chunk by chunk, a test per chunk (hazmat/batch_numpy.py)
+        form, rows, a2_weight = _factored_forms(family, arr.shape[1] - 1, k, arr.shape[2])
+        kernel = batch_numpy.energy_optimum
+    bounds = _admissible_bounds(data)
+    start = 0
+    while start < m:  # only the chunks the pass declines are redone by the careful path
+        stop = start + kernel(
+            arr[start:], form, rows, 1e-12 * a2_weight, bounds, clamp, best[start:],
+            ok_best[start:], energy_best[start:], lam[start:], ok[start:], energy[start:]
+        )  # fmt: skip
+        if stop == m:
+            break
+        lo, hi = next(c for c in chunks if c[0] <= stop < c[1])
+        _float_optimum_chunk(arr, lo, hi, k, family, clamp, data, single, result)
+        start = hi
     if single:
         return (
             float(lam[0]),

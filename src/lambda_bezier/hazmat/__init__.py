@@ -14,6 +14,8 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `batch_compiled`: the batch operations compiled (numba, the `fast` extra; imported on use):
   the energy coefficients and optimal λ of many polygons in one pass, and evaluate_many's
   test of the curves' magnitudes;
+- `batch_numpy`: the optimal λ of many polygons without numba (the compiled pass's interface
+  in numpy, chunk by chunk on threads; the chunks it declines go to the careful path);
 - `forms`: classical Bézier hodograph, elevation and blossoming at any degree;
 - `arclength`: adaptive Gauss-Lobatto/Kronrod quadrature of the speed;
 - `roots`: real roots in [0, 1] of polynomials about t = 1/2 (companion matrix, Newton);
@@ -84,6 +86,7 @@ __all__ = [
     "atom_surface_bounds",
     "atoms",
     "batch_compiled",
+    "batch_numpy",
     "box_bernstein",
     "certify_compiled",
     "closest_compiled",

@@ -24,12 +24,15 @@ sin and cos).
 
 from __future__ import annotations
 
+import itertools
 import re
 from fractions import Fraction
 from math import comb
 from typing import NamedTuple
 
 import numpy as np
+
+from .kernels import cpu_count, thread_pool
 
 KINDS = ("1", "t", "cos", "sin", "cosh", "sinh")
 _NUMBER = r"[1-9][0-9]{0,30}(?:/[1-9][0-9]{0,30})?"
@@ -236,17 +239,52 @@ def evaluate_half_angle(
     floor; sin and cos cost 1.5x each), the shift and scale 0.1x, the powers 0.3-0.4x, the
     product 0.4-0.55x, the division 0.2-0.35x, per-call overhead included (2026-11-24).
     With |u| <= 1 every power is at most 1, and the sums are as accurate as Horner's (a few
-    ulps of Σ |c_e| |u|^e)."""
+    ulps of Σ |c_e| |u|^e). The blocks are shared out on threads (`HALF_ANGLE_THREADS`),
+    whole blocks each: the answer does not depend on their number."""
     dim = table.shape[1] - 1
-    size = table.shape[0]
     columns = np.ascontiguousarray(table.T)  # (d+1, 2J+1): the numerators, the denominator
     out = np.empty((dim, tau.size))
     block = max(1, min(_HALF_ANGLE_BLOCK, tau.size))
+    starts = range(0, tau.size, block)
+    workers = min(HALF_ANGLE_THREADS or cpu_count(), len(starts) // _HALF_ANGLE_PER_THREAD)
+    if workers <= 1:
+        _half_angle_blocks(columns, tau, 0.5 * omega0, centre, starts, block, out)
+        return out
+    # whole blocks per thread: the same blocks, so the same numbers, at any number of threads
+    cuts = [len(starts) * w // workers for w in range(workers + 1)]
+    jobs = [
+        thread_pool(workers).submit(
+            _half_angle_blocks, columns, tau, 0.5 * omega0, centre, starts[a:b], block, out
+        )
+        for a, b in itertools.pairwise(cuts)
+    ]
+    for job in jobs:
+        job.result()
+    return out
+
+
+# Threads for evaluate_half_angle: None for one per CPU, 1 for none. Each takes a run of
+# whole blocks (tan, the products, BLAS's small product and the division release the GIL),
+# at least _HALF_ANGLE_PER_THREAD blocks each.
+HALF_ANGLE_THREADS: int | None = None
+_HALF_ANGLE_PER_THREAD = 8
+
+
+def _half_angle_blocks(
+    columns: np.ndarray,
+    tau: np.ndarray,
+    half: float,
+    centre: float,
+    starts: range,
+    block: int,
+    out: np.ndarray,
+) -> None:
+    """evaluate_half_angle's blocks starting at `starts`, written into out."""
+    dim, size = columns.shape[0] - 1, columns.shape[1]
     powers = np.empty((size, block))
     powers[0] = 1.0
     sums = np.empty((dim + 1, block))
-    half = 0.5 * omega0
-    for start in range(0, tau.size, block):
+    for start in starts:
         n = min(block, tau.size - start)
         if size > 1:
             u = powers[1, :n]
@@ -258,7 +296,6 @@ def evaluate_half_angle(
         part = sums[:, :n]
         np.matmul(columns, powers[:, :n], out=part)
         np.divide(part[:dim], part[dim], out=out[:, start : start + n])
-    return out
 
 
 def exponential_bernstein(harmonics: int, c: float) -> np.ndarray:

@@ -9,6 +9,7 @@ from __future__ import annotations
 import importlib.util
 import os
 from collections.abc import Sequence
+from concurrent.futures import ThreadPoolExecutor
 from fractions import Fraction
 from types import ModuleType
 
@@ -89,6 +90,26 @@ def batch_compiled() -> ModuleType | None:
 # Elements of one chunk's working block in the batch operations (evaluate_many, optimal_lambda):
 # 2 MB of floats, inside the L2 cache, and a bound on their extra memory at any batch size.
 CHUNK_ELEMENTS = 1 << 18
+
+
+# the batch operations' thread pools by (process, threads): a child made by fork inherits
+# the parent's pool without its threads (its jobs would never run), so each process makes
+# its own
+_POOLS: dict[tuple[int, int], ThreadPoolExecutor] = {}
+
+
+def thread_pool(workers: int) -> ThreadPoolExecutor:
+    """The pool of `workers` threads the batch operations share out their slabs on."""
+    key = (os.getpid(), workers)
+    return _POOLS.get(key) or _POOLS.setdefault(
+        key, ThreadPoolExecutor(workers, thread_name_prefix="lambda_bezier")
+    )
+
+
+def cpu_count() -> int:
+    """The CPUs this process may run on."""
+    cpus = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    return cpus or 1
 
 
 def chunk_ranges(m: int, per_item: int) -> list[tuple[int, int]]:

@@ -701,6 +701,15 @@ def _with_first(term: str) -> list[str]:
         ({"degrees": "40", "functions": ["1"] + ["0"] * 40}, ["key"]),
         ({"degrees": "3..80"}, ["key degrees", "20"]),
         ({"domain": "[0, alpha]"}, ["key domain", "unknown name 'alpha'"]),
+        # C-Bezier on [0, alpha], alpha a parameter: what the definition lacks, said plainly
+        (
+            {
+                "parameters": ["lam", "mu", "w"],
+                "range": {"lam": "[-1, 1]", "mu": "[-1, 1]", "w": "[1/2, 3]"},
+                "domain": "[0, w]",
+            },
+            ["key domain", "shape parameter 'w'", "C-Bezier", "not supported"],
+        ),
         ({"domain": "[0, pi/3]"}, ["key domain", "pi/2"]),
         ({"functions": ["sin(t)", "cos(t)", "1"]}, ["key functions", "no partition of unity"]),
     ],

@@ -122,6 +122,8 @@ FAMILIES: dict[str, tuple] = {
     "lit_at_two": (_at_two, 1, ("lam", "mu"), ((0, 1), (0, 1)), lambda p: p[::-1]),
     "lit_yan_liang": (_yan_liang, 1, ("lam", "mu"), ((-3, 1), (-3, 1)), lambda p: p[::-1]),
 }
+# the indexed family at degree 3, its three parameters one name each for the references
+PER_LEG_3 = (_per_leg, 1, ("lam_0", "lam_1", "lam_2"), ((-1, 1),) * 3, None)
 POINTS = {
     2: [(0, 0), (Fraction(3, 2), 3), (4, 0)],
     3: [(0, 0), (1, 3), (3, Fraction(5, 2)), (4, 0)],
@@ -374,14 +376,17 @@ def _quadratic_energy(basis, hi, points, names, k: int):
         ("lit_at_two", [(0, 0), (1, 2), (3, 2), (4, 0)], 2, True),  # the segment, E_2 = 0
         ("lit_hyp_quad", [(0, 0), (2, 3), (4, 0)], 2, None),
         ("lit_hyp_quad", [(0, 0), (2, 8), (4, 0)], 3, False),
+        ("lit_per_leg", [(0, 0), (1, 3), (3, 3), (4, 0)], 2, None),
+        ("lit_per_leg", [(0, 0), (-3, 4), (7, 4), (4, 0)], 1, None),
     ],
 )
 def test_optimal_parameters_against_a_dense_grid(fams, name, points, k, inside):
-    basis, hi, names, box, *_ = FAMILIES[name]
+    basis, hi, names, box, *_ = FAMILIES.get(name) or PER_LEG_3
+    steps = 80 if len(names) <= 2 else 16
     with mp.workdps(30):
         energy = _quadratic_energy(basis, hi, points, names, k)
-        # the dense grid, then the exact minimum of the quadratic over the box's faces near it
-        grids = [[lo + (h - lo) * mp.mpf(i) / 80 for i in range(81)] for lo, h in box]
+        # the dense grid, then coordinate descent (each step the exact clamped 1D vertex)
+        grids = [[lo + (h - lo) * mp.mpf(i) / steps for i in range(steps + 1)] for lo, h in box]
         best = min(itertools.product(*grids), key=energy)
         polished = list(best)
         for _ in range(60):  # coordinate descent: each 1D step is the exact clamped vertex
@@ -411,8 +416,12 @@ def test_optimal_parameters_against_a_dense_grid(fams, name, points, k, inside):
         free = mp.lu_solve(hess, -mp.matrix(grad))
         free_inside = all(lo - 1e-12 <= free[a] <= h_ + 1e-12 for a, (lo, h_) in enumerate(box))
     got = lb.optimal_parameters(points, k, family=fams[name])
-    assert set(got.values) == set(names)
-    got_point = [float(got[x]) for x in names]
+    if name == "lit_per_leg":  # one value per index, by the indexed name
+        assert set(got.values) == {"lam"}
+        got_point = [float(x) for x in got["lam"]]
+    else:
+        assert set(got.values) == set(names)
+        got_point = [float(got[x]) for x in names]
     assert float(got.energy) == pytest.approx(float(ref_energy), rel=1e-10)
     assert got_point == pytest.approx([float(x) for x in polished], abs=1e-7)
     assert got.free_inside == free_inside

@@ -800,3 +800,27 @@ def test_a_definition_edited_and_derived_again_in_one_process():
     second = derive_document(definition_from_table(_user_family("3*lam - 1"), "fam.toml"))
     assert first["singular_parameters"] == {"2": ["1/2"]}
     assert second["singular_parameters"] == {"2": ["1/3"]}
+
+
+def test_the_per_leg_family_per_degree_against_its_construction(fams):
+    # symmetry lam(k) -> -lam(n-1-k), non-negativity and independence over [-1, 1]^n, each
+    # decided per degree in the document, against the construction
+    doc = json.loads((DATA / "lit_per_leg.derived.json").read_text())
+    with mp.workdps(30):
+        for n in (2, 3):
+            per = doc["by_degree"][str(n)]
+            assert per["symmetry"]["swap"] == [f"-lam_{n - 1 - k}" for k in range(n)]
+            assert per["nonnegative_over_box"]["nonnegative"] is True
+            assert per["singular_parameters"]["independent"] is True
+            for lams in itertools.product(*[[-1, Fraction(1, 3), 1]] * n):
+                vals = [_mpf(Fraction(x)) for x in lams]
+                assert _rank_drop(_per_leg, vals, n) > mp.mpf(10) ** -8
+                for t in (mp.mpf("0.2"), mp.mpf("0.9")):
+                    b = _per_leg(t, *vals)
+                    mirror = _per_leg(1 - t, *[-v for v in vals[::-1]])
+                    assert all(abs(b[i] - mirror[n - i]) < mp.mpf(10) ** -25 for i in range(n + 1))
+                    assert min(b) >= 0
+    # the one-parameter property table is not an indexed family's: said so, not a KeyError
+    # (degree 2) or "degree 3 is outside the range 2..2"
+    with pytest.raises(TypeError, match=r"one parameter per index \(lam\(i\)\).*by_degree"):
+        lb.singular_parameters(fams["lit_per_leg"], 3)

@@ -250,13 +250,22 @@ def _is_elementary(expr: sp.Basic) -> bool:
     return expr.has(sp.pi, *ELEMENTARY.values())
 
 
-def _domain(text: str, fail) -> tuple[Fraction, Fraction, str]:
+def _domain(text: str, fail, parameters: tuple[str, ...] = ()) -> tuple[Fraction, Fraction, str]:
     """`[lo, hi]`: exact rationals, or rational multiples of pi (both ends in one unit)."""
     m = _RANGE.match(text)
     if not m or m.group(1) != "[" or m.group(4) != "]":
         raise fail("domain", f'{text!r} is not a closed interval such as "[0, 1]" or "[0, pi/2]"')
     ends, units = [], set()
     for part in (m.group(2).strip(), m.group(3).strip()):
+        named = [p for p in parameters if re.search(rf"\b{re.escape(p)}\b", part)]
+        if named:  # C-Bezier curves on [0, alpha]: the issue's design must say what is missing
+            raise fail(
+                "domain",
+                f"{text!r}: the end {part!r} names the shape parameter {named[0]!r}; a domain "
+                "whose length is a parameter (C-Bezier curves on [0, alpha]) is not supported "
+                "in this version: the ends are exact numbers, rationals or rational multiples "
+                "of pi",
+            )
         try:
             e = parse_formula(part, {}, {}, elementary=True)
         except ParseError as exc:
@@ -387,7 +396,9 @@ def definition_from_table(table: object, where: str = "", *, builtin: bool = Fal
             at = _number(ats[name], "bernstein_at" if len(names) == 1 else f"bernstein_at.{name}")
         params.append(Parameter(name, ranges[name].strip(), lo, hi, lo_closed, hi_closed, at))
     dom_lo, dom_hi, dom_unit = (
-        _domain(table["domain"], fail) if "domain" in table else (Fraction(0), Fraction(1), "1")
+        _domain(table["domain"], fail, tuple(names))
+        if "domain" in table
+        else (Fraction(0), Fraction(1), "1")
     )
     elementary = "functions" in table and any(
         _is_elementary(_parse_basis(text, tuple(names)))

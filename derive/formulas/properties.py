@@ -59,7 +59,11 @@ def register(name: str, basis_polys, offset: int, degrees: range, interval: Inte
     OFFSETS[name] = offset
     FAMILY_DEGREES[name] = degrees
     FAMILY_RANGES[name] = interval
+    # every cache here is keyed by the family's name: a definition registered again under
+    # the same name (edited and derived again in one process) must not get the old answers
     coefficients.cache_clear()
+    independence_polynomial.cache_clear()
+    singular_roots.cache_clear()
 
 
 # --------------------------------------------------------------------------- coefficients

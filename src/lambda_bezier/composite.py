@@ -50,13 +50,17 @@ Segment = Curve | AtomCurve  # a polynomial curve on [0, 1], or one of an atom f
 @dataclass(frozen=True)
 class JointReport:
     r"""The continuity measured at the joint between segment `index` and `index + 1`
-    (global parameter u = index + 1), from evaluate/derivative/curvature of the segments
+    (global parameter u = breaks[index + 1]), from evaluate/derivative/curvature of the segments
     :math:`C_1` (the left one) and :math:`C_2` (the right one).
 
     Attributes
     ----------
-    index, u : int
-        The left segment's index and the joint's global parameter u = index + 1.
+    index : int
+        The left segment's index.
+    u : int or float
+        The joint's global parameter, the composite's ``breaks[index + 1]``: index + 1 when
+        every segment before it is polynomial (each covers a unit of u), else the sum of the
+        domains' lengths (π/2 for a segment on [0, π/2]).
     position_gap : float
         :math:`\lVert C_1(1) - C_2(0) \rVert`.
     first_derivative_gap, second_derivative_gap : float
@@ -85,7 +89,7 @@ class JointReport:
     """
 
     index: int
-    u: int
+    u: int | float
     position_gap: float
     first_derivative_gap: float
     second_derivative_gap: float
@@ -149,9 +153,16 @@ def _relative_gap(a: np.ndarray, b: np.ndarray) -> float:
 
 
 def measure(
-    left: Segment, right: Segment, *, index: int = 0, joint: Joint | None = None, tol: float = 1e-9
+    left: Segment,
+    right: Segment,
+    *,
+    index: int = 0,
+    joint: Joint | None = None,
+    tol: float = 1e-9,
+    u: float | None = None,
 ) -> JointReport:
-    """The JointReport for `right` following `left` (see JointReport)."""
+    """The JointReport for `right` following `left` (see JointReport); `u` is the joint's
+    global parameter (default index + 1, where every segment before it covers a unit)."""
     tol = val.tolerance(tol)
     end, start = _span(left)[1], _span(right)[0]  # each segment's own t (an AtomCurve's domain)
     p1, p2 = left.evaluate(end), right.evaluate(start)
@@ -184,7 +195,7 @@ def measure(
                 achieved.add("G2")
     return JointReport(
         index=index,
-        u=index + 1,
+        u=index + 1 if u is None else u,
         position_gap=gap,
         first_derivative_gap=_gap(d1, e1),
         second_derivative_gap=_gap(d2, e2),
@@ -566,8 +577,16 @@ class CompositeCurve:
     def report(self, tol: float = 1e-9) -> tuple[JointReport, ...]:
         """One JointReport per joint (relative tolerance `tol`; see JointReport)."""
         tol = val.tolerance(tol)
+        # the joint's u is where the next segment starts (index + 1 only for unit domains)
         return tuple(
-            measure(self.segments[j], self.segments[j + 1], index=j, joint=self.joints[j], tol=tol)
+            measure(
+                self.segments[j],
+                self.segments[j + 1],
+                index=j,
+                joint=self.joints[j],
+                tol=tol,
+                u=float(self._starts[j + 1]) if self._atoms else None,
+            )
             for j in range(len(self.segments) - 1)
         )
 

@@ -26,6 +26,15 @@ def singular_parameters(family: object, n: int) -> tuple[Fraction | IsolatedRoot
     """
     from .curves import family_class  # numpy: imported when first asked
 
+    if getattr(family, "index_name", None) is not None:  # an IndexedFamily (lam(i))
+        # its curve_class is its lowest degree's: the one-parameter table read below is not
+        # its own (a KeyError, or "outside the range 2..2" for a degree it has)
+        raise TypeError(
+            f"the family {family.name!r} has one parameter per index "  # type: ignore[attr-defined]
+            f"({family.index_name}(i)): singular_parameters takes one-parameter families; "  # type: ignore[attr-defined]
+            "where its basis is dependent over the box is in its derived document, per degree "
+            '(by_degree["n"]["singular_parameters"])'
+        )
     cls = family_class(family)  # a built-in family's name, a family from load_family, a class
     if not cls._has_lambda:  # the classical Bézier basis
         return ()

@@ -439,9 +439,16 @@ def definition_from_table(table: object, where: str = "", *, builtin: bool = Fal
             f"{table['domain']!r}: a polynomial basis is derived on [0, 1] only (a basis "
             "with sin, cos, sinh, cosh or exp may have a domain of its own)",
         )
-    for key in ("bernstein_at", "degree_offset"):
-        if elementary and key in table:
-            raise fail(key, "not used by a trigonometric or hyperbolic basis (leave it out)")
+    if elementary and "bernstein_at" in table:
+        raise fail(
+            "bernstein_at",
+            "not used by a trigonometric or hyperbolic basis: the reduction to the Bernstein "
+            "polynomials is decided for polynomial bases only (leave the key out)",
+        )
+    if elementary and "degree_offset" in table:
+        raise fail(
+            "degree_offset", "not used by a trigonometric or hyperbolic basis (leave it out)"
+        )
     if "seed" in table and len(table["seed"]) != dlo + 1:
         raise fail(
             "seed",

@@ -424,3 +424,33 @@ def test_curvature_colouring_of_a_surface_with_a_collapsed_edge(surf, curvature)
     pick = 0 if curvature == "gaussian" else 1
     for idx in [(1, 0), (5, 7), (11, 11)]:
         assert values[idx] == surf.curvatures(uu[idx], vv[idx])[pick]
+
+
+# ------------------------------------------------------- a level curve of a scalar field
+@pytest.mark.parametrize("name", ["bezier 1x3, d=1", "trigonometric d=1"])
+def test_closest_point_on_a_level_curve_of_a_scalar_field(name):
+    """d = 1: a value inside the surface's range is at distance 0 along a whole level curve,
+    where no patch of the search ever narrows below the squared distance's rounding floor.
+    Before, each such query ran to the patch budget (about 2.5 s); the search now stops once
+    the best distance found is within the tolerance (a distance is >= 0). Checked against
+    the range from a dense grid: inside it the distance is 0 within tol·size, outside it the
+    distance to the nearer end."""
+    if name == "trigonometric d=1":
+        trig = _fam("han_trig_cubic")
+        pv = {"lam": 0, "mu": F(1, 3)}
+        surf = trig.surface(_net(3, 3, 1), params_u={"lam": F(1, 2), "mu": -1}, params_v=pv)
+        domains = ((0.0, np.pi / 2), (0.0, np.pi / 2))
+    else:
+        surf, *_, domains = CASES[name]
+    (ua, ub), (va, vb) = domains
+    grid = surf.evaluate(*np.meshgrid(np.linspace(ua, ub, 401), np.linspace(va, vb, 401)))
+    lo, hi = float(grid.min()), float(grid.max())
+    size = float(np.abs(surf.net).max())
+    for value in np.linspace(lo, hi, 7)[1:-1]:
+        cp = surf.closest_point([value])
+        assert cp.distance <= 1e-12 * (size + abs(value)) + 1e-15
+        assert 0.0 <= cp.lower_bound <= cp.distance
+        assert abs(surf.evaluate(cp.u, cp.v)[0] - value) <= 1e-12 * (size + abs(value)) + 1e-15
+    far = surf.closest_point([hi + 1.0])
+    assert far.distance == pytest.approx(1.0, abs=1e-3)  # the grid's max is within 1e-3
+    assert far.lower_bound <= far.distance

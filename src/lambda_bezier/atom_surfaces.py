@@ -46,7 +46,15 @@ from .atom_family import AtomCurve
 from .hazmat import atom_bounds as ab
 from .hazmat import atom_surface_bounds as asb
 from .hazmat import surface_kernels as ker
-from .surfaces import BezierSurface, NetLike, Surface, SurfaceClosestPoint, _as_net, _exact_net
+from .surfaces import (
+    BezierSurface,
+    NetLike,
+    Surface,
+    SurfaceClosestPoint,
+    _as_net,
+    _distance_gap,
+    _exact_net,
+)
 
 
 class RationalBezierSurface:
@@ -516,11 +524,12 @@ class AtomSurface(Surface):
 
         floor = 256 * np.finfo(float).eps * size * size
 
-        def gap(best: float) -> float:
-            return max(tol * size * float(np.sqrt(max(best, 0.0))), floor)
-
         s, t, best, lower = ker.minimise_scalar_net(
-            np.asarray(num), value, self._newton_polish(point), gap, denominator=den
+            np.asarray(num),
+            value,
+            self._newton_polish(point),
+            _distance_gap(tol * size, floor),
+            denominator=den,
         )
         u, v = float(self.t_of_s(0, s)), float(self.t_of_s(1, t))
         at = self.evaluate(u, v)

@@ -545,15 +545,11 @@ class Surface:
             return out
 
         polish = _newton_polish(grad, hess)
-        # the distance gap sqrt(best) - sqrt(lower) <= tol·size needs a squared-distance gap of
-        # tol·size·(sqrt(best) + sqrt(lower)) >= tol·size·sqrt(best); float rounding of the
-        # squared distance's net (about eps·size²) sets a floor under it near the surface
-        floor = 256 * np.finfo(float).eps * size * size
+        floor = 256 * np.finfo(float).eps * size * size  # see _distance_gap
 
-        def gap(best: float) -> float:
-            return max(tol * size * float(np.sqrt(max(best, 0.0))), floor)
-
-        u, v, best, lower = ker.minimise_scalar_net(np.asarray(f_net), value, polish, gap)
+        u, v, best, lower = ker.minimise_scalar_net(
+            np.asarray(f_net), value, polish, _distance_gap(tol * size, floor)
+        )
         at = ker.evaluate_points(self._coefficients, np.array([u]), np.array([v]))[0]
         # the net's least coefficient is rounded too: at a corner, where it is the attained
         # value itself, it can come out an ulp above it; a lower bound lowered stays one
@@ -568,6 +564,21 @@ class Surface:
     def elevate_v(self) -> BezierSurface:
         """The Bézier form with one degree more in v (the same surface)."""
         return self.to_bezier().elevate_v()
+
+
+def _distance_gap(reach: float, floor: float) -> Any:
+    """The squared-distance gap at which the closest point's search stops: the distance
+    gap sqrt(best) - sqrt(lower) <= reach needs a squared gap of reach·(sqrt(best) +
+    sqrt(lower)) >= reach·sqrt(best); float rounding of the squared distance's net (about
+    eps·size²) sets `floor` under it. Once sqrt(best) <= reach every bound will do (a
+    distance is >= 0): without that, a query on a level curve of a scalar field (d = 1, the
+    minimum 0 along a curve) ran to the patch budget, about 2.5 s a query."""
+
+    def gap(best: float) -> float:
+        root = float(np.sqrt(max(best, 0.0)))
+        return np.inf if root <= reach else max(reach * root, floor)
+
+    return gap
 
 
 def _scalar_value(coeffs: np.ndarray) -> Any:

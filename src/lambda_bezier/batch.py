@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import itertools
 import sys
 
 import numpy as np
@@ -195,28 +194,14 @@ def _products_threaded(
     if workers <= 1:
         _products_many(arr, tables, lams, tt, k, check_needed, values)
         return
-    pool = alg.thread_pool(workers)
-    cuts = [chunks[len(chunks) * w // workers][0] for w in range(workers)] + [m]
-    jobs = [
-        pool.submit(
-            _products_many,
-            arr[a:b],
-            tables,
-            lams[a:b] if lams.ndim else lams,
-            tt,
-            k,
-            check_needed,
-            values[a:b],
-            a,
-        )
-        for a, b in itertools.pairwise(cuts)
-    ]
-    # every slab finished before returning (none writes into the result later), and the
-    # first slab's error raised, as in one thread
-    errors = [job.exception() for job in jobs]
-    for error in errors:
-        if error is not None:
-            raise error
+    first = [lo for lo, _ in chunks] + [m]  # chunk j's first curve; m past the last
+
+    def slab(a: int, b: int) -> None:
+        lo, hi = first[a], first[b]
+        part = lams[lo:hi] if lams.ndim else lams
+        _products_many(arr[lo:hi], tables, part, tt, k, check_needed, values[lo:hi], lo)
+
+    alg.on_threads(slab, len(chunks), workers)
 
 
 def _products_many(

@@ -24,7 +24,6 @@ sin and cos).
 
 from __future__ import annotations
 
-import itertools
 import re
 from fractions import Fraction
 from math import comb
@@ -32,7 +31,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .kernels import cpu_count, thread_pool
+from .kernels import cpu_count, on_threads
 
 KINDS = ("1", "t", "cos", "sin", "cosh", "sinh")
 _NUMBER = r"[1-9][0-9]{0,30}(?:/[1-9][0-9]{0,30})?"
@@ -251,15 +250,13 @@ def evaluate_half_angle(
         _half_angle_blocks(columns, tau, 0.5 * omega0, centre, starts, block, out)
         return out
     # whole blocks per thread: the same blocks, so the same numbers, at any number of threads
-    cuts = [len(starts) * w // workers for w in range(workers + 1)]
-    jobs = [
-        thread_pool(workers).submit(
-            _half_angle_blocks, columns, tau, 0.5 * omega0, centre, starts[a:b], block, out
-        )
-        for a, b in itertools.pairwise(cuts)
-    ]
-    for job in jobs:
-        job.result()
+    on_threads(
+        lambda a, b: _half_angle_blocks(
+            columns, tau, 0.5 * omega0, centre, starts[a:b], block, out
+        ),
+        len(starts),
+        workers,
+    )
     return out
 
 

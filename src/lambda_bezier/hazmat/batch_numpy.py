@@ -17,11 +17,9 @@ product, dot products and operations in the same order: bit for bit on the same 
 
 from __future__ import annotations
 
-import itertools
-
 import numpy as np
 
-from .kernels import chunk_ranges, cpu_count, thread_pool
+from .kernels import chunk_ranges, cpu_count, on_threads
 
 # Threads for the pass: None for one per CPU this process may run on, 1 for none. Each
 # takes a slab of whole chunks (numpy's passes and BLAS release the GIL).
@@ -62,12 +60,9 @@ def energy_optimum(
     results = (best, ok_best, energy_best, lam, ok, energy)
     if workers <= 1:
         return _slab(points, chunks, 0, len(chunks), args, results)
-    pool = thread_pool(workers)
-    cuts = [len(chunks) * w // workers for w in range(workers + 1)]
-    jobs = [
-        pool.submit(_slab, points, chunks, a, b, args, results) for a, b in itertools.pairwise(cuts)
-    ]
-    return min(job.result() for job in jobs)
+    return min(
+        on_threads(lambda a, b: _slab(points, chunks, a, b, args, results), len(chunks), workers)
+    )
 
 
 def _slab(

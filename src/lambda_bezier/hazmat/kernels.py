@@ -7,11 +7,13 @@ lecture notes' worked examples and exact conversions stay exact.
 from __future__ import annotations
 
 import importlib.util
+import itertools
 import os
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from fractions import Fraction
 from types import ModuleType
+from typing import TypeVar
 
 import numpy as np
 
@@ -96,6 +98,7 @@ CHUNK_ELEMENTS = 1 << 18
 # the parent's pool without its threads (its jobs would never run), so each process makes
 # its own
 _POOLS: dict[tuple[int, int], ThreadPoolExecutor] = {}
+_T = TypeVar("_T")
 
 
 def thread_pool(workers: int) -> ThreadPoolExecutor:
@@ -104,6 +107,20 @@ def thread_pool(workers: int) -> ThreadPoolExecutor:
     return _POOLS.get(key) or _POOLS.setdefault(
         key, ThreadPoolExecutor(workers, thread_name_prefix="lambda_bezier")
     )
+
+
+def on_threads(run: Callable[[int, int], _T], count: int, workers: int) -> list[_T]:
+    """run(a, b) on `workers` consecutive slices [a, b) of range(count), one a thread of
+    `thread_pool(workers)`, the results in slice order. Every slice has finished before this
+    returns or raises (none writes into a result later), and the error raised is the first
+    slice's, as in one thread."""
+    cuts = [count * w // workers for w in range(workers + 1)]
+    pool = thread_pool(workers)
+    jobs = [pool.submit(run, a, b) for a, b in itertools.pairwise(cuts)]
+    for error in [job.exception() for job in jobs]:
+        if error is not None:
+            raise error
+    return [job.result() for job in jobs]
 
 
 def cpu_count() -> int:

@@ -546,20 +546,12 @@ class AtomSurface(Surface):
 
         def polish(s: float, t: float) -> tuple[float, float]:
             u, v = float(self.t_of_s(0, s)), float(self.t_of_s(1, t))
-            for _ in range(8):
+            for _ in range(asb.NEWTON_STEPS):
                 uu, vv = np.array([u]), np.array([v])
-                r = self._partial(uu, vv, 0, 0)[0] - point
-                su, sv = self._partial(uu, vv, 1, 0)[0], self._partial(uu, vv, 0, 1)[0]
-                suu, suv = self._partial(uu, vv, 2, 0)[0], self._partial(uu, vv, 1, 1)[0]
-                svv = self._partial(uu, vv, 0, 2)[0]
-                gx, gy = float(r @ su), float(r @ sv)
-                hxx, hxy = float(su @ su + r @ suu), float(su @ sv + r @ suv)
-                hyy = float(sv @ sv + r @ svv)
-                det = hxx * hyy - hxy * hxy
-                if not det or not np.isfinite(det):
-                    break
-                nu = min(max(u - (hyy * gx - hxy * gy) / det, ua), ub)
-                nv = min(max(v - (hxx * gy - hxy * gx) / det, va), vb)
+                partials = (self._partial(uu, vv, a, b) for a, b in asb.NEWTON_PARTIALS)
+                du, dv = asb.distance_newton_step(self._partial(uu, vv, 0, 0) - point, *partials)
+                nu = min(max(u - float(du[0]), ua), ub)
+                nv = min(max(v - float(dv[0]), va), vb)
                 if nu == u and nv == v:
                     break
                 u, v = nu, nv

@@ -602,6 +602,32 @@ def coordinate_extremes(
     return out[0], out[1], out[2], out[3]
 
 
+NEWTON_PARTIALS = ((1, 0), (0, 1), (2, 0), (1, 1), (0, 2))  # distance_newton_step's order
+
+
+def distance_newton_step(
+    r: np.ndarray,
+    su: np.ndarray,
+    sv: np.ndarray,
+    suu: np.ndarray,
+    suv: np.ndarray,
+    svv: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The Newton step (du, dv) on the gradient of |S − q|² / 2, from the residual
+    r = S − q and the partials of S at k points (each (k, d)); 0 where the Hessian is
+    singular or not finite."""
+    gu, gv = (r * su).sum(1), (r * sv).sum(1)
+    huu = (su * su + r * suu).sum(1)
+    huv = (su * sv + r * suv).sum(1)
+    hvv = (sv * sv + r * svv).sum(1)
+    det = huu * hvv - huv * huv
+    ok = np.isfinite(det) & (np.abs(det) > 1e-300)
+    safe = np.where(ok, det, 1.0)
+    du = np.where(ok, (hvv * gu - huv * gv) / safe, 0.0)
+    dv = np.where(ok, (huu * gv - huv * gu) / safe, 0.0)
+    return du, dv
+
+
 def closest(
     data: SurfaceData, q: np.ndarray, tol: float = 1e-12, stats: Stats | None = None
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -635,18 +661,8 @@ def closest(
     def polish(u: np.ndarray, v: np.ndarray, g: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Newton on ∇D = 0 from (u, v), kept in the domain (a singular step stops)."""
         for _ in range(NEWTON_STEPS):
-            r = data.values(0, 0, u, v) - q[g]
-            su, sv = data.values(1, 0, u, v), data.values(0, 1, u, v)
-            suu, suv, svv = (data.values(a, b, u, v) for a, b in ((2, 0), (1, 1), (0, 2)))
-            gu, gv = (r * su).sum(1), (r * sv).sum(1)
-            huu = (su * su + r * suu).sum(1)
-            huv = (su * sv + r * suv).sum(1)
-            hvv = (sv * sv + r * svv).sum(1)
-            det = huu * hvv - huv * huv
-            ok = np.isfinite(det) & (np.abs(det) > 1e-300)
-            safe = np.where(ok, det, 1.0)
-            du = np.where(ok, (hvv * gu - huv * gv) / safe, 0.0)
-            dv = np.where(ok, (huu * gv - huv * gu) / safe, 0.0)
+            partials = (data.values(a, b, u, v) for a, b in NEWTON_PARTIALS)
+            du, dv = distance_newton_step(data.values(0, 0, u, v) - q[g], *partials)
             nu, nv = np.clip(u - du, ua, ub), np.clip(v - dv, va, vb)
             if np.array_equal(nu, u) and np.array_equal(nv, v):
                 break

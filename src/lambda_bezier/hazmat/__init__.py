@@ -19,9 +19,11 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `forms`: classical Bézier hodograph, elevation and blossoming at any degree;
 - `arclength`: adaptive Gauss-Lobatto/Kronrod quadrature of the speed;
 - `roots`: real roots in [0, 1] of polynomials about t = 1/2 (companion matrix, Newton);
-- `extremes`: tight bounding boxes and closest points from those roots;
+- `extremes`: tight bounding boxes from those roots; closest points (the engine's switch);
 - `closest_compiled`: closest points by a certified branch and bound on the Bernstein form of
   the squared distance, compiled with numba (the `fast` extra; imported on use);
+- `closest_numpy`: the same branch and bound without numba (breadth first over a batch in
+  numpy; depth first on Python floats for a few queries);
 - `intersect`: curve/curve intersection, self-intersection and point location;
 - `intersect_subdivide`: the candidate isolation `intersect` runs on (subdivision on arrays);
 - `intersect_compiled`: the same loop compiled with numba (the `fast` extra; imported on use);
@@ -90,6 +92,7 @@ __all__ = [
     "box_bernstein",
     "certify_compiled",
     "closest_compiled",
+    "closest_numpy",
     "constants",
     "exact_poly",
     "extremes",

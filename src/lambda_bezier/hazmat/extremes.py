@@ -1,7 +1,8 @@
 """Extremes of polynomial curves given by Taylor coefficients about t = 1/2: tight bounding
-boxes and closest points, from the real roots in [0, 1] (roots.py) of a derivative component
-or of (p − q)·p', each candidate polished and judged on the full polynomial, the ends always
-among the candidates."""
+boxes, from the real roots in [0, 1] (roots.py) of each derivative component, each candidate
+polished and judged on the full polynomial, the ends always among the candidates; and
+closest points, by a certified branch and bound on the Bernstein form of |p − q|²
+(closest_compiled with numba, closest_numpy without)."""
 
 from __future__ import annotations
 
@@ -13,8 +14,9 @@ from types import ModuleType
 
 import numpy as np
 
+from . import closest_numpy
 from . import kernels as alg
-from .roots import candidate_roots, newton, newton_pair, significant
+from .roots import candidate_roots, newton, significant
 
 
 def _eval(coeffs: np.ndarray, t: np.ndarray) -> np.ndarray:
@@ -59,10 +61,16 @@ def box(
 
 
 # the compiled branch and bound (closest_compiled) when numba is there and not switched off;
-# set LAMBDA_BEZIER_NO_NUMBA=1, or USE_COMPILED = False here, for the companion-matrix path
+# set LAMBDA_BEZIER_NO_NUMBA=1, or USE_COMPILED = False here, for closest_numpy's
 USE_COMPILED = importlib.util.find_spec("numba") is not None and not os.environ.get(
     "LAMBDA_BEZIER_NO_NUMBA"
 )
+
+
+# without numba, closest_numpy's branch and bound runs breadth first over all queries at once
+# from this many queries on, and query by query on Python floats below (measured crossover
+# 16-32 queries at degrees 3 and 8)
+BREADTH_FIRST_FROM = 16
 
 
 def _compiled() -> ModuleType | None:
@@ -103,57 +111,19 @@ def _product_weights(degree: int) -> np.ndarray:
 def closest(c0: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Parameters, points and squared distances of the points of the polynomial curve with
     centred coefficients c0 (d, N+1) nearest to each row of q (m, d): the best of both ends
-    and every root in [0, 1] of (p − q)·p'. With numba, closest_compiled's certified branch
-    and bound on the Bernstein form of |p − q|²; else the companion matrix's roots."""
+    and every minimum of |p − q|² inside, by a certified branch and bound on its Bernstein
+    form: closest_compiled's with numba, else closest_numpy's (the same method in numpy;
+    query by query on Python floats for a few queries)."""
+    queries = np.ascontiguousarray(q, dtype=float)
+    if c0.shape[1] < 2:  # a point: every t is nearest; t = 0, as the branch and bound's ends
+        pts = np.repeat(c0.T, queries.shape[0], axis=0)
+        return np.zeros(queries.shape[0]), pts, np.square(pts - queries).sum(-1)
+    degree = c0.shape[1] - 1
+    bern = np.ascontiguousarray(centred_to_bernstein(degree) @ c0.T)
     compiled = _compiled()
-    if compiled is not None and c0.shape[1] >= 2:
-        degree = c0.shape[1] - 1
-        bern = np.ascontiguousarray(centred_to_bernstein(degree) @ c0.T)
-        t, pts, dist2 = compiled.closest(
-            bern, np.ascontiguousarray(q, dtype=float), _product_weights(degree)
-        )
+    if compiled is not None:
+        t, pts, dist2 = compiled.closest(bern, queries, _product_weights(degree))
         return t, pts, dist2
-    return _closest_roots(c0, q)
-
-
-def _closest_roots(c0: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """closest by the companion matrix: every root in [0, 1] of (p − q)·p', polished."""
-    p = significant(c0)  # (d, N'+1) with the true leading term
-    m, dim = q.shape
-    size = p.shape[1]
-    cands = [np.zeros((m, 1)), np.ones((m, 1))]
-    if size >= 2:
-        dp = alg.differentiate_coefficients(p, 1)  # (d, N')
-        # g(u) = (p(u) - q) · p'(u) = Σ_c p_c p'_c − Σ_c q_c p'_c: degree 2N' − 1
-        fixed = sum(np.convolve(p[c], dp[c]) for c in range(dim))
-        g = np.tile(fixed, (m, 1))
-        g[:, : size - 1] -= q @ dp
-        roots = candidate_roots(g)
-        d2 = alg.differentiate_coefficients(p, 2)
-        # p, p' and p'' as the rows of one table (the derivatives' missing top coefficients
-        # zero: Horner then gives the same numbers as on their own), so that a Newton step
-        # evaluates once, not five times: the per-call cost of numpy's passes is most of a
-        # single query's time (issue #29)
-        rows = np.zeros((3 * dim, size))
-        rows[:dim], rows[dim : 2 * dim, : dp.shape[1]], rows[2 * dim :, : d2.shape[1]] = p, dp, d2
-
-        def g_and_gprime(t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-            values = _eval(rows, t).reshape(*t.shape, 3 * dim)
-            pts, der, sec = values[..., :dim], values[..., dim : 2 * dim], values[..., 2 * dim :]
-            off = pts - q[:, None, :]
-            g: np.ndarray = (off * der).sum(-1)
-            dg: np.ndarray = (der * der).sum(-1) + (off * sec).sum(-1)
-            return g, dg
-
-        polished = newton_pair(roots.copy(), g_and_gprime)
-        # a missing root (NaN) becomes the end t = 0, a candidate already; roots and polished
-        # roots are otherwise finite (clipped to [0, 1], and Newton keeps them there), so
-        # np.where does nan_to_num's work here, at a fraction of its cost (issue #29)
-        found = np.concatenate([roots, polished], axis=1)
-        cands.append(np.where(np.isnan(found), 0.0, found))
-    t = np.concatenate(cands, axis=1)
-    pts = _eval(c0, t).reshape(*t.shape, dim)
-    dist2 = np.square(pts - q[:, None, :]).sum(-1)
-    best = np.argmin(dist2, axis=1)
-    rows = np.arange(m)
-    return t[rows, best], pts[rows, best], dist2[rows, best]
+    if queries.shape[0] < BREADTH_FIRST_FROM:
+        return closest_numpy.closest_few(c0, bern, queries)
+    return closest_numpy.closest(c0, bern, queries)

@@ -237,6 +237,7 @@ def closest_few(
     for one query Python's own arithmetic on the 2N+1 coefficients is the cheaper means."""
     n, dim = c0.shape[1] - 1, c0.shape[0]
     table = _table(c0).T.tolist()  # (N+1) rows of 3d centred coefficients, highest last
+    point_rows = [row[:dim] for row in table]
     product = _product_map(n)
     size = 2 * n + 1
     out_t = []
@@ -246,11 +247,7 @@ def closest_few(
 
         def values(t: float, q: list[float] = q) -> tuple[float, float, float]:
             """(D, g, g') at t by Horner on the centred table."""
-            u = t - 0.5
-            acc = list(table[n])
-            for e in range(n - 1, -1, -1):
-                row = table[e]
-                acc = [a * u + r for a, r in zip(acc, row, strict=True)]
+            acc = _horner(table, t - 0.5)
             off = [acc[j] - q[j] for j in range(dim)]
             slope, second = acc[dim : 2 * dim], acc[2 * dim :]
             d2 = sum(o * o for o in off)
@@ -258,8 +255,12 @@ def closest_few(
             dg = sum(s * s for s in slope) + sum(o * s for o, s in zip(off, second, strict=True))
             return d2, g, dg
 
-        best, best_t = values(0.0)[0], 0.0
-        end = values(1.0)[0]
+        def distance2(t: float, q: list[float] = q) -> float:
+            """D at t: values' first entry, from p's rows of the table alone."""
+            return sum((a - b) ** 2 for a, b in zip(_horner(point_rows, t - 0.5), q, strict=True))
+
+        best, best_t = distance2(0.0), 0.0
+        end = distance2(1.0)
         if end < best:
             best, best_t = end, 1.0
         stack = [(coeffs, 0.0, 1.0)]
@@ -289,7 +290,7 @@ def closest_few(
                     work = [0.5 * (a + b) for a, b in zip(work[:-1], work[1:], strict=True)]
                     left[r], right[size - 1 - r] = work[0], work[-1]
                 mid = 0.5 * (lo + hi)
-                value = values(mid)[0]
+                value = distance2(mid)
                 if value < best:
                     best, best_t = value, mid
                 halves = [(left, lo, mid), (right, mid, hi)]
@@ -297,13 +298,21 @@ def closest_few(
                     halves.reverse()
                 stack += halves
                 continue
-            value = values(t)[0]
+            value = distance2(t)
             if value < best:
                 best, best_t = value, t
         out_t.append(best_t)
     t_arr = np.array(out_t)
     point = alg.centred_horner(c0, t_arr)
     return t_arr, point, np.square(point - queries).sum(-1)
+
+
+def _horner(rows: list[list[float]], u: float) -> list[float]:
+    """Σ_e rows[e] u^e, entry by entry, on Python floats."""
+    acc = rows[-1]
+    for row in reversed(rows[:-1]):
+        acc = [a * u + r for a, r in zip(acc, row, strict=True)]
+    return acc
 
 
 def _minimum_inside_few(

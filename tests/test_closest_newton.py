@@ -114,3 +114,24 @@ def test_the_three_engines_agree():
             if extremes.USE_COMPILED:
                 fast = lb.BezierCurve(pts).closest_point(queries)
                 np.testing.assert_allclose(fast.distance, wide.distance, rtol=0, atol=1e-13)
+
+
+def test_blocks_and_crowded_queries_give_the_same_answers(monkeypatch):
+    """Queries split into blocks, and those with many live intervals finished depth first
+    (closest_numpy.BLOCK, CROWDED, here forced small), answer as one breadth-first search."""
+    from lambda_bezier.hazmat import closest_numpy
+
+    rng = np.random.default_rng(12)
+    pts = rng.normal(size=(8, 2))
+    queries = rng.normal(size=(200, 2)) * 1.5
+    whole = _numpy_closest(pts, queries, few=False)
+    monkeypatch.setattr(closest_numpy, "BLOCK", 7)
+    monkeypatch.setattr(closest_numpy, "CROWDED", 1)
+    calls = []
+    few = closest_numpy.closest_few
+    monkeypatch.setattr(
+        closest_numpy, "closest_few", lambda *args: calls.append(len(args[2])) or few(*args)
+    )
+    cut = _numpy_closest(pts, queries, few=False)
+    assert sum(calls) > 0  # some queries were crowded
+    np.testing.assert_allclose(cut.distance, whole.distance, rtol=0, atol=1e-13)

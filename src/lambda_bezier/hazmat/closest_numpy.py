@@ -40,6 +40,8 @@ import numpy as np
 from . import kernels as alg
 
 MAX_LEVELS = 60  # halvings at most (an interval is 2^-60 wide by then: settled by its middle)
+BLOCK = 4096  # queries searched together (closest)
+CROWDED = 64  # live intervals of one query in a level past which closest_few finishes it
 MAX_INTERVALS = 4096  # intervals examined per query before the best so far is taken (compiled's)
 NARROW = 1e-14  # an interval this narrow is settled by its middle (closest_compiled.NARROW)
 NEWTON_STEPS = 60  # bracketed Newton's iterations at most (closest_compiled's bound)
@@ -161,7 +163,27 @@ def closest(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """extremes.closest without numba: c0 (d, N+1), the curve's centred coefficients, and
     pts (N+1, d), its Bernstein control points (N >= 1); queries (m, d). Returns (t (m,),
-    points (m, d), squared distances (m,)); points and distances are evaluated on c0."""
+    points (m, d), squared distances (m,)); points and distances are evaluated on c0.
+
+    Queries go BLOCK at a time, and a query with more than CROWDED live intervals in a level
+    (a distance flat to rounding over a stretch, where breadth first would keep up to
+    MAX_INTERVALS of them per query) is finished by closest_few, depth first: the rows held
+    stay under BLOCK * 2 * CROWDED whatever the curve and the queries."""
+    m = queries.shape[0]
+    t, crowded = np.empty(m), np.zeros(m, dtype=bool)
+    for a in range(0, m, BLOCK):
+        t[a : a + BLOCK], crowded[a : a + BLOCK] = _closest_block(c0, pts, queries[a : a + BLOCK])
+    if crowded.any():
+        t[crowded] = closest_few(c0, pts, queries[crowded])[0]
+    point = alg.centred_horner(c0, t)
+    return t, point, np.square(point - queries).sum(-1)
+
+
+def _closest_block(
+    c0: np.ndarray, pts: np.ndarray, queries: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """closest's breadth-first search on one block of queries: (t, crowded), crowded
+    marking the queries left to closest_few (their t not final)."""
     n = c0.shape[1] - 1
     m = queries.shape[0]
     table = _table(c0)
@@ -179,6 +201,7 @@ def closest(
     best_t = np.where(better, 1.0, best_t)
     rows = np.arange(m)  # each live interval's query
     examined = np.zeros(m, dtype=np.int64)
+    crowded = np.zeros(m, dtype=bool)
     lo, hi = np.zeros(m), np.ones(m)
 
     def offer(who: np.ndarray, t: np.ndarray) -> None:
@@ -200,10 +223,13 @@ def closest(
         if not rows.size:
             break
         keep = coeffs.min(axis=1) < best[rows]
+        live = np.bincount(rows[keep], minlength=m)
+        crowded |= live > CROWDED
+        keep &= ~crowded[rows]
         rows, lo, hi, coeffs = rows[keep], lo[keep], hi[keep], coeffs[keep]
         if not rows.size:
             break
-        examined += np.bincount(rows, minlength=m)
+        examined += live
         changes, first = _sign_changes(np.diff(coeffs, axis=1))
         monotone = changes == 0
         valley = (changes == 1) & (first < 0)
@@ -224,8 +250,7 @@ def closest(
         lo, hi = np.concatenate([lo, mid]), np.concatenate([mid, hi])
     if rows.size:  # past MAX_LEVELS (not reached in practice): settled by their middles
         offer(rows, 0.5 * (lo + hi))
-    point = alg.centred_horner(c0, best_t)
-    return best_t, point, np.square(point - queries).sum(-1)
+    return best_t, crowded
 
 
 def closest_few(

@@ -107,13 +107,20 @@ def test_chebyshev_12_against_a_line_under_its_peaks(family, lam):
 @pytest.mark.parametrize(("family", "lam"), SPANNING)
 def test_two_self_crossings_0_005_apart(family, lam, ra, rb):
     """(t², t (t² - a²)(t² - b²)) on t = 2s - 1 crosses itself at t = ±a and t = ±b."""
+    curve = _in_family(two_self_crossings(ra, rb), family, lam)
+    want = sorted([(float((1 - r) / 2), float((1 + r) / 2)) for r in (ra, rb)])
+    _assert_hits(curve.self_intersections(), want)
+
+
+def two_self_crossings(ra: F, rb: F) -> lb.BezierCurve:
+    """The quintic (t², t (t² − a²)(t² − b²)) on t = 2s − 1, exactly: it crosses itself at
+    t = ±a and t = ±b, i.e. at s = (1 ∓ a)/2 and (1 ∓ b)/2 (also the rational case of
+    tests/test_acceptance_29_classes.py, under a Möbius map)."""
     t = [F(-1), F(2)]
     x = _compose([F(0), F(0), F(1)], t)
     y = _compose([F(0), ra**2 * rb**2, F(0), -(ra**2 + rb**2), F(0), F(1)], t)
     x += [F(0)] * (len(y) - len(x))
-    curve = _in_family(_power_to_bezier(list(zip(x, y, strict=True))), family, lam)
-    want = sorted([(float((1 - r) / 2), float((1 + r) / 2)) for r in (ra, rb)])
-    _assert_hits(curve.self_intersections(), want)
+    return _power_to_bezier(list(zip(x, y, strict=True)))
 
 
 def _de_casteljau(pts, t):

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
-from test_acceptance_29 import _chebyshev, _compose, _power_to_bezier
+from test_acceptance_29 import _chebyshev, _compose, _power_to_bezier, two_self_crossings
 
 import lambda_bezier as lb
 from lambda_bezier.hazmat import atom_intersect as ai
@@ -113,11 +113,7 @@ def test_rational_parabola_and_line_1e3_apart():
 def test_rational_self_crossings_0_005_apart_under_a_mobius_map(ra, rb):
     """(t², t (t² − a²)(t² − b²)), t = 2u − 1, with weights 2^i: it crosses itself at
     u = (1 ∓ a)/2 and (1 ∓ b)/2, i.e. at s = φ⁻¹(u) = u / (2 − u)."""
-    t = [F(-1), F(2)]
-    x = _compose([F(0), F(0), F(1)], t)
-    y = _compose([F(0), ra**2 * rb**2, F(0), -(ra**2 + rb**2), F(0), F(1)], t)
-    x += [F(0)] * (len(y) - len(x))
-    poly = _power_to_bezier(list(zip(x, y, strict=True)))
+    poly = two_self_crossings(ra, rb)
     curve = lb.RationalBezierCurve(poly.control_points(), [2**i for i in range(6)])
     got = curve.self_intersections()
     pairs = sorted(((1 - r) / 2, (1 + r) / 2) for r in (ra, rb))
@@ -125,6 +121,19 @@ def test_rational_self_crossings_0_005_apart_under_a_mobius_map(ra, rb):
     assert len(got) == 2, got
     for h, (a, b) in zip(got, want, strict=True):
         assert abs(h.s - a) < 1e-9 and abs(h.t - b) < 1e-9 and h.kind == "transversal"
+
+
+def _level_above_minimum(curve, a: float, b: float) -> F:
+    """1e-7 above the least y of `curve` on [a, b] (a bracket of an interior minimum of its
+    float evaluation), found by golden section on the float curve: the level only needs to be
+    near the minimum, the references are exact at whatever level is chosen."""
+    for _ in range(80):
+        m1, m2 = a + 0.382 * (b - a), b - 0.382 * (b - a)
+        if curve.evaluate(m1)[1] < curve.evaluate(m2)[1]:
+            b = m2
+        else:
+            a = m1
+    return F(float(curve.evaluate(0.5 * (a + b))[1])) + F(1, 10**7)
 
 
 @settings(max_examples=25, deadline=None)
@@ -146,14 +155,7 @@ def test_rational_curve_against_a_line_just_above_a_minimum(heights, weights):
     inner = [i for i in range(1, u.size - 1) if y[i] < y[i - 1] and y[i] <= y[i + 1]]
     if not inner:
         return
-    a, b = u[inner[0] - 1], u[inner[0] + 1]
-    for _ in range(80):  # golden section: the level only needs to be near the minimum
-        m1, m2 = a + 0.382 * (b - a), b - 0.382 * (b - a)
-        if curve.evaluate(m1)[1] < curve.evaluate(m2)[1]:
-            b = m2
-        else:
-            a = m1
-    level = F(float(curve.evaluate(0.5 * (a + b))[1])) + F(1, 10**7)
+    level = _level_above_minimum(curve, u[inner[0] - 1], u[inner[0] + 1])
     num = [F(w) * (p[1] - level) for w, p in zip(weights, pts, strict=False)]
     mp.mp.dps = 50
     want = [float(r) for r in _real_roots(_bernstein_to_power(num), 0, 1)]
@@ -244,17 +246,7 @@ def test_trig_curve_against_a_line_just_above_a_minimum(heights):
     inner = [i for i in range(1, t.size - 1) if y[i] < y[i - 1] and y[i] <= y[i + 1]]
     if not inner:
         return
-    k = inner[0]
-    # the minimum polished by golden section on the float curve: the level only needs to be
-    # within about 1e-7 above it, the reference is exact at whatever level is chosen
-    a, b = t[k - 1], t[k + 1]
-    for _ in range(80):
-        m1, m2 = a + 0.382 * (b - a), b - 0.382 * (b - a)
-        if curve.evaluate(m1)[1] < curve.evaluate(m2)[1]:
-            b = m2
-        else:
-            a = m1
-    level = F(float(curve.evaluate(0.5 * (a + b))[1])) + F(1, 10**7)
+    level = _level_above_minimum(curve, t[inner[0] - 1], t[inner[0] + 1])
     want = _trig_pair_reference(curve, level)
     line = lb.BezierCurve([(-1, level), (4, level)])
     got = curve.intersect(line)

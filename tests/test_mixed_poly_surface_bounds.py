@@ -20,6 +20,7 @@ import pytest
 from conftest import examples_per_profile
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
+from surface_box_check import check_box as shared_check_box
 from test_atom_surface_bounds import (
     GRID,
     PINNED_NET,
@@ -124,24 +125,14 @@ def surface(atom, poly: int, raw, lams, atom_in_u: bool, shape="random", dim=3) 
 
 # ------------------------------------------------------------------------------ the box
 def check_box(s: AtomSurface) -> None:
-    data = s._surface_data()
-    stats = ab.Stats()
-    inner_lo, inner_hi, lo, hi = asb.coordinate_extremes(data, TOL, stats)
-    assert stats.narrow == 0
-    box = s.bounding_box()
-    assert np.array_equal(np.array(box), np.array([lo, hi]))
-    assert np.isfinite(box).all()
+    """surface_box_check.check_box against this file's reference (the polynomial direction
+    from its Bernstein form)."""
     ref = MpMixedSurface(s)
-    grid = _grid(s, ref)
-    size = data.size()
-    allowed = max(TOL * size, float(data.floor().max()))
-    tiny = 1e-14 * max(size, 1e-300)  # the float basis coefficients against the exact basis
-    for c in range(s.dimension):
-        for sign, bound in ((1, lo[c]), (-1, hi[c])):
-            best = sign * reference_min(ref, coordinate_f(c, sign), sign * grid[:, :, c])
-            assert sign * (float(best) - bound) >= -tiny  # the box holds the attained extreme
-            assert sign * (float(best) - bound) <= allowed + tiny  # and is within tol of it
-    assert (lo <= inner_lo).all() and (inner_hi <= hi).all()
+
+    def extreme(c: int, sign: int, values: np.ndarray) -> mp.mpf:
+        return reference_min(ref, coordinate_f(c, sign), values)
+
+    shared_check_box(s, _grid(s, ref), extreme)
 
 
 nets = st.lists(st.floats(-3, 3), min_size=48, max_size=48)

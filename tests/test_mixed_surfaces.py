@@ -12,41 +12,24 @@ from fractions import Fraction as F
 import mpmath
 import numpy as np
 import pytest
-from conftest import occt_surface
+from conftest import occt_surface, surface_families
+from han_surface_reference import NET, PU, han, mp
 
 import lambda_bezier as lb
-from lambda_bezier import examples
 from lambda_bezier import surface_export as se
 from lambda_bezier.atom_surfaces import AtomSurface, RationalBezierSurface
 from lambda_bezier.param_surfaces import family_surface
 
 DATA = "tests/data/families/"
-TRIG = lb.load_family(examples.path("han_trig_cubic.toml"))
-TWO = lb.load_family(examples.path("two_shape_cubic.toml"))
-HYP = lb.load_family(DATA + "hyp_two_shape_cubic.toml")
-MIXED = lb.load_family(DATA + "at_pi_cubic.toml")
+TRIG, TWO, _, HYP, MIXED = surface_families()
 
-NET = [[(i, j, F((i * j) % 3, 2) - F(i, 4)) for j in range(4)] for i in range(4)]
-PU = {"lam": F(1, 2), "mu": -1}
 LAM_V = F(1, 3)
 HALF_PI = mpmath.pi / 2
 
 
-def mp(x: object) -> mpmath.mpf:
-    x = F(x)
-    return mpmath.mpf(x.numerator) / x.denominator
-
-
-def han(i: int, t: object) -> object:
-    """Han, Ma and Huang's cubic trigonometric basis (2009) at PU, written out (mpmath)."""
-    lam, mu = mp(PU["lam"]), mp(PU["mu"])
-    s, c = mpmath.sin(t), mpmath.cos(t)
-    return [
-        (1 - s) ** 2 * (1 - lam * s),
-        s * (1 - s) * (2 + lam - lam * s),
-        c * (1 - c) * (2 + mu - mu * c),
-        (1 - c) ** 2 * (1 - mu * c),
-    ][i]
+def han_at_pu(i: int, t: object) -> object:
+    """Han, Ma and Huang's cubic trigonometric basis at PU (mpmath)."""
+    return han(i, t, mp(PU["lam"]), mp(PU["mu"]))
 
 
 def same_degree(i: int, t: object, n: int = 3) -> object:
@@ -74,7 +57,7 @@ def mixed_surface() -> AtomSurface:
 
 
 def explicit(u: float, v: float, du: int, dv: int) -> np.ndarray:
-    bu = [mpmath.diff(lambda t, i=i: han(i, t), u, du) for i in range(4)]
+    bu = [mpmath.diff(lambda t, i=i: han_at_pu(i, t), u, du) for i in range(4)]
     bv = [mpmath.diff(lambda t, j=j: same_degree(j, t), v, dv) for j in range(4)]
     return np.array(
         [
@@ -237,7 +220,7 @@ def test_energy_exact_in_pi_matches_the_kronecker_form_of_each_directions_grams(
     s = mixed_surface()
     got = lb.surface_energy(s, energy)
     assert "pi" in str(got)  # an exact element of Q(pi), not a float
-    gu = [_gram(han, 0.0, math.pi / 2, k) for k in range(3)]
+    gu = [_gram(han_at_pu, 0.0, math.pi / 2, k) for k in range(3)]
     gv = [_gram(same_degree, 0.0, 1.0, k) for k in range(3)]
     terms = [(1, 0, 1), (0, 1, 1)] if energy == "membrane" else [(2, 0, 1), (1, 1, 2), (0, 2, 1)]
     form = sum(w * np.kron(gu[p], gv[q]) for p, q, w in terms)

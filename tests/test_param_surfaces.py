@@ -13,6 +13,7 @@ import mpmath
 import numpy as np
 import pytest
 from conftest import occt_surface, surface_families
+from han_surface_reference import NET, PU, han, mp
 
 import lambda_bezier as lb
 from lambda_bezier import examples
@@ -22,25 +23,7 @@ from lambda_bezier.param_surfaces import ParamSurface
 
 TRIG, TWO, QB, HYP, MIXED = surface_families()
 
-NET = [[(i, j, F((i * j) % 3, 2) - F(i, 4)) for j in range(4)] for i in range(4)]
-PU = {"lam": F(1, 2), "mu": -1}
 PV = {"lam": 0, "mu": F(1, 3)}
-
-
-def han(i: int, t: object, lam: object, mu: object) -> object:
-    """Han, Ma and Huang's cubic trigonometric basis (2009), written out (mpmath)."""
-    s, c = mpmath.sin(t), mpmath.cos(t)
-    return [
-        (1 - s) ** 2 * (1 - lam * s),
-        s * (1 - s) * (2 + lam - lam * s),
-        c * (1 - c) * (2 + mu - mu * c),
-        (1 - c) ** 2 * (1 - mu * c),
-    ][i]
-
-
-def mp(x: object) -> mpmath.mpf:
-    x = F(x)
-    return mpmath.mpf(x.numerator) / x.denominator
 
 
 def han_surface(u: object, v: object, du: int = 0, dv: int = 0) -> np.ndarray:

@@ -54,6 +54,15 @@ _ZERO = flint.fmpq(0)
 FullMatrix = tuple[tuple[flint.fmpq, ...], ...]  # exact; FLINT for speed
 
 
+def register(name: str, module) -> None:
+    """A family defined by data (formulas/family.py's register_formulas) joins the surface
+    derivations for this process: `module` has DEGREES and basis_polys(degree) (Polys in t,
+    lam). Re-registering a name clears what was derived for the old definition."""
+    FAMILIES[name] = module
+    for fn in (_curve_basis, tensor_basis, surface_matrices, surface_forms, energy_forms):
+        fn.cache_clear()
+
+
 def degrees(family: str) -> tuple[int, ...]:
     """The degrees emitted for `family` in one direction."""
     module = FAMILIES[family]

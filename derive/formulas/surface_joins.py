@@ -55,14 +55,20 @@ _SAMPLE = {"lam1": Fraction(1, 3), "lam2": Fraction(-2, 5), "alpha": Fraction(3,
 
 def conditions(first: str, second: str, continuity: str) -> dict[tuple[int, str, int], sp.Expr]:
     """{(row, source, k): weight}: P2_{row, j} = Σ weight · X for every column j, X = P1_{n-k, j}
-    (source "first") or P2_{k, j} (source "second", a row given); n, m the degrees across."""
+    (source "first") or P2_{k, j} (source "second", a row given); n, m the degrees across.
+    KeyError when a family has no closed end forms in n of that order (then conditions_at,
+    degree by degree)."""
     if continuity not in CONTINUITIES:
         raise ValueError(f"continuity must be one of {CONTINUITIES}, got {continuity!r}")
     built_in = _curve_joins().get((first, second, continuity))
     if built_in is not None:
         return built_in
     # a family defined by data (registered with curve_joins): solved here, as for its document
-    return _weights(curve_joins.solve(first, second, ORDER[continuity]), continuity)
+    try:
+        solved = curve_joins.solve(first, second, ORDER[continuity])
+    except AssertionError as exc:  # end derivatives of this order have no closed form in n
+        raise KeyError(str(exc)) from None
+    return _weights(solved, continuity)
 
 
 def conditions_at(

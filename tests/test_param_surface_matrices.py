@@ -270,3 +270,15 @@ def test_bad_degrees_and_energy_are_named():
     mats = lb.surface_energy_matrices((3, 3), "membrane", fam)
     with pytest.raises(ValueError, match="net must have 4 x 4 points"):
         mats.polynomial(NET[:3])
+
+
+def test_an_indexed_family_names_each_parameter():
+    """q_bezier, lam(1..n) in each direction: one name per index and direction, and the
+    matrices at a point give the energy surface_energy computes by its own accumulation."""
+    fam = lb.load_family(DATA / "q_bezier.toml")
+    mats = lb.surface_energy_matrices((3, 2), "thin_plate", fam)
+    assert mats.names == ("lam_1_u", "lam_2_u", "lam_3_u", "lam_1_v", "lam_2_v")
+    net = [[(F(i), F(j), F((i * j) % 3)) for j in range(3)] for i in range(4)]
+    lam_u, lam_v = (F(1, 2), F(0), F(-1, 3)), (F(1), F(1, 2))
+    surf = fam.surface(net, params_u={"lam": lam_u}, params_v={"lam": lam_v})
+    assert mats.at(net, (*lam_u, *lam_v)) == lb.surface_energy(surf, "thin_plate")

@@ -259,3 +259,13 @@ def test_a_defined_family_with_closed_end_forms_uses_them():
         per = sj.conditions_at(defn.name, defn.name, continuity, 4, 3)
         assert set(per) == set(closed)
         assert all(sp.cancel(closed[k].xreplace(at) - per[k]) == 0 for k in per)
+
+
+def test_a_registered_family_is_never_emitted(results):
+    """Registering a records file's family (done by the verdicts above) makes it known to the
+    surface derivation for the process but leaves the emitted families (generated/) alone."""
+    from derive.formulas import surface_energy as se
+
+    assert se.known("end_shape_bezier")
+    assert "end_shape_bezier" not in se.FAMILIES
+    assert set(se.FAMILIES) == {"bezier", "same_degree", "bernstein_like"}

@@ -39,7 +39,7 @@ def _families(record: dict, ctx: Context) -> tuple[str, str]:
     fam_u = ctx.family.name
     fam_v = record.get("family_v", fam_u)
     for name in (fam_u, fam_v):
-        if name not in _surface_energy().FAMILIES:
+        if not _surface_energy().known(name):
             raise ValueError(
                 f"surface claims know the built-in families and one-parameter families a "
                 f"records file defines, not {name!r}"

@@ -269,3 +269,19 @@ def test_a_registered_family_is_never_emitted(results):
     assert se.known("end_shape_bezier")
     assert "end_shape_bezier" not in se.FAMILIES
     assert set(se.FAMILIES) == {"bezier", "same_degree", "bernstein_like"}
+
+
+@pytest.mark.parametrize("continuity", ["C1", "G1", "C2"])
+def test_the_per_degree_weights_join_the_tensor_product_patches(results, continuity):
+    """conditions_at's weights, applied column by column, make the two patches built from the
+    tensor-product basis meet with the continuity along the whole boundary; one weight off and
+    the cross-boundary derivatives differ."""
+    from derive.formulas import surface_joins as sj
+
+    sj.check_columnwise_at("end_shape_bezier", "end_shape_bezier", continuity, 3, 4)
+    weights = sj.conditions_at("end_shape_bezier", "end_shape_bezier", continuity, 3, 4)
+    weights[(1, "first", 1)] += 1
+    with pytest.raises(AssertionError, match="column-wise"):
+        sj._check_weights(
+            "end_shape_bezier", "end_shape_bezier", continuity, sj.tensor_basis, weights, (3, 4)
+        )

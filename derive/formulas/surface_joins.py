@@ -204,16 +204,29 @@ def check_pair(first: str, second: str, continuity: str) -> None:
     _check_weights(first, second, continuity, tensor_basis, conditions(first, second, continuity))
 
 
-def _check_weights(first: str, second: str, continuity: str, basis, weights: dict) -> None:
+def check_columnwise_at(first: str, second: str, continuity: str, n: int, m: int) -> None:
+    """check_columnwise with the weights of conditions_at(n, m), for families without closed
+    end forms in n (λ1, λ2 at the sample values: a family without λ ignores them)."""
+    weights = conditions_at(first, second, continuity, n, m)
+    _check_weights(first, second, continuity, tensor_basis, weights, (n, m))
+
+
+def _check_weights(
+    first: str, second: str, continuity: str, basis, weights: dict, degrees=None
+) -> None:
     along, l_deg = _ALONG
-    n = curve_joins.DEGREES[first][0]
-    m = (
-        curve_joins.DEGREES[second][-1]
-        if len(curve_joins.DEGREES[second]) < 3
-        else (curve_joins.DEGREES[second][2])
-    )
-    lam1 = _SAMPLE["lam1"] if curve_joins.HAS_LAMBDA[first] else Fraction(0)
-    lam2 = _SAMPLE["lam2"] if curve_joins.HAS_LAMBDA[second] else Fraction(0)
+    if degrees is not None:
+        n, m = degrees
+        lam1, lam2 = _SAMPLE["lam1"], _SAMPLE["lam2"]
+    else:
+        n = curve_joins.DEGREES[first][0]
+        m = (
+            curve_joins.DEGREES[second][-1]
+            if len(curve_joins.DEGREES[second]) < 3
+            else (curve_joins.DEGREES[second][2])
+        )
+        lam1 = _SAMPLE["lam1"] if curve_joins.HAS_LAMBDA[first] else Fraction(0)
+        lam2 = _SAMPLE["lam2"] if curve_joins.HAS_LAMBDA[second] else Fraction(0)
     alpha = _SAMPLE["alpha"] if continuity == "G1" else Fraction(1)
     net1 = [
         [Fraction((7 * i + 3 * j * j + i * j) % 11 - 5, 1 + j) for j in range(l_deg + 1)]

@@ -314,6 +314,7 @@ CALLS = {
     "surface_optimum.optimal_parameters_batch": _call_optimal_parameters_batch,
     "param_surfaces.family_surface": _call_family_surface,
     "param_surface_energy.optimal_parameters": _call_param_optimal_parameters,
+    "param_surface_energy.surface_energy_matrices": _call_surface_energy_matrices,
     "param_surface_optimum.optimal_parameters": _call_param_surface_optimum,
     "param_surface_optimum.optimal_parameters_batch": _call_param_surface_batch,
 }

@@ -12,7 +12,7 @@ from ..algebra import lambda_degree
 from ..families.definition import CONTINUITIES, ENERGY_ORDERS, Definition
 from ..families.engine import basis_polys, closed_endpoint_forms, closed_endpoint_order
 from ..families.registry import builtin_names
-from . import energy, joins, properties, surface_joins
+from . import energy, joins, properties, surface_energy, surface_joins
 
 
 def energy_artifacts(defn: Definition) -> dict:
@@ -187,6 +187,7 @@ def register_formulas(defn: Definition) -> None:
     joins where the engine found closed end forms); verify registers its checkers itself."""
     closed = closed_endpoint_forms(defn)
     energy.EXTRA[defn.name] = _EnergyBasis(defn)
+    surface_energy.register(defn.name, energy.EXTRA[defn.name])  # surface records (#31)
     _register_properties(defn)
     if closed is not None:
         joins.register(defn.name, closed, tuple(defn.degrees), True, closed_endpoint_order(defn))

@@ -46,6 +46,9 @@ ENERGIES: dict[str, tuple[tuple[int, int, int], ...]] = {
 # kept small so that `derive --check` stays fast. Other degrees: the runtime's Kronecker form.
 SURFACE_DEGREES = range(1, 4)
 FAMILIES: dict[str, object] = {REFERENCE: None} | {b.name: b.module() for b in builtin_families()}
+# Families defined by data, registered for this process (register): derived on demand, never
+# emitted (emitted() reads FAMILIES only, so a registration cannot change generated/).
+DEFINED: dict[str, object] = {}
 
 _CTX = flint.fmpq_mpoly_ctx.get(("u", "v", "lam_u", "lam_v"))
 _U, _V = 0, 1  # generator indices of u and v
@@ -54,9 +57,27 @@ _ZERO = flint.fmpq(0)
 FullMatrix = tuple[tuple[flint.fmpq, ...], ...]  # exact; FLINT for speed
 
 
+def register(name: str, module) -> None:
+    """A family defined by data (formulas/family.py's register_formulas) joins the surface
+    derivations for this process: `module` has DEGREES and basis_polys(degree) (Polys in t,
+    lam). Re-registering a name clears what was derived for the old definition."""
+    DEFINED[name] = module
+    for fn in (_curve_basis, tensor_basis, surface_matrices, surface_forms, energy_forms):
+        fn.cache_clear()
+
+
+def known(family: str) -> bool:
+    return family in FAMILIES or family in DEFINED
+
+
+def _module(family: str):
+    """The derivation of a family: None for the reference Bernstein basis (REFERENCE)."""
+    return FAMILIES[family] if family in FAMILIES else DEFINED[family]
+
+
 def degrees(family: str) -> tuple[int, ...]:
     """The degrees emitted for `family` in one direction."""
-    module = FAMILIES[family]
+    module = _module(family)
     own = range(1, 15) if module is None else module.DEGREES
     return tuple(d for d in SURFACE_DEGREES if d in own)
 
@@ -64,7 +85,7 @@ def degrees(family: str) -> tuple[int, ...]:
 @cache
 def _curve_basis(family: str, degree: int) -> tuple[dict[tuple[int, int], Fraction], ...]:
     """The family's degree-`degree` basis, each function as {(power of t, power of λ): coef}."""
-    module = FAMILIES[family]
+    module = _module(family)
     if module is None:
         polys = [sp.Poly(bernstein_basis(degree, i), t, lam) for i in range(degree + 1)]
     else:
@@ -182,7 +203,7 @@ def curve_form(family: str, degree: int, k: int) -> tuple[list[list[flint.fmpq]]
     """(A_0, A_1, A_2): ∫|p^(k)|² = Dᵀ(Σ λ^p A_p)D for a curve of `family`, read from the
     curves' derivation (energy.py), not from the surface's."""
     size = degree + 1
-    if FAMILIES[family] is None:
+    if _module(family) is None:
         if k > degree:
             return ([[_ZERO] * size for _ in range(size)],)
         return (stiffness(degree, k).table(),)

@@ -55,10 +55,91 @@ _SAMPLE = {"lam1": Fraction(1, 3), "lam2": Fraction(-2, 5), "alpha": Fraction(3,
 
 def conditions(first: str, second: str, continuity: str) -> dict[tuple[int, str, int], sp.Expr]:
     """{(row, source, k): weight}: P2_{row, j} = Σ weight · X for every column j, X = P1_{n-k, j}
-    (source "first") or P2_{k, j} (source "second", a row given); n, m the degrees across."""
+    (source "first") or P2_{k, j} (source "second", a row given); n, m the degrees across.
+    KeyError when a family has no closed end forms in n of that order (then conditions_at,
+    degree by degree)."""
     if continuity not in CONTINUITIES:
         raise ValueError(f"continuity must be one of {CONTINUITIES}, got {continuity!r}")
-    return _curve_joins()[(first, second, continuity)]
+    built_in = _curve_joins().get((first, second, continuity))
+    if built_in is not None:
+        return built_in
+    # a family defined by data (registered with curve_joins): solved here, as for its document
+    try:
+        solved = curve_joins.solve(first, second, ORDER[continuity])
+    except AssertionError as exc:  # end derivatives of this order have no closed form in n
+        raise KeyError(str(exc)) from None
+    return _weights(solved, continuity)
+
+
+def conditions_at(
+    first: str, second: str, continuity: str, n: int, m: int
+) -> dict[tuple[int, str, int], sp.Expr]:
+    """`conditions` at the degrees n (patch 1) and m (patch 2) across the boundary, solved
+    from the families' own bases at those degrees (for a family without closed end forms in
+    n): the rows P2_0..P2_order from Σ_i b_i^(r)(1; λ1) P1_i = α^r Σ_i c_i^(r)(0; λ2) P2_i,
+    r = 0..order (α = 1 for C1, C2), the rows P2_k past the order left free ("second")."""
+    if continuity not in CONTINUITIES:
+        raise ValueError(f"continuity must be one of {CONTINUITIES}, got {continuity!r}")
+    order = ORDER[continuity]
+    t = sp.Symbol("t")
+
+    def ends(family: str, degree: int, shape: sp.Symbol, at: int) -> list[list[sp.Expr]]:
+        basis = [
+            sum(
+                (
+                    sp.Rational(c.numerator, c.denominator) * t**pt * shape**pl
+                    for (pt, pl), c in b.items()
+                ),
+                sp.Integer(0),
+            )
+            for b in _curve_basis(family, degree)
+        ]
+        return [[sp.expand(sp.diff(b, t, r).subs(t, at)) for b in basis] for r in range(order + 1)]
+
+    e1 = ends(first, n, curve_joins.lam1, 1)
+    e2 = ends(second, m, curve_joins.lam2, 0)
+    p1 = sp.symbols(f"p0:{n + 1}")
+    p2 = sp.symbols(f"q0:{m + 1}")
+    scale = curve_joins.alpha if continuity == "G1" else sp.Integer(1)
+    eqs = [
+        sum((e1[r][i] * p1[i] for i in range(n + 1)), sp.Integer(0))
+        - scale**r * sum((e2[r][i] * p2[i] for i in range(m + 1)), sp.Integer(0))
+        for r in range(order + 1)
+    ]
+    unknown = p2[: order + 1]
+    solved = sp.solve(eqs, unknown, dict=True)
+    if len(solved) != 1 or set(solved[0]) != set(unknown):
+        raise ValueError(
+            f"{continuity} of a {first} patch (degree {n}) to a {second} patch (degree {m}): "
+            "the end derivatives do not determine the rows next to the boundary"
+        )
+    out: dict[tuple[int, str, int], sp.Expr] = {}
+    for row, q in enumerate(unknown):
+        expr = sp.expand(solved[0][q])
+        for k in range(n + 1):
+            w = sp.factor(expr.coeff(p1[n - k]))
+            if w != 0:
+                out[(row, "first", k)] = w
+        for k in range(order + 1, m + 1):
+            w = sp.factor(expr.coeff(p2[k]))
+            if w != 0:
+                out[(row, "second", k)] = w
+    return out
+
+
+def _weights(solved: list, continuity: str) -> dict[tuple[int, str, int], sp.Expr]:
+    """{(row, source, k): weight} of curve_joins.solve's rows (the G form at α = 1, d = 0
+    for a C continuity), factored, zeros left out."""
+    weights = {}
+    for row, combo in enumerate(solved):
+        for (src, j), w in sorted(combo.items()):
+            e = w.as_expr()
+            if continuity.startswith("C"):
+                e = e.xreplace({curve_joins.alpha: 1, curve_joins.d: 0})
+            e = sp.factor(e)
+            if e != 0:
+                weights[(row, src, j)] = e
+    return weights
 
 
 @cache
@@ -115,16 +196,37 @@ def check_columnwise(first: str, second: str, continuity: str) -> None:
     _check_weights(first, second, continuity, tensor_basis, conditions(first, second, continuity))
 
 
-def _check_weights(first: str, second: str, continuity: str, basis, weights: dict) -> None:
+def check_pair(first: str, second: str, continuity: str) -> None:
+    """check_columnwise for any two registered families: cached for built-in ones, not where
+    a family defined by data takes part (it may be registered again under the same name)."""
+    if first in curve_joins.FAMILIES and second in curve_joins.FAMILIES:
+        return check_columnwise(first, second, continuity)
+    _check_weights(first, second, continuity, tensor_basis, conditions(first, second, continuity))
+
+
+def check_columnwise_at(first: str, second: str, continuity: str, n: int, m: int) -> None:
+    """check_columnwise with the weights of conditions_at(n, m), for families without closed
+    end forms in n (λ1, λ2 at the sample values: a family without λ ignores them)."""
+    weights = conditions_at(first, second, continuity, n, m)
+    _check_weights(first, second, continuity, tensor_basis, weights, (n, m))
+
+
+def _check_weights(
+    first: str, second: str, continuity: str, basis, weights: dict, degrees=None
+) -> None:
     along, l_deg = _ALONG
-    n = curve_joins.DEGREES[first][0]
-    m = (
-        curve_joins.DEGREES[second][-1]
-        if len(curve_joins.DEGREES[second]) < 3
-        else (curve_joins.DEGREES[second][2])
-    )
-    lam1 = _SAMPLE["lam1"] if curve_joins.HAS_LAMBDA[first] else Fraction(0)
-    lam2 = _SAMPLE["lam2"] if curve_joins.HAS_LAMBDA[second] else Fraction(0)
+    if degrees is not None:
+        n, m = degrees
+        lam1, lam2 = _SAMPLE["lam1"], _SAMPLE["lam2"]
+    else:
+        n = curve_joins.DEGREES[first][0]
+        m = (
+            curve_joins.DEGREES[second][-1]
+            if len(curve_joins.DEGREES[second]) < 3
+            else (curve_joins.DEGREES[second][2])
+        )
+        lam1 = _SAMPLE["lam1"] if curve_joins.HAS_LAMBDA[first] else Fraction(0)
+        lam2 = _SAMPLE["lam2"] if curve_joins.HAS_LAMBDA[second] else Fraction(0)
     alpha = _SAMPLE["alpha"] if continuity == "G1" else Fraction(1)
     net1 = [
         [Fraction((7 * i + 3 * j * j + i * j) % 11 - 5, 1 + j) for j in range(l_deg + 1)]
@@ -233,15 +335,7 @@ def family_artifacts(name: str, defn_basis, others, order: int) -> dict:
                 except (AssertionError, KeyError, ZeroDivisionError) as exc:
                     reasons.append(f"{continuity}: no closed form: {exc}")
                     continue
-                weights = {}
-                for row, combo in enumerate(solved[k]):
-                    for (src, j), w in sorted(combo.items()):
-                        e = w.as_expr()
-                        if continuity.startswith("C"):
-                            e = e.xreplace({curve_joins.alpha: 1, curve_joins.d: 0})
-                        e = sp.factor(e)
-                        if e != 0:
-                            weights[(row, src, j)] = e
+                weights = _weights(solved[k], continuity)
                 _check_weights(first, second, continuity, basis, weights)
                 entry[continuity] = {
                     f"{row},{src},{j}": _weight_data(w) for (row, src, j), w in weights.items()

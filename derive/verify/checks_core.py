@@ -96,7 +96,7 @@ REQUIREMENTS = {
         "needs the surface derivation derive/formulas/surface_energy.py (issue 31)",
     ),
     "surface_joins": (
-        ("conditions", "check_columnwise"),
+        ("conditions", "check_pair"),
         "needs the surface join derivation derive/formulas/surface_joins.py (issue 31)",
     ),
 }

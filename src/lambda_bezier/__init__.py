@@ -37,11 +37,11 @@ if TYPE_CHECKING:
     from .hazmat.constants import ConstantFraction
     from .intersection import intersect_exact, intersect_many
     from .joins import Joint, join
-    from .param_surface_energy import surface_energy
+    from .param_surface_energy import surface_energy, surface_energy_matrices
     from .parameter_optimum import OptimalParameters
     from .properties import IsolatedRoot, singular_parameters
     from .rational import RationalBezierCurve
-    from .surface_energies import SurfaceOptimalParameters, surface_energy_matrices
+    from .surface_energies import SurfaceOptimalParameters
     from .surface_joins import CompositeSurface, join_surface
     from .surface_optimum import optimal_parameters
     from .surfaces import BezierSurface, Surface
@@ -78,7 +78,7 @@ _EXPORTS = {
     "SurfaceOptimalParameters": "surface_energies",
     "optimal_parameters": "surface_optimum",  # curves (k an int) and surfaces
     "surface_energy": "param_surface_energy",  # every surface (surface_energies underneath)
-    "surface_energy_matrices": "surface_energies",
+    "surface_energy_matrices": "param_surface_energy",  # every family (surface_energies under)
     "CompositeSurface": "surface_joins",
     "join_surface": "surface_joins",
     "BernsteinLikeSurface": "builtin_surfaces",

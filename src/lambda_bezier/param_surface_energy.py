@@ -30,7 +30,7 @@ point of ℚ(π)-algebraic coordinates), so a rational point within the certific
 from __future__ import annotations
 
 from collections.abc import Iterator, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import cache
 from typing import Any
@@ -42,6 +42,7 @@ from . import _validate as val
 from . import surface_energies
 from ._optimal_box import BUDGET, CONSTANT_BITS, TOLERANCE, _laurent
 from .hazmat import box_bernstein
+from .hazmat.constants import ConstantSum
 from .surface_energies import ENERGIES, _matmul, hodograph_gram
 from .surfaces import NetLike, _as_net, _exact_net, basis_to_bernstein_split
 
@@ -217,18 +218,153 @@ def _exact_rows(net: NetLike) -> tuple[Any, bool]:
 def surface_energy(surf: Any, energy: str = "thin_plate") -> Any:
     """The membrane or thin-plate energy of any surface over its domain (lb.surface_energy):
     exact (a Fraction, or a ConstantFraction in π or e^W for an AtomSurface) for an exact
-    surface, else a float. A surface of one-parameter or built-in families goes to
-    surface_energies.surface_energy."""
+    surface, else a float. A trigonometric direction across a hyperbolic one gives a
+    ConstantSum in π and e^W (exact terms, a certified enclosure; never compared). A surface of
+    one-parameter or built-in families goes to surface_energies.surface_energy."""
     if not hasattr(surf, "family_u"):
         return surface_energies.surface_energy(surf, energy)
     energy = val.choice(energy, "energy", tuple(ENERGIES))
     m, n = surf.degrees
     du, dv = _direction(surf.family_u, m), _direction(surf.family_v, n)
     rows, exact = _exact_rows(surf.net if surf._exact is None else surf._exact)
-    poly, constant = energy_polynomial(rows, du, dv, energy)
     point = (*_flat(du, surf.params_u), *_flat(dv, surf.params_v))
-    got = _value(poly, point, constant)
+    if du.constant and dv.constant and du.constant != dv.constant:
+        mats = _param_matrices(surf.family_u, surf.family_v, m, n, energy)
+        got: Any = mats.at(rows, point)
+    else:
+        poly, constant = energy_polynomial(rows, du, dv, energy)
+        got = _value(poly, point, constant)
     return got if exact and surf.is_exact else float(got)
+
+
+# ---------------------------------------------------------------------- the matrices
+@dataclass(frozen=True, eq=False)
+class ParamSurfaceEnergyMatrices:
+    """The energy of a net of (m+1) x (n+1) points as Σ_key x^key · vec(P)ᵀ Q_key vec(P),
+    summed over coordinates, vec(P) the net read row by row (P_00, P_01, …, P_0n, P_10, …).
+
+    A key is the exponents of the parameters `names` (u's then v's, ``lam_u``, ``mu_u``, …,
+    ``lam_v``), then the exponents, of any sign, of the `constants` (none for polynomial
+    families; ``pi`` or ``exp(W)`` for trigonometric or hyperbolic ones; both for a
+    trigonometric direction across a hyperbolic one). ``terms[key] = (scale, U)``: U
+    upper-triangular primitive integers with off-diagonal entries doubled, the curves' X and
+    Y convention, so vec(P)ᵀ Q_key vec(P) = scale · Σ_{r<=c} U[r][c] P_r · P_c. For a
+    polynomial family each monomial's matrix is one integer matrix with a scale; with a
+    constant, an entry lies in ℚ[c, 1/c] and has no single integer scale: Q is a Laurent
+    polynomial in c whose coefficients are such matrices, one per power.
+    """
+
+    energy: str
+    degrees: tuple[int, int]
+    names: tuple[str, ...]
+    constants: tuple[str, ...]
+    terms: dict[tuple[int, ...], tuple[Fraction, tuple[tuple[int, ...], ...]]]
+    full: dict[tuple[int, ...], tuple[tuple[Fraction, ...], ...]] = field(repr=False)
+
+    def polynomial(self, net: NetLike) -> dict[tuple[int, ...], Fraction | float]:
+        """{key: e_key}: the energy of one net as Σ e_key x^key (exact for an exact net)."""
+        rows, exact = _exact_rows(net)
+        m, n = self.degrees
+        if len(rows) != m + 1 or any(len(row) != n + 1 for row in rows):
+            raise ValueError(f"net must have {m + 1} x {n + 1} points, got {len(rows)} rows")
+        flat = [p for row in rows for p in row]
+        out: dict[tuple[int, ...], Fraction | float] = {}
+        for key, mat in self.full.items():
+            total = Fraction(0)
+            for r, row in enumerate(mat):
+                for c, q in enumerate(row):
+                    if q:
+                        total += q * sum(
+                            (a * b for a, b in zip(flat[r], flat[c], strict=True)), Fraction(0)
+                        )
+            out[key] = total if exact else float(total)
+        return out
+
+    def at(self, rows: Any, point: tuple[Fraction, ...]) -> Any:
+        """The energy of the exact net `rows` at exact parameter values `point` (in the order
+        of `names`): a Fraction, a ConstantFraction (one constant) or a ConstantSum (two)."""
+        count = len(self.names)
+        by_power: dict[tuple[int, ...], Fraction] = {}
+        for key, v in self.polynomial(rows).items():
+            w = Fraction(v)
+            for x, e in zip(point, key[:count], strict=True):
+                w *= x**e
+            power = key[count:]
+            by_power[power] = by_power.get(power, Fraction(0)) + w
+        if len(self.constants) == 2:
+            return ConstantSum({(a, b): q for (a, b), q in by_power.items()}, self.constants)
+        if self.constants:
+            return _value({(e, 0): q for (e,), q in by_power.items()}, (), self.constants[0])
+        return by_power.get((), Fraction(0))
+
+
+@cache
+def _param_matrices(
+    family_u: Any, family_v: Any, m: int, n: int, energy: str
+) -> ParamSurfaceEnergyMatrices:
+    """Q_key as Σ_terms weight · G^{k_u}_u ⊗ G^{k_v}_v over the pairs of parameter monomials
+    of each direction's curve Gram matrices (the Kronecker identity of the module's doc)."""
+    du, dv = _direction(family_u, m), _direction(family_v, n)
+    constants = tuple(dict.fromkeys(c for c in (du.constant, dv.constant) if c))
+    slot_u = constants.index(du.constant) if du.constant else None
+    slot_v = constants.index(dv.constant) if dv.constant else None
+    size = (m + 1) * (n + 1)
+    acc: dict[tuple[int, ...], list[list[Fraction]]] = {}
+    for ku, kv, weight in ENERGIES[energy]:
+        gu, gv = du.grams(ku), dv.grams(kv)
+        for (a, b), mat_u in gu.items():
+            for (c, d), mat_v in gv.items():
+                mono = (
+                    *(x + y for x, y in zip(a, b, strict=True)),
+                    *(x + y for x, y in zip(c, d, strict=True)),
+                )
+                for i in range(m + 1):
+                    for k in range(m + 1):
+                        for e1, x1 in mat_u[i][k].items():
+                            for j in range(n + 1):
+                                for l_ in range(n + 1):
+                                    for e2, x2 in mat_v[j][l_].items():
+                                        power = [0] * len(constants)
+                                        if slot_u is not None:
+                                            power[slot_u] += e1
+                                        if slot_v is not None:
+                                            power[slot_v] += e2
+                                        key = (*mono, *power)
+                                        if key not in acc:
+                                            acc[key] = [[Fraction(0)] * size for _ in range(size)]
+                                        acc[key][i * (n + 1) + j][k * (n + 1) + l_] += (
+                                            weight * x1 * x2
+                                        )
+    full = {
+        key: tuple(tuple(row) for row in mat)
+        for key, mat in sorted(acc.items())
+        if any(any(row) for row in mat)
+    }
+    names = tuple(f"{x}_u" for x in du.names) + tuple(f"{x}_v" for x in dv.names)
+    terms = {key: surface_energies._integer_form(mat) for key, mat in full.items()}
+    return ParamSurfaceEnergyMatrices(energy, (m, n), names, constants, terms, full)
+
+
+def surface_energy_matrices(
+    degrees: tuple[int, int], energy: str = "thin_plate", family: object = "same_degree"
+) -> Any:
+    """The exact quadratic forms of a surface energy for nets of (m+1) x (n+1) points
+    (lb.surface_energy_matrices): ParamSurfaceEnergyMatrices for several-parameter, indexed
+    and trigonometric/hyperbolic/mixed families (one, or a pair (u, v)); the one-parameter and
+    built-in families' SurfaceEnergyMatrices (surface_energies) otherwise."""
+    if not _param_families(family):
+        return surface_energies.surface_energy_matrices(degrees, energy, family)
+    energy = val.choice(energy, "energy", tuple(ENERGIES))
+    if not isinstance(degrees, tuple | list) or len(degrees) != 2:
+        raise ValueError(f"degrees must be a pair (m, n), got {val.describe(degrees)}")
+    m, n = (val.integer(d, "degrees") for d in degrees)
+    fu, fv = _family_pair(family)
+    try:
+        for fam, deg, name in ((fu, m, "u"), (fv, n, "v")):
+            pd.checked_degree(fam, deg, name)
+    except ValueError as exc:  # the check speaks of a net; here the degrees were given
+        raise ValueError(f"degrees = ({m}, {n}): {str(exc).removeprefix('net, ')}") from None
+    return _param_matrices(fu, fv, m, n, energy)
 
 
 def _flat(d: Direction, given: dict[str, Any]) -> tuple[Fraction, ...]:

@@ -14,7 +14,7 @@ from __future__ import annotations
 import re
 from fractions import Fraction
 from functools import lru_cache, total_ordering
-from typing import Union
+from typing import Any, Union
 
 Poly = tuple[Fraction, ...]  # coefficients in ascending powers of c
 _CONSTANT = re.compile(r"^(?:pi|exp\((-?[0-9]{1,30}(?:/[0-9]{1,30})?)\))$")
@@ -361,3 +361,92 @@ def parse_exact(value: object, constant: str | None, where: str) -> Fraction | C
     if out.is_rational:
         return out.numerator[0] if out.numerator else Fraction(0)
     return out
+
+
+class ConstantSum:
+    r"""An exact Σ q · c_1^a · c_2^b (q rational, exponents of any sign) in two constants
+    c_1 = π and c_2 = e^W: the energy of a surface whose directions are trigonometric and
+    hyperbolic. Kept exact as its terms; whether two such sums are equal is open (the
+    algebraic independence of π and e is not known), so they are not ordered. ``float(x)``
+    and ``enclosure(bits)`` come from rational enclosures of both constants, interval
+    arithmetic throughout: ``enclosure`` returns rationals lo <= x <= hi, a proven bound;
+    ``to_sympy()`` gives the closed form in SymPy's pi and exp (SymPy imported on the call)."""
+
+    __slots__ = ("constants", "terms")
+
+    def __init__(self, terms: dict[tuple[int, int], Fraction], constants: tuple[str, str]):
+        self.constants = (check_constant(constants[0]), check_constant(constants[1]))
+        if self.constants[0] == self.constants[1]:
+            raise ValueError(f"two different constants are needed, got {constants!r}")
+        self.terms = {
+            (int(a), int(b)): Fraction(q) for (a, b), q in sorted(terms.items()) if q != 0
+        }
+
+    def enclosure(self, bits: int = 120) -> tuple[Fraction, Fraction]:
+        """Rationals lo <= x <= hi, from both constants enclosed to about 2^-bits."""
+        boxes = [constant_bounds(c, bits) for c in self.constants]  # both constants are > 0
+        lo_sum, hi_sum = Fraction(0), Fraction(0)
+        for (a, b), q in self.terms.items():
+            lo, hi = Fraction(1), Fraction(1)
+            for (c_lo, c_hi), e in zip(boxes, (a, b), strict=True):
+                lo *= c_lo**e if e >= 0 else c_hi**e  # c^e increases in c for e >= 0
+                hi *= c_hi**e if e >= 0 else c_lo**e
+            lo_sum, hi_sum = (
+                (lo_sum + q * lo, hi_sum + q * hi)
+                if q > 0
+                else (
+                    lo_sum + q * hi,
+                    hi_sum + q * lo,
+                )
+            )
+        return lo_sum, hi_sum
+
+    def __float__(self) -> float:
+        bits = 120
+        while True:  # widen the precision until the enclosure rounds to one float
+            lo, hi = self.enclosure(bits)
+            if float(lo) == float(hi) or bits >= MAX_BITS:
+                return float((lo + hi) / 2)
+            bits *= 2
+
+    def __eq__(self, other: object) -> bool:  # as written: equal terms (never by value)
+        if not isinstance(other, ConstantSum):
+            return NotImplemented
+        return (self.constants, self.terms) == (other.constants, other.terms)
+
+    def __hash__(self) -> int:
+        return hash((self.constants, tuple(self.terms.items())))
+
+    def to_sympy(self) -> object:
+        import sympy as sp
+
+        def symbol(name: str) -> Any:
+            return sp.pi if name == "pi" else sp.exp(sp.Rational(name[4:-1]))
+
+        c1, c2 = (symbol(c) for c in self.constants)
+        return sp.Add(
+            *(
+                sp.Rational(q.numerator, q.denominator) * c1**a * c2**b
+                for (a, b), q in self.terms.items()
+            )
+        )
+
+    def __repr__(self) -> str:
+        return f"ConstantSum({self}, ≈ {float(self)!r})"
+
+    def __str__(self) -> str:
+        if not self.terms:
+            return "0"
+        parts = []
+        for (a, b), q in self.terms.items():
+            powers = [
+                name if e == 1 else f"{name}^{e}"
+                for name, e in zip(self.constants, (a, b), strict=True)
+                if e
+            ]
+            if not powers:
+                parts.append(str(q))
+            else:
+                head = {Fraction(1): [], Fraction(-1): ["-"]}.get(q, [f"{q}*"])
+                parts.append("".join(head) + "*".join(powers))
+        return " + ".join(parts).replace("+ -", "- ")

@@ -174,3 +174,48 @@ def test_the_float_rule_is_the_rounding_of_evaluation():
     shifted = np.array(curve.evaluate(0.5)) + [0.0, 4e-9]
     assert side.locate(curve.evaluate(0.5), 0.0, 1.0) == pytest.approx([0.5], abs=1e-12)
     assert side.locate(shifted, 0.0, 1.0) == []
+
+
+@pytest.mark.parametrize("name", ["at_cubic", "at_pi_cubic", "hyp_cubic"])
+def test_a_curve_without_a_rational_form_against_itself_is_one_stretch(name):
+    """Mixed and hyperbolic families decide it on their polynomial pieces: each pair of equal
+    pieces is a stretch, and the neighbours' stretches are joined into one, end to end (the
+    pieces' boundaries used to be reported as coincident ends, and a spurious tangent point
+    inside)."""
+    fam = _family(name)
+    curve = fam.curve([(0, 0), (1, 2), (2, -1), (3, 1)], **ATOM_PARAMS[name])
+    assert not curve.has_rational_form
+    lo, hi = (float(v) for v in curve.domain)
+    got = [(h.s, h.t, h.kind) for h in curve.intersect(curve)]
+    _close(got, [(lo, lo, "coincident"), (hi, hi, "coincident")], 1e-12)
+
+
+def test_a_contact_of_high_order_at_a_common_end_is_one_tangency():
+    """Two rational cubics with the same first three rows, differing in the last point: they
+    agree to second order at s = t = 0 and meet nowhere else (the resultant in t of the
+    crossing equations is s^3 times factors without a root in [0, 1], exactly). The search
+    gives up on the flat contact; Newton from the subdivision's starts then stopped all along
+    it (90 "tangent" points within 1e-5). Now hits within 1e-3 along which the curves stay
+    within rounding are one contact."""
+    import sympy as sp
+
+    pts, weights = [(0, 0), (1, 2), (3, -1), (4, 1)], [1, F(2), F(1, 2), 1]
+    c, other = R(pts, weights), R([*pts[:3], (4, 2)], weights)
+    s, t = sp.symbols("s t")
+
+    def homogeneous(points, x):
+        n = len(points) - 1
+        basis = [sp.binomial(n, i) * x**i * (1 - x) ** (n - i) for i in range(n + 1)]
+        w = sum(sp.Rational(wi) * b for wi, b in zip(weights, basis, strict=True))
+        num = [
+            sum(sp.Rational(weights[i] * p[k]) * basis[i] for i, p in enumerate(points))
+            for k in range(2)
+        ]
+        return num, w
+
+    (ax, ay), wc = homogeneous(pts, s)
+    (bx, by), wo = homogeneous([*pts[:3], (4, 2)], t)
+    res = sp.Poly(sp.resultant(sp.expand(ax * wo - bx * wc), sp.expand(ay * wo - by * wc), t), s)
+    roots = {float(r) for r in res.real_roots() if 0 <= r <= 1}
+    assert roots == {0.0}
+    assert [(h.s, h.t, h.kind) for h in c.intersect(other)] == [(0.0, 0.0, "tangent")]

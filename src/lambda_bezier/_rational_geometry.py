@@ -52,6 +52,7 @@ ON_CURVE = 1e-10  # Newton's residual must be below this times the curves' size
 # relative, per degree: points this close are on both curves when deciding a shared stretch
 # (hazmat.intersect.ROOT_RESIDUAL, the polynomial path's rounding of evaluation)
 ROOT_RESIDUAL = 64 * float(np.finfo(float).eps)
+MERGE_RADIUS = 1e-3  # hits closer than this are compared for being one contact (_one_contact)
 
 
 def _float_rows(curve: RationalBezierCurve) -> np.ndarray:
@@ -370,13 +371,35 @@ def _collect(
         good &= keep(s, t)
     order = np.lexsort((res, s))
     found: list[tuple[float, float]] = []
+    gap = ROOT_RESIDUAL * max(p.degree, q.degree, 1) * size
     for i in order[good[order]]:
         si, ti = float(s[i]), float(t[i])
         if any(abs(si - a) <= SAME_ROOT and abs(ti - b) <= SAME_ROOT for a, b in found):
             continue
+        if any(_one_contact(p, q, (a, b), (si, ti), gap) for a, b in found):
+            continue
         found.append((si, ti))
     found.sort()
     return [Intersection(a, b, _kind(p, q, a, b)) for a, b in found]
+
+
+def _one_contact(
+    p: RationalBezierCurve,
+    q: RationalBezierCurve,
+    a: tuple[float, float],
+    b: tuple[float, float],
+    gap: float,
+) -> bool:
+    """Two hits closer than 1e-3 in both parameters are one contact of high order when the
+    curves stay within `gap` (the rounding of evaluation) all the way between them: the
+    polynomial path's rule (hazmat.intersect._add, MERGE_RADIUS and MERGE_GAP). Newton from
+    many starts otherwise stopped all along such a contact (90 "tangent" points within 1e-5
+    where two cubics agree to second order at a common end)."""
+    if abs(a[0] - b[0]) >= MERGE_RADIUS or abs(a[1] - b[1]) >= MERGE_RADIUS:
+        return False
+    u = np.linspace(0.0, 1.0, 9)
+    between = p.evaluate(a[0] + u * (b[0] - a[0])) - q.evaluate(a[1] + u * (b[1] - a[1]))
+    return bool(np.linalg.norm(between, axis=-1).max() <= gap)
 
 
 def _check_dimension(curve: RationalBezierCurve) -> None:

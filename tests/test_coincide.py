@@ -219,3 +219,28 @@ def test_a_contact_of_high_order_at_a_common_end_is_one_tangency():
     roots = {float(r) for r in res.real_roots() if 0 <= r <= 1}
     assert roots == {0.0}
     assert [(h.s, h.t, h.kind) for h in c.intersect(other)] == [(0.0, 0.0, "tangent")]
+
+
+def test_a_rational_curve_against_itself_at_s_squared():
+    """P(s) = Q(s²) (degree 6, not a Möbius map of Q): the same image, one stretch, end to end
+    (the issue's "non-affine reparameterisation" case, on a rational curve)."""
+    from math import comb
+
+    from test_acceptance_29 import _compose
+
+    from lambda_bezier.hazmat.intersect_exact import power_coefficients
+
+    q = R([(0, 0), (1, 2), (3, -1), (4, 1)], [1, 2, 3, 1])
+    rows = q.to_homogeneous().control_points()
+    power = [_compose(power_coefficients(rows, k), [F(0), F(0), F(1)]) for k in range(3)]
+    n = len(power[0]) - 1
+    p = R.from_homogeneous(
+        [
+            tuple(sum(F(comb(j, k), comb(n, k)) * col[k] for k in range(j + 1)) for col in power)
+            for j in range(n + 1)
+        ]
+    )
+    np.testing.assert_allclose(p.evaluate(0.5), q.evaluate(0.25), rtol=1e-15)
+    assert _stretch(p, q) == [(0.0, 0.0, "coincident"), (1.0, 1.0, "coincident")]
+    back = q.reparameterize(F(1, 3)).reverse()
+    assert _stretch(p, back) == [(0.0, 1.0, "coincident"), (1.0, 0.0, "coincident")]

@@ -78,11 +78,16 @@ def _chebyshev_and_line() -> tuple[lb.BezierCurve, lb.BezierCurve, list[float]]:
     return curve, line, [x for x in xs if 0 <= x <= 1]
 
 
-@pytest.mark.parametrize("ratio", [F(1), F(2), F(1, 2)])
+# weights spanning ratio^12: 1, 8.3e2, 4.1e3, 5.3e5 (both ways), 1.7e7, 6.9e7, 2.4e8
+@pytest.mark.parametrize(
+    "ratio", [F(1), F(7, 4), F(2), F(1, 2), F(3), F(1, 3), F(4), F(9, 2), F(5)]
+)
 def test_rational_chebyshev_12_against_a_line_under_its_peaks(ratio):
     """Weights ratio^i draw the same curve in s with u = φ(s) = r s / (1 − s + r s) (a Möbius
     map, not affine unless r = 1): all 12 crossings, at s = u / (r + u (1 − r)). The
-    subdivision-and-Newton engine found 10 (two merged into their neighbours)."""
+    subdivision-and-Newton engine found 10 (two merged into their neighbours). From a span of
+    5e5 on (ratio 3), the certified search gave up: the blossoms' rounding was padded from
+    the largest row, 2e6 times the rows at the small-weight end."""
     poly, line, us = _chebyshev_and_line()
     curve = lb.RationalBezierCurve(poly.control_points(), [ratio**i for i in range(13)])
     r = mp.mpf(ratio.numerator) / ratio.denominator
@@ -298,11 +303,11 @@ def test_intersect_takes_every_curve_class_both_ways_and_in_batches():
 def test_a_shared_stretch_is_still_told_from_a_flat_contact():
     """Past MAX_PAIRS the search gives up only when the open pairs cover more than SPREAD of
     a domain (a shared stretch); a curve against itself under a Möbius reparameterisation
-    is one. The rational engine then refuses by name."""
+    is one. The rational engine then decides the shared stretch (hazmat.coincide): end to
+    end, at s = t = 0 and 1."""
     pts = [(0, 0), (1, 3), (3, -2), (4, 1)]
     a, b = lb.RationalBezierCurve(pts, [1, 2, 4, 8]), lb.RationalBezierCurve(pts, [1, 1, 1, 1])
-    with pytest.raises(ValueError, match="share a stretch"):
-        a.intersect(b)
+    assert a.intersect(b) == [(0.0, 0.0, "coincident"), (1.0, 1.0, "coincident")]
     lo, hi = np.array([0.0, 0.5, 0.1, 2.0]), np.array([0.2, 0.6, 0.3, 2.5])
     assert ai._covered(lo, hi) == pytest.approx(0.9)
 

@@ -308,23 +308,58 @@ def intersect(p: AtomCurve, q: Any) -> list[Intersection]:
 
 
 def _pieces_intersect(p: AtomCurve, q: Any) -> list[Intersection]:
-    """Through polynomial pieces (curves that share a stretch, or with a rational form)."""
+    """Through polynomial pieces (curves that share a stretch, or with a rational form). A
+    stretch shared piece by piece (the polynomial or rational path's "coincident" end pairs)
+    is joined with its neighbours into one, and hits inside it are dropped."""
     found: list[tuple[float, float, str]] = []
+    stretches: list[tuple[float, float, float, float]] = []
     for pc, pmap in _as_parts(p):
         for qc, qmap in _as_parts(q):
-            for x in _pair(pc, qc):
-                s, t = float(pmap(x.s)), float(qmap(x.t))
+            got = _pair(pc, qc)
+            ends = [x for x in got if x.kind == "coincident"]
+            for a, b in zip(ends[::2], ends[1::2], strict=True):
+                stretches.append(
+                    (float(pmap(a.s)), float(pmap(b.s)), float(qmap(a.t)), float(qmap(b.t)))
+                )
+            for x in got:
                 if x.kind != "coincident":
-                    s, t = _polish(p, q, s, t)
-                found.append((s, t, x.kind))
+                    found.append((*_polish(p, q, float(pmap(x.s)), float(qmap(x.t))), x.kind))
+    width = max(_dom(p)[1] - _dom(p)[0], _dom(q)[1] - _dom(q)[0], 1e-300)
+    joined = _joined(stretches, SAME * width)
+    for s0, s1, t0, t1 in joined:
+        found += [(s0, t0, "coincident"), (s1, t1, "coincident")]
     found.sort()
     out: list[Intersection] = []
-    width = max(_dom(p)[1] - _dom(p)[0], 1e-300)
     for s, t, kind in found:
         if out and abs(s - out[-1].s) <= SAME * width and abs(t - out[-1].t) <= SAME * width:
             continue  # the same point found in two neighbouring pieces
+        if kind != "coincident" and _within(joined, s, t, SAME * width):
+            continue
         out.append(Intersection(s, t, kind))
     return out
+
+
+def _joined(
+    stretches: list[tuple[float, float, float, float]], tol: float
+) -> list[tuple[float, float, float, float]]:
+    """Stretches (s0 < s1, t0, t1) chained where one ends where the next begins (both
+    parameters within tol): neighbouring pieces of one shared stretch."""
+    out: list[tuple[float, float, float, float]] = []
+    for s0, s1, t0, t1 in sorted(stretches):
+        if out and abs(s0 - out[-1][1]) <= tol and abs(t0 - out[-1][3]) <= tol:
+            out[-1] = (out[-1][0], s1, out[-1][2], t1)
+        else:
+            out.append((s0, s1, t0, t1))
+    return out
+
+
+def _within(
+    stretches: list[tuple[float, float, float, float]], s: float, t: float, tol: float
+) -> bool:
+    return any(
+        s0 - tol <= s <= s1 + tol and min(t0, t1) - tol <= t <= max(t0, t1) + tol
+        for s0, s1, t0, t1 in stretches
+    )
 
 
 def _boxes_meet(p: BezierCurve, q: BezierCurve) -> bool:

@@ -38,6 +38,7 @@ from .geometry import (
     no_queries,
 )
 from .hazmat import atom_intersect as ai
+from .hazmat import coincide as co
 from .hazmat import rational_kernels as rk
 from .hazmat.intersect import Intersection
 
@@ -48,6 +49,10 @@ RTOL = 1e-12
 SAME_ROOT = 1e-7  # intersection parameters closer than this are one intersection
 TANGENT_SINE = 1e-5  # below this sine of the angle between tangents an intersection is tangent
 ON_CURVE = 1e-10  # Newton's residual must be below this times the curves' size
+# relative, per degree: points this close are on both curves when deciding a shared stretch
+# (hazmat.intersect.ROOT_RESIDUAL, the polynomial path's rounding of evaluation)
+ROOT_RESIDUAL = 64 * float(np.finfo(float).eps)
+MERGE_RADIUS = 1e-3  # hits closer than this are compared for being one contact (_one_contact)
 
 
 def _float_rows(curve: RationalBezierCurve) -> np.ndarray:
@@ -366,13 +371,35 @@ def _collect(
         good &= keep(s, t)
     order = np.lexsort((res, s))
     found: list[tuple[float, float]] = []
+    gap = ROOT_RESIDUAL * max(p.degree, q.degree, 1) * size
     for i in order[good[order]]:
         si, ti = float(s[i]), float(t[i])
         if any(abs(si - a) <= SAME_ROOT and abs(ti - b) <= SAME_ROOT for a, b in found):
             continue
+        if any(_one_contact(p, q, (a, b), (si, ti), gap) for a, b in found):
+            continue
         found.append((si, ti))
     found.sort()
     return [Intersection(a, b, _kind(p, q, a, b)) for a, b in found]
+
+
+def _one_contact(
+    p: RationalBezierCurve,
+    q: RationalBezierCurve,
+    a: tuple[float, float],
+    b: tuple[float, float],
+    gap: float,
+) -> bool:
+    """Two hits closer than 1e-3 in both parameters are one contact of high order when the
+    curves stay within `gap` (the rounding of evaluation) all the way between them: the
+    polynomial path's rule (hazmat.intersect._add, MERGE_RADIUS and MERGE_GAP). Newton from
+    many starts otherwise stopped all along such a contact (90 "tangent" points within 1e-5
+    where two cubics agree to second order at a common end)."""
+    if abs(a[0] - b[0]) >= MERGE_RADIUS or abs(a[1] - b[1]) >= MERGE_RADIUS:
+        return False
+    u = np.linspace(0.0, 1.0, 9)
+    between = p.evaluate(a[0] + u * (b[0] - a[0])) - q.evaluate(a[1] + u * (b[1] - a[1]))
+    return bool(np.linalg.norm(between, axis=-1).max() <= gap)
 
 
 def _check_dimension(curve: RationalBezierCurve) -> None:
@@ -388,7 +415,8 @@ def intersect(p: RationalBezierCurve, q: RationalBezierCurve) -> list[Intersecti
     # the certified branch and bound (hazmat.atom_intersect: exclusion, Krawczyk uniqueness,
     # one answer per unresolved cluster) finds every crossing; Newton from the subdivision's
     # starts below merged crossings 1e-4 apart (issue #29). It gives up (None) on a shared
-    # stretch, which the subdivision then refuses by name.
+    # stretch, which hazmat.coincide then decides under any parameterisation (_shared); a
+    # give-up it cannot explain is refused by name by the subdivision.
     size = _size(p, q)
     try:
         # the pieces' boxes first (cheap): all apart (with slack) proves no intersection, by
@@ -398,12 +426,95 @@ def intersect(p: RationalBezierCurve, q: RationalBezierCurve) -> list[Intersecti
         starts = None  # too many overlapping pieces: the search tells a contact from a stretch
     if starts is not None and not starts.size:
         return []
+    # too many overlapping pieces hint at a shared stretch: decided first (50 ms exact),
+    # since the search spends seconds before it gives up on one
+    shared = _shared(p, q, size) if starts is None else []
+    if shared:
+        return _with_stretches(p, q, shared)
     found = ai.pairs(ai.BernsteinPart(_float_rows(p)), ai.BernsteinPart(_float_rows(q)))
     if found is not None:
         return [Intersection(f.s, f.t, f.kind) for f in found]
-    if starts is None:  # a shared stretch: refused by name
-        starts = rk.overlap_starts(_float_rows(p), _float_rows(q), size)
+    shared = _shared(p, q, size) if starts is not None else []
+    if shared:
+        return _with_stretches(p, q, shared)
+    if starts is None:  # pieces overlap all along, yet no shared stretch: refused by name
+        how = "exactly" if p.is_exact and q.is_exact else "to the rounding of evaluation"
+        raise ValueError(
+            f"the curves share no stretch (decided {how}) but stay too close along one for "
+            "the certified search to isolate where they meet (more than 20000 pairs of "
+            "pieces overlap): rational curves report isolated intersections only"
+        )
     return _collect(p, q, starts, size)
+
+
+def _shared(p: RationalBezierCurve, q: RationalBezierCurve, size: float) -> list[co.Stretch]:
+    """The stretches p and q share, under any parameterisation (hazmat.coincide): decided
+    exactly for exact curves; for float ones, points within the rounding of evaluating the
+    curves (the polynomial path's _root_bound: 64 ulps per degree of their size) are on both."""
+    if p.is_exact and q.is_exact:
+        rp = _exact_rows(p)
+        rq = _exact_rows(q)
+        if not co.exact_same_curve(rp, rq):
+            return []
+        return co.stretches(co.exact_side(rp), co.exact_side(rq), 3)
+    tol = float(ROOT_RESIDUAL * max(p.degree, q.degree, 1) * size)
+    side_p, side_q = co.float_side(_float_rows(p), tol), co.float_side(_float_rows(q), tol)
+    return co.stretches(side_p, side_q, max(p.degree * q.degree + 1, 3))
+
+
+def _exact_rows(curve: RationalBezierCurve) -> tuple[tuple[Fraction, ...], ...]:
+    return tuple(tuple(Fraction(v) for v in row) for row in curve.to_homogeneous().control_points())
+
+
+def _outside(ranges: list[tuple[float, float]]) -> list[tuple[float, float]]:
+    """The parts of [0, 1] outside the ranges, wider than SAME_ROOT."""
+    out, at = [], 0.0
+    for lo, hi in sorted(ranges):
+        if lo - at > SAME_ROOT:
+            out.append((at, lo))
+        at = max(at, hi)
+    if 1.0 - at > SAME_ROOT:
+        out.append((at, 1.0))
+    return out
+
+
+def _piece(curve: RationalBezierCurve, lo: float, hi: float) -> np.ndarray:
+    if (lo, hi) == (0.0, 1.0):
+        return _float_rows(curve)
+    return _float_rows(curve.segment(Fraction(lo), Fraction(hi)))
+
+
+def _with_stretches(
+    p: RationalBezierCurve, q: RationalBezierCurve, shared: list[co.Stretch]
+) -> list[Intersection]:
+    """Each shared stretch as its two end pairs ("coincident"), and the isolated crossings of
+    the rest: each curve's parts outside its stretches against the whole other curve, by
+    the certified search (a part that still gives up is refused by name)."""
+    hits = [Intersection(a.s0, a.t0, "coincident") for a in shared]
+    hits += [Intersection(a.s1, a.t1, "coincident") for a in shared]
+    whole_p, whole_q = ai.BernsteinPart(_float_rows(p)), ai.BernsteinPart(_float_rows(q))
+    t_ranges = [(min(a.t0, a.t1), max(a.t0, a.t1)) for a in shared]
+    for lo, hi in _outside([(a.s0, a.s1) for a in shared]):
+        got = ai.pairs(ai.BernsteinPart(_piece(p, lo, hi)), whole_q)
+        if got is None:
+            raise ValueError(_REFUSED)
+        hits += [Intersection(lo + f.s * (hi - lo), f.t, f.kind) for f in got]
+    for lo, hi in _outside(t_ranges):
+        got = ai.pairs(whole_p, ai.BernsteinPart(_piece(q, lo, hi)))
+        if got is None:
+            raise ValueError(_REFUSED)
+        hits += [Intersection(f.s, lo + f.t * (hi - lo), f.kind) for f in got]
+    out: list[Intersection] = []
+    for h in sorted(hits, key=lambda h: h.kind != "coincident"):  # the stretches' ends first
+        if not any(abs(h.s - o.s) <= SAME_ROOT and abs(h.t - o.t) <= SAME_ROOT for o in out):
+            out.append(h)
+    return sorted(out)
+
+
+_REFUSED = (
+    "the curves share a stretch, and the certified search gave up on the rest of them: "
+    "rational curves report isolated intersections only there"
+)
 
 
 def _monotone_pieces(curve: RationalBezierCurve) -> list[tuple[float, float, np.ndarray]]:

@@ -33,6 +33,8 @@ ours (the name follows the `bezier` package's `hazmat`).
   fat lines, cones, halving, compensated de Casteljau, local Newton);
 - `settle_compiled`, `refine_compiled`: intersect's careful path compiled (end points,
   tangencies, merging) for the pairs the certificate declines (numba; imported on use);
+- `coincide`: shared stretches of two rational curves under any parameterisation (exact by
+  gcds over Q for exact rows, to rounding for floats);
 - `intersect_exact`: exact, certified isolation of planar crossings (resultants, Sturm,
   Krawczyk in rational interval arithmetic);
 - `intersect_prepared`: a curve as the intersection solvers use it (floats, exact rows);
@@ -93,6 +95,7 @@ __all__ = [
     "certify_compiled",
     "closest_compiled",
     "closest_numpy",
+    "coincide",
     "constants",
     "exact_poly",
     "extremes",

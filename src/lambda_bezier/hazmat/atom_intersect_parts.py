@@ -67,16 +67,20 @@ class AtomPart:
         return low * self.scale, high * self.scale
 
 
-def _blossoms(rows: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+def _blossoms(rows: np.ndarray, a: np.ndarray, b: np.ndarray, absolute: bool = False) -> np.ndarray:
     """(m, n+1, e): the Bernstein rows of the polynomial with rows (n+1, e) restricted to
-    [a_j, b_j]: row i is the blossom at (a^(n−i), b^i), by de Casteljau steps."""
+    [a_j, b_j]: row i is the blossom at (a^(n−i), b^i), by de Casteljau steps (absolute:
+    with the factors |1 − x| and |x|, a bound on the magnitudes met on the way)."""
     n = rows.shape[0] - 1
     out = np.empty((a.size, n + 1, rows.shape[1]))
     for i in range(n + 1):
         arr = np.broadcast_to(rows, (a.size, *rows.shape))
         for step in range(n):
             x = (b if step < i else a)[:, None, None]
-            arr = (1 - x) * arr[:, :-1] + x * arr[:, 1:]
+            if absolute:
+                arr = np.abs(1 - x) * arr[:, :-1] + np.abs(x) * arr[:, 1:]
+            else:
+                arr = (1 - x) * arr[:, :-1] + x * arr[:, 1:]
         out[:, i] = arr[:, 0]
     return out
 
@@ -104,9 +108,12 @@ class BernsteinPart:
         self.rows = np.asarray(self.rows, dtype=float)
         n = self.rows.shape[0] - 1
         self._hodograph = n * np.diff(self.rows, axis=0) if n else np.zeros((1, self.rows.shape[1]))
-        top = float(np.abs(self.rows).max())
-        # the hodograph's own rounding (one difference, one product by n), absolute
-        self._hodo_pad = 4 * _U * max(n, 1) * top
+        self._magnitude = np.abs(self.rows)
+        # the hodograph's magnitude with its own rounding (one difference, one product by n:
+        # within 4 ulps of n (|r_i| + |r_(i+1)|)) added, element by element
+        ends = self._magnitude[:-1] + self._magnitude[1:] if n else self._magnitude * 0
+        self._hodo_error = 4 * _U * max(n, 1) * ends
+        self._hodo_magnitude = np.abs(self._hodograph) + self._hodo_error
 
     @property
     def size(self) -> float:
@@ -125,37 +132,42 @@ class BernsteinPart:
         return out
 
     @staticmethod
-    def _pad(rows: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        """(m,): the blossoms' rounding, absolute: n steps of a few ulps of the rows' size,
-        amplified by (|1 − x| + |x|) per step outside [0, 1]."""
-        n = rows.shape[0] - 1
-        reach = np.maximum(np.abs(a), np.abs(b))
-        grow = (2 * np.maximum(reach, 1.0) - 1) ** n
-        out: np.ndarray = 6 * (n + 1) * _U * float(np.abs(rows).max()) * grow + 1e-300
+    def _pad(magnitude: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """(m, n+1, e): the blossoms' rounding, absolute, element by element: each de
+        Casteljau step (1 − x) u + x v rounds by a few ulps of |1 − x| |u| + |x| |v|, so n
+        steps stay within 6 (n + 1) ulps of the blossoms of the rows' magnitudes (taken with
+        |1 − x| and |x|). Relative to each blossom, not to the largest row: with weights
+        spanning 5e5, the ends' rows are 2e-6 of the largest, and a pad from the largest row
+        blurred their projections by 5e-9 of the curve's size, so the search gave up."""
+        n = magnitude.shape[0] - 1
+        out: np.ndarray = 6 * (n + 1) * _U * _blossoms(magnitude, a, b, absolute=True) + 1e-300
         return out
 
     def _homogeneous(self, a: np.ndarray, b: np.ndarray) -> tuple[Bounds, Bounds, Bounds, Bounds]:
         """Intervals (lower, upper) of A (d, m), w (1, m), A' and w' on [a, b]."""
         sub = _blossoms(self.rows, a, b)
-        pad = self._pad(self.rows, a, b)[None, :]
+        pad = self._pad(self._magnitude, a, b)
+        n1 = self.rows.shape[0]
         dsub = _blossoms(self._hodograph, a, b)
-        dpad = self._pad(self._hodograph, a, b)[None, :] + self._hodo_pad
-        lo, hi = sub.min(axis=1).T - pad, sub.max(axis=1).T + pad
-        dlo, dhi = dsub.min(axis=1).T - dpad, dsub.max(axis=1).T + dpad
+        # plus the hodograph rows' own rounding, carried through the (linear) steps
+        carried = _blossoms(self._hodo_error, a, b, absolute=True) * (1 + 8 * _U * n1)
+        dpad = self._pad(self._hodo_magnitude, a, b) + carried
+        lo, hi = (sub - pad).min(axis=1).T, (sub + pad).max(axis=1).T
+        dlo, dhi = (dsub - dpad).min(axis=1).T, (dsub + dpad).max(axis=1).T
         return (lo[:-1], hi[:-1]), (lo[-1:], hi[-1:]), (dlo[:-1], dhi[:-1]), (dlo[-1:], dhi[-1:])
 
     def enclose(self, k: int, a: np.ndarray, b: np.ndarray) -> Bounds:
         sub = _blossoms(self.rows, a, b)  # (m, n+1, e)
-        pad = self._pad(self.rows, a, b)
+        pad = self._pad(self._magnitude, a, b)
         w = sub[:, :, -1]
-        wmin = w.min(axis=1) - pad
+        wmin = (w - pad[:, :, -1]).min(axis=1)
         bad = wmin <= 0  # weights not proven positive: no enclosure
         d = self.rows.shape[1] - 1
         if k == 0:
-            # the hull of the projections A_i / w_i, each |A_i| ± pad over w_i ∓ pad
+            # the hull of the projections A_i / w_i, each A_i ± pad over w_i ∓ pad
             num = sub[:, :, :-1]
-            wl, wh = (w - pad[:, None])[:, :, None], (w + pad[:, None])[:, :, None]
-            nl, nh = num - pad[:, None, None], num + pad[:, None, None]
+            wl, wh = (w - pad[:, :, -1])[:, :, None], (w + pad[:, :, -1])[:, :, None]
+            nl, nh = num - pad[:, :, :-1], num + pad[:, :, :-1]
             with np.errstate(divide="ignore", invalid="ignore"):
                 cand = np.stack([nl / wl, nl / wh, nh / wl, nh / wh])
             low = cand.min(axis=(0, 2)).T

@@ -572,12 +572,21 @@ def test_self_intersection_matches_mpmath(at_family):
 
 @settings(max_examples=20)
 @given(POINTS, st.floats(-1, 1))
+# a draw of the full suite (collinear points, so the curve lies on a line and turns back)
+@example(np.array([[0.0, 0.0], [0.0, 0.0], [1.0, 1.0], [-1.0, -1.0]]), 0.0)
 def test_self_intersections_against_polyline(at_family, pts, lam):
     curve = at_family.curve(pts * np.array([3.0, 1.0]), lam=lam)
     t = np.linspace(*curve.domain, 2001)
     a = curve.evaluate(t)
     approx = [(s, u) for s, u in polyline_crossings_self(a, t) if u - s > 1e-3]
-    got = curve.self_intersections()
+    try:
+        got = curve.self_intersections()
+    except ValueError as err:
+        # the one refusal by name: a curve on a line that folds back meets itself along an
+        # interval; it must really lie on a line (the control points' span has rank 1)
+        assert "turns back" in str(err)
+        assert np.linalg.matrix_rank(pts[1:] - pts[0], tol=1e-12) <= 1
+        return
     if any(x.kind == "coincident" for x in got):
         return  # the curve runs back over itself (symmetric points, lam = 0): not this test
     for s, u in approx:

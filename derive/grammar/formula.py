@@ -160,8 +160,10 @@ class _Parser:
         symbols: Mapping[str, sp.Symbol],
         functions: Mapping,
         elementary: bool = False,
+        frequency: frozenset[sp.Symbol] = frozenset(),
     ):
         self.elementary = elementary
+        self.frequency = frequency
         self.text = text
         self.tokens = tokenize(text)
         self.pos = 0
@@ -371,6 +373,8 @@ class _Parser:
             raise self.error(f"{name} takes one argument, a rational multiple of t", tok)
         arg = args[0]
         t = self.symbols.get("t")
+        if self.frequency and arg.free_symbols & self.frequency:
+            return self.frequency_call(name, arg, t, tok)
         rate = sp.expand(arg / t) if t is not None and arg.has(t) else None
         unit = rate / sp.pi if rate is not None and rate.has(sp.pi) else rate
         if unit is None or not unit.is_Rational or unit == 0:
@@ -384,6 +388,38 @@ class _Parser:
                 f"{name}({arg}): a rate larger than {MAX_FREQUENCY} in numerator or denominator",
                 tok,
             )
+        return ELEMENTARY[name](arg)
+
+    def frequency_call(self, name: str, arg: sp.Expr, t: sp.Symbol | None, tok: Token):
+        """sin(a*t + b*alpha + c*alpha*t) with rationals a, b, c and alpha a parameter allowed
+        inside arguments (`frequency`: C-Bezier families on [0, alpha] or with sin(alpha*t))."""
+        (alpha,) = sorted(arg.free_symbols & self.frequency, key=str)[:1]
+        poly = None
+        if arg.free_symbols <= {alpha} | ({t} if t is not None else set()):
+            try:
+                poly = sp.Poly(arg, *([alpha, t] if t is not None else [alpha]))
+            except sp.PolynomialError:
+                poly = None
+        allowed = {(1, 0), (0, 1), (1, 1)} if t is not None else {(1,)}
+        if (
+            poly is None
+            or len(arg.free_symbols & self.frequency) > 1
+            or not set(poly.monoms()) <= allowed
+            or not all(c.is_Rational for c in poly.coeffs())
+        ):
+            raise self.error(
+                f"{name}({arg}): an argument with the parameter {alpha} is a*t + b*{alpha} + "
+                f"c*{alpha}*t with rationals a, b, c (such as {name}({alpha} - t), "
+                f"{name}({alpha}*t), {name}({alpha}))",
+                tok,
+            )
+        for c in poly.coeffs():
+            if max(abs(int(c.p)), int(c.q)) > MAX_FREQUENCY:
+                raise self.error(
+                    f"{name}({arg}): a rate larger than {MAX_FREQUENCY} in numerator or "
+                    "denominator",
+                    tok,
+                )
         return ELEMENTARY[name](arg)
 
     # ---- the built-in forms
@@ -483,23 +519,28 @@ def parse_formula(
     functions: Mapping | None = None,
     *,
     elementary: bool = False,
+    frequency: tuple[str, ...] = (),
 ) -> sp.Basic:
     """A formula of the records grammar as a SymPy object; ParseError for anything else.
 
     `symbols` and `functions` replace the default tables (a family definition adds its own
     parameter symbol, for instance). `elementary`: also `pi` and sin, cos, sinh, cosh, exp
-    of a rational multiple of t or of pi*t (family definitions, issue #30)."""
+    of a rational multiple of t or of pi*t (family definitions, issue #30). `frequency`: the
+    names (in `symbols`) of parameters that may also stand in those arguments, as
+    a*t + b*alpha + c*alpha*t with rationals a, b, c (C-Bezier families)."""
     if not isinstance(text, str):
         raise ParseError(f"a formula must be a string, got {type(text).__name__}")
     if len(text) > MAX_TEXT:
         raise ParseError(f"a formula longer than {MAX_TEXT} characters ({len(text)})")
     if not text.strip():
         raise ParseError("an empty formula")
+    table = SYMBOLS if symbols is None else symbols
     parser = _Parser(
         text,
-        SYMBOLS if symbols is None else symbols,
+        table,
         FUNCTIONS if functions is None else functions,
         elementary,
+        frozenset(table[name] for name in frequency),
     )
     try:
         return parser.parse()

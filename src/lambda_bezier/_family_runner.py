@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import difflib
 import importlib
+import json
 import os
 import sys
 import sysconfig
@@ -63,9 +64,22 @@ def run(path: Path, out_dir: Path | None, check: bool, quiet: bool = False) -> i
         print(f"lambda-bezier derive: --out {out_dir} is not a directory", file=sys.stderr)
         return 2
     try:
-        defn = definition.read_definition(path)
+        from ._family_file import FamilyFileError, read_family_table
+
+        try:
+            table = read_family_table(path)
+        except FamilyFileError as exc:
+            raise definition.DefinitionError(str(exc)) from None
+        frequency = importlib.import_module(f"{derive.__name__}.families.cbezier")
+        if frequency.is_frequency_family(table):  # C-Bezier on [0, alpha] (issue #30)
+            document = importlib.import_module(f"{derive.__name__}.emit.cbezier_document")
+            defn = document.read(table, str(path))
+        else:
+            defn = definition.read_definition(path)
         _say(quiet, f"deriving family {defn.name!r} from {path} ...")
         text = document.render(defn)
+        if frequency.is_frequency_family(table):
+            _say(quiet, document.summary(json.loads(text)))
     except definition.DefinitionError as exc:
         print(f"lambda-bezier derive: {exc}", file=sys.stderr)
         return 2

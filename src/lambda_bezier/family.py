@@ -42,7 +42,7 @@ if TYPE_CHECKING:
 
 FORMAT = 3  # the derived document's format this runtime writes and reads
 # 2: one parameter, laid out as in 3; 4: non-polynomial families (atom_family)
-READS = (2, 3, 4)
+READS = (2, 3, 4, 5)
 MAX_DOCUMENT_BYTES = 50_000_000
 
 
@@ -743,6 +743,10 @@ def _derived_family(
     title = title if isinstance(title, str) else ""
     if "indexed" in doc:
         return IndexedFamily(doc, definition, title, table, str(doc_path))
+    if doc.get("format") == 5:  # C-Bezier on [0, alpha] (lambda_bezier.cbezier_family)
+        from .cbezier_family import CBezierFamily
+
+        return CBezierFamily(doc, str(doc_path), title, table)  # type: ignore[return-value]
     if doc.get("format") == 4:
         atom = AtomData(doc, str(doc_path))
         return AtomFamily(atom, definition, title, table)

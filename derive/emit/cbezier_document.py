@@ -1,0 +1,118 @@
+"""The derived document (``"format": 5``) of a family whose parameter is the length of the
+domain or sits inside sin/cos (derive/families/cbezier.py, derive/formulas/cbezier.py).
+
+Data only: the basis as coefficients over the atoms (1, t^k, cos(m t), sin(m t) or cosh, sinh)
+of the family's t on [0, alpha], each coefficient a rational function of alpha, sin(alpha),
+cos(alpha) as exponent/rational terms the runtime evaluates in floats
+(lambda_bezier.cbezier_family); the Gram matrices of E_1..E_3 in the same form; every verdict
+with its closed forms as text.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from ..families.cbezier import CDefinition, read_table
+from ..formulas import cbezier as F
+
+FORMAT = 5
+
+
+def derive(defn: CDefinition) -> dict:
+    atoms, matrix = F.coefficient_matrix(defn)
+    rank, det = F.rank(defn)
+    ends = F.end_table(defn)
+    n = defn.degree
+    return {
+        "format": FORMAT,
+        "family": defn.name,
+        "definition_sha256": defn.digest,
+        "title": defn.title,
+        "kind": "frequency",
+        "parameter": defn.parameter,
+        "range": {
+            "text": defn.range_text,
+            "lo": str(defn.lo),
+            "hi": str(defn.hi),
+            "lo_float": float(defn.lo),
+            "hi_float": float(defn.hi),
+            "lo_closed": defn.lo_closed,
+            "hi_closed": defn.hi_closed,
+        },
+        "form": defn.form,
+        "domain": defn.domain_text,
+        "space": defn.space,
+        "degree": n,
+        "atoms": [list(a) for a in atoms],
+        "coefficients": [[F.ratfn(matrix[i, j]) for j in range(len(atoms))] for i in range(n + 1)],
+        "functions": [{str(a): F.show(v, defn) for a, v in f} for f in defn.functions],
+        "energies": {
+            str(k): [[F.ratfn(x) for x in row] for row in F.gram(defn, k)] for k in F.ENERGY_ORDERS
+        },
+        "verdicts": {
+            "partition_of_unity": F.partition_of_unity(defn),
+            "bernstein_end_conditions": F.bernstein_like_ends(defn),
+            "symmetric": F.symmetric(defn),
+            "independent": {
+                "rank": rank,
+                "of": n + 1,
+                "determinant": F.show(det, defn) if det is not None else None,
+            },
+            "singular_points": F.singular_points(defn),
+            "singular_scan": f"no other zero of a denominator in [{F.scan_start(defn)}, "
+            f"{defn.hi}] (arb, mean-value form)"
+            + (
+                f"; (0, {F.SCAN_FLOOR}) not scanned (the series' leading terms are given)"
+                if defn.lo == 0
+                else ""
+            ),
+            "nonnegative": F.nonnegative(defn),
+        },
+        "ends": [
+            {
+                "t=0": [F.show(x, defn) for x in lo],
+                f"t={defn.parameter}": [F.show(x, defn) for x in hi],
+            }
+            for lo, hi in ends
+        ],
+    }
+
+
+def render(defn: CDefinition) -> str:
+    return json.dumps(derive(defn), indent=1, ensure_ascii=False) + "\n"
+
+
+def read(table: dict, where: str) -> CDefinition:
+    return read_table(table, where)
+
+
+def summary(doc: dict) -> str:
+    """The verdicts as `derive --family` prints them."""
+    v = doc["verdicts"]
+    ind = v["independent"]
+    non = v["nonnegative"]
+    lines = [
+        f"family {doc['family']!r}: {doc['space']} space, degree {doc['degree']}, "
+        f"{doc['parameter']} in {doc['range']['text']}, t in {doc['domain']}",
+        f"  partition of unity: {v['partition_of_unity']} (exact)",
+        f"  Bernstein end conditions: {v['bernstein_end_conditions']} (exact)",
+        f"  symmetric t <-> {doc['parameter']} - t: {v['symmetric']} (exact)",
+        f"  linearly independent: rank {ind['rank']} of {ind['of']} (exact)",
+        f"  non-negative: {non['verdict']} ({non['method']}"
+        + (f"; {non['sampled']})" if "sampled" in non else ")"),
+    ]
+    if "counterexample" in non:
+        lines.append(f"    counterexample: {non['counterexample']}")
+    for row in v["singular_points"]:
+        lead = f", ~ {row['leading_term']}" if "leading_term" in row else ""
+        lines.append(
+            f"  singular: {doc['parameter']} = {row['at']} ({row['denominator']} = 0{lead}; "
+            f"{row['where']})"
+        )
+    lines.append(f"  singular points scan: {v['singular_scan']}")
+    return "\n".join(lines)
+
+
+def derived_path(definition_file: Path, name: str, out_dir: Path | None = None) -> Path:
+    return (out_dir or Path(definition_file).resolve().parent) / f"{name}.derived.json"

@@ -1,0 +1,450 @@
+r"""Families whose parameter is the length of the domain or sits inside sin/cos (issue #30):
+C-Bézier curves on [0, α] and their hyperbolic analogue, from a ``"format": 5`` document.
+
+The document (derive/emit/cbezier_document.py) holds the basis over the atoms 1, t^k,
+cos(m t), sin(m t) (cosh, sinh) of t on [0, α], each coefficient a rational function of
+α, sin α, cos α (sinh, cosh) as exponent/rational terms, and the Gram matrices of E_1..E_3 in
+the same form. Nothing is evaluated but those sums.
+
+`CBezierFamily.curve(points, alpha=...)` computes the float coefficients once per curve, with
+a stated bound on their relative error (`coefficient_error`): each numerator and denominator
+is a sum of terms evaluated in floats, so its relative error is at most
+(degree + 3) · 2⁻⁵³ · Σ|terms| / |sum| (plus one ulp from sin and cos); near the singular
+point α → 0 (α − sin α ~ α³/6) that ratio grows like α⁻³, and a curve whose bound exceeds
+MAX_COEFFICIENT_ERROR is refused by name instead of returning amplified rounding.
+
+A curve is in the family's own parameter: t on [0, α] (``domain = "[0, alpha]"``) or u on
+[0, 1] (``domain = "[0, 1]"`` with sin(alpha*t)). Evaluation, derivatives, curvature and the
+energies are direct; the bounding box, closest point and intersections go through the
+certified atom machinery (`_atom_geometry`, hazmat.atom_bounds, hazmat.atom_intersect) on
+the curve's centred atoms at that α (numeric: these curves have no rational form for a
+general α); `split` gives two curves of the same family (its space is invariant under shifts
+of t) on [0, t] and [t, α].
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import numpy.typing as npt
+
+from . import _validate as val
+from ._validate import ParamLike, PointsLike
+from .hazmat import atoms as ak
+
+if TYPE_CHECKING:
+    from .geometry import ClosestPoint
+    from .hazmat.intersect import Intersection
+
+FORMAT = 5
+MAX_COEFFICIENT_ERROR = 1e-6  # relative: past this a curve at that alpha is refused
+_EPS = 2.0**-53
+Terms = list[tuple[tuple[int, int, int], float]]
+
+
+class CBezierError(ValueError):
+    """A document that is not a well-formed format-5 document."""
+
+
+def _terms(raw: object, where: str) -> Terms:
+    if not isinstance(raw, list):
+        raise CBezierError(f"{where}: not a list of terms")
+    out: Terms = []
+    for item in raw:
+        if (
+            not isinstance(item, list)
+            or len(item) != 2
+            or not isinstance(item[0], list)
+            or len(item[0]) != 3
+            or not all(isinstance(e, int) and 0 <= e <= 64 for e in item[0])
+            or not isinstance(item[1], str)
+        ):
+            raise CBezierError(f"{where}: a term is [[i, j, k], 'p/q']")
+        try:
+            value = float(Fraction(item[1]))
+        except (ValueError, ZeroDivisionError):
+            raise CBezierError(f"{where}: {item[1]!r} is not a rational") from None
+        out.append(((item[0][0], item[0][1], item[0][2]), value))
+    return out
+
+
+@dataclass(frozen=True)
+class RatFn:
+    num: Terms
+    den: Terms
+
+    def value(self, a: float, s: float, c: float) -> tuple[float, float]:
+        """(value, bound on its relative error)."""
+        parts = []
+        for terms in (self.num, self.den):
+            total, size, top = 0.0, 0.0, 0
+            vals = [coef * a**i * s**j * c**k for (i, j, k), coef in terms]
+            total = math.fsum(vals)
+            size = math.fsum(abs(v) for v in vals)
+            top = max((i + j + k for (i, j, k), _ in terms), default=0)
+            parts.append((total, (top + 3) * _EPS * size))
+        (n, en), (d, ed) = parts
+        if abs(d) <= ed:
+            return math.nan, math.inf
+        if n == 0 and en == 0:
+            return 0.0, 0.0
+        rel = (en / abs(n) if n else math.inf) + ed / abs(d)
+        return n / d, rel
+
+
+def _ratfn(raw: object, where: str) -> RatFn:
+    if not isinstance(raw, dict) or set(raw) != {"num", "den"}:
+        raise CBezierError(f"{where}: a coefficient is {{'num': [...], 'den': [...]}}")
+    return RatFn(_terms(raw["num"], where), _terms(raw["den"], where))
+
+
+class _Shape:
+    """What hazmat.atom_bounds and _atom_geometry read of a curve's space."""
+
+    def __init__(self, omega0: float, powers: int, harmonics: int, hyperbolic: bool):
+        self.omega0, self.powers, self.harmonics = omega0, powers, harmonics
+        self.hyperbolic = hyperbolic
+
+
+class CBezierFamily:
+    """A family of ``"format": 5`` (made by `load_family`)."""
+
+    def __init__(self, doc: dict[str, Any], path: str, title: str, table: dict[str, Any]):
+        where = path
+        try:
+            self.family = str(doc["family"])
+            self.name = self.family
+            self.parameter = str(doc["parameter"])
+            rng = doc["range"]
+            self.lo, self.hi = float(rng["lo_float"]), float(rng["hi_float"])
+            self.lo_closed, self.hi_closed = bool(rng["lo_closed"]), bool(rng["hi_closed"])
+            self.range_text = str(rng["text"])
+            self.form = str(doc["form"])
+            self.space = str(doc["space"])
+            self.degree = int(doc["degree"])
+            self.atoms = [(str(k), int(m)) for k, m in doc["atoms"]]
+            self._coefficients = [
+                [_ratfn(x, f"{where}: coefficients") for x in row] for row in doc["coefficients"]
+            ]
+            self._energies = {
+                int(k): [[_ratfn(x, f"{where}: energies") for x in row] for row in mat]
+                for k, mat in doc["energies"].items()
+            }
+            self.verdicts = doc["verdicts"]
+            self.functions = doc["functions"]
+        except (KeyError, TypeError, ValueError) as exc:
+            raise CBezierError(f"{where}: not a format-5 document ({exc})") from None
+        if self.form not in ("domain", "unit") or self.space not in ("trigonometric", "hyperbolic"):
+            raise CBezierError(f"{where}: unknown form or space")
+        self.hyperbolic = self.space == "hyperbolic"
+        self.title = title
+        self.definition = table
+        self.powers = max((m for k, m in self.atoms if k == "pow"), default=0)
+        self.harmonics = max((m for k, m in self.atoms if k != "pow"), default=0)
+
+    def __repr__(self) -> str:
+        return (
+            f"CBezierFamily({self.name}, degree={self.degree}, {self.parameter} in "
+            f"{self.range_text}, {self.space})"
+        )
+
+    # ------------------------------------------------------------------ the parameter
+    def check_alpha(self, alpha: object) -> float:
+        name = self.parameter
+        if isinstance(alpha, bool) or not isinstance(alpha, int | float | Fraction):
+            raise TypeError(f"{name} must be a real number, got {type(alpha).__name__}")
+        x = float(alpha)
+        if not math.isfinite(x):
+            raise ValueError(f"{name} must be finite, got {alpha}")
+        below = x < self.lo or (x == self.lo and not self.lo_closed)
+        above = x > self.hi or (x == self.hi and not self.hi_closed)
+        if below or above:
+            raise ValueError(f"{name} = {alpha} is outside the family's range {self.range_text}")
+        return x
+
+    def _angles(self, x: float) -> tuple[float, float]:
+        return (math.sinh(x), math.cosh(x)) if self.hyperbolic else (math.sin(x), math.cos(x))
+
+    def _matrix(self, rows: list[list[RatFn]], x: float, what: str) -> tuple[np.ndarray, float]:
+        s, c = self._angles(x)
+        out = np.empty((len(rows), len(rows[0])))
+        worst = 0.0
+        for i, row in enumerate(rows):
+            for j, f in enumerate(row):
+                v, rel = f.value(x, s, c)
+                out[i, j] = v
+                worst = max(worst, rel)
+        if not worst <= MAX_COEFFICIENT_ERROR:
+            raise ValueError(
+                f"{self.parameter} = {x}: the {what} cannot be computed in floats to "
+                f"{MAX_COEFFICIENT_ERROR:g} (bound {worst:.3g}); this is near a singular "
+                f"point of the family ({self.singular_text()})"
+            )
+        return out, worst
+
+    def singular_text(self) -> str:
+        rows = self.verdicts.get("singular_points", [])
+        return "; ".join(f"{self.parameter} = {r['at']}: {r['denominator']} = 0" for r in rows)
+
+    def basis_coefficients(self, alpha: object) -> tuple[np.ndarray, float]:
+        """((n+1, atoms) float coefficients in t on [0, alpha], bound on their relative error)."""
+        return self._matrix(self._coefficients, self.check_alpha(alpha), "basis coefficients")
+
+    def energy_matrix(self, alpha: object, k: int) -> np.ndarray:
+        """G with E_k = sum_ij G_ij P_i . P_j, in the family's t on [0, alpha]."""
+        if k not in self._energies:
+            raise ValueError(f"k must be one of {sorted(self._energies)}, got {k!r}")
+        return self._matrix(self._energies[k], self.check_alpha(alpha), f"E_{k} matrix")[0]
+
+    # ------------------------------------------------------------------ curves
+    def curve(self, points: PointsLike, alpha: object = None, **params: object) -> CBezierCurve:
+        if alpha is None:
+            if set(params) != {self.parameter}:
+                raise TypeError(f"curve() takes the parameter {self.parameter}=...")
+            alpha = params[self.parameter]
+        elif params:
+            raise TypeError(f"unexpected arguments {sorted(params)}")
+        return CBezierCurve(self, points, self.check_alpha(alpha))
+
+    def energy(self, points: PointsLike, alpha: object, k: int) -> float:
+        """E_k of the curve at alpha (CBezierCurve.energy)."""
+        return self.curve(points, alpha=alpha).energy(k)
+
+    def optimal_alpha(self, points: PointsLike, k: int, *, tol: float = 1e-12) -> dict[str, Any]:
+        """The alpha of the box with the least E_k: the best of a grid of 2049 admissible
+        points (those whose coefficients meet MAX_COEFFICIENT_ERROR), then golden-section
+        search in the bracket around it to `tol` in alpha. Numeric, not certified: E_k is
+        smooth in alpha, and a minimum narrower than the grid's step could be missed."""
+        lo = self.lo if self.lo_closed else self.lo + (self.hi - self.lo) * 1e-3
+        hi = self.hi if self.hi_closed else self.hi - (self.hi - self.lo) * 1e-9
+        grid = np.linspace(lo, hi, 2049)
+        values = []
+        for x in grid:
+            try:
+                values.append(self.energy(points, float(x), k))
+            except ValueError:
+                values.append(math.inf)
+        best = int(np.argmin(values))
+        if (best == 0 and self.lo_closed) or (best == len(grid) - 1 and self.hi_closed):
+            x = float(grid[best])  # a closed end of the box: E_k there is the least sampled
+            on = "lower end" if best == 0 else "upper end"
+            return {self.parameter: x, "energy": self.energy(points, x, k), "where": on}
+        a = float(grid[max(best - 1, 0)])
+        b = float(grid[min(best + 1, len(grid) - 1)])
+        ratio = (math.sqrt(5) - 1) / 2
+        x1, x2 = b - ratio * (b - a), a + ratio * (b - a)
+        f1, f2 = self.energy(points, x1, k), self.energy(points, x2, k)
+        while b - a > tol * max(1.0, abs(b)):
+            if f1 <= f2:
+                b, x2, f2 = x2, x1, f1
+                x1 = b - ratio * (b - a)
+                f1 = self.energy(points, x1, k)
+            else:
+                a, x1, f1 = x1, x2, f2
+                x2 = a + ratio * (b - a)
+                f2 = self.energy(points, x2, k)
+        x = (a + b) / 2
+        on = "lower end" if best == 0 else "upper end" if best == len(grid) - 1 else "interior"
+        return {self.parameter: x, "energy": self.energy(points, x, k), "where": on}
+
+
+class CBezierCurve:
+    """A curve sum P_i b_i(.; alpha) of a CBezierFamily at one alpha, in the family's own
+    parameter (t on [0, alpha], or u on [0, 1])."""
+
+    intersects_curves = True
+    has_rational_form = False
+
+    def __init__(self, family: CBezierFamily, points: PointsLike, alpha: float):
+        n = family.degree
+        self.family_object = family
+        self.family = family.name
+        self.alpha = alpha
+        self.points = val.as_points(points, family=family.name, degrees=(n,))
+        basis, self.coefficient_error = family.basis_coefficients(alpha)
+        self.basis_coefficients = basis
+        unit = family.form == "unit"
+        self._rate = alpha if unit else 1.0  # u on [0, 1]: t = alpha*u
+        self.domain = (0.0, 1.0) if unit else (0.0, alpha)
+        self._mid = 0.5 * self.domain[1]
+        self.shape = _Shape(self._rate, family.powers, family.harmonics, family.hyperbolic)
+        own = self._own_atoms(basis)  # (n+1, A) over the own parameter's atoms
+        self._scale = val.power_of_two_scale(self.points)
+        self._centred = self._centring(own.T @ (self.points / self._scale))
+        self._d = ak.derivative_matrix(
+            self._rate, family.powers, family.harmonics, family.hyperbolic
+        )
+
+    @property
+    def degree(self) -> int:
+        return int(self.points.shape[0]) - 1
+
+    @property
+    def dimension(self) -> int:
+        return int(self.points.shape[1])
+
+    def __repr__(self) -> str:
+        p = self.family_object.parameter
+        return f"CBezierCurve({self.family}, {p}={self.alpha}, dimension={self.dimension})"
+
+    def _layout(self) -> list[tuple[str, int]]:
+        fam = self.family_object
+        out = [("pow", k) for k in range(fam.powers + 1)]
+        for m in range(1, fam.harmonics + 1):
+            out += [("cos", m), ("sin", m)]
+        return out
+
+    def _own_atoms(self, basis: np.ndarray) -> np.ndarray:
+        """The basis over the centred layout's atoms of the own parameter (not yet centred):
+        t^k = (alpha u)^k on [0, 1]; cos(m t) = cos(m alpha u) keeps its coefficient."""
+        layout = self._layout()
+        out = np.zeros((basis.shape[0], len(layout)))
+        for j, (kind, m) in enumerate(self.family_object.atoms):
+            factor = self._rate**m if kind == "pow" else 1.0
+            out[:, layout.index((kind, m))] += basis[:, j] * factor
+        return out
+
+    def _centring(self, coeffs: np.ndarray) -> np.ndarray:
+        """Coefficients over atoms of x to atoms of tau = x - mid."""
+        from math import comb
+
+        layout = self._layout()
+        mid, w, hyp = self._mid, self._rate, self.family_object.hyperbolic
+        out = np.zeros_like(coeffs)
+        for j, (kind, m) in enumerate(layout):
+            row = coeffs[j]
+            if kind == "pow":
+                for i in range(m + 1):
+                    out[layout.index(("pow", i))] += comb(m, i) * mid ** (m - i) * row
+                continue
+            x = m * w * mid
+            ca, sa = (math.cosh(x), math.sinh(x)) if hyp else (math.cos(x), math.sin(x))
+            ic, isn = layout.index(("cos", m)), layout.index(("sin", m))
+            if kind == "cos":  # cos(a + b) = ca cos b - sa sin b; cosh: ca cosh b + sa sinh b
+                out[ic] += ca * row
+                out[isn] += (sa if hyp else -sa) * row
+            else:  # sin(a + b) = sa cos b + ca sin b (sinh likewise)
+                out[ic] += sa * row
+                out[isn] += ca * row
+        return out
+
+    # ------------------------------------------------------------------ evaluation
+    def _tau(self, t: ParamLike, extrapolate: bool) -> tuple[np.ndarray, bool]:
+        tt, scalar, small, big = val.parameter_range(t)
+        lo, hi = self.domain
+        slack = 4 * np.spacing(max(hi, 1.0))
+        if not extrapolate and tt.size and (small < lo - slack or big > hi + slack):
+            bad = small if small < lo - slack else big
+            raise ValueError(f"t = {bad} is outside the curve's domain [0, {hi}]")
+        return tt - self._mid, scalar
+
+    def derivative(self, t: ParamLike, k: int = 1, *, extrapolate: bool = False) -> np.ndarray:
+        """The k-th derivative in the family's own parameter."""
+        if isinstance(k, bool) or not isinstance(k, int) or not 0 <= k <= 20:
+            raise ValueError(f"k must be an integer in 0..20, got {k!r}")
+        tau, scalar = self._tau(t, extrapolate)
+        coeffs = self._centred
+        for _ in range(k):
+            coeffs = self._d @ coeffs
+        sh = self.shape
+        out = ak.evaluate(coeffs, tau, sh.omega0, sh.powers, sh.harmonics, sh.hyperbolic).T
+        out = out * self._scale
+        return out[0] if scalar else out
+
+    def evaluate(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray:
+        return self.derivative(t, 0, extrapolate=extrapolate)
+
+    def curvature(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
+        d1 = np.atleast_2d(self.derivative(t, 1, extrapolate=extrapolate))
+        d2 = np.atleast_2d(self.derivative(t, 2, extrapolate=extrapolate))
+        if self.dimension == 2:
+            cross = np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0])
+        else:
+            cross = np.linalg.norm(np.cross(d1, d2), axis=1)
+        speed = np.linalg.norm(d1, axis=1)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            kappa = np.where(speed > 0, cross / speed**3, np.nan)
+        return float(kappa[0]) if np.ndim(np.asarray(t, dtype=float)) == 0 else kappa
+
+    def energy(self, k: int) -> float:
+        """E_k = int |r^(k)|^2 in the family's own parameter (t on [0, alpha], or u on [0, 1]:
+        the document's Gram matrices are in t on [0, alpha]), by 64-point Gauss-Legendre
+        on the float coefficients (the integrand is smooth, of period 2*pi at most, on an
+        interval of length <= the box's end: the rule is exact to rounding there). The exact
+        Gram matrices (`CBezierFamily.energy_matrix`) cancel badly in floats away from
+        large alpha (bound 1e-2 at alpha = 0.5), so they are not used here."""
+        if k not in (1, 2, 3):
+            raise ValueError(f"k must be 1, 2 or 3, got {k!r}")
+        x, w = np.polynomial.legendre.leggauss(64)
+        hi = self.domain[1]
+        d = self.derivative(hi * (x + 1) / 2, k)
+        return float(np.sum(w * np.sum(d * d, axis=1)) * hi / 2)
+
+    # ------------------------------------------------------------------ geometry
+    def bounding_box(self) -> tuple[np.ndarray, np.ndarray]:
+        from . import _atom_geometry as ag
+
+        return ag.bounding_box(self)  # type: ignore[arg-type]
+
+    def closest_point(self, q: npt.ArrayLike) -> ClosestPoint:
+        from . import _atom_geometry as ag
+
+        return ag.closest_point(self, q)  # type: ignore[arg-type]
+
+    def intersect(self, other: object) -> list[Intersection]:
+        from . import _atom_geometry as ag
+
+        return ag.intersect(self, other)  # type: ignore[arg-type]
+
+    def split(self, t: float) -> tuple[CBezierCurve, CBezierCurve]:
+        """Two curves of the same family: on [0, t] and [t, end] of the own parameter, with
+        alpha_1 = t (alpha*t on [0, 1]) and alpha_2 = alpha - alpha_1 (the space is invariant
+        under shifts of t, and the basis spans it when it has as many functions as atoms)."""
+        fam = self.family_object
+        x = float(t)
+        lo, hi = self.domain
+        if not lo < x < hi:
+            raise ValueError(f"split needs t inside (0, {hi}), got {t}")
+        if len(fam.atoms) != fam.degree + 1:
+            raise ValueError("split needs a basis of the whole space (as many atoms as functions)")
+        cut = x * self._rate if fam.form == "unit" else x
+        out = []
+        for start, length in ((0.0, cut), (cut, self.alpha - cut)):
+            piece = CBezierCurve.__new__(CBezierCurve)
+            basis, _ = fam.basis_coefficients(length)
+            # the curve's t-atoms shifted to start at `start`: r(start + s) over atoms of s
+            own = self._t_atoms_shifted(start)
+            ctrl = np.linalg.solve(basis.T, own)
+            piece = CBezierCurve(fam, ctrl, length)
+            out.append(piece)
+        return out[0], out[1]
+
+    def _t_atoms_shifted(self, start: float) -> np.ndarray:
+        """(atoms, d): r(start + s) over the document's atoms of s (t on [0, alpha])."""
+        from math import comb
+
+        fam = self.family_object
+        coeffs = self.basis_coefficients.T @ self.points  # over the document's atoms of t
+        out = np.zeros_like(coeffs)
+        index = {a: j for j, a in enumerate(fam.atoms)}
+        hyp = fam.hyperbolic
+        for j, (kind, m) in enumerate(fam.atoms):
+            row = coeffs[j]
+            if kind == "pow":
+                for i in range(m + 1):
+                    out[index[("pow", i)]] += comb(m, i) * start ** (m - i) * row
+                continue
+            x = m * start
+            ca, sa = (math.cosh(x), math.sinh(x)) if hyp else (math.cos(x), math.sin(x))
+            if kind == "cos":
+                out[index[("cos", m)]] += ca * row
+                out[index[("sin", m)]] += (sa if hyp else -sa) * row
+            else:
+                out[index[("cos", m)]] += sa * row
+                out[index[("sin", m)]] += ca * row
+        result: np.ndarray = out
+        return result

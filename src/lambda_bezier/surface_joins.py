@@ -38,7 +38,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from . import _derived_joins, param_surface_report
+from . import _derived_joins, param_surface_report, surface_sides
 from . import _validate as val
 from .curves import BezierCurve, Curve, family_class
 from .hazmat.forms import elevation_matrix, hodograph_matrix
@@ -46,7 +46,7 @@ from .joins import join
 from .param_surface_joins import _join_param_surface
 from .surfaces import BezierSurface, Surface, _exact_net
 
-SIDES = ("u", "v")
+SIDES = tuple(surface_sides.SIDE_NAMES)
 SURFACE_CONTINUITIES = ("C1", "G1", "C2")
 CONDITIONS = ("solve", "derived")
 ORDER = {"C1": 1, "G1": 1, "C2": 2}
@@ -66,7 +66,7 @@ def join_surface(
     patch: Surface,
     side: str,
     continuity: str,
-    degree: int,
+    degree: int | None = None,
     lam: Fraction | float | None = None,
     rest: npt.ArrayLike | Sequence[Any] = (),
     *,
@@ -106,7 +106,7 @@ def join_surface(
     >>> b.control_net()[1][2]
     (Fraction(4, 1), Fraction(2, 1), Fraction(8, 1))
     """
-    side = val.choice(side, "side", SIDES)
+    axis, at_end = surface_sides.parse_side(side)
     continuity = val.choice(
         continuity.upper() if isinstance(continuity, str) else continuity,
         "continuity",
@@ -114,7 +114,30 @@ def join_surface(
     )
     if not isinstance(patch, Surface):
         raise TypeError(f"patch must be a lambda_bezier surface, got {type(patch).__name__}")
-    axis = 0 if side == "u" else 1
+    degree = _default_degree(patch, axis, continuity, degree, rest)
+    if lam is None and family is None and not hasattr(patch, "family_u"):
+        lam = patch.lam_u if axis == 0 else patch.lam_v  # the patch's own, as its family
+    if not at_end:
+        if mu is not None:
+            raise ValueError(
+                "mu (a G1 factor varying along the boundary) is offered on the sides u1 and v1; "
+                "on u0 and v0 give a constant alpha"
+            )
+        if val.choice(conditions, "conditions", CONDITIONS) != "solve":
+            raise ValueError(
+                'conditions="derived" is offered on the sides u1 and v1 (the documents hold '
+                'the joins into the next patch); on u0 and v0 use conditions="solve"'
+            )
+        if params is not None and not hasattr(patch, "family_u"):
+            raise ValueError("params is for patches of several-parameter or atom families")
+        if hasattr(patch, "family_u") and lam is not None:
+            raise ValueError(
+                "lam: a surface of several-parameter, indexed or atom families takes the new "
+                "patch's parameters as params={...}"
+            )
+        return surface_sides.join_before(
+            patch, axis, continuity, degree, lam, rest, alpha, family, params, check_range
+        )
     if hasattr(patch, "family_u"):  # ParamSurface, AtomSurface: parameters by name
         if mu is not None or lam is not None:
             raise ValueError(
@@ -214,6 +237,19 @@ def join_surface(
     fam = (type(nxt), along_cls) if axis == 0 else (along_cls, type(nxt))
     lams = (nxt.lam, along_lam) if axis == 0 else (along_lam, nxt.lam)
     return Surface(net, lams[0], lams[1], family=fam, check_range=False)
+
+
+def _default_degree(
+    patch: Surface, axis: int, continuity: str, degree: object, rest: object
+) -> int:
+    """`degree`, or by default the solved rows plus the rows of `rest` (so that a call with
+    `rest` need not count them), or the patch's own degree across the boundary."""
+    if degree is not None:
+        return val.integer(degree, "degree")
+    arr = np.asarray(val.real_array(rest, "rest"), dtype=float)
+    if arr.size and arr.ndim == 3:
+        return ORDER[continuity] + int(arr.shape[axis])
+    return int(patch.net.shape[axis]) - 1
 
 
 def _derived_weights(

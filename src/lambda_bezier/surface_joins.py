@@ -77,13 +77,20 @@ def join_surface(
     conditions: str = "solve",
     params: dict[str, Any] | None = None,
 ) -> Surface:
-    """The next patch across `patch`'s boundary u = 1 (side "u") or v = 1 (side "v").
+    """The next patch across one of `patch`'s four boundaries.
 
+    `side` is "u1" (also "u", "u=1"): across u = 1, the new patch B starting there
+    (B(0, v) = A(1, v)); "u0" ("u=0"): across u = 0, B ending there (B(1, v) = A(0, v), B
+    before A in u); "v1" ("v", "v=1") and "v0" ("v=0") the same in v (surface_sides).
     The new patch has `degree` and `lam` (and `family`, default the patch's) across the
     boundary, and the patch's family, degree and λ along it. Its rows of control points next to
     the boundary are solved for `continuity` ("C1", "G1" with a constant `alpha` > 0, "C2");
-    `rest` gives the rows after them: an array (k, n+1, d) for side "u" ((m+1, k, d) for side
-    "v"). Exact input gives an exact patch.
+    `rest` gives its other rows, in its own order (after the solved ones across u = 1, before
+    them across u = 0): an array (k, n+1, d) for a side in u ((m+1, k, d) in v). G1 means
+    that the given patch's cross derivative is `alpha` times the new patch's, on every side.
+    `degree` defaults to the solved rows plus the rows of `rest` (without `rest`, the patch's
+    own degree across the boundary) and `lam` to the patch's own λ across it. Exact input
+    gives an exact patch.
 
     ``mu=(μ0, μ1)`` (G1 only, instead of `alpha`) asks for B_u(0, v) = (μ0 + μ1 v) A_u(1, v),
     a factor varying along the boundary (positive on [0, 1]). The new patch is then classical
@@ -105,6 +112,9 @@ def join_surface(
     >>> b = join_surface(a, "u", "C1", 3, 1, rest=[[(5, j, 0) for j in range(4)]] * 2)
     >>> b.control_net()[1][2]
     (Fraction(4, 1), Fraction(2, 1), Fraction(8, 1))
+    >>> c = join_surface(a, "u0", "C1", rest=[[(-5, j, 0) for j in range(4)]] * 2)
+    >>> c.control_net()[2][2], c.degrees
+    ((Fraction(-1, 1), Fraction(2, 1), Fraction(-2, 1)), (3, 3))
     """
     axis, at_end = surface_sides.parse_side(side)
     continuity = val.choice(

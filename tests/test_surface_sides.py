@@ -90,6 +90,13 @@ def patch_cases():
     qb = {"lam": [1, F(1, 2), -1]}
     yield "indexed", QB.surface(NET, params_u=qb, params_v={"lam": [0, F(1, 3), 0]}), {}
     yield "trig x sd", TRIG.surface(NET, params_u=pu, lam_v=F(1, 3), family_v="same_degree"), {}
+    # into another family across the boundary, parameters by name where it takes them
+    sd = lb.SameDegreeSurface(NET, F(1, 2), 0)
+    yield "sd>trig", sd, {"family": TRIG, "params": {"lam": 0, "mu": 0}}
+    yield "sd>indexed", sd, {"family": QB, "params": {"lam": [0, F(1, 2), 0]}}
+    trig = TRIG.surface(NET, params_u=pu, params_v={"lam": 0, "mu": F(1, 3)})
+    yield "trig>sd", trig, {"family": "same_degree", "params": {"lam": F(1, 3)}}
+    yield "trig>two", trig, {"family": TWO, "params": {"lam": 0, "mu": F(1, 2)}}
 
 
 CASES = list(patch_cases())
@@ -134,7 +141,8 @@ def test_join_on_every_side_against_finite_differences(side, continuity, name, p
     assert fd_continuity(first, second, axis) == continuity
     if continuity == "C1":
         assert_second_jumps(first, second, axis)
-    exact = patch.is_exact and name not in ("trig", "hyp", "mixed", "trig x sd")
+    exact = name in ("same_degree", "bernstein_like", "bezier", "sd>bl", "two", "indexed")
+    exact = exact or name == "sd>indexed"
     if exact and side.endswith("0"):  # exact in, exact out
         assert all(isinstance(c, F) for row in b.control_net() for p in row for c in p)
 
@@ -218,6 +226,13 @@ def test_a_split_grid_is_c2_where_the_pieces_have_equal_widths():
         (lambda a: lb.join_surface(a, "u0", "C1", "3"), "degree"),
         (lambda a: lb.join_surface(a, "u0", "C1", 30), "degree 30"),
         (lambda a: lb.join_surface(a, "u0", "C3"), "continuity"),
+        (lambda a: lb.join_surface(a, "u0", "C1", family=42, lam=0), "family must be"),
+        (lambda a: lb.join_surface(a, "u0", "C1", family="nope", lam=0), "unknown family 'nope'"),
+        (lambda a: lb.join_surface(a, "v1", "C1", family=TRIG, lam=0), "lam: .* params="),
+        (
+            lambda a: lb.join_surface(a, "u0", "C1", family=TRIG, params=[0]),
+            "params must be a dict",
+        ),
         (
             lambda a: lb.join_surface(a, "u0", "C1", rest=[[(0, 0, float("inf"))] * 4] * 2),
             "rest",

@@ -125,6 +125,12 @@ def join_surface(
     if not isinstance(patch, Surface):
         raise TypeError(f"patch must be a lambda_bezier surface, got {type(patch).__name__}")
     degree = _default_degree(patch, axis, continuity, degree, rest)
+    if not hasattr(patch, "family_u") and surface_sides.takes_names(family):
+        if lam is not None or mu is not None:
+            raise ValueError(
+                "lam: the new patch's family takes its parameters by name: give params={...}"
+            )
+        patch = surface_sides.ByName(patch)  # type: ignore[assignment]
     if lam is None and family is None and not hasattr(patch, "family_u"):
         lam = patch.lam_u if axis == 0 else patch.lam_v  # the patch's own, as its family
     if not at_end:

@@ -297,7 +297,7 @@ def _before_by_name(
     across_params = patch.params_u if axis == 0 else patch.params_v
     along = patch.family_v if axis == 0 else patch.family_u
     along_params = patch.params_v if axis == 0 else patch.params_u
-    new_family = across if family is None else pd.polynomial_family(family)
+    new_family = across if family is None else pd.by_name_family(family)
     if params is not None and not isinstance(params, dict):
         raise TypeError(f"params must be a dict {{name: value}}, not {type(params).__name__}")
     new_params = dict(across_params if params is None else params)
@@ -343,3 +343,23 @@ def _before_by_name(
     else:
         pair, pu, pv = (along, new_family), along_params, new_params
     return family_surface(net, pair, params_u=pu, params_v=pv, check_range=False)
+
+
+def takes_names(family: object) -> bool:
+    """Whether `family` is a family whose parameters go by name (several, indexed, atom)."""
+    return any(getattr(family, a, None) is not None for a in ("several", "index_name", "atom_data"))
+
+
+class ByName:
+    """A surface of built-in (one-parameter) families seen as one whose directions take their
+    parameters by name, for a join into a family that does ({"lam": λ}, none for Bézier)."""
+
+    def __init__(self, patch: Surface) -> None:
+        self.net = patch.net
+        self._patch = patch
+        self.family_u, self.family_v = patch._u_cls, patch._v_cls
+        self.params_u = {} if patch.lam_u is None else {patch._u_cls.parameter_name: patch.lam_u}
+        self.params_v = {} if patch.lam_v is None else {patch._v_cls.parameter_name: patch.lam_v}
+
+    def control_net(self) -> Any:
+        return self._patch.control_net()

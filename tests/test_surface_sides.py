@@ -11,6 +11,8 @@ from fractions import Fraction as F
 import numpy as np
 import pytest
 from conftest import surface_families
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import lambda_bezier as lb
 from lambda_bezier.atom_surfaces import AtomSurface
@@ -243,3 +245,80 @@ def test_bad_input_is_named(call, match):
     a = lb.SameDegreeSurface(NET, 1, 0)
     with pytest.raises((ValueError, TypeError), match=match):
         call(a)
+
+
+# ---------------------------------------------------------------------- exact, drawn nets
+FAMILIES = {
+    "same_degree": (lb.SameDegreeSurface, [F(-3, 2), F(0), F(1, 2), F(1)]),
+    "bernstein_like": (lb.BernsteinLikeSurface, [F(-1), F(-1, 3), F(0), F(1)]),
+}
+coordinate = st.fractions(min_value=-4, max_value=4, max_denominator=6)
+
+
+@st.composite
+def exact_cases(draw):
+    name = draw(st.sampled_from(sorted(FAMILIES)))
+    cls, lams = FAMILIES[name]
+    low = 3 if name == "same_degree" else 2  # the families' lowest degrees
+    m, n = draw(st.integers(low, 4)), draw(st.integers(low, 4))
+    net = [[(F(i), F(j), draw(coordinate)) for j in range(n + 1)] for i in range(m + 1)]
+    side = draw(st.sampled_from(["u0", "v0"]))
+    continuity = draw(st.sampled_from(["C1", "G1", "C2"]))
+    order = ORDER[continuity]
+    rows = draw(st.integers(max(1, low - order), 2))
+    if side == "u0":  # rows of n + 1 points, the far one first
+        rest = [
+            [(F(-4 - rows + k), F(j), draw(coordinate)) for j in range(n + 1)] for k in range(rows)
+        ]
+    else:  # m + 1 lines of `rows` points across v
+        rest = [
+            [(F(i), F(-4 - rows + k), draw(coordinate)) for k in range(rows)] for i in range(m + 1)
+        ]
+    alpha = draw(st.sampled_from([F(1, 3), F(2), F(5, 4)])) if continuity == "G1" else 1
+    lam = draw(st.sampled_from(lams))
+    return (
+        cls(net, draw(st.sampled_from(lams)), draw(st.sampled_from(lams))),
+        side,
+        continuity,
+        order,
+        rest,
+        alpha,
+        lam,
+    )
+
+
+@settings(max_examples=40, deadline=None)
+@given(exact_cases())
+def test_exact_joins_before_meet_their_conditions_exactly(case):
+    """Exact patches, drawn: across u = 0 or v = 0 the new patch's Bézier form meets the
+    given one's to the order asked, exactly (the report compares Fractions), and the
+    cross derivatives of the two Bézier forms there are α^r apart, in Fractions."""
+    a, side, continuity, order, rest, alpha, lam = case
+    try:
+        b = lb.join_surface(a, side, continuity, None, lam, rest=rest, alpha=alpha)
+    except ValueError as exc:  # only where B's end or A's start has no tangent
+        assert "cannot meet the conditions" in str(exc)
+        degree = order + (len(rest) if side == "u0" else len(rest[0]))
+        cls = lb.curves.family_class(a.family[0] if isinstance(a.family, tuple) else a.family)
+        polygon = [(0, 0), (1, 2), (3, 1), (4, 5), (2, 2), (7, 1)]
+        own = a.lam_u if side == "u0" else a.lam_v
+        given = a.degrees[0 if side == "u0" else 1]
+        ends = [
+            cls(polygon[: degree + 1], lam).derivative(1.0, 1),
+            cls(polygon[: given + 1], own).derivative(0.0, 1),
+        ]
+        assert any(np.allclose(e, 0) for e in ends), ends
+        return
+    assert b.is_exact
+    grid = [[b], [a]] if side == "u0" else [[b, a]]
+    assert [r.continuity for r in lb.CompositeSurface(grid).report()] == [continuity]
+    axis = 0 if side == "u0" else 1
+    from lambda_bezier.surface_joins import _boundary_derivatives, _elevate_to
+
+    da = _boundary_derivatives(a, axis, False, order)
+    db = _boundary_derivatives(b, axis, True, order)
+    for r in range(order + 1):
+        size = max(len(da[r]), len(db[r])) - 1
+        x, y = _elevate_to(da[r], size), _elevate_to(db[r], size)
+        assert all(isinstance(c, F) for p in x for c in p)
+        assert [tuple(c for c in p) for p in x] == [tuple(alpha**r * c for c in p) for p in y]

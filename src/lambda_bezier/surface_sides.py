@@ -87,7 +87,14 @@ def probe_weights(
     size = new_degree + 1 + given_degree - order
     unit = [[1 if c == i else 0 for c in range(size)] for i in range(size)]
     probe = make_new(unit[: new_degree + 1])
-    solved = join_given(probe, unit[new_degree + 1 :]).control_points()
+    try:
+        solved = join_given(probe, unit[new_degree + 1 :]).control_points()
+    except ValueError as exc:  # say which curve is which in join's words
+        raise ValueError(
+            "the new patch B before the given patch A cannot meet the conditions (B's lines "
+            "across the boundary are join's first curve, of degree "
+            f"{new_degree}; A's its second): {exc}"
+        ) from None
     return [list(p) for p in solved[: order + 1]]
 
 

@@ -225,6 +225,18 @@ def _call_join_surface(fam):
         assert np.allclose(a.derivative(1.0, v, 1, 0), b.derivative(0.0, v, 1, 0))
 
 
+def _call_join_before(fam):
+    from lambda_bezier.surface_sides import join_before
+    from lambda_bezier.surfaces import surface
+
+    a = surface(NET, Fraction(1, 2), Fraction(1, 3), family=fam)
+    rest = [[(-6, j, 0) for j in range(4)]] * 2
+    b = join_before(a, 0, "C1", 3, Fraction(1, 2), rest, 1, fam, None, True)
+    for v in (0.25, 0.5):  # C1 across u = 0: b ends where a starts
+        assert np.allclose(b.evaluate(1.0, v), a.evaluate(0.0, v))
+        assert np.allclose(b.derivative(1.0, v, 1, 0), a.derivative(0.0, v, 1, 0))
+
+
 def _call_optimal_parameters_batch(fam):
     from lambda_bezier.surface_optimum import optimal_parameters_batch
 
@@ -291,7 +303,10 @@ def _call_param_surface_batch(fam):
 
 
 # parameters named `family` that name something else
-NOT_A_FAMILY = {"curves.data_curve_class": "the new class's family name, not one to look up"}
+NOT_A_FAMILY = {
+    "curves.data_curve_class": "the new class's family name, not one to look up",
+    "surface_sides.takes_names": "asks what kind of family it is given; uses none",
+}
 
 CALLS = {
     "joins.leading_weights": _call_leading_weights,
@@ -310,6 +325,7 @@ CALLS = {
     "surface_export.surface_from_json": _call_surface_from_json,
     "surface_energies.surface_energy_matrices": _call_surface_energy_matrices,
     "surface_joins.join_surface": _call_join_surface,
+    "surface_sides.join_before": _call_join_before,
     "surface_optimum.optimal_parameters": _call_optimal_parameters,
     "surface_optimum.optimal_parameters_batch": _call_optimal_parameters_batch,
     "param_surfaces.family_surface": _call_family_surface,

@@ -52,6 +52,18 @@ def polynomial_family(family: object) -> Any:
     return family
 
 
+def by_name_family(family: object) -> Any:
+    """The new patch's family where parameters go by name: a built-in name as its curve class,
+    a curve class or a family from load_family as given; anything else a TypeError."""
+    fam = polynomial_family(family)
+    if is_class(fam) or hasattr(fam, "curve"):
+        return fam
+    raise TypeError(
+        "family must be a built-in family's name, a curve class or a family from "
+        f"lambda_bezier.load_family, got {type(family).__name__}"
+    )
+
+
 def family_name(family: Any) -> str:
     """The name of a direction's family (a Family's `name`, a curve class's `family`)."""
     return str(family.family if is_class(family) else family.name)

@@ -414,6 +414,16 @@ class AtomSurface(Surface):
         lo, hi = self._probes[axis].domain
         if not lo < float(tt[0]) < hi:
             raise ValueError(f"splitting needs {name} strictly inside the domain, got {t}")
+        if not self._has_form():
+            spaces = sorted({p.data.SPACE for p in self._probes if hasattr(p, "data")})
+            raise ValueError(
+                f"split_{name}: a surface of {' and '.join(spaces)} families has no rational "
+                "form, and its piece over a sub-interval is no surface of its family (the "
+                "family's basis is defined on its whole domain; stretched onto a piece, its "
+                "trigonometric or hyperbolic part changes frequency): evaluate the surface on "
+                "the sub-domain in its own t, or approximate it within a tolerance "
+                "(surface_approx.hermite_bspline: a polynomial B-spline) or mesh it"
+            )
         rat = self.to_rational_bezier()
         s = float(self.s_of_t(axis, float(tt[0])))
         return rat.split_u(s) if axis == 0 else rat.split_v(s)

@@ -49,7 +49,7 @@ def _join_param_surface(
     across_params = patch.params_u if axis == 0 else patch.params_v
     along = patch.family_v if axis == 0 else patch.family_u
     along_params = patch.params_v if axis == 0 else patch.params_u
-    new_family = across if family is None else family
+    new_family = across if family is None else pd.by_name_family(family)
     new_params = dict(across_params if params is None else params)
     if not isinstance(new_params, dict):
         raise TypeError(f"params must be a dict {{name: value}}, not {type(params).__name__}")

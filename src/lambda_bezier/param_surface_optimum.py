@@ -71,6 +71,18 @@ def _directions(shape: tuple[int, ...], fu: Any, fv: Any) -> tuple[Direction, Di
     return _direction(fu, m), _direction(fv, n)
 
 
+def _builtin_named(family: Any) -> Any:
+    """A pair with a built-in family named (or given as its curve class) in one direction:
+    that direction as its curve class, beside any family from load_family (atom, several
+    parameters or indexed) in the other, as `fam.surface(..., family_v="same_degree")`
+    takes it."""
+    if not isinstance(family, tuple | list) or len(family) != 2:
+        return family
+    if isinstance(family[0], str) and isinstance(family[1], str):
+        return family  # two built-in names: surface_optimum's exact path, not this module
+    return tuple(pd.polynomial_family(f) if isinstance(f, str) else f for f in family)
+
+
 def _at_end(x: float, d: Direction) -> float | Fraction:
     """x, or the exact end of d's range it is the float of (named_point names ends by them)."""
     lo, hi = _box(d)
@@ -88,7 +100,7 @@ def optimal_parameters(
     """The energy-optimal parameters of one net (certified) or of a batch of nets; see the
     module's doc."""
     energy = val.choice(energy, "energy", tuple(ENERGIES))
-    fu, fv = _family_pair(family)
+    fu, fv = _family_pair(_builtin_named(family))
     arr = np.asarray(val.real_array(net, "net"), dtype=float)
     if arr.ndim == 4:
         return optimal_parameters_batch(arr, energy, (fu, fv))
@@ -234,7 +246,8 @@ def optimal_parameters_batch(nets: np.ndarray, energy: str, family: Any) -> Surf
             raise ValueError(
                 f"net: a batch of nets is solved vectorised for one parameter in each direction "
                 f"(the fixed-cost certificate is for two variables); direction {name} has "
-                f"{len(d.names)} ({', '.join(d.names)}): call optimal_parameters once per net"
+                + (f"{len(d.names)} ({', '.join(d.names)})" if d.names else "none (Bézier)")
+                + ": call optimal_parameters once per net"
             )
     count = nets.shape[0]
     bx, by, bval, ok, on_edge = fixed_cost(nets, du, dv, energy)

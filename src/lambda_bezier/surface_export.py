@@ -16,6 +16,7 @@ import numpy as np
 
 from . import _poly_direction as pd
 from . import _validate as val
+from . import surface_approx
 from ._json_io import _own_classes, class_definitions
 from .builtin_surfaces import most_specific
 from .export import (
@@ -82,12 +83,18 @@ def occt_rational_surface(rat: Any) -> Any:
     return Geom_BSplineSurface(poles, weights, uk, vk, um, vm, rows - 1, cols - 1)
 
 
-def to_step_surface(surf: Surface, path: str | Path) -> Path:
+def to_step_surface(surf: Surface, path: str | Path, *, tolerance: float | None = None) -> Path:
     """Write the surface as one face on a B-spline surface (B_SPLINE_SURFACE_WITH_KNOTS, its
     Bézier form with clamped knots) to a STEP file through OCCT, every number with 17
     significant digits (the doubles read back unchanged). A surface of trigonometric or
     hyperbolic families is written as its rational form (a rational B-spline surface, one
-    span, whose parameters are the rational form's s_u, s_v ∈ [0, 1], not the families' t)."""
+    span, whose parameters are the rational form's s_u, s_v ∈ [0, 1], not the families' t).
+
+    A surface of a mixed algebraic-trigonometric or -hyperbolic family has no rational form:
+    it is written as a bicubic B-spline within `tolerance` of it (surface_approx: the Hermite
+    interpolant on a grid of cells, its deviation measured inside every cell; default
+    1e-6 times the net's largest coordinate, at least 1e-6), whose parameters are the
+    families' own u and v. `tolerance` is not used for the exact forms."""
     _optional("OCP", "cadquery-ocp-novtk (OCP)", "to_step_surface")
     from OCP import Message
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
@@ -98,7 +105,14 @@ def to_step_surface(surf: Surface, path: str | Path) -> Path:
     if not isinstance(surf, Surface):
         raise TypeError(f"surf must be a lambda_bezier surface, got {type(surf).__name__}")
     _quiet_occt(Message)
-    if hasattr(surf, "to_rational_bezier"):  # an AtomSurface: its rational form, in (s_u, s_v)
+    if tolerance is not None:
+        tolerance = val.tolerance(tolerance, "tolerance")
+    if hasattr(surf, "_has_form") and not surf._has_form():  # a mixed family: approximated
+        size = max(1.0, float(np.abs(surf.net).max()))
+        spline = surface_approx.occt_bspline(
+            surface_approx.hermite_bspline(surf, 1e-6 * size if tolerance is None else tolerance)
+        )
+    elif hasattr(surf, "to_rational_bezier"):  # an AtomSurface: its rational form, (s_u, s_v)
         spline = occt_rational_surface(surf.to_rational_bezier())
     else:
         spline = GeomConvert.SurfaceToBSplineSurface_s(occt_bezier_surface(surf))

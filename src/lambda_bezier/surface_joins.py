@@ -38,7 +38,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from . import _derived_joins, param_surface_report
+from . import _derived_joins, param_surface_report, surface_sides
 from . import _validate as val
 from .curves import BezierCurve, Curve, family_class
 from .hazmat.forms import elevation_matrix, hodograph_matrix
@@ -46,7 +46,7 @@ from .joins import join
 from .param_surface_joins import _join_param_surface
 from .surfaces import BezierSurface, Surface, _exact_net
 
-SIDES = ("u", "v")
+SIDES = tuple(surface_sides.SIDE_NAMES)
 SURFACE_CONTINUITIES = ("C1", "G1", "C2")
 CONDITIONS = ("solve", "derived")
 ORDER = {"C1": 1, "G1": 1, "C2": 2}
@@ -66,7 +66,7 @@ def join_surface(
     patch: Surface,
     side: str,
     continuity: str,
-    degree: int,
+    degree: int | None = None,
     lam: Fraction | float | None = None,
     rest: npt.ArrayLike | Sequence[Any] = (),
     *,
@@ -77,13 +77,20 @@ def join_surface(
     conditions: str = "solve",
     params: dict[str, Any] | None = None,
 ) -> Surface:
-    """The next patch across `patch`'s boundary u = 1 (side "u") or v = 1 (side "v").
+    """The next patch across one of `patch`'s four boundaries.
 
+    `side` is "u1" (also "u", "u=1"): across u = 1, the new patch B starting there
+    (B(0, v) = A(1, v)); "u0" ("u=0"): across u = 0, B ending there (B(1, v) = A(0, v), B
+    before A in u); "v1" ("v", "v=1") and "v0" ("v=0") the same in v (surface_sides).
     The new patch has `degree` and `lam` (and `family`, default the patch's) across the
     boundary, and the patch's family, degree and λ along it. Its rows of control points next to
     the boundary are solved for `continuity` ("C1", "G1" with a constant `alpha` > 0, "C2");
-    `rest` gives the rows after them: an array (k, n+1, d) for side "u" ((m+1, k, d) for side
-    "v"). Exact input gives an exact patch.
+    `rest` gives its other rows, in its own order (after the solved ones across u = 1, before
+    them across u = 0): an array (k, n+1, d) for a side in u ((m+1, k, d) in v). G1 means
+    that the given patch's cross derivative is `alpha` times the new patch's, on every side.
+    `degree` defaults to the solved rows plus the rows of `rest` (without `rest`, the patch's
+    own degree across the boundary) and `lam` to the patch's own λ across it. Exact input
+    gives an exact patch.
 
     ``mu=(μ0, μ1)`` (G1 only, instead of `alpha`) asks for B_u(0, v) = (μ0 + μ1 v) A_u(1, v),
     a factor varying along the boundary (positive on [0, 1]). The new patch is then classical
@@ -105,8 +112,11 @@ def join_surface(
     >>> b = join_surface(a, "u", "C1", 3, 1, rest=[[(5, j, 0) for j in range(4)]] * 2)
     >>> b.control_net()[1][2]
     (Fraction(4, 1), Fraction(2, 1), Fraction(8, 1))
+    >>> c = join_surface(a, "u0", "C1", rest=[[(-5, j, 0) for j in range(4)]] * 2)
+    >>> c.control_net()[2][2], c.degrees
+    ((Fraction(-1, 1), Fraction(2, 1), Fraction(-2, 1)), (3, 3))
     """
-    side = val.choice(side, "side", SIDES)
+    axis, at_end = surface_sides.parse_side(side)
     continuity = val.choice(
         continuity.upper() if isinstance(continuity, str) else continuity,
         "continuity",
@@ -114,7 +124,36 @@ def join_surface(
     )
     if not isinstance(patch, Surface):
         raise TypeError(f"patch must be a lambda_bezier surface, got {type(patch).__name__}")
-    axis = 0 if side == "u" else 1
+    degree = _default_degree(patch, axis, continuity, degree, rest)
+    if not hasattr(patch, "family_u") and surface_sides.takes_names(family):
+        if lam is not None or mu is not None:
+            raise ValueError(
+                "lam: the new patch's family takes its parameters by name: give params={...}"
+            )
+        patch = surface_sides.ByName(patch)  # type: ignore[assignment]
+    if lam is None and family is None and not hasattr(patch, "family_u"):
+        lam = patch.lam_u if axis == 0 else patch.lam_v  # the patch's own, as its family
+    if not at_end:
+        if mu is not None:
+            raise ValueError(
+                "mu (a G1 factor varying along the boundary) is offered on the sides u1 and v1; "
+                "on u0 and v0 give a constant alpha"
+            )
+        if val.choice(conditions, "conditions", CONDITIONS) != "solve":
+            raise ValueError(
+                'conditions="derived" is offered on the sides u1 and v1 (the documents hold '
+                'the joins into the next patch); on u0 and v0 use conditions="solve"'
+            )
+        if params is not None and not hasattr(patch, "family_u"):
+            raise ValueError("params is for patches of several-parameter or atom families")
+        if hasattr(patch, "family_u") and lam is not None:
+            raise ValueError(
+                "lam: a surface of several-parameter, indexed or atom families takes the new "
+                "patch's parameters as params={...}"
+            )
+        return surface_sides.join_before(
+            patch, axis, continuity, degree, lam, rest, alpha, family, params, check_range
+        )
     if hasattr(patch, "family_u"):  # ParamSurface, AtomSurface: parameters by name
         if mu is not None or lam is not None:
             raise ValueError(
@@ -214,6 +253,19 @@ def join_surface(
     fam = (type(nxt), along_cls) if axis == 0 else (along_cls, type(nxt))
     lams = (nxt.lam, along_lam) if axis == 0 else (along_lam, nxt.lam)
     return Surface(net, lams[0], lams[1], family=fam, check_range=False)
+
+
+def _default_degree(
+    patch: Surface, axis: int, continuity: str, degree: object, rest: object
+) -> int:
+    """`degree`, or by default the solved rows plus the rows of `rest` (so that a call with
+    `rest` need not count them), or the patch's own degree across the boundary."""
+    if degree is not None:
+        return val.integer(degree, "degree")
+    arr = np.asarray(val.real_array(rest, "rest"), dtype=float)
+    if arr.size and arr.ndim == 3:
+        return ORDER[continuity] + int(arr.shape[axis])
+    return int(patch.net.shape[axis]) - 1
 
 
 def _derived_weights(

@@ -260,7 +260,12 @@ ILL_DEFINED = {
         },
         "not the Bernstein function",
     ),
-    "wrong offset": ({"degree_offset": 1}, "not n + degree_offset"),
+    "wrong offset": ({"degree_offset": 1}, "basis: at n = 2 the basis functions have degree 2"),
+    "too few degrees for a basis": (
+        {"basis": None, "degrees": "1", "bernstein_at": None, "functions": ["1", "0"]},
+        "functions: at n = 1 the basis functions have degree 0 in t, not n + degree_offset = 1: "
+        "2 functions of degree 0 cannot be linearly independent",
+    ),
     "built-in name": ({"name": "same_degree"}, "is a built-in family"),
     "bad degrees": ({"degrees": "0..40"}, "degrees must satisfy"),
     "missing key": ({"basis": None}, "defined by `basis`"),

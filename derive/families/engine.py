@@ -279,9 +279,21 @@ def check(defn: Definition) -> list[str]:
                     )
         generic = max(p.degree(t) for p in polys)
         if generic != big:
+            # name the key that holds the functions: with no degree_offset in the file the
+            # user never wrote the key an offset message would blame
+            key = (
+                "functions"
+                if defn.functions_texts is not None
+                else "basis"
+                if defn.basis_text is not None
+                else "seed/recursion"
+            )
+            # (a degree above n + degree_offset was refused function by function earlier)
             raise DefinitionError(
-                f"[family] degree_offset: at n = {deg} the basis functions have degree "
-                f"{generic} in t, not n + degree_offset = {big}"
+                f"[family] {key}: at n = {deg} the basis functions have degree "
+                f"{generic} in t, not n + degree_offset = {big}: {deg + 1} functions of "
+                f"degree {generic} cannot be linearly independent, so they are not a basis "
+                f"of the polynomials of degree {big}"
             )
     done.append(
         f"polynomials of degree n + {defn.offset}, n = {defn.degrees.start}.."

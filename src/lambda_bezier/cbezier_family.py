@@ -141,6 +141,16 @@ class CBezierFamily:
         if self.form not in ("domain", "unit") or self.space not in ("trigonometric", "hyperbolic"):
             raise CBezierError(f"{where}: unknown form or space")
         self.hyperbolic = self.space == "hyperbolic"
+        # what the shared functions that take a polynomial or atom family say about this one
+        where_param = "domain" if self.form == "domain" else "frequency"
+        self.elsewhere = (
+            f"has its parameter {self.parameter} in the {where_param} "
+            "(C-Bézier): the shared functions (optimal_parameters, optimal_lambda, "
+            f"evaluate_many, join, CompositeCurve) do not take it yet; its curves come from "
+            f"fam.curve(points, "
+            f"{self.parameter}=...), and fam.optimal_alpha(points, k) gives a "
+            "sampled, not certified, energy optimum"
+        )
         self.title = title
         self.definition = table
         self.powers = max((m for k, m in self.atoms if k == "pow"), default=0)

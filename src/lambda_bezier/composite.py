@@ -27,7 +27,7 @@ from . import _validate as val
 from ._lazy import deferred
 from ._validate import ParamLike, PointsLike
 from .atom_family import AtomCurve
-from .curves import Curve
+from .curves import Curve, elsewhere
 from .joins import Joint, join
 
 if TYPE_CHECKING:
@@ -293,6 +293,9 @@ class CompositeCurve:
             raise ValueError("a composite curve needs at least one segment")
         for idx, seg in enumerate(segs):
             if not isinstance(seg, Curve | AtomCurve):
+                told = elsewhere(seg)
+                if told is not None:
+                    raise TypeError(f"segment {idx}: {told}")
                 raise ValueError(
                     f"segment {idx} is not a lambda_bezier curve: {type(seg).__name__}"
                 )

@@ -105,6 +105,15 @@ def __getattr__(name: str) -> object:
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
+def elsewhere(obj: object) -> str | None:
+    """What a loaded family (or a curve of one) that the shared functions do not take says
+    about where its own API is, or None: the family object carries the sentence, so no shared
+    module names it."""
+    fam = getattr(obj, "family_object", obj)
+    text = getattr(fam, "elsewhere", None)
+    return f"the family {getattr(fam, 'name', '?')!r} {text}" if isinstance(text, str) else None
+
+
 def family_class(family: object) -> type[Curve]:
     """The curve class of `family`: a built-in family's name, a family defined by data
     (lambda_bezier.load_family), or a Curve subclass."""
@@ -135,6 +144,9 @@ def family_class(family: object) -> type[Curve]:
     cls = getattr(family, "curve_class", family)
     if isinstance(cls, type) and issubclass(cls, Curve) and cls is not Curve:
         return cls
+    told = elsewhere(family)
+    if told is not None:
+        raise TypeError(told)
     raise ValueError(
         f"unknown family {family!r}: family must be a family name "
         f"({', '.join(map(repr, families))}) or a family from lambda_bezier.load_family"

@@ -30,7 +30,7 @@ import numpy as np
 from . import _validate as val
 from ._lazy import generated
 from ._validate import PointsLike
-from .curves import FAMILIES, Curve, _tables, family_class
+from .curves import FAMILIES, Curve, _tables, elsewhere, family_class
 
 _bernstein = generated("bernstein")
 _joins = generated("joins")
@@ -402,6 +402,9 @@ def join(
             dict(named),
         )
     if not isinstance(curve, Curve):
+        told = elsewhere(curve)
+        if told is not None:
+            raise TypeError(f"curve: {told}")
         raise ValueError(
             "curve must be a lambda_bezier curve (one of "
             f"{', '.join(cls.__name__ for cls in FAMILIES.values())}, or a curve of a family "

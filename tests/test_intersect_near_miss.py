@@ -212,3 +212,28 @@ def test_a_parabola_just_above_a_line(x0, h, w, k, gap):
     bound = bound_of(arch, line)
     answers = check(arch, line, exact * exact, bound, bound)
     assert all([h.kind for h in got] in ([], ["tangent"]) for got in answers.values())
+
+
+# a degree-9 piece of an at_cubic curve whose line through P0 has a triple contact at s = 0
+# (test_atom_intersect's triple-root draw): the distance is within rounding for s up to about
+# 3e-5, the subdivision isolated a "crossing" there, and the careful path in Python refined it
+# to a second hit at s = 2.9e-5 (the compiled path did not). One contact, on every path.
+TRIPLE_PIECE = [
+    [-0.12500000000000075, -1.5643485829757547e-16],
+    [-0.4358867730114853, -0.22907446432425352],
+    [-0.7410508139789381, -0.4539321787213169],
+    [-1.0396510238167453, -0.6741525936483408],
+    [-1.3308673157551119, -0.8893306423213804],
+    [-1.6139049389371787, -1.0990789025132826],
+    [-1.8879986400121602, -1.3030296389789326],
+    [-2.1524166071199056, -1.500836698699392],
+    [-2.406464144952044, -1.692177234287026],
+    [-2.649487037696564, -1.876753235882178],
+]
+
+
+def test_a_triple_contact_at_an_end_is_one_hit_on_every_path():
+    line = [[18.875, 14.0], [-19.125, -14.0]]
+    for path, got in every_answer(TRIPLE_PIECE, line).items():
+        assert len(got) == 1, (path, got)
+        assert got[0].s == 0.0 and abs(got[0].t - 0.5) < 1e-12, (path, got)

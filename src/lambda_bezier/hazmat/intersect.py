@@ -674,7 +674,7 @@ def _pair_finish(
     for s, t in isolated:
         hit = _solve_from(p, q, s, t, found, isolated=True)
         if hit is not None and not _dedupe_isolated(found, hit):
-            found.append(hit)
+            _add(found, hit, p, q)
     for s, t in starts:
         if any(s0 <= s <= s1 and t0 <= t <= t1 for s0, s1, t0, t1 in skip):
             continue
@@ -697,11 +697,7 @@ def _add(found: list[Intersection], hit: Intersection, p: Prepared, q: Prepared)
         if abs(hit.s - old.s) < MERGE_RADIUS and abs(hit.t - old.t) < MERGE_RADIUS:
             x = np.linspace(0.0, 1.0, 9)
             gap = max(
-                float(
-                    np.linalg.norm(
-                        p.at(old.s + u * (hit.s - old.s)) - q.at(old.t + u * (hit.t - old.t))
-                    )
-                )
+                q.normal_offset(p.at(old.s + u * (hit.s - old.s)), old.t + u * (hit.t - old.t))
                 for u in x
             )
             if gap <= MERGE_GAP * max(p.degree, q.degree) * max(p.scale, q.scale):

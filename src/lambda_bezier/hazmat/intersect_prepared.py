@@ -126,6 +126,17 @@ class Prepared:
         a, b = work[0], work[1]
         return a + s * (b - a), self.degree * (b - a)
 
+    def normal_offset(self, point: np.ndarray, s: float) -> float:
+        """|point − p(s)| without its part along p'(s): how far point is off the curve near
+        p(s), blind to where along the curve it sits (another curve's parameter can run
+        ahead of this one's by far more than the curves are apart)."""
+        at, tangent = self.at_with_tangent(s)
+        r = point - at
+        size = float(tangent @ tangent)
+        if size > 0.0:
+            r = r - (float(r @ tangent) / size) * tangent
+        return float(np.linalg.norm(r))
+
     def exact_at(self, s: float, which: int = 0) -> tuple[list[int], int]:
         """p(s) (which = 0), p'(s) or p''(s) exactly, for a float s: integer numerators and
         one denominator. de Casteljau on integers (control points over their common

@@ -119,7 +119,7 @@ def test_exact_identities(cubic, hyperbolic):
     for defn in (cubic, hyperbolic):
         assert F.partition_of_unity(defn)
         assert F.symmetric(defn)
-        assert F.bernstein_like_ends(defn)
+        assert F.bernstein_end_conditions(defn)
 
 
 def test_interpolating_basis_is_not_a_partition():
@@ -142,7 +142,7 @@ def test_a_broken_basis_is_caught(cubic):
     assert not F.symmetric(broken)
     funcs = list(table["functions"])
     funcs[1] = "sin(t)/sin(alpha)"
-    assert not F.bernstein_like_ends(cb.read_table({**table, "functions": funcs}))
+    assert not F.bernstein_end_conditions(cb.read_table({**table, "functions": funcs}))
 
 
 @pytest.mark.parametrize("alpha", ["1/3", "1", "2.5", "pi"])

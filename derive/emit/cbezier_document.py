@@ -52,7 +52,7 @@ def derive(defn: CDefinition) -> dict:
         },
         "verdicts": {
             "partition_of_unity": F.partition_of_unity(defn),
-            "bernstein_end_conditions": F.bernstein_like_ends(defn),
+            "bernstein_end_conditions": F.bernstein_end_conditions(defn),
             "symmetric": F.symmetric(defn),
             "independent": {
                 "rank": rank,

@@ -87,7 +87,7 @@ def zero_order(defn: CDefinition, i: int, end: str) -> int:
     return defn.degree + 1
 
 
-def bernstein_like_ends(defn: CDefinition) -> bool:
+def bernstein_end_conditions(defn: CDefinition) -> bool:
     """b_i has a zero of order exactly i at t = 0 and n - i at t = alpha (the Bernstein end
     conditions that make the control polygon tangent at the ends)."""
     n = defn.degree

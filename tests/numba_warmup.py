@@ -14,6 +14,8 @@ from __future__ import annotations
 
 import sys
 
+_HAZMAT = "lambda_bezier.hazmat"
+
 
 def _intersections() -> None:
     import lambda_bezier as lb
@@ -22,8 +24,19 @@ def _intersections() -> None:
     b = lb.BezierCurve([(0, 1), (1, -1), (2, 2), (3, 0)])
     a.intersect(b)  # the certificate (certify_compiled) and the subdivision
     lb.intersect_many([a], [b])
-    tangent = lb.BezierCurve([(0, 1), (1.5, -0.5), (3, 1)])
-    lb.BezierCurve([(0, 0), (1.5, 2), (3, 0)]).intersect(tangent)  # the careful path (settle)
+
+
+def _careful_path() -> None:
+    import lambda_bezier as lb
+
+    # a tangency, which the certificate declines: the careful path compiled (settle_compiled
+    # and refine_compiled, about 45 s of CPU on a fresh cache). A pair that only looked
+    # careful once reached the certificate alone, and each worker compiled the careful path
+    # itself: the check makes the warm-up fail (conftest warns) if this pair stops reaching it
+    arch = lb.BezierCurve([(0, 0), (1, 2), (2, 0)])
+    hits = arch.intersect(lb.BezierCurve([(0, 1), (2, 1)]))
+    if [h.kind for h in hits] != ["tangent"] or f"{_HAZMAT}.settle_compiled" not in sys.modules:
+        raise RuntimeError(f"the tangent pair did not reach the compiled careful path: {hits}")
 
 
 def _self_and_closest() -> None:
@@ -54,16 +67,21 @@ def _batches() -> None:
     curve.evaluate(np.linspace(0, 1.5, 2000))
 
 
-# CPU seconds of each part in a fresh cache, imports included (measured at load ~17): 25, 40,
-# 24; in this order two processes get about the same share (index::count: 49 and 40)
-PARTS = (_intersections, _batches, _self_and_closest)
+# each part with its CPU seconds in a fresh cache, imports included (measured at load 2-5),
+# longest first: warm() deals them out so that the processes get about the same share
+# (two processes: 47 and 51)
+PARTS = ((_careful_path, 47), (_batches, 27), (_intersections, 12), (_self_and_closest, 12))
 
 
 def warm(index: int, count: int) -> None:
-    """Runs the parts index, index + count, ...: part of the warm-up in one of `count`
-    processes."""
-    for part in PARTS[index::count]:
-        part()
+    """Runs this process's share of the parts: process `index` of `count`, each part given
+    in turn to the process with the least CPU so far."""
+    loads = [0] * count
+    for part, seconds in PARTS:
+        k = loads.index(min(loads))
+        loads[k] += seconds
+        if k == index:
+            part()
 
 
 if __name__ == "__main__":

@@ -117,8 +117,8 @@ def settle_one(
     if compiled is None:
         return None
     count, s, t, kind = compiled.settle(
-        np.ascontiguousarray(a, dtype=float),
-        np.ascontiguousarray(b, dtype=float),
+        sub.read_only(a),
+        sub.read_only(b),
         knobs,
         sub.half_matrices(a.shape[0] - 1),
         sub.half_matrices(b.shape[0] - 1),

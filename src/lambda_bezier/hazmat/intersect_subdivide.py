@@ -233,8 +233,8 @@ def read_only(points: np.ndarray) -> np.ndarray:
     """points as a C-contiguous float array that is read-only (a view where it was writeable),
     for the compiled kernels' curve arguments: numba compiles a kernel once per argument type,
     and a writeable array is another type than the read-only points of a curve. Measured on a
-    fresh cache: the careful path (settle_compiled) compiled for both cost 45 s of CPU more,
-    this isolate about 8 s more."""
+    fresh cache: the careful path (settle_compiled) compiled for both cost 45 s of CPU more;
+    isolate and isolate_points a few seconds more each."""
     arr = np.ascontiguousarray(points, dtype=float)
     if arr.flags.writeable:
         arr = arr.view()
@@ -464,8 +464,8 @@ def isolate_points(
     compiled = _compiled()
     if compiled is not None:
         root_pair, root_s, left_pair, left_s0, left_width = compiled.isolate_points(
-            np.ascontiguousarray(curves, dtype=float),
-            np.ascontiguousarray(points, dtype=float),
+            read_only(curves),
+            read_only(points),
             np.ascontiguousarray(slack, dtype=float),
             depth,
             MAX_ROWS,

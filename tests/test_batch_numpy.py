@@ -72,6 +72,21 @@ def test_pass_matches_the_careful_path(family, n, dim, threads, monkeypatch):
             np.testing.assert_allclose(got[5], want[5], rtol=1e-11, atol=0)
 
 
+def test_pass_is_the_careful_path_bit_for_bit(monkeypatch):
+    """On ordinary polygons (no chunk declined) the pass computes what the careful path
+    does, in its layout and order: equal bit for bit, unclamped and clamped, though the pass
+    cuts its product into blocks and shares the chunks between threads."""
+    monkeypatch.setattr(kernels, "CHUNK_ELEMENTS", 4000)
+    monkeypatch.setattr(batch_numpy, "_MIN_SLAB", 16)
+    monkeypatch.setattr(batch_numpy, "THREADS", 2)
+    pts = np.random.default_rng(17).normal(size=(3000, 6, 2))
+    for clamp in (False, True):
+        got = _fields(lb.optimal_lambda(pts, 2, clamp=clamp))
+        want = _fields(_careful(pts, 2, "same_degree", clamp, monkeypatch))
+        for a, b in zip(got, want, strict=True):
+            np.testing.assert_array_equal(a, b)
+
+
 def test_answers_do_not_depend_on_threads(monkeypatch):
     """One thread or four: bit for bit (each thread takes whole chunks, and every product
     is cut into the same blocks)."""

@@ -15,3 +15,26 @@ def test_public_api():
 
     assert set(lb.FAMILIES) == {"bezier", "same_degree", "bernstein_like"}
     assert lb.__version__
+
+
+def test_public_names_leave_the_engines_unimported():
+    # every public name resolved, as benchmarks/run.py's import row does: the geometry,
+    # intersection and atom-surface engines and the thread pool's module are imported on
+    # first use, not by naming a class (issue #29: import time)
+    code = (
+        "import sys, lambda_bezier as lb; [getattr(lb, n) for n in lb.__all__]; "
+        "print(' '.join(sorted(sys.modules)))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    loaded = set(out.stdout.split())
+    assert "lambda_bezier.surface_joins" in loaded  # the names were resolved
+    engines = {
+        "lambda_bezier.geometry",
+        "lambda_bezier._atom_geometry",
+        "lambda_bezier.hazmat.atom_intersect",
+        "lambda_bezier.hazmat.atom_surface_bounds",
+        "lambda_bezier.atom_surfaces",
+        "concurrent.futures",
+        "numpy.polynomial",
+    }
+    assert not engines & loaded, sorted(engines & loaded)

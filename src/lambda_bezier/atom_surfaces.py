@@ -40,7 +40,6 @@ import numpy.typing as npt
 
 from . import _poly_direction as pd
 from . import _validate as val
-from ._atom_geometry import _bounds_data
 from ._validate import ParamLike
 from .atom_family import AtomCurve
 from .hazmat import atom_bounds as ab
@@ -616,6 +615,10 @@ def _direction_data(probe: Any) -> tuple[ab.AtomCurveData, bool, float, float]:
     if isinstance(probe, pd.PolyProbe):
         data, unity = asb.bernstein_direction(probe.bernstein())
         return data, unity, _centre(probe), 1.0
+    # imported here, not at the top: _atom_geometry pulls in the curves' geometry and
+    # intersection engines, which naming a surface class does not need (import time, #29)
+    from ._atom_geometry import _bounds_data
+
     return _bounds_data(probe), _sums_to_one(probe), _centre(probe), probe._scale
 
 

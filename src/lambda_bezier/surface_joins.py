@@ -33,20 +33,47 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
 
-from . import _derived_joins, param_surface_report, surface_sides
+from . import _derived_joins
 from . import _validate as val
+from ._lazy import deferred
 from .curves import BezierCurve, Curve, family_class
 from .hazmat.forms import elevation_matrix, hodograph_matrix
 from .joins import join
-from .param_surface_joins import _join_param_surface
 from .surfaces import BezierSurface, Surface, _exact_net
 
-SIDES = tuple(surface_sides.SIDE_NAMES)
+if TYPE_CHECKING:
+    from types import ModuleType
+
+    from . import param_surface_joins, param_surface_report, surface_sides
+else:
+
+    def _load_sides() -> ModuleType:
+        from . import surface_sides
+
+        return surface_sides
+
+    def _load_report() -> ModuleType:
+        from . import param_surface_report
+
+        return param_surface_report
+
+    def _load_param_joins() -> ModuleType:
+        from . import param_surface_joins
+
+        return param_surface_joins
+
+    # imported on a join's first use, then bound: they bring the atom surfaces' engine
+    # (atom_surfaces, hazmat.atom_surface_bounds), which naming CompositeSurface or
+    # join_surface does not need (`import lambda_bezier`'s time, issue #29)
+    surface_sides = deferred(_load_sides)
+    param_surface_report = deferred(_load_report)
+    param_surface_joins = deferred(_load_param_joins)
+
 SURFACE_CONTINUITIES = ("C1", "G1", "C2")
 CONDITIONS = ("solve", "derived")
 ORDER = {"C1": 1, "G1": 1, "C2": 2}
@@ -162,7 +189,7 @@ def join_surface(
             )
         conditions = val.choice(conditions, "conditions", CONDITIONS)
         degree = val.integer(degree, "degree")
-        return _join_param_surface(  # type: ignore[no-any-return]
+        return param_surface_joins._join_param_surface(  # type: ignore[no-any-return]
             patch, axis, continuity, degree, rest, alpha, family, params, check_range, conditions
         )
     if params is not None:

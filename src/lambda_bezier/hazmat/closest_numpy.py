@@ -261,8 +261,10 @@ def closest_few(
     microsecond whatever its size, and a level of the breadth-first loop takes dozens, so
     for one query Python's own arithmetic on the 2N+1 coefficients is the cheaper means."""
     n, dim = c0.shape[1] - 1, c0.shape[0]
-    table = _table(c0).T.tolist()  # (N+1) rows of 3d centred coefficients, highest last
-    point_rows = [row[:dim] for row in table]
+    # per column of the table (p, p', p'' coordinate by coordinate), its centred
+    # coefficients highest first: Horner then runs on one column's floats at a time
+    table = [column[::-1] for column in _table(c0).tolist()]
+    point_rows = table[:dim]
     product = _product_map(n)
     size = 2 * n + 1
     out_t = []
@@ -332,12 +334,19 @@ def closest_few(
     return t_arr, point, np.square(point - queries).sum(-1)
 
 
-def _horner(rows: list[list[float]], u: float) -> list[float]:
-    """Σ_e rows[e] u^e, entry by entry, on Python floats."""
-    acc = rows[-1]
-    for row in reversed(rows[:-1]):
-        acc = [a * u + r for a, r in zip(acc, row, strict=True)]
-    return acc
+def _horner(columns: list[list[float]], u: float) -> list[float]:
+    """Σ_e c_e u^e for each column c (its coefficients highest first), on Python floats.
+    Column by column on scalars: the same operations in the same order as a pass over rows
+    of the whole table, about 3x faster than building a list per power (degree 8, 6
+    columns: 1.6 µs against 5.2 µs), and Horner is most of a single query's time."""
+    out = []
+    for column in columns:
+        terms = iter(column)
+        acc = next(terms)
+        for coefficient in terms:
+            acc = acc * u + coefficient
+        out.append(acc)
+    return out
 
 
 def _minimum_inside_few(

@@ -10,12 +10,14 @@ import importlib.util
 import itertools
 import os
 from collections.abc import Callable, Sequence
-from concurrent.futures import ThreadPoolExecutor
 from fractions import Fraction
 from types import ModuleType
-from typing import TypeVar
+from typing import TYPE_CHECKING, TypeVar
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from concurrent.futures import ThreadPoolExecutor
 
 ExactRows = tuple[tuple[Fraction, ...], ...]
 # rows of exact or float coordinates: the exact paths keep Fractions, the others floats
@@ -104,9 +106,16 @@ _T = TypeVar("_T")
 def thread_pool(workers: int) -> ThreadPoolExecutor:
     """The pool of `workers` threads the batch operations share out their slabs on."""
     key = (os.getpid(), workers)
-    return _POOLS.get(key) or _POOLS.setdefault(
-        key, ThreadPoolExecutor(workers, thread_name_prefix="lambda_bezier")
-    )
+    pool = _POOLS.get(key)
+    if pool is None:
+        # imported on first use: concurrent.futures brings logging, queue and traceback,
+        # about 3 ms of every program's import that most never spend (#29)
+        from concurrent.futures import ThreadPoolExecutor
+
+        pool = _POOLS.setdefault(
+            key, ThreadPoolExecutor(workers, thread_name_prefix="lambda_bezier")
+        )
+    return pool
 
 
 def on_threads(run: Callable[[int, int], _T], count: int, workers: int) -> list[_T]:

@@ -1,8 +1,9 @@
 """Issue #29: the careful path compiled (hazmat.settle_compiled, run by intersect where the
 certificate declines) gives the careful path's answers: the same hits, the same kinds, the
 parameters to the last bits (it evaluates residuals by compensated de Casteljau where the
-careful path uses rationals), and declines where it says it does (shared stretches, curves
-on one line), leaving those to the careful path in Python."""
+careful path uses rationals), reports a stretch shared as one polynomial piece as the careful
+path does, and declines where it says it does (a shared image under another
+parameterisation, curves on one line), leaving those to the careful path in Python."""
 
 from __future__ import annotations
 
@@ -115,11 +116,35 @@ def test_settled_is_the_careful_answer(name):
         ([(0.0, 0.0), (1.0, 2.0), (2.0, 0.0)], [(0.0, 0.0), (1.0, 2.0), (2.0, 0.0)]),
         # a piece of it, reversed
         ([(0.0, 0.0), (1.0, 2.0), (2.0, 0.0)], [(1.5, 0.75), (1.0, 1.25), (0.5, 0.75)]),
+        # overlapping past its end: p([1/4, 1]) == q([0, 3/4]) (the shape of the bezier
+        # package's fixture case 20), q(t) = p(t + 1/4)
+        ([(0.0, 0.0), (2.0, 4.0), (4.0, 0.0)], [(1.0, 1.5), (3.0, 3.5), (5.0, -2.5)]),
+    ],
+)
+def test_settled_shared_piece_is_the_careful_answer(a, b):
+    """A stretch shared as one polynomial piece (an affine change of parameter): both ends,
+    coincident, as the careful path reports them."""
+    slow = careful(a, b)
+    assert [h.kind for h in slow] == ["coincident", "coincident"]
+    fast = settled(a, b)
+    assert fast is not None, "the compiled careful path declined"
+    assert fast == slow
+    assert lb.BezierCurve(a).intersect(lb.BezierCurve(b)) == fast
+
+
+@pytest.mark.parametrize(
+    ("a", "b"),
+    [
+        # one arc under a parameterisation that is not affine: P(s) = Q(s^2)
+        (
+            [(0.0, 0.0), (0.0, 0.0), (1.0, 2.0), (3.0, 6.0), (6.0, 0.0)],
+            [(0.0, 0.0), (3.0, 6.0), (6.0, 0.0)],
+        ),
         # two segments of one line overlapping
         ([(0.0, 0.0), (2.0, 0.0)], [(1.0, 0.0), (3.0, 0.0)]),
     ],
 )
-def test_settle_declines_shared_stretches_and_lines(a, b):
+def test_settle_declines_shared_images_and_lines(a, b):
     assert settled(a, b) is None
     try:
         want = careful(a, b)

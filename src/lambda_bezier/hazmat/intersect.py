@@ -82,7 +82,7 @@ SETTLE = (
     sub.INSIDE,
     sub.CONE_MARGIN,
 )
-_KINDS = ("tangent", "transversal")  # settle_compiled's kind codes
+_KINDS = {-1: "coincident", 0: "tangent", 1: "transversal"}  # settle_compiled's kind codes
 
 
 class Intersection(NamedTuple):

@@ -29,7 +29,7 @@ import math
 import numba
 import numpy as np
 
-from .intersect_compiled import isolate_points
+from .intersect_compiled import _local_foot_newton, isolate_points
 from .pieces_compiled import JIT as _JIT
 from .pieces_compiled import (
     boxes_apart,
@@ -149,6 +149,8 @@ def _isolate(
     wa, wb = np.empty((n1, dim)), np.empty((n2, dim))
     pa, pb = np.empty((n1, dim)), np.empty((n2, dim))
     vec4 = np.empty((4, dim))
+    half_a0, half_a1 = np.empty((n1, dim)), np.empty((n1, dim))
+    half_b0, half_b1 = np.empty((n2, dim)), np.empty((n2, dim))
     room = 64
     r_lev, r_ia, r_ib = np.empty(room, np.int64), np.empty(room, np.int64), np.empty(room, np.int64)
     r_s, r_t = np.empty(room), np.empty(room)
@@ -200,10 +202,15 @@ def _isolate(
             continue
         if top + 4 > cap:
             return False, r_s[:0], r_t[:0], r_s[:0], r_s[:0], r_s[:0]
-        # children pushed last block first, so the stack pops them in block order
+        # children pushed last block first, so the stack pops them in block order; each
+        # half of each piece computed once (a tangency keeps this loop busy to depth ~24)
+        _halve(pa, halves_a[0], half_a0)
+        _halve(pa, halves_a[1], half_a1)
+        _halve(pb, halves_b[0], half_b0)
+        _halve(pb, halves_b[1], half_b1)
         for c in range(3, -1, -1):
-            _halve(pa, halves_a[c // 2], sa[top])
-            _halve(pb, halves_b[c % 2], sb[top])
+            sa[top] = half_a1 if c // 2 else half_a0
+            sb[top] = half_b1 if c % 2 else half_b0
             level[top] = lev + 1
             ia[top] = 2 * ka + c // 2
             ib[top] = 2 * kb + c % 2
@@ -291,6 +298,93 @@ def _starts(
 
 
 # ---------------------------------------------------------------------------- locate
+@numba.njit(**_JIT)
+def _isolate_point(
+    pts: np.ndarray,
+    point: np.ndarray,
+    slack: float,
+    depth: int,
+    max_rows: int,
+    steps: int,
+    inside: float,
+    margin: float,
+    halves: Halves,
+) -> tuple[bool, np.ndarray, np.ndarray, np.ndarray]:
+    """intersect_compiled.isolate_points for one curve and one point, depth first on a small
+    stack with no arrays allocated per piece (it runs four times per pair, for the end
+    points): (ok, root s, left s0, left width), roots and left pieces in isolate_points'
+    breadth-first order, the pieces halved with the same matrices and put through the same
+    tests, so the same pieces are dropped, isolated or left. Not ok when a level holds more
+    pieces than the row guard allows (where isolate_points stops the whole level early)."""
+    size, dim = pts.shape
+    planar = dim == 2
+    if depth > 32:  # _breadth_first's keys hold 32 halvings
+        return False, np.empty(0), np.empty(0), np.empty(0)
+    cap = 2 * depth + 4
+    stack = np.empty((cap, size, dim))
+    level, index = np.empty(cap, np.int64), np.empty(cap, np.int64)
+    alive = np.zeros(depth + 1, np.int64)
+    piece = np.empty((size, dim))
+    left_half, right_half = np.empty((size, dim)), np.empty((size, dim))
+    axis = np.empty(dim)
+    target = point.reshape((1, dim))
+    room = 16
+    r_lev, r_ix, r_s = np.empty(room, np.int64), np.empty(room, np.int64), np.empty(room)
+    l_lev, l_ix = np.empty(room, np.int64), np.empty(room, np.int64)
+    roots = lefts = 0
+    stack[0] = pts
+    level[0] = index[0] = 0
+    top = 1
+    while top > 0:
+        top -= 1
+        piece[:, :] = stack[top]
+        lev, k = level[top], index[top]
+        dropped = False
+        for j in range(dim):
+            lo = hi = piece[0, j]
+            for i in range(1, size):
+                lo, hi = min(lo, piece[i, j]), max(hi, piece[i, j])
+            if not (lo <= point[j] + slack and point[j] - slack <= hi):
+                dropped = True
+        if dropped or (planar and fat_line_apart(target, piece, slack)):
+            continue
+        alive[lev] += 1
+        if 2 * alive[lev] > max_rows:
+            return False, np.empty(0), np.empty(0), np.empty(0)
+        leave = lev == depth
+        if not leave:
+            if pointed(cone(piece, axis, slack), margin):
+                u, ok = _local_foot_newton(piece, point, steps, inside, slack)
+                if ok:
+                    if roots == r_lev.size:
+                        r_lev, r_ix, r_s = _grow(r_lev), _grow(r_ix), _grow(r_s)
+                    r_lev[roots], r_ix[roots] = lev, k
+                    r_s[roots] = (k + min(max(u, 0.0), 1.0)) * 0.5**lev
+                    roots += 1
+                    continue
+            leave = flat_forward(piece, slack)
+        if leave:
+            if lefts == l_lev.size:
+                l_lev, l_ix = _grow(l_lev), _grow(l_ix)
+            l_lev[lefts], l_ix[lefts] = lev, k
+            lefts += 1
+            continue
+        _halve(piece, halves[0], left_half)
+        _halve(piece, halves[1], right_half)
+        stack[top], level[top], index[top] = right_half, lev + 1, 2 * k + 1
+        stack[top + 1], level[top + 1], index[top + 1] = left_half, lev + 1, 2 * k
+        top += 2
+    none = np.zeros(max(roots, lefts), np.int64)
+    order = _breadth_first(r_lev, none, r_ix, roots)
+    root_s = r_s[order]
+    order = _breadth_first(l_lev, none, l_ix, lefts)
+    left_s0, left_w = np.empty(lefts), np.empty(lefts)
+    for m in range(lefts):
+        width = 0.5 ** l_lev[order[m]]
+        left_s0[m], left_w[m] = l_ix[order[m]] * width, width
+    return True, root_s, left_s0, left_w
+
+
 @numba.njit(**_JIT)
 def _locate_newton(c: Curve, point: np.ndarray, t: float) -> float:
     """intersect._locate_newton: nan where it leaves the domain."""
@@ -406,18 +500,21 @@ def _locate_all(
             lo, hi = min(lo, pts[i, j]), max(hi, pts[i, j])
         if not (lo <= point[j] + tol and point[j] - tol <= hi):
             return np.sort(np.array(found))
-    curves = pts.copy().reshape((1, n + 1, dim))
-    root_pair, root_s, left_pair, left_s0, left_width = isolate_points(
-        curves,
-        point.copy().reshape((1, dim)),
-        np.array([tol]),
-        depth,
-        max_rows,
-        steps,
-        inside,
-        margin,
-        halves,
+    ok, root_s, left_s0, left_width = _isolate_point(
+        pts, point, tol, depth, max_rows, steps, inside, margin, halves
     )
+    if not ok:  # the row guard tripped: the breadth-first loop, which knows where it stops
+        _, root_s, _, left_s0, left_width = isolate_points(
+            pts.copy().reshape((1, n + 1, dim)),
+            point.copy().reshape((1, dim)),
+            np.array([tol]),
+            depth,
+            max_rows,
+            steps,
+            inside,
+            margin,
+            halves,
+        )
     starts = [x for x in root_s]
     narrow = left_width <= wide
     for k in range(left_s0.size):

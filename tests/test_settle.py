@@ -195,3 +195,38 @@ def test_settle_is_not_run_without_numba_or_when_switched_off():
         assert settled(a, b) is None
     finally:
         cert.USE_SETTLE = True
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    curve=small_curve,
+    where=st.one_of(st.integers(0, 4).map(lambda k: k / 4), st.tuples(coordinate, coordinate)),
+)
+def test_point_isolation_is_the_batched_one(curve, where):
+    """settle_compiled._isolate_point (depth first, for the end points) gives what
+    intersect_compiled.isolate_points gives for one curve and one point: the same roots and
+    left pieces, in the same order; a point on the curve (at u) or anywhere on the grid."""
+    from lambda_bezier.hazmat import intersect_compiled, intersect_subdivide, settle_compiled
+
+    pts = np.array(curve, dtype=float)
+    if np.ptp(pts, axis=0).max() == 0.0:
+        return  # a point: settle never gets one (the row guard would trip: the fallback)
+    if isinstance(where, float):
+        work = pts.copy()
+        while work.shape[0] > 1:
+            work = work[:-1] + where * (work[1:] - work[:-1])
+        point = work[0]
+    else:
+        point = np.array(where, dtype=float)
+    knobs = engine.SETTLE
+    tol = engine.ON_CURVE * max(np.abs(pts).max(), np.abs(point).max())
+    halves = intersect_subdivide.half_matrices(pts.shape[0] - 1)
+    ok, root_s, left_s0, left_w = settle_compiled._isolate_point(
+        pts, point, tol, *knobs[10:15], halves
+    )
+    _, want_s, _, want_s0, want_w = intersect_compiled.isolate_points(
+        pts[None].copy(), point[None].copy(), np.array([tol]), *knobs[10:15], halves
+    )
+    assert ok
+    assert root_s.tolist() == want_s.tolist()
+    assert left_s0.tolist() == want_s0.tolist() and left_w.tolist() == want_w.tolist()

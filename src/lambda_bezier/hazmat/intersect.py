@@ -516,10 +516,10 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
     """Every intersection of p and q, sorted by s: the certified fast path when both are
     floats exactly, else (or where it does not certify) the careful path: compiled
     (settle_one) where it can, in Python otherwise."""
-    _check_pair(p, q)
     compiled = _compiled_pair(p, q)
     if compiled is not None:
         return compiled
+    _check_pair(p, q)
     results: list[list[Intersection]] = [[]]
     _careful_pairs([(p, q)], [0], results)  # declined (or exact input): not certified again
     return results[0]
@@ -528,13 +528,16 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
 def _compiled_pair(p: Prepared, q: Prepared) -> list[Intersection] | None:
     """The pair's answer from the compiled kernels (numba): the certificate, then the careful
     path compiled where it declines; None when neither answers (not compiled, input that
-    is not floats exactly, or declined by both). p, q have passed _check_pair."""
-    if not (cert.in_use() and p.floats_exact and q.floats_exact):
+    is not floats exactly, or declined by both). _check_pair runs only once the certificate
+    declines (it declines a point curve): on a fresh curve it costs a share of a small
+    certified pair's whole time."""
+    if not (cert.in_use() and p.floats_exact and q.floats_exact and p.dim == q.dim >= 2):
         return None
     got = cert.certify_one(p.pts, q.pts, BOX_SLACK, ROOT_RESIDUAL)
     if got is not None:
         s, t = got
         return [Intersection(x, y, "transversal") for x, y in zip(s, t, strict=True)]
+    _check_pair(p, q)
     settled = cert.settle_one(p.pts, q.pts, SETTLE)
     if settled is None:
         return None
@@ -550,8 +553,6 @@ def intersect_pairs(pairs: list[tuple[Prepared, Prepared]]) -> list[list[Interse
     decline, take the careful way in Python together, pairs of equal degrees and dimension
     in one group: the end points and shared stretches pair by pair, the subdivision in one
     set of arrays (intersect_subdivide.isolate), then refinement pair by pair."""
-    for p, q in pairs:
-        _check_pair(p, q)
     results: list[list[Intersection]] = [[] for _ in pairs]
     groups: dict[tuple[int, int, int], list[int]] = {}
     for k, (p, q) in enumerate(pairs):
@@ -559,6 +560,7 @@ def intersect_pairs(pairs: list[tuple[Prepared, Prepared]]) -> list[list[Interse
         if compiled is not None:
             results[k] = compiled
         else:
+            _check_pair(p, q)
             groups.setdefault((p.degree, q.degree, p.dim), []).append(k)
     for members in groups.values():
         _careful_pairs(pairs, members, results)

@@ -784,8 +784,12 @@ def bench_intersection() -> None:
                 )
             )
             record(
-                f"intersect_many ({path}): the same {len(kept)} cases as one batch (pairs of "
-                "equal degrees subdivided in one set of arrays)",
+                f"intersect_many ({path}): the same {len(kept)} cases as one batch ("
+                + (
+                    "each pair through the compiled kernels, as intersect takes it)"
+                    if path == "numba kernel"
+                    else "pairs of equal degrees subdivided in one set of arrays)"
+                ),
                 batch,
                 "bezier.Curve.intersect, case by case",
                 ref_total,

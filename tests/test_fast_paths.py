@@ -25,16 +25,11 @@ pytestmark = pytest.mark.usefixtures("intersect_engine")
 
 
 def careful(p: lb.BezierCurve, q: lb.BezierCurve) -> list[engine.Intersection]:
-    """The careful path alone, in Python: intersect_pairs with the certificate declining every
-    pair and the compiled careful path switched off."""
-    saved = cert.certify
-    cert.certify = lambda a, b, slack, bound: [None] * a.shape[0]
-    cert.USE_SETTLE = False
-    try:
-        return engine.intersect_pairs([(p._prepared, q._prepared)])[0]
-    finally:
-        cert.certify = saved
-        cert.USE_SETTLE = True
+    """The careful path alone, in Python (no certificate, no compiled careful path)."""
+    engine._check_pair(p._prepared, q._prepared)
+    results: list[list[engine.Intersection]] = [[]]
+    engine._careful_pairs([(p._prepared, q._prepared)], [0], results)
+    return results[0]
 
 
 def certified(p: lb.BezierCurve, q: lb.BezierCurve):

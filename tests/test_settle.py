@@ -1,8 +1,9 @@
 """Issue #29: the careful path compiled (hazmat.settle_compiled, run by intersect where the
 certificate declines) gives the careful path's answers: the same hits, the same kinds, the
 parameters to the last bits (it evaluates residuals by compensated de Casteljau where the
-careful path uses rationals), and declines where it says it does (shared stretches, curves
-on one line), leaving those to the careful path in Python."""
+careful path uses rationals), reports a stretch shared as one polynomial piece as the careful
+path does, and declines where it says it does (a shared image under another
+parameterisation, curves on one line), leaving those to the careful path in Python."""
 
 from __future__ import annotations
 
@@ -115,11 +116,35 @@ def test_settled_is_the_careful_answer(name):
         ([(0.0, 0.0), (1.0, 2.0), (2.0, 0.0)], [(0.0, 0.0), (1.0, 2.0), (2.0, 0.0)]),
         # a piece of it, reversed
         ([(0.0, 0.0), (1.0, 2.0), (2.0, 0.0)], [(1.5, 0.75), (1.0, 1.25), (0.5, 0.75)]),
+        # overlapping past its end: p([1/4, 1]) == q([0, 3/4]) (the shape of the bezier
+        # package's fixture case 20), q(t) = p(t + 1/4)
+        ([(0.0, 0.0), (2.0, 4.0), (4.0, 0.0)], [(1.0, 1.5), (3.0, 3.5), (5.0, -2.5)]),
+    ],
+)
+def test_settled_shared_piece_is_the_careful_answer(a, b):
+    """A stretch shared as one polynomial piece (an affine change of parameter): both ends,
+    coincident, as the careful path reports them."""
+    slow = careful(a, b)
+    assert [h.kind for h in slow] == ["coincident", "coincident"]
+    fast = settled(a, b)
+    assert fast is not None, "the compiled careful path declined"
+    assert fast == slow
+    assert lb.BezierCurve(a).intersect(lb.BezierCurve(b)) == fast
+
+
+@pytest.mark.parametrize(
+    ("a", "b"),
+    [
+        # one arc under a parameterisation that is not affine: P(s) = Q(s^2)
+        (
+            [(0.0, 0.0), (0.0, 0.0), (1.0, 2.0), (3.0, 6.0), (6.0, 0.0)],
+            [(0.0, 0.0), (3.0, 6.0), (6.0, 0.0)],
+        ),
         # two segments of one line overlapping
         ([(0.0, 0.0), (2.0, 0.0)], [(1.0, 0.0), (3.0, 0.0)]),
     ],
 )
-def test_settle_declines_shared_stretches_and_lines(a, b):
+def test_settle_declines_shared_images_and_lines(a, b):
     assert settled(a, b) is None
     try:
         want = careful(a, b)
@@ -170,3 +195,38 @@ def test_settle_is_not_run_without_numba_or_when_switched_off():
         assert settled(a, b) is None
     finally:
         cert.USE_SETTLE = True
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    curve=small_curve,
+    where=st.one_of(st.integers(0, 4).map(lambda k: k / 4), st.tuples(coordinate, coordinate)),
+)
+def test_point_isolation_is_the_batched_one(curve, where):
+    """settle_compiled._isolate_point (depth first, for the end points) gives what
+    intersect_compiled.isolate_points gives for one curve and one point: the same roots and
+    left pieces, in the same order; a point on the curve (at u) or anywhere on the grid."""
+    from lambda_bezier.hazmat import intersect_compiled, intersect_subdivide, settle_compiled
+
+    pts = np.array(curve, dtype=float)
+    if np.ptp(pts, axis=0).max() == 0.0:
+        return  # a point: settle never gets one (the row guard would trip: the fallback)
+    if isinstance(where, float):
+        work = pts.copy()
+        while work.shape[0] > 1:
+            work = work[:-1] + where * (work[1:] - work[:-1])
+        point = work[0]
+    else:
+        point = np.array(where, dtype=float)
+    knobs = engine.SETTLE
+    tol = engine.ON_CURVE * max(np.abs(pts).max(), np.abs(point).max())
+    halves = intersect_subdivide.half_matrices(pts.shape[0] - 1)
+    ok, root_s, left_s0, left_w = settle_compiled._isolate_point(
+        pts, point, tol, *knobs[10:15], halves
+    )
+    _, want_s, _, want_s0, want_w = intersect_compiled.isolate_points(
+        pts[None].copy(), point[None].copy(), np.array([tol]), *knobs[10:15], halves
+    )
+    assert ok
+    assert root_s.tolist() == want_s.tolist()
+    assert left_s0.tolist() == want_s0.tolist() and left_w.tolist() == want_w.tolist()

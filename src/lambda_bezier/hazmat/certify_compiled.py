@@ -94,6 +94,26 @@ def _refine(
     return s, t, size, math.sqrt(res), sine
 
 
+@numba.njit(**_JIT)
+def _shared_end(a: np.ndarray, b: np.ndarray) -> bool:
+    """An end point of a is an end point of b, exactly. The certificate then always fails,
+    so it is not run: halving keeps an end point exactly (the end piece's first or last
+    control point), so the two pieces holding the shared point are never dropped (both boxes
+    and both fat lines hold it); they stay unresolved to the depth, or are isolated with
+    that point as their only common point, whose root lies within END_MARGIN of an end or
+    drifts from its start."""
+    n1, n2, dim = a.shape[0] - 1, b.shape[0] - 1, a.shape[1]
+    for i in (0, n1):
+        for k in (0, n2):
+            equal = True
+            for j in range(dim):
+                if a[i, j] != b[k, j]:
+                    equal = False
+            if equal:
+                return True
+    return False
+
+
 # intersect_certify.SETTINGS: depth, max pieces, local Newton steps, inside, cone margin, end
 # margin, drift, same, least sine (the certificate's knobs, named there)
 Settings = tuple[int, int, int, float, float, float, float, float, float]
@@ -113,6 +133,8 @@ def _certify_one(
     certificate fails (the careful path decides)."""
     depth, max_pieces, newton_steps, inside, margin, end_margin, drift, same, sine_min = settings
     n1, n2, dim = a.shape[0], b.shape[0], a.shape[1]
+    if _shared_end(a, b):
+        return -1
     planar = dim == 2
     cap = 4 * depth + 8  # depth first: at most 3 siblings wait per level
     sa = np.empty((cap, n1, dim))

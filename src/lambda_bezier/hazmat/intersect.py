@@ -82,7 +82,7 @@ SETTLE = (
     sub.INSIDE,
     sub.CONE_MARGIN,
 )
-_KINDS = ("tangent", "transversal")  # settle_compiled's kind codes
+_KINDS = {-1: "coincident", 0: "tangent", 1: "transversal"}  # settle_compiled's kind codes
 
 
 class Intersection(NamedTuple):
@@ -516,63 +516,54 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
     """Every intersection of p and q, sorted by s: the certified fast path when both are
     floats exactly, else (or where it does not certify) the careful path: compiled
     (settle_one) where it can, in Python otherwise."""
-    if cert.in_use() and p.floats_exact and q.floats_exact and p.dim == q.dim and p.dim >= 2:
-        got = cert.certify_one(p.pts, q.pts, BOX_SLACK, ROOT_RESIDUAL)
-        if got is not None:
-            s, t = got
-            return [Intersection(x, y, "transversal") for x, y in zip(s, t, strict=True)]
-        _check_pair(p, q)
-        settled = cert.settle_one(p.pts, q.pts, SETTLE)
-        if settled is not None:
-            return [Intersection(x, y, _KINDS[kind]) for x, y, kind in settled]
+    compiled = _compiled_pair(p, q)
+    if compiled is not None:
+        return compiled
     _check_pair(p, q)
     results: list[list[Intersection]] = [[]]
     _careful_pairs([(p, q)], [0], results)  # declined (or exact input): not certified again
     return results[0]
 
 
+def _compiled_pair(p: Prepared, q: Prepared) -> list[Intersection] | None:
+    """The pair's answer from the compiled kernels (numba): the certificate, then the careful
+    path compiled where it declines; None when neither answers (not compiled, input that
+    is not floats exactly, or declined by both). _check_pair runs only once the certificate
+    declines (it declines a point curve): on a fresh curve it costs a share of a small
+    certified pair's whole time."""
+    if not (cert.in_use() and p.floats_exact and q.floats_exact and p.dim == q.dim >= 2):
+        return None
+    got = cert.certify_one(p.pts, q.pts, BOX_SLACK, ROOT_RESIDUAL)
+    if got is not None:
+        s, t = got
+        return [Intersection(x, y, "transversal") for x, y in zip(s, t, strict=True)]
+    _check_pair(p, q)
+    settled = cert.settle_one(p.pts, q.pts, SETTLE)
+    if settled is None:
+        return None
+    return [Intersection(x, y, _KINDS[kind]) for x, y, kind in settled]
+
+
 def intersect_pairs(pairs: list[tuple[Prepared, Prepared]]) -> list[list[Intersection]]:
-    """Every intersection of each pair, sorted by s. Pairs of equal degrees and dimension go
-    together: first the certified fast path (intersect_certify) on those whose floats are
-    the curves exactly, then the careful path compiled (settle_one) on those it declines;
-    the rest, and those the compiled careful path declines, the careful way in Python: the end
-    points and shared stretches pair by pair, the subdivision in one set of arrays
-    (intersect_subdivide.isolate), then refinement pair by pair."""
-    for p, q in pairs:
-        _check_pair(p, q)
+    """Every intersection of each pair, sorted by s. With numba, each pair whose floats are
+    the curves exactly goes through the compiled kernels as intersect takes it (one call
+    runs a pair's whole certificate, another its whole careful path: measured on the
+    `bezier` fixtures, certifying the pairs together in one batch cost more than it saved,
+    its per-pair slack and bound set up in Python). The rest, and those both kernels
+    decline, take the careful way in Python together, pairs of equal degrees and dimension
+    in one group: the end points and shared stretches pair by pair, the subdivision in one
+    set of arrays (intersect_subdivide.isolate), then refinement pair by pair."""
+    results: list[list[Intersection]] = [[] for _ in pairs]
     groups: dict[tuple[int, int, int], list[int]] = {}
     for k, (p, q) in enumerate(pairs):
-        groups.setdefault((p.degree, q.degree, p.dim), []).append(k)
-    results: list[list[Intersection]] = [[] for _ in pairs]
+        compiled = _compiled_pair(p, q)
+        if compiled is not None:
+            results[k] = compiled
+        else:
+            _check_pair(p, q)
+            groups.setdefault((p.degree, q.degree, p.dim), []).append(k)
     for members in groups.values():
-        fast = [
-            k
-            for k in members
-            if cert.in_use() and pairs[k][0].floats_exact and pairs[k][1].floats_exact
-        ]
-        careful = [k for k in members if k not in set(fast)]
-        if fast:
-            certified = cert.certify(
-                np.stack([pairs[k][0].pts for k in fast]),
-                np.stack([pairs[k][1].pts for k in fast]),
-                np.array([_slack(*pairs[k]) for k in fast]),
-                np.array([_root_bound(*pairs[k]) for k in fast]),
-            )
-            for k, got in zip(fast, certified, strict=True):
-                if got is None:
-                    settled = cert.settle_one(pairs[k][0].pts, pairs[k][1].pts, SETTLE)
-                    if settled is None:
-                        careful.append(k)
-                    else:
-                        results[k] = [Intersection(x, y, _KINDS[c]) for x, y, c in settled]
-                else:
-                    s_list, t_list = got
-                    results[k] = [
-                        Intersection(x, y, "transversal")
-                        for x, y in zip(s_list, t_list, strict=True)
-                    ]
-        if careful:
-            _careful_pairs(pairs, sorted(careful), results)
+        _careful_pairs(pairs, members, results)
     return results
 
 

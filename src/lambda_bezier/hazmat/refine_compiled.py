@@ -20,7 +20,9 @@ from .pieces_compiled import compensated, compensated_pair, two_prod, two_sum, v
 # a curve as the kernel carries it (_curve): points, p' (hi, lo), p'', scratch
 Curve = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]
 Halves = tuple[np.ndarray, np.ndarray]  # intersect_subdivide.half_matrices
-TANGENT, TRANSVERSAL = 0, 1  # kind codes, in the order of the careful path's kind strings
+# kind codes, in the order of the careful path's kind strings ("coincident" < "tangent" <
+# "transversal"), so that hits sort as its tuples do
+COINCIDENT, TANGENT, TRANSVERSAL = -1, 0, 1
 
 # intersect.SETTLE: on curve, same root, isolated same, merge radius, merge gap, root
 # residual, box slack, wide piece, near found, tangent sine, then intersect_subdivide's
@@ -468,7 +470,8 @@ def _add(
     gap_bound: float,
     radius: float,
 ) -> int:
-    """intersect._add: the new count (the hit merged into one found, or appended)."""
+    """intersect._add: the new count (the hit merged into one found, or appended; an end of
+    a shared stretch is kept, not replaced)."""
     for k in range(count):
         if abs(s - fs[k]) < radius and abs(t - ft[k]) < radius:
             gap = 0.0
@@ -477,7 +480,7 @@ def _add(
                 x = _d(p, fs[k] + u * (s - fs[k]), 0) - _d(q, ft[k] + u * (t - ft[k]), 0)
                 gap = max(gap, _norm(x))
             if gap <= gap_bound:
-                if _quality(p, q, s, t) < _quality(p, q, fs[k], ft[k]):
+                if fk[k] != COINCIDENT and _quality(p, q, s, t) < _quality(p, q, fs[k], ft[k]):
                     fs[k], ft[k], fk[k] = s, t, kind
                 return count
     fs[count], ft[count], fk[count] = s, t, kind

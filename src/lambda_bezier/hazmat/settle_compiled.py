@@ -7,12 +7,14 @@ iterations, tolerances and merging rules, in the same order), with one change of
 the careful path evaluates a residual exactly in rationals, this kernel evaluates it by
 compensated de Casteljau (error-free transformations: as accurate as twice the working
 precision), which decides the same comparisons at the tolerances involved (64 eps of the
-curves' size and above). Two things it does not do, and declines instead (count -1: the
-caller runs the careful path): deciding whether two end hits bound a shared stretch (it
-declines as soon as a stretch between two end hits might be shared: the same polynomial
-piece, or the careful path's first test point of a shared image lying on the other curve),
-and curves whose control points all lie on one line (the careful path refuses or reports
-those). Hits are returned with kinds 0 (tangent) and 1 (transversal), sorted as the careful
+curves' size and above). A stretch the curves share as one polynomial piece (the careful
+path's _same_piece, an affine change of parameter) it reports as the careful path does: its
+two ends, kind coincident, the subdivision skipping its rectangle. Two things it does not
+do, and declines instead (count -1: the caller runs the careful path): a stretch between two
+end hits that may be one arc under another parameterisation (the careful path's first test
+point of _same_image lying once on the other stretch), and curves whose control points all
+lie on one line (the careful path refuses or reports those). Hits are returned with kinds
+-1 (coincident), 0 (tangent) and 1 (transversal), sorted as the careful
 path sorts them. The refinement steps (Newton, tangent refinement, a hit's acceptance and
 merging) are refine_compiled's; the subdivision, the Newton starts, point location and the
 pair's driver are here.
@@ -27,7 +29,7 @@ import math
 import numba
 import numpy as np
 
-from .intersect_compiled import isolate_points
+from .intersect_compiled import _local_foot_newton, isolate_points
 from .pieces_compiled import JIT as _JIT
 from .pieces_compiled import (
     boxes_apart,
@@ -39,6 +41,7 @@ from .pieces_compiled import (
     span_scale,
 )
 from .refine_compiled import (
+    COINCIDENT,
     TANGENT,
     TRANSVERSAL,
     Curve,
@@ -101,6 +104,20 @@ def _breadth_first(level: np.ndarray, ia: np.ndarray, ib: np.ndarray, count: int
 
 
 @numba.njit(**_JIT)
+def _skipped(ka: int, kb: int, width: float, skip: np.ndarray, skips: int) -> bool:
+    """The pair of pieces ka, kb of this width lies inside a shared stretch's rectangle."""
+    for r in range(skips):
+        if (
+            ka * width >= skip[r, 0]
+            and (ka + 1) * width <= skip[r, 1]
+            and kb * width >= skip[r, 2]
+            and (kb + 1) * width <= skip[r, 3]
+        ):
+            return True
+    return False
+
+
+@numba.njit(**_JIT)
 def _isolate(
     a: np.ndarray,
     b: np.ndarray,
@@ -112,11 +129,15 @@ def _isolate(
     margin: float,
     halves_a: tuple[np.ndarray, np.ndarray],
     halves_b: tuple[np.ndarray, np.ndarray],
+    skip: np.ndarray,
+    skips: int,
 ) -> tuple[bool, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """intersect_compiled.isolate for one pair (no skip, not a curve against itself) depth
-    first on a small stack, its roots and unresolved pieces put back in its breadth-first
-    order: (within budget, root s, root t, left s0, left t0, left width). The pieces are
-    halved with the same matrices, so the same pairs are dropped, isolated or left."""
+    """intersect_compiled.isolate for one pair (not a curve against itself) depth first on
+    a small stack, its roots and unresolved pieces put back in its breadth-first order:
+    (within budget, root s, root t, left s0, left t0, left width). The pieces are halved
+    with the same matrices, so the same pairs are dropped, isolated or left. skip[:skips]:
+    the rectangles (s0, s1, t0, t1) of shared stretches, whose pairs of pieces are dropped
+    as intersect_compiled.isolate drops them."""
     n1, n2, dim = a.shape[0], b.shape[0], a.shape[1]
     planar = dim == 2
     cap = 4 * depth + 8
@@ -128,6 +149,8 @@ def _isolate(
     wa, wb = np.empty((n1, dim)), np.empty((n2, dim))
     pa, pb = np.empty((n1, dim)), np.empty((n2, dim))
     vec4 = np.empty((4, dim))
+    half_a0, half_a1 = np.empty((n1, dim)), np.empty((n1, dim))
+    half_b0, half_b1 = np.empty((n2, dim)), np.empty((n2, dim))
     room = 64
     r_lev, r_ia, r_ib = np.empty(room, np.int64), np.empty(room, np.int64), np.empty(room, np.int64)
     r_s, r_t = np.empty(room), np.empty(room)
@@ -147,6 +170,8 @@ def _isolate(
         if boxes_apart(pa, pb, slack):
             continue
         if planar and (fat_line_apart(pa, pb, slack) or fat_line_apart(pb, pa, slack)):
+            continue
+        if _skipped(ka, kb, 0.5**lev, skip, skips):
             continue
         leave = lev == depth
         if not leave:
@@ -177,10 +202,15 @@ def _isolate(
             continue
         if top + 4 > cap:
             return False, r_s[:0], r_t[:0], r_s[:0], r_s[:0], r_s[:0]
-        # children pushed last block first, so the stack pops them in block order
+        # children pushed last block first, so the stack pops them in block order; each
+        # half of each piece computed once (a tangency keeps this loop busy to depth ~24)
+        _halve(pa, halves_a[0], half_a0)
+        _halve(pa, halves_a[1], half_a1)
+        _halve(pb, halves_b[0], half_b0)
+        _halve(pb, halves_b[1], half_b1)
         for c in range(3, -1, -1):
-            _halve(pa, halves_a[c // 2], sa[top])
-            _halve(pb, halves_b[c % 2], sb[top])
+            sa[top] = half_a1 if c // 2 else half_a0
+            sb[top] = half_b1 if c % 2 else half_b0
             level[top] = lev + 1
             ia[top] = 2 * ka + c // 2
             ib[top] = 2 * kb + c % 2
@@ -268,6 +298,93 @@ def _starts(
 
 
 # ---------------------------------------------------------------------------- locate
+@numba.njit(**_JIT)
+def _isolate_point(
+    pts: np.ndarray,
+    point: np.ndarray,
+    slack: float,
+    depth: int,
+    max_rows: int,
+    steps: int,
+    inside: float,
+    margin: float,
+    halves: Halves,
+) -> tuple[bool, np.ndarray, np.ndarray, np.ndarray]:
+    """intersect_compiled.isolate_points for one curve and one point, depth first on a small
+    stack with no arrays allocated per piece (it runs four times per pair, for the end
+    points): (ok, root s, left s0, left width), roots and left pieces in isolate_points'
+    breadth-first order, the pieces halved with the same matrices and put through the same
+    tests, so the same pieces are dropped, isolated or left. Not ok when a level holds more
+    pieces than the row guard allows (where isolate_points stops the whole level early)."""
+    size, dim = pts.shape
+    planar = dim == 2
+    if depth > 32:  # _breadth_first's keys hold 32 halvings
+        return False, np.empty(0), np.empty(0), np.empty(0)
+    cap = 2 * depth + 4
+    stack = np.empty((cap, size, dim))
+    level, index = np.empty(cap, np.int64), np.empty(cap, np.int64)
+    alive = np.zeros(depth + 1, np.int64)
+    piece = np.empty((size, dim))
+    left_half, right_half = np.empty((size, dim)), np.empty((size, dim))
+    axis = np.empty(dim)
+    target = point.reshape((1, dim))
+    room = 16
+    r_lev, r_ix, r_s = np.empty(room, np.int64), np.empty(room, np.int64), np.empty(room)
+    l_lev, l_ix = np.empty(room, np.int64), np.empty(room, np.int64)
+    roots = lefts = 0
+    stack[0] = pts
+    level[0] = index[0] = 0
+    top = 1
+    while top > 0:
+        top -= 1
+        piece[:, :] = stack[top]
+        lev, k = level[top], index[top]
+        dropped = False
+        for j in range(dim):
+            lo = hi = piece[0, j]
+            for i in range(1, size):
+                lo, hi = min(lo, piece[i, j]), max(hi, piece[i, j])
+            if not (lo <= point[j] + slack and point[j] - slack <= hi):
+                dropped = True
+        if dropped or (planar and fat_line_apart(target, piece, slack)):
+            continue
+        alive[lev] += 1
+        if 2 * alive[lev] > max_rows:
+            return False, np.empty(0), np.empty(0), np.empty(0)
+        leave = lev == depth
+        if not leave:
+            if pointed(cone(piece, axis, slack), margin):
+                u, ok = _local_foot_newton(piece, point, steps, inside, slack)
+                if ok:
+                    if roots == r_lev.size:
+                        r_lev, r_ix, r_s = _grow(r_lev), _grow(r_ix), _grow(r_s)
+                    r_lev[roots], r_ix[roots] = lev, k
+                    r_s[roots] = (k + min(max(u, 0.0), 1.0)) * 0.5**lev
+                    roots += 1
+                    continue
+            leave = flat_forward(piece, slack)
+        if leave:
+            if lefts == l_lev.size:
+                l_lev, l_ix = _grow(l_lev), _grow(l_ix)
+            l_lev[lefts], l_ix[lefts] = lev, k
+            lefts += 1
+            continue
+        _halve(piece, halves[0], left_half)
+        _halve(piece, halves[1], right_half)
+        stack[top], level[top], index[top] = right_half, lev + 1, 2 * k + 1
+        stack[top + 1], level[top + 1], index[top + 1] = left_half, lev + 1, 2 * k
+        top += 2
+    none = np.zeros(max(roots, lefts), np.int64)
+    order = _breadth_first(r_lev, none, r_ix, roots)
+    root_s = r_s[order]
+    order = _breadth_first(l_lev, none, l_ix, lefts)
+    left_s0, left_w = np.empty(lefts), np.empty(lefts)
+    for m in range(lefts):
+        width = 0.5 ** l_lev[order[m]]
+        left_s0[m], left_w[m] = l_ix[order[m]] * width, width
+    return True, root_s, left_s0, left_w
+
+
 @numba.njit(**_JIT)
 def _locate_newton(c: Curve, point: np.ndarray, t: float) -> float:
     """intersect._locate_newton: nan where it leaves the domain."""
@@ -383,18 +500,21 @@ def _locate_all(
             lo, hi = min(lo, pts[i, j]), max(hi, pts[i, j])
         if not (lo <= point[j] + tol and point[j] - tol <= hi):
             return np.sort(np.array(found))
-    curves = pts.copy().reshape((1, n + 1, dim))
-    root_pair, root_s, left_pair, left_s0, left_width = isolate_points(
-        curves,
-        point.copy().reshape((1, dim)),
-        np.array([tol]),
-        depth,
-        max_rows,
-        steps,
-        inside,
-        margin,
-        halves,
+    ok, root_s, left_s0, left_width = _isolate_point(
+        pts, point, tol, depth, max_rows, steps, inside, margin, halves
     )
+    if not ok:  # the row guard tripped: the breadth-first loop, which knows where it stops
+        _, root_s, _, left_s0, left_width = isolate_points(
+            pts.copy().reshape((1, n + 1, dim)),
+            point.copy().reshape((1, dim)),
+            np.array([tol]),
+            depth,
+            max_rows,
+            steps,
+            inside,
+            margin,
+            halves,
+        )
     starts = [x for x in root_s]
     narrow = left_width <= wide
     for k in range(left_s0.size):
@@ -461,6 +581,18 @@ def _same_piece(p: Curve, q: Curve, s0: float, s1: float, t0: float, t1: float, 
 
 
 @numba.njit(**_JIT)
+def _in_stretch(s: float, t: float, skip: np.ndarray, skips: int, start: bool) -> bool:
+    """intersect._pair_finish's tests against shared stretches: a start inside one's
+    rectangle (closed) is not refined; a hit strictly inside one's s interval is dropped."""
+    for r in range(skips):
+        if start and skip[r, 0] <= s <= skip[r, 1] and skip[r, 2] <= t <= skip[r, 3]:
+            return True
+        if not start and skip[r, 0] < s < skip[r, 1]:
+            return True
+    return False
+
+
+@numba.njit(**_JIT)
 def _collinear(a: np.ndarray, b: np.ndarray, tol: float) -> bool:
     """intersect._common_line is not None: every control point of both within tol of one line."""
     pts = np.concatenate((a, b))
@@ -490,8 +622,8 @@ def settle(
 ) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
     """intersect's careful path on one pair of float curves (n+1, d), (m+1, d), d >= 2,
     neither a point: (count, s, t, kind), sorted as the careful path sorts its hits, or
-    count -1 where it declines (a stretch between end hits that may be shared; control
-    points on one line; more hits than room)."""
+    count -1 where it declines (a stretch between end hits that may be one arc under
+    another parameterisation; control points on one line; more hits than room)."""
     same_root, isolated_same, radius, merge_gap = knobs[1], knobs[2], knobs[3], knobs[4]
     root_residual, box_slack, tangent_sine = knobs[5], knobs[6], knobs[9]
     depth, max_rows, steps, inside, margin = knobs[10], knobs[11], knobs[12], knobs[13], knobs[14]
@@ -529,24 +661,39 @@ def settle(
     ek = np.empty(ends, dtype=np.int64)
     for k in range(ends):
         ek[k] = TANGENT if _sine(p, q, es[k], et[k]) <= tangent_sine else TRANSVERSAL
-    # two end hits may bound a shared stretch: the careful path decides
+    # two end hits bound a shared stretch: the same polynomial piece (intersect._same_piece)
+    # is decided here as the careful path decides it, reported by its two ends (kind
+    # coincident, in (s, t, kind) order) and skipped by the subdivision; a stretch that may
+    # be one arc under another parameterisation (the careful path's first test point of
+    # _same_image lies on the other stretch once) is the careful path's: declined
     count_along = max((a.shape[0] - 1) * (b.shape[0] - 1) + 1, 3)
     middle = (count_along // 2 + 0.5) / count_along
+    count = 0
+    skip = np.empty((ends * ends + 1, 4))
+    skips = 0
     for i in range(ends):
         for j in range(i + 1, ends):
             if abs(es[i] - es[j]) < same_root or abs(et[i] - et[j]) < same_root:
                 continue
             if _same_piece(p, q, es[i], es[j], et[i], et[j], bound):
-                return -1, fs, ft, fk
+                lo, hi = (j, i) if _after(es[i], et[i], ek[i], es[j], et[j], ek[j]) else (i, j)
+                if count + 2 > room:
+                    return -1, fs, ft, fk
+                for k in (lo, hi):
+                    fs[count], ft[count], fk[count] = es[k], et[k], COINCIDENT
+                    count += 1
+                skip[skips, 0], skip[skips, 1] = es[lo], es[hi]
+                skip[skips, 2], skip[skips, 3] = min(et[i], et[j]), max(et[i], et[j])
+                skips += 1
+                continue
             probe = _d(p, es[i] + middle * (es[j] - es[i]), 0)
-            lo, hi = min(et[i], et[j]) - same_root, max(et[i], et[j]) + same_root
+            lo_t, hi_t = min(et[i], et[j]) - same_root, max(et[i], et[j]) + same_root
             on_q = 0
             for t in _locate_all(q, scale_q, size_q, probe, bound, False, knobs, halves_b):
-                if lo <= t <= hi:
+                if lo_t <= t <= hi_t:
                     on_q += 1
             if on_q == 1:
                 return -1, fs, ft, fk
-    count = 0
     gap_bound = merge_gap * degree * scale
     for k in range(ends):
         if not _near(es[k], et[k], fs, ft, count, same_root):
@@ -555,7 +702,18 @@ def settle(
         return -1, fs, ft, fk
     # the subdivision, then refinement from its roots and from the starts it leaves
     ok, root_s, root_t, left_s0, left_t0, left_width = _isolate(
-        a, b, box_slack * degree * scale, depth, max_rows, steps, inside, margin, halves_a, halves_b
+        a,
+        b,
+        box_slack * degree * scale,
+        depth,
+        max_rows,
+        steps,
+        inside,
+        margin,
+        halves_a,
+        halves_b,
+        skip,
+        skips,
     )
     if not ok:
         return -1, fs, ft, fk
@@ -566,14 +724,21 @@ def settle(
         if ok and not _near_isolated(s, t, fs, ft, count, isolated_same, same_root):
             if count == room:
                 return -1, fs, ft, fk
-            fs[count], ft[count], fk[count] = s, t, kind
-            count += 1
+            if skips:  # the careful path's _add: a root at a shared stretch's end is that end
+                count = _add(p, q, fs, ft, fk, count, s, t, kind, gap_bound, radius)
+            else:
+                fs[count], ft[count], fk[count] = s, t, kind
+                count += 1
     start_s, start_t = _starts(left_s0, left_t0, left_width)
     for k in range(start_s.size):
+        if _in_stretch(start_s[k], start_t[k], skip, skips, True):
+            continue
         ok, s, t, kind = _solve_from(
             p, q, start_s[k], start_t[k], fs, ft, count, False, scale, bound, knobs
         )
         if not ok or _near(s, t, fs, ft, count, same_root):
+            continue
+        if _in_stretch(s, t, skip, skips, False):
             continue
         if count == room:
             return -1, fs, ft, fk

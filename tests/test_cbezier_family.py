@@ -324,10 +324,13 @@ def test_runtime_refusals(family):
 
 
 def test_optimal_alpha_is_the_least_energy(family):
+    """fam.optimal_alpha is the certified optimum as a dict (tests/test_cbezier_optimum.py
+    checks it against quadrature); here against the runtime's own energy on a grid."""
     got = family.optimal_alpha(P, 1)
     grid = [family.energy(P, x, 1) for x in np.linspace(0.5, math.pi, 400)]
     assert got["energy"] <= min(grid) + 1e-12
     assert got["where"] == "upper end" and got["alpha"] == math.pi
+    assert got["energy"] - float(got["lower_bound"]) <= 1e-12 * got["energy"]
 
 
 def test_derive_cli_prints_verdicts(tmp_path, capsys):

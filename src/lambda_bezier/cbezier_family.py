@@ -96,6 +96,14 @@ class RatFn:
         return n / d, rel
 
 
+def _exact(terms: list[Any]) -> dict[tuple[int, int, int], Fraction]:
+    """Terms already checked by _terms, as {(i, j, k): Fraction}."""
+    out: dict[tuple[int, int, int], Fraction] = {}
+    for (i, j, k), v in terms:
+        out[(i, j, k)] = out.get((i, j, k), Fraction(0)) + Fraction(v)
+    return out
+
+
 def _ratfn(raw: object, where: str) -> RatFn:
     if not isinstance(raw, dict) or set(raw) != {"num", "den"}:
         raise CBezierError(f"{where}: a coefficient is {{'num': [...], 'den': [...]}}")
@@ -134,6 +142,12 @@ class CBezierFamily:
                 int(k): [[_ratfn(x, f"{where}: energies") for x in row] for row in mat]
                 for k, mat in doc["energies"].items()
             }
+            # the same entries exactly, for the certified optimum (_cbezier_optimum)
+            self._exact_energies = {
+                int(k): [[(_exact(x["num"]), _exact(x["den"])) for x in row] for row in mat]
+                for k, mat in doc["energies"].items()
+            }
+            self.range_ends = (str(rng["lo"]), str(rng["hi"]))
             self.verdicts = doc["verdicts"]
             self.functions = doc["functions"]
         except (KeyError, TypeError, ValueError) as exc:
@@ -224,42 +238,85 @@ class CBezierFamily:
         """E_k of the curve at alpha (CBezierCurve.energy)."""
         return self.curve(points, alpha=alpha).energy(k)
 
-    def optimal_alpha(self, points: PointsLike, k: int, *, tol: float = 1e-12) -> dict[str, Any]:
-        """The alpha of the box with the least E_k: the best of a grid of 2049 admissible
-        points (those whose coefficients meet MAX_COEFFICIENT_ERROR), then golden-section
-        search in the bracket around it to `tol` in alpha. Numeric, not certified: E_k is
-        smooth in alpha, and a minimum narrower than the grid's step could be missed."""
-        lo = self.lo if self.lo_closed else self.lo + (self.hi - self.lo) * 1e-3
-        hi = self.hi if self.hi_closed else self.hi - (self.hi - self.lo) * 1e-9
-        grid = np.linspace(lo, hi, 2049)
-        values = []
-        for x in grid:
-            try:
-                values.append(self.energy(points, float(x), k))
-            except ValueError:
-                values.append(math.inf)
-        best = int(np.argmin(values))
-        if (best == 0 and self.lo_closed) or (best == len(grid) - 1 and self.hi_closed):
-            x = float(grid[best])  # a closed end of the box: E_k there is the least sampled
-            on = "lower end" if best == 0 else "upper end"
-            return {self.parameter: x, "energy": self.energy(points, x, k), "where": on}
-        a = float(grid[max(best - 1, 0)])
-        b = float(grid[min(best + 1, len(grid) - 1)])
-        ratio = (math.sqrt(5) - 1) / 2
-        x1, x2 = b - ratio * (b - a), a + ratio * (b - a)
-        f1, f2 = self.energy(points, x1, k), self.energy(points, x2, k)
-        while b - a > tol * max(1.0, abs(b)):
-            if f1 <= f2:
-                b, x2, f2 = x2, x1, f1
-                x1 = b - ratio * (b - a)
-                f1 = self.energy(points, x1, k)
-            else:
-                a, x1, f1 = x1, x2, f2
-                x2 = a + ratio * (b - a)
-                f2 = self.energy(points, x2, k)
-        x = (a + b) / 2
-        on = "lower end" if best == 0 else "upper end" if best == len(grid) - 1 else "interior"
-        return {self.parameter: x, "energy": self.energy(points, x, k), "where": on}
+    def optimal_parameters_of(self, points: PointsLike, k: int) -> Any:
+        """The certified least E_k over the range (what `optimal_parameters` answers for
+        this family): E_k in the family's own parameter (t on [0, alpha]; u on [0, 1] for
+        a family written on [0, 1], that is alpha**(2k-1) times the energy in t), its
+        minimum certified by branch and bound on Taylor models of the document's exact
+        Gram entries (`_cbezier_optimum`): `lower_bound` is a proven lower bound over the
+        whole range, within 1e-12 (relative to max(1, E)) of `energy`, which is E_k at
+        `values` to about 2^-200. Certified, not exact: the entries are in
+        Q(alpha, sin alpha, cos alpha)."""
+        from . import _cbezier_optimum as opt
+        from .parameter_optimum import OptimalParameters
+
+        if isinstance(k, bool) or not isinstance(k, int) or k not in self._exact_energies:
+            raise ValueError(f"k must be one of {sorted(self._exact_energies)}, got {k!r}")
+        pts = val.as_points(points, family=self.name, degrees=(self.degree,))
+        given = val.exact_rows(points)
+        rows = (
+            [tuple(Fraction(v) for v in row) for row in given]
+            if given is not None
+            else [tuple(Fraction(float(v)) for v in row) for row in pts]
+        )
+        extra = 2 * k - 1 if self.form == "unit" else 0
+        energy = opt.energy_of(self._exact_energies[k], rows, self.hyperbolic, extra)
+        if not energy.groups:
+            raise ValueError(
+                f"{self.parameter} has no effect on E_{k} of this polygon (E_{k} = 0 for every "
+                f"{self.parameter}), so no optimal {self.parameter} exists"
+            )
+        lo, hi = self.range_ends
+        got = opt.certified_minimum(energy, lo, hi, self.lo_closed, self.hi_closed)
+        if not got["certified"]:
+            raise ValueError(
+                f"optimal_parameters: the least E_{k} over {self.parameter} in "
+                f"{self.range_text} was not certified within {opt.BUDGET} boxes (best "
+                f"{float(got['value'][1]) if got['value'] else math.nan}, proven lower bound "
+                f"{float(got['lower'])}); a singular point inside the range stops it"
+            )
+        point, (e_lo, e_hi) = got["point"], got["value"]
+        name = self.parameter
+        end_lo, end_hi = opt.end_bounds(lo), opt.end_bounds(hi)
+        boundary = ""
+        if got["limit"] or point <= end_lo[1]:
+            shown = lo if got["limit"] else float(point)
+            boundary = f"{name} = {shown} (lower end" + (
+                ", excluded: not attained; the limit there)" if got["limit"] else ")"
+            )
+        elif point >= end_hi[0]:
+            boundary = f"{name} = {hi} (upper end" + (
+                ", excluded: not attained; the limit there)" if got["limit"] else ")"
+            )
+        return OptimalParameters(
+            values={name: float(point)},
+            energy=float((e_lo + e_hi) / 2),
+            free={},
+            free_inside=False,
+            boundary=boundary,
+            k=k,
+            family=self.name,
+            lower_bound=got["lower"],
+            method="certified",
+        )
+
+    def optimal_alpha(self, points: PointsLike, k: int) -> dict[str, Any]:
+        """{parameter: value, "energy", "where", "lower_bound"}: `optimal_parameters_of`
+        as a dict ("where" is "interior", "lower end" or "upper end")."""
+        r = self.optimal_parameters_of(points, k)
+        where = (
+            "interior"
+            if not r.boundary
+            else "lower end"
+            if "(lower end" in r.boundary
+            else "upper end"
+        )
+        return {
+            self.parameter: r.values[self.parameter],
+            "energy": r.energy,
+            "where": where,
+            "lower_bound": r.lower_bound,
+        }
 
 
 class CBezierCurve:

@@ -159,14 +159,18 @@ class CBezierFamily:
         where_param = "domain" if self.form == "domain" else "frequency"
         self.elsewhere = (
             f"has its parameter {self.parameter} in the {where_param} "
-            "(C-Bézier): the shared functions (optimal_parameters, optimal_lambda, "
-            f"evaluate_many, join, CompositeCurve) do not take it yet; its curves come from "
-            f"fam.curve(points, "
-            f"{self.parameter}=...), and fam.optimal_alpha(points, k) gives a "
-            "sampled, not certified, energy optimum"
+            "(C-Bézier): this function takes polynomial families only; optimal_parameters, "
+            "optimal_lambda, evaluate_many(..., params={...}), join(..., params={...}), "
+            "CompositeCurve and to_json take it, and its curves come from "
+            f"fam.curve(points, {self.parameter}=...)"
         )
         self.title = title
         self.definition = table
+        # what a curve's JSON form embeds, as for every family defined by data (_json_io)
+        from ._family_file import definition_digest
+
+        self.table = table
+        self.digest = definition_digest(table)
         self.powers = max((m for k, m in self.atoms if k == "pow"), default=0)
         self.harmonics = max((m for k, m in self.atoms if k != "pow"), default=0)
 
@@ -238,17 +242,109 @@ class CBezierFamily:
         """E_k of the curve at alpha (CBezierCurve.energy)."""
         return self.curve(points, alpha=alpha).energy(k)
 
-    def optimal_parameters_of(self, points: PointsLike, k: int) -> Any:
-        """The certified least E_k over the range (what `optimal_parameters` answers for
-        this family): E_k in the family's own parameter (t on [0, alpha]; u on [0, 1] for
-        a family written on [0, 1], that is alpha**(2k-1) times the energy in t), its
+    def evaluate_curves(
+        self,
+        points: npt.ArrayLike,
+        t: ParamLike,
+        k: int,
+        lam: object,
+        params: object,
+        extrapolate: bool,
+    ) -> np.ndarray:
+        """batch.evaluate_many for this family: m curves (m, n+1, d) at one alpha
+        (``params={"alpha": ...}`` or ``lam=...``), the k-th derivative in the family's own
+        parameter at every t, (m, T, d): the curves' coefficients over the centred atoms in one
+        product, the atoms evaluated once on the shared t."""
+        alpha = self.parameter_value(lam, params, {})
+        arr = val.real_array(points, "control points")
+        if arr.ndim != 3:
+            raise ValueError(f"control points must have shape (m, n+1, d), got shape {arr.shape}")
+        m, size, dim = arr.shape
+        val.check_point_shape((size, dim), family=self.name, degrees=(self.degree,))
+        if not np.isfinite(arr).all():
+            idx = np.argwhere(~np.isfinite(arr))[0]
+            raise ValueError(f"curve {idx[0]}, control point {idx[1]} has a non-finite coordinate")
+        order = val.as_order(k)
+        probe = CBezierCurve(self, arr[0], alpha)  # its basis at alpha; checks t below
+        tau, scalar = probe._tau(t, extrapolate)
+        scale = val.power_of_two_scale(arr)
+        with val.overflow_allowed():
+            pt = np.ascontiguousarray(arr.transpose(1, 0, 2)).reshape(size, m * dim) / scale
+            own = probe._own_atoms(probe.basis_coefficients)  # (n+1, A)
+            coeffs = probe._centring(own.T @ pt)  # (A, m·d)
+            for _ in range(order):
+                coeffs = probe._d @ coeffs
+            sh = probe.shape
+            out = ak.evaluate(coeffs, tau, sh.omega0, sh.powers, sh.harmonics, sh.hyperbolic)
+            out = (out.T.reshape(tau.size, m, dim).transpose(1, 0, 2)) * scale
+        val.finite_result(out, "p(t)" if order == 0 else f"the derivative of order {order}")
+        result: np.ndarray = out[:, 0] if scalar else out
+        return result
+
+    @property
+    def curve_class(self) -> type[CBezierCurve]:
+        """CBezierCurve with this family as its class's `family_object` (what from_json
+        builds a curve of this family through)."""
+        return type(f"{self.name}Curve", (CBezierCurve,), {"family_object": self})
+
+    def start_coefficients(self, alpha: object, orders: int) -> list[list[float]]:
+        """s[r][j] = b_j^(r)(0) in the family's own parameter at alpha, r = 0..orders (what a
+        join into this family solves with: _atom_joins)."""
+        x = self.check_alpha(alpha)
+        basis, _ = self.basis_coefficients(x)
+        rate = x if self.form == "unit" else 1.0  # d/du = alpha d/dt on [0, 1]
+        cycle = {
+            "cos": (1, 0, -1, 0),
+            "sin": (0, 1, 0, -1),
+            "cosh": (1, 0, 1, 0),
+            "sinh": (0, 1, 0, 1),
+        }
+        rows = []
+        for r in range(orders + 1):
+            at = []
+            for kind, m in self.atoms:  # the r-th derivative in t of each atom at t = 0
+                if kind == "pow":
+                    at.append(float(math.factorial(m)) if r == m else 0.0)
+                else:
+                    name = (kind + "h") if self.hyperbolic else kind
+                    at.append(float(m) ** r * cycle[name][r % 4])
+            rows.append([float(v) * rate**r for v in basis @ np.array(at)])
+        return rows
+
+    def parameter_value(self, lam: object, params: object, named: dict[str, object]) -> float:
+        """The new segment's alpha in a join: ``params={"alpha": ...}`` or join's ``lam``
+        (join's own ``alpha`` is the G-joint constant)."""
+        given: dict[str, object] = {}
+        if params is not None:
+            if not isinstance(params, dict):
+                raise TypeError("params must be a dict {name: value}")
+            given.update(params)
+        given.update(named)
+        if lam is not None:
+            if self.parameter in given:
+                raise TypeError(f"{self.parameter} is given twice; give it once")
+            given[self.parameter] = lam
+        unknown = sorted(set(given) - {self.parameter})
+        if unknown:
+            raise TypeError(f"{unknown[0]!r} is not a parameter of {self.name!r}")
+        if self.parameter not in given:
+            raise ValueError(
+                f"a {self.name} segment needs its parameter: params={{{self.parameter!r}: ...}} "
+                "(or lam=...; join's own alpha is the G-joint constant)"
+            )
+        return self.check_alpha(given[self.parameter])
+
+    def energy_minimum(self, points: PointsLike, k: int) -> dict[str, Any]:
+        """The certified least E_k over the range, as {"values", "energy", "boundary",
+        "lower_bound", "method"} (what `optimal_parameters` answers for this family): E_k in
+        the family's own parameter (t on [0, alpha]; u on [0, 1] for a family written on
+        [0, 1], that is alpha**(2k-1) times the energy in t), its
         minimum certified by branch and bound on Taylor models of the document's exact
         Gram entries (`_cbezier_optimum`): `lower_bound` is a proven lower bound over the
         whole range, within 1e-12 (relative to max(1, E)) of `energy`, which is E_k at
         `values` to about 2^-200. Certified, not exact: the entries are in
         Q(alpha, sin alpha, cos alpha)."""
         from . import _cbezier_optimum as opt
-        from .parameter_optimum import OptimalParameters
 
         if isinstance(k, bool) or not isinstance(k, int) or k not in self._exact_energies:
             raise ValueError(f"k must be one of {sorted(self._exact_energies)}, got {k!r}")
@@ -288,34 +384,30 @@ class CBezierFamily:
             boundary = f"{name} = {hi} (upper end" + (
                 ", excluded: not attained; the limit there)" if got["limit"] else ")"
             )
-        return OptimalParameters(
-            values={name: float(point)},
-            energy=float((e_lo + e_hi) / 2),
-            free={},
-            free_inside=False,
-            boundary=boundary,
-            k=k,
-            family=self.name,
-            lower_bound=got["lower"],
-            method="certified",
-        )
+        return {
+            "values": {name: float(point)},
+            "energy": float((e_lo + e_hi) / 2),
+            "boundary": boundary,
+            "lower_bound": got["lower"],
+            "method": "certified",
+        }
 
     def optimal_alpha(self, points: PointsLike, k: int) -> dict[str, Any]:
-        """{parameter: value, "energy", "where", "lower_bound"}: `optimal_parameters_of`
+        """{parameter: value, "energy", "where", "lower_bound"}: `energy_minimum`
         as a dict ("where" is "interior", "lower end" or "upper end")."""
-        r = self.optimal_parameters_of(points, k)
+        r = self.energy_minimum(points, k)
         where = (
             "interior"
-            if not r.boundary
+            if not r["boundary"]
             else "lower end"
-            if "(lower end" in r.boundary
+            if "(lower end" in r["boundary"]
             else "upper end"
         )
         return {
-            self.parameter: r.values[self.parameter],
-            "energy": r.energy,
+            self.parameter: r["values"][self.parameter],
+            "energy": r["energy"],
             "where": where,
-            "lower_bound": r.lower_bound,
+            "lower_bound": r["lower_bound"],
         }
 
 
@@ -399,6 +491,18 @@ class CBezierCurve:
                 out[isn] += ca * row
         return out
 
+    lam = None  # no λ: its parameter is the domain's (JSON writes it under "parameters")
+
+    def atom_parameter_values(self) -> dict[str, float]:
+        """{parameter: alpha}, as the curves of families in several parameters give theirs."""
+        return {self.family_object.parameter: self.alpha}
+
+    def end_derivatives(self, orders: int) -> list[list[float]]:
+        """The curve's derivatives of orders 0..orders at the end of its domain (a join from
+        this curve: _atom_joins)."""
+        hi = self.domain[1]
+        return [[float(v) for v in self.derivative(hi, r)] for r in range(orders + 1)]
+
     # ------------------------------------------------------------------ evaluation
     def _tau(self, t: ParamLike, extrapolate: bool) -> tuple[np.ndarray, bool]:
         tt, scalar, small, big = val.parameter_range(t)
@@ -436,6 +540,18 @@ class CBezierCurve:
         with np.errstate(divide="ignore", invalid="ignore"):
             kappa = np.where(speed > 0, cross / speed**3, np.nan)
         return float(kappa[0]) if np.ndim(np.asarray(t, dtype=float)) == 0 else kappa
+
+    def _curvature(self, t: ParamLike, extrapolate: bool = False) -> np.ndarray:
+        """The curvature as an array, signed in 2D, NaN where C'(t) = 0 (joint reports)."""
+        from .hazmat import rational_kernels as rk
+
+        d1 = self.derivative(t, 1, extrapolate=extrapolate)
+        d2 = self.derivative(t, 2, extrapolate=extrapolate)
+        return rk.curvature_from_derivatives(d1, d2)
+
+    def control_points(self) -> list[tuple[float, ...]]:
+        """The control points as tuples of floats."""
+        return [tuple(float(v) for v in row) for row in self.points]
 
     def energy(self, k: int) -> float:
         """E_k = int |r^(k)|^2 in the family's own parameter (t on [0, alpha], or u on [0, 1]:

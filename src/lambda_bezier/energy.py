@@ -31,6 +31,7 @@ from .parameter_optimum import (
     _optimal_indexed,
     _optimal_several,
     atom_energy_form,
+    own_optimum,
 )
 
 _energy = generated("energy")
@@ -472,9 +473,11 @@ def optimal_lambda(
     atom = getattr(family, "atom_data", None)
     if atom is not None:  # a trigonometric, hyperbolic or mixed family of one parameter
         return _optimal_lambda_atoms(points, _check_order(k), atom, val.flag(clamp, "clamp"))
-    own = getattr(family, "optimal_parameters_of", None)
+    own = getattr(family, "energy_minimum", None)
     if own is not None:  # a family that answers for itself (certified over its range)
-        return _own_optimal_lambda(own(points, _check_order(k)), family, val.flag(clamp, "clamp"))
+        k = _check_order(k)
+        found = own_optimum(own(points, k), k, family)
+        return _own_optimal_lambda(found, family, val.flag(clamp, "clamp"))
     data = _family_data(family)
     k = _check_order(k)
     clamp = val.flag(clamp, "clamp")
@@ -727,9 +730,10 @@ def optimal_parameters(
     """
     if hasattr(family, "by_degree"):  # an indexed family (lam(i)): its degree's parameters
         return _optimal_indexed(points, _check_order(k), family)
-    own = getattr(family, "optimal_parameters_of", None)
+    own = getattr(family, "energy_minimum", None)
     if own is not None:  # a family that answers for itself (certified over its range)
-        return own(points, _check_order(k))  # type: ignore[no-any-return]
+        k = _check_order(k)
+        return own_optimum(own(points, k), k, family)
     atom = getattr(family, "atom_data", None)
     if atom is not None:
         return _optimal_atoms(points, _check_order(k), atom)

@@ -72,6 +72,22 @@ class OptimalParameters:
         return self.values[name]
 
 
+def own_optimum(got: dict[str, Any], k: int, family: Any) -> OptimalParameters:
+    """OptimalParameters from a family's own certified minimum over its range (a family
+    whose parameter is the length of the domain: CBezierFamily.energy_minimum)."""
+    return OptimalParameters(
+        values=dict(got["values"]),
+        energy=got["energy"],
+        free={},
+        free_inside=False,
+        boundary=got["boundary"],
+        k=k,
+        family=str(family.name),
+        lower_bound=got["lower_bound"],
+        method=got["method"],
+    )
+
+
 def _solve(a: list[list[Fraction]], b: list[Fraction]) -> list[Fraction] | None:
     """a x = b by exact elimination; None when a is singular."""
     size = len(b)

@@ -197,3 +197,56 @@ def test_json_round_trip_with_fingerprint(family):
     doc["parameters"] = {"alpha": 5}
     with pytest.raises(ValueError, match="outside the family's range"):
         export.from_json(json.dumps(doc), family=other)
+
+
+TRIG_INTERPOLATING = """[family]
+name = "trig_interpolating"
+title = "Interpolating trigonometric basis sin(alpha - t)/sin(alpha), sin(t)/sin(alpha)"
+parameter = "alpha"
+range = "(0, 3]"
+domain = "[0, alpha]"
+degrees = "1"
+functions = ["sin(alpha - t)/sin(alpha)", "sin(t)/sin(alpha)"]
+"""
+
+
+@pytest.mark.parametrize("name", ["hyp_interpolating", "trig_interpolating"])
+def test_rational_form_against_the_formula(tmp_path, name):
+    """A family without powers of t is a rational Bezier curve (degree 2 here, float
+    weights): against the written formula in mpmath at the form's own parameter map."""
+    from lambda_bezier.cli import main
+
+    if name == "trig_interpolating":
+        path = tmp_path / f"{name}.toml"
+        path.write_text(TRIG_INTERPOLATING)
+        assert main(["derive", "--family", str(path)]) == 0
+        f = [lambda t, a: mp.sin(a - t) / mp.sin(a), lambda t, a: mp.sin(t) / mp.sin(a)]
+    else:
+        path = DATA / f"{name}.toml"
+        f = [lambda t, a: mp.sinh(a - t) / mp.sinh(a), lambda t, a: mp.sinh(t) / mp.sinh(a)]
+    fam = lb.load_family(path)
+    pts = [[0.0, 0.0], [3.0, 1.0]]
+    for alpha in (0.4, 2.5):
+        curve = fam.curve(pts, alpha=alpha)
+        r = curve.to_rational_bezier()
+        assert r.degree == 2 and r.control_weights()[0] == 1.0
+        s = np.linspace(0, 1, 11)
+        t = curve.t_of_s(s)
+        assert t[0] == pytest.approx(0, abs=1e-15) and t[-1] == pytest.approx(alpha, rel=1e-15)
+        assert np.allclose(curve.s_of_t(t), s, atol=1e-15)
+        a = mp.mpf(alpha)
+        want = np.array(
+            [
+                [
+                    float(sum(g(mp.mpf(x), a) * p[d] for g, p in zip(f, pts, strict=True)))
+                    for d in range(2)
+                ]
+                for x in t
+            ]
+        )
+        assert np.allclose(r.evaluate(s), want, atol=1e-14, rtol=0)
+
+
+def test_no_rational_form_with_powers_of_t(family):
+    with pytest.raises(ValueError, match="no rational Bézier form: its space has t"):
+        family.curve(P, alpha=1.0).to_rational_bezier()

@@ -497,6 +497,68 @@ class CBezierCurve:
         """{parameter: alpha}, as the curves of families in several parameters give theirs."""
         return {self.family_object.parameter: self.alpha}
 
+    # ------------------------------------------------------------------ the rational form
+    def _rational_map(self) -> tuple[float, float, float]:
+        """(kind 0 trig / 1 hyperbolic, a, b) of the map from s in [0, 1] to the centred angle
+        theta = rate (x - mid): trig v = tan(theta/2) = a (2s - 1) with a = tan(alpha/4);
+        hyperbolic z = e^theta = a + s (b - a)."""
+        fam = self.family_object
+        if fam.powers > 0:
+            raise ValueError(
+                f"the {self.family} family has no rational Bézier form: its space has t "
+                "(a power of t is not a rational function of tan(t/2) or of e^t)"
+            )
+        half = self._rate * self.domain[1] / 2  # alpha/2 in both forms
+        if fam.hyperbolic:
+            return 1.0, math.exp(-half), math.exp(half)
+        if not half < math.pi:
+            raise ValueError(f"no rational form over an angle of 2*pi or more ({2 * half})")
+        return 0.0, math.tan(half / 2), 0.0
+
+    def t_of_s(self, s: ParamLike) -> np.ndarray | float:
+        """The family's own parameter at the rational form's s in [0, 1]."""
+        kind, a, b = self._rational_map()
+        ss = np.asarray(s, dtype=float)
+        theta = 2 * np.arctan(a * (2 * ss - 1)) if kind == 0 else np.log(a + ss * (b - a))
+        out = self._mid + theta / self._rate
+        return float(out) if out.ndim == 0 else out
+
+    def s_of_t(self, t: ParamLike) -> np.ndarray | float:
+        """The rational form's s at the family's own parameter t."""
+        kind, a, b = self._rational_map()
+        theta = self._rate * (np.asarray(t, dtype=float) - self._mid)
+        out = (np.tan(theta / 2) / a + 1) / 2 if kind == 0 else (np.exp(theta) - a) / (b - a)
+        return float(out) if np.ndim(out) == 0 else out
+
+    def to_rational_bezier(self) -> Any:
+        """The curve as a rational Bézier curve in s (`t_of_s`, `s_of_t`), for a family whose
+        space has no power of t (1, cos mt, sin mt; or cosh, sinh): of degree 2M (M the
+        highest harmonic), through v = tan(theta/2) (theta the angle about the middle of
+        the domain) or z = e^theta, affine in s. The curve is N(s)/D(s) with
+        D = (1 + v^2)^M or z^M; its weights are D's Bernstein coefficients and its points
+        N's over them, from N and D at 2M + 1 Chebyshev points of s: **floats** (alpha's
+        sin, cos and exp are irrational in general), not exact."""
+        from math import comb
+
+        from .rational import RationalBezierCurve
+
+        kind, a, b = self._rational_map()
+        n = 2 * self.family_object.harmonics
+        nodes = (1 - np.cos(np.pi * (np.arange(n + 1) + 0.5) / (n + 1))) / 2
+        if kind == 0:
+            den = (1 + (a * (2 * nodes - 1)) ** 2) ** (n // 2)
+        else:
+            den = (a + nodes * (b - a)) ** (n // 2)
+        values = np.atleast_2d(self.evaluate(np.clip(self.t_of_s(nodes), *self.domain)))
+        bern = np.array(
+            [[comb(n, i) * x**i * (1 - x) ** (n - i) for i in range(n + 1)] for x in nodes]
+        )
+        weights = np.linalg.solve(bern, den)
+        if not np.all(weights > 0):
+            raise ValueError(f"the rational form at {self.alpha} has weights that are not positive")
+        numer = np.linalg.solve(bern, values * den[:, None])
+        return RationalBezierCurve(numer / weights[:, None], weights / weights[0])
+
     def end_derivatives(self, orders: int) -> list[list[float]]:
         """The curve's derivatives of orders 0..orders at the end of its domain (a join from
         this curve: _atom_joins)."""

@@ -124,3 +124,19 @@ def test_refusals():
         lb.optimal_parameters(P, 4, family=fam)
     with pytest.raises(ValueError, match="points"):
         lb.optimal_parameters(P[:3], 2, family=fam)
+
+
+def test_a_range_holding_a_singular_point_is_refused(tmp_path):
+    """Past 2*pi the C-Bezier cubic's denominators vanish inside the range: no minimum, and
+    the refusal is immediate (the derived verdicts name the point)."""
+    from lambda_bezier.cli import main
+
+    text = (DATA / "c_bezier_cubic.toml").read_text()
+    text = text.replace('range = "(0, pi]"', 'range = "(0, 3*pi]"')
+    text = text.replace('name = "c_bezier_cubic"', 'name = "c_bezier_wide"')
+    path = tmp_path / "c_bezier_wide.toml"
+    path.write_text(text)
+    assert main(["derive", "--family", str(path)]) == 0
+    fam = lb.load_family(path)
+    with pytest.raises(ValueError, match=r"holds a singular point of the family \(alpha = "):
+        lb.optimal_parameters(P, 2, family=fam)

@@ -362,14 +362,27 @@ class CBezierFamily:
                 f"{self.parameter} has no effect on E_{k} of this polygon (E_{k} = 0 for every "
                 f"{self.parameter}), so no optimal {self.parameter} exists"
             )
+        inside = [
+            r
+            for r in self.verdicts.get("singular_points", [])
+            if str(r.get("where", "")).startswith("inside")
+        ]
+        if inside:  # E_k has a pole there (or is not defined): no minimum over the range
+            raise ValueError(
+                f"optimal_parameters: the range {self.range_text} of {self.parameter} holds a "
+                f"singular point of the family ({self.parameter} = {inside[0]['at']}: "
+                f"{inside[0]['denominator']} = 0); choose a range without it"
+            )
         lo, hi = self.range_ends
         got = opt.certified_minimum(energy, lo, hi, self.lo_closed, self.hi_closed)
         if not got["certified"]:
+            best = float(got["value"][1]) if got["value"] else math.nan
+            proven = got["lower"]
+            shown = f"{float(proven):.17g}" if abs(proven) < 1e300 else "none"
             raise ValueError(
                 f"optimal_parameters: the least E_{k} over {self.parameter} in "
                 f"{self.range_text} was not certified within {opt.BUDGET} boxes (best "
-                f"{float(got['value'][1]) if got['value'] else math.nan}, proven lower bound "
-                f"{float(got['lower'])}); a singular point inside the range stops it"
+                f"{best}, proven lower bound {shown})"
             )
         point, (e_lo, e_hi) = got["point"], got["value"]
         name = self.parameter

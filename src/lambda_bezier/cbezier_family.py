@@ -389,8 +389,7 @@ class CBezierFamily:
         end_lo, end_hi = opt.end_bounds(lo), opt.end_bounds(hi)
         boundary = ""
         if got["limit"] or point <= end_lo[1]:
-            shown = lo if got["limit"] else float(point)
-            boundary = f"{name} = {shown} (lower end" + (
+            boundary = f"{name} = {lo} (lower end" + (
                 ", excluded: not attained; the limit there)" if got["limit"] else ")"
             )
         elif point >= end_hi[0]:

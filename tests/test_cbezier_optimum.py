@@ -140,3 +140,20 @@ def test_a_range_holding_a_singular_point_is_refused(tmp_path):
     fam = lb.load_family(path)
     with pytest.raises(ValueError, match=r"holds a singular point of the family \(alpha = "):
         lb.optimal_parameters(P, 2, family=fam)
+
+
+def test_cli_optimal_lambda_says_certified(capsys):
+    import json
+
+    from lambda_bezier.cli import main
+
+    args = ["optimal-lambda", "--family", str(DATA / "c_bezier_cubic.toml"), "-k", "2"]
+    pts = ["0,0", "1,2", "3,2.5", "4,0.5"]
+    assert main([*args, *pts]) == 0
+    out = capsys.readouterr().out
+    assert "optimal alpha   3.141592653589793" in out
+    assert "on the boundary alpha = pi (upper end)" in out and "method          certified" in out
+    assert main([*args, "--json", *pts]) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert report["method"] == "certified" and report["boundary"] == "alpha = pi (upper end)"
+    assert Fraction(report["lower_bound"]) <= Fraction(report["energy"])

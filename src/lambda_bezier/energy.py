@@ -30,8 +30,8 @@ from .parameter_optimum import (
     _optimal_atoms,
     _optimal_indexed,
     _optimal_several,
+    _own_optimum,
     atom_energy_form,
-    own_optimum,
 )
 
 _energy = generated("energy")
@@ -476,7 +476,7 @@ def optimal_lambda(
     own = getattr(family, "energy_minimum", None)
     if own is not None:  # a family that answers for itself (certified over its range)
         k = _check_order(k)
-        found = own_optimum(own(points, k), k, family)
+        found = _own_optimum(own(points, k), k, family)
         return _own_optimal_lambda(found, family, val.flag(clamp, "clamp"))
     data = _family_data(family)
     k = _check_order(k)
@@ -733,7 +733,7 @@ def optimal_parameters(
     own = getattr(family, "energy_minimum", None)
     if own is not None:  # a family that answers for itself (certified over its range)
         k = _check_order(k)
-        return own_optimum(own(points, k), k, family)
+        return _own_optimum(own(points, k), k, family)
     atom = getattr(family, "atom_data", None)
     if atom is not None:
         return _optimal_atoms(points, _check_order(k), atom)

@@ -72,7 +72,7 @@ class OptimalParameters:
         return self.values[name]
 
 
-def own_optimum(got: dict[str, Any], k: int, family: Any) -> OptimalParameters:
+def _own_optimum(got: dict[str, Any], k: int, family: Any) -> OptimalParameters:
     """OptimalParameters from a family's own certified minimum over its range (a family
     whose parameter is the length of the domain: CBezierFamily.energy_minimum)."""
     return OptimalParameters(

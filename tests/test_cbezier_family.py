@@ -324,10 +324,13 @@ def test_runtime_refusals(family):
 
 
 def test_optimal_alpha_is_the_least_energy(family):
+    """fam.optimal_alpha is the certified optimum as a dict (tests/test_cbezier_optimum.py
+    checks it against quadrature); here against the runtime's own energy on a grid."""
     got = family.optimal_alpha(P, 1)
     grid = [family.energy(P, x, 1) for x in np.linspace(0.5, math.pi, 400)]
     assert got["energy"] <= min(grid) + 1e-12
     assert got["where"] == "upper end" and got["alpha"] == math.pi
+    assert got["energy"] - float(got["lower_bound"]) <= 1e-12 * got["energy"]
 
 
 def test_derive_cli_prints_verdicts(tmp_path, capsys):
@@ -342,20 +345,14 @@ def test_derive_cli_prints_verdicts(tmp_path, capsys):
 
 
 def test_shared_functions_say_where_the_family_api_is(family):
-    """The shared functions that do not take such a family yet name it and point to its own
-    API (before: 'unknown family' for a family load_family had just returned)."""
+    """A shared function that takes polynomial families only names such a family and points
+    to the functions that take it (before: 'unknown family' for a family load_family had just
+    returned). optimal_parameters, join, CompositeCurve, evaluate_many and to_json take it
+    (tests/test_cbezier_optimum.py, tests/test_cbezier_shared.py)."""
     import lambda_bezier as lb
 
-    curve = family.curve(P, alpha=1.0)
-    calls = {
-        "optimal_parameters": lambda: lb.optimal_parameters(P, 2, family=family),
-        "optimal_lambda": lambda: lb.optimal_lambda(P, 2, family=family),
-        "join": lambda: lb.join(curve, "C1", 3),
-        "CompositeCurve": lambda: lb.CompositeCurve([curve]),
-    }
-    for name, call in calls.items():
-        with pytest.raises(TypeError) as info:
-            call()
-        text = str(info.value)
-        assert "'c_bezier_cubic' has its parameter alpha in the domain" in text, name
-        assert "fam.optimal_alpha(points, k)" in text, name
+    with pytest.raises(TypeError) as info:
+        lb.energy_coefficients(P, 2, family=family)
+    text = str(info.value)
+    assert "'c_bezier_cubic' has its parameter alpha in the domain" in text
+    assert "optimal_parameters" in text and "fam.curve(points, alpha=...)" in text

@@ -34,8 +34,15 @@ Number = Fraction | float
 
 
 def involved(curve: object, family: object) -> bool:
-    """Whether the first curve or the target family is a family of atoms."""
-    return isinstance(curve, AtomCurve) or getattr(family, "atom_data", None) is not None
+    """Whether the first curve or the target family is a family of atoms, or one whose
+    curves give their end derivatives and whose start coefficients are numeric (a family
+    with its parameter in the domain: `end_derivatives`, `start_coefficients`)."""
+    return (
+        isinstance(curve, AtomCurve)
+        or getattr(family, "atom_data", None) is not None
+        or hasattr(curve, "end_derivatives")
+        or hasattr(family, "start_coefficients")
+    )
 
 
 # family name, variables, joins table of its degree, that table valid, joins table in closed
@@ -47,6 +54,8 @@ def join_side(thing: Any, side: int, degree: int, values: Any = None) -> Side:
     """One curve of a join as the derived weights name it: a curve (side 1) or the new
     segment's family or class (side 2) with its parameter `values` (a dict by name)."""
     letter = "n" if side == 1 else "m"
+    if hasattr(thing, "end_derivatives") or hasattr(thing, "start_coefficients"):
+        return str(thing.family if side == 1 else thing.name), {letter: degree}, None, False, None
     if isinstance(thing, AtomCurve) or getattr(thing, "atom_data", None) is not None:
         fam = thing.family_object if isinstance(thing, AtomCurve) else thing
         data = fam.atom_data
@@ -169,6 +178,9 @@ def _end_derivatives(curve: Any, orders: int) -> list[list[Number]]:
     if isinstance(curve, AtomCurve):
         hi = curve.domain[1]
         return [[float(v) for v in curve.derivative(hi, r)] for r in range(orders + 1)]
+    if hasattr(curve, "end_derivatives"):
+        got: list[list[Number]] = curve.end_derivatives(orders)
+        return got
     e = _join_engine.end_coefficients(curve, orders)  # coefficient of P_{n-j} in C^(r)(1)
     pts = curve.control_points()
     n = curve.degree
@@ -197,11 +209,11 @@ def join(
     named: dict[str, object],
 ) -> Any:
     """joins.join for the cases `involved` names (see the module docstring)."""
-    if not isinstance(curve, AtomCurve | Curve):
+    if not isinstance(curve, AtomCurve | Curve) and not hasattr(curve, "end_derivatives"):
         raise ValueError(f"curve must be a lambda_bezier curve, got {type(curve).__name__}")
     target: Any = family
     if family is None:
-        target = curve.family_object if isinstance(curve, AtomCurve) else type(curve)
+        target = type(curve) if isinstance(curve, Curve) else curve.family_object
     degree = val.integer(degree, "degree")
     exact_inputs = not any(isinstance(x, float) for x in (alpha, d))
     # the new segment's start coefficients and its constructor
@@ -226,6 +238,18 @@ def join(
 
         def make(points: PointsLike) -> Any:
             return target.curve(points, params=values, check_range=check_range)
+    elif hasattr(target, "start_coefficients"):  # numeric start derivatives (C-Bézier)
+        value = target.parameter_value(lam, params, named)
+        exact_inputs = False
+        if degree != target.degree:
+            raise ValueError(
+                f"degree {degree} is not supported for {target.name}: degree {target.degree}"
+            )
+        start = target.start_coefficients(value, order)
+        second_side = join_side(target, 2, degree)
+
+        def make(points: PointsLike) -> Any:
+            return target.curve(points, **{target.parameter: value})
     else:
         if getattr(target, "several", None) is not None:  # polynomial, several parameters
             if lam is not None and "lam" in target.parameters:

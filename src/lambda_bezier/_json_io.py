@@ -40,7 +40,7 @@ def _segments(obj: object) -> tuple[Curve, ...]:
 
     if isinstance(obj, CompositeCurve):
         return obj.segments  # type: ignore[return-value]  # AtomCurves have what JSON reads
-    if isinstance(obj, Curve | AtomCurve):
+    if isinstance(obj, Curve | AtomCurve) or hasattr(obj, "end_derivatives"):
         return (obj,)  # type: ignore[return-value]  # an AtomCurve has what JSON reads
     raise TypeError(
         "expected a lambda_bezier curve, RationalBezierCurve or CompositeCurve, got "
@@ -92,8 +92,18 @@ def _parameters_out(curve: Curve) -> dict[str, Any] | None:
 
 
 def _definitions(curves: Sequence[Curve]) -> dict[str, Any]:
-    """{name: {definition_digest, definition}} of the own families among `curves`."""
-    return class_definitions([type(c) for c in curves])
+    """{name: {definition_digest, definition}} of the own families among `curves` (a curve
+    whose family is not its class's, a C-Bézier curve, names it itself)."""
+    out = class_definitions([type(c) for c in curves])
+    for c in curves:
+        family = getattr(c, "family_object", None)
+        if getattr(type(c), "family_object", None) is None and hasattr(family, "digest"):
+            entry = {"definition_digest": family.digest, "definition": family.table}  # type: ignore[union-attr]
+            if out.setdefault(family.name, entry) != entry:  # type: ignore[union-attr]
+                raise ValueError(
+                    f"two different definitions of the family {family.name!r} in one document"  # type: ignore[union-attr]
+                )
+    return out
 
 
 def class_definitions(classes: Sequence[type[Curve]]) -> dict[str, Any]:
@@ -206,6 +216,18 @@ def _curve_from(
     cls = own[family] if family in own else FAMILIES[family]
     lam = data.get("lambda")
     atom_family = getattr(getattr(cls, "family_object", None), "atom_data", None)
+    if hasattr(getattr(cls, "family_object", None), "start_coefficients"):  # C-Bézier
+        if lam is not None:
+            raise ValueError(f"{where}.lambda must be null for a {family} curve (use parameters)")
+        given = data.get("parameters")
+        own_fam: Any = cls.family_object  # type: ignore[attr-defined]
+        if not isinstance(given, dict) or set(given) != {own_fam.parameter}:
+            raise ValueError(
+                f"{where}.parameters must be an object {{{own_fam.parameter!r}: value}} for "
+                f"{family}"
+            )
+        value = _number_in(given[own_fam.parameter], f"{where}.parameters")
+        return own_fam.curve(rows, **{own_fam.parameter: value})  # type: ignore[no-any-return]
     if atom_family is not None:  # a trigonometric, hyperbolic or mixed family: parameters
         if lam is not None:
             raise ValueError(f"{where}.lambda must be null for a {family} curve (use parameters)")
@@ -257,8 +279,8 @@ def _segment_from(
 
     curve: object = _curve_from(data, where, check_range, own)
     # _curve_from offers no rational curve here; a family of atoms gives an AtomCurve
-    assert isinstance(curve, Curve | AtomCurve)
-    return curve
+    assert isinstance(curve, Curve | AtomCurve) or hasattr(curve, "end_derivatives")
+    return curve  # type: ignore[return-value]  # a C-Bézier curve has what JSON reads
 
 
 def _load_document(text: str) -> dict[str, Any]:
@@ -309,8 +331,9 @@ def _given_families(
     items = list(family) if isinstance(family, list | tuple) else [family]
     out: dict[str, Family | IndexedFamily] = {}
     for item in items:
-        if isinstance(item, Family | IndexedFamily):
-            fam = item
+        fam: Any
+        if isinstance(item, Family | IndexedFamily) or hasattr(item, "start_coefficients"):
+            fam = item  # a CBezierFamily has name, digest and curve_class too
         elif isinstance(item, str | Path):
             path = Path(item)
             if path.name.endswith(".derived.json"):

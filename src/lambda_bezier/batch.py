@@ -96,6 +96,10 @@ def evaluate_many(
         exact = family.exact_values(given, val.flag(check_range, "check_range"))  # type: ignore[attr-defined]
         values = atom_evaluate_many(family, points, t, k, exact, extrapolate)
         return values if out is None else _into(out, values, points, t)
+    own = getattr(family, "evaluate_curves", None)
+    if own is not None:  # a family with its parameter in the domain (C-Bézier): its own
+        values = own(points, t, k, lam, params, val.flag(extrapolate, "extrapolate"))
+        return values if out is None else _into(out, values, points, t)
     if hasattr(family, "by_degree"):  # an indexed family (lam(i)): its degree's own Family
         shape = np.shape(val.real_array(points, "control points"))
         if len(shape) != 3:

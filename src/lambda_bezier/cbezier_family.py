@@ -96,6 +96,14 @@ class RatFn:
         return n / d, rel
 
 
+def _exact(terms: list[Any]) -> dict[tuple[int, int, int], Fraction]:
+    """Terms already checked by _terms, as {(i, j, k): Fraction}."""
+    out: dict[tuple[int, int, int], Fraction] = {}
+    for (i, j, k), v in terms:
+        out[(i, j, k)] = out.get((i, j, k), Fraction(0)) + Fraction(v)
+    return out
+
+
 def _ratfn(raw: object, where: str) -> RatFn:
     if not isinstance(raw, dict) or set(raw) != {"num", "den"}:
         raise CBezierError(f"{where}: a coefficient is {{'num': [...], 'den': [...]}}")
@@ -134,6 +142,12 @@ class CBezierFamily:
                 int(k): [[_ratfn(x, f"{where}: energies") for x in row] for row in mat]
                 for k, mat in doc["energies"].items()
             }
+            # the same entries exactly, for the certified optimum (_cbezier_optimum)
+            self._exact_energies = {
+                int(k): [[(_exact(x["num"]), _exact(x["den"])) for x in row] for row in mat]
+                for k, mat in doc["energies"].items()
+            }
+            self.range_ends = (str(rng["lo"]), str(rng["hi"]))
             self.verdicts = doc["verdicts"]
             self.functions = doc["functions"]
         except (KeyError, TypeError, ValueError) as exc:
@@ -145,14 +159,18 @@ class CBezierFamily:
         where_param = "domain" if self.form == "domain" else "frequency"
         self.elsewhere = (
             f"has its parameter {self.parameter} in the {where_param} "
-            "(C-Bézier): the shared functions (optimal_parameters, optimal_lambda, "
-            f"evaluate_many, join, CompositeCurve) do not take it yet; its curves come from "
-            f"fam.curve(points, "
-            f"{self.parameter}=...), and fam.optimal_alpha(points, k) gives a "
-            "sampled, not certified, energy optimum"
+            "(C-Bézier): this function takes polynomial families only; optimal_parameters, "
+            "optimal_lambda, evaluate_many(..., params={...}), join(..., params={...}), "
+            "CompositeCurve and to_json take it, and its curves come from "
+            f"fam.curve(points, {self.parameter}=...)"
         )
         self.title = title
         self.definition = table
+        # what a curve's JSON form embeds, as for every family defined by data (_json_io)
+        from ._family_file import definition_digest
+
+        self.table = table
+        self.digest = definition_digest(table)
         self.powers = max((m for k, m in self.atoms if k == "pow"), default=0)
         self.harmonics = max((m for k, m in self.atoms if k != "pow"), default=0)
 
@@ -224,42 +242,185 @@ class CBezierFamily:
         """E_k of the curve at alpha (CBezierCurve.energy)."""
         return self.curve(points, alpha=alpha).energy(k)
 
-    def optimal_alpha(self, points: PointsLike, k: int, *, tol: float = 1e-12) -> dict[str, Any]:
-        """The alpha of the box with the least E_k: the best of a grid of 2049 admissible
-        points (those whose coefficients meet MAX_COEFFICIENT_ERROR), then golden-section
-        search in the bracket around it to `tol` in alpha. Numeric, not certified: E_k is
-        smooth in alpha, and a minimum narrower than the grid's step could be missed."""
-        lo = self.lo if self.lo_closed else self.lo + (self.hi - self.lo) * 1e-3
-        hi = self.hi if self.hi_closed else self.hi - (self.hi - self.lo) * 1e-9
-        grid = np.linspace(lo, hi, 2049)
-        values = []
-        for x in grid:
-            try:
-                values.append(self.energy(points, float(x), k))
-            except ValueError:
-                values.append(math.inf)
-        best = int(np.argmin(values))
-        if (best == 0 and self.lo_closed) or (best == len(grid) - 1 and self.hi_closed):
-            x = float(grid[best])  # a closed end of the box: E_k there is the least sampled
-            on = "lower end" if best == 0 else "upper end"
-            return {self.parameter: x, "energy": self.energy(points, x, k), "where": on}
-        a = float(grid[max(best - 1, 0)])
-        b = float(grid[min(best + 1, len(grid) - 1)])
-        ratio = (math.sqrt(5) - 1) / 2
-        x1, x2 = b - ratio * (b - a), a + ratio * (b - a)
-        f1, f2 = self.energy(points, x1, k), self.energy(points, x2, k)
-        while b - a > tol * max(1.0, abs(b)):
-            if f1 <= f2:
-                b, x2, f2 = x2, x1, f1
-                x1 = b - ratio * (b - a)
-                f1 = self.energy(points, x1, k)
-            else:
-                a, x1, f1 = x1, x2, f2
-                x2 = a + ratio * (b - a)
-                f2 = self.energy(points, x2, k)
-        x = (a + b) / 2
-        on = "lower end" if best == 0 else "upper end" if best == len(grid) - 1 else "interior"
-        return {self.parameter: x, "energy": self.energy(points, x, k), "where": on}
+    def evaluate_curves(
+        self,
+        points: npt.ArrayLike,
+        t: ParamLike,
+        k: int,
+        lam: object,
+        params: object,
+        extrapolate: bool,
+    ) -> np.ndarray:
+        """batch.evaluate_many for this family: m curves (m, n+1, d) at one alpha
+        (``params={"alpha": ...}`` or ``lam=...``), the k-th derivative in the family's own
+        parameter at every t, (m, T, d): the curves' coefficients over the centred atoms in one
+        product, the atoms evaluated once on the shared t."""
+        alpha = self.parameter_value(lam, params, {})
+        arr = val.real_array(points, "control points")
+        if arr.ndim != 3:
+            raise ValueError(f"control points must have shape (m, n+1, d), got shape {arr.shape}")
+        m, size, dim = arr.shape
+        val.check_point_shape((size, dim), family=self.name, degrees=(self.degree,))
+        if not np.isfinite(arr).all():
+            idx = np.argwhere(~np.isfinite(arr))[0]
+            raise ValueError(f"curve {idx[0]}, control point {idx[1]} has a non-finite coordinate")
+        order = val.as_order(k)
+        probe = CBezierCurve(self, arr[0], alpha)  # its basis at alpha; checks t below
+        tau, scalar = probe._tau(t, extrapolate)
+        scale = val.power_of_two_scale(arr)
+        with val.overflow_allowed():
+            pt = np.ascontiguousarray(arr.transpose(1, 0, 2)).reshape(size, m * dim) / scale
+            own = probe._own_atoms(probe.basis_coefficients)  # (n+1, A)
+            coeffs = probe._centring(own.T @ pt)  # (A, m·d)
+            for _ in range(order):
+                coeffs = probe._d @ coeffs
+            sh = probe.shape
+            out = ak.evaluate(coeffs, tau, sh.omega0, sh.powers, sh.harmonics, sh.hyperbolic)
+            out = (out.T.reshape(tau.size, m, dim).transpose(1, 0, 2)) * scale
+        val.finite_result(out, "p(t)" if order == 0 else f"the derivative of order {order}")
+        result: np.ndarray = out[:, 0] if scalar else out
+        return result
+
+    @property
+    def curve_class(self) -> type[CBezierCurve]:
+        """CBezierCurve with this family as its class's `family_object` (what from_json
+        builds a curve of this family through)."""
+        return type(f"{self.name}Curve", (CBezierCurve,), {"family_object": self})
+
+    def start_coefficients(self, alpha: object, orders: int) -> list[list[float]]:
+        """s[r][j] = b_j^(r)(0) in the family's own parameter at alpha, r = 0..orders (what a
+        join into this family solves with: _atom_joins)."""
+        x = self.check_alpha(alpha)
+        basis, _ = self.basis_coefficients(x)
+        rate = x if self.form == "unit" else 1.0  # d/du = alpha d/dt on [0, 1]
+        cycle = {
+            "cos": (1, 0, -1, 0),
+            "sin": (0, 1, 0, -1),
+            "cosh": (1, 0, 1, 0),
+            "sinh": (0, 1, 0, 1),
+        }
+        rows = []
+        for r in range(orders + 1):
+            at = []
+            for kind, m in self.atoms:  # the r-th derivative in t of each atom at t = 0
+                if kind == "pow":
+                    at.append(float(math.factorial(m)) if r == m else 0.0)
+                else:
+                    name = (kind + "h") if self.hyperbolic else kind
+                    at.append(float(m) ** r * cycle[name][r % 4])
+            rows.append([float(v) * rate**r for v in basis @ np.array(at)])
+        return rows
+
+    def parameter_value(self, lam: object, params: object, named: dict[str, object]) -> float:
+        """The new segment's alpha in a join: ``params={"alpha": ...}`` or join's ``lam``
+        (join's own ``alpha`` is the G-joint constant)."""
+        given: dict[str, object] = {}
+        if params is not None:
+            if not isinstance(params, dict):
+                raise TypeError("params must be a dict {name: value}")
+            given.update(params)
+        given.update(named)
+        if lam is not None:
+            if self.parameter in given:
+                raise TypeError(f"{self.parameter} is given twice; give it once")
+            given[self.parameter] = lam
+        unknown = sorted(set(given) - {self.parameter})
+        if unknown:
+            raise TypeError(f"{unknown[0]!r} is not a parameter of {self.name!r}")
+        if self.parameter not in given:
+            raise ValueError(
+                f"a {self.name} segment needs its parameter: params={{{self.parameter!r}: ...}} "
+                "(or lam=...; join's own alpha is the G-joint constant)"
+            )
+        return self.check_alpha(given[self.parameter])
+
+    def energy_minimum(self, points: PointsLike, k: int) -> dict[str, Any]:
+        """The certified least E_k over the range, as {"values", "energy", "boundary",
+        "lower_bound", "method"} (what `optimal_parameters` answers for this family): E_k in
+        the family's own parameter (t on [0, alpha]; u on [0, 1] for a family written on
+        [0, 1], that is alpha**(2k-1) times the energy in t), its
+        minimum certified by branch and bound on Taylor models of the document's exact
+        Gram entries (`_cbezier_optimum`): `lower_bound` is a proven lower bound over the
+        whole range, within 1e-12 (relative to max(1, E)) of `energy`, which is E_k at
+        `values` to about 2^-200. Certified, not exact: the entries are in
+        Q(alpha, sin alpha, cos alpha)."""
+        from . import _cbezier_optimum as opt
+
+        if isinstance(k, bool) or not isinstance(k, int) or k not in self._exact_energies:
+            raise ValueError(f"k must be one of {sorted(self._exact_energies)}, got {k!r}")
+        pts = val.as_points(points, family=self.name, degrees=(self.degree,))
+        given = val.exact_rows(points)
+        rows = (
+            [tuple(Fraction(v) for v in row) for row in given]
+            if given is not None
+            else [tuple(Fraction(float(v)) for v in row) for row in pts]
+        )
+        extra = 2 * k - 1 if self.form == "unit" else 0
+        energy = opt.energy_of(self._exact_energies[k], rows, self.hyperbolic, extra)
+        if not energy.groups:
+            raise ValueError(
+                f"{self.parameter} has no effect on E_{k} of this polygon (E_{k} = 0 for every "
+                f"{self.parameter}), so no optimal {self.parameter} exists"
+            )
+        inside = [
+            r
+            for r in self.verdicts.get("singular_points", [])
+            if str(r.get("where", "")).startswith("inside")
+        ]
+        if inside:  # E_k has a pole there (or is not defined): no minimum over the range
+            raise ValueError(
+                f"optimal_parameters: the range {self.range_text} of {self.parameter} holds a "
+                f"singular point of the family ({self.parameter} = {inside[0]['at']}: "
+                f"{inside[0]['denominator']} = 0); choose a range without it"
+            )
+        lo, hi = self.range_ends
+        got = opt.certified_minimum(energy, lo, hi, self.lo_closed, self.hi_closed)
+        if not got["certified"]:
+            best = float(got["value"][1]) if got["value"] else math.nan
+            proven = got["lower"]
+            shown = f"{float(proven):.17g}" if abs(proven) < 1e300 else "none"
+            raise ValueError(
+                f"optimal_parameters: the least E_{k} over {self.parameter} in "
+                f"{self.range_text} was not certified within {opt.BUDGET} boxes (best "
+                f"{best}, proven lower bound {shown})"
+            )
+        point, (e_lo, e_hi) = got["point"], got["value"]
+        name = self.parameter
+        end_lo, end_hi = opt.end_bounds(lo), opt.end_bounds(hi)
+        boundary = ""
+        if got["limit"] or point <= end_lo[1]:
+            boundary = f"{name} = {lo} (lower end" + (
+                ", excluded: not attained; the limit there)" if got["limit"] else ")"
+            )
+        elif point >= end_hi[0]:
+            boundary = f"{name} = {hi} (upper end" + (
+                ", excluded: not attained; the limit there)" if got["limit"] else ")"
+            )
+        return {
+            "values": {name: float(point)},
+            "energy": float((e_lo + e_hi) / 2),
+            "boundary": boundary,
+            "lower_bound": got["lower"],
+            "method": "certified",
+        }
+
+    def optimal_alpha(self, points: PointsLike, k: int) -> dict[str, Any]:
+        """{parameter: value, "energy", "where", "lower_bound"}: `energy_minimum`
+        as a dict ("where" is "interior", "lower end" or "upper end")."""
+        r = self.energy_minimum(points, k)
+        where = (
+            "interior"
+            if not r["boundary"]
+            else "lower end"
+            if "(lower end" in r["boundary"]
+            else "upper end"
+        )
+        return {
+            self.parameter: r["values"][self.parameter],
+            "energy": r["energy"],
+            "where": where,
+            "lower_bound": r["lower_bound"],
+        }
 
 
 class CBezierCurve:
@@ -342,6 +503,80 @@ class CBezierCurve:
                 out[isn] += ca * row
         return out
 
+    lam = None  # no λ: its parameter is the domain's (JSON writes it under "parameters")
+
+    def atom_parameter_values(self) -> dict[str, float]:
+        """{parameter: alpha}, as the curves of families in several parameters give theirs."""
+        return {self.family_object.parameter: self.alpha}
+
+    # ------------------------------------------------------------------ the rational form
+    def _rational_map(self) -> tuple[float, float, float]:
+        """(kind 0 trig / 1 hyperbolic, a, b) of the map from s in [0, 1] to the centred angle
+        theta = rate (x - mid): trig v = tan(theta/2) = a (2s - 1) with a = tan(alpha/4);
+        hyperbolic z = e^theta = a + s (b - a)."""
+        fam = self.family_object
+        if fam.powers > 0:
+            raise ValueError(
+                f"the {self.family} family has no rational Bézier form: its space has t "
+                "(a power of t is not a rational function of tan(t/2) or of e^t)"
+            )
+        half = self._rate * self.domain[1] / 2  # alpha/2 in both forms
+        if fam.hyperbolic:
+            return 1.0, math.exp(-half), math.exp(half)
+        if not half < math.pi:
+            raise ValueError(f"no rational form over an angle of 2*pi or more ({2 * half})")
+        return 0.0, math.tan(half / 2), 0.0
+
+    def t_of_s(self, s: ParamLike) -> np.ndarray | float:
+        """The family's own parameter at the rational form's s in [0, 1]."""
+        kind, a, b = self._rational_map()
+        ss = np.asarray(s, dtype=float)
+        theta = 2 * np.arctan(a * (2 * ss - 1)) if kind == 0 else np.log(a + ss * (b - a))
+        out = self._mid + theta / self._rate
+        return float(out) if out.ndim == 0 else out
+
+    def s_of_t(self, t: ParamLike) -> np.ndarray | float:
+        """The rational form's s at the family's own parameter t."""
+        kind, a, b = self._rational_map()
+        theta = self._rate * (np.asarray(t, dtype=float) - self._mid)
+        out = (np.tan(theta / 2) / a + 1) / 2 if kind == 0 else (np.exp(theta) - a) / (b - a)
+        return float(out) if np.ndim(out) == 0 else out
+
+    def to_rational_bezier(self) -> Any:
+        """The curve as a rational Bézier curve in s (`t_of_s`, `s_of_t`), for a family whose
+        space has no power of t (1, cos mt, sin mt; or cosh, sinh): of degree 2M (M the
+        highest harmonic), through v = tan(theta/2) (theta the angle about the middle of
+        the domain) or z = e^theta, affine in s. The curve is N(s)/D(s) with
+        D = (1 + v^2)^M or z^M; its weights are D's Bernstein coefficients and its points
+        N's over them, from N and D at 2M + 1 Chebyshev points of s: **floats** (alpha's
+        sin, cos and exp are irrational in general), not exact."""
+        from math import comb
+
+        from .rational import RationalBezierCurve
+
+        kind, a, b = self._rational_map()
+        n = 2 * self.family_object.harmonics
+        nodes = (1 - np.cos(np.pi * (np.arange(n + 1) + 0.5) / (n + 1))) / 2
+        if kind == 0:
+            den = (1 + (a * (2 * nodes - 1)) ** 2) ** (n // 2)
+        else:
+            den = (a + nodes * (b - a)) ** (n // 2)
+        values = np.atleast_2d(self.evaluate(np.clip(self.t_of_s(nodes), *self.domain)))
+        bern = np.array(
+            [[comb(n, i) * x**i * (1 - x) ** (n - i) for i in range(n + 1)] for x in nodes]
+        )
+        weights = np.linalg.solve(bern, den)
+        if not np.all(weights > 0):
+            raise ValueError(f"the rational form at {self.alpha} has weights that are not positive")
+        numer = np.linalg.solve(bern, values * den[:, None])
+        return RationalBezierCurve(numer / weights[:, None], weights / weights[0])
+
+    def end_derivatives(self, orders: int) -> list[list[float]]:
+        """The curve's derivatives of orders 0..orders at the end of its domain (a join from
+        this curve: _atom_joins)."""
+        hi = self.domain[1]
+        return [[float(v) for v in self.derivative(hi, r)] for r in range(orders + 1)]
+
     # ------------------------------------------------------------------ evaluation
     def _tau(self, t: ParamLike, extrapolate: bool) -> tuple[np.ndarray, bool]:
         tt, scalar, small, big = val.parameter_range(t)
@@ -379,6 +614,18 @@ class CBezierCurve:
         with np.errstate(divide="ignore", invalid="ignore"):
             kappa = np.where(speed > 0, cross / speed**3, np.nan)
         return float(kappa[0]) if np.ndim(np.asarray(t, dtype=float)) == 0 else kappa
+
+    def _curvature(self, t: ParamLike, extrapolate: bool = False) -> np.ndarray:
+        """The curvature as an array, signed in 2D, NaN where C'(t) = 0 (joint reports)."""
+        from .hazmat import rational_kernels as rk
+
+        d1 = self.derivative(t, 1, extrapolate=extrapolate)
+        d2 = self.derivative(t, 2, extrapolate=extrapolate)
+        return rk.curvature_from_derivatives(d1, d2)
+
+    def control_points(self) -> list[tuple[float, ...]]:
+        """The control points as tuples of floats."""
+        return [tuple(float(v) for v in row) for row in self.points]
 
     def energy(self, k: int) -> float:
         """E_k = int |r^(k)|^2 in the family's own parameter (t on [0, alpha], or u on [0, 1]:

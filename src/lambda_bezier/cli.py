@@ -322,9 +322,11 @@ def _optimal_lambda(args: argparse.Namespace) -> int:
             getattr(family, "atom_data", None) is not None
             or getattr(family, "several", None) is not None
             or hasattr(family, "by_degree")
+            or hasattr(family, "energy_minimum")
         ):
-            # several (or indexed) parameters, or a trigonometric/hyperbolic/mixed family:
-            # every parameter by name over the box (optimal_parameters; --clamp is implied)
+            # several (or indexed) parameters, a trigonometric/hyperbolic/mixed family, or
+            # one with its parameter in the domain (C-Bézier: certified): every parameter by
+            # name over the box (optimal_parameters; --clamp is implied)
             return _optimal_parameters(args, points, family)
         result = optimal_lambda(points, args.energy, family, clamp=args.clamp)
     except ValueError as exc:
@@ -431,6 +433,7 @@ def _optimal_parameters(args: argparse.Namespace, points: list[Any], family: Any
         "free_inside": r.free_inside,
         "boundary": r.boundary,
         "lower_bound": None if r.lower_bound is None else str(r.lower_bound),
+        "method": r.method,
     }
     if args.json:
         print(json.dumps(report, indent=2, ensure_ascii=False))
@@ -444,10 +447,18 @@ def _optimal_parameters(args: argparse.Namespace, points: list[Any], family: Any
     lines.append(f"E_{k} there      {r.energy}  ≈ {float(r.energy):.12g}")
     lines.append(
         "where           "
-        + ("the free minimum, inside the box" if r.free_inside else f"on the boundary {r.boundary}")
+        + (
+            "the free minimum, inside the box"
+            if r.free_inside
+            else f"on the boundary {r.boundary}"
+            if r.boundary
+            else "inside the range"
+        )
     )
     if r.lower_bound is not None:
         lines.append(f"proven bound    E_{k} >= {float(r.lower_bound):.12g} on the box")
+    if r.method != "exact":
+        lines.append(f"method          {r.method}: the least E_{k} is within 1e-12 of E_{k} there")
     print("\n".join(lines))
     return 0
 

@@ -47,6 +47,14 @@ NAMES = ("C0", "C1", "C2", "G1", "G2")
 Segment = Curve | AtomCurve  # a polynomial curve on [0, 1], or one of an atom family
 
 
+def _own_domain(seg: object) -> bool:
+    """Whether a segment keeps its own domain: an AtomCurve, or a curve whose family has its
+    parameter in the domain (it gives `end_derivatives`: a C-Bézier curve on [0, alpha])."""
+    return isinstance(seg, AtomCurve) or (
+        not isinstance(seg, Curve) and hasattr(seg, "end_derivatives")
+    )
+
+
 @dataclass(frozen=True)
 class JointReport:
     r"""The continuity measured at the joint between segment `index` and `index + 1`
@@ -212,11 +220,20 @@ def measure(
 
 def _span(seg: Segment) -> tuple[float, float]:
     """The interval of the segment's own t: [0, 1], or an AtomCurve's domain."""
-    return seg.domain if isinstance(seg, AtomCurve) else (0.0, 1.0)
+    if _own_domain(seg):
+        lo, hi = seg.domain  # type: ignore[union-attr]  # an AtomCurve or a C-Bézier curve
+        return (float(lo), float(hi))
+    return (0.0, 1.0)
 
 
 def _no_atom(seg: Segment, index: int) -> Curve:
-    """The segment, refused when it is an AtomCurve (several parameters, not one λ)."""
+    """The segment, refused when it is an AtomCurve (several parameters, not one λ) or a
+    C-Bézier curve (its parameter is its domain's length)."""
+    if _own_domain(seg) and not isinstance(seg, AtomCurve):
+        raise ValueError(
+            f"segment {index} is a curve of the {seg.family} family: its parameter is in the "
+            "domain, not a lam; make the segment anew with its family's curve(...)"
+        )
     if isinstance(seg, AtomCurve):
         raise ValueError(
             f"segment {index} is a curve of the {seg.family} family: it has parameters "
@@ -238,6 +255,19 @@ def _rejoin(
     degree, λ (an AtomCurve: its parameters) unless given, and the same trailing points)."""
     keep = right.control_points()[joint.order + 1 :]
     rest = keep if keep else np.zeros((0, right.dimension))
+    if _own_domain(right) and not isinstance(right, AtomCurve):  # C-Bézier: its parameter
+        fam = right.family_object  # type: ignore[attr-defined]
+        return join(
+            left,  # type: ignore[arg-type]
+            joint.continuity,
+            right.degree,
+            None,
+            joint.alpha,
+            joint.d,
+            rest=rest,
+            family=fam,
+            params={fam.parameter: right.alpha},  # type: ignore[attr-defined]
+        )
     if isinstance(right, AtomCurve):
         return join(  # an AtomCurve, made by _atom_joins
             left,  # type: ignore[arg-type]  # join hands atom curves to _atom_joins
@@ -288,11 +318,14 @@ class CompositeCurve:
         segments: Sequence[Segment] | Segment,
         joints: Sequence[Joint | str | None] | None = None,
     ) -> None:
-        segs = tuple(segments) if not isinstance(segments, Curve | AtomCurve) else (segments,)
+        one = isinstance(segments, Curve | AtomCurve) or _own_domain(segments)
+        segs: tuple[Segment, ...] = (
+            (segments,) if one else tuple(segments)  # type: ignore[assignment, arg-type]
+        )
         if not segs:
             raise ValueError("a composite curve needs at least one segment")
         for idx, seg in enumerate(segs):
-            if not isinstance(seg, Curve | AtomCurve):
+            if not isinstance(seg, Curve | AtomCurve) and not _own_domain(seg):
                 told = elsewhere(seg)
                 if told is not None:
                     raise TypeError(f"segment {idx}: {told}")
@@ -316,7 +349,7 @@ class CompositeCurve:
         self.segments: tuple[Segment, ...] = segs
         self.joints: tuple[Joint | None, ...] = specs
         # where each segment starts in u, and its own domain (polynomial segments: [i, i + 1])
-        self._atoms = any(isinstance(seg, AtomCurve) for seg in segs)
+        self._atoms = any(_own_domain(seg) for seg in segs)
         spans = [_span(seg) for seg in segs]
         self._own = np.array(spans, dtype=float).reshape(len(segs), 2)
         lengths = self._own[:, 1] - self._own[:, 0]

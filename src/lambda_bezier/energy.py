@@ -30,6 +30,7 @@ from .parameter_optimum import (
     _optimal_atoms,
     _optimal_indexed,
     _optimal_several,
+    _own_optimum,
     atom_energy_form,
 )
 
@@ -472,6 +473,11 @@ def optimal_lambda(
     atom = getattr(family, "atom_data", None)
     if atom is not None:  # a trigonometric, hyperbolic or mixed family of one parameter
         return _optimal_lambda_atoms(points, _check_order(k), atom, val.flag(clamp, "clamp"))
+    own = getattr(family, "energy_minimum", None)
+    if own is not None:  # a family that answers for itself (certified over its range)
+        k = _check_order(k)
+        found = _own_optimum(own(points, k), k, family)
+        return _own_optimal_lambda(found, family, val.flag(clamp, "clamp"))
     data = _family_data(family)
     k = _check_order(k)
     clamp = val.flag(clamp, "clamp")
@@ -496,6 +502,26 @@ def optimal_lambda(
         k=k,
         family=_name(family),
         range_text=data.LAMBDA_RANGE_TEXT,
+        clamped=clamp,
+    )
+
+
+def _own_optimal_lambda(r: OptimalParameters, family: Any, clamp: bool) -> OptimalLambda:
+    """optimal_lambda from a family's own certified optimum over its range: E_k is not a
+    quadratic in its parameter, so there is no unconstrained minimiser apart from it (the
+    same value is reported as `unconstrained`, with or without `clamp`)."""
+    (x,) = r.values.values()
+    attained = "not attained" not in r.boundary
+    return OptimalLambda(
+        lam=x,
+        unconstrained=x,
+        admissible=attained,
+        unconstrained_admissible=attained,
+        energy=r.energy,
+        unconstrained_energy=r.energy,
+        k=r.k,
+        family=r.family,
+        range_text=str(family.range_text),
         clamped=clamp,
     )
 
@@ -704,6 +730,10 @@ def optimal_parameters(
     """
     if hasattr(family, "by_degree"):  # an indexed family (lam(i)): its degree's parameters
         return _optimal_indexed(points, _check_order(k), family)
+    own = getattr(family, "energy_minimum", None)
+    if own is not None:  # a family that answers for itself (certified over its range)
+        k = _check_order(k)
+        return _own_optimum(own(points, k), k, family)
     atom = getattr(family, "atom_data", None)
     if atom is not None:
         return _optimal_atoms(points, _check_order(k), atom)

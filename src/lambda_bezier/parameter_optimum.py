@@ -45,6 +45,10 @@ class OptimalParameters:
     lower_bound : Fraction or float or None
         For a family not affine in its parameters: a proven lower bound of E_k over the box,
         within 1e-12 (relative) of `energy`, which is E_k at `values` exactly; None otherwise.
+    method : str
+        ``"exact"`` (the free optimum, or a face's, solved exactly), or ``"certified"``: a
+        branch and bound proved `lower_bound`. For a family whose parameter is the length of
+        the domain (C-Bézier), `energy` is then E_k at `values` to about 2^-200, not exact.
     """
 
     values: dict[str, Fraction | float]
@@ -57,6 +61,7 @@ class OptimalParameters:
     # a proven lower bound of E_k over the box when the minimum was found by certified branch
     # and bound (a basis not affine in the parameters); None when it is exact
     lower_bound: Fraction | float | None = None
+    method: str = "exact"
 
     def __getitem__(self, name: str) -> Fraction | float:
         if name not in self.values:
@@ -65,6 +70,22 @@ class OptimalParameters:
                 f"(its parameters: {', '.join(self.values)})"
             )
         return self.values[name]
+
+
+def _own_optimum(got: dict[str, Any], k: int, family: Any) -> OptimalParameters:
+    """OptimalParameters from a family's own certified minimum over its range (a family
+    whose parameter is the length of the domain: CBezierFamily.energy_minimum)."""
+    return OptimalParameters(
+        values=dict(got["values"]),
+        energy=got["energy"],
+        free={},
+        free_inside=False,
+        boundary=got["boundary"],
+        k=k,
+        family=str(family.name),
+        lower_bound=got["lower_bound"],
+        method=got["method"],
+    )
 
 
 def _solve(a: list[list[Fraction]], b: list[Fraction]) -> list[Fraction] | None:
@@ -303,6 +324,7 @@ def _certified_several(
         k=k,
         family=several.FAMILY,
         lower_bound=out(got["lower"]),
+        method="certified",
     )
 
 

@@ -60,14 +60,16 @@ def _lambdified(path: Path):
     return calls, (lo, hi), (box["lam"], box["mu"])
 
 
-def _grid_energies(net, energy: str, side: int) -> tuple[np.ndarray, list[np.ndarray]]:
+def _grid_energies(
+    net, energy: str, side: int, paths: tuple[Path, Path] = (TRIG, HYP)
+) -> tuple[np.ndarray, list[np.ndarray]]:
     """The energy at every point of a side^4 grid over the box, by a 32-node float
     Gauss-Legendre rule a direction: (values of shape (side,)*4, the grid axes)."""
     nodes, weights = np.polynomial.legendre.leggauss(32)
     pts = np.asarray(net, dtype=float)
     per_dir = []
     axes = []
-    for path in (TRIG, HYP):
+    for path in paths:
         calls, (lo, hi), ((llo, lhi), (mlo, mhi)) = _lambdified(path)
         x = (hi - lo) / 2 * nodes + (hi + lo) / 2
         w = (hi - lo) / 2 * weights
@@ -80,7 +82,7 @@ def _grid_energies(net, energy: str, side: int) -> tuple[np.ndarray, list[np.nda
         )
         per_dir.append((vals, w))
     (vu, wu), (vv, wv) = per_dir
-    total = np.zeros((side,) * 4)
+    total = np.zeros((side,) * 4)  # (lam_u, mu_u, lam_v, mu_v)
     for ku, kv, weight in ORDERS[energy]:
         # the double integral of |Σ_ij P_ij bu_i^(ku)(x) bv_j^(kv)(y)|² by the tensor rule,
         # summed over the nodes one direction at a time: Gu[a,b,i,k] = Σ_x w bu_i bu_k

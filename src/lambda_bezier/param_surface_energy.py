@@ -270,18 +270,8 @@ class ParamSurfaceEnergyMatrices:
         m, n = self.degrees
         if len(rows) != m + 1 or any(len(row) != n + 1 for row in rows):
             raise ValueError(f"net must have {m + 1} x {n + 1} points, got {len(rows)} rows")
-        flat = [p for row in rows for p in row]
-        out: dict[tuple[int, ...], Fraction | float] = {}
-        for key, mat in self.full.items():
-            total = Fraction(0)
-            for r, row in enumerate(mat):
-                for c, q in enumerate(row):
-                    if q:
-                        total += q * sum(
-                            (a * b for a, b in zip(flat[r], flat[c], strict=True)), Fraction(0)
-                        )
-            out[key] = total if exact else float(total)
-        return out
+        found = surface_energies.keyed_quadratic(_forms(self), [p for row in rows for p in row])
+        return {key: v if exact else float(v) for key, v in found.items()}
 
     def at(self, rows: Any, point: tuple[Fraction, ...]) -> Any:
         """The energy of the exact net `rows` at exact parameter values `point` (in the order
@@ -505,9 +495,14 @@ def _family_pair(family: Any) -> tuple[Any, Any]:
     return fu, fv
 
 
-def optimal_parameters(net: NetLike, energy: str, family: Any) -> SurfaceParameterOptimum:
+def optimal_parameters(
+    net: NetLike, energy: str, family: Any, *, start: tuple[float, ...] | None = None
+) -> SurfaceParameterOptimum:
     """The certified global minimum of the surface energy over both directions' parameter
-    boxes (`family` one family from load_family or a pair); see the module's doc."""
+    boxes (`family` one family from load_family or a pair); see the module's doc. `start`
+    (a point of every parameter, u's then v's, found otherwise: a batch's vectorised float
+    search) replaces the float grid's first candidate; it only speeds the pruning, the
+    certificate is the same."""
     energy = val.choice(energy, "energy", tuple(ENERGIES))
     fu, fv = _family_pair(family)
     if np.ndim(val.real_array(net, "net")) == 4:
@@ -526,7 +521,14 @@ def optimal_parameters(net: NetLike, energy: str, family: Any) -> SurfaceParamet
     ranges = [du.ranges[x] for x in du.names] + [dv.ranges[x] for x in dv.names]
     box = [(r[0], r[1]) for r in ranges]
     power, slack = _rational_power(poly, constants, box)
-    got = box_bernstein.minimum(power, box, TOLERANCE, BUDGET, start=[_grid_start(power, box)])
+    first = (
+        _grid_start(power, box)
+        if start is None
+        else tuple(
+            min(max(Fraction(float(x)), lo), hi) for x, (lo, hi) in zip(start, box, strict=True)
+        )
+    )
+    got = box_bernstein.minimum(power, box, TOLERANCE, BUDGET, start=[first])
     point = tuple(got["point"][:count])
     value = value_at(point)
     lower = got["lower"] - slack
@@ -549,19 +551,39 @@ def _energy_in_parameters(
     """(poly, constants, value_at): the energy of the exact net `rows` as {(parameter
     exponents.., exponent of each constant): q}, the constants it involves (none, one, or π
     and e^W for a trigonometric direction across a hyperbolic one), and the exact energy at
-    a rational point (a Fraction, ConstantFraction or ConstantSum)."""
-    if du.constant and dv.constant and du.constant != dv.constant:
-        mats = _param_matrices(du.family, dv.family, du.degree, dv.degree, energy)
-        found = mats.polynomial(rows)
-        poly2 = {key: Fraction(v) for key, v in found.items() if v}
-        return poly2, mats.constants, lambda point: mats.at(rows, point)
-    poly, constant = energy_polynomial(rows, du, dv, energy)
-    signed: dict[tuple[int, ...], Fraction] = {}
-    for key, v in poly.items():
-        k = (*key[:-2], key[-2] - key[-1]) if constant else key[:-2]
-        signed[k] = signed.get(k, Fraction(0)) + v
-    constants = (constant,) if constant else ()
-    return signed, constants, lambda point: _value(poly, point, constant)
+    a rational point (a Fraction, ConstantFraction or ConstantSum).
+
+    The one keyed accumulation of both surface energy modules
+    (surface_energies.keyed_quadratic): the matrices Q_key of surface_energy_matrices (each
+    direction's Gram matrices per monomial in Kronecker products, built once per pair of
+    families and degrees) as integers over one denominator per key, against the net's Gram
+    products in integers."""
+    mats = _param_matrices(du.family, dv.family, du.degree, dv.degree, energy)
+    names, constants = mats.names, mats.constants
+    found = surface_energies.keyed_quadratic(_forms(mats), [p for row in rows for p in row])
+    poly = {key: q for key, q in found.items() if q}
+    count = len(names)
+
+    def value_at(point: tuple[Fraction, ...]) -> Any:
+        by_power: dict[tuple[int, ...], Fraction] = {}
+        for key, q in poly.items():
+            w = q
+            for x, e in zip(point, key[:count], strict=True):
+                if e:
+                    w *= x**e
+            by_power[key[count:]] = by_power.get(key[count:], Fraction(0)) + w
+        if len(constants) == 2:
+            return ConstantSum({(a, b): q for (a, b), q in by_power.items()}, constants)
+        if constants:
+            return _value({(e, 0): q for (e,), q in by_power.items()}, (), constants[0])
+        return by_power.get((), Fraction(0))
+
+    return poly, constants, value_at
+
+
+@cache
+def _forms(mats: ParamSurfaceEnergyMatrices) -> surface_energies.IntegerForms:
+    return surface_energies.integer_forms(mats.full)
 
 
 def named_point(

@@ -969,6 +969,64 @@ def bench_param_surfaces(nets: int) -> None:
     )
 
 
+def bench_several_batch(nets: int, certified: int) -> None:
+    """Batch optimal parameters of families with two parameters a direction (issue #31):
+    the vectorised stage (every net's energy coefficients from the Kronecker weights, a grid
+    and one-parameter sweeps) on `nets` nets against one read pass of them, and the whole
+    batch (that stage, then every net through the one-net certified path) on `certified`
+    nets against calling optimal_parameters once per net."""
+    import lambda_bezier as lb
+    from lambda_bezier import examples
+    from lambda_bezier import param_surface_optimum as po
+    from lambda_bezier.param_surface_energy import _direction
+
+    rng = np.random.default_rng(5)
+    for file in ("two_shape_cubic.toml", "han_trig_cubic.toml"):
+        fam = lb.load_family(examples.path(file))
+        batch = rng.normal(size=(nets, 4, 4, 3))
+        d = _direction(fam, 3)
+        exponents, weights = po._monomial_weights(fam, 3, fam, 3, "thin_plate")
+        ranges = [d.ranges[x] for x in d.names] * 2
+        lo = np.array([float(r[0]) for r in ranges])
+        hi = np.array([float(r[1]) for r in ranges])
+
+        def stage(batch=batch, exponents=exponents, weights=weights, lo=lo, hi=hi):
+            flat = batch.reshape(len(batch), -1, 3)
+            gram = np.matmul(flat, flat.transpose(0, 2, 1)).reshape(len(batch), -1)
+            return po.float_search(gram @ weights, exponents, lo, hi)
+
+        best = interleaved({"ours": stage, "read": batch.sum}, 3)
+        record(
+            f"optimal parameters of {fam.name} (two a direction), thin plate: {nets:,} bicubic "
+            "nets, vectorised stage (coefficients, grid, sweeps; not certified)",
+            best["ours"],
+            "one read pass (arr.sum())",
+            best["read"],
+            "-",
+            True,
+        )
+        few = batch[:certified]
+        lb.optimal_parameters(few[0], "thin_plate", family=fam)  # the exact matrices, once
+        whole = best_of(
+            lambda fam=fam, few=few: lb.optimal_parameters(few, "thin_plate", family=fam),
+            repeat=1,
+        )
+        each = best_of(
+            lambda fam=fam, few=few: [
+                lb.optimal_parameters(x, "thin_plate", family=fam) for x in few
+            ],
+            repeat=1,
+        )
+        record(
+            f"the same, the whole batch of {certified} nets, every net certified",
+            whole,
+            "optimal_parameters once per net",
+            each,
+            "-",
+            True,
+        )
+
+
 def bench_surface_bounds(queries: int) -> None:
     """Certified bounding box and closest points of a bicubic at_cubic surface (a mixed
     family: no rational form; hazmat.atom_surface_bounds), and of at_cubic across the
@@ -1067,6 +1125,7 @@ def main() -> None:
         "compile",
         "surfaces",
         "param_surfaces",
+        "several_batch",
         "surface_bounds",
         "derive",
         "verify",
@@ -1100,6 +1159,9 @@ def main() -> None:
             300 if args.quick else 1000, 1000 if args.quick else 10_000, 10_000
         ),
         "param_surfaces": lambda: bench_param_surfaces(1000 if args.quick else 10_000),
+        "several_batch": lambda: bench_several_batch(
+            1000 if args.quick else 10_000, 10 if args.quick else 40
+        ),
         "surface_bounds": lambda: bench_surface_bounds(100 if args.quick else 1000),
         "derive": bench_derive,
         "verify": bench_verify,

@@ -237,6 +237,20 @@ def _call_join_before(fam):
         assert np.allclose(b.derivative(1.0, v, 1, 0), a.derivative(0.0, v, 1, 0))
 
 
+def _call_resolve_sides(fam):
+    from lambda_bezier import _poly_direction as pd
+    from lambda_bezier.param_surface_joins import resolve_sides
+    from lambda_bezier.surface_sides import ByName
+    from lambda_bezier.surfaces import surface
+
+    a = ByName(surface(NET, Fraction(1, 2), Fraction(1, 3), family=fam))
+    got = resolve_sides(a, 0, fam, {"sigma": Fraction(1, 4)}, 3)  # as join_surface resolves
+    assert pd.family_name(got.new_family) == pd.family_name(got.across) == fam.name
+    assert got.new_params == {"sigma": Fraction(1, 4)}
+    assert got.across_params == {"sigma": Fraction(1, 2)}
+    assert got.along_params == {"sigma": Fraction(1, 3)}
+
+
 def _call_optimal_parameters_batch(fam):
     from lambda_bezier.surface_optimum import optimal_parameters_batch
 
@@ -326,6 +340,7 @@ CALLS = {
     "surface_energies.surface_energy_matrices": _call_surface_energy_matrices,
     "surface_joins.join_surface": _call_join_surface,
     "surface_sides.join_before": _call_join_before,
+    "param_surface_joins.resolve_sides": _call_resolve_sides,
     "surface_optimum.optimal_parameters": _call_optimal_parameters,
     "surface_optimum.optimal_parameters_batch": _call_optimal_parameters_batch,
     "param_surfaces.family_surface": _call_family_surface,

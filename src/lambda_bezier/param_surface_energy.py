@@ -23,8 +23,11 @@ the curves' several-parameter optimum uses (`hazmat.box_bernstein.minimum`, with
 replaced by a rational ĉ within 2^-64 of it and the difference bounded over the box
 (`_rational_power`): the point is exact, its energy exact (a Fraction or a
 ConstantFraction), and ``lower_bound`` a proven lower bound over the whole box within 1e-12
-(relative) of it. Never exact in closed form: the minimiser is in general irrational (a
-point of ℚ(π)-algebraic coordinates), so a rational point within the certificate is given.
+(relative) of it. A trigonometric direction across a hyperbolic one has both π and e^W: both
+are replaced by rationals and bounded the same way, the energy at the point is a ConstantSum
+(never compared exactly), and the 1e-12 certificate is decided on its enclosure.
+Never exact in closed form: the minimiser is in general irrational (a point of
+ℚ(π)-algebraic coordinates), so a rational point within the certificate is given.
 """
 
 from __future__ import annotations
@@ -267,18 +270,8 @@ class ParamSurfaceEnergyMatrices:
         m, n = self.degrees
         if len(rows) != m + 1 or any(len(row) != n + 1 for row in rows):
             raise ValueError(f"net must have {m + 1} x {n + 1} points, got {len(rows)} rows")
-        flat = [p for row in rows for p in row]
-        out: dict[tuple[int, ...], Fraction | float] = {}
-        for key, mat in self.full.items():
-            total = Fraction(0)
-            for r, row in enumerate(mat):
-                for c, q in enumerate(row):
-                    if q:
-                        total += q * sum(
-                            (a * b for a, b in zip(flat[r], flat[c], strict=True)), Fraction(0)
-                        )
-            out[key] = total if exact else float(total)
-        return out
+        found = surface_energies.keyed_quadratic(_forms(self), [p for row in rows for p in row])
+        return {key: v if exact else float(v) for key, v in found.items()}
 
     def at(self, rows: Any, point: tuple[Fraction, ...]) -> Any:
         """The energy of the exact net `rows` at exact parameter values `point` (in the order
@@ -377,35 +370,52 @@ def _flat(d: Direction, given: dict[str, Any]) -> tuple[Fraction, ...]:
 
 # ---------------------------------------------------------------------- the optimum
 def _rational_power(
-    poly: dict[tuple[int, ...], Fraction], constant: str | None, box: list[Any]
+    poly: dict[tuple[int, ...], Fraction], constants: tuple[str, ...], box: list[Any]
 ) -> tuple[np.ndarray, Fraction]:
-    """(power, slack): the dense power coefficients in the parameters of the energy with the
-    constant c replaced by a rational ĉ within 2^-64 of it (the midpoint of
+    """(power, slack): the dense power coefficients in the parameters of the energy
+    `poly` ({(parameter exponents.., exponent of each of `constants`, of any sign): q}) with
+    each constant c replaced by a rational ĉ within 2^-64 of it (the midpoint of
     hazmat.constants.constant_bounds), and a proven bound `slack` of |E(x; c) − E(x; ĉ)| over
-    the box (c^e is monotone in c > 0 for every integer e). A lower bound of the rational
-    polynomial minus `slack` bounds the true energy: this keeps c out of the branch and
-    bound, whose cost grows with the number of variables."""
+    the box. A product of powers of constants > 0 is monotone in each, so its distance from
+    the product at ĉ is greatest at a corner of the constants' enclosure box; two constants
+    (π across e^W) are bounded the same way as one, and never compared. A lower bound of the
+    rational polynomial minus `slack` bounds the true energy: this keeps the constants out of
+    the branch and bound, whose cost grows with the number of variables."""
     from .hazmat.constants import constant_bounds
 
     count = len(box)
-    c_hat, lo, hi = Fraction(1), Fraction(1), Fraction(1)
-    if constant is not None:
-        lo, hi = constant_bounds(constant, CONSTANT_BITS)
-        c_hat = (lo + hi) / 2
+    bounds = [constant_bounds(c, CONSTANT_BITS) for c in constants]
+    hats = [(lo + hi) / 2 for lo, hi in bounds]
     size = [max(abs(a), abs(b)) for a, b in box]
     degree = [max((key[j] for key in poly), default=0) for j in range(count)]
     power = np.empty(tuple(d + 1 for d in degree), dtype=object)
     power.fill(Fraction(0))
     slack = Fraction(0)
     for key, v in poly.items():
-        e = key[-2] - key[-1]
-        power[key[:count]] += v * c_hat**e
-        if e:
+        exps = key[count:]
+        at_hat = Fraction(1)
+        for c_hat, e in zip(hats, exps, strict=True):
+            at_hat *= c_hat**e
+        power[key[:count]] += v * at_hat
+        if any(exps):
             reach = Fraction(1)
             for x, a in zip(size, key[:count], strict=True):
                 reach *= x**a
-            slack += abs(v) * max(abs(hi**e - c_hat**e), abs(lo**e - c_hat**e)) * reach
+            corners = [Fraction(1)]
+            for (lo, hi), e in zip(bounds, exps, strict=True):
+                corners = [w * c**e for w in corners for c in (lo, hi)]
+            slack += abs(v) * max(abs(w - at_hat) for w in corners) * reach
     return power, slack
+
+
+def _upper_gap(value: Any, lower: Fraction) -> tuple[float, float]:
+    """(an upper bound of value − lower, a lower bound of |value|) as floats rounded outwards
+    enough for the 1e-12 test; a ConstantSum (π across e^W) through its enclosure, since
+    such sums are never compared exactly."""
+    if isinstance(value, ConstantSum):
+        lo, hi = value.enclosure(CONSTANT_BITS * 2)
+        return float(hi - lower), float(min(abs(lo), abs(hi)) if lo * hi > 0 else 0)
+    return float(value - lower), abs(float(value))
 
 
 def _grid_start(power: np.ndarray, box: list[Any]) -> tuple[Fraction, ...]:
@@ -485,9 +495,14 @@ def _family_pair(family: Any) -> tuple[Any, Any]:
     return fu, fv
 
 
-def optimal_parameters(net: NetLike, energy: str, family: Any) -> SurfaceParameterOptimum:
+def optimal_parameters(
+    net: NetLike, energy: str, family: Any, *, start: tuple[float, ...] | None = None
+) -> SurfaceParameterOptimum:
     """The certified global minimum of the surface energy over both directions' parameter
-    boxes (`family` one family from load_family or a pair); see the module's doc."""
+    boxes (`family` one family from load_family or a pair); see the module's doc. `start`
+    (a point of every parameter, u's then v's, found otherwise: a batch's vectorised float
+    search) replaces the float grid's first candidate; it only speeds the pruning, the
+    certificate is the same."""
     energy = val.choice(energy, "energy", tuple(ENERGIES))
     fu, fv = _family_pair(family)
     if np.ndim(val.real_array(net, "net")) == 4:
@@ -501,16 +516,24 @@ def optimal_parameters(net: NetLike, energy: str, family: Any) -> SurfaceParamet
         pd.checked_degree(fam, deg, name)
     du, dv = _direction(fu, m), _direction(fv, n)
     rows, exact = _exact_rows(net)
-    poly, constant = energy_polynomial(rows, du, dv, energy)
     count = len(du.names) + len(dv.names)
+    poly, constants, value_at = _energy_in_parameters(rows, du, dv, energy)
     ranges = [du.ranges[x] for x in du.names] + [dv.ranges[x] for x in dv.names]
     box = [(r[0], r[1]) for r in ranges]
-    power, slack = _rational_power(poly, constant, box)
-    got = box_bernstein.minimum(power, box, TOLERANCE, BUDGET, start=[_grid_start(power, box)])
+    power, slack = _rational_power(poly, constants, box)
+    first = (
+        _grid_start(power, box)
+        if start is None
+        else tuple(
+            min(max(Fraction(float(x)), lo), hi) for x, (lo, hi) in zip(start, box, strict=True)
+        )
+    )
+    got = box_bernstein.minimum(power, box, TOLERANCE, BUDGET, start=[first])
     point = tuple(got["point"][:count])
-    value = _value(poly, point, constant)
+    value = value_at(point)
     lower = got["lower"] - slack
-    certified = got["certified"] and not (TOLERANCE * max(1, abs(float(value))) < value - lower)
+    gap, size = _upper_gap(value, lower)
+    certified = got["certified"] and not (TOLERANCE * max(1.0, size) < gap)
     if not certified:
         raise ValueError(
             f"optimal_parameters: the minimum of the {energy} energy over the box was not "
@@ -520,6 +543,47 @@ def optimal_parameters(net: NetLike, energy: str, family: Any) -> SurfaceParamet
     lower_out = lower if exact else float(lower)
     values, where = named_point(du, dv, point, exact)
     return SurfaceParameterOptimum(values, energy_out, lower_out, where, certified)
+
+
+def _energy_in_parameters(
+    rows: Any, du: Direction, dv: Direction, energy: str
+) -> tuple[dict[tuple[int, ...], Fraction], tuple[str, ...], Any]:
+    """(poly, constants, value_at): the energy of the exact net `rows` as {(parameter
+    exponents.., exponent of each constant): q}, the constants it involves (none, one, or π
+    and e^W for a trigonometric direction across a hyperbolic one), and the exact energy at
+    a rational point (a Fraction, ConstantFraction or ConstantSum).
+
+    The one keyed accumulation of both surface energy modules
+    (surface_energies.keyed_quadratic): the matrices Q_key of surface_energy_matrices (each
+    direction's Gram matrices per monomial in Kronecker products, built once per pair of
+    families and degrees) as integers over one denominator per key, against the net's Gram
+    products in integers."""
+    mats = _param_matrices(du.family, dv.family, du.degree, dv.degree, energy)
+    names, constants = mats.names, mats.constants
+    found = surface_energies.keyed_quadratic(_forms(mats), [p for row in rows for p in row])
+    poly = {key: q for key, q in found.items() if q}
+    count = len(names)
+
+    def value_at(point: tuple[Fraction, ...]) -> Any:
+        by_power: dict[tuple[int, ...], Fraction] = {}
+        for key, q in poly.items():
+            w = q
+            for x, e in zip(point, key[:count], strict=True):
+                if e:
+                    w *= x**e
+            by_power[key[count:]] = by_power.get(key[count:], Fraction(0)) + w
+        if len(constants) == 2:
+            return ConstantSum({(a, b): q for (a, b), q in by_power.items()}, constants)
+        if constants:
+            return _value({(e, 0): q for (e,), q in by_power.items()}, (), constants[0])
+        return by_power.get((), Fraction(0))
+
+    return poly, constants, value_at
+
+
+@cache
+def _forms(mats: ParamSurfaceEnergyMatrices) -> surface_energies.IntegerForms:
+    return surface_energies.integer_forms(mats.full)
 
 
 def named_point(

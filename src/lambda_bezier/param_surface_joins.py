@@ -20,7 +20,7 @@ the per-degree solve.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -30,6 +30,49 @@ from . import _validate as val
 from .joins import join
 from .param_surfaces import family_surface
 from .surfaces import _exact_net
+
+
+class Sides(NamedTuple):
+    """Both patches' families across a boundary, resolved once for every side: the given
+    patch's family and parameters across and along it, the new patch's (default: the given
+    patch's across), and the new family as it builds a curve of `degree` (an indexed family
+    at that degree with one value per index)."""
+
+    across: Any
+    across_params: dict[str, Any]
+    along: Any
+    along_params: dict[str, Any]
+    new_family: Any
+    new_params: dict[str, Any]
+    target: Any
+    target_params: dict[str, Any]
+
+
+def resolve_sides(patch: Any, axis: int, family: Any, params: Any, degree: int) -> Sides:
+    """The families of a join across direction `axis` of a patch whose parameters go by
+    name (the sides u1/v1 here and u0/v0 in surface_sides alike)."""
+    across = patch.family_u if axis == 0 else patch.family_v
+    across_params = patch.params_u if axis == 0 else patch.params_v
+    along = patch.family_v if axis == 0 else patch.family_u
+    along_params = patch.params_v if axis == 0 else patch.params_u
+    new_family = across if family is None else pd.by_name_family(family)
+    if params is not None and not isinstance(params, dict):
+        raise TypeError(f"params must be a dict {{name: value}}, not {type(params).__name__}")
+    new_params = dict(across_params if params is None else params)
+    target, target_params = new_family, new_params
+    if hasattr(new_family, "index_name"):  # one value per index of the new degree
+        target = new_family.at_degree(degree)
+        target_params = new_family.index_values(degree, new_params.get(new_family.index_name))
+    return Sides(
+        across,
+        dict(across_params),
+        along,
+        dict(along_params),
+        new_family,
+        new_params,
+        target,
+        target_params,
+    )
 
 
 def _join_param_surface(
@@ -45,14 +88,11 @@ def _join_param_surface(
     conditions: str = "solve",
 ) -> Any:
     """The next patch across `patch`'s boundary at the end of direction `axis` (0: u)."""
-    across = patch.family_u if axis == 0 else patch.family_v
-    across_params = patch.params_u if axis == 0 else patch.params_v
-    along = patch.family_v if axis == 0 else patch.family_u
-    along_params = patch.params_v if axis == 0 else patch.params_u
-    new_family = across if family is None else pd.by_name_family(family)
-    new_params = dict(across_params if params is None else params)
-    if not isinstance(new_params, dict):
-        raise TypeError(f"params must be a dict {{name: value}}, not {type(params).__name__}")
+    side = resolve_sides(patch, axis, family, params, degree)
+    across, across_params = side.across, side.across_params
+    along, along_params = side.along, side.along_params
+    new_family, new_params = side.new_family, side.new_params
+    target, target_params = side.target, side.target_params
     count = patch.net.shape[1 - axis]
     rows: Any = patch.control_net()
     columns = [[rows[i][j] for i in range(len(rows))] for j in range(count)] if axis == 0 else rows
@@ -71,10 +111,6 @@ def _join_param_surface(
             if axis == 0
             else [list(r) for r in given]
         )
-    target, target_params = new_family, new_params
-    if hasattr(new_family, "index_name"):  # one value per index of the new degree
-        target = new_family.at_degree(degree)
-        target_params = new_family.index_values(degree, new_params.get(new_family.index_name))
     new_columns: list[Any] = []
     net: Any
     g1 = str(continuity).upper() == "G1"

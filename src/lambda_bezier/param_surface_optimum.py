@@ -28,8 +28,13 @@ strong convexity and a global clearing of the rest of the box) puts the minimise
 certificate (surface_certify.edge_minimum) certifies most minima on an edge or at a corner
 (``boundary`` then names the ends, as for one net). The nets both decline (minima near an
 edge or corner, or a family not affine in its parameter) take the one-net certified path
-above and are counted in ``careful_fallbacks``. A family with several parameters in a
-direction is refused for batches, saying why: the fixed-cost certificate is for two variables.
+above and are counted in ``careful_fallbacks``.
+
+With two or more parameters in a direction (or none in one) the fixed-cost certificate, which
+is for two variables, does not apply: every net's coefficients at every monomial of the
+parameters are computed at once (_monomial_weights, the same Kronecker weights), a vectorised
+float search (a grid, then one-parameter sweeps: float_search) finds each net's start, and
+every net is certified by the one-net path from there (all counted in ``careful_fallbacks``).
 """
 
 from __future__ import annotations
@@ -138,15 +143,21 @@ class SurfaceParameterBatch(Mapping[str, Any]):
 def _float_grams(d: Direction, k: int) -> dict[int, np.ndarray]:
     """{s: G} with G = Σ_{a+b=s} G_(a,b) in floats: the order-k Gram matrix at x^s of a
     direction of one parameter (the constant at its float)."""
+    return {key[0]: mat for key, mat in _float_grams_by_monomial(d, k).items()}
+
+
+def _float_grams_by_monomial(d: Direction, k: int) -> dict[tuple[int, ...], np.ndarray]:
+    """{e: G} with G = Σ_{a+b=e} G_(a,b) in floats: the order-k Gram matrix at the monomial
+    x^e of a direction's parameters (the constant at its float)."""
     c = 1.0
     if d.constant is not None:
         lo, hi = constant_bounds(d.constant, 64)
         c = float((lo + hi) / 2)
-    out: dict[int, np.ndarray] = {}
+    out: dict[tuple[int, ...], np.ndarray] = {}
     for (a, b), mat in d.grams(k).items():
-        s = a[0] + b[0]
+        key = tuple(x + y for x, y in zip(a, b, strict=True))
         dense = np.array([[sum(float(v) * c**e for e, v in g.items()) for g in row] for row in mat])
-        out[s] = out.get(s, 0.0) + dense
+        out[key] = out.get(key, 0.0) + dense
     return out
 
 
@@ -241,14 +252,10 @@ def optimal_parameters_batch(nets: np.ndarray, energy: str, family: Any) -> Surf
             "a float; scale them down (the optimal parameters do not depend on the scale)"
         )
     du, dv = _directions(nets.shape[1:], fu, fv)
-    for d, name in ((du, "u"), (dv, "v")):
-        if len(d.names) != 1:
-            raise ValueError(
-                f"net: a batch of nets is solved vectorised for one parameter in each direction "
-                f"(the fixed-cost certificate is for two variables); direction {name} has "
-                + (f"{len(d.names)} ({', '.join(d.names)})" if d.names else "none (Bézier)")
-                + ": call optimal_parameters once per net"
-            )
+    if len(du.names) != 1 or len(dv.names) != 1:
+        if not du.names and not dv.names:
+            raise ValueError("net: neither direction has a shape parameter: nothing to optimise")
+        return _several_batch(nets, energy, (fu, fv), du, dv)
     count = nets.shape[0]
     bx, by, bval, ok, on_edge = fixed_cost(nets, du, dv, energy)
     declined = np.flatnonzero(~ok)
@@ -264,3 +271,101 @@ def optimal_parameters_batch(nets: np.ndarray, energy: str, family: Any) -> Surf
         boundary[i] = one.boundary
     values = {f"{du.names[0]}_u": bx, f"{dv.names[0]}_v": by}
     return SurfaceParameterBatch(values, bval, boundary, int(declined.size))
+
+
+# ---------------------------------------------------------------------- several parameters
+@cache
+def _monomial_weights(
+    family_u: Any, m: int, family_v: Any, n: int, energy: str
+) -> tuple[np.ndarray, np.ndarray]:
+    """(exponents, weights): the energy's monomials x^e in every parameter (u's then v's) as
+    rows of `exponents` (K, P), and their weights on the Gram products P_ij · P_kl of a net
+    read row by row as the columns of `weights` (N², K): Σ_terms weight · G_u ⊗ G_v per pair
+    of each direction's monomials (floats, the constants at their floats; computed once per
+    pair of families and degrees)."""
+    du, dv = _direction(family_u, m), _direction(family_v, n)
+    acc: dict[tuple[int, ...], np.ndarray] = {}
+    for ku, kv, weight in ENERGIES[energy]:
+        gu, gv = _float_grams_by_monomial(du, ku), _float_grams_by_monomial(dv, kv)
+        for a, mat_u in gu.items():
+            for b, mat_v in gv.items():
+                key = (*a, *b)
+                acc[key] = acc.get(key, 0.0) + float(weight) * np.kron(mat_u, mat_v)
+    keys = sorted(acc)
+    exponents = np.array(keys, dtype=np.int64).reshape(len(keys), len(du.names) + len(dv.names))
+    return exponents, np.stack([acc[key].ravel() for key in keys], axis=1)
+
+
+def _monomials(points: np.ndarray, exponents: np.ndarray) -> np.ndarray:
+    """x^e for every point (rows of `points`, (G, P)) and exponent row: (G, K)."""
+    out = np.ones((points.shape[0], exponents.shape[0]))
+    for j in range(exponents.shape[1]):
+        out *= points[:, j : j + 1] ** exponents[None, :, j]
+    return out
+
+
+def float_search(
+    coeffs: np.ndarray, exponents: np.ndarray, lo: np.ndarray, hi: np.ndarray, sweeps: int = 8
+) -> np.ndarray:
+    """A float minimiser of Σ_K coeffs[:, K] x^exponents[K] over the box [lo, hi] for every
+    row of `coeffs` at once: the best point of a grid of about 4096 points, then `sweeps`
+    rounds of exact minimisation in one parameter at a time, clipped to the box (E is
+    quadratic in each parameter of an affine family; a parameter of higher degree keeps its
+    grid value). Only a start for the certified path: nothing here is certified."""
+    count, dims = coeffs.shape[0], exponents.shape[1]
+    side = max(3, int(round(4096 ** (1 / dims))))
+    axes = [np.linspace(lo[j], hi[j], side) for j in range(dims)]
+    grid = np.stack([g.ravel() for g in np.meshgrid(*axes, indexing="ij")], axis=1)
+    mono = _monomials(grid, exponents)
+    points = np.empty((count, dims))
+    for first in range(0, count, 256):  # (256, G) energies at a time
+        values = coeffs[first : first + 256] @ mono.T
+        points[first : first + 256] = grid[np.argmin(values, axis=1)]
+    for _ in range(sweeps):
+        for j in range(dims):
+            if exponents[:, j].max() > 2:
+                continue
+            others = np.ones_like(coeffs)
+            for i in range(dims):
+                if i != j:
+                    others *= points[:, i : i + 1] ** exponents[None, :, i]
+            terms = coeffs * others
+            a0, a1, a2 = (terms[:, exponents[:, j] == e].sum(axis=1) for e in range(3))
+            with np.errstate(divide="ignore", invalid="ignore"):
+                vertex = np.where(a2 > 0, -a1 / (2 * a2), lo[j])
+            cands = np.stack([np.full(count, lo[j]), np.full(count, hi[j]), vertex], axis=1)
+            cands = np.clip(np.nan_to_num(cands, nan=lo[j]), lo[j], hi[j])
+            q = a0[:, None] + a1[:, None] * cands + a2[:, None] * cands**2
+            points[:, j] = cands[np.arange(count), np.argmin(q, axis=1)]
+    return points
+
+
+def _several_batch(
+    nets: np.ndarray, energy: str, family: tuple[Any, Any], du: Direction, dv: Direction
+) -> SurfaceParameterBatch:
+    """A batch with two or more parameters in a direction (or none in one): every net's
+    energy coefficients at once (one batched product with _monomial_weights), a vectorised
+    float search (float_search), then every net certified by the one-net certified path
+    started there; all of them are counted in ``careful_fallbacks``."""
+    count = nets.shape[0]
+    exponents, weights = _monomial_weights(du.family, du.degree, dv.family, dv.degree, energy)
+    flat = nets.reshape(count, -1, nets.shape[-1])
+    gram = np.matmul(flat, flat.transpose(0, 2, 1)).reshape(count, -1)
+    coeffs = gram @ weights
+    ranges = [du.ranges[x] for x in du.names] + [dv.ranges[x] for x in dv.names]
+    lo = np.array([float(r[0]) for r in ranges])
+    hi = np.array([float(r[1]) for r in ranges])
+    starts = float_search(coeffs, exponents, lo, hi)
+    values: dict[str, list[Any]] = {}
+    bval = np.empty(count)
+    boundary = np.empty(count, dtype=object)
+    for i in range(count):
+        try:
+            one = certified_parameters(nets[i], energy, family, start=tuple(starts[i]))
+        except ValueError as exc:  # the budget ran out: say which net
+            raise ValueError(f"net {i} of the batch: {exc}") from None
+        for name, v in one.parameters.items():
+            values.setdefault(name, []).append(v)
+        bval[i], boundary[i] = float(one.energy), one.boundary
+    arrays = {name: np.array(v, dtype=float) for name, v in values.items()}
+    return SurfaceParameterBatch(arrays, bval, boundary, count)

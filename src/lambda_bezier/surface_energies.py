@@ -115,6 +115,44 @@ def direction_forms(cls: Any, degree: int, k: int) -> tuple[Matrix, ...]:
     return tuple(tuple(tuple(row) for row in mat) for mat in out)
 
 
+IntegerForms = tuple[tuple[Any, int, tuple[tuple[int, int, int], ...]], ...]
+
+
+def integer_forms(full: Mapping[Any, tuple[tuple[Fraction, ...], ...]]) -> IntegerForms:
+    """((key, denominator, ((r, c, w), ..)), ..): each matrix Q_key folded onto r <= c (it is
+    used as vec(P)ᵀ Q vec(P)) as integers w over one denominator per key; the one keyed
+    accumulation of both surface energy modules (keyed_quadratic)."""
+    out = []
+    for key, mat in full.items():
+        size = len(mat)
+        folded = {
+            (r, c): mat[r][c] + (mat[c][r] if c != r else 0)
+            for r in range(size)
+            for c in range(r, size)
+        }
+        denominator = lcm(1, *(q.denominator for q in folded.values()))
+        entries = tuple((r, c, int(q * denominator)) for (r, c), q in folded.items() if q)
+        out.append((key, denominator, entries))
+    return tuple(out)
+
+
+def keyed_quadratic(forms: IntegerForms, vec: list[tuple[Fraction, ...]]) -> dict[Any, Fraction]:
+    """{key: vec(P)ᵀ Q_key vec(P)} for an exact net read row by row, summed over coordinates:
+    the net over its common denominator in integers, its Gram products P_r · P_c once, then
+    one integer sum and one division per key (no Fraction arithmetic per entry)."""
+    scale = lcm(1, *(x.denominator for p in vec for x in p))
+    ints = [[int(x * scale) for x in p] for p in vec]
+    size = len(ints)
+    gram = [
+        [sum(a * b for a, b in zip(ints[r], ints[c], strict=True)) for c in range(size)]
+        for r in range(size)
+    ]
+    return {
+        key: Fraction(sum(w * gram[r][c] for r, c, w in entries), denominator * scale * scale)
+        for key, denominator, entries in forms
+    }
+
+
 @dataclass(frozen=True, eq=False)  # hashed by identity: one object per (families, degrees)
 class SurfaceEnergyMatrices:
     """The energy as Σ_{a,b} λ_u^a λ_v^b vec(P)ᵀ Q_ab vec(P), summed over coordinates, with
@@ -134,7 +172,7 @@ class SurfaceEnergyMatrices:
         exact net)."""
         exact = _exact_vector(net, self.degrees)
         if exact is not None:
-            return {key: _quadratic(mat, exact) for key, mat in self.full.items()}
+            return dict(keyed_quadratic(_forms(self), exact))
         flat = _float_vectors(net, self.degrees)[None]
         coeffs = _float_polynomial(self, flat)
         return {key: float(v[0]) for key, v in coeffs.items()}
@@ -303,13 +341,9 @@ def _float_vectors(net: object, degrees: tuple[int, int]) -> np.ndarray:
     return arr.reshape(-1, arr.shape[2])
 
 
-def _quadratic(mat: tuple[tuple[Fraction, ...], ...], vec: list[tuple[Fraction, ...]]) -> Fraction:
-    total = Fraction(0)
-    for r, row in enumerate(mat):
-        for c, w in enumerate(row):
-            if w:
-                total += w * sum((x * y for x, y in zip(vec[r], vec[c], strict=True)), Fraction(0))
-    return total
+@cache
+def _forms(mats: SurfaceEnergyMatrices) -> IntegerForms:
+    return integer_forms(mats.full)
 
 
 @cache

@@ -38,10 +38,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import numpy.typing as npt
 
-from . import _derived_joins
 from . import _validate as val
 from ._lazy import deferred
-from .curves import BezierCurve, Curve, family_class
+from .curves import BezierCurve, family_class
 from .hazmat.forms import elevation_matrix, hodograph_matrix
 from .joins import join
 from .surfaces import BezierSurface, Surface, _exact_net
@@ -120,7 +119,8 @@ def join_surface(
     gives an exact patch.
 
     ``mu=(μ0, μ1)`` (G1 only, instead of `alpha`) asks for B_u(0, v) = (μ0 + μ1 v) A_u(1, v),
-    a factor varying along the boundary (positive on [0, 1]). The new patch is then classical
+    a factor varying along the boundary (positive on [0, 1]); on u0, B_u(1, v) = μ(v) A_u(0, v)
+    (v0 likewise). The new patch is then classical
     Bézier along the boundary, of one degree more than `patch`'s Bézier form there (N + 1),
     and `rest` has N + 2 points along the boundary.
 
@@ -161,16 +161,15 @@ def join_surface(
     if lam is None and family is None and not hasattr(patch, "family_u"):
         lam = patch.lam_u if axis == 0 else patch.lam_v  # the patch's own, as its family
     if not at_end:
+        conditions = val.choice(conditions, "conditions", CONDITIONS)
         if mu is not None:
-            raise ValueError(
-                "mu (a G1 factor varying along the boundary) is offered on the sides u1 and v1; "
-                "on u0 and v0 give a constant alpha"
-            )
-        if val.choice(conditions, "conditions", CONDITIONS) != "solve":
-            raise ValueError(
-                'conditions="derived" is offered on the sides u1 and v1 (the documents hold '
-                'the joins into the next patch); on u0 and v0 use conditions="solve"'
-            )
+            if hasattr(patch, "family_u"):
+                raise ValueError(
+                    "patch: a surface of several-parameter, indexed or atom families is joined "
+                    "with a constant alpha; give the new parameters as params={...} (not mu)"
+                )
+            _check_varying(continuity, conditions, alpha)
+            return _join_varying_before(patch, axis, degree, lam, rest, mu, family, check_range)
         if params is not None and not hasattr(patch, "family_u"):
             raise ValueError("params is for patches of several-parameter or atom families")
         if hasattr(patch, "family_u") and lam is not None:
@@ -179,7 +178,17 @@ def join_surface(
                 "patch's parameters as params={...}"
             )
         return surface_sides.join_before(
-            patch, axis, continuity, degree, lam, rest, alpha, family, params, check_range
+            patch,
+            axis,
+            continuity,
+            degree,
+            lam,
+            rest,
+            alpha,
+            family,
+            params,
+            check_range,
+            conditions,
         )
     if hasattr(patch, "family_u"):  # ParamSurface, AtomSurface: parameters by name
         if mu is not None or lam is not None:
@@ -202,12 +211,7 @@ def join_surface(
         )
     conditions = val.choice(conditions, "conditions", CONDITIONS)
     if mu is not None:
-        if conditions != "solve":
-            raise ValueError('mu (a varying G1 factor) is solved: use conditions="solve"')
-        if continuity != "G1":
-            raise ValueError(f"mu (a varying G1 factor) needs continuity G1, got {continuity}")
-        if alpha != 1:
-            raise ValueError("give either alpha (a constant G1 factor) or mu, not both")
+        _check_varying(continuity, conditions, alpha)
         return _join_varying(patch, axis, degree, lam, rest, mu, family, check_range)
     across_cls = patch._u_cls if axis == 0 else patch._v_cls
     along_cls = patch._v_cls if axis == 0 else patch._u_cls
@@ -235,7 +239,7 @@ def join_surface(
         rest_cols = _transpose(rest_rows) if axis == 0 else [list(r) for r in rest_rows]
     if conditions == "derived":
         new_cls = family_class(new_family)
-        weights = _derived_weights(
+        weights = surface_sides.derived_weights(
             across_cls,
             new_cls,
             continuity,
@@ -295,34 +299,6 @@ def _default_degree(
     return int(patch.net.shape[axis]) - 1
 
 
-def _derived_weights(
-    first: type[Curve], second: type[Curve], continuity: str, n: int, m: int, values: Any
-) -> dict[tuple[int, str, int], Any]:
-    """{(row, src, k): weight} of the derived document of a family defined by data, at the
-    degrees n (across the patch) and m (the new patch) and (λ1, λ2, α); exact for exact
-    values. The weights are polynomial data (no expression is parsed)."""
-    key = f"{first.family}>{second.family}"
-    docs = [getattr(cls._data, "SURFACE_JOINS", None) for cls in (first, second) if cls is not None]
-    table = next((d for d in docs if isinstance(d, dict)), None)
-    if table is None:
-        raise ValueError(
-            f'conditions="derived" reads the derived document of a family defined by data; '
-            f"{first.family} and {second.family} have none with surface joins (use "
-            f'conditions="solve", or re-derive the family with `lambda-bezier derive --family`)'
-        )
-    if "pairs" not in table:
-        raise ValueError(f"no derived surface conditions for {key}: {table.get('reason')}")
-    entry = table["pairs"].get(key, {})
-    if continuity not in entry:
-        reason = entry.get("reason", "the pair is not in the document")
-        raise ValueError(f"no derived {continuity} conditions for {key}: {reason}")
-    lam1, lam2, alpha = (Fraction(0) if x is None else x for x in values)
-    point = {"n": n, "m": m, "lam1": lam1, "lam2": lam2, "alpha": alpha}
-    found = _derived_joins.lookup(table, key, continuity, point)
-    assert found is not None  # the pair and continuity are in the table (checked above)
-    return found
-
-
 def _apply_weights(weights: Any, first: list[Any], rest: list[Any], order: int) -> list[Any]:
     """One column of the new patch: rows 0..order by the weights, then `rest`."""
     n = len(first) - 1
@@ -337,6 +313,102 @@ def _apply_weights(weights: Any, first: list[Any], rest: list[Any], order: int) 
             acc = [a + w * c for a, c in zip(acc, x, strict=True)]
         rows.append(tuple(acc))
     return rows + [tuple(p) for p in rest]
+
+
+def _check_varying(continuity: str, conditions: str, alpha: object) -> None:
+    if conditions != "solve":
+        raise ValueError('mu (a varying G1 factor) is solved: use conditions="solve"')
+    if continuity != "G1":
+        raise ValueError(f"mu (a varying G1 factor) needs continuity G1, got {continuity}")
+    if alpha != 1:
+        raise ValueError("give either alpha (a constant G1 factor) or mu, not both")
+
+
+def _varying_target(
+    patch: Surface, axis: int, at_end: bool, mu: object
+) -> tuple[list[Any], list[Any]]:
+    """(value, target): A's boundary (at the end of direction `axis`, or its start) and
+    μ(v) times A's cross derivative there, both in Bernstein form of degree N + 1 along it
+    (N: A's Bézier degree there)."""
+    mu0, mu1 = _factor(mu)
+    lines = _rows_across(patch.to_bezier().control_net(), axis)  # N + 1 Bézier lines across
+    big_n = len(lines) - 1
+    big_m = len(lines[0]) - 1
+    if at_end:  # A(1, v) and A_u(1, v) = M (P_M - P_{M-1}) on each line
+        ends = [line[-1] for line in lines]
+        slopes = [
+            tuple(big_m * (x - y) for x, y in zip(line[-1], line[-2], strict=True))
+            for line in lines
+        ]
+    else:  # A(0, v) and A_u(0, v) = M (P_1 - P_0)
+        ends = [line[0] for line in lines]
+        slopes = [
+            tuple(big_m * (x - y) for x, y in zip(line[1], line[0], strict=True)) for line in lines
+        ]
+    value = _elevate_to(ends, big_n + 1)
+    f0, f1 = mu0, mu0 + mu1  # μ in Bernstein degree 1
+    dim = len(ends[0])
+    zero = 0 * ends[0][0]
+    target = []  # (μ A_u)_k = ((N+1-k) f0 s_k + k f1 s_{k-1}) / (N+1)
+    for k in range(big_n + 2):
+        target.append(
+            tuple(
+                (
+                    (big_n + 1 - k) * f0 * (slopes[k][c] if k <= big_n else zero)
+                    + k * f1 * (slopes[k - 1][c] if k >= 1 else zero)
+                )
+                / (big_n + 1)
+                for c in range(dim)
+            )
+        )
+    return value, target
+
+
+def _join_varying_before(
+    patch: Surface,
+    axis: int,
+    degree: int,
+    lam: Fraction | float | None,
+    rest: Any,
+    mu: object,
+    family: object,
+    check_range: bool,
+) -> Surface:
+    """G1 across u = 0 (or v = 0) with B_u(1, v) = μ(v) A_u(0, v): the Bézier patch of
+    degree 1 across with B's boundary values and cross derivative as its own (the lines from
+    value_k to value_k + target_k), joined before with C1 (surface_sides.join_before): B ends
+    at A(0, v) with that derivative, classical Bézier of degree N + 1 along the boundary."""
+    value, target = _varying_target(patch, axis, False, mu)
+    ramp = [
+        value,
+        [
+            tuple(x + y for x, y in zip(p, d, strict=True))
+            for p, d in zip(value, target, strict=True)
+        ],
+    ]
+    net = ramp if axis == 0 else _transpose(ramp)
+    across = patch._u_cls if axis == 0 else patch._v_cls
+    try:
+        return surface_sides.join_before(
+            BezierSurface(net),
+            axis,
+            "C1",
+            degree,
+            lam,
+            rest,
+            1,
+            across if family is None else family,
+            None,
+            check_range,
+        )
+    except ValueError as exc:
+        if "points along the boundary" in str(exc):
+            count = len(value)
+            raise ValueError(
+                f"rest must be a grid of control points with {count} points along the boundary "
+                f"(N + 2 = {count}: the patch's Bézier degree {count - 2} there, plus one for mu)"
+            ) from None
+        raise
 
 
 def _factor(mu: object) -> tuple[Fraction | float, Fraction | float]:
@@ -367,31 +439,9 @@ def _join_varying(
     check_range: bool,
 ) -> Surface:
     """G1 with B_u(0, v) = μ(v) A_u(1, v), μ linear (see the module's docstring)."""
-    mu0, mu1 = _factor(mu)
     across_cls = patch._u_cls if axis == 0 else patch._v_cls
-    lines = _rows_across(patch.to_bezier().control_net(), axis)  # N + 1 Bézier lines across
-    big_n = len(lines) - 1
-    ends = [line[-1] for line in lines]  # A(1, v), Bernstein degree N
-    big_m = len(lines[0]) - 1
-    slopes = [  # A_u(1, v) = M (P_M - P_{M-1}) on each line
-        tuple(big_m * (x - y) for x, y in zip(line[-1], line[-2], strict=True)) for line in lines
-    ]
-    value = _elevate_to(ends, big_n + 1)
-    f0, f1 = mu0, mu0 + mu1  # μ in Bernstein degree 1
-    dim = len(ends[0])
-    zero = 0 * ends[0][0]
-    target = []  # (μ A_u)_k = ((N+1-k) f0 s_k + k f1 s_{k-1}) / (N+1)
-    for k in range(big_n + 2):
-        target.append(
-            tuple(
-                (
-                    (big_n + 1 - k) * f0 * (slopes[k][c] if k <= big_n else zero)
-                    + k * f1 * (slopes[k - 1][c] if k >= 1 else zero)
-                )
-                / (big_n + 1)
-                for c in range(dim)
-            )
-        )
+    value, target = _varying_target(patch, axis, True, mu)
+    big_n = len(value) - 2
     count = big_n + 2
     given = np.size(np.asarray(val.real_array(rest, "rest"), dtype=float)) > 0
     rest_cols: list[Any] = [()] * count
@@ -581,7 +631,11 @@ class CompositeSurface:
         if not _same(da[0], db[0], tol):
             return "none"
         if not _same(da[1], db[1], tol * 10):
-            if _proportional(da[1], db[1], tol * 10) or _linear_factor(da[1], db[1], tol * 10):
+            if (
+                _proportional(da[1], db[1], tol * 10)
+                or _linear_factor(da[1], db[1], tol * 10)  # B_u = μ A_u, B after A
+                or _linear_factor(db[1], da[1], tol * 10)  # A_u = μ B_u, B before A (u0, v0)
+            ):
                 return "G1"
             return "C0"
         return "C2" if _same(da[2], db[2], tol * 100) else "C1"

@@ -31,10 +31,12 @@ from typing import Any
 
 import numpy as np
 
+from . import _atom_joins, _derived_joins
 from . import _poly_direction as pd
 from . import _validate as val
 from .curves import Curve, family_class
 from .joins import join
+from .param_surface_joins import _second_side, resolve_sides
 from .param_surfaces import family_surface
 from .surfaces import Surface, _exact_net
 
@@ -96,6 +98,20 @@ def probe_weights(
             f"{new_degree}; A's its second): {exc}"
         ) from None
     return [list(p) for p in solved[: order + 1]]
+
+
+def weights_from_document(
+    found: dict[tuple[int, str, int], Any], new_degree: int, given_degree: int, order: int
+) -> list[list[Number]]:
+    """probe_weights' L[r][i] read from a derived document's join weights {(row, src, k): w}
+    with the new curve first: src "first" k is its point m - k (i = m - k), src "rest" k the
+    given curve's own point k (i = m + 1 + k - R - 1)."""
+    size = new_degree + 1 + given_degree - order
+    out: list[list[Number]] = [[Fraction(0)] * size for _ in range(order + 1)]
+    for (r, src, k), w in found.items():
+        i = new_degree - k if src == "first" else new_degree + k - order
+        out[r][i] = out[r][i] + w
+    return out
 
 
 def _solve(matrix: list[list[Number]], rhs: list[list[Number]]) -> list[list[Number]]:
@@ -208,9 +224,11 @@ def join_before(
     family: Any,
     params: Any,
     check_range: bool,
+    conditions: str = "solve",
 ) -> Surface:
     """The patch B across `patch`'s boundary u = 0 (axis 0) or v = 0: B(1, v) = A(0, v) and
-    the cross derivatives per `continuity` (see the module's docstring)."""
+    the cross derivatives per `continuity` (see the module's docstring); with
+    ``conditions="derived"`` the weights come from a derived document instead of the probe."""
     order = 2 if continuity == "C2" else 1
     step = inverse_alpha(alpha) if continuity == "G1" else 1
     count = patch.net.shape[1 - axis]
@@ -232,6 +250,7 @@ def join_before(
             new_given,
             n,
             order,
+            conditions,
         )
     across_cls = patch._u_cls if axis == 0 else patch._v_cls
     along_cls = patch._v_cls if axis == 0 else patch._u_cls
@@ -265,7 +284,13 @@ def join_before(
             check_range=False,
         )
 
-    weights = probe_weights(make_new, degree, n, order, join_given)
+    if conditions == "derived":  # B's curve is the document's first, A's its second
+        found = derived_weights(
+            new_cls, across_cls, continuity, degree, n, (new_lam, across_lam, step)
+        )
+        weights = weights_from_document(found, degree, n, order)
+    else:
+        weights = probe_weights(make_new, degree, n, order, join_given)
     lines = [
         solve_before(weights, given_lines[j], new_given[j], degree, order) for j in range(count)
     ]
@@ -298,20 +323,14 @@ def _before_by_name(
     new_given: list[Any],
     n: int,
     order: int,
+    conditions: str,
 ) -> Surface:
     """join_before for a patch whose directions take their parameters by name."""
-    across = patch.family_u if axis == 0 else patch.family_v
-    across_params = patch.params_u if axis == 0 else patch.params_v
-    along = patch.family_v if axis == 0 else patch.family_u
-    along_params = patch.params_v if axis == 0 else patch.params_u
-    new_family = across if family is None else pd.by_name_family(family)
-    if params is not None and not isinstance(params, dict):
-        raise TypeError(f"params must be a dict {{name: value}}, not {type(params).__name__}")
-    new_params = dict(across_params if params is None else params)
-    target, target_params = new_family, new_params
-    if hasattr(new_family, "index_name"):  # one value per index of the new degree
-        target = new_family.at_degree(degree)
-        target_params = new_family.index_values(degree, new_params.get(new_family.index_name))
+    side = resolve_sides(patch, axis, family, params, degree)  # as on the sides u1, v1
+    across, across_params = side.across, side.across_params
+    along, along_params = side.along, side.along_params
+    new_family, new_params = side.new_family, side.new_params
+    target, target_params = side.target, side.target_params
     given_target, given_values = across, dict(across_params)
     if hasattr(across, "index_name"):
         given_target = across.at_degree(n)
@@ -339,7 +358,21 @@ def _before_by_name(
             check_range=False,
         )
 
-    weights = probe_weights(make_new, degree, n, order, join_given)
+    if conditions == "derived":  # B's curve is the document's first, A's its second
+        first = _atom_joins.join_side(make_new([[0]] * (degree + 1)), 1, degree)
+        second = _second_side(given_target, given_values, n, check_range)
+        found = _atom_joins.derived_weights(first, second, continuity, step, 0)
+        if found is None:
+            raise ValueError(
+                f'conditions="derived": the derived documents of {pd.family_name(new_family)} '
+                f"and {pd.family_name(across)} hold no {continuity} join "
+                f"{pd.family_name(new_family)}>{pd.family_name(across)} at degrees {degree} "
+                f"and {n} (the new patch B comes first across u = 0 or v = 0; use "
+                'conditions="solve")'
+            )
+        weights = weights_from_document(found, degree, n, order)
+    else:
+        weights = probe_weights(make_new, degree, n, order, join_given)
     lines = [
         solve_before(weights, given_lines[j], new_given[j], degree, order)
         for j in range(len(given_lines))
@@ -350,6 +383,34 @@ def _before_by_name(
     else:
         pair, pu, pv = (along, new_family), along_params, new_params
     return family_surface(net, pair, params_u=pu, params_v=pv, check_range=False)
+
+
+def derived_weights(
+    first: type[Curve], second: type[Curve], continuity: str, n: int, m: int, values: Any
+) -> dict[tuple[int, str, int], Any]:
+    """{(row, src, k): weight} of the derived document of a family defined by data, at the
+    degrees n (across the patch) and m (the new patch) and (λ1, λ2, α); exact for exact
+    values. The weights are polynomial data (no expression is parsed)."""
+    key = f"{first.family}>{second.family}"
+    docs = [getattr(cls._data, "SURFACE_JOINS", None) for cls in (first, second) if cls is not None]
+    table = next((d for d in docs if isinstance(d, dict)), None)
+    if table is None:
+        raise ValueError(
+            f'conditions="derived" reads the derived document of a family defined by data; '
+            f"{first.family} and {second.family} have none with surface joins (use "
+            f'conditions="solve", or re-derive the family with `lambda-bezier derive --family`)'
+        )
+    if "pairs" not in table:
+        raise ValueError(f"no derived surface conditions for {key}: {table.get('reason')}")
+    entry = table["pairs"].get(key, {})
+    if continuity not in entry:
+        reason = entry.get("reason", "the pair is not in the document")
+        raise ValueError(f"no derived {continuity} conditions for {key}: {reason}")
+    lam1, lam2, alpha = (Fraction(0) if x is None else x for x in values)
+    point = {"n": n, "m": m, "lam1": lam1, "lam2": lam2, "alpha": alpha}
+    found = _derived_joins.lookup(table, key, continuity, point)
+    assert found is not None  # the pair and continuity are in the table (checked above)
+    return found
 
 
 def takes_names(family: object) -> bool:

@@ -250,3 +250,31 @@ def test_rational_form_against_the_formula(tmp_path, name):
 def test_no_rational_form_with_powers_of_t(family):
     with pytest.raises(ValueError, match="no rational Bézier form: its space has t"):
         family.curve(P, alpha=1.0).to_rational_bezier()
+
+
+def test_length_location_and_torsion_against_the_written_formulas(family, written):
+    """arc_length / parameter_at_length / locate / torsion of a C-Bezier curve (and of a
+    composite holding one) against mpmath quadrature of the speed from the file's formulas."""
+    c = family.curve(P, alpha=2.0)
+    speed = lambda t: mp.sqrt(sum(x * x for x in _cb_derivative(written, c, t, 1)))  # noqa: E731
+    with mp.workdps(20):
+        whole = float(mp.quad(speed, [0, 0.5, 1, 1.5, 2]))
+        part = float(mp.quad(speed, [0.25, 1, 1.5]))
+    assert c.arc_length() == pytest.approx(whole, rel=1e-12)
+    assert c.arc_length(0.25, 1.5) == pytest.approx(part, rel=1e-12)
+    t = c.parameter_at_length(part)
+    assert c.arc_length(0, t) == pytest.approx(part, rel=1e-12)
+    comp = lb.CompositeCurve([c]).join("C1", 3, rest=[(7, 1), (8, 0)], family="bezier")
+    assert comp.breaks[1] == 2.0  # the C-Bezier segment covers its own [0, alpha]
+    assert comp.arc_length(0, 2) == pytest.approx(whole, rel=1e-12)
+    assert c.locate(c.evaluate(0.7)) == pytest.approx(0.7, abs=1e-9)
+    assert c.locate((10.0, 10.0)) is None
+    with pytest.raises(ValueError, match="t1 = 3"):
+        c.arc_length(0, 3)
+    with pytest.raises(ValueError, match="torsion"):
+        c.torsion(0.5)  # a planar curve
+    space = family.curve([(0, 0, 0), (1, 2, 1), (3, 2, -1), (4, 0, 2)], alpha=2.0)
+    d1, d2 = (np.array(space.derivative(1.0, k)) for k in (1, 2))
+    d3 = np.array(space.derivative(1.0, 3))
+    cross = np.cross(d1, d2)
+    assert space.torsion(1.0) == pytest.approx(float(cross @ d3 / (cross @ cross)), rel=1e-9)

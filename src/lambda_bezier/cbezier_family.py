@@ -657,6 +657,49 @@ class CBezierCurve:
 
         return ag.intersect(self, other)  # type: ignore[arg-type]
 
+    def self_intersections(self) -> list[Intersection]:
+        """Every pair s < t with C(s) = C(t), both in the family's own parameter."""
+        from . import _atom_geometry as ag
+
+        return ag.self_intersections(self)  # type: ignore[arg-type]
+
+    def locate(self, point: PointsLike) -> float | None:
+        """The parameter with C(t) = point (within 1e-10 of the curve's size), or None."""
+        from . import _atom_geometry as ag
+
+        return ag.locate(self, point)  # type: ignore[arg-type]
+
+    def arc_length(self, t0: float | None = None, t1: float | None = None) -> float:
+        """The length from t0 to t1 (default: the whole domain), relative accuracy 1e-12
+        (adaptive Gauss-Legendre on the speed, on the pieces of _atom_geometry)."""
+        from . import _atom_geometry as ag
+
+        lo, hi = self.domain
+        a = lo if t0 is None else self._inside(t0, "t0")
+        b = hi if t1 is None else self._inside(t1, "t1")
+        if a > b:
+            raise ValueError(f"t0 = {t0} must not exceed t1 = {t1}")
+        return ag.arc_length(self, a, b)  # type: ignore[arg-type]
+
+    def parameter_at_length(self, s: npt.ArrayLike) -> np.ndarray | float:
+        """The parameter at which the length from the domain's start equals s."""
+        from . import _atom_geometry as ag
+
+        return ag.parameter_at_length(self, s)  # type: ignore[arg-type]
+
+    def torsion(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
+        """The signed torsion of a 3D curve (a ValueError where C' x C'' = 0, or in 2D)."""
+        from .geometry import torsion
+
+        return torsion(self, t, extrapolate=extrapolate)  # type: ignore[arg-type]
+
+    def _inside(self, t: object, name: str) -> float:
+        x = float(val.real_number(t, name, keep_exact=False))
+        lo, hi = self.domain
+        if not lo <= x <= hi:
+            raise ValueError(f"{name} = {t} is outside the curve's domain [{lo}, {hi}]")
+        return x
+
     def split(self, t: float) -> tuple[CBezierCurve, CBezierCurve]:
         """Two curves of the same family: on [0, t] and [t, end] of the own parameter, with
         alpha_1 = t (alpha*t on [0, 1]) and alpha_2 = alpha - alpha_1 (the space is invariant
@@ -671,7 +714,6 @@ class CBezierCurve:
         cut = x * self._rate if fam.form == "unit" else x
         out = []
         for start, length in ((0.0, cut), (cut, self.alpha - cut)):
-            piece = CBezierCurve.__new__(CBezierCurve)
             basis, _ = fam.basis_coefficients(length)
             # the curve's t-atoms shifted to start at `start`: r(start + s) over atoms of s
             own = self._t_atoms_shifted(start)

@@ -474,6 +474,7 @@ def test_evaluate_many_indexed(q):
         assert np.allclose(row, q.curve(p, lam=lam).evaluate(np.array([0.0, 0.3, 1.0])))
     with pytest.raises(TypeError, match="takes one sequence"):
         lb.evaluate_many(pts, [0.5], q, params={"mu": lam})
+    assert np.array_equal(lb.evaluate_many(pts, [0.0, 0.3, 1.0], q, lam=lam), got)
 
 
 def test_box_bernstein_kernel_directly():

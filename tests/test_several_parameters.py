@@ -201,6 +201,16 @@ def test_evaluate_many_matches_the_curves(fam):
         np.testing.assert_allclose(got[i], want, atol=1e-12)
     with pytest.raises(TypeError, match="needs its shape parameter mu"):
         lb.evaluate_many(pts, ts, fam, params={"lam": 0.5})
+    # the parameters as keywords in the family's own names, as fam.curve takes them
+    keywords = lb.evaluate_many(pts, ts, fam, lam=0.5, mu=-1.0, k=1)
+    assert np.array_equal(keywords, got)
+    assert np.array_equal(lb.evaluate_many(pts, ts, fam, params={"lam": 0.5}, mu=-1.0, k=1), got)
+    with pytest.raises(TypeError, match="mu (is )?given twice"):
+        lb.evaluate_many(pts, ts, fam, params={"lam": 0.5, "mu": 1.0}, mu=-1.0)
+    with pytest.raises(TypeError, match="nu"):
+        lb.evaluate_many(pts, ts, fam, lam=0.5, mu=-1.0, nu=2.0)
+    with pytest.raises(TypeError, match="mu: a family of one parameter takes it as lam="):
+        lb.evaluate_many(pts, ts, "same_degree", mu=0.5)
 
 
 # --------------------------------------------------------------------------- one per leg

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sys
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -34,6 +35,27 @@ def _lambdas(lam: npt.ArrayLike, cls: type[Curve], m: int, check_range: bool) ->
     return arr
 
 
+def _named(lam: object, named_params: dict[str, object]) -> dict[str, object]:
+    """Keyword parameters in the family's own names, with `lam` among them when given."""
+    if lam is None:
+        return dict(named_params)
+    if "lam" in named_params:  # unreachable through the signature; kept for callers' dicts
+        raise TypeError("lam is given twice; give it once")
+    return {"lam": lam, **named_params}
+
+
+def _merged(
+    params: dict[str, Any] | None, named_params: dict[str, object]
+) -> dict[str, Any] | None:
+    """`params` with the keyword parameters added (TypeError for one given both ways)."""
+    if not named_params:
+        return params
+    both = sorted(set(params or {}) & set(named_params))
+    if both:
+        raise TypeError(f"{', '.join(both)} given twice (params and keyword); give it once")
+    return {**(params or {}), **named_params}
+
+
 def evaluate_many(
     points: npt.ArrayLike,
     t: npt.ArrayLike,
@@ -45,6 +67,7 @@ def evaluate_many(
     extrapolate: bool = False,
     params: dict[str, float] | None = None,
     out: np.ndarray | None = None,
+    **named_params: object,
 ) -> np.ndarray:
     r"""The k-th derivative :math:`p^{(k)}(t)` of m curves of one family and degree at once.
 
@@ -69,6 +92,9 @@ def evaluate_many(
         A family in several parameters (from `load_family`): one value per parameter,
         ``{"lam": ..., "mu": ...}``, shared by every curve; an indexed family (``lam(i)``)
         takes ``{"lam": [one value per index]}`` (or ``lam=[...]``).
+    **named_params
+        The same parameters as keywords in the family's own names (``lam=..., mu=...``), as
+        ``fam.curve`` takes them.
     out : numpy.ndarray, optional
         An array to write the result into and return, as numpy's ``out=``: float64,
         C-contiguous, writeable, of the result's shape (m, T, d) ((m, d) for a scalar t),
@@ -91,13 +117,14 @@ def evaluate_many(
     if getattr(family, "atom_data", None) is not None:  # trigonometric, hyperbolic, mixed
         from .atom_family import evaluate_many as atom_evaluate_many
 
-        named = {} if lam is None else {"lam": lam}
+        named = _named(lam, named_params)
         given = family.parameter_values(None, params, named)  # type: ignore[attr-defined]
         exact = family.exact_values(given, val.flag(check_range, "check_range"))  # type: ignore[attr-defined]
         values = atom_evaluate_many(family, points, t, k, exact, extrapolate)
         return values if out is None else _into(out, values, points, t)
     own = getattr(family, "evaluate_curves", None)
     if own is not None:  # a family with its parameter in the domain (C-Bézier): its own
+        params = _merged(params, named_params)
         values = own(points, t, k, lam, params, val.flag(extrapolate, "extrapolate"))
         return values if out is None else _into(out, values, points, t)
     if hasattr(family, "by_degree"):  # an indexed family (lam(i)): its degree's own Family
@@ -105,18 +132,24 @@ def evaluate_many(
         if len(shape) != 3:
             raise ValueError(f"control points must have shape (m, n+1, d), got shape {shape}")
         name = family.index_name  # type: ignore[attr-defined]
+        params = _merged(params, named_params)
+        named_params = {}
         given = dict(params or {}) if lam is None else {name: lam, **(params or {})}
         if set(given) != {name}:
             raise TypeError(f"params: {family.name!r} takes one sequence, {name}=[...]")  # type: ignore[attr-defined]
         params = family.index_values(shape[1] - 1, given[name])  # type: ignore[attr-defined]
         family, lam = family.at_degree(shape[1] - 1), None  # type: ignore[attr-defined]
     if getattr(family, "several", None) is not None:
-        named = {} if lam is None else {"lam": lam}  # a parameter may be called lam
+        named = _named(lam, named_params)  # a parameter may be called lam
         given = family.parameter_values(None, params, named)  # type: ignore[attr-defined]
         family = family._fixed_class(given, val.flag(check_range, "check_range"))  # type: ignore[attr-defined]
         lam = None
     elif params is not None:
         raise TypeError("params: only a family in several parameters takes params (use lam)")
+    elif named_params:
+        raise TypeError(
+            f"{', '.join(sorted(named_params))}: a family of one parameter takes it as lam="
+        )
     # a built-in family's name, or a family from lambda_bezier.load_family
     cls = (
         FAMILIES[val.choice(family, "family", tuple(FAMILIES))]

@@ -37,6 +37,7 @@ from typing import NamedTuple
 import numpy as np
 
 from . import intersect_certify as cert
+from . import intersect_exact as _exact_iso
 from . import intersect_subdivide as sub
 from .intersect_prepared import Prepared as Prepared
 from .intersect_prepared import _exact_difference, _integer_point
@@ -528,7 +529,27 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
     _check_pair(p, q)
     results: list[list[Intersection]] = [[]]
     _careful_pairs([(p, q)], [0], results)  # declined (or exact input): not certified again
-    return results[0]
+    return _decided_exactly(p, q, results[0])
+
+
+def _decided_exactly(p: Prepared, q: Prepared, hits: list[Intersection]) -> list[Intersection]:
+    """For exact (int, Fraction) planar input with a "tangent" hit: the answer decided
+    exactly (intersect_exact.exact_answer: touching points proved, near-tangencies without
+    contact dropped, near-double crossings split), unless the curves share a stretch or a
+    box stays undecided."""
+    if (
+        p._given_rows is None
+        or q._given_rows is None
+        or p.dim != 2
+        or q.dim != 2
+        or not any(h.kind == "tangent" for h in hits)
+        or any(h.kind == "coincident" for h in hits)
+    ):
+        return hits
+    got = _exact_iso.exact_answer(p._given_rows, q._given_rows)
+    if got is None:
+        return hits
+    return [Intersection(s, t, "tangent" if flat else "transversal") for s, t, flat in got]
 
 
 def intersect_pairs(pairs: list[tuple[Prepared, Prepared]]) -> list[list[Intersection]]:
@@ -573,6 +594,8 @@ def intersect_pairs(pairs: list[tuple[Prepared, Prepared]]) -> list[list[Interse
                     ]
         if careful:
             _careful_pairs(pairs, sorted(careful), results)
+            for k in careful:
+                results[k] = _decided_exactly(*pairs[k], results[k])
     return results
 
 

@@ -38,6 +38,7 @@ import numpy as np
 
 from . import intersect_certify as cert
 from . import intersect_exact as _exact_iso
+from . import intersect_fold as fold
 from . import intersect_subdivide as sub
 from .intersect_prepared import Prepared as Prepared
 from .intersect_prepared import _exact_difference, _integer_point
@@ -781,16 +782,12 @@ def self_intersections(p: Prepared) -> list[Intersection]:
     if p.degree < 2 or p.is_point:
         return found
     line = _common_line(p.pts, ON_CURVE * p.scale)
-    if line is not None:  # on a line: none if it runs one way, a continuum if it turns back
-        image = np.array([p.at(x) for x in np.linspace(0.0, 1.0, 1025)]) @ line[0]
-        steps = np.diff(image)
-        slack = 1e-12 * line[1]
-        if np.all(steps >= -slack) or np.all(steps <= slack):
-            return found
-        raise ValueError(
-            "the curve lies on a line and turns back along it: it meets itself along an "
-            "interval, not at points"
-        )
+    if line is not None:  # on a line: none if it runs one way, stretches if it turns back
+        rows = [p.exact_row(k) for k in range(p.degree + 1)]
+        return [
+            Intersection(s, t, "coincident")
+            for s, t in fold.folded_stretches([[Fraction(x) for x in r] for r in rows])
+        ]
     iso = sub.isolate(p.pts[None], None, np.array([BOX_SLACK * p.degree * p.scale]))
     for s, t in zip(iso.root_s.tolist(), iso.root_t.tolist(), strict=True):
         hit = _solve_from(p, p, s, t, found, isolated=True)

@@ -156,7 +156,21 @@ def test_two_curves_touching_at_an_irrational_point():
     assert abs(hit.s - float(sp.N(sp.sqrt(2) / 2, 30))) <= 1e-15 and abs(hit.t - hit.s) <= 1e-15
     lower = bezier_of(S, -((S**2 - sp.Rational(1, 2)) ** 2) - sp.Rational(1, 10**20))
     assert sympy_roots(quartic, lower) == []
-    assert quartic.intersect(lower) == [] and lb.intersect_exact(quartic, lower) == []
+    assert lb.intersect_exact(quartic, lower) == []
+    # two quartics are past intersect's budget (DECIDE_DEGREE): the float answer stands there
+    assert [h.kind for h in quartic.intersect(lower)] == ["tangent"]
+
+
+def test_a_curve_and_its_mirror_moved_apart_within_the_float_tolerance():
+    """Two quadratics within intersect's budget: the arch and its mirror in y = 1/2 touch at
+    (1/2, 1/2); the mirror moved up by 1e-20 meets the arch nowhere (SymPy), though within
+    the float tolerance."""
+    arch = bezier_of(S, 2 * S * (1 - S))
+    for lift, want in ((0, [sp.Rational(1, 2)]), (sp.Rational(1, 10**20), [])):
+        mirror = bezier_of(S, 1 - 2 * S * (1 - S) + lift)
+        assert sympy_roots(arch, mirror) == want
+        got = arch.intersect(mirror)
+        assert [(h.s, h.t, h.kind) for h in got] == [(0.5, 0.5, "tangent")] * len(want)
 
 
 @settings(max_examples=10, derandomize=True, deadline=None)

@@ -253,10 +253,18 @@ def test_self_intersections_against_sympy():
     assert len(got) == len(sols) == 1
     assert got[0].s == pytest.approx(sols[0][0], abs=1e-14)
     assert got[0].t == pytest.approx(sols[0][1], abs=1e-14)
-    # on a line: none when it runs one way, a continuum (refused) when it turns back
+    # on a line: none when it runs one way; when it turns back (x = 4s − 5s², out to 4/5 at
+    # s = 2/5 = the root of x′ and back), the stretch s in [0, 2/5] = t in [2/5, 4/5], whose
+    # end pairs are SymPy's (tests/test_folded_line.py has more)
     assert lb.BezierCurve([(0, 0), (1, 1), (1, 1), (3, 3)]).self_intersections() == []
-    with pytest.raises(ValueError, match="turns back"):
-        lb.BezierCurve([(0, 0), (2, 0), (-1, 0)]).self_intersections()
+    x = 4 * s - 5 * s**2
+    (turn,) = sympy.solve(sympy.diff(x, s), s)
+    back = max(sympy.solve(x, s))
+    folded = lb.BezierCurve([(0, 0), (2, 0), (-1, 0)]).self_intersections()
+    assert [(h.s, h.t, h.kind) for h in folded] == [
+        (0.0, float(back), "coincident"),
+        (float(turn), float(turn), "coincident"),
+    ]
     # a cusp is not a self-intersection, a simple arc has none
     assert lb.BezierCurve([(0, 0), (2, 2), (0, 2), (2, 0)]).self_intersections() == []
     assert lb.BezierCurve([(0, 0), (1, 2), (3, 2), (4, 0)]).self_intersections() == []

@@ -310,8 +310,9 @@ def sign_at_root(p: Poly, square_free: Poly, interval: tuple[Fraction, Fraction]
     """The sign (−1, 0, 1) of p at the one root of the square-free polynomial `square_free` in
     `interval` (a rational point (r, r), or an open interval with non-root ends, as
     real_roots and refine give them): 0 exactly when p and square_free share a root there
-    (their gcd over Q has one in the interval), else p's sign at a point of an interval
-    refined until p has no root in it."""
+    (their gcd over Q has one in the interval: Sturm on the gcd, usually of low degree), else
+    the sign of an enclosure of p over the interval, halved about the root until the
+    enclosure excludes 0 (it must: p does not vanish at the root)."""
     lo, hi = interval
     p = trim(p)
     if not p:
@@ -323,14 +324,26 @@ def sign_at_root(p: Poly, square_free: Poly, interval: tuple[Fraction, Fraction]
     if len(common) > 1 and real_roots(common, lo, hi):
         return 0
     while True:
-        if len(p) == 1 or not real_roots(p, lo, hi):
-            v = evaluate(p, (lo + hi) / 2)
-            return (v > 0) - (v < 0)
+        low, high = _enclose(p, lo, hi)
+        if low > 0 or high < 0:
+            return 1 if low > 0 else -1
         got = refine(square_free, (lo, hi), (hi - lo) / 2)
         if isinstance(got, Fraction):  # met the root exactly
             v = evaluate(p, got)
             return (v > 0) - (v < 0)
         lo, hi = got
+
+
+def _enclose(p: Poly, lo: Fraction, hi: Fraction) -> tuple[Fraction, Fraction]:
+    """An enclosure of p over [lo, hi]: the mean-value form p(m) ± |p′|·r about the middle,
+    |p′| bounded by its coefficients' magnitudes at max(|lo|, |hi|)."""
+    mid, rad = (lo + hi) / 2, (hi - lo) / 2
+    big = max(abs(lo), abs(hi))
+    slope = Fraction(0)
+    for c in reversed(derivative(p)):
+        slope = slope * big + abs(c)
+    centre = evaluate(p, mid)
+    return centre - slope * rad, centre + slope * rad
 
 
 def _in_var(f: Bivariate, var: int, other: int, value: Fraction, degree: int) -> Poly:

@@ -312,6 +312,7 @@ def _widen(box: Interval) -> Interval:
     return lo - eps, hi + eps
 
 
+DECIDE_DEGREE = 9  # intersect decides tangencies exactly up to this product of the degrees
 NARROW = Fraction(1, 2**64)  # the width exact boxes are refined to when they replace float hits
 
 

@@ -534,23 +534,8 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
 
 
 def _decided_exactly(p: Prepared, q: Prepared, hits: list[Intersection]) -> list[Intersection]:
-    """For exact (int, Fraction) planar input with a "tangent" hit: the answer decided
-    exactly (intersect_exact.exact_answer: touching points proved, near-tangencies without
-    contact dropped, near-double crossings split), unless the curves share a stretch or a
-    box stays undecided, or the degrees' product is past DECIDE_DEGREE (the exact isolation's
-    cost: 0.04-0.1 s for two cubics, 0.5-2.5 s for two quartics, 110 s for two quintics, on
-    reflected tangencies with denominators to 40, loaded)."""
-    if (
-        p._given_rows is None
-        or q._given_rows is None
-        or p.dim != 2
-        or q.dim != 2
-        or p.degree * q.degree > _exact_iso.DECIDE_DEGREE
-        or not any(h.kind == "tangent" for h in hits)
-        or any(h.kind == "coincident" for h in hits)
-    ):
-        return hits
-    got = _exact_iso.exact_answer(p._given_rows, q._given_rows)
+    """hits, or the exact answer where intersect_exact.decided gives one."""
+    got = _exact_iso.decided(p._given_rows, q._given_rows, p.dim, q.dim, [h.kind for h in hits])
     if got is None:
         return hits
     return [Intersection(s, t, "tangent" if flat else "transversal") for s, t, flat in got]
@@ -786,11 +771,8 @@ def self_intersections(p: Prepared) -> list[Intersection]:
         return found
     line = _common_line(p.pts, ON_CURVE * p.scale)
     if line is not None:  # on a line: none if it runs one way, stretches if it turns back
-        rows = [p.exact_row(k) for k in range(p.degree + 1)]
-        return [
-            Intersection(s, t, "coincident")
-            for s, t in fold.folded_stretches([[Fraction(x) for x in r] for r in rows])
-        ]
+        stretches = fold.folded_stretches([p.exact_row(k) for k in range(p.degree + 1)])
+        return [Intersection(s, t, "coincident") for s, t in stretches]
     iso = sub.isolate(p.pts[None], None, np.array([BOX_SLACK * p.degree * p.scale]))
     for s, t in zip(iso.root_s.tolist(), iso.root_t.tolist(), strict=True):
         hit = _solve_from(p, p, s, t, found, isolated=True)

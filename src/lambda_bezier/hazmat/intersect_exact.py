@@ -329,3 +329,30 @@ def exact_answer(
     if not all(c.certified for c in boxes):
         return None
     return [(float((c.s[0] + c.s[1]) / 2), float((c.t[0] + c.t[1]) / 2), c.tangent) for c in boxes]
+
+
+def decided(
+    p_rows: Sequence[Sequence[Fraction]] | None,
+    q_rows: Sequence[Sequence[Fraction]] | None,
+    p_dim: int,
+    q_dim: int,
+    kinds: Sequence[str],
+) -> list[tuple[float, float, bool]] | None:
+    """intersect's answer decided exactly (exact_answer) for exact (int, Fraction) planar
+    input whose float answer (its hits' `kinds`) has a "tangent" hit: touching points proved,
+    near-tangencies without contact dropped, near-double crossings split. None (the float
+    answer stands) for float input, the curves sharing a stretch, a box left undecided, or
+    a product of the degrees past DECIDE_DEGREE (the exact isolation's cost: 0.04-0.1 s for
+    two cubics, 0.5-2.5 s for two quartics, 110 s for two quintics, on reflected tangencies
+    with denominators to 40, loaded)."""
+    if (
+        p_rows is None
+        or q_rows is None
+        or p_dim != 2
+        or q_dim != 2
+        or (len(p_rows) - 1) * (len(q_rows) - 1) > DECIDE_DEGREE
+        or "tangent" not in kinds
+        or "coincident" in kinds
+    ):
+        return None
+    return exact_answer(p_rows, q_rows)

@@ -22,9 +22,11 @@ from .intersect_exact import power_coefficients
 TURN_WIDTH = Fraction(1, 2**64)  # turning points are refined to this width, then rounded
 
 
-def folded_stretches(rows: Sequence[Sequence[Fraction]]) -> list[tuple[float, float]]:
+def folded_stretches(
+    rows: Sequence[Sequence[Fraction | int | float]],
+) -> list[tuple[float, float]]:
     """End pairs (s, t), s ≤ t, of the stretches a curve on a line (control points `rows`,
-    exact) shares with itself, two per stretch, sorted, each pair once (one that ends two
+    taken exactly) shares with itself, two per stretch, sorted, each pair once (one that ends two
     stretches, at the end of a monotone piece, is listed once); [] when it runs one way."""
     base = [Fraction(x) for x in rows[0]]
     rel = [[Fraction(x) - b for x, b in zip(row, base, strict=True)] for row in rows]

@@ -100,8 +100,10 @@ def intersect_exact(curve_a: Curve, curve_b: Curve) -> list[ExactCrossing]:
     shape parameter, isolated exactly: boxes s in [s0, s1], t in [t0, t1] with Fraction
     ends, each holding exactly one crossing when ``certified`` (Krawczyk's test in rational
     interval arithmetic on the Sturm-isolated roots of the two resultants; see
-    ``lambda_bezier.hazmat.intersect_exact``). A box left uncertified is a tangency or
-    crossings closer than 2^-60. Sorted by s.
+    ``lambda_bezier.hazmat.intersect_exact``); a box Krawczyk cannot prove (a tangency) is
+    decided algebraically, certified with ``tangent`` True when the curves touch there and
+    dropped when they do not. A box left uncertified holds two common points over one s and
+    over one t. Sorted by s.
 
     >>> from fractions import Fraction as F
     >>> from lambda_bezier import BezierCurve, intersect_exact

@@ -37,6 +37,8 @@ ours (the name follows the `bezier` package's `hazmat`).
   gcds over Q for exact rows, to rounding for floats);
 - `intersect_exact`: exact, certified isolation of planar crossings (resultants, Sturm,
   Krawczyk in rational interval arithmetic);
+- `intersect_fold`: the self-intersections of a curve on a line that turns back along it
+  (the end pairs of the stretches its monotone pieces share);
 - `intersect_prepared`: a curve as the intersection solvers use it (floats, exact rows);
 - `reduce`: degree reduction, exact or least squares;
 - `implicit`: implicitization (imports SymPy when called, never at import);
@@ -105,6 +107,7 @@ __all__ = [
     "intersect_certify",
     "intersect_compiled",
     "intersect_exact",
+    "intersect_fold",
     "intersect_prepared",
     "intersect_subdivide",
     "kernels",

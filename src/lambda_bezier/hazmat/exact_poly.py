@@ -238,6 +238,114 @@ def resultant(f: Bivariate, g: Bivariate, var: int) -> Poly:
     return _interpolate(xs, ys)
 
 
+def first_subresultant(f: Bivariate, g: Bivariate, var: int) -> tuple[Poly, Poly] | None:
+    """The first subresultant of f and g in `var`, S_1 = a1 · var + a0, as (a1, a0):
+    polynomials in the other variable. Where Res_var(f, g) vanishes at x0, f and g have
+    constant leading coefficients in `var` and a1(x0) ≠ 0, S_1(x0, ·) is their gcd, so their
+    only common root is var = −a0(x0)/a1(x0) (real when x0 is). None when a leading coefficient
+    in `var` is not a constant or a degree in `var` is 0 (no such form). Found like
+    `resultant`: the minors of the Sylvester matrix at integer points, interpolated."""
+    other = 1 - var
+    df = max((k[var] for k in f if f[k]), default=0)
+    dg = max((k[var] for k in g if g[k]), default=0)
+    if df == 0 or dg == 0:
+        return None
+    for h, d in ((f, df), (g, dg)):
+        if any(k[var] == d and k[other] > 0 and c for k, c in h.items()):
+            return None
+    if df == 1 or dg == 1:  # a linear one is its own S_1 (up to a constant)
+        h = f if df == 1 else g
+        return (
+            substitute_row(h, var, 1),
+            substitute_row(h, var, 0),
+        )
+    ef = max((k[other] for k in f if f[k]), default=0)
+    eg = max((k[other] for k in g if g[k]), default=0)
+    bound = df * eg + dg * ef
+    xs = [Fraction(k) for k in range(bound + 1)]
+    a1s, a0s = [], []
+    for x0 in xs:
+        minors = _subresultant_one(_in_var(f, var, other, x0, df), _in_var(g, var, other, x0, dg))
+        a1s.append(minors[0])
+        a0s.append(minors[1])
+    return _interpolate(xs, a1s), _interpolate(xs, a0s)
+
+
+def substitute_row(f: Bivariate, var: int, power: int) -> Poly:
+    """The coefficient of var^power in f, a polynomial in the other variable."""
+    other = 1 - var
+    size = 1 + max((k[other] for k in f), default=0)
+    out = [Fraction(0)] * size
+    for key, c in f.items():
+        if key[var] == power:
+            out[key[other]] += c
+    return trim(out)
+
+
+def _subresultant_one(p: Poly, q: Poly) -> tuple[Fraction, Fraction]:
+    """(a1, a0) of S_1(p, q) for the formal degrees m = len(p) − 1, n = len(q) − 1 ≥ 2: the
+    (m + n − 2)-row matrix of n − 1 shifted rows of p and m − 1 of q, its first m + n − 3
+    columns with the column of x^1, then with that of x^0."""
+    m, n = len(p) - 1, len(q) - 1
+    width = m + n - 1
+    rows = []
+    for k in range(n - 1):
+        row = [Fraction(0)] * width
+        for i, c in enumerate(reversed(p)):
+            row[k + i] = c
+        rows.append(row)
+    for k in range(m - 1):
+        row = [Fraction(0)] * width
+        for i, c in enumerate(reversed(q)):
+            row[k + i] = c
+        rows.append(row)
+    head = width - 2  # columns of x^(m+n-2) ... x^2
+    return (
+        _determinant([r[:head] + [r[head]] for r in rows]),
+        _determinant([r[:head] + [r[head + 1]] for r in rows]),
+    )
+
+
+def sign_at_root(p: Poly, square_free: Poly, interval: tuple[Fraction, Fraction]) -> int:
+    """The sign (−1, 0, 1) of p at the one root of the square-free polynomial `square_free` in
+    `interval` (a rational point (r, r), or an open interval with non-root ends, as
+    real_roots and refine give them): 0 exactly when p and square_free share a root there
+    (their gcd over Q has one in the interval: Sturm on the gcd, usually of low degree), else
+    the sign of an enclosure of p over the interval, halved about the root until the
+    enclosure excludes 0 (it must: p does not vanish at the root)."""
+    lo, hi = interval
+    p = trim(p)
+    if not p:
+        return 0
+    if lo == hi:
+        v = evaluate(p, lo)
+        return (v > 0) - (v < 0)
+    common = gcd(p, square_free)
+    if len(common) > 1 and real_roots(common, lo, hi):
+        return 0
+    while True:
+        low, high = _enclose(p, lo, hi)
+        if low > 0 or high < 0:
+            return 1 if low > 0 else -1
+        got = refine(square_free, (lo, hi), (hi - lo) / 2)
+        if isinstance(got, Fraction):  # met the root exactly
+            v = evaluate(p, got)
+            return (v > 0) - (v < 0)
+        lo, hi = got
+
+
+def _enclose(p: Poly, lo: Fraction, hi: Fraction) -> tuple[Fraction, Fraction]:
+    """An enclosure of p over [lo, hi]: the mean-value form p(m) ± |p′|·r about the middle,
+    |p′| bounded by its coefficients' magnitudes at max(|lo|, |hi|)."""
+    mid, rad = (lo + hi) / 2, (hi - lo) / 2
+    big = max(abs(lo), abs(hi))
+    slope = Fraction(0)
+    for c in reversed(derivative(p)):
+        slope = slope * big + abs(c)
+    centre = evaluate(p, mid)
+    return centre - slope * rad, centre + slope * rad
+
+
 def _in_var(f: Bivariate, var: int, other: int, value: Fraction, degree: int) -> Poly:
     out = [Fraction(0)] * (degree + 1)
     for key, c in f.items():

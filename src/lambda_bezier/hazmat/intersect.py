@@ -37,6 +37,8 @@ from typing import NamedTuple
 import numpy as np
 
 from . import intersect_certify as cert
+from . import intersect_exact as _exact_iso
+from . import intersect_fold as fold
 from . import intersect_subdivide as sub
 from .intersect_prepared import Prepared as Prepared
 from .intersect_prepared import _exact_difference, _integer_point
@@ -518,11 +520,19 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
     (settle_one) where it can, in Python otherwise."""
     compiled = _compiled_pair(p, q)
     if compiled is not None:
-        return compiled
+        return _decided_exactly(p, q, compiled)
     _check_pair(p, q)
     results: list[list[Intersection]] = [[]]
     _careful_pairs([(p, q)], [0], results)  # declined (or exact input): not certified again
-    return results[0]
+    return _decided_exactly(p, q, results[0])
+
+
+def _decided_exactly(p: Prepared, q: Prepared, hits: list[Intersection]) -> list[Intersection]:
+    """hits, or the exact answer where intersect_exact.decided gives one."""
+    got = _exact_iso.decided(p._given_rows, q._given_rows, p.dim, q.dim, [h.kind for h in hits])
+    if got is None:
+        return hits
+    return [Intersection(s, t, "tangent" if flat else "transversal") for s, t, flat in got]
 
 
 def _compiled_pair(p: Prepared, q: Prepared) -> list[Intersection] | None:
@@ -564,7 +574,9 @@ def intersect_pairs(pairs: list[tuple[Prepared, Prepared]]) -> list[list[Interse
             groups.setdefault((p.degree, q.degree, p.dim), []).append(k)
     for members in groups.values():
         _careful_pairs(pairs, members, results)
-    return results
+    # exact input: a tangency is decided exactly, whichever path found it (a Fraction whose
+    # float is exact takes the compiled kernels too)
+    return [_decided_exactly(p, q, hits) for (p, q), hits in zip(pairs, results, strict=True)]
 
 
 def _careful_pairs(
@@ -749,16 +761,9 @@ def self_intersections(p: Prepared) -> list[Intersection]:
     if p.degree < 2 or p.is_point:
         return found
     line = _common_line(p.pts, ON_CURVE * p.scale)
-    if line is not None:  # on a line: none if it runs one way, a continuum if it turns back
-        image = np.array([p.at(x) for x in np.linspace(0.0, 1.0, 1025)]) @ line[0]
-        steps = np.diff(image)
-        slack = 1e-12 * line[1]
-        if np.all(steps >= -slack) or np.all(steps <= slack):
-            return found
-        raise ValueError(
-            "the curve lies on a line and turns back along it: it meets itself along an "
-            "interval, not at points"
-        )
+    if line is not None:  # on a line: none if it runs one way, stretches if it turns back
+        stretches = fold.folded_stretches([p.exact_row(k) for k in range(p.degree + 1)])
+        return [Intersection(s, t, "coincident") for s, t in stretches]
     iso = sub.isolate(p.pts[None], None, np.array([BOX_SLACK * p.degree * p.scale]))
     for s, t in zip(iso.root_s.tolist(), iso.root_t.tolist(), strict=True):
         hit = _solve_from(p, p, s, t, found, isolated=True)

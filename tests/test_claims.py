@@ -469,3 +469,17 @@ def test_property_records_refuse_malformed_values(tmp_path):
         encoding="utf-8",
     )
     assert _verify_runner.run(paths=[bad], root=ROOT, out=io.StringIO(), progress=False) == 2
+
+
+def test_an_isolated_root_shows_its_value():
+    """repr(IsolatedRoot) ends with the value it isolates (its interval may span the whole
+    range): the degree-6 same_degree root, 9λ² + 67λ + 74 = 0, by the quadratic formula."""
+    import math
+
+    import lambda_bezier as lb
+
+    (root,) = lb.singular_parameters("same_degree", 6)
+    want = (-67 + math.sqrt(67**2 - 4 * 9 * 74)) / 18
+    assert root.coefficients == (74, 67, 9)
+    assert abs(float(root) - want) <= 1e-15
+    assert repr(root).endswith(f"≈ {float(root)!r})")

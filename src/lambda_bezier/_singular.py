@@ -37,6 +37,14 @@ class IsolatedRoot:
     def __contains__(self, x: Fraction | float) -> bool:
         return self.lo < Fraction(x) < self.hi
 
+    def __repr__(self) -> str:
+        # the isolating interval may be as wide as the whole range (one root in it): the
+        # value it stands for is what a reader looks for first
+        return (
+            f"IsolatedRoot(lo={self.lo!r}, hi={self.hi!r}, coefficients={self.coefficients!r}, "
+            f"≈ {float(self)!r})"
+        )
+
 
 def roots(family: str, data: object, n: int) -> tuple[Fraction | IsolatedRoot, ...]:
     """The singular λ of the degree-n basis of a family (its name and its tables; n already

@@ -12,14 +12,24 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Literal
 
-from .hazmat import intersect as _intersect
-from .hazmat import intersect_exact as _exact
-
 if TYPE_CHECKING:
     from .curves import Curve
+    from .hazmat.intersect import Intersection
+    from .hazmat.intersect_exact import ExactCrossing
 
-Intersection = _intersect.Intersection
-ExactCrossing = _exact.ExactCrossing
+
+def __getattr__(name: str) -> object:
+    # the engines load on first use: naming intersect_many or intersect_exact (as `import
+    # lambda_bezier` with every public name does) does not need them (issue #29's import row)
+    if name == "Intersection":
+        from .hazmat.intersect import Intersection
+
+        return Intersection
+    if name == "ExactCrossing":
+        from .hazmat.intersect_exact import ExactCrossing
+
+        return ExactCrossing
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def _curves(curves: object, name: str) -> list[Curve]:
@@ -82,9 +92,9 @@ def intersect_many(
     ]
     prepared_a = {i: a[i]._prepared for i, _ in (index[k] for k in poly)}
     prepared_b = {j: b[j]._prepared for _, j in (index[k] for k in poly)}
-    together = _intersect.intersect_pairs(
-        [(prepared_a[index[k][0]], prepared_b[index[k][1]]) for k in poly]
-    )
+    from .hazmat.intersect import intersect_pairs
+
+    together = intersect_pairs([(prepared_a[index[k][0]], prepared_b[index[k][1]]) for k in poly])
     found: list[list[Intersection]] = [[] for _ in index]
     for k, hits in zip(poly, together, strict=True):
         found[k] = hits
@@ -130,4 +140,6 @@ def intersect_exact(curve_a: Curve, curve_b: Curve) -> list[ExactCrossing]:
         exact_rows = c.to_bezier()._exact_points
         assert exact_rows is not None  # an exact curve has an exact Bézier form
         rows.append(exact_rows)
-    return _exact.isolate(rows[0], rows[1])
+    from .hazmat.intersect_exact import isolate
+
+    return isolate(rows[0], rows[1])

@@ -45,7 +45,6 @@ from .hazmat.surface_fixed_cost import fixed_cost_minimum
 from .hazmat.surface_kernels import OPTIMUM_STEP_TOLERANCE
 from .hazmat.surface_weights import BatchWeights, batch_weights, pair_weights
 from .param_surface_energy import _param_families
-from .param_surface_optimum import optimal_parameters as param_optimal_parameters
 from .parameter_optimum import OptimalParameters as CurveOptimalParameters
 from .surface_energies import (
     ENERGIES,
@@ -429,6 +428,9 @@ def optimal_parameters(
         )
     energy = val.choice(energy, "energy", tuple(ENERGIES))
     if _param_families(family):  # several/indexed parameters, trigonometric...: certified
+        # the certified engine (box_bernstein, _optimal_box) loads on first use
+        from .param_surface_optimum import optimal_parameters as param_optimal_parameters
+
         return param_optimal_parameters(net, energy, family)  # type: ignore[return-value]
     u_cls, v_cls = _as_family_pair(family)
     u_box, v_box = _box(u_cls), _box(v_cls)

@@ -255,21 +255,8 @@ def _rejoin(
     degree, λ (an AtomCurve: its parameters) unless given, and the same trailing points)."""
     keep = right.control_points()[joint.order + 1 :]
     rest = keep if keep else np.zeros((0, right.dimension))
-    if _own_domain(right) and not isinstance(right, AtomCurve):  # C-Bézier: its parameter
-        fam = right.family_object  # type: ignore[attr-defined]
-        return join(
-            left,  # type: ignore[arg-type]
-            joint.continuity,
-            right.degree,
-            None,
-            joint.alpha,
-            joint.d,
-            rest=rest,
-            family=fam,
-            params={fam.parameter: right.alpha},  # type: ignore[attr-defined]
-        )
-    if isinstance(right, AtomCurve):
-        return join(  # an AtomCurve, made by _atom_joins
+    if isinstance(right, AtomCurve) or _own_domain(right):  # its parameters by name
+        return join(  # an AtomCurve (made by _atom_joins) or a C-Bézier curve
             left,  # type: ignore[arg-type]  # join hands atom curves to _atom_joins
             joint.continuity,
             right.degree,
@@ -277,9 +264,9 @@ def _rejoin(
             joint.alpha,
             joint.d,
             rest=rest,
-            family=right.family_object,
+            family=right.family_object,  # type: ignore[union-attr]
             check_range=check_range,
-            params=right.atom_parameter_values(),
+            params=right.atom_parameter_values(),  # type: ignore[union-attr]
         )
     return join(
         left,  # type: ignore[arg-type]  # join hands atom curves to _atom_joins

@@ -380,6 +380,7 @@ def to_atoms(expr: sp.Expr, alpha: sp.Symbol, form: str, fail) -> tuple[Elem, se
 
     def split(arg: sp.Expr) -> tuple[int, int]:
         """arg = a*t + b*alpha in the family's [0, alpha] t: (a, b), integers."""
+        arg = sp.expand(arg)  # alpha*(1 - t) is alpha - alpha*t: its rate is read below
         if form == "unit":  # u on [0, 1]: alpha*u is the t of [0, alpha]
             if arg.has(T) and not sp.expand(arg.coeff(T)).has(alpha):
                 raise fail(f"{arg}: on [0, 1] the rate of t is a multiple of {alpha}")

@@ -12,6 +12,7 @@ that is not a partition of unity.
 from __future__ import annotations
 
 import copy
+import re
 from pathlib import Path
 
 import pytest
@@ -180,3 +181,24 @@ equations = [{ lhs = "b(0, n, 0)", rhs = "cosh(alpha) - sinh(alpha)" }]
     (rec,) = records_mod.load_paths([FAMILY, path])
     res = report_mod.check_record(rec)
     assert res.error is not None and "not in its field" in str(res.error)
+
+
+@pytest.mark.parametrize(
+    ("equation", "message"),
+    [
+        ('{ lhs = "p(0)", rhs = "P(7)" }', r"P\(7\) at n = 3: no such control point"),
+        ('{ lhs = "b(0, n, t**2)", rhs = "0" }', "the argument t\\*\\*2 is not an integer"),
+        ('{ lhs = "b(0, n, 0)", rhs = "cos(alpha/2)" }', "the argument alpha/2 is not"),
+    ],
+)
+def test_bad_claims_are_record_errors_naming_the_term(tmp_path, equation, message):
+    body = (
+        '[[record]]\nid = "bad"\nclaim = "several_basis"\nlocation = "x"\n'
+        f"equations = [{equation}]\n"
+    )
+    path = tmp_path / "r.toml"
+    path.write_text('schema_version = 2\nsource = "t"\nfamily = "c_bezier_cubic"\n' + body)
+    (rec,) = records_mod.load_paths([FAMILY, path])
+    res = report_mod.check_record(rec)
+    assert res.error is not None
+    assert re.search(message, str(res.error)), res.error

@@ -347,7 +347,7 @@ def read_table(table: dict, where: str = "") -> CDefinition:
         extra = sorted(s.name for s in expr.free_symbols if s not in (T, alpha))
         if extra:
             raise fail(key, f"unknown symbol {extra[0]!r} (a formula in t and {name})")
-        elem, kind = _convert(expr, alpha, form, lambda msg, key=key: fail(key, msg))
+        elem, kind = to_atoms(expr, alpha, form, lambda msg, key=key: fail(key, msg))
         kinds |= kind
         functions.append(elem)
     if kinds == {"trig", "hyp"}:
@@ -373,13 +373,14 @@ def read_table(table: dict, where: str = "") -> CDefinition:
     )
 
 
-def _convert(expr: sp.Expr, alpha: sp.Symbol, form: str, fail) -> tuple[Elem, set[str]]:
+def to_atoms(expr: sp.Expr, alpha: sp.Symbol, form: str, fail) -> tuple[Elem, set[str]]:
     """The parsed function in atoms of t on [0, alpha] with coefficients in (A, S, C)."""
     kinds: set[str] = set()
     E = sp.Symbol("E_")  # e^(i t) (trigonometric) or e^t (hyperbolic)
 
     def split(arg: sp.Expr) -> tuple[int, int]:
         """arg = a*t + b*alpha in the family's [0, alpha] t: (a, b), integers."""
+        arg = sp.expand(arg)  # alpha*(1 - t) is alpha - alpha*t: its rate is read below
         if form == "unit":  # u on [0, 1]: alpha*u is the t of [0, alpha]
             if arg.has(T) and not sp.expand(arg.coeff(T)).has(alpha):
                 raise fail(f"{arg}: on [0, 1] the rate of t is a multiple of {alpha}")

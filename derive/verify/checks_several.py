@@ -33,10 +33,12 @@ import sympy as sp
 
 from lambda_bezier.hazmat import box_bernstein
 
+from ..families.cbezier import CDefinition
 from ..families.definition import Definition
 from ..families.engine import basis_polys
 from ..formulas import box
 from ..grammar import SYMBOLS, ParseError, parse_formula
+from . import checks_cbezier as cbezier_checks
 from . import checks_closed_n as closed_n
 from . import checks_elementary as elementary
 from .checks_core import KIND_FAMILIES, Outcome, checker
@@ -170,6 +172,8 @@ def _equations(record: dict) -> Outcome:
 
 @checker("several_basis", fits=lambda rec: "equations" in rec)
 def check_several_basis(record: dict, _context: object) -> Outcome:
+    if isinstance(SEVERAL_FAMILIES[record["family"]], CDefinition):  # checks_cbezier.py
+        return cbezier_checks.equations(record, SEVERAL_FAMILIES[record["family"]])
     if _defn(record).elementary:  # sin, cos, ...: exact atoms (checks_elementary.py)
         return elementary.equations(record, _defn(record))
     return _equations(record)
@@ -177,6 +181,8 @@ def check_several_basis(record: dict, _context: object) -> Outcome:
 
 @checker("several_end_conditions", fits=lambda rec: "equations" in rec)
 def check_several_end_conditions(record: dict, _context: object) -> Outcome:
+    if isinstance(SEVERAL_FAMILIES[record["family"]], CDefinition):  # checks_cbezier.py
+        return cbezier_checks.equations(record, SEVERAL_FAMILIES[record["family"]])
     if _defn(record).elementary:  # sin, cos, ...: exact atoms (checks_elementary.py)
         return elementary.equations(record, _defn(record))
     return _equations(record)
@@ -187,6 +193,8 @@ _ONE = re.compile(r"^([A-Za-z][A-Za-z0-9_]*)(?:\(k\))?$")
 
 @checker("several_symmetry")
 def check_several_symmetry(record: dict, _context: object) -> Outcome:
+    if isinstance(SEVERAL_FAMILIES[record["family"]], CDefinition):  # checks_cbezier.py
+        return cbezier_checks.symmetry(record, SEVERAL_FAMILIES[record["family"]])
     if _defn(record).elementary:  # sin, cos, ...: exact atoms (checks_elementary.py)
         return elementary.symmetry(record, _defn(record))
     defn = _defn(record)

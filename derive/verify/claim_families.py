@@ -13,6 +13,7 @@ import sympy as sp
 
 from .. import algebra as _algebra
 from ..algebra import bernstein as bz
+from ..families.cbezier import CDefinition
 from ..families.registry import REFERENCE, builtin_families, reference_degrees
 from .checks_core import (
     CHECKERS,
@@ -239,7 +240,13 @@ def _nonzero_at_sample(e) -> bool:
     return bool(value.is_Rational) and value != 0
 
 
-_SEVERAL = ("(families in several parameters)",)  # checks_several.py's kinds' families
+_SEVERAL = ("(families in several parameters)",)
+# the claim kinds of a C-Bezier family (checks_cbezier.py, reached through checks_several.py)
+CBEZIER_KINDS = (
+    "several_basis",
+    "several_end_conditions",
+    "several_symmetry",
+)  # checks_several.py's kinds' families
 
 
 def kinds() -> dict[str, tuple[str, ...]]:
@@ -262,6 +269,14 @@ def _allowed(kind: str) -> tuple[str, ...]:
 
 def kind_problem(family: str, kind: str) -> str | None:
     """Why `family.kind` cannot be checked (None when it can)."""
+    if isinstance(SEVERAL_FAMILIES.get(family), CDefinition):
+        if kind not in CBEZIER_KINDS:
+            return (
+                f"claim kind {kind!r} is not decided for {family!r} (its parameter is the "
+                "length of the domain or sits inside sin/cos); its claim kinds are "
+                f"{', '.join(CBEZIER_KINDS)}"
+            )
+        return None
     if family in SEVERAL_FAMILIES:
         several = sorted(k for k, (fams, _) in KIND_FAMILIES.items() if fams == _SEVERAL)
         if kind not in several:

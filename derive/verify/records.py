@@ -23,6 +23,7 @@ from pathlib import Path
 
 from sympy import preorder_traversal
 
+from ..families import cbezier
 from ..families.definition import (
     REFERENCE,
     DefinitionError,
@@ -37,6 +38,7 @@ from .registry import (
     SEVERAL_FAMILIES,
     claim_kind,
     kind_problem,
+    register_cbezier_family,
     register_defined_family,
     register_elementary_family,
     register_several_family,
@@ -411,6 +413,10 @@ def load_file(path: Path, data: dict | None = None) -> list[dict]:
 def _define_family(path: Path, table: dict, points: str | None) -> str:
     """Derive the family a records file defines and make it known to this run's checkers."""
     try:
+        if cbezier.is_frequency_family(table):  # C-Bezier: checks_cbezier.py, exact in Q(A, S, C)
+            cdefn = cbezier.read_table(table, str(path))
+            register_cbezier_family(cdefn)
+            return cdefn.name
         defn = definition_from_table(table, str(path))
         if defn.elementary:  # sin, cos, ...: checks_several.py's kinds, in exact atoms
             register_elementary_family(defn)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import importlib
 
+from ..families.cbezier import CDefinition
 from ..families.definition import Definition
 from ..families.engine import basis_polys, check, closed_endpoint_forms, closed_endpoint_order
 from ..families.registry import builtin_families
@@ -47,6 +48,7 @@ __all__ = [
     "claim_kind",
     "kind_problem",
     "kinds",
+    "register_cbezier_family",
     "register_defined_family",
     "register_elementary_family",
     "register_several_family",
@@ -100,6 +102,14 @@ def register_several_family(defn: Definition) -> None:
     records are checked by checks_several.py's claim kinds (each definition checked first)."""
     for degree in defn.degrees:
         check(defn.at_degree(degree))
+    SEVERAL_FAMILIES[defn.name] = defn
+
+
+def register_cbezier_family(defn: CDefinition) -> None:
+    """A family whose parameter is the length of the domain or sits inside sin/cos (C-Bezier)
+    that a records file defines: read and converted by cbezier.read_table (a DefinitionError
+    names the key); its records use checks_several.py's basis, end-condition and symmetry
+    kinds, decided exactly in Q(alpha, sin alpha, cos alpha) by checks_cbezier.py."""
     SEVERAL_FAMILIES[defn.name] = defn
 
 

@@ -27,7 +27,7 @@ from ..families import cbezier as cb
 from ..families.cbezier import CDefinition
 from ..grammar import SYMBOLS, ParseError, parse_formula
 from .checks_core import Outcome
-from .checks_elementary import RecordError
+from .checks_elementary import RecordError, curve_call
 
 KINDS = ("several_basis", "several_end_conditions", "several_symmetry")
 
@@ -44,12 +44,6 @@ def _parse(defn: CDefinition, text: str, key: str) -> sp.Basic:
         )
     except ParseError as exc:
         raise RecordError(f"key {key}: {exc}") from None
-
-
-def _integer(e: sp.Basic, what: str) -> int:
-    if not e.is_Integer:
-        raise RecordError(f"{what} {e} is not an integer once n and i are set")
-    return int(e)
 
 
 def _function(defn: CDefinition, j: int) -> sp.Expr:
@@ -76,20 +70,10 @@ def _realise(defn: CDefinition, expr: sp.Basic, idx: int | None) -> sp.Expr:
         return f if x == cb.T else f.xreplace({cb.T: x})
 
     def model(call: sp.Basic) -> sp.Basic:
-        name, args = call.func.__name__, call.args
-        if name == "P":
-            j = _integer(args[0], "the index of P(...)")
-            if not 0 <= j <= degree:
-                raise RecordError(f"P({j}) at n = {degree}: no such control point")
-            return sp.Symbol(f"P_{j}")
-        if name == "b":
-            j, deg = (_integer(a, "an index of b(...)") for a in args[:2])
-            if deg != degree:
-                raise RecordError(f"b({j}, {deg}, ...): the family has degree {degree} only")
-            return basis(j, args[2])
-        return sum(  # p(x)
-            (sp.Symbol(f"P_{j}") * basis(j, args[0]) for j in range(degree + 1)), sp.Integer(0)
-        )
+        got = curve_call(call, degree, basis)
+        if got is None:
+            raise RecordError(f"{call}: not a function of these claims (P, b, p)")
+        return got
 
     e = e.replace(lambda x: isinstance(x, sp.core.function.AppliedUndef), model)
     return e.doit()

@@ -27,6 +27,7 @@ exactly when their coefficients are.
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 from fractions import Fraction
 
 import sympy as sp
@@ -46,6 +47,36 @@ _FUNCTIONS = {name: sp.Function(name) for name in ("P", "b", "p")}
 
 class RecordError(ValueError):
     """A record that cannot be read as a claim about this family (names the key)."""
+
+
+def integer_index(e: sp.Basic, what: str) -> int:
+    """An index of a record's function once n and i are set (RecordError otherwise)."""
+    if not e.is_Integer:
+        raise RecordError(f"{what} {e} is not an integer once n and i are set")
+    return int(e)
+
+
+def curve_call(
+    call: sp.Basic, degree: int, basis: Callable[[int, sp.Expr], sp.Expr]
+) -> sp.Basic | None:
+    """P(j), b(j, n, x) and p(x) of a claim about one degree's curve, in SymPy: the points as
+    symbols P_j, b_j(x) from `basis` (0 outside 0..degree), p(x) = sum P_j b_j(x); None for
+    any other function (the caller's own, such as an indexed parameter)."""
+    name, args = call.func.__name__, call.args
+    if name == "P":
+        j = integer_index(args[0], "the index of P(...)")
+        if not 0 <= j <= degree:
+            raise RecordError(f"P({j}) at n = {degree}: no such control point")
+        return sp.Symbol(f"P_{j}")
+    if name == "b":
+        j, deg = (integer_index(a, "an index of b(...)") for a in args[:2])
+        if deg != degree:
+            raise RecordError(f"b({j}, {deg}, ...) at n = {degree}: one degree per claim")
+        return basis(j, args[2])
+    if name == "p":
+        terms = (sp.Symbol(f"P_{j}") * basis(j, args[0]) for j in range(degree + 1))
+        return sum(terms, sp.Integer(0))
+    return None
 
 
 class Realiser:

@@ -87,16 +87,6 @@ def _parse(defn: Definition, text: str, key: str, extra: tuple[str, ...] = ()) -
         raise RecordError(f"key {key}: {exc}") from None
 
 
-def _integer(e: sp.Basic, what: str) -> int:
-    if not e.is_Integer:
-        raise RecordError(f"{what} {e} is not an integer once n and i are set")
-    return int(e)
-
-
-def _points(degree: int) -> list[sp.Symbol]:
-    return [sp.Symbol(f"P_{j}") for j in range(degree + 1)]
-
-
 def _realise(defn: Definition, expr: sp.Basic, degree: int, idx: int | None) -> sp.Expr:
     """expr at degree n (and index i): parameters, points, b and p from the derivation."""
     at = defn.at_degree(degree)
@@ -117,22 +107,11 @@ def _realise(defn: Definition, expr: sp.Basic, degree: int, idx: int | None) -> 
         name = call.func.__name__
         args = call.args
         if defn.indexed is not None and name == defn.indexed.name:  # type: ignore[attr-defined]
-            k = _integer(args[0], f"the index of {name}(...)")
+            k = elementary.integer_index(args[0], f"the index of {name}(...)")
             return sp.Symbol(f"{name}_{k}") if sp.Symbol(f"{name}_{k}") in params else sp.Integer(0)
-        if name == "P":
-            j = _integer(args[0], "the index of P(...)")
-            if not 0 <= j <= degree:
-                raise RecordError(f"P({j}) at n = {degree}: no such control point")
-            return sp.Symbol(f"P_{j}")
-        if name == "b":
-            j, deg = (_integer(a, "an index of b(...)") for a in args[:2])
-            if deg != degree:
-                raise RecordError(f"b({j}, {deg}, ...) at n = {degree}: one degree per claim")
-            return basis(j, args[2])
-        if name == "p":
-            return sum(
-                (s * basis(j, args[0]) for j, s in enumerate(_points(degree))), sp.Integer(0)
-            )
+        got = elementary.curve_call(call, degree, basis)
+        if got is not None:
+            return got
         raise RecordError(f"{call}: not a function of these claims")  # pragma: no cover
 
     e = e.replace(lambda x: isinstance(x, sp.core.function.AppliedUndef), model)

@@ -54,5 +54,8 @@ def test_public_names_resolve_lazily():
     assert out[:2] == ["[]", "['numpy']"]
     assert set(lambda_bezier.__all__) == set(lambda_bezier._EXPORTS)
     assert set(lambda_bezier.__all__) <= set(dir(lambda_bezier))
+    # dir() shows the public API, not what __init__ imports for its own use
+    public = {name for name in dir(lambda_bezier) if not name.startswith("_")}
+    assert public == set(lambda_bezier.__all__)
     with pytest.raises(AttributeError, match="no attribute 'nothing'"):
         lambda_bezier.nothing  # noqa: B018

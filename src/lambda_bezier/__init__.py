@@ -143,4 +143,6 @@ def __getattr__(name: str) -> object:  # the names above, typed by their imports
 
 
 def __dir__() -> list[str]:
-    return sorted([*globals(), *_EXPORTS])
+    # the public names and the module's dunders, not the helpers this file imports for itself
+    # (importlib, TYPE_CHECKING, annotations) nor the submodules loaded so far
+    return sorted({*__all__, *(name for name in globals() if name.startswith("__"))})

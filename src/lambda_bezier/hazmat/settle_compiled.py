@@ -50,6 +50,8 @@ from .refine_compiled import (
     _add,
     _curve,
     _d,
+    _d_into,
+    _gap,
     _near,
     _near_isolated,
     _norm,
@@ -390,19 +392,19 @@ def _locate_newton(c: Curve, point: np.ndarray, t: float) -> float:
     """intersect._locate_newton: nan where it leaves the domain."""
     dim = point.shape[0]
     pts = c[0]
-    hi, lo = np.empty(pts.shape), np.empty(pts.shape)
-    diff = np.empty(dim)
+    diff, x, d1, d2 = np.empty(dim), np.empty(dim), np.empty(dim), np.empty(dim)
     for phase in range(2):
         exact = phase == 1
         prev = np.inf
         for it in range(3 if exact else 40):
             if exact:
-                _value_minus(pts, t, point, hi, lo, diff)
+                _value_minus(pts, t, point, c[4][1], c[4][2], diff, c[4][3][0])
             else:
-                x = _d(c, t, 0)
+                _d_into(c, t, 0, x)
                 for j in range(dim):
                     diff[j] = x[j] - point[j]
-            d1, d2 = _d(c, t, 1), _d(c, t, 2)
+            _d_into(c, t, 1, d1)
+            _d_into(c, t, 2, d2)
             slope = 0.0
             lead = 0.0
             for j in range(dim):
@@ -429,8 +431,8 @@ def _locate_newton(c: Curve, point: np.ndarray, t: float) -> float:
 
 @numba.njit(**_JIT)
 def _distance(c: Curve, t: float, point: np.ndarray) -> float:
-    diff = np.empty(point.shape[0])
-    _value_minus(c[0], t, point, np.empty(c[0].shape), np.empty(c[0].shape), diff)
+    diff = c[4][4][0]
+    _value_minus(c[0], t, point, c[4][1], c[4][2], diff, c[4][3][0])
     return float(_norm(diff))
 
 
@@ -451,9 +453,10 @@ def _rounding_at(c: Curve, t: float, root_residual: float) -> float:
 @numba.njit(**_JIT)
 def _chord_bracket(c: Curve, point: np.ndarray, s0: float, s1: float, wide: float) -> float:
     chord = _d(c, s1, 0) - _d(c, s0, 0)
+    x = c[4][4][0]
     while s1 - s0 > wide:
         middle = 0.5 * (s0 + s1)
-        x = _d(c, middle, 0)
+        _d_into(c, middle, 0, x)
         dot = 0.0
         for j in range(point.shape[0]):
             dot += (x[j] - point[j]) * chord[j]
@@ -468,7 +471,7 @@ def _chord_bracket(c: Curve, point: np.ndarray, s0: float, s1: float, wide: floa
 def _locate_all(
     c: Curve,
     scale: float,
-    size: float,
+    size: np.ndarray,
     point: np.ndarray,
     accept: float,
     exact_end: bool,
@@ -476,7 +479,9 @@ def _locate_all(
     halves: Halves,
 ) -> np.ndarray:
     """intersect.locate_all for a float point, within=accept or exact_end: every t with
-    c(t) = point."""
+    c(t) = point. size: the curve's Prepared.size in a one-element array, negative until
+    first needed (only to merge two locations: most pairs never need it, and its 129
+    samples cost ~1 µs a curve)."""
     on_curve_rel, same_root, wide = knobs[0], knobs[1], knobs[7]
     depth, max_rows, steps, inside, margin = knobs[10], knobs[11], knobs[12], knobs[13], knobs[14]
     pts = c[0]
@@ -485,7 +490,6 @@ def _locate_all(
     for j in range(dim):
         big = max(big, abs(point[j]))
     tol = on_curve_rel * max(scale, big)
-    on_curve = on_curve_rel * max(size, big)
     found = [0.0 for _ in range(0)]
     for end in range(2):
         equal = True
@@ -537,11 +541,15 @@ def _locate_all(
         if here > (_rounding_at(c, t, knobs[5]) if exact_end else accept):
             continue
         same = -1
+        if len(found) and size[0] < 0.0:
+            size[0] = _size(pts)
+        on_curve = on_curve_rel * max(size[0], big)
         for j in range(len(found)):
             u = found[j]
             stays = True
+            x = c[4][4][0]
             for m in range(17):
-                x = _d(c, u + (m / 16.0) * (t - u), 0)
+                _d_into(c, u + (m / 16.0) * (t - u), 0, x)
                 gap = 0.0
                 for i in range(dim):
                     gap += (x[i] - point[i]) ** 2
@@ -575,7 +583,7 @@ def _same_piece(p: Curve, q: Curve, s0: float, s1: float, t0: float, t1: float, 
     points = max(p[0].shape[0], q[0].shape[0]) + 1
     for k in range(points):
         x = 0.05 + k * (0.9 / (points - 1))
-        if _norm(_d(p, s0 + x * (s1 - s0), 0) - _d(q, t0 + x * (t1 - t0), 0)) > tol:
+        if _gap(p, q, s0 + x * (s1 - s0), t0 + x * (t1 - t0)) > tol:
             return False
     return True
 
@@ -630,7 +638,7 @@ def settle(
     p, q = _curve(a), _curve(b)
     _, scale_p = span_scale(a)
     _, scale_q = span_scale(b)
-    size_p, size_q = _size(a), _size(b)
+    size_p, size_q = np.full(1, -1.0), np.full(1, -1.0)  # computed when first needed
     scale = max(scale_p, scale_q)
     degree = max(a.shape[0], b.shape[0]) - 1
     bound = root_residual * degree * scale

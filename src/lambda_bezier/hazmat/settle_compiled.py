@@ -92,6 +92,8 @@ def _breadth_first(level: np.ndarray, ia: np.ndarray, ib: np.ndarray, count: int
     the latest halving, then of the one before, and so on (each level's children are four
     blocks, each in the parents' order). The blocks as base-4 digits, latest first, in two
     keys of 16 digits each; stable sorts from the least significant key."""
+    if count <= 1:  # nothing to order (most calls: a point located once, a pair of lines)
+        return np.arange(count)
     high, low = np.zeros(count, np.int64), np.zeros(count, np.int64)
     for k in range(count):
         for j in range(level[k]):
@@ -244,6 +246,8 @@ def _starts(
     """intersect._starts (with _interval_clusters): Newton starts for unresolved pairs of
     pieces, cluster by cluster in the same order."""
     count = s0.size
+    if count == 0:
+        return np.empty(0), np.empty(0)
     parent = np.arange(count)
     order = np.argsort(s0, kind="mergesort")
     active = np.empty(count, dtype=np.int64)
@@ -520,13 +524,16 @@ def _locate_all(
             halves,
         )
     starts = [x for x in root_s]
-    narrow = left_width <= wide
-    for k in range(left_s0.size):
-        if not narrow[k]:
-            starts.append(_chord_bracket(c, point, left_s0[k], left_s0[k] + left_width[k], wide))
-    cluster_s, _ = _starts(left_s0[narrow], np.zeros(int(narrow.sum())), left_width[narrow])
-    for x in cluster_s:
-        starts.append(x)
+    if left_s0.size:  # pieces left unresolved (most calls have none): brackets, clusters
+        narrow = left_width <= wide
+        for k in range(left_s0.size):
+            if not narrow[k]:
+                starts.append(
+                    _chord_bracket(c, point, left_s0[k], left_s0[k] + left_width[k], wide)
+                )
+        cluster_s, _ = _starts(left_s0[narrow], np.zeros(int(narrow.sum())), left_width[narrow])
+        for x in cluster_s:
+            starts.append(x)
     for start in starts:
         t = _locate_newton(c, point, start)
         if math.isnan(t):
@@ -602,24 +609,32 @@ def _in_stretch(s: float, t: float, skip: np.ndarray, skips: int, start: bool) -
 
 @numba.njit(**_JIT)
 def _collinear(a: np.ndarray, b: np.ndarray, tol: float) -> bool:
-    """intersect._common_line is not None: every control point of both within tol of one line."""
-    pts = np.concatenate((a, b))
-    dim = pts.shape[1]
-    base = pts[0]
+    """intersect._common_line is not None: every control point of both within tol of one line
+    (the points of a, then of b; no array made per point)."""
+    n, dim = a.shape[0], a.shape[1]
+    base = a[0]
     far, length = 0, -1.0
-    for i in range(pts.shape[0]):
-        d = _norm(pts[i] - base)
+    for i in range(n + b.shape[0]):
+        x = a[i] if i < n else b[i - n]
+        total = 0.0
+        for j in range(dim):
+            total += (x[j] - base[j]) * (x[j] - base[j])
+        d = math.sqrt(total)
         if d > length:
             far, length = i, d
     if length == 0.0:
         return False
-    unit = (pts[far] - base) / length
-    for i in range(pts.shape[0]):
-        rel = pts[i] - base
+    unit = ((a[far] if far < n else b[far - n]) - base) / length
+    for i in range(n + b.shape[0]):
+        x = a[i] if i < n else b[i - n]
         along = 0.0
         for j in range(dim):
-            along += rel[j] * unit[j]
-        if _norm(rel - along * unit) > tol:
+            along += (x[j] - base[j]) * unit[j]
+        total = 0.0
+        for j in range(dim):
+            off = (x[j] - base[j]) - along * unit[j]
+            total += off * off
+        if math.sqrt(total) > tol:
             return False
     return True
 

@@ -116,7 +116,7 @@ def settle_one(
     compiled = _settle_compiled()
     if compiled is None:
         return None
-    count, s, t, kind = compiled.settle(
+    count, hits = compiled.settle(
         sub.read_only(a),
         sub.read_only(b),
         knobs,
@@ -125,7 +125,7 @@ def settle_one(
     )
     if count < 0:
         return None
-    return list(zip(s[:count].tolist(), t[:count].tolist(), kind[:count].tolist(), strict=True))
+    return [(s, t, int(kind)) for s, t, kind in hits.tolist()]
 
 
 def certify(
@@ -163,17 +163,12 @@ def certify_one(
     the relative box_slack and root_residual (per unit of degree and of the curves' size)."""
     compiled = _compiled()
     if compiled is not None:
-        count, out_s, out_t = compiled.certify_one(
-            a,
-            b,
-            box_slack,
-            root_residual,
-            SETTINGS,
-        )
+        count, roots = compiled.certify_one(a, b, box_slack, root_residual, SETTINGS)
         if count < 0:
             return None
-        s: list[float] = out_s[:count].tolist()
-        t: list[float] = out_t[:count].tolist()
+        s: list[float]
+        t: list[float]
+        s, t = roots.tolist()
         return s, t
     spans = [float(np.ptp(c, axis=0).max()) for c in (a, b)]
     if min(spans) == 0.0:

@@ -642,11 +642,12 @@ def _collinear(a: np.ndarray, b: np.ndarray, tol: float) -> bool:
 @numba.njit(**_JIT)
 def settle(
     a: np.ndarray, b: np.ndarray, knobs: Knobs, halves_a: Halves, halves_b: Halves
-) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
+) -> tuple[int, np.ndarray]:
     """intersect's careful path on one pair of float curves (n+1, d), (m+1, d), d >= 2,
-    neither a point: (count, s, t, kind), sorted as the careful path sorts its hits, or
-    count -1 where it declines (a stretch between end hits that may be one arc under
-    another parameterisation; control points on one line; more hits than room)."""
+    neither a point: (count, hits) with hits (count, 3) rows (s, t, kind code), sorted as the
+    careful path sorts its hits (one array returned: boxing each costs a share of a small
+    pair's time), or count -1 where it declines (a stretch between end hits that may be one
+    arc under another parameterisation; control points on one line; more hits than room)."""
     same_root, isolated_same, radius, merge_gap = knobs[1], knobs[2], knobs[3], knobs[4]
     root_residual, box_slack, tangent_sine = knobs[5], knobs[6], knobs[9]
     depth, max_rows, steps, inside, margin = knobs[10], knobs[11], knobs[12], knobs[13], knobs[14]
@@ -668,7 +669,7 @@ def settle(
         hits = _locate_all(q, scale_q, size_q, end, 0.0, True, knobs, halves_b)
         for t in hits:
             if ends == room:
-                return -1, fs, ft, fk
+                return -1, np.empty((0, 3))
             if not _near(float(s_end), t, es, et, ends, same_root):
                 es[ends], et[ends] = float(s_end), t
                 ends += 1
@@ -677,7 +678,7 @@ def settle(
         hits = _locate_all(p, scale_p, size_p, end, 0.0, True, knobs, halves_a)
         for s in hits:
             if ends == room:
-                return -1, fs, ft, fk
+                return -1, np.empty((0, 3))
             if not _near(s, float(t_end), es, et, ends, same_root):
                 es[ends], et[ends] = s, float(t_end)
                 ends += 1
@@ -701,7 +702,7 @@ def settle(
             if _same_piece(p, q, es[i], es[j], et[i], et[j], bound):
                 lo, hi = (j, i) if _after(es[i], et[i], ek[i], es[j], et[j], ek[j]) else (i, j)
                 if count + 2 > room:
-                    return -1, fs, ft, fk
+                    return -1, np.empty((0, 3))
                 for k in (lo, hi):
                     fs[count], ft[count], fk[count] = es[k], et[k], COINCIDENT
                     count += 1
@@ -716,13 +717,13 @@ def settle(
                 if lo_t <= t <= hi_t:
                     on_q += 1
             if on_q == 1:
-                return -1, fs, ft, fk
+                return -1, np.empty((0, 3))
     gap_bound = merge_gap * degree * scale
     for k in range(ends):
         if not _near(es[k], et[k], fs, ft, count, same_root):
             count = _add(p, q, fs, ft, fk, count, es[k], et[k], ek[k], gap_bound, radius)
     if _collinear(a, b, bound):
-        return -1, fs, ft, fk
+        return -1, np.empty((0, 3))
     # the subdivision, then refinement from its roots and from the starts it leaves
     ok, root_s, root_t, left_s0, left_t0, left_width = _isolate(
         a,
@@ -739,14 +740,14 @@ def settle(
         skips,
     )
     if not ok:
-        return -1, fs, ft, fk
+        return -1, np.empty((0, 3))
     for k in range(root_s.size):
         ok, s, t, kind = _solve_from(
             p, q, root_s[k], root_t[k], fs, ft, count, True, scale, bound, knobs
         )
         if ok and not _near_isolated(s, t, fs, ft, count, isolated_same, same_root):
             if count == room:
-                return -1, fs, ft, fk
+                return -1, np.empty((0, 3))
             if skips:  # the careful path's _add: a root at a shared stretch's end is that end
                 count = _add(p, q, fs, ft, fk, count, s, t, kind, gap_bound, radius)
             else:
@@ -764,7 +765,7 @@ def settle(
         if _in_stretch(s, t, skip, skips, False):
             continue
         if count == room:
-            return -1, fs, ft, fk
+            return -1, np.empty((0, 3))
         count = _add(p, q, fs, ft, fk, count, s, t, kind, gap_bound, radius)
     # sorted as tuples (s, t, kind) sort
     for k in range(1, count):
@@ -774,4 +775,7 @@ def settle(
             fs[m + 1], ft[m + 1], fk[m + 1] = fs[m], ft[m], fk[m]
             m -= 1
         fs[m + 1], ft[m + 1], fk[m + 1] = s, t, kind
-    return count, fs, ft, fk
+    hits = np.empty((count, 3))
+    for k in range(count):
+        hits[k, 0], hits[k, 1], hits[k, 2] = fs[k], ft[k], float(fk[k])
+    return count, hits

@@ -109,10 +109,11 @@ def settle_one(
     a: np.ndarray, b: np.ndarray, knobs: tuple[float | int, ...]
 ) -> list[tuple[float, float, int]] | None:
     """The careful path compiled (settle_compiled) on one pair of float curves (n+1, d),
-    (m+1, d) that are the curves exactly, d >= 2, neither a point: its hits (s, t, kind
-    code: -1 coincident, 0 tangent, 1 transversal) in the careful path's order, or None
-    where it declines (a stretch the curves may share under a parameterisation that is not
-    affine, curves on one line) or is not compiled. knobs: intersect.SETTLE."""
+    (m+1, d) that are the curves exactly, d >= 2: its hits (s, t, kind code: -1
+    coincident, 0 tangent, 1 transversal) in the careful path's order, or None where it
+    declines (a stretch the curves may share under a parameterisation that is not affine,
+    curves on one line, a curve that is a point) or is not compiled. knobs:
+    intersect.SETTLE."""
     compiled = _settle_compiled()
     if compiled is None:
         return None

@@ -644,16 +644,18 @@ def settle(
     a: np.ndarray, b: np.ndarray, knobs: Knobs, halves_a: Halves, halves_b: Halves
 ) -> tuple[int, np.ndarray]:
     """intersect's careful path on one pair of float curves (n+1, d), (m+1, d), d >= 2,
-    neither a point: (count, hits) with hits (count, 3) rows (s, t, kind code), sorted as the
+    (count, hits) with hits (count, 3) rows (s, t, kind code), sorted as the
     careful path sorts its hits (one array returned: boxing each costs a share of a small
     pair's time), or count -1 where it declines (a stretch between end hits that may be one
     arc under another parameterisation; control points on one line; more hits than room)."""
     same_root, isolated_same, radius, merge_gap = knobs[1], knobs[2], knobs[3], knobs[4]
     root_residual, box_slack, tangent_sine = knobs[5], knobs[6], knobs[9]
     depth, max_rows, steps, inside, margin = knobs[10], knobs[11], knobs[12], knobs[13], knobs[14]
+    span_p, scale_p = span_scale(a)
+    span_q, scale_q = span_scale(b)
+    if span_p == 0.0 or span_q == 0.0:  # a point: the careful path says so (a ValueError)
+        return -1, np.empty((0, 3))
     p, q = _curve(a), _curve(b)
-    _, scale_p = span_scale(a)
-    _, scale_q = span_scale(b)
     size_p, size_q = np.full(1, -1.0), np.full(1, -1.0)  # computed when first needed
     scale = max(scale_p, scale_q)
     degree = max(a.shape[0], b.shape[0]) - 1

@@ -193,7 +193,8 @@ def _gap(p: Curve, q: Curve, s: float, t: float) -> float:
 @numba.njit(**_JIT)
 def _lstsq2(jac: np.ndarray, rhs: np.ndarray) -> tuple[float, float]:
     """_lstsq2_into with its work arrays made here."""
-    return _lstsq2_into(jac, rhs, np.empty(jac.shape[0]), np.empty(jac.shape[0]))
+    ds, dt = _lstsq2_into(jac, rhs, np.empty(jac.shape[0]), np.empty(jac.shape[0]))
+    return ds, dt
 
 
 @numba.njit(**_JIT)

@@ -529,6 +529,8 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
 
 def _decided_exactly(p: Prepared, q: Prepared, hits: list[Intersection]) -> list[Intersection]:
     """hits, or the exact answer where intersect_exact.decided gives one."""
+    if p._given_rows is None or q._given_rows is None:  # float input: decided gives none
+        return hits
     got = _exact_iso.decided(p._given_rows, q._given_rows, p.dim, q.dim, [h.kind for h in hits])
     if got is None:
         return hits
@@ -538,16 +540,15 @@ def _decided_exactly(p: Prepared, q: Prepared, hits: list[Intersection]) -> list
 def _compiled_pair(p: Prepared, q: Prepared) -> list[Intersection] | None:
     """The pair's answer from the compiled kernels (numba): the certificate, then the careful
     path compiled where it declines; None when neither answers (not compiled, input that
-    is not floats exactly, or declined by both). _check_pair runs only once the certificate
-    declines (it declines a point curve): on a fresh curve it costs a share of a small
-    certified pair's whole time."""
+    is not floats exactly, or declined by both). Both kernels decline a curve that is a
+    point, so _check_pair (its error) runs only on the way to the careful path in Python:
+    on a fresh curve it costs a share of a small pair's whole time."""
     if not (cert.in_use() and p.floats_exact and q.floats_exact and p.dim == q.dim >= 2):
         return None
     got = cert.certify_one(p.pts, q.pts, BOX_SLACK, ROOT_RESIDUAL)
     if got is not None:
         s, t = got
         return [Intersection(x, y, "transversal") for x, y in zip(s, t, strict=True)]
-    _check_pair(p, q)
     settled = cert.settle_one(p.pts, q.pts, SETTLE)
     if settled is None:
         return None

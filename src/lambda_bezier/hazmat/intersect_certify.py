@@ -109,14 +109,15 @@ def settle_one(
     a: np.ndarray, b: np.ndarray, knobs: tuple[float | int, ...]
 ) -> list[tuple[float, float, int]] | None:
     """The careful path compiled (settle_compiled) on one pair of float curves (n+1, d),
-    (m+1, d) that are the curves exactly, d >= 2, neither a point: its hits (s, t, kind
-    code: -1 coincident, 0 tangent, 1 transversal) in the careful path's order, or None
-    where it declines (a stretch the curves may share under a parameterisation that is not
-    affine, curves on one line) or is not compiled. knobs: intersect.SETTLE."""
+    (m+1, d) that are the curves exactly, d >= 2: its hits (s, t, kind code: -1
+    coincident, 0 tangent, 1 transversal) in the careful path's order, or None where it
+    declines (a stretch the curves may share under a parameterisation that is not affine,
+    curves on one line, a curve that is a point) or is not compiled. knobs:
+    intersect.SETTLE."""
     compiled = _settle_compiled()
     if compiled is None:
         return None
-    count, s, t, kind = compiled.settle(
+    count, hits = compiled.settle(
         sub.read_only(a),
         sub.read_only(b),
         knobs,
@@ -125,7 +126,7 @@ def settle_one(
     )
     if count < 0:
         return None
-    return list(zip(s[:count].tolist(), t[:count].tolist(), kind[:count].tolist(), strict=True))
+    return [(s, t, int(kind)) for s, t, kind in hits.tolist()]
 
 
 def certify(
@@ -163,17 +164,12 @@ def certify_one(
     the relative box_slack and root_residual (per unit of degree and of the curves' size)."""
     compiled = _compiled()
     if compiled is not None:
-        count, out_s, out_t = compiled.certify_one(
-            a,
-            b,
-            box_slack,
-            root_residual,
-            SETTINGS,
-        )
+        count, roots = compiled.certify_one(a, b, box_slack, root_residual, SETTINGS)
         if count < 0:
             return None
-        s: list[float] = out_s[:count].tolist()
-        t: list[float] = out_t[:count].tolist()
+        s: list[float]
+        t: list[float]
+        s, t = roots.tolist()
         return s, t
     spans = [float(np.ptp(c, axis=0).max()) for c in (a, b)]
     if min(spans) == 0.0:

@@ -17,8 +17,15 @@ import numpy as np
 from .pieces_compiled import JIT as _JIT
 from .pieces_compiled import compensated, compensated_pair, two_prod, two_sum, value_slope
 
-# a curve as the kernel carries it (_curve): points, p' (hi, lo), p'', scratch
+# a curve as the kernel carries it (_curve): points, p' (hi, lo), p'', scratch. The scratch
+# (SCRATCH_ROWS, n+1, d) lets the refinement run without allocating per step (an allocation
+# costs ~50 ns, a share of a Newton step; issue #29): row 0 de Casteljau's work array (_at,
+# _d_into, value_slope), rows 1 and 2 compensated de Casteljau's hi and lo (_residual,
+# _derivative_into, _value_minus), row 3's first vector the unused slope those write, row 4's
+# first vector a value for one helper at a time (_sine, _gap, _on_both, _distance ...). A
+# helper writes only its own curve's scratch, so p's and q's never clash.
 Curve = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]
+SCRATCH_ROWS = 5
 Halves = tuple[np.ndarray, np.ndarray]  # intersect_subdivide.half_matrices
 # kind codes, in the order of the careful path's kind strings ("coincident" < "tangent" <
 # "transversal"), so that hits sort as its tuples do
@@ -83,7 +90,7 @@ def _curve(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndar
     """(points, p' hi, p' lo, p'' in floats, scratch): a curve as the kernel uses it."""
     h1, h1_lo = _hodograph(pts)
     h2, _ = _hodograph(h1)
-    return pts, h1, h1_lo, h2, np.empty(pts.shape)
+    return pts, h1, h1_lo, h2, np.empty((SCRATCH_ROWS, pts.shape[0], pts.shape[1]))
 
 
 @numba.njit(**_JIT)
@@ -114,10 +121,16 @@ def _norm(v: np.ndarray) -> float:
 
 @numba.njit(**_JIT)
 def _value_minus(
-    pts: np.ndarray, s: float, target: np.ndarray, hi: np.ndarray, lo: np.ndarray, out: np.ndarray
+    pts: np.ndarray,
+    s: float,
+    target: np.ndarray,
+    hi: np.ndarray,
+    lo: np.ndarray,
+    out: np.ndarray,
+    slope: np.ndarray,
 ) -> None:
-    """p(s) - target by compensated de Casteljau (the careful path's exact residual)."""
-    slope = np.empty(pts.shape[1])
+    """p(s) - target by compensated de Casteljau (the careful path's exact residual); slope:
+    a (d,) array written with p'(s) (unused)."""
     compensated(pts, s, hi, lo, slope)
     for j in range(pts.shape[1]):
         d, e = two_sum(hi[0, j], -target[j])
@@ -126,43 +139,72 @@ def _value_minus(
 
 @numba.njit(**_JIT)
 def _residual(p: Curve, q: Curve, s: float, t: float, out: np.ndarray) -> None:
-    """p(s) - q(t), compensated."""
+    """p(s) - q(t), compensated (in p's and q's scratch rows 1-3)."""
     dim = out.shape[0]
-    ah, al = np.empty(p[0].shape), np.empty(p[0].shape)
-    bh, bl = np.empty(q[0].shape), np.empty(q[0].shape)
-    slope = np.empty(dim)
-    compensated(p[0], s, ah, al, slope)
-    compensated(q[0], t, bh, bl, slope)
+    ah, al, bh, bl = p[4][1], p[4][2], q[4][1], q[4][2]
+    compensated(p[0], s, ah, al, p[4][3][0])
+    compensated(q[0], t, bh, bl, q[4][3][0])
     for j in range(dim):
         d, e = two_sum(ah[0, j], -bh[0, j])
         out[j] = d + (e + (al[0, j] - bl[0, j]))
 
 
 @numba.njit(**_JIT)
-def _derivative_pair(c: Curve, s: float) -> tuple[np.ndarray, np.ndarray]:
-    """p'(s) as a double-double (hi, lo), compensated on the double-double hodograph."""
+def _derivative_into(c: Curve, s: float, out_hi: np.ndarray, out_lo: np.ndarray) -> None:
+    """p'(s) as a double-double (out_hi, out_lo), compensated on the double-double
+    hodograph (in c's scratch rows 1-3)."""
     h1, h1_lo = c[1], c[2]
-    hi, lo = np.empty(h1.shape), np.empty(h1.shape)
-    slope = np.empty(h1.shape[1])
-    compensated_pair(h1, h1_lo, s, hi, lo, slope)
-    return hi[0].copy(), lo[0].copy()
+    rows = h1.shape[0]
+    hi, lo = c[4][1][:rows], c[4][2][:rows]
+    compensated_pair(h1, h1_lo, s, hi, lo, c[4][3][0])
+    for j in range(h1.shape[1]):
+        out_hi[j], out_lo[j] = hi[0, j], lo[0, j]
+
+
+@numba.njit(**_JIT)
+def _d_into(c: Curve, s: float, which: int, out: np.ndarray) -> None:
+    """p (which 0), p' or p'' at s in floats, into out (c's scratch row 0 the work array)."""
+    ctrl = c[0] if which == 0 else (c[1] if which == 1 else c[3])
+    _at(ctrl, s, c[4][0], out)
 
 
 @numba.njit(**_JIT)
 def _d(c: Curve, s: float, which: int) -> np.ndarray:
-    """p (which 0), p' or p'' at s in floats."""
-    ctrl = c[0] if which == 0 else (c[1] if which == 1 else c[3])
-    out = np.empty(ctrl.shape[1])
-    _at(ctrl, s, np.empty(ctrl.shape), out)
+    """_d_into in a new array (where a call is not repeated in a loop)."""
+    out = np.empty(c[0].shape[1])
+    _d_into(c, s, which, out)
     return out
+
+
+@numba.njit(**_JIT)
+def _gap(p: Curve, q: Curve, s: float, t: float) -> float:
+    """|p(s) - q(t)| in floats (as _norm(_d(p, s, 0) - _d(q, t, 0)), without allocating)."""
+    x, y = p[4][4][0], q[4][4][0]
+    _d_into(p, s, 0, x)
+    _d_into(q, t, 0, y)
+    total = 0.0
+    for j in range(x.shape[0]):
+        diff = x[j] - y[j]
+        total += diff * diff
+    return math.sqrt(total)
 
 
 # ---------------------------------------------------------------------------- least squares
 @numba.njit(**_JIT)
 def _lstsq2(jac: np.ndarray, rhs: np.ndarray) -> tuple[float, float]:
+    """_lstsq2_into with its work arrays made here."""
+    ds, dt = _lstsq2_into(jac, rhs, np.empty(jac.shape[0]), np.empty(jac.shape[0]))
+    return ds, dt
+
+
+@numba.njit(**_JIT)
+def _lstsq2_into(
+    jac: np.ndarray, rhs: np.ndarray, q1: np.ndarray, w: np.ndarray
+) -> tuple[float, float]:
     """The least-squares solution of jac (m, 2) x = rhs, minimum norm when jac is rank
     deficient (numpy.linalg.lstsq's answer, rcond = eps max(m, 2)): Householder-free
-    Gram-Schmidt twice on two columns, the rank-one case by the pseudo-inverse."""
+    Gram-Schmidt twice on two columns, the rank-one case by the pseudo-inverse. q1, w: (m,)
+    work arrays."""
     m = jac.shape[0]
     c1, c2 = jac[:, 0], jac[:, 1]
     r11 = _norm(c1)
@@ -175,24 +217,26 @@ def _lstsq2(jac: np.ndarray, rhs: np.ndarray) -> tuple[float, float]:
         for i in range(m):
             dot += c2[i] * rhs[i]
         return 0.0, dot / (r22 * r22)
-    q1 = c1 / r11
+    for i in range(m):
+        q1[i] = c1[i] / r11
     r12 = 0.0
     for i in range(m):
         r12 += q1[i] * c2[i]
-    w = c2 - r12 * q1
+    for i in range(m):
+        w[i] = c2[i] - r12 * q1[i]
     again = 0.0
     for i in range(m):
         again += q1[i] * w[i]
-    w -= again * q1
+    for i in range(m):
+        w[i] -= again * q1[i]
     r12 += again
     r22 = _norm(w)
     big = max(r11, abs(r12), r22)
     if r22 > cut * big:
-        q2 = w / r22
         b1 = b2 = 0.0
         for i in range(m):
             b1 += q1[i] * rhs[i]
-            b2 += q2[i] * rhs[i]
+            b2 += (w[i] / r22) * rhs[i]
         x1 = b2 / r22
         return (b1 - r12 * x1) / r11, x1
     # rank one: jac ~ q1 (r11, r12); minimum norm x = (r11, r12) (q1 . rhs) / (r11² + r12²)
@@ -233,8 +277,8 @@ def _newton(p: Curve, q: Curve, s: float, t: float) -> tuple[float, float, int]:
     f, mdq = np.empty(dim), np.empty(dim)
     prev = np.inf
     for it in range(40):
-        value_slope(p[0], s, p[4], ps, dps)
-        value_slope(q[0], t, q[4], qt, dqt)
+        value_slope(p[0], s, p[4][0], ps, dps)
+        value_slope(q[0], t, q[4][0], qt, dqt)
         for j in range(dim):
             f[j] = ps[j] - qt[j]
             mdq[j] = -dqt[j]
@@ -254,11 +298,16 @@ def _newton(p: Curve, q: Curve, s: float, t: float) -> tuple[float, float, int]:
 @numba.njit(**_JIT)
 def _polish(p: Curve, q: Curve, s: float, t: float, steps: int) -> tuple[float, float, bool]:
     """intersect._polish, the residual compensated."""
-    f = np.empty(p[0].shape[1])
+    dim = p[0].shape[1]
+    f, u, v = np.empty(dim), np.empty(dim), np.empty(dim)
     ds = dt = np.inf
     for _ in range(steps):
         _residual(p, q, s, t, f)
-        ds, dt = _gauss_newton_step(_d(p, s, 1), -_d(q, t, 1), f)
+        _d_into(p, s, 1, u)
+        _d_into(q, t, 1, v)
+        for j in range(dim):
+            v[j] = -v[j]
+        ds, dt = _gauss_newton_step(u, v, f)
         s, t = s + ds, t + dt
         if abs(ds) + abs(dt) < 1e-17:
             break
@@ -274,15 +323,33 @@ def _cross_count(dim: int) -> int:
 def _tangent_residual(
     p: Curve, q: Curve, s: float, t: float, weight: float, exact: bool
 ) -> np.ndarray:
-    """intersect._tangent_residual: [p(s) - q(t); weight (p'(s) x q'(t)) / (|p'| |q'|)...]
-    as the careful path has it (the cross terms scaled by weight only, in floats; exact:
-    both compensated)."""
+    """_tangent_residual_into in new arrays."""
     dim = p[0].shape[1]
     out = np.empty(dim + _cross_count(dim))
+    _tangent_residual_into(p, q, s, t, weight, exact, out, np.empty((4, dim)))
+    return out
+
+
+@numba.njit(**_JIT)
+def _tangent_residual_into(
+    p: Curve,
+    q: Curve,
+    s: float,
+    t: float,
+    weight: float,
+    exact: bool,
+    out: np.ndarray,
+    work: np.ndarray,
+) -> None:
+    """intersect._tangent_residual into out (d + d(d-1)/2,): [p(s) - q(t); weight (p'(s) x
+    q'(t)) / (|p'| |q'|)...] as the careful path has it (the cross terms scaled by weight
+    only, in floats; exact: both compensated). work: (4, d)."""
+    dim = p[0].shape[1]
     if exact:
         _residual(p, q, s, t, out[:dim])
-        ah, al = _derivative_pair(p, s)
-        bh, bl = _derivative_pair(q, t)
+        ah, al, bh, bl = work[0], work[1], work[2], work[3]
+        _derivative_into(p, s, ah, al)
+        _derivative_into(q, t, bh, bl)
         k = dim
         for i in range(dim):
             for j in range(i + 1, dim):
@@ -293,9 +360,12 @@ def _tangent_residual(
                 d, e = two_sum(x, -y)
                 out[k] = (d + (e + (ex - ey))) * weight
                 k += 1
-        return out
-    a, b = _d(p, s, 0), _d(q, t, 0)
-    u, v = _d(p, s, 1), _d(q, t, 1)
+        return
+    a, b, u, v = work[0], work[1], work[2], work[3]
+    _d_into(p, s, 0, a)
+    _d_into(q, t, 0, b)
+    _d_into(p, s, 1, u)
+    _d_into(q, t, 1, v)
     for j in range(dim):
         out[j] = a[j] - b[j]
     k = dim
@@ -303,7 +373,6 @@ def _tangent_residual(
         for j in range(i + 1, dim):
             out[k] = (u[i] * v[j] - u[j] * v[i]) * weight
             k += 1
-    return out
 
 
 @numba.njit(**_JIT)
@@ -317,6 +386,9 @@ def _tangent_refine(
     d1p, d1q = _d(p, s, 1), _d(q, t, 1)
     weight = scale / max(_norm(d1p) * _norm(d1q), 1e-300)
     jac = np.empty((rows, 2))
+    res, minus_res, q1, w = np.empty(rows), np.empty(rows), np.empty(rows), np.empty(rows)
+    work = np.empty((4, dim))
+    d2p, d2q = np.empty(dim), np.empty(dim)
     for phase in range(2):
         exact = phase == 1
         if (exact and not exact_phase) or (not exact and not float_phase):
@@ -324,7 +396,7 @@ def _tangent_refine(
         best_size, best_s, best_t = np.inf, s, t
         stalled = 0
         for _ in range(100):
-            res = _tangent_residual(p, q, s, t, weight, exact)
+            _tangent_residual_into(p, q, s, t, weight, exact, res, work)
             zero = True
             for r in range(rows):
                 if res[r] != 0.0:
@@ -332,8 +404,10 @@ def _tangent_refine(
             if zero:
                 best_size, best_s, best_t = 0.0, s, t
                 break
-            d1p, d1q = _d(p, s, 1), _d(q, t, 1)
-            d2p, d2q = _d(p, s, 2), _d(q, t, 2)
+            _d_into(p, s, 1, d1p)
+            _d_into(q, t, 1, d1q)
+            _d_into(p, s, 2, d2p)
+            _d_into(q, t, 2, d2q)
             for j in range(dim):
                 jac[j, 0], jac[j, 1] = d1p[j], -d1q[j]
             k = dim
@@ -342,7 +416,9 @@ def _tangent_refine(
                     jac[k, 0] = (d2p[i] * d1q[j] - d2p[j] * d1q[i]) * weight
                     jac[k, 1] = (d1p[i] * d2q[j] - d1p[j] * d2q[i]) * weight
                     k += 1
-            ds, dt = _lstsq2(jac, -res)
+            for r in range(rows):
+                minus_res[r] = -res[r]
+            ds, dt = _lstsq2_into(jac, minus_res, q1, w)
             if not (math.isfinite(ds) and math.isfinite(dt)):
                 break
             s, t = s + ds, t + dt
@@ -359,7 +435,9 @@ def _tangent_refine(
 
 @numba.njit(**_JIT)
 def _sine(p: Curve, q: Curve, s: float, t: float) -> float:
-    u, v = _d(p, s, 1), _d(q, t, 1)
+    u, v = p[4][4][0], q[4][4][0]
+    _d_into(p, s, 1, u)
+    _d_into(q, t, 1, v)
     nu, nv = _norm(u), _norm(v)
     if nu == 0.0 or nv == 0.0:
         return 0.0
@@ -399,7 +477,7 @@ def _near_isolated(
 
 @numba.njit(**_JIT)
 def _on_both(p: Curve, q: Curve, s: float, t: float, bound: float) -> bool:
-    f = np.empty(p[0].shape[1])
+    f = p[4][4][0]
     _residual(p, q, s, t, f)
     return bool(_norm(f) <= bound)
 
@@ -428,7 +506,7 @@ def _solve_from(
             return False, s, t, TRANSVERSAL
     if not isolated and _near(s, t, fs, ft, count, near_found):
         return False, s, t, TRANSVERSAL
-    if _norm(_d(p, s, 0) - _d(q, t, 0)) > 1e-6 * scale:
+    if _gap(p, q, s, t) > 1e-6 * scale:
         return False, s, t, TRANSVERSAL
     polished = False
     ps, pt = s, t
@@ -477,8 +555,7 @@ def _add(
             gap = 0.0
             for m in range(9):
                 u = m / 8.0
-                x = _d(p, fs[k] + u * (s - fs[k]), 0) - _d(q, ft[k] + u * (t - ft[k]), 0)
-                gap = max(gap, _norm(x))
+                gap = max(gap, _gap(p, q, fs[k] + u * (s - fs[k]), ft[k] + u * (t - ft[k])))
             if gap <= gap_bound:
                 if fk[k] != COINCIDENT and _quality(p, q, s, t) < _quality(p, q, fs[k], ft[k]):
                     fs[k], ft[k], fk[k] = s, t, kind

@@ -50,6 +50,8 @@ from .refine_compiled import (
     _add,
     _curve,
     _d,
+    _d_into,
+    _gap,
     _near,
     _near_isolated,
     _norm,
@@ -90,6 +92,8 @@ def _breadth_first(level: np.ndarray, ia: np.ndarray, ib: np.ndarray, count: int
     the latest halving, then of the one before, and so on (each level's children are four
     blocks, each in the parents' order). The blocks as base-4 digits, latest first, in two
     keys of 16 digits each; stable sorts from the least significant key."""
+    if count <= 1:  # nothing to order (most calls: a point located once, a pair of lines)
+        return np.arange(count)
     high, low = np.zeros(count, np.int64), np.zeros(count, np.int64)
     for k in range(count):
         for j in range(level[k]):
@@ -242,6 +246,8 @@ def _starts(
     """intersect._starts (with _interval_clusters): Newton starts for unresolved pairs of
     pieces, cluster by cluster in the same order."""
     count = s0.size
+    if count == 0:
+        return np.empty(0), np.empty(0)
     parent = np.arange(count)
     order = np.argsort(s0, kind="mergesort")
     active = np.empty(count, dtype=np.int64)
@@ -390,19 +396,19 @@ def _locate_newton(c: Curve, point: np.ndarray, t: float) -> float:
     """intersect._locate_newton: nan where it leaves the domain."""
     dim = point.shape[0]
     pts = c[0]
-    hi, lo = np.empty(pts.shape), np.empty(pts.shape)
-    diff = np.empty(dim)
+    diff, x, d1, d2 = np.empty(dim), np.empty(dim), np.empty(dim), np.empty(dim)
     for phase in range(2):
         exact = phase == 1
         prev = np.inf
         for it in range(3 if exact else 40):
             if exact:
-                _value_minus(pts, t, point, hi, lo, diff)
+                _value_minus(pts, t, point, c[4][1], c[4][2], diff, c[4][3][0])
             else:
-                x = _d(c, t, 0)
+                _d_into(c, t, 0, x)
                 for j in range(dim):
                     diff[j] = x[j] - point[j]
-            d1, d2 = _d(c, t, 1), _d(c, t, 2)
+            _d_into(c, t, 1, d1)
+            _d_into(c, t, 2, d2)
             slope = 0.0
             lead = 0.0
             for j in range(dim):
@@ -429,8 +435,8 @@ def _locate_newton(c: Curve, point: np.ndarray, t: float) -> float:
 
 @numba.njit(**_JIT)
 def _distance(c: Curve, t: float, point: np.ndarray) -> float:
-    diff = np.empty(point.shape[0])
-    _value_minus(c[0], t, point, np.empty(c[0].shape), np.empty(c[0].shape), diff)
+    diff = c[4][4][0]
+    _value_minus(c[0], t, point, c[4][1], c[4][2], diff, c[4][3][0])
     return float(_norm(diff))
 
 
@@ -451,9 +457,10 @@ def _rounding_at(c: Curve, t: float, root_residual: float) -> float:
 @numba.njit(**_JIT)
 def _chord_bracket(c: Curve, point: np.ndarray, s0: float, s1: float, wide: float) -> float:
     chord = _d(c, s1, 0) - _d(c, s0, 0)
+    x = c[4][4][0]
     while s1 - s0 > wide:
         middle = 0.5 * (s0 + s1)
-        x = _d(c, middle, 0)
+        _d_into(c, middle, 0, x)
         dot = 0.0
         for j in range(point.shape[0]):
             dot += (x[j] - point[j]) * chord[j]
@@ -468,7 +475,7 @@ def _chord_bracket(c: Curve, point: np.ndarray, s0: float, s1: float, wide: floa
 def _locate_all(
     c: Curve,
     scale: float,
-    size: float,
+    size: np.ndarray,
     point: np.ndarray,
     accept: float,
     exact_end: bool,
@@ -476,7 +483,9 @@ def _locate_all(
     halves: Halves,
 ) -> np.ndarray:
     """intersect.locate_all for a float point, within=accept or exact_end: every t with
-    c(t) = point."""
+    c(t) = point. size: the curve's Prepared.size in a one-element array, negative until
+    first needed (only to merge two locations: most pairs never need it, and its 129
+    samples cost ~1 µs a curve)."""
     on_curve_rel, same_root, wide = knobs[0], knobs[1], knobs[7]
     depth, max_rows, steps, inside, margin = knobs[10], knobs[11], knobs[12], knobs[13], knobs[14]
     pts = c[0]
@@ -485,7 +494,6 @@ def _locate_all(
     for j in range(dim):
         big = max(big, abs(point[j]))
     tol = on_curve_rel * max(scale, big)
-    on_curve = on_curve_rel * max(size, big)
     found = [0.0 for _ in range(0)]
     for end in range(2):
         equal = True
@@ -516,13 +524,16 @@ def _locate_all(
             halves,
         )
     starts = [x for x in root_s]
-    narrow = left_width <= wide
-    for k in range(left_s0.size):
-        if not narrow[k]:
-            starts.append(_chord_bracket(c, point, left_s0[k], left_s0[k] + left_width[k], wide))
-    cluster_s, _ = _starts(left_s0[narrow], np.zeros(int(narrow.sum())), left_width[narrow])
-    for x in cluster_s:
-        starts.append(x)
+    if left_s0.size:  # pieces left unresolved (most calls have none): brackets, clusters
+        narrow = left_width <= wide
+        for k in range(left_s0.size):
+            if not narrow[k]:
+                starts.append(
+                    _chord_bracket(c, point, left_s0[k], left_s0[k] + left_width[k], wide)
+                )
+        cluster_s, _ = _starts(left_s0[narrow], np.zeros(int(narrow.sum())), left_width[narrow])
+        for x in cluster_s:
+            starts.append(x)
     for start in starts:
         t = _locate_newton(c, point, start)
         if math.isnan(t):
@@ -537,11 +548,15 @@ def _locate_all(
         if here > (_rounding_at(c, t, knobs[5]) if exact_end else accept):
             continue
         same = -1
+        if len(found) and size[0] < 0.0:
+            size[0] = _size(pts)
+        on_curve = on_curve_rel * max(size[0], big)
         for j in range(len(found)):
             u = found[j]
             stays = True
+            x = c[4][4][0]
             for m in range(17):
-                x = _d(c, u + (m / 16.0) * (t - u), 0)
+                _d_into(c, u + (m / 16.0) * (t - u), 0, x)
                 gap = 0.0
                 for i in range(dim):
                     gap += (x[i] - point[i]) ** 2
@@ -575,7 +590,7 @@ def _same_piece(p: Curve, q: Curve, s0: float, s1: float, t0: float, t1: float, 
     points = max(p[0].shape[0], q[0].shape[0]) + 1
     for k in range(points):
         x = 0.05 + k * (0.9 / (points - 1))
-        if _norm(_d(p, s0 + x * (s1 - s0), 0) - _d(q, t0 + x * (t1 - t0), 0)) > tol:
+        if _gap(p, q, s0 + x * (s1 - s0), t0 + x * (t1 - t0)) > tol:
             return False
     return True
 
@@ -594,24 +609,32 @@ def _in_stretch(s: float, t: float, skip: np.ndarray, skips: int, start: bool) -
 
 @numba.njit(**_JIT)
 def _collinear(a: np.ndarray, b: np.ndarray, tol: float) -> bool:
-    """intersect._common_line is not None: every control point of both within tol of one line."""
-    pts = np.concatenate((a, b))
-    dim = pts.shape[1]
-    base = pts[0]
+    """intersect._common_line is not None: every control point of both within tol of one line
+    (the points of a, then of b; no array made per point)."""
+    n, dim = a.shape[0], a.shape[1]
+    base = a[0]
     far, length = 0, -1.0
-    for i in range(pts.shape[0]):
-        d = _norm(pts[i] - base)
+    for i in range(n + b.shape[0]):
+        x = a[i] if i < n else b[i - n]
+        total = 0.0
+        for j in range(dim):
+            total += (x[j] - base[j]) * (x[j] - base[j])
+        d = math.sqrt(total)
         if d > length:
             far, length = i, d
     if length == 0.0:
         return False
-    unit = (pts[far] - base) / length
-    for i in range(pts.shape[0]):
-        rel = pts[i] - base
+    unit = ((a[far] if far < n else b[far - n]) - base) / length
+    for i in range(n + b.shape[0]):
+        x = a[i] if i < n else b[i - n]
         along = 0.0
         for j in range(dim):
-            along += rel[j] * unit[j]
-        if _norm(rel - along * unit) > tol:
+            along += (x[j] - base[j]) * unit[j]
+        total = 0.0
+        for j in range(dim):
+            off = (x[j] - base[j]) - along * unit[j]
+            total += off * off
+        if math.sqrt(total) > tol:
             return False
     return True
 
@@ -619,18 +642,21 @@ def _collinear(a: np.ndarray, b: np.ndarray, tol: float) -> bool:
 @numba.njit(**_JIT)
 def settle(
     a: np.ndarray, b: np.ndarray, knobs: Knobs, halves_a: Halves, halves_b: Halves
-) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
+) -> tuple[int, np.ndarray]:
     """intersect's careful path on one pair of float curves (n+1, d), (m+1, d), d >= 2,
-    neither a point: (count, s, t, kind), sorted as the careful path sorts its hits, or
-    count -1 where it declines (a stretch between end hits that may be one arc under
-    another parameterisation; control points on one line; more hits than room)."""
+    (count, hits) with hits (count, 3) rows (s, t, kind code), sorted as the
+    careful path sorts its hits (one array returned: boxing each costs a share of a small
+    pair's time), or count -1 where it declines (a stretch between end hits that may be one
+    arc under another parameterisation; control points on one line; more hits than room)."""
     same_root, isolated_same, radius, merge_gap = knobs[1], knobs[2], knobs[3], knobs[4]
     root_residual, box_slack, tangent_sine = knobs[5], knobs[6], knobs[9]
     depth, max_rows, steps, inside, margin = knobs[10], knobs[11], knobs[12], knobs[13], knobs[14]
+    span_p, scale_p = span_scale(a)
+    span_q, scale_q = span_scale(b)
+    if span_p == 0.0 or span_q == 0.0:  # a point: the careful path says so (a ValueError)
+        return -1, np.empty((0, 3))
     p, q = _curve(a), _curve(b)
-    _, scale_p = span_scale(a)
-    _, scale_q = span_scale(b)
-    size_p, size_q = _size(a), _size(b)
+    size_p, size_q = np.full(1, -1.0), np.full(1, -1.0)  # computed when first needed
     scale = max(scale_p, scale_q)
     degree = max(a.shape[0], b.shape[0]) - 1
     bound = root_residual * degree * scale
@@ -645,7 +671,7 @@ def settle(
         hits = _locate_all(q, scale_q, size_q, end, 0.0, True, knobs, halves_b)
         for t in hits:
             if ends == room:
-                return -1, fs, ft, fk
+                return -1, np.empty((0, 3))
             if not _near(float(s_end), t, es, et, ends, same_root):
                 es[ends], et[ends] = float(s_end), t
                 ends += 1
@@ -654,7 +680,7 @@ def settle(
         hits = _locate_all(p, scale_p, size_p, end, 0.0, True, knobs, halves_a)
         for s in hits:
             if ends == room:
-                return -1, fs, ft, fk
+                return -1, np.empty((0, 3))
             if not _near(s, float(t_end), es, et, ends, same_root):
                 es[ends], et[ends] = s, float(t_end)
                 ends += 1
@@ -678,7 +704,7 @@ def settle(
             if _same_piece(p, q, es[i], es[j], et[i], et[j], bound):
                 lo, hi = (j, i) if _after(es[i], et[i], ek[i], es[j], et[j], ek[j]) else (i, j)
                 if count + 2 > room:
-                    return -1, fs, ft, fk
+                    return -1, np.empty((0, 3))
                 for k in (lo, hi):
                     fs[count], ft[count], fk[count] = es[k], et[k], COINCIDENT
                     count += 1
@@ -693,13 +719,13 @@ def settle(
                 if lo_t <= t <= hi_t:
                     on_q += 1
             if on_q == 1:
-                return -1, fs, ft, fk
+                return -1, np.empty((0, 3))
     gap_bound = merge_gap * degree * scale
     for k in range(ends):
         if not _near(es[k], et[k], fs, ft, count, same_root):
             count = _add(p, q, fs, ft, fk, count, es[k], et[k], ek[k], gap_bound, radius)
     if _collinear(a, b, bound):
-        return -1, fs, ft, fk
+        return -1, np.empty((0, 3))
     # the subdivision, then refinement from its roots and from the starts it leaves
     ok, root_s, root_t, left_s0, left_t0, left_width = _isolate(
         a,
@@ -716,14 +742,14 @@ def settle(
         skips,
     )
     if not ok:
-        return -1, fs, ft, fk
+        return -1, np.empty((0, 3))
     for k in range(root_s.size):
         ok, s, t, kind = _solve_from(
             p, q, root_s[k], root_t[k], fs, ft, count, True, scale, bound, knobs
         )
         if ok and not _near_isolated(s, t, fs, ft, count, isolated_same, same_root):
             if count == room:
-                return -1, fs, ft, fk
+                return -1, np.empty((0, 3))
             if skips:  # the careful path's _add: a root at a shared stretch's end is that end
                 count = _add(p, q, fs, ft, fk, count, s, t, kind, gap_bound, radius)
             else:
@@ -741,7 +767,7 @@ def settle(
         if _in_stretch(s, t, skip, skips, False):
             continue
         if count == room:
-            return -1, fs, ft, fk
+            return -1, np.empty((0, 3))
         count = _add(p, q, fs, ft, fk, count, s, t, kind, gap_bound, radius)
     # sorted as tuples (s, t, kind) sort
     for k in range(1, count):
@@ -751,4 +777,7 @@ def settle(
             fs[m + 1], ft[m + 1], fk[m + 1] = fs[m], ft[m], fk[m]
             m -= 1
         fs[m + 1], ft[m + 1], fk[m + 1] = s, t, kind
-    return count, fs, ft, fk
+    hits = np.empty((count, 3))
+    for k in range(count):
+        hits[k, 0], hits[k, 1], hits[k, 2] = fs[k], ft[k], float(fk[k])
+    return count, hits

@@ -343,6 +343,7 @@ CALLS = {
     "param_surface_joins.resolve_sides": _call_resolve_sides,
     "surface_optimum.optimal_parameters": _call_optimal_parameters,
     "surface_optimum.optimal_parameters_batch": _call_optimal_parameters_batch,
+    "surface_optimum.surface_energy_matrices": _call_surface_energy_matrices,  # lb.'s
     "param_surfaces.family_surface": _call_family_surface,
     "param_surface_energy.optimal_parameters": _call_param_optimal_parameters,
     "param_surface_energy.surface_energy_matrices": _call_surface_energy_matrices,

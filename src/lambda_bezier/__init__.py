@@ -37,13 +37,12 @@ if TYPE_CHECKING:
     from .hazmat.constants import ConstantFraction
     from .intersection import intersect_exact, intersect_many
     from .joins import Joint, join
-    from .param_surface_energy import surface_energy, surface_energy_matrices
     from .parameter_optimum import OptimalParameters
     from .properties import IsolatedRoot, singular_parameters
     from .rational import RationalBezierCurve
     from .surface_energies import SurfaceOptimalParameters
     from .surface_joins import CompositeSurface, join_surface
-    from .surface_optimum import optimal_parameters
+    from .surface_optimum import optimal_parameters, surface_energy, surface_energy_matrices
     from .surfaces import BezierSurface, Surface
 
 __version__ = "0.1.0"
@@ -77,8 +76,10 @@ _EXPORTS = {
     "singular_parameters": "properties",
     "SurfaceOptimalParameters": "surface_energies",
     "optimal_parameters": "surface_optimum",  # curves (k an int) and surfaces
-    "surface_energy": "param_surface_energy",  # every surface (surface_energies underneath)
-    "surface_energy_matrices": "param_surface_energy",  # every family (surface_energies under)
+    # every surface and family: param_surface_energy (the several-parameter engine) is
+    # imported on the first call that needs it, surface_energies otherwise
+    "surface_energy": "surface_optimum",
+    "surface_energy_matrices": "surface_optimum",
     "CompositeSurface": "surface_joins",
     "join_surface": "surface_joins",
     "BernsteinLikeSurface": "builtin_surfaces",

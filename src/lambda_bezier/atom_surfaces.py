@@ -40,6 +40,7 @@ import numpy.typing as npt
 
 from . import _poly_direction as pd
 from . import _validate as val
+from ._surface_results import SurfaceClosestPoint
 from ._validate import ParamLike
 from .atom_family import AtomCurve
 from .hazmat import atom_bounds as ab
@@ -49,7 +50,6 @@ from .surfaces import (
     BezierSurface,
     NetLike,
     Surface,
-    SurfaceClosestPoint,
     _as_net,
     _distance_gap,
     _exact_net,

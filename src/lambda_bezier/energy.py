@@ -568,12 +568,15 @@ def _optimal_lambda_atoms(points: PointsLike, k: int, atom: Any, clamp: bool) ->
     )
 
 
-@dataclass(frozen=True)
 class _RangeData:
-    """The two range attributes _optimum reads of a family's tables."""
+    """The two range attributes _optimum reads of a family's tables. (A plain class: a
+    dataclass costs a quarter of a millisecond of every program's import, issue #29.)"""
 
-    LAMBDA_RANGE: tuple[Any, Any]
-    LAMBDA_CLOSED: tuple[bool, bool]
+    __slots__ = ("LAMBDA_CLOSED", "LAMBDA_RANGE")
+
+    def __init__(self, lambda_range: tuple[Any, Any], closed: tuple[bool, bool]) -> None:
+        self.LAMBDA_RANGE = lambda_range
+        self.LAMBDA_CLOSED = closed
 
 
 def _optimum(coefficients: tuple[Any, Any, Any], clamp: bool, data: Any) -> tuple[Any, ...]:

@@ -46,7 +46,7 @@ from . import surface_energies
 from ._optimal_box import BUDGET, CONSTANT_BITS, TOLERANCE, _laurent
 from .hazmat import box_bernstein
 from .hazmat.constants import ConstantSum
-from .surface_energies import ENERGIES, _matmul, hodograph_gram
+from .surface_energies import ENERGIES, _matmul, _param_families, hodograph_gram
 from .surfaces import NetLike, _as_net, _exact_net, basis_to_bernstein_split
 
 Laurent = dict[int, Fraction]
@@ -467,16 +467,6 @@ class SurfaceParameterOptimum(Mapping[str, Any]):
 
 
 _FIELDS = ("energy", "lower_bound", "boundary", "certified", "method")
-
-
-def _param_families(family: object) -> bool:
-    """Whether `family` (or either of a pair) is a family this module's optimum is for:
-    several or indexed parameters, or a trigonometric, hyperbolic or mixed basis."""
-    pair = family if isinstance(family, tuple | list) else (family,)
-    return any(
-        hasattr(f, "atom_data") or hasattr(f, "index_name") or getattr(f, "several", None)
-        for f in pair
-    )
 
 
 def _family_pair(family: Any) -> tuple[Any, Any]:

@@ -271,6 +271,18 @@ def kronecker_matrices(
     )
 
 
+def _param_families(family: object) -> bool:
+    """Whether `family` (or either of a pair) is one for param_surface_energy and its
+    certified optimum rather than this module: several or indexed parameters, or a
+    trigonometric, hyperbolic or mixed basis. Here, below both, so that the public entry
+    points (surface_optimum) decide without importing that engine (issue #29: import time)."""
+    pair = family if isinstance(family, tuple | list) else (family,)
+    return any(
+        hasattr(f, "atom_data") or hasattr(f, "index_name") or getattr(f, "several", None)
+        for f in pair
+    )
+
+
 def surface_energy_matrices(
     degrees: tuple[int, int], energy: str = "thin_plate", family: object = "same_degree"
 ) -> SurfaceEnergyMatrices:

@@ -31,7 +31,6 @@ its families' domains), and `evaluate` maps the global parameters onto it.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
 from fractions import Fraction
 from typing import TYPE_CHECKING, Any
 
@@ -49,6 +48,7 @@ if TYPE_CHECKING:
     from types import ModuleType
 
     from . import param_surface_joins, param_surface_report, surface_sides
+    from ._surface_results import BoundaryReport
 else:
 
     def _load_sides() -> ModuleType:
@@ -561,13 +561,14 @@ def _linear_factor(a: list[Any], b: list[Any], tol: float) -> bool:
     return True
 
 
-@dataclass(frozen=True)
-class BoundaryReport:
-    """The boundary between patch `first` and the next patch in direction `side`."""
+def __getattr__(name: str) -> Any:
+    # BoundaryReport lives in _surface_results, imported on the first report() (issue #29:
+    # import time); still reachable here, where it was defined until round 18
+    if name == "BoundaryReport":
+        from ._surface_results import BoundaryReport
 
-    first: tuple[int, int]
-    side: str
-    continuity: str  # "none", "C0", "G1", "C1" or "C2"
+        return BoundaryReport
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 class CompositeSurface:
@@ -599,6 +600,8 @@ class CompositeSurface:
 
     def report(self) -> list[BoundaryReport]:
         """The continuity achieved at every interior boundary (exact patches: exactly)."""
+        from ._surface_results import BoundaryReport  # on first use: import time (#29)
+
         out = []
         rows, cols = len(self.patches), len(self.patches[0])
         for r in range(rows):

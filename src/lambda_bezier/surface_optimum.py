@@ -44,7 +44,6 @@ from .hazmat import surface_kernels as ker
 from .hazmat.surface_fixed_cost import fixed_cost_minimum
 from .hazmat.surface_kernels import OPTIMUM_STEP_TOLERANCE
 from .hazmat.surface_weights import BatchWeights, batch_weights, pair_weights
-from .param_surface_energy import _param_families
 from .parameter_optimum import OptimalParameters as CurveOptimalParameters
 from .surface_energies import (
     ENERGIES,
@@ -53,8 +52,10 @@ from .surface_energies import (
     _box,
     _exact_optimum,
     _float_polynomial,
-    surface_energy_matrices,
+    _param_families,
 )
+from .surface_energies import surface_energy as _one_parameter_energy
+from .surface_energies import surface_energy_matrices as _one_parameter_matrices
 from .surfaces import NetLike, _as_family_pair, _as_net, _exact_net, basis_to_bernstein_split
 
 STEP_TOLERANCE = OPTIMUM_STEP_TOLERANCE
@@ -144,7 +145,7 @@ def optimal_parameters_batch(
     if nets.ndim != 4 or nets.shape[0] == 0:
         raise ValueError(f"a batch of nets must have shape (k, m+1, n+1, d), got {nets.shape}")
     count, m1, n1, dim = nets.shape
-    mats = surface_energy_matrices((m1 - 1, n1 - 1), energy, (u_cls, v_cls))
+    mats = _one_parameter_matrices((m1 - 1, n1 - 1), energy, (u_cls, v_cls))
     top = max(max(a, b) for a, b in mats.full)
     fast = _batch_compiled()
     if u_box is None or v_box is None or top > 2 or fast is None:
@@ -362,7 +363,7 @@ def _all_exact(
             "admissible": np.ones(count, bool),
         }
     free_u, free_v = np.zeros(count, bool), np.zeros(count, bool)
-    mats = surface_energy_matrices((m1 - 1, n1 - 1), energy, (u_cls, v_cls))
+    mats = _one_parameter_matrices((m1 - 1, n1 - 1), energy, (u_cls, v_cls))
     indices = np.flatnonzero(which)
     for i in indices:
         exact = tuple(tuple(tuple(Fraction(float(c)) for c in p) for p in row) for row in nets[i])
@@ -443,9 +444,48 @@ def optimal_parameters(
         return optimal_parameters_batch(arr, energy, family)
     grid = _as_net(net)
     m, n = grid.shape[0] - 1, grid.shape[1] - 1
-    mats = surface_energy_matrices((m, n), energy, (u_cls, v_cls))
+    mats = _one_parameter_matrices((m, n), energy, (u_cls, v_cls))
     exact = _exact_net(net)
     if exact is None or len(exact[0][0]) != grid.shape[2]:
         exact = tuple(tuple(tuple(Fraction(float(c)) for c in p) for p in row) for row in grid)
     poly = mats.polynomial(exact)
     return _exact_optimum({k: Fraction(v) for k, v in poly.items()}, u_box, v_box, u_cls, v_cls)
+
+
+# ---------------------------------------------------------------------- the public energies
+# lb.surface_energy and lb.surface_energy_matrices: here, where naming them costs nothing more,
+# and the several-parameter engine (param_surface_energy, with _optimal_box, _poly_direction and
+# box_bernstein) is imported on the first call that needs it (issue #29: import time)
+
+
+def surface_energy(surf: Any, energy: str = "thin_plate") -> Any:
+    """The membrane or thin-plate energy of any surface over its domain: exact (a Fraction,
+    or a ConstantFraction in π or e^W for an AtomSurface) for an exact surface, else a float.
+    A trigonometric direction across a hyperbolic one gives a ConstantSum in π and e^W (exact
+    terms, a certified enclosure; never compared). A surface of one-parameter or built-in
+    families goes to surface_energies.surface_energy, every other one to
+    param_surface_energy.surface_energy."""
+    if not hasattr(surf, "family_u"):
+        return _one_parameter_energy(surf, energy)
+    from .param_surface_energy import surface_energy as param_surface_energy
+
+    return param_surface_energy(surf, energy)
+
+
+def surface_energy_matrices(
+    degrees: tuple[int, int], energy: str = "thin_plate", family: object = "same_degree"
+) -> Any:
+    """The exact quadratic forms of a surface energy for nets of (m+1) x (n+1) points:
+    ParamSurfaceEnergyMatrices (param_surface_energy) for several-parameter, indexed and
+    trigonometric/hyperbolic/mixed families (one, or a pair (u, v)); the one-parameter and
+    built-in families' SurfaceEnergyMatrices (surface_energies) otherwise.
+
+    >>> mats = surface_energy_matrices((3, 3), "membrane")
+    >>> sorted(mats.terms)[:3]
+    [(0, 0), (0, 1), (0, 2)]
+    """
+    if not _param_families(family):
+        return _one_parameter_matrices(degrees, energy, family)
+    from .param_surface_energy import surface_energy_matrices as param_matrices
+
+    return param_matrices(degrees, energy, family)

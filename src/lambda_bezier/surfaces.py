@@ -19,10 +19,9 @@ bernstein_like): ``to_bezier`` is exact for exact input, and the numeric kernels
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
 from fractions import Fraction
 from functools import cached_property
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
@@ -32,6 +31,20 @@ from . import _validate as val
 from ._validate import ParamLike
 from .curves import BezierCurve, Curve, Matrix, _identity, _tables, family_class
 from .hazmat import surface_kernels as ker
+
+if TYPE_CHECKING:
+    from ._surface_results import SurfaceClosestPoint
+
+
+def __getattr__(name: str) -> Any:
+    # SurfaceClosestPoint lives in _surface_results, imported on the first closest_point
+    # (issue #29: import time); still reachable here, where it was defined until round 18
+    if name == "SurfaceClosestPoint":
+        from ._surface_results import SurfaceClosestPoint
+
+        return SurfaceClosestPoint
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 ExactNet = ker.ExactNet
 NetLike = npt.ArrayLike | Sequence[Sequence[Sequence[Fraction | float]]]
@@ -154,18 +167,6 @@ def _parameter_pair(u: object, v: object, extrapolate: bool) -> tuple[np.ndarray
     elif uu.shape != vv.shape:
         raise ValueError(f"u and v must have the same length, got {uu.size} and {vv.size}")
     return uu, vv, su and sv
-
-
-@dataclass(frozen=True)
-class SurfaceClosestPoint:
-    """The nearest point of a surface to q: parameters, point, distance and a certified lower
-    bound of the distance (see `Surface.closest_point`); arrays over a batch of queries."""
-
-    u: float | np.ndarray
-    v: float | np.ndarray
-    point: np.ndarray
-    distance: float | np.ndarray
-    lower_bound: float | np.ndarray
 
 
 class Surface:
@@ -511,6 +512,8 @@ class Surface:
         surface, float rounding of the squared distance limits that gap to about
         sqrt(256 eps) times the size; ``lower_bound`` always says what was certified.
         q is one point (d,) or a batch (k, d) (then every field is an array over the batch)."""
+        from ._surface_results import SurfaceClosestPoint
+
         tol = val.tolerance(tol)
         arr = np.asarray(val.real_array(q, "q"), dtype=float)
         if arr.ndim == 2:
@@ -525,6 +528,8 @@ class Surface:
         return self._closest(val.as_point(q, self.dimension, "q"), tol)
 
     def _closest(self, q: object, tol: float) -> SurfaceClosestPoint:
+        from ._surface_results import SurfaceClosestPoint
+
         point = val.as_point(q, self.dimension, "q")
         net = self._bezier_net - point
         size = float(np.abs(self._bezier_net).max()) + float(np.abs(point).max()) or 1.0

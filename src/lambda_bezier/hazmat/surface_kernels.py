@@ -9,7 +9,6 @@ Bernstein basis (the curves use the same centre).
 
 from __future__ import annotations
 
-import heapq
 import importlib.util
 import itertools
 import os
@@ -323,6 +322,8 @@ def minimise_scalar_net(
             best_u, best_v, best = cand
     # a patch is dropped when its lower bound is within `tol` of the best value then known;
     # `floor` keeps the least such bound, so min(floor, heap) bounds the minimum from below
+    import heapq  # here: every program naming a surface would import it otherwise (#29)
+
     floor = np.inf
     tie = itertools.count()
     heap: list[tuple[float, int, float, float, float, float, np.ndarray]] = [

@@ -231,15 +231,14 @@ def isolate(
             decided = decider.decide(s_box, t_box)
             if decided is not None:
                 if decided[0]:
-                    for axis, k in ((0, i), (1, j)):
-                        _halve(boxes[axis], k, squares[axis], MAX_HALVINGS - halvings[axis][k])
-                        halvings[axis][k] = MAX_HALVINGS
-                    found.append(ExactCrossing(boxes[0][i], boxes[1][j], True, decided[1]))
+                    found.append(ExactCrossing(s_box, t_box, True, decided[1]))
                 continue
         refined_any = False
         for axis, k in ((0, i), (1, j)):
-            if boxes[axis][k][0] != boxes[axis][k][1] and halvings[axis][k] < MAX_HALVINGS:
-                _halve(boxes[axis], k, squares[axis], 1)
+            lo, hi = boxes[axis][k]
+            if lo != hi and halvings[axis][k] < MAX_HALVINGS:
+                refined = xp.refine(squares[axis], (lo, hi), (hi - lo) / 2)
+                boxes[axis][k] = (refined, refined) if isinstance(refined, Fraction) else refined
                 halvings[axis][k] += 1
                 refined_any = True
         if refined_any:
@@ -253,14 +252,6 @@ def isolate(
     if narrow is not None:
         found = [_narrowed(c, squares, narrow) for c in found]
     return sorted(found, key=lambda c: (c.s[0], c.t[0]))
-
-
-def _halve(intervals: list[Interval], k: int, square: xp.Poly, times: int) -> None:
-    """intervals[k] refined to 2^-times its width (or to the root, met exactly)."""
-    lo, hi = intervals[k]
-    if lo != hi and times > 0:
-        got = xp.refine(square, (lo, hi), (hi - lo) / 2**times)
-        intervals[k] = (got, got) if isinstance(got, Fraction) else got
 
 
 def _narrowed(c: ExactCrossing, squares: tuple[xp.Poly, xp.Poly], width: Fraction) -> ExactCrossing:

@@ -39,6 +39,7 @@ from .geometry import (
 )
 from .hazmat import atom_intersect as ai
 from .hazmat import coincide as co
+from .hazmat import intersect_exact as ie
 from .hazmat import rational_kernels as rk
 from .hazmat.intersect import Intersection
 
@@ -433,7 +434,7 @@ def intersect(p: RationalBezierCurve, q: RationalBezierCurve) -> list[Intersecti
         return _with_stretches(p, q, shared)
     found = ai.pairs(ai.BernsteinPart(_float_rows(p)), ai.BernsteinPart(_float_rows(q)))
     if found is not None:
-        return [Intersection(f.s, f.t, f.kind) for f in found]
+        return _decided_exactly(p, q, [Intersection(f.s, f.t, f.kind) for f in found])
     shared = _shared(p, q, size) if starts is not None else []
     if shared:
         return _with_stretches(p, q, shared)
@@ -444,7 +445,30 @@ def intersect(p: RationalBezierCurve, q: RationalBezierCurve) -> list[Intersecti
             "the certified search to isolate where they meet (more than 20000 pairs of "
             "pieces overlap): rational curves report isolated intersections only"
         )
-    return _collect(p, q, starts, size)
+    return _decided_exactly(p, q, _collect(p, q, starts, size))
+
+
+def _decided_exactly(
+    p: RationalBezierCurve, q: RationalBezierCurve, hits: list[Intersection]
+) -> list[Intersection]:
+    """hits, or for exact planar curves with a "tangent" hit the exact answer
+    (hazmat.intersect_exact on the cross-multiplied system, within its degree budget):
+    a touching point proved once, a near-tangency without contact dropped, near-double
+    crossings split (issue #29)."""
+    pw, qw = p._exact_weights, q._exact_weights
+    if p._exact_points is None or q._exact_points is None or pw is None or qw is None:
+        return hits
+    got = ie.decided(
+        p._exact_points,
+        q._exact_points,
+        p.dimension,
+        q.dimension,
+        [h.kind for h in hits],
+        weights=(pw, qw),
+    )
+    if got is None:
+        return hits
+    return [Intersection(s, t, "tangent" if flat else "transversal") for s, t, flat in got]
 
 
 def _shared(p: RationalBezierCurve, q: RationalBezierCurve, size: float) -> list[co.Stretch]:

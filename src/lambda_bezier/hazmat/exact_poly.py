@@ -270,8 +270,9 @@ def first_subresultant(
     """The first subresultant of f and g in `var`, S_1 = a1 · var + a0, as (a1, a0):
     polynomials in the other variable. Where Res_var(f, g) vanishes at x0, f and g have
     constant leading coefficients in `var` and a1(x0) ≠ 0, S_1(x0, ·) is their gcd, so their
-    only common root is var = −a0(x0)/a1(x0) (real when x0 is). None when a leading coefficient
-    in `var` is not a constant or a degree in `var` is 0 (no such form). Found like
+    only common root is var = −a0(x0)/a1(x0) (real when x0 is); with leading coefficients in
+    `var` that depend on the other variable, the same holds where one of them does not vanish
+    at x0 (the caller checks it). None when a degree in `var` is 0 (no such form). Found like
     `resultant`: the minors of the Sylvester matrix at integer points, interpolated (their
     determinants by `determinant`, Gaussian elimination in Fractions by default; the
     interpolation by `interpolate`, Newton's divided differences by default)."""
@@ -280,9 +281,6 @@ def first_subresultant(
     dg = max((k[var] for k in g if g[k]), default=0)
     if df == 0 or dg == 0:
         return None
-    for h, d in ((f, df), (g, dg)):
-        if any(k[var] == d and k[other] > 0 and c for k, c in h.items()):
-            return None
     if df == 1 or dg == 1:  # a linear one is its own S_1 (up to a constant)
         h = f if df == 1 else g
         return (

@@ -69,6 +69,7 @@ class Algebra(NamedTuple):
     first_subresultant: Callable[[xp.Bivariate, xp.Bivariate, int], tuple[xp.Poly, xp.Poly] | None]
     multiply: Callable[[xp.Poly, xp.Poly], xp.Poly]
     decide_degree: int  # intersect decides tangencies exactly up to this product of the degrees
+    decide_degree_rational: int  # the same for rational curves (the cross-multiplied system)
 
 
 # The budgets, measured on reflected tangencies (a curve against its reflection in its own
@@ -84,6 +85,7 @@ PURE = Algebra(
     xp.first_subresultant,
     xp.multiply,
     9,
+    4,  # two conics 0.04-0.06 s, two rational cubics 1.6-2.6 s (loaded, reflected tangencies)
 )
 DECIDE_DEGREE_FLINT = 36
 FLINT = Algebra(
@@ -95,6 +97,7 @@ FLINT = Algebra(
     exact_flint.first_subresultant,
     exact_flint.multiply,
     DECIDE_DEGREE_FLINT,
+    16,  # rational cubics 0.14-0.18 s, quartics 0.37-0.49 s, quintics 1.0-1.5 s (loaded)
 )
 
 
@@ -127,6 +130,38 @@ def _difference(p: list[Fraction], q: list[Fraction]) -> xp.Bivariate:
         if c:
             out[(0, j)] = out.get((0, j), Fraction(0)) - c
     return {k: v for k, v in out.items() if v}
+
+
+def rational_system(
+    p_rows: Sequence[Sequence[Fraction]],
+    p_weights: Sequence[Fraction],
+    q_rows: Sequence[Sequence[Fraction]],
+    q_weights: Sequence[Fraction],
+) -> tuple[xp.Bivariate, xp.Bivariate]:
+    """F_c(s, t) = X_c(s) W_q(t) − Y_c(t) W_p(s) for c = x, y: p(s) = q(t) cross-multiplied,
+    X, W (Y, W) the homogeneous coordinates of p (of q) in the power basis. With positive
+    weights W_p, W_q > 0 on [0, 1], so F's zeros in [0, 1]² are the crossings exactly, and at
+    one DF = W_p W_q D(p − q) (the terms with p − q as a factor vanish there): det DF is
+    0 exactly where the curves touch, as for polynomial curves."""
+    w_p = power_coefficients([(Fraction(w),) for w in p_weights], 0)
+    w_q = power_coefficients([(Fraction(w),) for w in q_weights], 0)
+    out = []
+    for axis in (0, 1):
+        x_p = power_coefficients(
+            [(Fraction(r[axis]) * w,) for r, w in zip(p_rows, p_weights, strict=True)], 0
+        )
+        x_q = power_coefficients(
+            [(Fraction(r[axis]) * w,) for r, w in zip(q_rows, q_weights, strict=True)], 0
+        )
+        f: xp.Bivariate = {}
+        for i, a in enumerate(x_p):
+            for j, b in enumerate(w_q):
+                f[(i, j)] = f.get((i, j), Fraction(0)) + a * b
+        for i, a in enumerate(w_p):
+            for j, b in enumerate(x_q):
+                f[(i, j)] = f.get((i, j), Fraction(0)) - a * b
+        out.append({k: v for k, v in f.items() if v})
+    return out[0], out[1]
 
 
 def _roots(poly: list[Fraction], alg: Algebra) -> list[Interval]:
@@ -187,14 +222,20 @@ def isolate(
     q_rows: Sequence[Sequence[Fraction]],
     narrow: Fraction | None = None,
     alg: Algebra | None = None,
+    weights: tuple[Sequence[Fraction], Sequence[Fraction]] | None = None,
 ) -> list[ExactCrossing]:
     """The crossings of two planar Bézier curves with exact control points, as boxes of
     Fractions sorted by s (see the module's docstring); with `narrow`, each box's intervals
-    refined to that width at the end; the algebra `alg` (default: `algebra()`). ValueError
-    when the curves share a component (the resultant vanishes identically)."""
+    refined to that width at the end; the algebra `alg` (default: `algebra()`); with
+    `weights` (p's, q's: positive Fractions), of the two rational Bézier curves, on the
+    cross-multiplied system (`rational_system`). ValueError when the curves share a
+    component (the resultant vanishes identically)."""
     alg = alg or algebra()
-    fx = _difference(power_coefficients(p_rows, 0), power_coefficients(q_rows, 0))
-    fy = _difference(power_coefficients(p_rows, 1), power_coefficients(q_rows, 1))
+    if weights is None:
+        fx = _difference(power_coefficients(p_rows, 0), power_coefficients(q_rows, 0))
+        fy = _difference(power_coefficients(p_rows, 1), power_coefficients(q_rows, 1))
+    else:
+        fx, fy = rational_system(p_rows, weights[0], q_rows, weights[1])
     if not fx or not fy:
         raise ValueError("a coordinate of p - q vanishes identically: no finite set of crossings")
     r_s = alg.resultant(fx, fy, 1)  # t eliminated: a polynomial in s
@@ -308,6 +349,11 @@ class _Decider:
         lead = self.alg.sign_at_root(a1, square, box)
         if lead == 0:
             return None
+        # S_1(x*, ·) is the gcd of F_x(x*, ·), F_y(x*, ·) only where a leading coefficient
+        # in var does not vanish at x* (always, for polynomial curves: constants)
+        leads = [xp.substitute_row(g, var, max(k[var] for k in g)) for g in self.f]
+        if all(len(c) > 1 and self.alg.sign_at_root(c, square, box) == 0 for c in leads):
+            return None
         lo, hi = boxes[var]
         # var* >= lo  <=>  lead * (a0 + lo a1) <= 0 at x*; var* <= hi <=> lead * (a0 + hi a1) >= 0
         if lead * self.alg.sign_at_root(_plus(a0, a1, lo), square, box) > 0:
@@ -376,12 +422,13 @@ def exact_answer(
     p_rows: Sequence[Sequence[Fraction]],
     q_rows: Sequence[Sequence[Fraction]],
     alg: Algebra | None = None,
+    weights: tuple[Sequence[Fraction], Sequence[Fraction]] | None = None,
 ) -> list[tuple[float, float, bool]] | None:
     """Every crossing of two exact planar curves as (s, t, tangent): each box of `isolate`,
     refined to NARROW and rounded at its middle; None when a box is left undecided or the
     curves share a component (the float answer stands then)."""
     try:
-        boxes = isolate(p_rows, q_rows, NARROW, alg)
+        boxes = isolate(p_rows, q_rows, NARROW, alg, weights)
     except ValueError:
         return None
     if not all(c.certified for c in boxes):
@@ -396,22 +443,24 @@ def decided(
     q_dim: int,
     kinds: Sequence[str],
     alg: Algebra | None = None,
+    weights: tuple[Sequence[Fraction], Sequence[Fraction]] | None = None,
 ) -> list[tuple[float, float, bool]] | None:
     """intersect's answer decided exactly (exact_answer) for exact (int, Fraction) planar
     input whose float answer (its hits' `kinds`) has a "tangent" hit: touching points proved,
     near-tangencies without contact dropped, near-double crossings split. None (the float
     answer stands) for float input, the curves sharing a stretch, a box left undecided, or
-    a product of the degrees past the algebra's decide_degree (the exact isolation's cost,
-    see PURE and DECIDE_DEGREE_FLINT)."""
+    a product of the degrees past the algebra's decide_degree (decide_degree_rational with
+    `weights`: the exact isolation's cost, see PURE and FLINT)."""
     alg = alg or algebra()
     if (
         p_rows is None
         or q_rows is None
         or p_dim != 2
         or q_dim != 2
-        or (len(p_rows) - 1) * (len(q_rows) - 1) > alg.decide_degree
+        or (len(p_rows) - 1) * (len(q_rows) - 1)
+        > (alg.decide_degree if weights is None else alg.decide_degree_rational)
         or "tangent" not in kinds
         or "coincident" in kinds
     ):
         return None
-    return exact_answer(p_rows, q_rows, alg)
+    return exact_answer(p_rows, q_rows, alg, weights)

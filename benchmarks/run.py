@@ -823,7 +823,10 @@ def bench_exact() -> None:
         rnd, t0 = random.Random(seed), F(7, 23)
         rows = [(F(rnd.randint(-9, 9)), F(rnd.randint(-9, 9))) for _ in range(5)]
         p = point(rows, t0)
-        d = point([(4 * (b[0] - a[0]), 4 * (b[1] - a[1])) for a, b in zip(rows, rows[1:])], t0)
+        d = point(
+            [(4 * (b[0] - a[0]), 4 * (b[1] - a[1])) for a, b in zip(rows, rows[1:], strict=False)],
+            t0,
+        )
         dd = d[0] ** 2 + d[1] ** 2
 
         def reflect(v, p=p, d=d, dd=dd):

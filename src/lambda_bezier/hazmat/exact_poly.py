@@ -26,7 +26,9 @@ def evaluate(p: Sequence[Fraction], x: Fraction) -> Fraction:
     """p(x), exactly. With integer coefficients (what exact_flint's polynomials have) in
     integers: d^k p(n/d) = Σ c_i n^i d^(k−i) by Horner, one Fraction at the end, instead of a
     gcd after every step."""
-    if not all(isinstance(c, int) or c.denominator == 1 for c in p):
+    if not isinstance(x, Fraction | int) or not all(
+        isinstance(c, int) or c.denominator == 1 for c in p
+    ):
         acc = Fraction(0)
         for c in reversed(p):
             acc = acc * x + c

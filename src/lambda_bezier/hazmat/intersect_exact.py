@@ -40,7 +40,8 @@ MAX_HALVINGS = 60  # per isolating interval: widths down to 2^-60 before a box i
 # Krawczyk failing this often on one box (transversal crossings are proved within a few
 # halvings), the box is decided algebraically at once (exact at any width: each interval
 # isolates one root of its resultant) rather than after MAX_HALVINGS more tries, each an
-# interval evaluation of large Fractions (a sextic pair: 0.78 s -> see DECIDE_DEGREE_FLINT).
+# interval evaluation of large Fractions (reflected sextic pairs with FLINT: 0.72-0.92 s a pair
+# before, 0.29-0.48 s after, load average 7-8).
 EARLY_DECISION = 12
 
 Interval = tuple[Fraction, Fraction]
@@ -72,10 +73,11 @@ class Algebra(NamedTuple):
     decide_degree_rational: int  # the same for rational curves (the cross-multiplied system)
 
 
-# The budgets, measured on reflected tangencies (a curve against its reflection in its own
-# tangent line, small integer control points, t0 with denominators to 40), loaded machine:
-# exact_poly 0.04-0.3 s for two cubics, 0.5-2.5 s for two quartics, 110 s for two quintics;
-# exact_flint: see DECIDE_DEGREE_FLINT.
+# The budgets, measured on reflected tangencies (a random integer curve against its reflection
+# in its own tangent line at t0 = 7/23 or 3/40, 12 pairs per degree), load average 7-8 on 2
+# cores: exact_poly 0.06-0.19 s a pair for two cubics, 1.4-3.3 s for two quartics (110 s for
+# two quintics in round 17); exact_flint 0.03-0.04 s, 0.07-0.13 s, 0.18-0.26 s for quintics,
+# 0.29-0.48 s for sextics (products of the degrees 25 and 36).
 PURE = Algebra(
     "exact_poly",
     xp.resultant,

@@ -242,3 +242,15 @@ def test_without_flint_the_standard_library_decides_within_its_budget(monkeypatc
     with pytest.raises(RuntimeError, match="python-flint is not installed"):
         exact_flint.real_roots([F(1), F(1)], F(0), F(1))
     assert any(h.kind == "tangent" for h in quartic.intersect(mirror))
+
+
+def test_evaluate_in_integers_matches_sympy():
+    """exact_poly.evaluate's integer path (integer coefficients, the form exact_flint gives)
+    and its Fraction path, against SymPy's exact value."""
+    rnd = random.Random(5)
+    for _ in range(50):
+        coeffs = [F(rnd.randint(-(10**6), 10**6)) for _ in range(rnd.randint(1, 12))]
+        coeffs[0] += F(rnd.choice([0, 1]), rnd.choice([1, 3]))  # a Fraction now and then
+        x = F(rnd.randint(-(2**70), 2**70), 2 ** rnd.randint(0, 80))
+        want = sp.Poly(list(reversed([rational(c) for c in coeffs])), X).eval(rational(x))
+        assert rational(xp.evaluate(coeffs, x)) == want

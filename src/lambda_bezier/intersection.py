@@ -124,8 +124,13 @@ def intersect_exact(
     >>> from lambda_bezier import BezierCurve, intersect_exact
     >>> arch = BezierCurve([(0, 0), (1, 2), (2, 0)])
     >>> line = BezierCurve([(0, F(1, 2)), (2, F(1, 2))])
-    >>> [(float(c.s[0]), float(c.s[1]), c.certified) for c in intersect_exact(arch, line)]
-    [(0.0, 0.25, True), (0.75, 1.0, True)]
+    >>> boxes = intersect_exact(arch, line)
+    >>> [(c.certified, c.tangent) for c in boxes]
+    [(True, False), (True, False)]
+    >>> def g(s):  # the arch's height minus 1/2, over 2: zero at s = (2 ∓ √2)/4
+    ...     return (2 * s - 1) ** 2 - F(1, 2)
+    >>> [g(c.s[0]) * g(c.s[1]) < 0 for c in boxes]  # each box brackets one of them, exactly
+    [True, True]
     """
     from .curves import Curve
     from .rational import RationalBezierCurve

@@ -800,6 +800,58 @@ def bench_intersection() -> None:
         sub.USE_COMPILED = saved
 
 
+def bench_exact() -> None:
+    """intersect's exact tangency decision (hazmat/intersect_exact.py) on python-flint
+    against the same steps in Fractions (exact_poly, the fallback without flint), same run,
+    same answers: reflected tangencies (a random integer quartic against its reflection in
+    its own tangent line at t0 = 7/23), the pure path's budget being 9 for this reason."""
+    import random
+    from fractions import Fraction as F
+    from math import comb
+
+    from lambda_bezier.hazmat import intersect_exact as ie
+
+    def point(rows, t):
+        n = len(rows) - 1
+        return [
+            sum(comb(n, i) * t**i * (1 - t) ** (n - i) * r[k] for i, r in enumerate(rows))
+            for k in range(2)
+        ]
+
+    pairs = []
+    for seed in range(4):
+        rnd, t0 = random.Random(seed), F(7, 23)
+        rows = [(F(rnd.randint(-9, 9)), F(rnd.randint(-9, 9))) for _ in range(5)]
+        p = point(rows, t0)
+        d = point(
+            [(4 * (b[0] - a[0]), 4 * (b[1] - a[1])) for a, b in zip(rows, rows[1:], strict=False)],
+            t0,
+        )
+        dd = d[0] ** 2 + d[1] ** 2
+
+        def reflect(v, p=p, d=d, dd=dd):
+            w = (v[0] - p[0], v[1] - p[1])
+            along = (w[0] * d[0] + w[1] * d[1]) / dd
+            return (p[0] + 2 * along * d[0] - w[0], p[1] + 2 * along * d[1] - w[1])
+
+        pairs.append((rows, [reflect(v) for v in rows]))
+
+    def run(alg):
+        return [ie.exact_answer(a, b, alg) for a, b in pairs]
+
+    assert run(ie.FLINT) == run(ie.PURE)
+    times = interleaved({"flint": lambda: run(ie.FLINT), "pure": lambda: run(ie.PURE)}, rounds=2)
+    record(
+        f"exact tangency decision, python-flint (intersect_exact.FLINT): {len(pairs)} "
+        "reflected-tangency pairs of quartics, same answers",
+        times["flint"],
+        "the same steps in Fractions (intersect_exact.PURE)",
+        times["pure"],
+        ">= 5x faster",
+        times["pure"] >= 5 * times["flint"],
+    )
+
+
 def bench_closest(batch: int) -> None:
     """closest_point against a vectorised numpy baseline: 512 samples of the curve, the
     nearest sample per query, then 4 Newton steps on (p - q)·p' (what a user writes; it can
@@ -1121,6 +1173,7 @@ def main() -> None:
         "lambda",
         "geometry",
         "intersection",
+        "exact",
         "closest",
         "compile",
         "surfaces",
@@ -1153,6 +1206,7 @@ def main() -> None:
         "lambda": lambda: bench_optimal_lambda(m_lambda, m_memory),
         "geometry": lambda: bench_arc_length(20 if args.quick else 100),
         "intersection": bench_intersection,
+        "exact": bench_exact,
         "closest": lambda: bench_closest(1000 if args.quick else 10_000),
         "compile": bench_compile,
         "surfaces": lambda: bench_surfaces(

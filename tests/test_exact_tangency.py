@@ -170,7 +170,20 @@ def test_two_curves_touching_at_an_irrational_point():
     lower = bezier_of(S, -((S**2 - sp.Rational(1, 2)) ** 2) - sp.Rational(1, 10**20))
     assert sympy_roots(quartic, lower) == []
     assert lb.intersect_exact(quartic, lower) == []
-    # two quartics are past intersect's budget (DECIDE_DEGREE): the float answer stands there
+    # intersect decides two quartics exactly with python-flint (ie.FLINT, a product of the
+    # degrees to 36); past the standard library's budget (ie.PURE, 9) the float answer stands
+    assert quartic.intersect(lower) == []
+
+
+def test_two_quartics_are_past_the_standard_librarys_budget(monkeypatch):
+    """Without python-flint (intersect_exact.algebra() is PURE), the quartic against its
+    mirror moved down by 1e-20 keeps the float answer (a tangent hit), no contact being
+    exact (SymPy, above)."""
+    from lambda_bezier.hazmat import intersect_exact as ie
+
+    monkeypatch.setattr(ie, "algebra", lambda: ie.PURE)
+    quartic = bezier_of(S, (S**2 - sp.Rational(1, 2)) ** 2)
+    lower = bezier_of(S, -((S**2 - sp.Rational(1, 2)) ** 2) - sp.Rational(1, 10**20))
     assert [h.kind for h in quartic.intersect(lower)] == ["tangent"]
 
 

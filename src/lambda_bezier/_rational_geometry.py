@@ -39,6 +39,7 @@ from .geometry import (
 )
 from .hazmat import atom_intersect as ai
 from .hazmat import coincide as co
+from .hazmat import intersect_exact as ie
 from .hazmat import rational_kernels as rk
 from .hazmat.intersect import Intersection
 
@@ -431,12 +432,24 @@ def intersect(p: RationalBezierCurve, q: RationalBezierCurve) -> list[Intersecti
     shared = _shared(p, q, size) if starts is None else []
     if shared:
         return _with_stretches(p, q, shared)
-    found = ai.pairs(ai.BernsteinPart(_float_rows(p)), ai.BernsteinPart(_float_rows(q)))
+    exact = _exact_pair(p, q)
+    # with an exact answer to fall back on, the search gives up at MAX_PAIRS open pairs: a
+    # contact of high order (a band of pairs too narrow to be a stretch) took it 4-40 s to
+    # HARD_MAX_PAIRS, the exact isolation 0.06 s (tests/test_coincide.py)
+    found = ai.pairs(
+        ai.BernsteinPart(_float_rows(p)),
+        ai.BernsteinPart(_float_rows(q)),
+        give_up=ai.MAX_PAIRS if exact is not None else ai.HARD_MAX_PAIRS,
+    )
     if found is not None:
-        return [Intersection(f.s, f.t, f.kind) for f in found]
+        return _decided_exactly(p, q, [Intersection(f.s, f.t, f.kind) for f in found])
     shared = _shared(p, q, size) if starts is not None else []
     if shared:
         return _with_stretches(p, q, shared)
+    if exact is not None:  # no stretch: the exact isolation answers (None: left undecided)
+        got = ie.exact_answer(exact[0][0], exact[0][1], None, exact[1])
+        if got is not None:
+            return [Intersection(s, t, "tangent" if flat else "transversal") for s, t, flat in got]
     if starts is None:  # pieces overlap all along, yet no shared stretch: refused by name
         how = "exactly" if p.is_exact and q.is_exact else "to the rounding of evaluation"
         raise ValueError(
@@ -444,7 +457,40 @@ def intersect(p: RationalBezierCurve, q: RationalBezierCurve) -> list[Intersecti
             "the certified search to isolate where they meet (more than 20000 pairs of "
             "pieces overlap): rational curves report isolated intersections only"
         )
-    return _collect(p, q, starts, size)
+    return _decided_exactly(p, q, _collect(p, q, starts, size))
+
+
+Rows = tuple[tuple[Fraction, ...], ...]
+
+
+def _exact_pair(
+    p: RationalBezierCurve, q: RationalBezierCurve
+) -> tuple[tuple[Rows, Rows], tuple[tuple[Fraction, ...], tuple[Fraction, ...]]] | None:
+    """(the control points, the weights) of two exact planar curves within the exact
+    isolation's budget (intersect_exact.algebra().decide_degree_rational), else None."""
+    pw, qw = p._exact_weights, q._exact_weights
+    if p._exact_points is None or q._exact_points is None or pw is None or qw is None:
+        return None
+    if p.dimension != 2 or p.degree * q.degree > ie.algebra().decide_degree_rational:
+        return None
+    return (p._exact_points, q._exact_points), (pw, qw)
+
+
+def _decided_exactly(
+    p: RationalBezierCurve, q: RationalBezierCurve, hits: list[Intersection]
+) -> list[Intersection]:
+    """hits, or for exact planar curves with a "tangent" hit the exact answer
+    (hazmat.intersect_exact on the cross-multiplied system, within its degree budget):
+    a touching point proved once, a near-tangency without contact dropped, near-double
+    crossings split (issue #29)."""
+    exact = _exact_pair(p, q)
+    if exact is None:
+        return hits
+    (p_rows, q_rows), weights = exact
+    got = ie.decided(p_rows, q_rows, 2, 2, [h.kind for h in hits], weights=weights)
+    if got is None:
+        return hits
+    return [Intersection(s, t, "tangent" if flat else "transversal") for s, t, flat in got]
 
 
 def _shared(p: RationalBezierCurve, q: RationalBezierCurve, size: float) -> list[co.Stretch]:

@@ -10,12 +10,14 @@ of Curve.intersect, pair for pair.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from fractions import Fraction
 from typing import TYPE_CHECKING, Literal
 
 if TYPE_CHECKING:
     from .curves import Curve
     from .hazmat.intersect import Intersection
     from .hazmat.intersect_exact import ExactCrossing
+    from .rational import RationalBezierCurve
 
 
 def __getattr__(name: str) -> object:
@@ -105,11 +107,14 @@ def intersect_many(
     return [found[i * len(b) : (i + 1) * len(b)] for i in range(len(a))]
 
 
-def intersect_exact(curve_a: Curve, curve_b: Curve) -> list[ExactCrossing]:
+def intersect_exact(
+    curve_a: Curve | RationalBezierCurve, curve_b: Curve | RationalBezierCurve
+) -> list[ExactCrossing]:
     """The crossings of two planar curves with exact (int or Fraction) control points and
-    shape parameter, isolated exactly: boxes s in [s0, s1], t in [t0, t1] with Fraction
-    ends, each holding exactly one crossing when ``certified`` (Krawczyk's test in rational
-    interval arithmetic on the Sturm-isolated roots of the two resultants; see
+    shape parameter (or weights, for rational Bézier curves: then on the cross-multiplied
+    system X_a W_b − X_b W_a = 0), isolated exactly: boxes s in [s0, s1], t in [t0, t1]
+    with Fraction ends, each holding exactly one crossing when ``certified`` (Krawczyk's
+    test in rational interval arithmetic on the isolated roots of the two resultants; see
     ``lambda_bezier.hazmat.intersect_exact``); a box Krawczyk cannot prove (a tangency) is
     decided algebraically, certified with ``tangent`` True when the curves touch there and
     dropped when they do not. A box left uncertified holds two common points over one s and
@@ -119,27 +124,40 @@ def intersect_exact(curve_a: Curve, curve_b: Curve) -> list[ExactCrossing]:
     >>> from lambda_bezier import BezierCurve, intersect_exact
     >>> arch = BezierCurve([(0, 0), (1, 2), (2, 0)])
     >>> line = BezierCurve([(0, F(1, 2)), (2, F(1, 2))])
-    >>> [(float(c.s[0]), float(c.s[1]), c.certified) for c in intersect_exact(arch, line)]
-    [(0.0, 0.25, True), (0.75, 1.0, True)]
+    >>> boxes = intersect_exact(arch, line)
+    >>> [(c.certified, c.tangent) for c in boxes]
+    [(True, False), (True, False)]
+    >>> def g(s):  # the arch's height minus 1/2, over 2: zero at s = (2 ∓ √2)/4
+    ...     return (2 * s - 1) ** 2 - F(1, 2)
+    >>> [g(c.s[0]) * g(c.s[1]) < 0 for c in boxes]  # each box brackets one of them, exactly
+    [True, True]
     """
     from .curves import Curve
+    from .rational import RationalBezierCurve
 
-    rows = []
+    rows, weights = [], []
     for name, c in (("curve_a", curve_a), ("curve_b", curve_b)):
-        if not isinstance(c, Curve):
+        if not isinstance(c, Curve | RationalBezierCurve):
             raise TypeError(f"{name} must be a curve, got {type(c).__name__}")
         if not c.is_exact:
             raise ValueError(
                 f"{name} is not exact: intersect_exact needs int or Fraction control points "
-                "(and shape parameter); Curve.intersect handles floats"
+                "(and shape parameter, or weights); Curve.intersect handles floats"
             )
         if c.dimension != 2:
             raise ValueError(
                 f"intersect_exact needs planar curves, {name} has dimension {c.dimension}"
             )
-        exact_rows = c.to_bezier()._exact_points
-        assert exact_rows is not None  # an exact curve has an exact Bézier form
+        exact_rows = c._exact_points if isinstance(c, RationalBezierCurve) else None
+        exact_weights = c._exact_weights if isinstance(c, RationalBezierCurve) else None
+        if not isinstance(c, RationalBezierCurve):
+            exact_rows = c.to_bezier()._exact_points
+            exact_weights = tuple(Fraction(1) for _ in range(c.degree + 1))
+        assert exact_rows is not None and exact_weights is not None  # an exact curve's
         rows.append(exact_rows)
+        weights.append(exact_weights)
     from .hazmat.intersect_exact import isolate
 
-    return isolate(rows[0], rows[1])
+    if isinstance(curve_a, Curve) and isinstance(curve_b, Curve):
+        return isolate(rows[0], rows[1])
+    return isolate(rows[0], rows[1], weights=(weights[0], weights[1]))

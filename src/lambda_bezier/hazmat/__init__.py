@@ -37,6 +37,8 @@ ours (the name follows the `bezier` package's `hazmat`).
   gcds over Q for exact rows, to rounding for floats);
 - `intersect_exact`: exact, certified isolation of planar crossings (resultants, Sturm,
   Krawczyk in rational interval arithmetic);
+- `exact_flint`: its costly exact steps (resultants, gcds, real-root isolation) on
+  python-flint (the `exact` extra; imported on use), `exact_poly` the fallback;
 - `intersect_fold`: the self-intersections of a curve on a line that turns back along it
   (the end pairs of the stretches its monotone pieces share);
 - `intersect_prepared`: a curve as the intersection solvers use it (floats, exact rows);
@@ -99,6 +101,7 @@ __all__ = [
     "closest_numpy",
     "coincide",
     "constants",
+    "exact_flint",
     "exact_poly",
     "extremes",
     "forms",

@@ -443,9 +443,11 @@ def _search(
     split: Callable[[Pairs], Pairs],
     near: Callable[[Pairs], np.ndarray],
     stats: ab.Stats,
+    give_up: int = HARD_MAX_PAIRS,
 ) -> tuple[list[Found], Pairs] | None:
     """The branch and bound from the open pairs `pr`: the proven roots, and the unresolved
-    pairs. `near` marks pairs settled otherwise (self-intersections: the diagonal)."""
+    pairs. `near` marks pairs settled otherwise (self-intersections: the diagonal). Past
+    `give_up` open pairs (at least MAX_PAIRS), None even for a contact's narrow band."""
     ws, wt = p.hi - p.lo, q.hi - q.lo
     found: list[Found] = []
     stuck: list[Pairs] = []
@@ -453,7 +455,7 @@ def _search(
     for _ in range(MAX_ROUNDS):
         if pr.size == 0:
             break
-        if pr.size > MAX_PAIRS and (pr.size > HARD_MAX_PAIRS or _spread(pr, ws, wt)):
+        if pr.size > MAX_PAIRS and (pr.size > give_up or _spread(pr, ws, wt)):
             return None
         stats.rounds += 1
         stats.intervals += pr.size
@@ -611,15 +613,18 @@ def _same_contact(p: Part, q: Part, f: Found, g: Found) -> bool:
     return bool(gap.max() <= ON_CURVE * max(p.size, q.size))
 
 
-def pairs(p: Part, q: Part, stats: ab.Stats | None = None) -> list[Found] | None:
+def pairs(
+    p: Part, q: Part, stats: ab.Stats | None = None, give_up: int = HARD_MAX_PAIRS
+) -> list[Found] | None:
     """Every intersection of P(s), s ∈ [p.lo, p.hi], and Q(t), t ∈ [q.lo, q.hi] (sorted by
-    s), or None when the curves share a stretch (see the module's note)."""
+    s), or None when the curves share a stretch (see the module's note), or past `give_up`
+    open pairs (a caller with an exact answer to fall back on gives up at MAX_PAIRS)."""
     stats = stats if stats is not None else ab.Stats()
     a, b = _grid(p.lo, p.hi)
     c, e = _grid(q.lo, q.hi)
     i, j = np.meshgrid(np.arange(a.size), np.arange(c.size), indexing="ij")
     start = Pairs(a[i.ravel()], b[i.ravel()], c[j.ravel()], e[j.ravel()])
-    got = _search(p, q, start, _halve, lambda pr: np.zeros(pr.size, dtype=bool), stats)
+    got = _search(p, q, start, _halve, lambda pr: np.zeros(pr.size, dtype=bool), stats, give_up)
     if got is None:
         return None
     return _settle(p, q, *got)

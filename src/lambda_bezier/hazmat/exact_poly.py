@@ -8,7 +8,7 @@ with rational ends; resultants are computed by evaluation at integer points and 
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from fractions import Fraction
 
 Poly = list[Fraction]
@@ -23,14 +23,38 @@ def trim(p: Sequence[Fraction]) -> Poly:
 
 
 def evaluate(p: Sequence[Fraction], x: Fraction) -> Fraction:
-    acc = Fraction(0)
+    """p(x), exactly. With integer coefficients (what exact_flint's polynomials have) in
+    integers: d^k p(n/d) = Σ c_i n^i d^(k−i) by Horner, one Fraction at the end, instead of a
+    gcd after every step."""
+    if not isinstance(x, Fraction | int) or not all(
+        isinstance(c, int) or c.denominator == 1 for c in p
+    ):
+        acc = Fraction(0)
+        for c in reversed(p):
+            acc = acc * x + c
+        return acc
+    x = Fraction(x)
+    num, den = x.numerator, x.denominator
+    total, scale = 0, 1
     for c in reversed(p):
-        acc = acc * x + c
-    return acc
+        total = total * num + int(c) * scale
+        scale *= den
+    return Fraction(total, scale // den) if p else Fraction(0)
 
 
 def derivative(p: Sequence[Fraction]) -> Poly:
     return trim([k * p[k] for k in range(1, len(p))])
+
+
+def multiply(a: Sequence[Fraction], b: Sequence[Fraction]) -> Poly:
+    if not a or not b:
+        return []
+    out = [Fraction(0)] * (len(a) + len(b) - 1)
+    for i, x in enumerate(a):
+        if x:
+            for j, y in enumerate(b):
+                out[i + j] += x * y
+    return trim(out)
 
 
 def _rem(a: Poly, b: Poly) -> Poly:
@@ -238,21 +262,27 @@ def resultant(f: Bivariate, g: Bivariate, var: int) -> Poly:
     return _interpolate(xs, ys)
 
 
-def first_subresultant(f: Bivariate, g: Bivariate, var: int) -> tuple[Poly, Poly] | None:
+def first_subresultant(
+    f: Bivariate,
+    g: Bivariate,
+    var: int,
+    determinant: Callable[[list[list[Fraction]]], Fraction] | None = None,
+    interpolate: Callable[[list[Fraction], list[Fraction]], Poly] | None = None,
+) -> tuple[Poly, Poly] | None:
     """The first subresultant of f and g in `var`, S_1 = a1 · var + a0, as (a1, a0):
     polynomials in the other variable. Where Res_var(f, g) vanishes at x0, f and g have
     constant leading coefficients in `var` and a1(x0) ≠ 0, S_1(x0, ·) is their gcd, so their
-    only common root is var = −a0(x0)/a1(x0) (real when x0 is). None when a leading coefficient
-    in `var` is not a constant or a degree in `var` is 0 (no such form). Found like
-    `resultant`: the minors of the Sylvester matrix at integer points, interpolated."""
+    only common root is var = −a0(x0)/a1(x0) (real when x0 is); with leading coefficients in
+    `var` that depend on the other variable, the same holds where one of them does not vanish
+    at x0 (the caller checks it). None when a degree in `var` is 0 (no such form). Found like
+    `resultant`: the minors of the Sylvester matrix at integer points, interpolated (their
+    determinants by `determinant`, Gaussian elimination in Fractions by default; the
+    interpolation by `interpolate`, Newton's divided differences by default)."""
     other = 1 - var
     df = max((k[var] for k in f if f[k]), default=0)
     dg = max((k[var] for k in g if g[k]), default=0)
     if df == 0 or dg == 0:
         return None
-    for h, d in ((f, df), (g, dg)):
-        if any(k[var] == d and k[other] > 0 and c for k, c in h.items()):
-            return None
     if df == 1 or dg == 1:  # a linear one is its own S_1 (up to a constant)
         h = f if df == 1 else g
         return (
@@ -265,10 +295,15 @@ def first_subresultant(f: Bivariate, g: Bivariate, var: int) -> tuple[Poly, Poly
     xs = [Fraction(k) for k in range(bound + 1)]
     a1s, a0s = [], []
     for x0 in xs:
-        minors = _subresultant_one(_in_var(f, var, other, x0, df), _in_var(g, var, other, x0, dg))
+        minors = _subresultant_one(
+            _in_var(f, var, other, x0, df),
+            _in_var(g, var, other, x0, dg),
+            determinant or _determinant,
+        )
         a1s.append(minors[0])
         a0s.append(minors[1])
-    return _interpolate(xs, a1s), _interpolate(xs, a0s)
+    through = interpolate or _interpolate
+    return through(xs, a1s), through(xs, a0s)
 
 
 def substitute_row(f: Bivariate, var: int, power: int) -> Poly:
@@ -282,7 +317,9 @@ def substitute_row(f: Bivariate, var: int, power: int) -> Poly:
     return trim(out)
 
 
-def _subresultant_one(p: Poly, q: Poly) -> tuple[Fraction, Fraction]:
+def _subresultant_one(
+    p: Poly, q: Poly, determinant: Callable[[list[list[Fraction]]], Fraction]
+) -> tuple[Fraction, Fraction]:
     """(a1, a0) of S_1(p, q) for the formal degrees m = len(p) − 1, n = len(q) − 1 ≥ 2: the
     (m + n − 2)-row matrix of n − 1 shifted rows of p and m − 1 of q, its first m + n − 3
     columns with the column of x^1, then with that of x^0."""
@@ -301,8 +338,8 @@ def _subresultant_one(p: Poly, q: Poly) -> tuple[Fraction, Fraction]:
         rows.append(row)
     head = width - 2  # columns of x^(m+n-2) ... x^2
     return (
-        _determinant([r[:head] + [r[head]] for r in rows]),
-        _determinant([r[:head] + [r[head + 1]] for r in rows]),
+        determinant([r[:head] + [r[head]] for r in rows]),
+        determinant([r[:head] + [r[head + 1]] for r in rows]),
     )
 
 
@@ -323,6 +360,14 @@ def sign_at_root(p: Poly, square_free: Poly, interval: tuple[Fraction, Fraction]
     common = gcd(p, square_free)
     if len(common) > 1 and real_roots(common, lo, hi):
         return 0
+    return sign_off_root(p, square_free, interval)
+
+
+def sign_off_root(p: Poly, square_free: Poly, interval: tuple[Fraction, Fraction]) -> int:
+    """The sign of p at the one root of `square_free` in the open `interval` (non-root
+    ends), p known not to vanish there: an enclosure of p over the interval, halved about
+    the root until it excludes 0."""
+    lo, hi = interval
     while True:
         low, high = _enclose(p, lo, hi)
         if low > 0 or high < 0:

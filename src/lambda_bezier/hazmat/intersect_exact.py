@@ -11,9 +11,10 @@ crossing, and
   (m the box's centre, Y = J(m)^-1, J(X) an enclosure of the Jacobian over the box, all in
   exact rational interval arithmetic) maps the box into its interior: a transversal crossing.
 
-Boxes neither excluded nor proved are bisected (the isolating intervals refined) up to
-MAX_HALVINGS times. What is still undecided then (a tangency: the Jacobian is singular there,
-so Krawczyk cannot contract) is decided algebraically (`_decide`): the box's s* is the one root
+Boxes neither excluded nor proved are bisected (the isolating intervals refined). A box
+Krawczyk fails on EARLY_DECISION times (a tangency, most likely: the Jacobian is singular
+there, so Krawczyk cannot contract), and one still open after MAX_HALVINGS halvings, is
+decided algebraically (`_Decider`, exact at any width): the box's s* is the one root
 of R_s in I_s, and where the first subresultant S_1 = a1(s) t + a0(s) of F_x, F_y in t has
 a1(s*) ≠ 0, the only t with F(s*, t) = 0 is t* = −a0(s*)/a1(s*); whether t* lies in I_t, and
 whether the Jacobian's determinant vanishes at (s*, t*) (a tangency), are signs of
@@ -27,14 +28,21 @@ ends of every interval are Fractions.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from fractions import Fraction
 from math import comb
 from typing import NamedTuple
 
+from . import exact_flint
 from . import exact_poly as xp
 
 MAX_HALVINGS = 60  # per isolating interval: widths down to 2^-60 before a box is left undecided
+# Krawczyk failing this often on one box (transversal crossings are proved within a few
+# halvings), the box is decided algebraically at once (exact at any width: each interval
+# isolates one root of its resultant) rather than after MAX_HALVINGS more tries, each an
+# interval evaluation of large Fractions (reflected sextic pairs with FLINT: 0.72-0.92 s a pair
+# before, 0.29-0.48 s after, load average 7-8).
+EARLY_DECISION = 12
 
 Interval = tuple[Fraction, Fraction]
 
@@ -48,6 +56,56 @@ class ExactCrossing(NamedTuple):
     t: Interval
     certified: bool
     tangent: bool = False  # certified and the tangents are parallel there (decided exactly)
+
+
+class Algebra(NamedTuple):
+    """The exact steps isolate takes, from one implementation: the standard library's
+    (exact_poly, always there) or python-flint's (exact_flint, when installed)."""
+
+    name: str
+    resultant: Callable[[xp.Bivariate, xp.Bivariate, int], xp.Poly]
+    squarefree: Callable[[xp.Poly], xp.Poly]
+    real_roots: Callable[[xp.Poly, Fraction, Fraction], list[Fraction | Interval]]
+    sign_at_root: Callable[[xp.Poly, xp.Poly, Interval], int]
+    first_subresultant: Callable[[xp.Bivariate, xp.Bivariate, int], tuple[xp.Poly, xp.Poly] | None]
+    multiply: Callable[[xp.Poly, xp.Poly], xp.Poly]
+    decide_degree: int  # intersect decides tangencies exactly up to this product of the degrees
+    decide_degree_rational: int  # the same for rational curves (the cross-multiplied system)
+
+
+# The budgets, measured on reflected tangencies (a random integer curve against its reflection
+# in its own tangent line at t0 = 7/23 or 3/40, 12 pairs per degree), load average 7-8 on 2
+# cores: exact_poly 0.06-0.19 s a pair for two cubics, 1.4-3.3 s for two quartics (110 s for
+# two quintics in round 17); exact_flint 0.03-0.04 s, 0.07-0.13 s, 0.18-0.26 s for quintics,
+# 0.29-0.48 s for sextics (products of the degrees 25 and 36).
+PURE = Algebra(
+    "exact_poly",
+    xp.resultant,
+    xp.squarefree,
+    xp.real_roots,
+    xp.sign_at_root,
+    xp.first_subresultant,
+    xp.multiply,
+    9,
+    4,  # two conics 0.04-0.06 s, two rational cubics 1.6-2.6 s (loaded, reflected tangencies)
+)
+DECIDE_DEGREE_FLINT = 36
+FLINT = Algebra(
+    "exact_flint",
+    exact_flint.resultant,
+    exact_flint.squarefree,
+    exact_flint.real_roots,
+    exact_flint.sign_at_root,
+    exact_flint.first_subresultant,
+    exact_flint.multiply,
+    DECIDE_DEGREE_FLINT,
+    16,  # rational cubics 0.14-0.18 s, quartics 0.37-0.49 s, quintics 1.0-1.5 s (loaded)
+)
+
+
+def algebra() -> Algebra:
+    """FLINT when python-flint is installed, else the standard library's."""
+    return FLINT if exact_flint.available() else PURE
 
 
 def power_coefficients(rows: Sequence[Sequence[Fraction]], axis: int) -> list[Fraction]:
@@ -76,10 +134,42 @@ def _difference(p: list[Fraction], q: list[Fraction]) -> xp.Bivariate:
     return {k: v for k, v in out.items() if v}
 
 
-def _roots(poly: list[Fraction]) -> list[Interval]:
+def rational_system(
+    p_rows: Sequence[Sequence[Fraction]],
+    p_weights: Sequence[Fraction],
+    q_rows: Sequence[Sequence[Fraction]],
+    q_weights: Sequence[Fraction],
+) -> tuple[xp.Bivariate, xp.Bivariate]:
+    """F_c(s, t) = X_c(s) W_q(t) − Y_c(t) W_p(s) for c = x, y: p(s) = q(t) cross-multiplied,
+    X, W (Y, W) the homogeneous coordinates of p (of q) in the power basis. With positive
+    weights W_p, W_q > 0 on [0, 1], so F's zeros in [0, 1]² are the crossings exactly, and at
+    one DF = W_p W_q D(p − q) (the terms with p − q as a factor vanish there): det DF is
+    0 exactly where the curves touch, as for polynomial curves."""
+    w_p = power_coefficients([(Fraction(w),) for w in p_weights], 0)
+    w_q = power_coefficients([(Fraction(w),) for w in q_weights], 0)
+    out = []
+    for axis in (0, 1):
+        x_p = power_coefficients(
+            [(Fraction(r[axis]) * w,) for r, w in zip(p_rows, p_weights, strict=True)], 0
+        )
+        x_q = power_coefficients(
+            [(Fraction(r[axis]) * w,) for r, w in zip(q_rows, q_weights, strict=True)], 0
+        )
+        f: xp.Bivariate = {}
+        for i, a in enumerate(x_p):
+            for j, b in enumerate(w_q):
+                f[(i, j)] = f.get((i, j), Fraction(0)) + a * b
+        for i, a in enumerate(w_p):
+            for j, b in enumerate(x_q):
+                f[(i, j)] = f.get((i, j), Fraction(0)) - a * b
+        out.append({k: v for k, v in f.items() if v})
+    return out[0], out[1]
+
+
+def _roots(poly: list[Fraction], alg: Algebra) -> list[Interval]:
     return [
         (r, r) if isinstance(r, Fraction) else r
-        for r in xp.real_roots(poly, Fraction(0), Fraction(1))
+        for r in alg.real_roots(poly, Fraction(0), Fraction(1))
     ]
 
 
@@ -133,17 +223,25 @@ def isolate(
     p_rows: Sequence[Sequence[Fraction]],
     q_rows: Sequence[Sequence[Fraction]],
     narrow: Fraction | None = None,
+    alg: Algebra | None = None,
+    weights: tuple[Sequence[Fraction], Sequence[Fraction]] | None = None,
 ) -> list[ExactCrossing]:
     """The crossings of two planar Bézier curves with exact control points, as boxes of
     Fractions sorted by s (see the module's docstring); with `narrow`, each box's intervals
-    refined to that width at the end. ValueError when the curves share a component (the
-    resultant vanishes identically)."""
-    fx = _difference(power_coefficients(p_rows, 0), power_coefficients(q_rows, 0))
-    fy = _difference(power_coefficients(p_rows, 1), power_coefficients(q_rows, 1))
+    refined to that width at the end; the algebra `alg` (default: `algebra()`); with
+    `weights` (p's, q's: positive Fractions), of the two rational Bézier curves, on the
+    cross-multiplied system (`rational_system`). ValueError when the curves share a
+    component (the resultant vanishes identically)."""
+    alg = alg or algebra()
+    if weights is None:
+        fx = _difference(power_coefficients(p_rows, 0), power_coefficients(q_rows, 0))
+        fy = _difference(power_coefficients(p_rows, 1), power_coefficients(q_rows, 1))
+    else:
+        fx, fy = rational_system(p_rows, weights[0], q_rows, weights[1])
     if not fx or not fy:
         raise ValueError("a coordinate of p - q vanishes identically: no finite set of crossings")
-    r_s = xp.resultant(fx, fy, 1)  # t eliminated: a polynomial in s
-    r_t = xp.resultant(fx, fy, 0)
+    r_s = alg.resultant(fx, fy, 1)  # t eliminated: a polynomial in s
+    r_t = alg.resultant(fx, fy, 0)
     if not r_s or not r_t:
         raise ValueError(
             "the curves share a component (their resultant vanishes identically): their "
@@ -151,11 +249,12 @@ def isolate(
         )
     f = [fx, fy]
     jac = [[xp.partial(g, 0), xp.partial(g, 1)] for g in f]
-    boxes = (_roots(r_s), _roots(r_t))  # isolating intervals of s, of t
+    boxes = (_roots(r_s, alg), _roots(r_t, alg))  # isolating intervals of s, of t
     halvings = ([0] * len(boxes[0]), [0] * len(boxes[1]))
-    squares = (xp.squarefree(xp.trim(r_s)), xp.squarefree(xp.trim(r_t)))
-    decider = _Decider(f, jac, squares)
+    squares = (alg.squarefree(xp.trim(r_s)), alg.squarefree(xp.trim(r_t)))
+    decider = _Decider(f, jac, squares, alg)
     pending = [(i, j) for i in range(len(boxes[0])) for j in range(len(boxes[1]))]
+    failures: dict[tuple[int, int], int] = {}  # Krawczyk's failures on each box
     found: list[ExactCrossing] = []
     while pending:
         i, j = pending.pop()
@@ -170,6 +269,13 @@ def isolate(
         if _krawczyk(f, jac, [_widen(s_box), _widen(t_box)]):
             found.append(ExactCrossing(s_box, t_box, True))
             continue
+        failures[(i, j)] = failures.get((i, j), 0) + 1
+        if failures[(i, j)] == EARLY_DECISION:  # most likely a tangency: decided now
+            decided = decider.decide(s_box, t_box)
+            if decided is not None:
+                if decided[0]:
+                    found.append(ExactCrossing(s_box, t_box, True, decided[1]))
+                continue
         refined_any = False
         for axis, k in ((0, i), (1, j)):
             lo, hi = boxes[axis][k]
@@ -213,14 +319,18 @@ class _Decider:
     module's docstring). The subresultants are computed once, on first use."""
 
     def __init__(
-        self, f: list[xp.Bivariate], jac: list[list[xp.Bivariate]], squares: tuple[xp.Poly, xp.Poly]
+        self,
+        f: list[xp.Bivariate],
+        jac: list[list[xp.Bivariate]],
+        squares: tuple[xp.Poly, xp.Poly],
+        alg: Algebra,
     ) -> None:
-        self.f, self.jac, self.squares = f, jac, squares
+        self.f, self.jac, self.squares, self.alg = f, jac, squares, alg
         self._forms: dict[int, tuple[xp.Poly, xp.Poly] | None] = {}
 
     def _form(self, var: int) -> tuple[xp.Poly, xp.Poly] | None:
         if var not in self._forms:
-            self._forms[var] = xp.first_subresultant(self.f[0], self.f[1], var)
+            self._forms[var] = self.alg.first_subresultant(self.f[0], self.f[1], var)
         return self._forms[var]
 
     def decide(self, s_box: Interval, t_box: Interval) -> tuple[bool, bool] | None:
@@ -238,32 +348,38 @@ class _Decider:
         a1, a0 = form
         known = 1 - var  # the root x* known by its isolating interval; var = -a0/a1 at x*
         square, box = self.squares[known], boxes[known]
-        lead = xp.sign_at_root(a1, square, box)
+        lead = self.alg.sign_at_root(a1, square, box)
         if lead == 0:
+            return None
+        # S_1(x*, ·) is the gcd of F_x(x*, ·), F_y(x*, ·) only where a leading coefficient
+        # in var does not vanish at x* (always, for polynomial curves: constants)
+        leads = [xp.substitute_row(g, var, max(k[var] for k in g)) for g in self.f]
+        if all(len(c) > 1 and self.alg.sign_at_root(c, square, box) == 0 for c in leads):
             return None
         lo, hi = boxes[var]
         # var* >= lo  <=>  lead * (a0 + lo a1) <= 0 at x*; var* <= hi <=> lead * (a0 + hi a1) >= 0
-        if lead * xp.sign_at_root(_plus(a0, a1, lo), square, box) > 0:
+        if lead * self.alg.sign_at_root(_plus(a0, a1, lo), square, box) > 0:
             return (False, False)
-        if lead * xp.sign_at_root(_plus(a0, a1, hi), square, box) < 0:
+        if lead * self.alg.sign_at_root(_plus(a0, a1, hi), square, box) < 0:
             return (False, False)
-        return True, xp.sign_at_root(self._determinant_along(var, a1, a0), square, box) == 0
+        return True, self.alg.sign_at_root(self._determinant_along(var, a1, a0), square, box) == 0
 
     def _determinant_along(self, var: int, a1: xp.Poly, a0: xp.Poly) -> xp.Poly:
         """a1^d · det J(x, −a0/a1) as a polynomial in the known variable x, d the Jacobian's
         degree in var (a1 ≠ 0 at x*, so it vanishes at x* exactly when det J does there)."""
         det = _bivariate_det(self.jac)
         degree = max((k[var] for k in det), default=0)
+        mul = self.alg.multiply
+        by_power = [xp.substitute_row(det, var, j) for j in range(degree + 1)]  # det = Σ c_j var^j
+        minus_a0: list[xp.Poly] = [[Fraction(1)]]
+        a1_powers: list[xp.Poly] = [[Fraction(1)]]
+        for _ in range(degree):
+            minus_a0.append(mul(minus_a0[-1], [-x for x in a0]))
+            a1_powers.append(mul(a1_powers[-1], a1))
         out: xp.Poly = []
-        for key, c in det.items():
-            term = [c]
-            for _ in range(key[1 - var]):  # x^k
-                term = _mul_poly(term, [Fraction(0), Fraction(1)])
-            for _ in range(key[var]):  # (−a0)^j
-                term = _mul_poly(term, [-x for x in a0])
-            for _ in range(degree - key[var]):  # a1^(d − j)
-                term = _mul_poly(term, a1)
-            out = _add_poly(out, term)
+        for j, c in enumerate(by_power):
+            if c:
+                out = _add_poly(out, mul(c, mul(minus_a0[j], a1_powers[degree - j])))
         return xp.trim(out)
 
 
@@ -279,17 +395,6 @@ def _add_poly(a: xp.Poly, b: xp.Poly) -> xp.Poly:
             for k in range(size)
         ]
     )
-
-
-def _mul_poly(a: xp.Poly, b: xp.Poly) -> xp.Poly:
-    if not a or not b:
-        return []
-    out = [Fraction(0)] * (len(a) + len(b) - 1)
-    for i, x in enumerate(a):
-        if x:
-            for j, y in enumerate(b):
-                out[i + j] += x * y
-    return out
 
 
 def _bivariate_det(jac: list[list[xp.Bivariate]]) -> xp.Bivariate:
@@ -312,18 +417,20 @@ def _widen(box: Interval) -> Interval:
     return lo - eps, hi + eps
 
 
-DECIDE_DEGREE = 9  # intersect decides tangencies exactly up to this product of the degrees
 NARROW = Fraction(1, 2**64)  # the width exact boxes are refined to when they replace float hits
 
 
 def exact_answer(
-    p_rows: Sequence[Sequence[Fraction]], q_rows: Sequence[Sequence[Fraction]]
+    p_rows: Sequence[Sequence[Fraction]],
+    q_rows: Sequence[Sequence[Fraction]],
+    alg: Algebra | None = None,
+    weights: tuple[Sequence[Fraction], Sequence[Fraction]] | None = None,
 ) -> list[tuple[float, float, bool]] | None:
     """Every crossing of two exact planar curves as (s, t, tangent): each box of `isolate`,
     refined to NARROW and rounded at its middle; None when a box is left undecided or the
     curves share a component (the float answer stands then)."""
     try:
-        boxes = isolate(p_rows, q_rows, NARROW)
+        boxes = isolate(p_rows, q_rows, NARROW, alg, weights)
     except ValueError:
         return None
     if not all(c.certified for c in boxes):
@@ -337,22 +444,25 @@ def decided(
     p_dim: int,
     q_dim: int,
     kinds: Sequence[str],
+    alg: Algebra | None = None,
+    weights: tuple[Sequence[Fraction], Sequence[Fraction]] | None = None,
 ) -> list[tuple[float, float, bool]] | None:
     """intersect's answer decided exactly (exact_answer) for exact (int, Fraction) planar
     input whose float answer (its hits' `kinds`) has a "tangent" hit: touching points proved,
     near-tangencies without contact dropped, near-double crossings split. None (the float
     answer stands) for float input, the curves sharing a stretch, a box left undecided, or
-    a product of the degrees past DECIDE_DEGREE (the exact isolation's cost: 0.04-0.1 s for
-    two cubics, 0.5-2.5 s for two quartics, 110 s for two quintics, on reflected tangencies
-    with denominators to 40, loaded)."""
+    a product of the degrees past the algebra's decide_degree (decide_degree_rational with
+    `weights`: the exact isolation's cost, see PURE and FLINT)."""
+    alg = alg or algebra()
     if (
         p_rows is None
         or q_rows is None
         or p_dim != 2
         or q_dim != 2
-        or (len(p_rows) - 1) * (len(q_rows) - 1) > DECIDE_DEGREE
+        or (len(p_rows) - 1) * (len(q_rows) - 1)
+        > (alg.decide_degree if weights is None else alg.decide_degree_rational)
         or "tangent" not in kinds
         or "coincident" in kinds
     ):
         return None
-    return exact_answer(p_rows, q_rows)
+    return exact_answer(p_rows, q_rows, alg, weights)

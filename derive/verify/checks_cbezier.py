@@ -27,7 +27,7 @@ from ..families import cbezier as cb
 from ..families.cbezier import CDefinition
 from ..grammar import SYMBOLS, ParseError, parse_formula
 from .checks_core import Outcome
-from .checks_elementary import RecordError, curve_call
+from .checks_elementary import RecordError, curve_call, walk_equations
 
 KINDS = ("several_basis", "several_end_conditions", "several_symmetry")
 
@@ -107,33 +107,25 @@ def _show(defn: CDefinition, elem: cb.Elem) -> str:
 
 
 def equations(record: dict, defn: CDefinition) -> Outcome:
-    diffs, checked = [], []
-    for number, eq in enumerate(record.get("equations") or []):
-        if "given" in eq or "where" in eq:
-            raise RecordError(
-                f"equations[{number}]: `given` and `where` are not read for this family; the "
-                "equation is checked at its degree (and every index i)"
-            )
+    def prepare(number: int, eq: dict) -> tuple[object, bool]:
         lhs = _parse(defn, eq["lhs"], f"equations[{number}].lhs")
         rhs = _parse(defn, eq["rhs"], f"equations[{number}].rhs")
-        per_index = _I in (lhs.free_symbols | rhs.free_symbols)
-        count = 0
-        for idx in range(defn.degree + 1) if per_index else (None,):
-            where = f"equations[{number}]" + (f" at i = {idx}" if idx is not None else "")
-            gap = _gap(defn, _realise(defn, lhs, idx) - _realise(defn, rhs, idx), where)
-            count += 1
-            if gap:
-                at = f"n = {defn.degree}" + (f", i = {idx}" if idx is not None else "")
-                diffs.append(
-                    f"{eq['lhs']} = {eq['rhs']} fails at {at}: lhs - rhs = {_show(defn, gap)}"
-                )
-                break
-        checked.append(
-            f"{eq['lhs']} = {eq['rhs']}: {count} instances, exact in "
-            f"Q({defn.parameter}, {defn.space} of {defn.parameter})"
-        )
-    if not checked:
-        raise RecordError("key equations: no equation")
+        return (number, lhs, rhs), _I in (lhs.free_symbols | rhs.free_symbols)
+
+    def gap(parsed: object, _degree: int, idx: int | None) -> str | None:
+        number, lhs, rhs = parsed  # type: ignore[misc]
+        where = f"equations[{number}]" + (f" at i = {idx}" if idx is not None else "")
+        diff = _gap(defn, _realise(defn, lhs, idx) - _realise(defn, rhs, idx), where)
+        return _show(defn, diff) if diff else None
+
+    diffs, checked = walk_equations(
+        record,
+        (defn.degree,),
+        prepare,
+        gap,
+        "for this family; the equation is checked at its degree (and every index i)",
+        f"exact in Q({defn.parameter}, {defn.space} of {defn.parameter})",
+    )
     return Outcome("mismatch" if diffs else "match", diffs, checked)
 
 

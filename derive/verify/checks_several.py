@@ -120,29 +120,27 @@ def _realise(defn: Definition, expr: sp.Basic, degree: int, idx: int | None) -> 
 
 def _equations(record: dict) -> Outcome:
     defn = _defn(record)
-    diffs, checked, parsed = [], [], []
-    for number, eq in enumerate(record.get("equations") or []):
-        if "given" in eq or "where" in eq:
-            raise RecordError(
-                f"equations[{number}]: `given` and `where` are not read for a family in "
-                "several parameters; the equation is checked at every degree (and index i)"
-            )
+    parsed = []
+
+    def prepare(number: int, eq: dict) -> tuple[object, bool]:
         lhs = _parse(defn, eq["lhs"], f"equations[{number}].lhs")
         rhs = _parse(defn, eq["rhs"], f"equations[{number}].rhs")
         parsed.append((eq["lhs"], eq["rhs"], lhs, rhs))
-        per_index = _I in (lhs.free_symbols | rhs.free_symbols)
-        count = 0
-        for degree in defn.degrees:
-            for idx in range(degree + 1) if per_index else (None,):
-                gap = sp.expand(_realise(defn, lhs, degree, idx) - _realise(defn, rhs, degree, idx))
-                count += 1
-                if gap != 0:
-                    where = f"n = {degree}" + (f", i = {idx}" if idx is not None else "")
-                    diffs.append(f"{eq['lhs']} = {eq['rhs']} fails at {where}: lhs - rhs = {gap}")
-                    break
-        checked.append(f"{eq['lhs']} = {eq['rhs']}: {count} instances, exact")
-    if not checked:
-        raise RecordError("key equations: no equation")
+        return (lhs, rhs), _I in (lhs.free_symbols | rhs.free_symbols)
+
+    def gap(sides: object, degree: int, idx: int | None) -> str | None:
+        lhs, rhs = sides  # type: ignore[misc]
+        diff = sp.expand(_realise(defn, lhs, degree, idx) - _realise(defn, rhs, degree, idx))
+        return str(diff) if diff != 0 else None
+
+    diffs, checked = elementary.walk_equations(
+        record,
+        defn.degrees,
+        prepare,
+        gap,
+        "for a family in several parameters; the equation is checked at every degree (and index i)",
+        "exact",
+    )
     if record["claim"].endswith("several_end_conditions") and closed_n.has_closed_forms(defn):
         more, also = closed_n.general_equations(defn, parsed)  # and for a general n
         diffs, checked = diffs + more, checked + also

@@ -403,6 +403,7 @@ def _product(a: tuple[str, int], b: tuple[str, int], hyperbolic: bool) -> list:
     return out
 
 
+@cache
 def gram(defn: CDefinition, k: int) -> list[list[sp.Expr]]:
     """G[i][j] = int_0^alpha b_i^(k) b_j^(k) dt, exact in (A, S, C)."""
     hyp = defn.hyperbolic

@@ -429,3 +429,33 @@ def _failed(defn: CDefinition, i: int, state: str, where: tuple, what: str) -> d
         f"{float(am.mid()):.6g}, u = {float(um.mid()):.6g} (a zero on the closed box, "
         f"or the budget of {BUDGET} boxes)",
     }
+
+
+def nonvanishing(defn: CDefinition, poly: sp.Expr) -> dict:
+    """Is the polynomial poly(A, S, C) free of zeros for alpha in the box (alpha > 0)? Its
+    series about 0 with alpha^e divided out (e its order at 0), and the same branch and bound
+    in alpha alone: {"verdict": True}, {"verdict": False, "between": [a, b]} (a sign change,
+    so a zero by continuity), or {"verdict": "not certified", "reason": ...}."""
+    with flint.ctx.workprec(PREC):
+        top = _upper_fraction(defn.hi)
+        lo, hi = _arb(defn.lo), _arb(defn.hi)
+        for K in K_STEPS:
+            model, e = _model({(cb.POW, 0): poly}, 0, 0, K, None, defn.hyperbolic, top)
+            if model is None:
+                return {"verdict": False, "between": ["everywhere", "(identically zero)"]}
+            if model.rho(hi.upper()) < flint.arb(
+                flint.fmpq(TAIL_TARGET.numerator, TAIL_TARGET.denominator)
+            ):
+                break
+        else:
+            return {"verdict": "not certified", "reason": "the series does not converge"}
+        zero = flint.arb(0)
+        ref = model.value(hi, zero)
+        sign = 1 if ref > 0 else -1
+        state, where, _used = _sign_search(model, (lo, hi, zero, zero), sign, BUDGET)
+        if state == "ok":
+            return {"verdict": True, "order_at_0": e}
+        a = float(((where[0] + where[1]) / 2).mid())
+        if state == "bad" and (ref > 0 or ref < 0):
+            return {"verdict": False, "between": sorted([a, float(hi.mid())])}
+        return {"verdict": "not certified", "reason": f"the sign is not settled near {a:.6g}"}

@@ -227,6 +227,8 @@ def _gram(at: Definition, degree: int, k: int) -> list[list[sp.Expr]]:
 
 @checker("several_energy_matrix")
 def check_several_energy_matrix(record: dict, _context: object) -> Outcome:
+    if isinstance(SEVERAL_FAMILIES[record["family"]], CDefinition):  # checks_cbezier.py
+        return cbezier_checks.energy_matrix(record, SEVERAL_FAMILIES[record["family"]])
     if _defn(record).elementary:  # sin, cos, ...: exact atoms (checks_elementary.py)
         return elementary.energy_matrix(record, _defn(record))
     defn = _defn(record)
@@ -367,9 +369,13 @@ def check_several_rational(record: dict, _context: object) -> Outcome:
 
 @checker("several_nonnegative")
 def check_several_nonnegative(record: dict, _context: object) -> Outcome:
+    if isinstance(SEVERAL_FAMILIES[record["family"]], CDefinition):  # checks_cbezier.py
+        return cbezier_checks.nonnegative(record, SEVERAL_FAMILIES[record["family"]])
     return elementary.nonnegative(record, _elementary_only("several_nonnegative", record))
 
 
 @checker("several_independence")
 def check_several_independence(record: dict, _context: object) -> Outcome:
+    if isinstance(SEVERAL_FAMILIES[record["family"]], CDefinition):  # checks_cbezier.py
+        return cbezier_checks.independence(record, SEVERAL_FAMILIES[record["family"]])
     return elementary.independence(record, _elementary_only("several_independence", record))

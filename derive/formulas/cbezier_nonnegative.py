@@ -209,10 +209,8 @@ class _Model:
 
     def enclose(self, a0: flint.arb, a1: flint.arb, u0: flint.arb, u1: flint.arb) -> flint.arb:
         """The polynomial on the box (mean-value form) widened by rho."""
-        am, um = (a0 + a1) / 2, (u0 + u1) / 2
-        am, um = flint.arb(am.mid()), flint.arb(um.mid())
-        ab = am + flint.arb(0, 1) * ((a1 - a0) / 2).upper()
-        ub = um + flint.arb(0, 1) * ((u1 - u0) / 2).upper()
+        ab, ub = _hull(a0, a1), _hull(u0, u1)
+        am, um = flint.arb(ab.mid()), flint.arb(ub.mid())
         centre = self.value(am, um)
         vals = [r(ub) for r in self.rows]
         da = self._horner([k * v for k, v in enumerate(vals)][1:], ab)
@@ -228,7 +226,8 @@ class _Model:
         small box, where the expansion about 0 cancels like exp(lambda alpha). The shift in
         alpha is kept per centre (the u-halves of a box share it)."""
         c, v = flint.arb(((a0 + a1) / 2).mid()), flint.arb(((u0 + u1) / 2).mid())
-        ra, ru = ((a1 - a0) / 2).upper(), ((u1 - u0) / 2).upper()
+        ra = max((a1.upper() - c).abs_upper(), (c - a0.lower()).abs_upper())
+        ru = max((u1.upper() - v).abs_upper(), (v - u0.lower()).abs_upper())
         key = c.mid().str(60, radius=False)
         g = self._shifted.get(key)
         if g is None:
@@ -242,6 +241,12 @@ class _Model:
         xs = flint.arb_mat([[p] for p in _powers(x, g.ncols())])
         got = (hs * g * xs)[0, 0]
         return got + flint.arb(0, 1) * self.rho(a1.upper())
+
+
+def _hull(lo: flint.arb, hi: flint.arb) -> flint.arb:
+    """A ball holding every point between two balls (arb's union is loose here)."""
+    a, b = lo.lower(), hi.upper()
+    return (a + b) / 2 + flint.arb(0, 1) * ((b - a) / 2).upper()
 
 
 def _powers(x: flint.arb, n: int) -> list[flint.arb]:

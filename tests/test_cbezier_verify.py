@@ -2,8 +2,11 @@
 
 The records file tests/data/families/c_bezier_cubic.records.toml states partition of unity, the
 end values and derivatives (orders 0..2) at t = 0 and t = alpha, the end conditions of the curve
-and the symmetry, with right-hand sides computed by SymPy from the family file's formulas; one
-record is a deliberate misprint. Each verdict must agree with its expectation, and changing a
+and the symmetry, with right-hand sides computed by SymPy from the family file's formulas, and
+the Gram matrix of E_1 (checked here against mpmath quadrature of the written functions),
+non-negativity, independence, G1 and C1 join weights (checked here against the curves' end
+derivatives by mpmath) and an end derivative in half angles; four records are deliberate
+misprints. Each verdict must agree with its expectation, and changing a
 single term of a matching record must flip it (a verdict cannot be fixed in advance). The same
 claims are checked on the family written on [0, 1] (sin(alpha*t)) and on a hyperbolic family
 that is not a partition of unity.
@@ -47,6 +50,14 @@ def test_each_record_has_its_verdict(results):
         "cb.ends": "match",
         "cb.symmetry": "match",
         "cb.symmetry_equation": "match",
+        "cb.energy_matrix_e1": "match",
+        "cb.energy_matrix_e1_misprint": "mismatch",
+        "cb.nonnegative": "match",
+        "cb.nonnegative_wide_misprint": "mismatch",
+        "cb.independence": "match",
+        "cb.join_g1": "match",
+        "cb.join_c1_misprint": "mismatch",
+        "cb.half_angle": "match",
     }
     for rid, res in results.items():
         assert res.problems() == [], (rid, res.outcome, res.error)
@@ -188,7 +199,8 @@ equations = [{ lhs = "b(0, n, 0)", rhs = "cosh(alpha) - sinh(alpha)" }]
     [
         ('{ lhs = "p(0)", rhs = "P(7)" }', r"P\(7\) at n = 3: no such control point"),
         ('{ lhs = "b(0, n, t**2)", rhs = "0" }', "the argument t\\*\\*2 is not an integer"),
-        ('{ lhs = "b(0, n, 0)", rhs = "cos(alpha/2)" }', "the argument alpha/2 is not"),
+        ('{ lhs = "b(0, n, 0)", rhs = "cos(alpha/9)" }', "fractions of alpha up to alpha/8"),
+        ('{ lhs = "b(0, n, 0)", rhs = "cos(t/2)" }', "not an integer multiple of t"),
     ],
 )
 def test_bad_claims_are_record_errors_naming_the_term(tmp_path, equation, message):
@@ -202,3 +214,126 @@ def test_bad_claims_are_record_errors_naming_the_term(tmp_path, equation, messag
     res = report_mod.check_record(rec)
     assert res.error is not None
     assert re.search(message, str(res.error)), res.error
+
+
+# --------------------------------------------------------------------------- energies, joins
+
+mp = pytest.importorskip("mpmath")
+mp.mp.dps = 40
+
+
+def _defn():
+    import tomllib
+
+    from derive.families import cbezier as cb
+
+    return cb.read_table(tomllib.loads(FAMILY.read_text())["family"])
+
+
+def _written_derivatives(defn, order: int):
+    """b_i^(order)(t; alpha) from the file's written formulas (SymPy diff, mpmath numbers)."""
+    import sympy as sp
+
+    from derive.families import cbezier as cb
+
+    return [
+        sp.lambdify((cb.T, cb.A), sp.diff(f, cb.T, order), modules="mpmath") for f in defn.written()
+    ]
+
+
+@pytest.mark.parametrize("alpha", ["0.7", "2.9"])
+def test_the_printed_gram_matrix_against_quadrature(records, alpha):
+    """Each printed entry (read by the records grammar, evaluated by mpmath) is the integral
+    of b_i' b_j' over [0, alpha] by mpmath quadrature: the record is right independently of
+    derive, so the verdict "match" is the derivation agreeing with an independent number."""
+    import sympy as sp
+
+    from derive.grammar import parse_formula
+
+    rec = _by_id(records, "cb.energy_matrix_e1")
+    a = mp.mpf(alpha)
+    ders = _written_derivatives(_defn(), 1)
+    sym = sp.Symbol("alpha")
+    for r, row in enumerate(rec["gram"]):
+        for c, text in enumerate(row):
+            expr = parse_formula(text, {"alpha": sym}, {}, elementary=True, frequency=("alpha",))
+            printed = sp.lambdify(sym, expr, modules="mpmath")(a)
+            want = mp.quad(lambda t, r=r, c=c: ders[r](t, a) * ders[c](t, a), [0, a])
+            assert abs(printed - want) < mp.mpf(10) ** -25 * (1 + abs(want)), (r, c)
+
+
+@pytest.mark.parametrize("continuity", ["C1", "C2", "G1", "G2"])
+def test_join_weights_make_the_joint(continuity):
+    """derive's weights, evaluated in floats of mpmath, put into a second curve: the joint
+    conditions hold for the curves built from the written formulas (mpmath derivatives)."""
+    import random
+
+    import sympy as sp
+
+    from derive.formulas import cbezier_joins as J
+
+    defn = _defn()
+    n = defn.degree
+    weights = J.weights(defn, continuity)
+    rnd = random.Random(7)
+    a1, a2, g, d = mp.mpf("1.3"), mp.mpf("2.4"), mp.mpf("0.8"), mp.mpf("0.35")
+    p1 = [mp.mpf(rnd.uniform(-2, 2)) for _ in range(n + 1)]  # one coordinate suffices
+    p2 = [mp.mpf(rnd.uniform(-2, 2)) for _ in range(n + 1)]
+    env = {J.A1: a1, J.S1: mp.sin(a1), J.C1: mp.cos(a1), J.A2: a2, J.S2: mp.sin(a2)}
+    env.update({J.C2: mp.cos(a2), J.G_ALPHA: g, J.G_D: d})
+    rows = J.ORDER[continuity] + 1
+    for row in range(rows):
+        value = mp.mpf(0)
+        for key, w in weights.items():
+            r, src, k = key.split(",")
+            if int(r) == row:
+                x = p1[n - int(k)] if src == "first" else p2[int(k)]
+                value += sp.lambdify(list(env), w, modules="mpmath")(*env.values()) * x
+        p2[row] = value
+    ders = [_written_derivatives(defn, r) for r in range(3)]
+
+    def end1(r):
+        return sum(ders[r][j](a1, a1) * p1[j] for j in range(n + 1))
+
+    def start2(r):
+        return sum(ders[r][j](0, a2) * p2[j] for j in range(n + 1))
+
+    tol = mp.mpf(10) ** -20
+    assert abs(end1(0) - start2(0)) < tol
+    if continuity.startswith("C"):
+        for r in range(1, rows):
+            assert abs(end1(r) - start2(r)) < tol * (1 + abs(end1(r)))
+    else:
+        assert abs(end1(1) - g * start2(1)) < tol * (1 + abs(end1(1)))
+        if continuity == "G2":
+            assert abs(end1(2) - g**2 * start2(2) - d * start2(1)) < tol * (1 + abs(end1(2)))
+
+
+def test_box_claims_flip_and_refuse(tmp_path):
+    body = """
+[[record]]
+id = "dep"
+claim = "several_independence"
+location = "x"
+independent = false
+[[record]]
+id = "neg"
+claim = "several_nonnegative"
+location = "x"
+nonnegative = false
+"""
+    got = _run(tmp_path, FAMILY, body)
+    assert got == {"dep": "mismatch", "neg": "mismatch"}
+    bad = body.replace("nonnegative = false", 'nonnegative = true\nbox = { beta = "(0, 1]" }')
+    path = tmp_path / "r.toml"
+    path.write_text('schema_version = 2\nsource = "t"\nfamily = "c_bezier_cubic"\n' + bad)
+    res = report_mod.check_record(records_mod.load_paths([FAMILY, path])[1])
+    assert res.error is not None and "key box" in str(res.error)
+
+
+def test_half_angle_claim_flips(records):
+    rec = _by_id(records, "cb.half_angle")
+    rec["equations"][0]["rhs"] = rec["equations"][0]["rhs"].replace(
+        "2*sin(alpha/2)*", "sin(alpha/2)*"
+    )
+    assert _check(rec) == "mismatch"

@@ -104,6 +104,8 @@ def summary(doc: dict) -> str:
     ]
     if "counterexample" in non:
         lines.append(f"    counterexample: {non['counterexample']}")
+    if "reason" in non:
+        lines.append(f"    not certified: {non['reason']}")
     for row in v["singular_points"]:
         lead = f", ~ {row['leading_term']}" if "leading_term" in row else ""
         lines.append(

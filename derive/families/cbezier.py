@@ -25,6 +25,7 @@ decided by `reduce` and a comparison with 0.
 
 from __future__ import annotations
 
+import dataclasses
 import re
 from dataclasses import dataclass
 from fractions import Fraction
@@ -119,7 +120,13 @@ def _reduce_poly(p: sp.Expr, square: sp.Expr) -> sp.Expr:
 
 
 def is_zero(expr: sp.Expr, hyperbolic: bool) -> bool:
-    return reduce(expr, hyperbolic) == 0
+    """expr == 0 as a function: its numerator over a common denominator (not cancelled: the
+    gcd of large rational functions is the slow part of `reduce`) reduced modulo the circle."""
+    num, den = sp.fraction(sp.together(expr))
+    square = C**2 - 1 if hyperbolic else 1 - C**2
+    if _reduce_poly(den, square) == 0:
+        raise ZeroDivisionError("a denominator that vanishes identically")
+    return _reduce_poly(num, square) == 0
 
 
 @cache
@@ -199,15 +206,16 @@ def reflect(e: Elem, hyperbolic: bool) -> Elem:
     return out
 
 
-def as_function(e: Elem, hyperbolic: bool) -> sp.Expr:
+def as_function(e: Elem, hyperbolic: bool, base: int = 1) -> sp.Expr:
     """The element as a SymPy function of t and alpha (for checks against independent
-    numerics: the atoms and the coefficients written out, S and C as sin/cos of alpha)."""
+    numerics: the atoms and the coefficients written out, S and C as sin/cos of alpha, or of
+    alpha/base for a claim's field, `to_atoms`)."""
     cos, sin = (sp.cosh, sp.sinh) if hyperbolic else (sp.cos, sp.sin)
     out = sp.Integer(0)
     for (kind, m), v in e.items():
         atom = T**m if kind == POW else (cos if kind == COS else sin)(m * T)
         out += v * atom
-    return out.subs({S: sin(A), C: cos(A)})
+    return out.subs({S: sin(A / base), C: cos(A / base)})
 
 
 # --------------------------------------------------------------------------- reading
@@ -255,6 +263,34 @@ def _end(text: str, key: str, fail) -> sp.Expr:
     return e
 
 
+def parse_range(rng: str, key: str, fail) -> tuple[sp.Expr, sp.Expr, bool, bool]:
+    """(lo, hi, lo closed, hi closed) of an interval of the parameter such as "(0, pi]": the
+    ends exact rationals or rational multiples of pi, the box in alpha > 0; fail(key, message)
+    otherwise."""
+    m = _RANGE.match(rng)
+    if not m:
+        raise fail(key, f'{rng!r} is not an interval such as "(0, pi]"')
+    lo, hi = _end(m.group(2).strip(), key, fail), _end(m.group(3).strip(), key, fail)
+    lo_closed, hi_closed = m.group(1) == "[", m.group(4) == "]"
+    if not lo < hi:
+        raise fail(key, f"the interval {rng} is empty")
+    if lo < 0 or (lo == 0 and lo_closed):
+        raise fail(
+            key,
+            f"{rng}: the parameter is the length of the domain (or a frequency): the box lies "
+            "in alpha > 0 (write an open end, such as (0, pi])",
+        )
+    return lo, hi, lo_closed, hi_closed
+
+
+def with_range(defn: CDefinition, rng: str, key: str, fail) -> CDefinition:
+    """The definition over another box of its parameter (a record's `box`)."""
+    lo, hi, lo_closed, hi_closed = parse_range(rng, key, fail)
+    return dataclasses.replace(
+        defn, range_text=rng.strip(), lo=lo, hi=hi, lo_closed=lo_closed, hi_closed=hi_closed
+    )
+
+
 def read_table(table: dict, where: str = "") -> CDefinition:
     """Validate and convert a table that `is_frequency_family`; DefinitionError naming the
     key (and the term) otherwise."""
@@ -295,19 +331,7 @@ def read_table(table: dict, where: str = "") -> CDefinition:
         if set(rng) != {name}:
             raise fail("range", f"an interval for the parameter {name!r} only")
         rng = rng[name]
-    m = _RANGE.match(rng)
-    if not m:
-        raise fail("range", f'{rng!r} is not an interval such as "(0, pi]"')
-    lo, hi = _end(m.group(2).strip(), "range", fail), _end(m.group(3).strip(), "range", fail)
-    lo_closed, hi_closed = m.group(1) == "[", m.group(4) == "]"
-    if not lo < hi:
-        raise fail("range", f"the interval {rng} is empty")
-    if lo < 0 or (lo == 0 and lo_closed):
-        raise fail(
-            "range",
-            f"{rng}: the parameter is the length of the domain (or a frequency): the box lies "
-            "in alpha > 0 (write an open end, such as (0, pi])",
-        )
+    lo, hi, lo_closed, hi_closed = parse_range(rng, "range", fail)
     degree_text = table["degrees"].strip()
     if not degree_text.isdigit():
         raise fail("degrees", 'an explicit list of functions is one order: degrees = "n"')
@@ -373,26 +397,47 @@ def read_table(table: dict, where: str = "") -> CDefinition:
     )
 
 
-def to_atoms(expr: sp.Expr, alpha: sp.Symbol, form: str, fail) -> tuple[Elem, set[str]]:
-    """The parsed function in atoms of t on [0, alpha] with coefficients in (A, S, C)."""
+def angle_base(expr: sp.Expr, alpha: sp.Symbol, form: str) -> int:
+    """L, the least common denominator of the multiples of alpha inside sin/cos/sinh/cosh of
+    expr (1 when they are integers): a claim with cos(alpha/2) is decided in
+    Q(alpha, sin(alpha/L), cos(alpha/L)), which holds the family's field through
+    sin(alpha) = sin(L theta), cos(alpha) = cos(L theta) (`angle`)."""
+    base = 1
+    for call in expr.atoms(*_TRIG, *_HYP):
+        arg = sp.expand(call.args[0])
+        if form == "unit":
+            arg = sp.expand(arg.subs(T, T / alpha))
+        b = arg.coeff(alpha, 1).subs(T, 0) if arg.has(alpha) else sp.Integer(0)
+        if b.is_Rational:
+            base = int(sp.ilcm(base, int(b.q)))
+    return base
+
+
+def to_atoms(
+    expr: sp.Expr, alpha: sp.Symbol, form: str, fail, base: int = 1
+) -> tuple[Elem, set[str]]:
+    """The parsed function in atoms of t on [0, alpha] with coefficients in (A, S, C); with
+    base L > 1 (a record's claim, `angle_base`), S and C stand for sin(alpha/L), cos(alpha/L)
+    and an argument's multiple of alpha may be any multiple of 1/L."""
     kinds: set[str] = set()
     E = sp.Symbol("E_")  # e^(i t) (trigonometric) or e^t (hyperbolic)
 
     def split(arg: sp.Expr) -> tuple[int, int]:
-        """arg = a*t + b*alpha in the family's [0, alpha] t: (a, b), integers."""
+        """arg = a*t + b*alpha in the family's [0, alpha] t: (a, L*b), integers."""
         arg = sp.expand(arg)  # alpha*(1 - t) is alpha - alpha*t: its rate is read below
         if form == "unit":  # u on [0, 1]: alpha*u is the t of [0, alpha]
             if arg.has(T) and not sp.expand(arg.coeff(T)).has(alpha):
                 raise fail(f"{arg}: on [0, 1] the rate of t is a multiple of {alpha}")
             arg = sp.expand(arg.subs(T, T / alpha))
         poly = sp.Poly(arg, T, alpha)
-        a, b = poly.coeff_monomial(T), poly.coeff_monomial(alpha)
+        a, b = poly.coeff_monomial(T), poly.coeff_monomial(alpha) * base
         if set(poly.monoms()) - {(1, 0), (0, 1)} or not (a.is_Integer and b.is_Integer):
             raise fail(
                 f"the argument {arg} is not an integer multiple of t (of {alpha}*t on [0, 1]) "
                 f"plus an integer multiple of {alpha}"
+                + (f" or of {alpha}/{base}" if base > 1 else "")
             )
-        if abs(a) > MAX_HARMONIC or abs(b) > MAX_HARMONIC:
+        if abs(a) > MAX_HARMONIC or abs(b) > MAX_HARMONIC * base:
             raise fail(f"the argument {arg}: a multiple larger than {MAX_HARMONIC}")
         return int(a), int(b)
 

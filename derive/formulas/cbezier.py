@@ -7,9 +7,11 @@
   decided by `cbezier.reduce`;
 * the singular points of the box: zeros of a denominator at an end of the box (alpha -> 0,
   where alpha - sin(alpha) vanishes) decided exactly, inside the box certified absent by arb;
-* non-negativity over the box: sampled on a grid of (alpha, t = alpha*u) in point balls; a
-  negative ball is a certified counterexample, no negative ball is reported as "not
-  certified" (box enclosures were tried and were too wide: see `nonnegative`);
+* non-negativity over the box: sampled on a grid of (alpha, t = alpha*u) in point balls (a
+  negative ball is a certified counterexample), then certified over the whole closed box by
+  formulas/cbezier_nonnegative.py (exact series in alpha about 0, the end zeros divided out,
+  a majorant tail bound, an arb branch and bound); "not certified" with its reason when that
+  does not settle the sign;
 * energies E_k = int_0^alpha |r^(k)(t)|^2 dt as Gram matrices of exact closed forms in
   (alpha, S, C).
 """
@@ -292,13 +294,23 @@ def series_at_zero(factor: sp.Expr, defn: CDefinition) -> str:
 
 
 def nonnegative(defn: CDefinition) -> dict:
-    """Non-negativity over the box, sampled at GRID x GRID points (alpha, u), t = alpha*u, each
-    value a point ball at PREC bits (a negative ball is a certified counterexample). Not a
-    certificate of non-negativity: branch and bound on boxes was tried and the enclosures of
-    the atom form and of the written form were too wide (both cancel like alpha^-3 near the
-    singular point, and the written form's x - sin x in balls loses the sign); it says so."""
+    """Non-negativity over the box: a grid of GRID x GRID points (alpha, u), t = alpha*u, each
+    value a point ball at PREC bits (a negative ball is a certified counterexample), then the
+    certificate of formulas/cbezier_nonnegative.py over the closed box. Point balls of the
+    written form alone certify nothing over a box: near alpha = 0 numerator and denominator
+    cancel like alpha^3, which the certificate removes by dividing the exact series."""
+    from .cbezier_nonnegative import certify
+
     with flint.ctx.workprec(PREC):
-        return _nonnegative(defn)
+        sampled = _nonnegative(defn)
+    if sampled["verdict"] is False:
+        return sampled
+    got = certify(defn, zero_order)
+    if got["verdict"] is False:
+        return got
+    if got["verdict"] is True:
+        return got
+    return {**sampled, "reason": got["reason"]}
 
 
 GRID = 32
@@ -335,8 +347,7 @@ def _nonnegative(defn: CDefinition) -> dict:
         "verdict": "not certified",
         "sampled": f"{(GRID + 1) * (GRID - 1)} points (alpha, u) of [{a_lo}, {defn.hi}] x "
         f"(0, 1), every value a positive ball",
-        "method": "sampling: ball enclosures over boxes were too wide (the coefficients "
-        "cancel like alpha^-3 near the singular point)",
+        "method": "sampling only: the certificate did not settle the sign",
     }
 
 
@@ -392,6 +403,7 @@ def _product(a: tuple[str, int], b: tuple[str, int], hyperbolic: bool) -> list:
     return out
 
 
+@cache
 def gram(defn: CDefinition, k: int) -> list[list[sp.Expr]]:
     """G[i][j] = int_0^alpha b_i^(k) b_j^(k) dt, exact in (A, S, C)."""
     hyp = defn.hyperbolic

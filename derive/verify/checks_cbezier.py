@@ -25,9 +25,10 @@ import sympy as sp
 
 from ..families import cbezier as cb
 from ..families.cbezier import CDefinition
+from ..formulas import cbezier as F
 from ..grammar import SYMBOLS, ParseError, parse_formula
 from .checks_core import Outcome
-from .checks_elementary import RecordError, curve_call
+from .checks_elementary import RecordError, curve_call, walk_equations
 
 KINDS = ("several_basis", "several_end_conditions", "several_symmetry")
 
@@ -79,61 +80,68 @@ def _realise(defn: CDefinition, expr: sp.Basic, idx: int | None) -> sp.Expr:
     return e.doit()
 
 
-def _gap(defn: CDefinition, expr: sp.Expr, what: str) -> cb.Elem:
-    """expr (a function of t, alpha and the points) in exact atoms, reduced: {} when zero."""
+def _gap(defn: CDefinition, expr: sp.Expr, what: str) -> tuple[cb.Elem, int]:
+    """expr (a function of t, alpha and the points) in exact atoms, reduced: {} when zero;
+    and the base L of its field (S, C = sin, cos of alpha/L: a claim with cos(alpha/2) is
+    decided in Q(alpha, sin(alpha/2), cos(alpha/2)), cbezier.angle_base)."""
+    elem, base = _atoms(defn, expr, what)
+    return cb.normal(elem, defn.hyperbolic), base
+
+
+def _atoms(defn: CDefinition, expr: sp.Expr, what: str) -> tuple[cb.Elem, int]:
+    """As `_gap`, the coefficients not reduced (`cb.is_zero` decides them)."""
     alpha = sp.Symbol(defn.parameter)
 
     def fail(message: str) -> RecordError:
         return RecordError(f"{what}: {message}")
+
+    base = cb.angle_base(expr, alpha, defn.form)
+    if base > cb.MAX_HARMONIC:
+        raise fail(
+            f"a multiple of {alpha}/{base} inside sin or cos: fractions of {alpha} up to "
+            f"{alpha}/{cb.MAX_HARMONIC} are decided"
+        )
 
     stray = sorted(
         s.name for s in expr.free_symbols if s not in (cb.T, alpha) and not s.name.startswith("P_")
     )
     if stray:
         raise fail(f"unknown symbol {stray[0]!r}")
-    elem, kinds = cb.to_atoms(expr, alpha, defn.form, fail)
+    elem, kinds = cb.to_atoms(expr, alpha, defn.form, fail, base)
     if kinds - {"hyp" if defn.hyperbolic else "trig"}:
         raise fail(
             f"{'trigonometric' if defn.hyperbolic else 'hyperbolic'} functions in a claim about "
             f"a {defn.space} family: not in its field"
         )
-    return cb.normal(elem, defn.hyperbolic)
+    return elem, base
 
 
-def _show(defn: CDefinition, elem: cb.Elem) -> str:
+def _show(defn: CDefinition, elem: cb.Elem, base: int = 1) -> str:
     alpha = sp.Symbol(defn.parameter)
-    e = cb.as_function(elem, defn.hyperbolic).xreplace({cb.A: alpha})
+    e = cb.as_function(elem, defn.hyperbolic, base).xreplace({cb.A: alpha})
     return str(sp.factor(e))
 
 
 def equations(record: dict, defn: CDefinition) -> Outcome:
-    diffs, checked = [], []
-    for number, eq in enumerate(record.get("equations") or []):
-        if "given" in eq or "where" in eq:
-            raise RecordError(
-                f"equations[{number}]: `given` and `where` are not read for this family; the "
-                "equation is checked at its degree (and every index i)"
-            )
+    def prepare(number: int, eq: dict) -> tuple[object, bool]:
         lhs = _parse(defn, eq["lhs"], f"equations[{number}].lhs")
         rhs = _parse(defn, eq["rhs"], f"equations[{number}].rhs")
-        per_index = _I in (lhs.free_symbols | rhs.free_symbols)
-        count = 0
-        for idx in range(defn.degree + 1) if per_index else (None,):
-            where = f"equations[{number}]" + (f" at i = {idx}" if idx is not None else "")
-            gap = _gap(defn, _realise(defn, lhs, idx) - _realise(defn, rhs, idx), where)
-            count += 1
-            if gap:
-                at = f"n = {defn.degree}" + (f", i = {idx}" if idx is not None else "")
-                diffs.append(
-                    f"{eq['lhs']} = {eq['rhs']} fails at {at}: lhs - rhs = {_show(defn, gap)}"
-                )
-                break
-        checked.append(
-            f"{eq['lhs']} = {eq['rhs']}: {count} instances, exact in "
-            f"Q({defn.parameter}, {defn.space} of {defn.parameter})"
-        )
-    if not checked:
-        raise RecordError("key equations: no equation")
+        return (number, lhs, rhs), _I in (lhs.free_symbols | rhs.free_symbols)
+
+    def gap(parsed: object, _degree: int, idx: int | None) -> str | None:
+        number, lhs, rhs = parsed  # type: ignore[misc]
+        where = f"equations[{number}]" + (f" at i = {idx}" if idx is not None else "")
+        diff, base = _gap(defn, _realise(defn, lhs, idx) - _realise(defn, rhs, idx), where)
+        return _show(defn, diff, base) if diff else None
+
+    diffs, checked = walk_equations(
+        record,
+        (defn.degree,),
+        prepare,
+        gap,
+        "for this family; the equation is checked at its degree (and every index i)",
+        f"exact in Q({defn.parameter}, {defn.space} of {defn.parameter})",
+    )
     return Outcome("mismatch" if diffs else "match", diffs, checked)
 
 
@@ -160,4 +168,228 @@ def symmetry(record: dict, defn: CDefinition) -> Outcome:
             )
             break
     checked = [f"b_i(t) = b_(n-i)({defn.parameter} - t), i = 0..{n}: exact"]
+    return Outcome("mismatch" if diffs else "match", diffs, checked)
+
+
+# --------------------------------------------------------------------------- energies
+
+
+def _constant(defn: CDefinition, text: str, key: str) -> tuple[sp.Expr, int]:
+    """A record's formula in alpha, sin(alpha), cos(alpha) (no t) as an exact (A, S, C)."""
+    expr = _realise(defn, _parse(defn, text, key), None)
+    elem, base = _atoms(defn, expr, f"key {key}")
+    if any(not cb.is_zero(v, defn.hyperbolic) for a, v in elem.items() if a != (cb.POW, 0)):
+        raise RecordError(f"key {key}: {text!r} depends on t (a function of the parameter only)")
+    return elem.get((cb.POW, 0), sp.Integer(0)), base
+
+
+def _in_base(value: sp.Expr, base: int, hyperbolic: bool) -> sp.Expr:
+    """A number of the family's field Q(alpha, sin alpha, cos alpha) written in the field of
+    alpha/base: sin(alpha) = sin(base*theta), cos(alpha) = cos(base*theta) (Chebyshev)."""
+    if base == 1:
+        return value
+    c, s = cb.angle(base, hyperbolic)
+    return value.xreplace({cb.S: s, cb.C: c})
+
+
+def energy_matrix(record: dict, defn: CDefinition) -> Outcome:
+    """G_ij = int b_i^(k) b_j^(k) over the family's own parameter (t on [0, alpha]; u on
+    [0, 1] for a family written there: alpha^(2k-1) times the integral in t), each entry
+    compared with derive's exact Gram matrix (formulas/cbezier.gram) in Q(alpha, S, C)."""
+    degree, k, gram = record.get("n"), record.get("k"), record.get("gram")
+    if degree is None or k is None or gram is None:
+        raise RecordError("keys n, k and gram are required")
+    if degree != defn.degree:
+        raise RecordError(f"key n: {defn.name} has the one degree {defn.degree}")
+    if not isinstance(k, int) or not 1 <= k <= defn.degree:
+        raise RecordError(f"key k: an order of derivative 1..{defn.degree}")
+    size = defn.degree + 1
+    if len(gram) != size or any(len(row) != size for row in gram):
+        raise RecordError(f"key gram: a {size} x {size} matrix")
+    scale = cb.A ** (2 * k - 1) if defn.form == "unit" else sp.Integer(1)
+    want = F.gram(defn, k)
+    diffs = []
+    for r, row in enumerate(gram):
+        for c, text in enumerate(row):
+            got, base = _constant(defn, text, f"gram[{r}][{c}]")
+            derived = want[r][c] * scale
+            if not cb.is_zero(got - _in_base(derived, base, defn.hyperbolic), defn.hyperbolic):
+                diffs.append(
+                    f"G[{r}][{c}]: printed {text}, derived "
+                    f"{F.show(cb.reduce(derived, defn.hyperbolic), defn)}"
+                )
+    checked = [
+        f"the {size} x {size} Gram matrix of E_{k} in {defn.parameter}'s own parameter "
+        f"({'u on [0, 1]' if defn.form == 'unit' else 't on [0, ' + defn.parameter + ']'}), "
+        f"exact in Q({defn.parameter}, {defn.space} of {defn.parameter})"
+    ]
+    return Outcome("mismatch" if diffs else "match", diffs, checked)
+
+
+# --------------------------------------------------------------------------- box properties
+
+
+def _boxed(record: dict, defn: CDefinition) -> CDefinition:
+    given = record.get("box")
+    if not given:
+        return defn
+    if not isinstance(given, dict) or set(given) != {defn.parameter}:
+        raise RecordError(f"key box: a table {{{defn.parameter} = interval}}")
+
+    def fail(key: str, message: str) -> RecordError:
+        return RecordError(f"key {key}: {message}")
+
+    return cb.with_range(defn, str(given[defn.parameter]), f"box.{defn.parameter}", fail)
+
+
+def nonnegative(record: dict, defn: CDefinition) -> Outcome:
+    """b_i >= 0 on [0, alpha] for every alpha of the box: formulas/cbezier.nonnegative (a
+    certified counterexample from point balls, or the certificate of cbezier_nonnegative)."""
+    claimed = record.get("nonnegative")
+    if not isinstance(claimed, bool):
+        raise RecordError("key nonnegative: true or false is required")
+    boxed = _boxed(record, defn)
+    decided = F.nonnegative(boxed)
+    where = f"{defn.parameter} in {boxed.range_text}"
+    if decided["verdict"] not in (True, False):
+        return Outcome("pending", [f"not decided by derive over {where}: {decided['reason']}"])
+    diffs = []
+    if decided["verdict"] != claimed:
+        extra = (
+            f": counterexample {decided['counterexample']}" if "counterexample" in decided else ""
+        )
+        diffs.append(f"printed nonnegative = {claimed}, derived {decided['verdict']}{extra}")
+    how = "certified" if decided["verdict"] else "a certified counterexample"
+    return Outcome(
+        "mismatch" if diffs else "match",
+        diffs,
+        [f"b_i >= 0 on [0, {defn.parameter}] for {where}: {how}"],
+    )
+
+
+def independence(record: dict, defn: CDefinition) -> Outcome:
+    """The functions are linearly independent at every alpha of the box: the rank of the
+    coefficient matrix over Q(alpha, S, C) (exact; the atoms are independent functions of t
+    for alpha > 0), and with as many atoms as functions the determinant's numerator certified
+    free of zeros on the box (cbezier_nonnegative.nonvanishing), its denominator too (a zero
+    there is a singular point, where the basis is not defined)."""
+    from ..formulas.cbezier_nonnegative import nonvanishing
+
+    claimed = record.get("independent")
+    if not isinstance(claimed, bool):
+        raise RecordError("key independent: true or false is required")
+    boxed = _boxed(record, defn)
+    where = f"every {defn.parameter} in {boxed.range_text}"
+    rank, det = F.rank(boxed)
+    size = boxed.degree + 1
+    if rank < size:
+        derived, how = False, f"rank {rank} of {size} over the field: dependent everywhere"
+    elif det is None:
+        return Outcome(
+            "pending",
+            [f"rank {size} over the field, but more atoms than functions: not decided for {where}"],
+        )
+    else:
+        num, den = sp.fraction(sp.cancel(det))
+        top, bottom = nonvanishing(boxed, sp.expand(num)), nonvanishing(boxed, sp.expand(den))
+        if bottom["verdict"] is not True:
+            return Outcome("pending", [f"the determinant's denominator on {where}: {bottom}"])
+        if top["verdict"] == "not certified":
+            return Outcome("pending", [f"the determinant on {where}: {top['reason']}"])
+        derived = top["verdict"]
+        how = (
+            "the determinant certified free of zeros"
+            if derived
+            else f"the determinant changes sign between {defn.parameter} = {top['between']}"
+        )
+    diffs = [] if derived == claimed else [f"printed independent = {claimed}, derived {derived}"]
+    return Outcome(
+        "mismatch" if diffs else "match", diffs, [f"linear independence for {where}: {how}"]
+    )
+
+
+# --------------------------------------------------------------------------- joins
+
+
+def _side_value(defn: CDefinition, text: str, key: str) -> sp.Expr:
+    """A join weight as written: n, m, the G constants alpha and d, the curves' parameters
+    (the family's parameter with suffix 1 and 2) and sin/cos (sinh/cosh) of integer
+    multiples of those, converted to (alpha1, S1, C1, alpha2, S2, C2) exactly."""
+    from ..formulas import cbezier_joins as J
+
+    name = defn.parameter
+    sides = {f"{name}1": (J.A1, J.S1, J.C1), f"{name}2": (J.A2, J.S2, J.C2)}
+    symbols = {
+        "n": sp.Integer(defn.degree),
+        "m": sp.Integer(defn.degree),
+        "alpha": J.G_ALPHA,
+        "d": J.G_D,
+        **{k: v[0] for k, v in sides.items()},
+    }
+    try:
+        expr = parse_formula(text, symbols, {}, elementary=True, frequency=tuple(sides))
+    except ParseError as exc:
+        raise RecordError(f"key {key}: {exc}") from None
+    calls = expr.atoms(sp.sin, sp.cos, sp.sinh, sp.cosh)
+    hyperbolic = {isinstance(c, sp.sinh | sp.cosh) for c in calls}
+    if hyperbolic and hyperbolic != {defn.hyperbolic}:
+        raise RecordError(f"key {key}: {text!r} is not in the {defn.space} family's field")
+    swap = {}
+    for call in calls:
+        arg = call.args[0]
+        for a, s, c in sides.values():
+            ratio = sp.cancel(arg / a)
+            if ratio.is_Integer and 0 < abs(ratio) <= cb.MAX_HARMONIC:
+                cm, sm = cb.angle(int(ratio), defn.hyperbolic)
+                value = cm if isinstance(call, sp.cos | sp.cosh) else sm
+                swap[call] = value.xreplace({cb.C: c, cb.S: s})
+                break
+        else:
+            raise RecordError(
+                f"key {key}: {call}: the argument is not an integer multiple of {name}1 or {name}2"
+            )
+    return expr.xreplace(swap)
+
+
+def join(record: dict, defn: CDefinition) -> Outcome:
+    """several_join between two curves of this family (formulas/cbezier_joins.py): each
+    printed weight against the derived one, exactly; a derived weight the record leaves out
+    is a discrepancy too."""
+    from ..formulas import cbezier_joins as J
+
+    pair, continuity = record.get("pair"), record.get("continuity")
+    claimed = record.get("join_weights")
+    if not isinstance(pair, str) or continuity not in J.ORDER:
+        raise RecordError("keys pair ('first>second') and continuity (C1, C2, G1, G2) are required")
+    if pair != f"{defn.name}>{defn.name}":
+        raise RecordError(
+            f"key pair: {pair!r}: joins of {defn.name!r} are decided with itself only "
+            f"({defn.name}>{defn.name})"
+        )
+    if record.get("n") not in (None, defn.degree):
+        raise RecordError(f"key n: {defn.name} has the one degree {defn.degree}")
+    if not isinstance(claimed, dict) or not claimed:
+        raise RecordError("key join_weights: a table {'row,src,k': formula} is required")
+    try:
+        derived = J.weights(defn, continuity)
+    except ValueError as exc:
+        return Outcome("mismatch", [f"derive finds no {continuity} weights: {exc}"])
+    diffs, checked = [], []
+    for key in sorted(set(claimed) | set(derived)):
+        want = derived.get(key, sp.Integer(0))
+        if key not in claimed:
+            diffs.append(
+                f"{pair} {continuity} weight {key}: not printed, derived {J.show(want, defn)}"
+            )
+            continue
+        got = _side_value(defn, claimed[key], f"join_weights.{key}")
+        if J.reduce2(got - want, defn.hyperbolic) != 0:
+            diffs.append(
+                f"{pair} {continuity} weight {key}: printed {claimed[key]}, derived "
+                f"{J.show(want, defn)}"
+            )
+        checked.append(
+            f"{pair} {continuity} weight {key}: exact in Q({defn.parameter}1, "
+            f"{defn.parameter}2, their {defn.space} functions, alpha, d)"
+        )
     return Outcome("mismatch" if diffs else "match", diffs, checked)

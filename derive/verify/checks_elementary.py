@@ -79,6 +79,39 @@ def curve_call(
     return None
 
 
+def walk_equations(
+    record: dict,
+    degrees: tuple[int, ...] | list[int],
+    prepare: Callable[[int, dict], tuple[object, bool]],
+    gap: Callable[[object, int, int | None], str | None],
+    refusal: str,
+    exactness: str,
+) -> tuple[list[str], list[str]]:
+    """The walk every `equations` claim shares: refuse `given`/`where` (refusal says why),
+    prepare each equation once (prepare(number, eq) -> (parsed, mentions i)), then check it at
+    every degree and, when it mentions i, every index i = 0..n: gap(parsed, n, i) is the
+    difference shown, None when it is zero. The first failing index of a degree is reported.
+    Returns (diffs, checked); RecordError when there is no equation."""
+    diffs, checked = [], []
+    for number, eq in enumerate(record.get("equations") or []):
+        if "given" in eq or "where" in eq:
+            raise RecordError(f"equations[{number}]: `given` and `where` are not read {refusal}")
+        parsed, per_index = prepare(number, eq)
+        count = 0
+        for degree in degrees:
+            for idx in range(degree + 1) if per_index else (None,):
+                count += 1
+                shown = gap(parsed, degree, idx)
+                if shown is not None:
+                    where = f"n = {degree}" + (f", i = {idx}" if idx is not None else "")
+                    diffs.append(f"{eq['lhs']} = {eq['rhs']} fails at {where}: lhs - rhs = {shown}")
+                    break
+        checked.append(f"{eq['lhs']} = {eq['rhs']}: {count} instances, {exactness}")
+    if not checked:
+        raise RecordError("key equations: no equation")
+    return diffs, checked
+
+
 class Realiser:
     """A family's derived functions over a frame whose parameters are the family's, then the
     control points P_0 .. P_n (so a curve is an element too)."""
@@ -354,29 +387,21 @@ def _verdict(diffs: list[str], checked: list[str]):
 
 def equations(record: dict, defn: Definition):
     real = realiser(defn)
-    diffs, checked = [], []
-    for number, eq in enumerate(record.get("equations") or []):
-        if "given" in eq or "where" in eq:
-            raise RecordError(f"equations[{number}]: `given` and `where` are not read here")
-        per_index = any(
-            _I in real.parse(eq[side], f"equations[{number}].{side}").free_symbols
-            for side in ("lhs", "rhs")
+
+    def prepare(number: int, eq: dict) -> tuple[object, bool]:
+        keys = (f"equations[{number}].lhs", f"equations[{number}].rhs")
+        mentions = any(
+            _I in real.parse(eq[side], key).free_symbols
+            for side, key in zip(("lhs", "rhs"), keys, strict=True)
         )
-        count = 0
-        for idx in range(real.n + 1) if per_index else (None,):
-            lhs = real.element(eq["lhs"], f"equations[{number}].lhs", idx)
-            rhs = real.element(eq["rhs"], f"equations[{number}].rhs", idx)
-            gap = A.add(lhs, rhs, -1)
-            count += 1
-            if gap:
-                where = f"n = {real.n}" + (f", i = {idx}" if idx is not None else "")
-                diffs.append(
-                    f"{eq['lhs']} = {eq['rhs']} fails at {where}: lhs - rhs = {real.show(gap)}"
-                )
-                break
-        checked.append(f"{eq['lhs']} = {eq['rhs']}: {count} instances, exact (atoms)")
-    if not checked:
-        raise RecordError("key equations: no equation")
+        return (eq["lhs"], eq["rhs"], keys), mentions
+
+    def gap(parsed: object, _degree: int, idx: int | None) -> str | None:
+        lhs_text, rhs_text, (lhs_key, rhs_key) = parsed  # type: ignore[misc]
+        diff = A.add(real.element(lhs_text, lhs_key, idx), real.element(rhs_text, rhs_key, idx), -1)
+        return real.show(diff) if diff else None
+
+    diffs, checked = walk_equations(record, (real.n,), prepare, gap, "here", "exact (atoms)")
     return _verdict(diffs, checked)
 
 

@@ -18,11 +18,12 @@ from fractions import Fraction
 
 import sympy as sp
 
+from ..families.cbezier import CDefinition
 from ..families.definition import Definition
 from ..formulas import joins
 from ..formulas.joins_several import C, end_forms, pair_weights
 from ..grammar import ParseError, parse_formula
-from . import checks_closed_n
+from . import checks_cbezier, checks_closed_n
 from .checks_core import KIND_FAMILIES, Outcome, checker
 from .checks_elementary import RecordError
 from .claim_families import SEVERAL_FAMILIES
@@ -53,6 +54,8 @@ def _symbols(defn: Definition) -> dict[str, sp.Symbol]:
 
 @checker("several_join")
 def check_several_join(record: dict, _context: object) -> Outcome:
+    if isinstance(SEVERAL_FAMILIES[record["family"]], CDefinition):  # checks_cbezier.py
+        return checks_cbezier.join(record, SEVERAL_FAMILIES[record["family"]])
     defn: Definition = SEVERAL_FAMILIES[record["family"]]  # type: ignore[assignment]
     pair, continuity = record.get("pair"), record.get("continuity")
     claimed = record.get("join_weights")

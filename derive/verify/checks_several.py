@@ -120,29 +120,27 @@ def _realise(defn: Definition, expr: sp.Basic, degree: int, idx: int | None) -> 
 
 def _equations(record: dict) -> Outcome:
     defn = _defn(record)
-    diffs, checked, parsed = [], [], []
-    for number, eq in enumerate(record.get("equations") or []):
-        if "given" in eq or "where" in eq:
-            raise RecordError(
-                f"equations[{number}]: `given` and `where` are not read for a family in "
-                "several parameters; the equation is checked at every degree (and index i)"
-            )
+    parsed = []
+
+    def prepare(number: int, eq: dict) -> tuple[object, bool]:
         lhs = _parse(defn, eq["lhs"], f"equations[{number}].lhs")
         rhs = _parse(defn, eq["rhs"], f"equations[{number}].rhs")
         parsed.append((eq["lhs"], eq["rhs"], lhs, rhs))
-        per_index = _I in (lhs.free_symbols | rhs.free_symbols)
-        count = 0
-        for degree in defn.degrees:
-            for idx in range(degree + 1) if per_index else (None,):
-                gap = sp.expand(_realise(defn, lhs, degree, idx) - _realise(defn, rhs, degree, idx))
-                count += 1
-                if gap != 0:
-                    where = f"n = {degree}" + (f", i = {idx}" if idx is not None else "")
-                    diffs.append(f"{eq['lhs']} = {eq['rhs']} fails at {where}: lhs - rhs = {gap}")
-                    break
-        checked.append(f"{eq['lhs']} = {eq['rhs']}: {count} instances, exact")
-    if not checked:
-        raise RecordError("key equations: no equation")
+        return (lhs, rhs), _I in (lhs.free_symbols | rhs.free_symbols)
+
+    def gap(sides: object, degree: int, idx: int | None) -> str | None:
+        lhs, rhs = sides  # type: ignore[misc]
+        diff = sp.expand(_realise(defn, lhs, degree, idx) - _realise(defn, rhs, degree, idx))
+        return str(diff) if diff != 0 else None
+
+    diffs, checked = elementary.walk_equations(
+        record,
+        defn.degrees,
+        prepare,
+        gap,
+        "for a family in several parameters; the equation is checked at every degree (and index i)",
+        "exact",
+    )
     if record["claim"].endswith("several_end_conditions") and closed_n.has_closed_forms(defn):
         more, also = closed_n.general_equations(defn, parsed)  # and for a general n
         diffs, checked = diffs + more, checked + also
@@ -229,6 +227,8 @@ def _gram(at: Definition, degree: int, k: int) -> list[list[sp.Expr]]:
 
 @checker("several_energy_matrix")
 def check_several_energy_matrix(record: dict, _context: object) -> Outcome:
+    if isinstance(SEVERAL_FAMILIES[record["family"]], CDefinition):  # checks_cbezier.py
+        return cbezier_checks.energy_matrix(record, SEVERAL_FAMILIES[record["family"]])
     if _defn(record).elementary:  # sin, cos, ...: exact atoms (checks_elementary.py)
         return elementary.energy_matrix(record, _defn(record))
     defn = _defn(record)
@@ -369,9 +369,13 @@ def check_several_rational(record: dict, _context: object) -> Outcome:
 
 @checker("several_nonnegative")
 def check_several_nonnegative(record: dict, _context: object) -> Outcome:
+    if isinstance(SEVERAL_FAMILIES[record["family"]], CDefinition):  # checks_cbezier.py
+        return cbezier_checks.nonnegative(record, SEVERAL_FAMILIES[record["family"]])
     return elementary.nonnegative(record, _elementary_only("several_nonnegative", record))
 
 
 @checker("several_independence")
 def check_several_independence(record: dict, _context: object) -> Outcome:
+    if isinstance(SEVERAL_FAMILIES[record["family"]], CDefinition):  # checks_cbezier.py
+        return cbezier_checks.independence(record, SEVERAL_FAMILIES[record["family"]])
     return elementary.independence(record, _elementary_only("several_independence", record))

@@ -246,6 +246,10 @@ CBEZIER_KINDS = (
     "several_basis",
     "several_end_conditions",
     "several_symmetry",
+    "several_energy_matrix",
+    "several_nonnegative",
+    "several_independence",
+    "several_join",
 )  # checks_several.py's kinds' families
 
 

@@ -329,12 +329,13 @@ def _nonnegative(defn: CDefinition) -> dict:
             for i in range(n + 1):
                 value = enclose(fs[i], {A: alpha, T: alpha * u})
                 if value < 0:
+                    exact_alpha = a_lo + (defn.hi - a_lo) * sp.Rational(ka, GRID)
                     return {
                         "verdict": False,
                         "counterexample": {
                             "i": i,
-                            defn.parameter: str(a_lo + (defn.hi - a_lo) * sp.Rational(ka, GRID)),
-                            "t": f"{ka}/{GRID} of the box, u = {ku}/{GRID}",
+                            defn.parameter: str(exact_alpha),
+                            "t": str(exact_alpha * sp.Rational(ku, GRID)),  # t = u * alpha
                             "alpha_float": float(alpha.mid()),
                             "t_float": float((alpha * u).mid()),
                             "value": float(value.mid()),

@@ -226,12 +226,13 @@ def _call_join_surface(fam):
 
 
 def _call_join_before(fam):
+    from lambda_bezier._join_options import JoinOptions
     from lambda_bezier.surface_sides import join_before
     from lambda_bezier.surfaces import surface
 
     a = surface(NET, Fraction(1, 2), Fraction(1, 3), family=fam)
     rest = [[(-6, j, 0) for j in range(4)]] * 2
-    b = join_before(a, 0, "C1", 3, Fraction(1, 2), rest, 1, fam, None, True)
+    b = join_before(a, 0, "C1", JoinOptions(3, Fraction(1, 2), rest, 1, None, fam))
     for v in (0.25, 0.5):  # C1 across u = 0: b ends where a starts
         assert np.allclose(b.evaluate(1.0, v), a.evaluate(0.0, v))
         assert np.allclose(b.derivative(1.0, v, 1, 0), a.derivative(0.0, v, 1, 0))
@@ -339,7 +340,6 @@ CALLS = {
     "surface_export.surface_from_json": _call_surface_from_json,
     "surface_energies.surface_energy_matrices": _call_surface_energy_matrices,
     "surface_joins.join_surface": _call_join_surface,
-    "surface_sides.join_before": _call_join_before,
     "param_surface_joins.resolve_sides": _call_resolve_sides,
     "surface_optimum.optimal_parameters": _call_optimal_parameters,
     "surface_optimum.optimal_parameters_batch": _call_optimal_parameters_batch,
@@ -363,6 +363,12 @@ def test_every_family_parameter_is_covered():
 @pytest.mark.parametrize("name", sorted(CALLS))
 def test_accepts_a_loaded_family(name, fam):
     CALLS[name](fam)
+
+
+def test_join_before_takes_a_loaded_family_in_its_options(fam):
+    """surface_sides.join_before takes the family inside its JoinOptions, not as a `family`
+    parameter, so the walk above does not list it: called here instead."""
+    _call_join_before(fam)
 
 
 # ------------------------------------------------------------------------- the command line

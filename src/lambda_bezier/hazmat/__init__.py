@@ -50,7 +50,9 @@ ours (the name follows the `bezier` package's `hazmat`).
   `fast` extra; imported on use);
 - `exact_poly`: exact polynomials over the rationals (Sturm sequences, resultants);
 - `box_bernstein`: exact Bernstein bounds of a polynomial in several variables over a box
-  (branch and bound: signs, zeros, the certified minimum).
+  (branch and bound: signs, zeros, the certified minimum);
+- `box_convex`: the neighbourhood of a minimum for that branch and bound (a float polish of
+  the start, and an exact quadratic floor over a small box about it).
 - `atoms`: curves in a space of atoms 1, t^k, cos/sin, cosh/sinh (trigonometric, hyperbolic
   and mixed families): the atom grammar, exact differentiation, fast evaluation;
 - `atom_pieces`: such a curve as a piecewise polynomial with a certified truncation bound
@@ -94,6 +96,7 @@ __all__ = [
     "batch_compiled",
     "batch_numpy",
     "box_bernstein",
+    "box_convex",
     "certify_compiled",
     "closest_compiled",
     "closest_numpy",

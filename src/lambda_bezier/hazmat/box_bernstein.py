@@ -22,6 +22,8 @@ from typing import Any
 
 import numpy as np
 
+from . import box_convex
+
 Box = list[tuple[Fraction, Fraction]]
 
 
@@ -211,6 +213,10 @@ def _halve(coeffs: np.ndarray, axis: int) -> tuple[np.ndarray, np.ndarray]:
     return np.moveaxis(left, 0, axis), np.moveaxis(right, 0, axis)
 
 
+def _inside(inner: Box, outer: Box) -> bool:
+    return all(a >= c and b <= d for (a, b), (c, d) in zip(inner, outer, strict=True))
+
+
 def _minimum_by_halving(
     power: np.ndarray,
     box: Box,
@@ -249,6 +255,15 @@ def _minimum_by_halving(
 
     for p in [*start, *samples(box)]:
         consider(p)
+    # the best start polished in floats, and a box about it with a quadratic floor (box_convex):
+    # without them the boxes about an interior minimum must shrink to the tolerance's square
+    # root, and with six variables millions stay open (q_bezier surfaces)
+    assert best_p is not None
+    polished = box_convex.polish(floats, box, tuple(float(x) for x in best_p))
+    consider(tuple(min(max(Fraction(x), a), b) for x, (a, b) in zip(polished, box, strict=True)))
+    assert best_v is not None
+    need = best_v - tolerance * max(Fraction(1), abs(best_v))
+    local = box_convex.local_floor(power, floats, box, best_p, need)
     tie = itertools.count()
     heap = [(Fraction(min(ints.flat), den), next(tie), box, ints, 0)]
     floor: Fraction | None = None  # the least bound of the boxes dropped as within tolerance
@@ -272,6 +287,9 @@ def _minimum_by_halving(
         for (a, b), part in zip(((lo, mid), (mid, hi)), halves, strict=True):
             sub = list(current)
             sub[axis] = (a, b)
+            if local is not None and _inside(sub, local[0]):  # bounded by the convex floor
+                floor = local[1] if floor is None else min(floor, local[1])
+                continue
             consider(tuple((x + y) / 2 for x, y in sub))
             lb = Fraction(min(part.flat), den * 2**step)
             heapq.heappush(heap, (lb, next(tie), sub, part, step))

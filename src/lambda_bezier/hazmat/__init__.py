@@ -53,6 +53,9 @@ ours (the name follows the `bezier` package's `hazmat`).
   (branch and bound: signs, zeros, the certified minimum);
 - `box_convex`: the neighbourhood of a minimum for that branch and bound (a float polish of
   the start, and an exact quadratic floor over a small box about it).
+- `box_batch`: the certified minimum of many polynomials over one box at once (local strong
+  convexity and a Bernstein clearing of the rest, every polynomial's sub-boxes as rows of
+  arrays): batches of surface nets with several parameters a direction.
 - `atoms`: curves in a space of atoms 1, t^k, cos/sin, cosh/sinh (trigonometric, hyperbolic
   and mixed families): the atom grammar, exact differentiation, fast evaluation;
 - `atom_pieces`: such a curve as a piecewise polynomial with a certified truncation bound
@@ -95,6 +98,7 @@ __all__ = [
     "atoms",
     "batch_compiled",
     "batch_numpy",
+    "box_batch",
     "box_bernstein",
     "box_convex",
     "certify_compiled",

@@ -362,7 +362,7 @@ def _several_batch(
     lo = np.array([float(r[0]) for r in ranges])
     hi = np.array([float(r[1]) for r in ranges])
     starts = float_search(coeffs, exponents, lo, hi)
-    bx, bval, _, ok = box_batch.certified_minimum(
+    bx, bval, _, ok = box_batch.certified_minimum(  # bx: polished, a better one-net start
         coeffs, exponents, lo, hi, starts, CERTIFIED_TOLERANCE
     )
     values: dict[str, list[Any]] = {}
@@ -378,7 +378,7 @@ def _several_batch(
                 values.setdefault(name, []).append(v)
             continue
         try:
-            one = certified_parameters(nets[i], energy, family, start=tuple(starts[i]))
+            one = certified_parameters(nets[i], energy, family, start=tuple(bx[i]))
         except ValueError as exc:  # the budget ran out: say which net
             raise ValueError(f"net {i} of the batch: {exc}") from None
         for name, v in one.parameters.items():

@@ -51,6 +51,7 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `exact_poly`: exact polynomials over the rationals (Sturm sequences, resultants);
 - `box_bernstein`: exact Bernstein bounds of a polynomial in several variables over a box
   (branch and bound: signs, zeros, the certified minimum);
+- `box_forms`: exact power to Bernstein conversion and evaluation in several variables;
 - `box_convex`: the neighbourhood of a minimum for that branch and bound (a float polish of
   the start, and an exact quadratic floor over a small box about it).
 - `box_batch`: the certified minimum of many polynomials over one box at once (local strong
@@ -101,6 +102,7 @@ __all__ = [
     "box_batch",
     "box_bernstein",
     "box_convex",
+    "box_forms",
     "certify_compiled",
     "closest_compiled",
     "closest_numpy",

@@ -219,8 +219,8 @@ def _exact_gradient(power: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.nd
     place, and the least subnormal)."""
     from fractions import Fraction
 
-    from .box_bernstein import value as exact_value
     from .box_convex import derivative
+    from .box_forms import value as exact_value
 
     count, dims = x.shape
     g = np.empty((count, dims))

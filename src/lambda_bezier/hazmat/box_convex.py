@@ -21,6 +21,8 @@ from fractions import Fraction
 
 import numpy as np
 
+from .box_forms import bernstein, value
+
 Box = list[tuple[Fraction, Fraction]]
 
 
@@ -90,15 +92,11 @@ def polish(floats: np.ndarray, box: Box, point: tuple[float, ...], steps: int = 
 
 
 def _bernstein_range(power: np.ndarray, box: Box) -> tuple[Fraction, Fraction]:
-    from .box_bernstein import bernstein
-
     coeffs = bernstein(power, box)
     return Fraction(min(coeffs.flat)), Fraction(max(coeffs.flat))
 
 
 def _value(power: np.ndarray, point: tuple[Fraction, ...]) -> Fraction:
-    from .box_bernstein import value
-
     return value(power, point)
 
 

@@ -1,6 +1,7 @@
 """Batches of float nets for families with two or more parameters in a direction (issue #31):
 the vectorised stage (every net's energy coefficients at once from Kronecker weights, a grid
-and one-parameter sweeps), then every net certified by the one-net path, all counted in
+and one-parameter sweeps), the vectorised certificate of all nets at once
+(hazmat.box_batch), then the nets it declines certified by the one-net path, counted in
 ``careful_fallbacks``.
 
 References independent of the runtime's energy: for han_trig_cubic a dense float grid over
@@ -40,7 +41,7 @@ def test_a_trig_batch_is_certified_against_a_dense_grid(energy):
     assert isinstance(got, po.SurfaceParameterBatch)
     assert sorted(got.parameters) == ["lam_u", "lam_v", "mu_u", "mu_v"]
     assert got["mu_v"].shape == got.energy.shape == (3,)
-    assert got.careful_fallbacks == 3  # every net certified one by one
+    assert got.careful_fallbacks == 0  # all three by the vectorised certificate
     for i in range(3):
         grid, _ = _grid_energies(NETS[i], energy, 13, (TRIG_PATH, TRIG_PATH))
         # attained: the exact energy of the surface at the batch's (rational) point
@@ -62,12 +63,12 @@ def test_a_trig_batch_is_certified_against_a_dense_grid(energy):
 )
 def test_several_and_indexed_batches_match_each_nets_certified_minimum(fam, names, energy, picked):
     """q_bezier at degree 3 has three parameters a direction, six in the branch and bound:
-    one net whose certificate takes about a second (others take 7-15 s; a net over the
-    budget makes a batch raise, naming it)."""
+    one net, whose one-net certificate takes a few seconds (a net over the budget makes a
+    batch raise, naming it)."""
     nets = NETS[picked]
     count = len(picked)
     got = lb.optimal_parameters(nets, energy, family=fam)
-    assert got.careful_fallbacks == count
+    assert 0 <= got.careful_fallbacks <= count
     for i in range(count):
         one = lb.optimal_parameters(nets[i], energy, family=fam)
         lower, best = float(one.lower_bound), float(one.energy)

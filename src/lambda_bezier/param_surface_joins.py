@@ -27,6 +27,7 @@ import numpy as np
 from . import _atom_joins
 from . import _poly_direction as pd
 from . import _validate as val
+from ._join_options import JoinOptions
 from .joins import join
 from .param_surfaces import family_surface
 from .surfaces import _exact_net
@@ -75,19 +76,10 @@ def resolve_sides(patch: Any, axis: int, family: Any, params: Any, degree: int) 
     )
 
 
-def _join_param_surface(
-    patch: Any,
-    axis: int,
-    continuity: str,
-    degree: int,
-    rest: Any,
-    alpha: Any,
-    family: Any,
-    params: Any,
-    check_range: bool,
-    conditions: str = "solve",
-) -> Any:
+def _join_param_surface(patch: Any, axis: int, continuity: str, opts: JoinOptions) -> Any:
     """The next patch across `patch`'s boundary at the end of direction `axis` (0: u)."""
+    degree, rest, alpha, check_range = opts.degree, opts.rest, opts.alpha, opts.check_range
+    family, params, conditions = opts.family, opts.params, opts.conditions
     side = resolve_sides(patch, axis, family, params, degree)
     across, across_params = side.across, side.across_params
     along, along_params = side.along, side.along_params

@@ -31,6 +31,7 @@ its families' domains), and `evaluate` maps the global parameters onto it.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import replace
 from fractions import Fraction
 from typing import TYPE_CHECKING, Any
 
@@ -38,6 +39,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _validate as val
+from ._join_options import JoinOptions
 from ._lazy import deferred
 from .curves import BezierCurve, family_class
 from .hazmat.forms import elevation_matrix, hodograph_matrix
@@ -160,6 +162,11 @@ def join_surface(
         patch = surface_sides.ByName(patch)  # type: ignore[assignment]
     if lam is None and family is None and not hasattr(patch, "family_u"):
         lam = patch.lam_u if axis == 0 else patch.lam_v  # the patch's own, as its family
+
+    def options() -> JoinOptions:  # the choices as they stand once checked, for every side
+        assert degree is not None  # _default_degree's
+        return JoinOptions(degree, lam, rest, alpha, mu, family, params, check_range, conditions)
+
     if not at_end:
         conditions = val.choice(conditions, "conditions", CONDITIONS)
         if mu is not None:
@@ -169,7 +176,7 @@ def join_surface(
                     "with a constant alpha; give the new parameters as params={...} (not mu)"
                 )
             _check_varying(continuity, conditions, alpha)
-            return _join_varying_before(patch, axis, degree, lam, rest, mu, family, check_range)
+            return _join_varying_before(patch, axis, options())
         if params is not None and not hasattr(patch, "family_u"):
             raise ValueError("params is for patches of several-parameter or atom families")
         if hasattr(patch, "family_u") and lam is not None:
@@ -177,19 +184,7 @@ def join_surface(
                 "lam: a surface of several-parameter, indexed or atom families takes the new "
                 "patch's parameters as params={...}"
             )
-        return surface_sides.join_before(
-            patch,
-            axis,
-            continuity,
-            degree,
-            lam,
-            rest,
-            alpha,
-            family,
-            params,
-            check_range,
-            conditions,
-        )
+        return surface_sides.join_before(patch, axis, continuity, options())
     if hasattr(patch, "family_u"):  # ParamSurface, AtomSurface: parameters by name
         if mu is not None or lam is not None:
             raise ValueError(
@@ -199,7 +194,7 @@ def join_surface(
         conditions = val.choice(conditions, "conditions", CONDITIONS)
         degree = val.integer(degree, "degree")
         return param_surface_joins._join_param_surface(  # type: ignore[no-any-return]
-            patch, axis, continuity, degree, rest, alpha, family, params, check_range, conditions
+            patch, axis, continuity, options()
         )
     if params is not None:
         raise ValueError("params is for patches of several-parameter or atom families")
@@ -212,7 +207,7 @@ def join_surface(
     conditions = val.choice(conditions, "conditions", CONDITIONS)
     if mu is not None:
         _check_varying(continuity, conditions, alpha)
-        return _join_varying(patch, axis, degree, lam, rest, mu, family, check_range)
+        return _join_varying(patch, axis, options())
     across_cls = patch._u_cls if axis == 0 else patch._v_cls
     along_cls = patch._v_cls if axis == 0 else patch._u_cls
     across_lam = patch.lam_u if axis == 0 else patch.lam_v
@@ -364,21 +359,12 @@ def _varying_target(
     return value, target
 
 
-def _join_varying_before(
-    patch: Surface,
-    axis: int,
-    degree: int,
-    lam: Fraction | float | None,
-    rest: Any,
-    mu: object,
-    family: object,
-    check_range: bool,
-) -> Surface:
+def _join_varying_before(patch: Surface, axis: int, opts: JoinOptions) -> Surface:
     """G1 across u = 0 (or v = 0) with B_u(1, v) = μ(v) A_u(0, v): the Bézier patch of
     degree 1 across with B's boundary values and cross derivative as its own (the lines from
     value_k to value_k + target_k), joined before with C1 (surface_sides.join_before): B ends
     at A(0, v) with that derivative, classical Bézier of degree N + 1 along the boundary."""
-    value, target = _varying_target(patch, axis, False, mu)
+    value, target = _varying_target(patch, axis, False, opts.mu)
     ramp = [
         value,
         [
@@ -389,18 +375,9 @@ def _join_varying_before(
     net = ramp if axis == 0 else _transpose(ramp)
     across = patch._u_cls if axis == 0 else patch._v_cls
     try:
-        return surface_sides.join_before(
-            BezierSurface(net),
-            axis,
-            "C1",
-            degree,
-            lam,
-            rest,
-            1,
-            across if family is None else family,
-            None,
-            check_range,
-        )
+        family = across if opts.family is None else opts.family
+        ramp_opts = replace(opts, alpha=1, mu=None, family=family, params=None, conditions="solve")
+        return surface_sides.join_before(BezierSurface(net), axis, "C1", ramp_opts)
     except ValueError as exc:
         if "points along the boundary" in str(exc):
             count = len(value)
@@ -428,17 +405,10 @@ def _rows_across(rows: Any, axis: int) -> list[Any]:
     return _transpose(rows) if axis == 0 else [list(r) for r in rows]
 
 
-def _join_varying(
-    patch: Surface,
-    axis: int,
-    degree: int,
-    lam: Fraction | float | None,
-    rest: Any,
-    mu: object,
-    family: object,
-    check_range: bool,
-) -> Surface:
+def _join_varying(patch: Surface, axis: int, opts: JoinOptions) -> Surface:
     """G1 with B_u(0, v) = μ(v) A_u(1, v), μ linear (see the module's docstring)."""
+    degree, lam, rest, mu = opts.degree, opts.lam, opts.rest, opts.mu
+    family, check_range = opts.family, opts.check_range
     across_cls = patch._u_cls if axis == 0 else patch._v_cls
     value, target = _varying_target(patch, axis, True, mu)
     big_n = len(value) - 2

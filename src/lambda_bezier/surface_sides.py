@@ -34,6 +34,7 @@ import numpy as np
 from . import _atom_joins, _derived_joins
 from . import _poly_direction as pd
 from . import _validate as val
+from ._join_options import JoinOptions
 from .curves import Curve, family_class
 from .joins import join
 from .param_surface_joins import _second_side, resolve_sides
@@ -213,22 +214,12 @@ def _net(lines: list[Any], axis: int) -> list[Any]:
     return lines
 
 
-def join_before(
-    patch: Surface,
-    axis: int,
-    continuity: str,
-    degree: int,
-    lam: Any,
-    rest: Any,
-    alpha: Any,
-    family: Any,
-    params: Any,
-    check_range: bool,
-    conditions: str = "solve",
-) -> Surface:
+def join_before(patch: Surface, axis: int, continuity: str, opts: JoinOptions) -> Surface:
     """The patch B across `patch`'s boundary u = 0 (axis 0) or v = 0: B(1, v) = A(0, v) and
     the cross derivatives per `continuity` (see the module's docstring); with
     ``conditions="derived"`` the weights come from a derived document instead of the probe."""
+    degree, lam, rest, alpha = opts.degree, opts.lam, opts.rest, opts.alpha
+    family, check_range, conditions = opts.family, opts.check_range, opts.conditions
     order = 2 if continuity == "C2" else 1
     step = inverse_alpha(alpha) if continuity == "G1" else 1
     count = patch.net.shape[1 - axis]
@@ -237,20 +228,7 @@ def join_before(
     new_given, _ = rest_lines(rest, axis, count)
     if hasattr(patch, "family_u"):  # several-parameter, indexed or atom families, by name
         return _before_by_name(
-            patch,
-            axis,
-            continuity,
-            degree,
-            rest,
-            step,
-            family,
-            params,
-            check_range,
-            given_lines,
-            new_given,
-            n,
-            order,
-            conditions,
+            patch, axis, continuity, opts, step, given_lines, new_given, n, order
         )
     across_cls = patch._u_cls if axis == 0 else patch._v_cls
     along_cls = patch._v_cls if axis == 0 else patch._u_cls
@@ -313,19 +291,16 @@ def _before_by_name(
     patch: Any,
     axis: int,
     continuity: str,
-    degree: int,
-    rest: Any,
+    opts: JoinOptions,
     step: Any,
-    family: Any,
-    params: Any,
-    check_range: bool,
     given_lines: list[Any],
     new_given: list[Any],
     n: int,
     order: int,
-    conditions: str,
 ) -> Surface:
     """join_before for a patch whose directions take their parameters by name."""
+    degree, family, params = opts.degree, opts.family, opts.params
+    check_range, conditions = opts.check_range, opts.conditions
     side = resolve_sides(patch, axis, family, params, degree)  # as on the sides u1, v1
     across, across_params = side.across, side.across_params
     along, along_params = side.along, side.along_params

@@ -52,7 +52,13 @@ ours (the name follows the `bezier` package's `hazmat`).
   `fast` extra; imported on use);
 - `exact_poly`: exact polynomials over the rationals (Sturm sequences, resultants);
 - `box_bernstein`: exact Bernstein bounds of a polynomial in several variables over a box
-  (branch and bound: signs, zeros, the certified minimum).
+  (branch and bound: signs, zeros, the certified minimum);
+- `box_forms`: exact power to Bernstein conversion and evaluation in several variables;
+- `box_convex`: the neighbourhood of a minimum for that branch and bound (a float polish of
+  the start, and an exact quadratic floor over a small box about it).
+- `box_batch`: the certified minimum of many polynomials over one box at once (local strong
+  convexity and a Bernstein clearing of the rest, every polynomial's sub-boxes as rows of
+  arrays): batches of surface nets with several parameters a direction.
 - `atoms`: curves in a space of atoms 1, t^k, cos/sin, cosh/sinh (trigonometric, hyperbolic
   and mixed families): the atom grammar, exact differentiation, fast evaluation;
 - `atom_pieces`: such a curve as a piecewise polynomial with a certified truncation bound
@@ -95,7 +101,10 @@ __all__ = [
     "atoms",
     "batch_compiled",
     "batch_numpy",
+    "box_batch",
     "box_bernstein",
+    "box_convex",
+    "box_forms",
     "certify_compiled",
     "closest_compiled",
     "closest_numpy",

@@ -22,41 +22,10 @@ from typing import Any
 
 import numpy as np
 
+from . import box_convex
+from .box_forms import bernstein, value
+
 Box = list[tuple[Fraction, Fraction]]
-
-
-def _axis_matrix(degree: int, lo: Fraction, hi: Fraction) -> np.ndarray:
-    """Power coefficients in x -> Bernstein coefficients on [lo, hi] (x = lo + (hi - lo) u)."""
-    h = hi - lo
-    shift = np.empty((degree + 1, degree + 1), dtype=object)
-    to_bern = np.empty((degree + 1, degree + 1), dtype=object)
-    for j in range(degree + 1):
-        for k in range(degree + 1):
-            shift[j, k] = Fraction(comb(k, j)) * lo ** (k - j) * h**j if k >= j else Fraction(0)
-            to_bern[k, j] = Fraction(comb(k, j), comb(degree, j)) if j <= k else Fraction(0)
-    out: np.ndarray = to_bern.dot(shift)
-    return out
-
-
-def bernstein(power: np.ndarray, box: Box) -> np.ndarray:
-    """The tensor-product Bernstein coefficients of a polynomial over a box."""
-    out = power
-    for axis, (lo, hi) in enumerate(box):
-        mat = _axis_matrix(power.shape[axis] - 1, lo, hi)
-        out = np.moveaxis(np.tensordot(mat, out, axes=([1], [axis])), 0, axis)
-    return out
-
-
-def value(power: np.ndarray, point: tuple[Fraction, ...]) -> Fraction:
-    """The polynomial at an exact point (Horner along each axis, the last first)."""
-    out: object = power
-    for x in reversed(point):
-        arr = np.asarray(out, dtype=object)
-        acc = arr[..., -1]
-        for k in range(arr.shape[-1] - 2, -1, -1):
-            acc = acc * x + arr[..., k]
-        out = acc
-    return Fraction(out.item() if isinstance(out, np.ndarray) else out)  # type: ignore[arg-type]
 
 
 def _float_value(power: np.ndarray, point: tuple[float, ...]) -> float:
@@ -211,6 +180,10 @@ def _halve(coeffs: np.ndarray, axis: int) -> tuple[np.ndarray, np.ndarray]:
     return np.moveaxis(left, 0, axis), np.moveaxis(right, 0, axis)
 
 
+def _inside(inner: Box, outer: Box) -> bool:
+    return all(a >= c and b <= d for (a, b), (c, d) in zip(inner, outer, strict=True))
+
+
 def _minimum_by_halving(
     power: np.ndarray,
     box: Box,
@@ -249,6 +222,15 @@ def _minimum_by_halving(
 
     for p in [*start, *samples(box)]:
         consider(p)
+    # the best start polished in floats, and a box about it with a quadratic floor (box_convex):
+    # without them the boxes about an interior minimum must shrink to the tolerance's square
+    # root, and with six variables millions stay open (q_bezier surfaces)
+    assert best_p is not None
+    polished = box_convex.polish(floats, box, tuple(float(x) for x in best_p))
+    consider(tuple(min(max(Fraction(x), a), b) for x, (a, b) in zip(polished, box, strict=True)))
+    assert best_v is not None
+    need = best_v - tolerance * max(Fraction(1), abs(best_v))
+    local = box_convex.local_floor(power, floats, box, best_p, need)
     tie = itertools.count()
     heap = [(Fraction(min(ints.flat), den), next(tie), box, ints, 0)]
     floor: Fraction | None = None  # the least bound of the boxes dropped as within tolerance
@@ -272,6 +254,9 @@ def _minimum_by_halving(
         for (a, b), part in zip(((lo, mid), (mid, hi)), halves, strict=True):
             sub = list(current)
             sub[axis] = (a, b)
+            if local is not None and _inside(sub, local[0]):  # bounded by the convex floor
+                floor = local[1] if floor is None else min(floor, local[1])
+                continue
             consider(tuple((x + y) / 2 for x, y in sub))
             lb = Fraction(min(part.flat), den * 2**step)
             heapq.heappush(heap, (lb, next(tie), sub, part, step))

@@ -38,7 +38,7 @@ from . import surface_certify as sc
 # editing this file too (tests/test_surfaces_certify.py checks the two agree). Where they
 # differ anyway (an edit without the tests), the kernels compile afresh, uncached, rather
 # than load code of the old certificate.
-CERTIFY_SHA256 = "c02161d03b67cb79196a80b0b22a5518d3109e1956af7eaa467ace1fac6bfedd"
+CERTIFY_SHA256 = "c4a52ec087e8fa8da1afb4e97227ff1a46960bfb076ac02316ed662390a710d0"
 
 
 def certify_source_sha256() -> str:

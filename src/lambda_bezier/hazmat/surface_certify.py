@@ -79,47 +79,23 @@ def _step(
     return _where(pos, _clip(-b / _where(pos, 2 * a, 1.0), lo, hi), current)
 
 
-def _sweep(
-    e01: F,
-    e02: F,
-    e10: F,
-    e11: F,
-    e12: F,
-    e20: F,
-    e21: F,
-    e22: F,
-    x: F,
-    y: F,
-    xlo: float,
-    xhi: float,
-    ylo: float,
-    yhi: float,
-) -> tuple[F, F]:
+def _sweep(e: tuple[F, ...], x: F, y: F, box: tuple[float, float, float, float]) -> tuple[F, F]:
     """One alternating step: x minimising E(·, y) on [xlo, xhi], then y minimising E(x, ·)
-    (the same step with the coefficients transposed, e_ab -> e_ba)."""
+    (the same step with the coefficients transposed, e_ab -> e_ba). `e` is the start's
+    eight coefficients (e01, e02, e10, e11, e12, e20, e21, e22: e00 moves no minimiser),
+    `box` (xlo, xhi, ylo, yhi), as for _newton."""
+    e01, e02, e10, e11, e12, e20, e21, e22 = e
+    xlo, xhi, ylo, yhi = box
     x = _step(e20, e21, e22, e10, e11, e12, y, x, xlo, xhi)
     y = _step(e02, e12, e22, e01, e11, e21, x, y, ylo, yhi)
     return x, y
 
 
-def _newton(
-    e01: F,
-    e02: F,
-    e10: F,
-    e11: F,
-    e12: F,
-    e20: F,
-    e21: F,
-    e22: F,
-    x: F,
-    y: F,
-    xlo: float,
-    xhi: float,
-    ylo: float,
-    yhi: float,
-) -> tuple[F, F]:
+def _newton(e: tuple[F, ...], x: F, y: F, box: tuple[float, float, float, float]) -> tuple[F, F]:
     """One Newton step on ∇E = 0, clipped to the box (none where the Hessian is not
-    positive definite)."""
+    positive definite); `e` and `box` as for _sweep."""
+    e01, e02, e10, e11, e12, e20, e21, e22 = e
+    xlo, xhi, ylo, yhi = box
     a, da = _at(e20, e21, e22, y), _slope(e21, e22, y)
     b, db = _at(e10, e11, e12, y), _slope(e11, e12, y)
     f = _at(e02, e12, e22, x)
@@ -302,12 +278,13 @@ def certified_minimum(
     # when the body is straight-line code. Two sweeps and four Newton steps: on the 10,000
     # benchmark nets three more sweeps and steps certify 3 more nets (161 declined, not 164),
     # at a fifth of the certificate's cost
-    x, y = _sweep(e01, e02, e10, e11, e12, e20, e21, e22, x, y, xlo, xhi, ylo, yhi)
-    x, y = _sweep(e01, e02, e10, e11, e12, e20, e21, e22, x, y, xlo, xhi, ylo, yhi)
-    x, y = _newton(e01, e02, e10, e11, e12, e20, e21, e22, x, y, xlo, xhi, ylo, yhi)
-    x, y = _newton(e01, e02, e10, e11, e12, e20, e21, e22, x, y, xlo, xhi, ylo, yhi)
-    x, y = _newton(e01, e02, e10, e11, e12, e20, e21, e22, x, y, xlo, xhi, ylo, yhi)
-    x, y = _newton(e01, e02, e10, e11, e12, e20, e21, e22, x, y, xlo, xhi, ylo, yhi)
+    e, box = (e01, e02, e10, e11, e12, e20, e21, e22), (xlo, xhi, ylo, yhi)
+    x, y = _sweep(e, x, y, box)
+    x, y = _sweep(e, x, y, box)
+    x, y = _newton(e, x, y, box)
+    x, y = _newton(e, x, y, box)
+    x, y = _newton(e, x, y, box)
+    x, y = _newton(e, x, y, box)
     r = RADIUS * max(xhi - xlo, yhi - ylo)
     emax = _largest(e00, e01, e02, e10, e11, e12, e20, e21, e22)
     ax, ay = np.abs(x) + r, np.abs(y) + r

@@ -25,6 +25,7 @@ import sympy as sp
 
 from ..families import cbezier as cb
 from ..families.cbezier import A, C, CDefinition, Elem, S, T
+from .arb_enclose import enclose
 
 ENERGY_ORDERS = (1, 2, 3)
 ORDERS = 3
@@ -153,31 +154,6 @@ def _arb(x: sp.Expr) -> flint.arb:
     q = x / sp.pi if x.has(sp.pi) else x
     v = flint.arb(flint.fmpq(int(q.p), int(q.q)))
     return v * flint.arb.pi() if x.has(sp.pi) else v
-
-
-def enclose(expr: sp.Expr, env: dict) -> flint.arb:
-    """expr (Add, Mul, integer Pow, rationals and the symbols of env) over arb balls."""
-    if expr.is_Rational:
-        return flint.arb(flint.fmpq(int(expr.p), int(expr.q)))
-    if expr.is_Symbol:
-        return env[expr]
-    if expr.is_Add:
-        out = flint.arb(0)
-        for a in expr.args:
-            out += enclose(a, env)
-        return out
-    if expr.is_Mul:
-        out = flint.arb(1)
-        for a in expr.args:
-            out *= enclose(a, env)
-        return out
-    if expr.is_Pow and expr.exp.is_Integer:
-        base = enclose(expr.base, env)
-        return base ** int(expr.exp) if expr.exp > 0 else 1 / base ** int(-expr.exp)
-    if isinstance(expr, sp.sin | sp.cos | sp.sinh | sp.cosh):
-        arg = enclose(expr.args[0], env)
-        return getattr(arg, type(expr).__name__)()
-    raise TypeError(f"cannot enclose {expr}")  # pragma: no cover - the reader's forms only
 
 
 PREC = 128  # bits of the balls: the coefficients cancel like alpha^3 near alpha = 0

@@ -40,6 +40,7 @@ import sympy as sp
 
 from ..families import cbezier as cb
 from ..families.cbezier import A, C, CDefinition, Elem, S
+from .arb_enclose import enclose  # the written formula, evaluated as a point ball
 
 PREC = 128
 K_STEPS = (48, 72, 100, 140)  # orders of the series tried in turn
@@ -407,8 +408,6 @@ def _certify(defn: CDefinition, zero_order) -> dict:
 
 
 def _failed(defn: CDefinition, i: int, state: str, where: tuple, what: str) -> dict:
-    from .cbezier import enclose  # the written formula, evaluated as a point ball
-
     a0, a1, u0, u1 = where
     am, um = flint.arb(((a0 + a1) / 2).mid()), flint.arb(((u0 + u1) / 2).mid())
     if state == "bad":

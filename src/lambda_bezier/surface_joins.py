@@ -39,7 +39,6 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _validate as val
-from ._join_options import JoinOptions
 from ._lazy import deferred
 from .curves import BezierCurve, family_class
 from .hazmat.forms import elevation_matrix, hodograph_matrix
@@ -50,6 +49,7 @@ if TYPE_CHECKING:
     from types import ModuleType
 
     from . import param_surface_joins, param_surface_report, surface_sides
+    from ._join_options import JoinOptions
     from ._surface_results import BoundaryReport
 else:
 
@@ -164,6 +164,8 @@ def join_surface(
         lam = patch.lam_u if axis == 0 else patch.lam_v  # the patch's own, as its family
 
     def options() -> JoinOptions:  # the choices as they stand once checked, for every side
+        from ._join_options import JoinOptions  # on call: a frozen dataclass costs import time
+
         assert degree is not None  # _default_degree's
         return JoinOptions(degree, lam, rest, alpha, mu, family, params, check_range, conditions)
 

@@ -27,8 +27,9 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _validate as val
-from ._atom_document import AtomData, Exact, Matrix, Mono, RationalForm
+from ._atom_document import AtomData, Exact, RationalForm
 from ._domain_geometry import DomainGeometry
+from ._family_document import combine, monomial_value
 from ._validate import ParamLike, PointsLike
 from .hazmat import atom_pieces as ap
 from .hazmat import atoms as ak
@@ -36,27 +37,6 @@ from .rational import RationalBezierCurve
 
 if TYPE_CHECKING:
     pass
-
-
-def _power(values: tuple[Fraction, ...], mono: Mono) -> Fraction:
-    w = Fraction(1)
-    for v, e in zip(values, mono, strict=True):
-        w *= v**e
-    return w
-
-
-def _combine(by_mono: dict[Mono, Matrix], values: tuple[Fraction, ...]) -> Matrix:
-    acc: list[list[Fraction]] | None = None
-    for mono, mat in by_mono.items():
-        w = _power(values, mono)
-        if acc is None:
-            acc = [[Fraction(0)] * len(mat[0]) for _ in mat]
-        if w:
-            for r, row in enumerate(mat):
-                for c, x in enumerate(row):
-                    acc[r][c] += w * x
-    assert acc is not None
-    return tuple(tuple(row) for row in acc)
 
 
 def _not_available(what: str, why: str) -> NoReturn:
@@ -92,7 +72,7 @@ class AtomCurve(DomainGeometry):
         self.parameter_values = dict(zip(data.NAMES, values, strict=True))
         n = self.degree
         self.shape = data.SHAPES[n]
-        basis = _combine(data.COEFFICIENTS[n], values)  # (n+1, atoms), exact
+        basis = combine(data.COEFFICIENTS[n], values)  # (n+1, atoms), exact
         self.basis_coefficients = basis
         self._basis_float = np.array(basis, dtype=float)
         # the curve over the document's atoms, then over the centred atoms (floats)
@@ -290,7 +270,7 @@ class AtomCurve(DomainGeometry):
                 f"the {self.family} family has no exact rational Bézier form: "
                 f"{self.data.RATIONAL_REASON}"
             )
-        num = _combine(form.numerators, self.values)  # (n+1, deg+1)
+        num = combine(form.numerators, self.values)  # (n+1, deg+1)
         if self._exact_points is not None:
             pts = self._exact_points
             rows = [
@@ -420,7 +400,7 @@ class AtomCurve(DomainGeometry):
         )
         total: Exact = Fraction(0)
         for (m1, m2), mat in gram.items():
-            w = _power(self.values, tuple(a + b for a, b in zip(m1, m2, strict=True)))
+            w = monomial_value(self.values, tuple(a + b for a, b in zip(m1, m2, strict=True)))
             if not w:
                 continue
             for dim in range(self.dimension):

@@ -57,16 +57,20 @@ def combine(by_mono: Mapping[Mono, Matrix], values: tuple[Fraction, ...]) -> Mat
     return tuple(tuple(row) for row in acc)
 
 
+def _header(doc: dict[str, Any]) -> tuple[str, tuple[int, ...], int]:
+    """(family, degrees, degree offset) of a document; KeyError/TypeError/ValueError when
+    malformed (the readers name the file)."""
+    lo, hi = doc["degrees"]
+    return doc["family"], tuple(range(int(lo), int(hi) + 1)), int(doc["degree_offset"])
+
+
 class FamilyData:
     """The tables of one family, with the attributes of a generated family module (what the
     Curve base class and the energy and batch code read)."""
 
     def __init__(self, doc: dict[str, Any], where: str):
         try:
-            self.FAMILY: str = doc["family"]
-            lo, hi = doc["degrees"]
-            self.DEGREES = tuple(range(int(lo), int(hi) + 1))
-            self.DEGREE_OFFSET = int(doc["degree_offset"])
+            self.FAMILY, self.DEGREES, self.DEGREE_OFFSET = _header(doc)
             rng = doc["range"]
             self.LAMBDA_RANGE = (_fraction(rng["lo"], where), _fraction(rng["hi"], where))
             self.LAMBDA_CLOSED = (bool(rng["closed"][0]), bool(rng["closed"][1]))
@@ -122,10 +126,7 @@ class SeveralData:
 
     def __init__(self, doc: dict[str, Any], where: str):
         try:
-            self.FAMILY: str = doc["family"]
-            lo, hi = doc["degrees"]
-            self.DEGREES = tuple(range(int(lo), int(hi) + 1))
-            self.DEGREE_OFFSET = int(doc["degree_offset"])
+            self.FAMILY, self.DEGREES, self.DEGREE_OFFSET = _header(doc)
             params = doc["parameters"]
             self.NAMES: tuple[str, ...] = tuple(str(q["name"]) for q in params)
             self.RANGES = {

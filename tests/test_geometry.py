@@ -142,14 +142,17 @@ def test_arc_length_input_errors():
 
 def test_parameter_at_length_refuses_the_same_inputs_on_every_kind_of_curve(at_pi_family):
     """One validation of s (geometry.length_queries) for polynomial, rational and atom
-    curves: before it, a polynomial curve took True as 1 and an atom curve returned a 2-D
-    array for [[s]] and named t for a NaN s."""
+    curves and composites of them: before it, a polynomial curve took True as 1, an atom
+    curve returned a 2-D array for [[s]] and named t for a NaN s."""
     pts = [(0, 0), (1, 2), (3, 2), (4, 0)]
     kinds = [
         lb.BezierCurve(pts),
         lb.RationalBezierCurve(pts, [1, 2, 2, 1]),
         lb.load_family(examples.path("han_trig_cubic.toml")).curve(pts, lam=0, mu=0),  # rational
         at_pi_family.curve(pts, lam=0),  # numeric (_atom_geometry)
+        lb.CompositeCurve(
+            [lb.BezierCurve(pts), at_pi_family.curve([(4, 0), (5, 1), (6, 0), (7, 1)], lam=0)]
+        ),
     ]
     for curve in kinds:
         for s, match in (

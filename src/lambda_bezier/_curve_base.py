@@ -24,7 +24,7 @@ import numpy.typing as npt
 
 from . import _singular
 from . import _validate as val
-from ._curve_shared import DerivativeGeometry, check_curvature_dimension
+from ._curve_shared import ControlPointCurve, check_curvature_dimension
 from ._lazy import TableSource, deferred, generated
 from ._validate import ParamLike, PointsLike
 from .hazmat import forms
@@ -121,7 +121,7 @@ def _swapped_intersect(other: object, curve: object) -> list[_intersect.Intersec
     )
 
 
-class Curve(DerivativeGeometry):
+class Curve(ControlPointCurve):
     """Behaviour shared by every family (the role numpy.polynomial's ABCPolyBase plays).
 
     Subclasses set ``family`` (a name), ``_data`` (the generated module) and whether they
@@ -166,18 +166,9 @@ class Curve(DerivativeGeometry):
 
     # ------------------------------------------------------------------ description
     @property
-    def degree(self) -> int:
-        """The degree n (the curve has n + 1 control points)."""
-        return int(self.points.shape[0]) - 1
-
-    @property
     def polynomial_degree(self) -> int:
         """The degree of p(t) as a polynomial: n, or n + 2 for bernstein_like."""
         return self.degree + self._data_offset()
-
-    @property
-    def dimension(self) -> int:
-        return int(self.points.shape[1])
 
     @property
     def _tabulated(self) -> bool:

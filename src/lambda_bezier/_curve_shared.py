@@ -1,6 +1,7 @@
-"""What every curve class shares beyond its evaluation: curvature and torsion from
-`derivative` (`DerivativeGeometry`, mixed into the polynomial, rational, atom and C-Bézier
-curves; the geometry of curves on a domain of their own parameter is _domain_geometry's).
+"""What every curve class shares beyond its evaluation (`ControlPointCurve`, the base of the
+polynomial, rational, atom and C-Bézier curves): degree and dimension from the control
+points, curvature and torsion from `derivative`. The geometry of curves on a domain of their
+own parameter is _domain_geometry's.
 
 The mixin names, as a Protocol on ``self``, what it reads of the curve, so one method serves
 every class that mixes it in (the mixin pattern of mypy's documentation).
@@ -34,8 +35,21 @@ def check_curvature_dimension(dimension: int) -> None:
         )
 
 
-class DerivativeGeometry:
-    """curvature, _curvature and torsion of a curve with `dimension` and `derivative`."""
+class ControlPointCurve:
+    """degree and dimension from the control points `points` ((n + 1, d)), and curvature,
+    _curvature and torsion from `derivative`."""
+
+    points: np.ndarray
+
+    @property
+    def degree(self) -> int:
+        """The degree n (the curve has n + 1 control points)."""
+        return int(self.points.shape[0]) - 1
+
+    @property
+    def dimension(self) -> int:
+        """The number d of coordinates of a point."""
+        return int(self.points.shape[1])
 
     def curvature(
         self: _Differentiable, t: ParamLike, *, extrapolate: bool = False

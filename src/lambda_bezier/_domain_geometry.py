@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Protocol
 import numpy as np
 import numpy.typing as npt
 
-from ._curve_shared import DerivativeGeometry
+from ._curve_shared import ControlPointCurve
 from ._validate import PointsLike
 
 if TYPE_CHECKING:
@@ -37,7 +37,7 @@ class _OnDomain(Protocol):
     def t_of_s(self, s: np.ndarray | float) -> np.ndarray | float: ...
 
 
-class DomainGeometry(DerivativeGeometry):
+class DomainGeometry(ControlPointCurve):
     """Arc length, boxes, closest points, location and intersections of a curve in its own
     parameter t on `domain`: through `_rational_or_none()` (the rational form, its parameter
     s mapped back by `t_of_s`) when the curve has one, numerically (_atom_geometry) otherwise.

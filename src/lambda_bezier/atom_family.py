@@ -92,14 +92,6 @@ class AtomCurve(DomainGeometry):
 
     # ------------------------------------------------------------------ description
     @property
-    def degree(self) -> int:
-        return int(self.points.shape[0]) - 1
-
-    @property
-    def dimension(self) -> int:
-        return int(self.points.shape[1])
-
-    @property
     def domain(self) -> tuple[float, float]:
         """The family's interval of t (floats; `data.DOMAIN_TEXT` exactly)."""
         return self.data.DOMAIN

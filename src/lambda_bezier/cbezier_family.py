@@ -451,14 +451,6 @@ class CBezierCurve(DomainGeometry):
             self._rate, family.powers, family.harmonics, family.hyperbolic
         )
 
-    @property
-    def degree(self) -> int:
-        return int(self.points.shape[0]) - 1
-
-    @property
-    def dimension(self) -> int:
-        return int(self.points.shape[1])
-
     def __repr__(self) -> str:
         p = self.family_object.parameter
         return f"CBezierCurve({self.family}, {p}={self.alpha}, dimension={self.dimension})"

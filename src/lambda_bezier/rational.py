@@ -42,7 +42,7 @@ import numpy.typing as npt
 
 from . import _validate as val
 from ._curve_base import _swapped_intersect
-from ._curve_shared import DerivativeGeometry
+from ._curve_shared import ControlPointCurve
 from ._validate import ParamLike, PointsLike
 from .curves import BezierCurve, Curve
 from .hazmat import kernels as alg
@@ -94,7 +94,7 @@ def _exact_scalar(t: object, name: str) -> Fraction:
     return Fraction(int(t)) if isinstance(t, np.integer) else Fraction(t)
 
 
-class RationalBezierCurve(DerivativeGeometry):
+class RationalBezierCurve(ControlPointCurve):
     r"""A rational Bézier curve :math:`C(t) = \sum_i w_i P_i B_{i,n}(t) / \sum_i w_i
     B_{i,n}(t)` on t ∈ [0, 1], any degree n >= 0, any dimension d >= 1, positive weights.
     All weights equal: the classical Bézier curve, exactly."""
@@ -127,15 +127,6 @@ class RationalBezierCurve(DerivativeGeometry):
         )
 
     # ------------------------------------------------------------------ description
-    @property
-    def degree(self) -> int:
-        """The degree n (the curve has n + 1 control points and weights)."""
-        return int(self.points.shape[0]) - 1
-
-    @property
-    def dimension(self) -> int:
-        return int(self.points.shape[1])
-
     @property
     def is_exact(self) -> bool:
         """True when the control points and the weights are all ints/Fractions."""

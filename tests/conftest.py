@@ -157,6 +157,27 @@ def assert_same_isolated(slow, fast) -> None:
         assert np.array_equal(getattr(slow, name), getattr(fast, name)), name
 
 
+# derive's definition reader and document writer, loaded once (from the source checkout:
+# the tests that use it skip without one): derive_beside(path) writes the derived document
+# of the [family] table in `path` beside it, as `lambda-bezier derive --family` does
+@pytest.fixture(scope="session")
+def derive_beside():
+    import importlib
+
+    from lambda_bezier import _derive_runner
+
+    derive = _derive_runner.load_derive(ROOT)
+    definition = importlib.import_module(f"{derive.__name__}.families.definition")
+    document = importlib.import_module(f"{derive.__name__}.emit.document")
+
+    def write(path):
+        defn = definition.read_definition(path)
+        document.derived_path(path, defn.name).write_text(document.render(defn), encoding="utf-8")
+        return defn
+
+    return write
+
+
 # the two mixed-family test families (tests/data/families/at_cubic.toml, at_pi_cubic.toml),
 # loaded once per module: the certified geometry, intersection and export tests use both
 @pytest.fixture(scope="module")

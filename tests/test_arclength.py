@@ -226,12 +226,10 @@ def near_double_zero(x, y0, y1, degree, dim, seed):
     return curve_from_derivative(deriv), deriv
 
 
-# one test per end b (21 near the dip, and 1): each is an mpmath reference, spread by xdist
-@pytest.mark.parametrize("b", [*np.linspace(0.94, 0.96, 21), 1.0])
-def test_a_near_double_zero_between_the_nodes(b):
-    # the curve of issue #28: p' = ((t − x)² g, (t − x)² h + 1e-8), degree 12; the dip at x
-    # (width about 1e-4) fell between the first level's nodes, both rules integrated
-    # (t − x)² |(g, h)| alike and missed up to 1.16e-12 of [0, b] (measured before the fix)
+def hidden_dip_curve():
+    """(curve, p', x): the curve of issue #28, p' = ((t − x)² g, (t − x)² h + 1e-8) of degree
+    12, whose near-double zero at x (a dip about 1e-4 wide) lies between the first level's
+    nodes."""
     x = Fraction(9496, 10000) + Fraction(1, 10**6)
     g = [1, Fraction(1, 2), 0, Fraction(1, 3), 0, 0, Fraction(1, 5), 0, 0, 0]
     h = [2, -1, Fraction(1, 4), 0, 0, 0, 0, Fraction(1, 7), 0, 0]
@@ -243,6 +241,16 @@ def test_a_near_double_zero_between_the_nodes(b):
                 row[j + k] += fj * sk
     deriv[1][0] += Fraction(1, 10**8)
     curve = curve_from_derivative(deriv)
+    return curve, deriv, x
+
+
+# one test per end b (21 near the dip, and 1): each is an mpmath reference, spread by xdist
+@pytest.mark.parametrize("b", [*np.linspace(0.94, 0.96, 21), 1.0])
+def test_a_near_double_zero_between_the_nodes(b):
+    # the curve of issue #28: p' = ((t − x)² g, (t − x)² h + 1e-8), degree 12; the dip at x
+    # (width about 1e-4) fell between the first level's nodes, both rules integrated
+    # (t − x)² |(g, h)| alike and missed up to 1.16e-12 of [0, b] (measured before the fix)
+    curve, deriv, x = hidden_dip_curve()
     if b == 1.0:
         assert_close(curve.arc_length(), reference_length(deriv, 0, 1, x))
     else:

@@ -9,7 +9,12 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
-from test_arclength import assert_close, curve_from_derivative, kinked_curve, reference_length
+from test_arclength import (
+    assert_close,
+    hidden_dip_curve,
+    kinked_curve,
+    reference_length,
+)
 
 import lambda_bezier as lb
 from lambda_bezier import geometry
@@ -39,17 +44,7 @@ def test_near_cusps_on_both_paths(arc_path, x, y):
 def test_a_hidden_dip_on_both_paths(arc_path):
     """A near-double zero of p' between the first level's nodes: the least speed there sends
     the curve to the full rule (the branch the compiled level must report the same way)."""
-    x = Fraction(9496, 10000) + Fraction(1, 10**6)
-    g = [1, Fraction(1, 2), 0, Fraction(1, 3), 0, 0, Fraction(1, 5), 0, 0, 0]
-    h = [2, -1, Fraction(1, 4), 0, 0, 0, 0, Fraction(1, 7), 0, 0]
-    square = [x * x, -2 * x, 1]
-    deriv = [[Fraction(0)] * 12 for _ in range(2)]
-    for row, factor in zip(deriv, (g, h), strict=True):
-        for j, fj in enumerate(factor):
-            for k, sk in enumerate(square):
-                row[j + k] += fj * sk
-    deriv[1][0] += Fraction(1, 10**8)
-    curve = curve_from_derivative(deriv)
+    curve, deriv, x = hidden_dip_curve()
     assert_close(_fresh(curve).arc_length(), reference_length(deriv, 0, 1, x))
 
 

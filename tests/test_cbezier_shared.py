@@ -278,3 +278,12 @@ def test_length_location_and_torsion_against_the_written_formulas(family, writte
     d3 = np.array(space.derivative(1.0, 3))
     cross = np.cross(d1, d2)
     assert space.torsion(1.0) == pytest.approx(float(cross @ d3 / (cross @ cross)), rel=1e-9)
+
+
+def test_curvature_outside_two_and_three_dimensions_is_refused_by_name(family):
+    """A 4D C-Bezier curve: curvature and the joint reports' _curvature raise the shared
+    ValueError naming the dimension (numpy's cross product used to fail inside)."""
+    four = family.curve([(0, 0, 0, 0), (1, 2, 1, 0), (3, 2, -1, 1), (4, 0, 2, 1)], alpha=2.0)
+    for method in (four.curvature, four._curvature):
+        with pytest.raises(ValueError, match="dimension 2 or 3.*dimension 4"):
+            method(0.5)

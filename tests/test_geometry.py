@@ -17,6 +17,7 @@ from scipy.integrate import quad
 from scipy.optimize import minimize_scalar
 
 import lambda_bezier as lb
+from lambda_bezier import examples
 
 FAMS = list(FAMILIES.values())
 FEW = settings(max_examples=12, deadline=None)
@@ -137,6 +138,33 @@ def test_arc_length_input_errors():
         c.arc_length("a")
     with pytest.raises(ValueError, match="NaN"):
         c.parameter_at_length([1.0, float("nan")])
+
+
+def test_parameter_at_length_refuses_the_same_inputs_on_every_kind_of_curve(at_pi_family):
+    """One validation of s (geometry.length_queries) for polynomial, rational and atom
+    curves and composites of them: before it, a polynomial curve took True as 1, an atom
+    curve returned a 2-D array for [[s]] and named t for a NaN s."""
+    pts = [(0, 0), (1, 2), (3, 2), (4, 0)]
+    kinds = [
+        lb.BezierCurve(pts),
+        lb.RationalBezierCurve(pts, [1, 2, 2, 1]),
+        lb.load_family(examples.path("han_trig_cubic.toml")).curve(pts, lam=0, mu=0),  # rational
+        at_pi_family.curve(pts, lam=0),  # numeric (_atom_geometry)
+        lb.CompositeCurve(
+            [lb.BezierCurve(pts), at_pi_family.curve([(4, 0), (5, 1), (6, 0), (7, 1)], lam=0)]
+        ),
+    ]
+    for curve in kinds:
+        for s, match in (
+            (True, "s must be numbers, got booleans"),
+            ([0.5, False], "s must be numbers, got booleans"),
+            ("1", "s must be numbers, got the text"),
+            ([[1.0]], "s must be a number or a 1-D array, got shape"),
+            ([0.5, float("nan")], "s contains NaN or infinity"),
+        ):
+            with pytest.raises(ValueError, match=match):
+                curve.parameter_at_length(s)
+        assert np.shape(curve.parameter_at_length([0.5, 1.0])) == (2,)
 
 
 # ---------------------------------------------------------------------- bounding box

@@ -9,11 +9,9 @@ evaluated here in numpy from the generator's own numbers, or must be a clear Val
 
 from __future__ import annotations
 
-import importlib
 import os
 import subprocess
 import sys
-import types
 from fractions import Fraction
 from math import comb
 
@@ -24,7 +22,6 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import lambda_bezier as lb
-from lambda_bezier import _derive_runner
 
 # derive/ as the checkout has it (the installed wheel carries it as lambda_bezier._derive,
 # which load_derive(None) finds): the layers of issue #27, definition in families/, the
@@ -32,18 +29,6 @@ from lambda_bezier import _derive_runner
 pytestmark = pytest.mark.skipif(
     not (ROOT / "derive" / "families" / "engine.py").is_file(), reason="needs the source checkout"
 )
-
-
-@pytest.fixture(scope="module")
-def engine():
-    derive = _derive_runner.load_derive(ROOT)
-    definition = importlib.import_module(f"{derive.__name__}.families.definition")
-    document = importlib.import_module(f"{derive.__name__}.emit.document")
-    return types.SimpleNamespace(
-        read_definition=definition.read_definition,
-        derived_path=document.derived_path,
-        render=document.render,
-    )
 
 
 @st.composite
@@ -103,13 +88,12 @@ def _energy_coefficients(n, lo, phi, pts, k):
     max_examples=6, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
 )
 @given(fam=families(), seed=st.integers(0, 10**6))
-def test_random_family_agrees_with_independent_numerics(engine, tmp_path_factory, fam, seed):
+def test_random_family_agrees_with_independent_numerics(derive_beside, tmp_path_factory, fam, seed):
     lo, hi, offset, phi = fam
     folder = tmp_path_factory.mktemp("fam")
     path = folder / "rand.toml"
     path.write_text(_definition(lo, hi, offset, phi, "rand"), encoding="utf-8")
-    defn = engine.read_definition(path)
-    engine.derived_path(path, defn.name).write_text(engine.render(defn), encoding="utf-8")
+    derive_beside(path)
     family = lb.load_family(path)
     rng = np.random.default_rng(seed)
     lam = 0.5

@@ -2,11 +2,9 @@
 
 from __future__ import annotations
 
-import importlib
 import os
 import subprocess
 import sys
-import types
 from fractions import Fraction
 from pathlib import Path
 
@@ -15,23 +13,9 @@ import pytest
 from conftest import ROOT
 
 import lambda_bezier as lb
-from lambda_bezier import _derive_runner
 
 HAS_DERIVE = (ROOT / "derive" / "__init__.py").is_file()
 needs_derive = pytest.mark.skipif(not HAS_DERIVE, reason="needs the source checkout")
-
-
-@pytest.fixture(scope="module")
-def engine():
-    """derive's definition reader and the derived document's writer, as one namespace."""
-    derive = _derive_runner.load_derive(ROOT)
-    definition = importlib.import_module(f"{derive.__name__}.families.definition")
-    document = importlib.import_module(f"{derive.__name__}.emit.document")
-    return types.SimpleNamespace(
-        read_definition=definition.read_definition,
-        derived_path=document.derived_path,
-        render=document.render,
-    )
 
 
 def _cli(*args: str, cwd: Path = ROOT) -> subprocess.CompletedProcess:
@@ -98,11 +82,10 @@ equations = []
 
 
 @needs_derive
-def test_family_from_degree_two_derives_and_flows(engine, tmp_path):
+def test_family_from_degree_two_derives_and_flows(derive_beside, tmp_path):
     fam_file = tmp_path / "from_two.toml"
     fam_file.write_text(QUADRATIC_FAMILY, encoding="utf-8")
-    defn = engine.read_definition(fam_file)
-    engine.derived_path(fam_file, defn.name).write_text(engine.render(defn), encoding="utf-8")
+    derive_beside(fam_file)
     fam = lb.load_family(fam_file)
     pts = [(0, 0), (1, 2), (3, 1)]
     # E_3 ≡ 0 at degree 2: a curve has it, energy_matrices and optimal_lambda say λ has no effect

@@ -115,6 +115,12 @@ def test_energy_by_quadrature_and_optimum_over_the_box(fam):
         assert r.boundary and any(r[x] in (-3, 1) for x in ("lam", "mu"))
     sampled = min(fam.curve(far, lam=a, mu=b).energy(1) for a, b in itertools.product(grid, grid))
     assert r.energy <= sampled
+    # exact control points are checked as floats are: one width, a degree the family has
+    # (a ragged polygon once gave an optimum computed on its first coordinates)
+    with pytest.raises(ValueError, match="same number of coordinates"):
+        lb.optimal_parameters([(0, 0), (1, 2, 3), (3, 2), (4, 0)], 2, family=fam)
+    with pytest.raises(ValueError, match="at least 4 control points"):
+        lb.optimal_parameters([(0, 0), (1, 2)], 2, family=fam)
 
 
 def test_several_parameter_errors(fam):

@@ -11,21 +11,12 @@ from pathlib import Path
 import mpmath
 import numpy as np
 import pytest
+from test_trig_runtime import hyp  # the hyp_cubic family's basis in mpmath
 
 import lambda_bezier as lb
 from lambda_bezier import _atom_geometry as ag
 
 DATA = Path(__file__).parent / "data" / "families"
-
-
-def hyp_cubic(t, lam, mu):
-    ch, sh = mpmath.cosh(t), mpmath.sinh(t)
-    return [
-        (ch - sh) ** 2,
-        1 - (ch - sh) ** 2 - mu * sh**2 - lam * (ch - 1),
-        mu * sh**2,
-        lam * (ch - 1),
-    ]
 
 
 def hyp_shift(t, lam):
@@ -34,10 +25,10 @@ def hyp_shift(t, lam):
 
 
 CASES = [
-    ("hyp_cubic", hyp_cubic, {"lam": F(1, 3), "mu": F(3, 4)}, [(0, 0), (1, 3), (3, -1), (4, 1)]),
+    ("hyp_cubic", hyp, {"lam": F(1, 3), "mu": F(3, 4)}, [(0, 0), (1, 3), (3, -1), (4, 1)]),
     (
         "hyp_cubic",
-        hyp_cubic,
+        hyp,
         {"lam": 0.9, "mu": 0.05},
         [(1e3, -2e3), (3e3, 1e3), (-1e3, 4e3), (2e3, 2e3)],
     ),

@@ -13,7 +13,7 @@ from ..families.spaces import space_of
 from ..formulas import atom_family as F
 from ..formulas import atom_independence, touching
 from ..formulas.joins_several import atom_end_forms, join_table
-from .parameters import parameter_table
+from .parameters import document_header, parameter_table
 
 FORMAT = 4
 
@@ -44,12 +44,7 @@ def derive(defn: Definition) -> dict:
             singular = {"reason": "linearly dependent for every parameter value"}
     endpoints = {str(n): F.endpoints(space), "constant": space.constant}
     return {
-        "generated_by": "lambda-bezier derive --family -- DO NOT EDIT; regenerate with "
-        "`lambda-bezier derive --family FILE`",
-        "format": FORMAT,
-        "definition_sha256": defn.digest,
-        "family": defn.name,
-        "title": defn.title,
+        **document_header(defn, FORMAT),
         "space": space.name,
         "parameters": parameter_table(defn),
         "domain": {

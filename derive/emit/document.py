@@ -30,7 +30,7 @@ from ..formulas.family import (
 from ..formulas.joins_several import join_table, polynomial_end_forms
 from ..formulas.several_box import independence_over_box, nonnegativity
 from .closed_n import section
-from .parameters import parameter_table
+from .parameters import document_header, parameter_table
 
 # --------------------------------------------------------------------------- the document
 
@@ -58,12 +58,7 @@ def _several(defn: Definition, checked: list[str]) -> dict:
     low = defn.degrees.start
     closed, closed_joins = section(defn) if len(defn.degrees) > 1 else ({}, {})
     return {
-        "generated_by": "lambda-bezier derive --family -- DO NOT EDIT; regenerate with "
-        "`lambda-bezier derive --family FILE`",
-        "format": FORMAT,
-        "definition_sha256": defn.digest,
-        "family": defn.name,
-        "title": defn.title,
+        **document_header(defn, FORMAT),
         "parameters": parameter_table(defn),
         "domain": {"lo": str(defn.domain.lo), "hi": str(defn.domain.hi)},
         "degrees": [defn.degrees.start, defn.degrees.stop - 1],
@@ -107,12 +102,7 @@ def _indexed(defn: Definition) -> dict:
         at = defn.at_degree(deg)
         by_degree[str(deg)] = _several(at, check(at))
     return {
-        "generated_by": "lambda-bezier derive --family -- DO NOT EDIT; regenerate with "
-        "`lambda-bezier derive --family FILE`",
-        "format": FORMAT,
-        "definition_sha256": defn.digest,
-        "family": defn.name,
-        "title": defn.title,
+        **document_header(defn, FORMAT),
         "indexed": {
             "name": spec.name,  # type: ignore[attr-defined]
             "symbols": {str(deg): list(defn.at_degree(deg).parameters) for deg in defn.degrees},
@@ -142,12 +132,7 @@ def derive(defn: Definition, *, with_joins: bool = True) -> dict:
     tables = expansion_tables(lambda deg: basis_polys(defn, deg), tuple(defn.degrees), defn.offset)
     closed = closed_endpoint_forms(defn)
     doc = {
-        "generated_by": "lambda-bezier derive --family -- DO NOT EDIT; regenerate with "
-        "`lambda-bezier derive --family FILE`",
-        "format": FORMAT,
-        "definition_sha256": defn.digest,
-        "family": defn.name,
-        "title": defn.title,
+        **document_header(defn, FORMAT),
         "parameter": defn.parameter,
         "range": {
             "text": defn.range_text,

@@ -1,9 +1,27 @@
-"""The ``parameters`` table of a derived document in several parameters, shared by the
-format-3 (derive/emit/document.py) and format-4 (derive/emit/atom_document.py) writers."""
+"""What the derived family documents share, written by the format-3 (derive/emit/document.py)
+and format-4 (derive/emit/atom_document.py) writers: the keys each opens with, and the
+``parameters`` table of a family in several parameters."""
 
 from __future__ import annotations
 
 from ..families.definition import Definition
+
+GENERATED_BY = (
+    "lambda-bezier derive --family -- DO NOT EDIT; regenerate with "
+    "`lambda-bezier derive --family FILE`"
+)
+
+
+def document_header(defn: Definition, fmt: int) -> dict:
+    """{generated_by, format, definition_sha256, family, title}: the keys every derived
+    family document opens with, in this order (the text is deterministic: keys keep it)."""
+    return {
+        "generated_by": GENERATED_BY,
+        "format": fmt,
+        "definition_sha256": defn.digest,
+        "family": defn.name,
+        "title": defn.title,
+    }
 
 
 def parameter_table(defn: Definition) -> list[dict]:

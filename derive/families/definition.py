@@ -296,7 +296,6 @@ def _number(text: str, key: str) -> Fraction:
 
 
 _RANGE = re.compile(r"^\s*([\[(])([^,\[\]()]+),([^,\[\]()]+)([\])])\s*$")
-_DEGREES = re.compile(r"^\s*([0-9]{1,3})\s*\.\.\s*([0-9]{1,3})\s*$")
 
 
 def _interval(text: str, key: str, fail) -> tuple[Fraction, Fraction, bool, bool]:
@@ -405,23 +404,7 @@ def definition_from_table(table: object, where: str = "", *, builtin: bool = Fal
         for text in table["functions"]
         if _parses(text, tuple(names))
     )
-    d = _DEGREES.match(table["degrees"])
-    single = re.match(r"^\s*([0-9]{1,3})\s*$", table["degrees"])
-    if not d and not single:
-        raise fail(
-            "degrees", f'{table["degrees"]!r} is not a degree or a degree range such as "3..12"'
-        )
-    dlo, dhi = (int(d.group(1)), int(d.group(2))) if d else (int(single.group(1)),) * 2
-    if not 1 <= dlo <= dhi <= MAX_DEGREE:
-        raise fail("degrees", f"degrees must satisfy 1 <= lo <= hi <= {MAX_DEGREE}")
-    if "functions" in table:
-        if dlo != dhi:
-            raise fail("functions", 'an explicit list of functions is one order: degrees = "n"')
-        if len(table["functions"]) != dlo + 1:
-            raise fail(
-                "functions",
-                f"the basis of degree {dlo} has {dlo + 1} functions, got {len(table['functions'])}",
-            )
+    dlo, dhi = indexed.degree_range(table, fail, MAX_DEGREE, "3..12")
     formulas = (
         [("basis", table["basis"], False)]
         if "basis" in table

@@ -466,33 +466,38 @@ def symmetry(defn: Definition) -> tuple[str, ...] | None:
     b_i(t; x) = b_{n-i}(1 - t; s(x)) for every degree and i: the identity, a transposition
     of two parameters, or either with signs flipped (a parameter per leg maps to minus the
     mirrored leg's); None when none of these is."""
-    import itertools
-
     syms = defn.symbols
     count = len(syms)
+    names = defn.parameters
+    for perm, sign in symmetry_candidates(count):
+        swap = {syms[k]: sign[k] * syms[perm[k]] for k in range(count)}
+        if all(
+            sp.expand(p.as_expr().subs({**swap, t: 1 - t}, simultaneous=True) - q.as_expr()) == 0
+            for deg in defn.degrees
+            for p, q in zip(basis_polys(defn, deg), reversed(basis_polys(defn, deg)), strict=True)
+        ):
+            return tuple(("-" if sign[k] < 0 else "") + names[perm[k]] for k in range(count))
+    return None
+
+
+def symmetry_candidates(count: int) -> list[tuple[tuple[int, ...], tuple[int, ...]]]:
+    """The (permutation, signs) pairs a symmetry of `count` parameters is sought among, in
+    the order tried: the identity, each transposition, then the reversal of the parameter
+    order (per-leg families) when it is none of those; each with every sign pattern (up to
+    4 parameters; only + past that). Shared by the polynomial and the atom symmetry."""
+    import itertools
+
     perms = [tuple(range(count))]
     for a in range(count):
         for b in range(a + 1, count):
             perm = list(range(count))
             perm[a], perm[b] = b, a
             perms.append(tuple(perm))
-    if count > 1:  # the reversal of the parameter order (per-leg families)
-        perms.append(tuple(reversed(range(count))))
+    reversal = tuple(reversed(range(count)))
+    if reversal not in perms:
+        perms.append(reversal)
     signs = list(itertools.product((1, -1), repeat=count)) if count <= 4 else [(1,) * count]
-    names = defn.parameters
-    for perm in perms:
-        for sign in signs:
-            swap = {syms[k]: sign[k] * syms[perm[k]] for k in range(count)}
-            if all(
-                sp.expand(p.as_expr().subs({**swap, t: 1 - t}, simultaneous=True) - q.as_expr())
-                == 0
-                for deg in defn.degrees
-                for p, q in zip(
-                    basis_polys(defn, deg), reversed(basis_polys(defn, deg)), strict=True
-                )
-            ):
-                return tuple(("-" if sign[k] < 0 else "") + names[perm[k]] for k in range(count))
-    return None
+    return [(perm, sign) for perm in perms for sign in signs]
 
 
 def _negative_point(p: sp.Poly) -> sp.Rational | None:

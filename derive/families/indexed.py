@@ -82,6 +82,38 @@ class Indexed:
         return f"{self.name}_{idx}"
 
 
+_DEGREE = re.compile(r"^\s*([0-9]{1,3})\s*$")
+_DEGREE_RANGE = re.compile(r"^\s*([0-9]{1,3})\s*\.\.\s*([0-9]{1,3})\s*$")
+
+
+def degree_range(
+    table: dict, fail, maximum: int, example: str, bound: str = "degrees must satisfy"
+) -> tuple[int, int]:
+    """(lo, hi) of a [family] table's `degrees` ("n" or "lo..hi", 1 <= lo <= hi <= maximum),
+    and an explicit `functions` list checked to be one order of n + 1 functions (for every
+    definition: the plain, several-parameter and indexed ones; derive/families/definition.py
+    imports this module)."""
+    d = _DEGREE_RANGE.match(table["degrees"])
+    single = _DEGREE.match(table["degrees"])
+    if not d and not single:
+        raise fail(
+            "degrees",
+            f'{table["degrees"]!r} is not a degree or a degree range such as "{example}"',
+        )
+    dlo, dhi = (int(d.group(1)), int(d.group(2))) if d else (int(single.group(1)),) * 2
+    if not 1 <= dlo <= dhi <= maximum:
+        raise fail("degrees", f"{bound} 1 <= lo <= hi <= {maximum}")
+    if "functions" in table:
+        if dlo != dhi:
+            raise fail("functions", 'an explicit list of functions is one order: degrees = "n"')
+        if len(table["functions"]) != dlo + 1:
+            raise fail(
+                "functions",
+                f"the basis of degree {dlo} has {dlo + 1} functions, got {len(table['functions'])}",
+            )
+    return dlo, dhi
+
+
 def read_indexed(table: dict, fail, schema: dict, taken_names: tuple[str, ...]) -> tuple:
     """Validate an indexed [family] table: (the Indexed spec, lowest degree, highest degree).
     definition.py builds the Definition and checks every degree's expansion."""
@@ -145,25 +177,9 @@ def read_indexed(table: dict, fail, schema: dict, taken_names: tuple[str, ...]) 
             f"{name}(index)) or by `functions` (b_0 .. b_n of one order); this table has "
             f"{given or 'neither'}",
         )
-    single = re.match(r"^\s*([0-9]{1,3})\s*$", table["degrees"])
-    d = re.match(r"^\s*([0-9]{1,3})\s*\.\.\s*([0-9]{1,3})\s*$", table["degrees"])
-    if not d and not single:
-        raise fail(
-            "degrees", f'{table["degrees"]!r} is not a degree or a degree range such as "3..6"'
-        )
-    dlo, dhi = (int(d.group(1)), int(d.group(2))) if d else (int(single.group(1)),) * 2
-    if not 1 <= dlo <= dhi <= MAX_INDEXED_DEGREE:
-        raise fail(
-            "degrees", f"an indexed family's degrees satisfy 1 <= lo <= hi <= {MAX_INDEXED_DEGREE}"
-        )
-    if "functions" in table:
-        if dlo != dhi:
-            raise fail("functions", 'an explicit list of functions is one order: degrees = "n"')
-        if len(table["functions"]) != dlo + 1:
-            raise fail(
-                "functions",
-                f"the basis of degree {dlo} has {dlo + 1} functions, got {len(table['functions'])}",
-            )
+    dlo, dhi = degree_range(
+        table, fail, MAX_INDEXED_DEGREE, "3..6", "an indexed family's degrees satisfy"
+    )
     for deg in range(dlo, dhi + 1):
         if len(spec.indices(deg)) < 2:
             raise fail(

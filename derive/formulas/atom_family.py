@@ -18,7 +18,7 @@ import sympy as sp
 
 from ..algebra import atoms as A
 from ..families.definition import ENDPOINT_ORDERS, ENERGY_ORDERS, Definition, DefinitionError
-from ..families.engine import _negative_point
+from ..families.engine import _negative_point, symmetry_candidates
 from ..families.spaces import Space, space_of
 
 # --------------------------------------------------------------------------- exact numbers
@@ -179,25 +179,15 @@ def symmetry(defn: Definition, space: Space) -> tuple[str, ...] | None:
     a transposition, the reversal of the parameters, or any of these with signs flipped
     (the candidates of derive/families/engine.py's polynomial symmetry)."""
     count = len(defn.parameters)
-    perms = [tuple(range(count))]
-    for a in range(count):
-        for b in range(a + 1, count):
-            perm = list(range(count))
-            perm[a], perm[b] = b, a
-            perms.append(tuple(perm))
-    if count > 2:
-        perms.append(tuple(reversed(range(count))))
-    signs = list(itertools.product((1, -1), repeat=count)) if count <= 4 else [(1,) * count]
     mirrored = [A.reflect(elem, space.frame) for elem in space.functions]
     target = list(reversed(space.functions))
-    for perm in perms:
-        for sign in signs:
-            if all(
-                A.substitute_parameters(m, perm, sign) == q
-                for m, q in zip(mirrored, target, strict=True)
-            ):
-                names = defn.parameters
-                return tuple(("-" if sign[k] < 0 else "") + names[perm[k]] for k in range(count))
+    for perm, sign in symmetry_candidates(count):
+        if all(
+            A.substitute_parameters(m, perm, sign) == q
+            for m, q in zip(mirrored, target, strict=True)
+        ):
+            names = defn.parameters
+            return tuple(("-" if sign[k] < 0 else "") + names[perm[k]] for k in range(count))
     return None
 
 

@@ -33,7 +33,7 @@ import numpy.typing as npt
 
 from . import _validate as val
 from .curves import BezierCurve, Curve
-from .geometry import ClosestPoint
+from .geometry import ClosestPoint, length_queries
 from .hazmat import atom_bounds as ab
 from .hazmat import atom_intersect as ai
 from .hazmat.intersect import Intersection
@@ -144,9 +144,7 @@ def arc_length(curve: AtomCurve, a: float, b: float) -> float:
 
 
 def parameter_at_length(curve: AtomCurve, s: npt.ArrayLike) -> np.ndarray | float:
-    arr = val.real_array(s, "s")
-    scalar = arr.ndim == 0
-    flat = np.atleast_1d(arr).astype(float).ravel()
+    flat, scalar = length_queries(s)
     lo, hi = curve.domain
     total = arc_length(curve, lo, hi)
     if flat.size and (flat.min() < 0 or flat.max() > total * (1 + 1e-12)):
@@ -171,7 +169,7 @@ def parameter_at_length(curve: AtomCurve, s: npt.ArrayLike) -> np.ndarray | floa
                 break
             x = new
         out[idx] = x
-    return float(out[0]) if scalar else out.reshape(np.shape(arr))
+    return float(out[0]) if scalar else out
 
 
 # ---------------------------------------------------------------------- boxes

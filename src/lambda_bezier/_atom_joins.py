@@ -119,11 +119,11 @@ def _atom_start(
 ) -> list[list[Number]]:
     """s[r][j] = b_j^(r)(lo) of an atom family at `values` (exact where the atoms' values at
     lo are rational: lo = 0 and no frequency a multiple of π)."""
-    from .atom_family import _combine
+    from ._family_document import combine
 
     data = family.atom_data
     shape = data.SHAPES[degree]
-    basis = _combine(data.COEFFICIENTS[degree], values)  # (m+1, atoms)
+    basis = combine(data.COEFFICIENTS[degree], values)  # (m+1, atoms)
     lo_exact = data.DOMAIN_EXACT[0]
     exact = lo_exact == 0 and not any(a.pi for a in shape.atoms)
     rows: list[list[Number]] = []

@@ -24,6 +24,7 @@ import numpy.typing as npt
 
 from . import _singular
 from . import _validate as val
+from ._curve_shared import ControlPointCurve, check_curvature_dimension
 from ._lazy import TableSource, deferred, generated
 from ._validate import ParamLike, PointsLike
 from .hazmat import forms
@@ -120,7 +121,7 @@ def _swapped_intersect(other: object, curve: object) -> list[_intersect.Intersec
     )
 
 
-class Curve:
+class Curve(ControlPointCurve):
     """Behaviour shared by every family (the role numpy.polynomial's ABCPolyBase plays).
 
     Subclasses set ``family`` (a name), ``_data`` (the generated module) and whether they
@@ -165,18 +166,9 @@ class Curve:
 
     # ------------------------------------------------------------------ description
     @property
-    def degree(self) -> int:
-        """The degree n (the curve has n + 1 control points)."""
-        return int(self.points.shape[0]) - 1
-
-    @property
     def polynomial_degree(self) -> int:
         """The degree of p(t) as a polynomial: n, or n + 2 for bernstein_like."""
         return self.degree + self._data_offset()
-
-    @property
-    def dimension(self) -> int:
-        return int(self.points.shape[1])
 
     @property
     def _tabulated(self) -> bool:
@@ -303,19 +295,9 @@ class Curve:
             out = alg.centred_horner(self._combined("centred"), tt)
         return out[0] if scalar else out
 
-    def curvature(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
-        """Signed curvature in 2D, unsigned in 3D; a ValueError naming t where p'(t) = 0
-        (undefined there: a cusp, or a curve that stops)."""
-        kappa = val.defined_curvature(self._curvature(t, extrapolate), t)
-        return kappa[()] if np.ndim(kappa) == 0 else kappa
-
     def _curvature(self, t: ParamLike, extrapolate: bool = False) -> np.ndarray:
         """The curvature as an array, NaN where p'(t) = 0 (for plots and joint reports)."""
-        if self.dimension not in (2, 3):
-            raise ValueError(
-                f"curvature is defined here for planar and space curves (dimension 2 or 3), "
-                f"this curve has dimension {self.dimension}"
-            )
+        check_curvature_dimension(self.dimension)
         with val.overflow_allowed():  # κ(s·p) = κ(p)/s: computed unscaled, scaled back below
             d1 = self._unit_derivative(t, 1, extrapolate)
             d2 = self._unit_derivative(t, 2, extrapolate)
@@ -392,10 +374,6 @@ class Curve:
     def closest_point(self, q: npt.ArrayLike) -> _geometry.ClosestPoint:
         """The global nearest point to q, (d,) or a batch (m, d): `t`, `point`, `distance`."""
         return _geometry.closest_point(self, q)
-
-    def torsion(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
-        """Signed torsion of a 3D curve; ValueError where undefined (2D, or p' x p'' = 0)."""
-        return _geometry.torsion(self, t, extrapolate=extrapolate)
 
     # ------------------------------------------------------------------ conversion
     @classmethod

@@ -8,7 +8,7 @@ from types import ModuleType
 from typing import TYPE_CHECKING, Any, TypeAlias
 
 if TYPE_CHECKING:
-    from .family import FamilyData
+    from ._family_document import FamilyData
 
 
 _PACKAGE = f"{__package__}._generated"

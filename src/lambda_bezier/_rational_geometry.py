@@ -34,6 +34,7 @@ from . import _validate as val
 from .geometry import (
     ClosestPoint,
     _queries,  # the same query validation as every curve
+    length_queries,
     lengths_within,
     no_queries,
 )
@@ -202,13 +203,7 @@ def _length_table(curve: RationalBezierCurve) -> tuple[np.ndarray, np.ndarray]:
 
 
 def parameter_at_length(curve: RationalBezierCurve, s: npt.ArrayLike) -> np.ndarray | float:
-    arr = val.real_array(s, "s")
-    if arr.ndim > 1:
-        raise ValueError(f"s must be a number or a 1-D array, got shape {arr.shape}")
-    scalar = arr.ndim == 0
-    arr = np.atleast_1d(arr)
-    if not np.isfinite(arr).all():
-        raise ValueError("s contains NaN or infinity")
+    arr, scalar = length_queries(s)
     edges, cum = _length_table(curve)
     total = float(cum[-1])
     arr = lengths_within(arr, total)

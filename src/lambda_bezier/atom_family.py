@@ -27,43 +27,23 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _validate as val
-from ._atom_document import AtomData, Exact, Matrix, Mono, RationalForm
+from ._atom_document import AtomData, Exact, RationalForm
+from ._domain_geometry import DomainGeometry
+from ._family_document import combine, monomial_value
 from ._validate import ParamLike, PointsLike
 from .hazmat import atom_pieces as ap
 from .hazmat import atoms as ak
 from .rational import RationalBezierCurve
 
 if TYPE_CHECKING:
-    from .geometry import ClosestPoint
-    from .hazmat.intersect import Intersection
-
-
-def _power(values: tuple[Fraction, ...], mono: Mono) -> Fraction:
-    w = Fraction(1)
-    for v, e in zip(values, mono, strict=True):
-        w *= v**e
-    return w
-
-
-def _combine(by_mono: dict[Mono, Matrix], values: tuple[Fraction, ...]) -> Matrix:
-    acc: list[list[Fraction]] | None = None
-    for mono, mat in by_mono.items():
-        w = _power(values, mono)
-        if acc is None:
-            acc = [[Fraction(0)] * len(mat[0]) for _ in mat]
-        if w:
-            for r, row in enumerate(mat):
-                for c, x in enumerate(row):
-                    acc[r][c] += w * x
-    assert acc is not None
-    return tuple(tuple(row) for row in acc)
+    pass
 
 
 def _not_available(what: str, why: str) -> NoReturn:
     raise NotImplementedError(f"{what} is not available for this curve: {why}")
 
 
-class AtomCurve:
+class AtomCurve(DomainGeometry):
     """A curve Σ P_i b_i(t; parameters) of a trigonometric, hyperbolic or mixed family, t on
     the family's domain (e.g. [0, π/2]). Made by ``Family.curve``; exact control points and
     parameter values (ints, Fractions) keep `to_rational_bezier` and `energy` exact."""
@@ -92,7 +72,7 @@ class AtomCurve:
         self.parameter_values = dict(zip(data.NAMES, values, strict=True))
         n = self.degree
         self.shape = data.SHAPES[n]
-        basis = _combine(data.COEFFICIENTS[n], values)  # (n+1, atoms), exact
+        basis = combine(data.COEFFICIENTS[n], values)  # (n+1, atoms), exact
         self.basis_coefficients = basis
         self._basis_float = np.array(basis, dtype=float)
         # the curve over the document's atoms, then over the centred atoms (floats)
@@ -111,14 +91,6 @@ class AtomCurve:
         self._pieces: dict[int, ap.PieceTable | None] = {}
 
     # ------------------------------------------------------------------ description
-    @property
-    def degree(self) -> int:
-        return int(self.points.shape[0]) - 1
-
-    @property
-    def dimension(self) -> int:
-        return int(self.points.shape[1])
-
     @property
     def domain(self) -> tuple[float, float]:
         """The family's interval of t (floats; `data.DOMAIN_TEXT` exactly)."""
@@ -250,24 +222,6 @@ class AtomCurve:
         out = ak.evaluate(coeffs, tt - self._mid, sh.omega0, sh.powers, sh.harmonics, sh.hyperbolic)
         return out.T[0] if scalar else out.T
 
-    def curvature(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
-        """Signed curvature in 2D, unsigned in 3D (in t; curvature does not depend on it);
-        a ValueError naming t where C'(t) = 0 (undefined there)."""
-        kappa = val.defined_curvature(self._curvature(t, extrapolate), t)
-        return kappa[()] if np.ndim(kappa) == 0 else kappa
-
-    def _curvature(self, t: ParamLike, extrapolate: bool = False) -> np.ndarray:
-        """The curvature as an array, NaN where C'(t) = 0 (for plots and joint reports)."""
-        from .hazmat import rational_kernels as rk
-
-        if self.dimension not in (2, 3):
-            raise ValueError(
-                f"curvature is defined for dimension 2 or 3, this curve has {self.dimension}"
-            )
-        d1 = self.derivative(t, 1, extrapolate=extrapolate)
-        d2 = self.derivative(t, 2, extrapolate=extrapolate)
-        return rk.curvature_from_derivatives(d1, d2)
-
     def tangent(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray:
         """The unit tangent C'/‖C'‖; ValueError where C'(t) = 0."""
         d1 = self.derivative(t, 1, extrapolate=extrapolate)
@@ -283,11 +237,6 @@ class AtomCurve:
             raise ValueError(f"normal is defined for planar curves, got dimension {self.dimension}")
         tan = self.tangent(t, extrapolate=extrapolate)
         return np.stack([-tan[..., 1], tan[..., 0]], axis=-1)
-
-    def torsion(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
-        from .geometry import torsion
-
-        return torsion(self, t, extrapolate=extrapolate)  # type: ignore[arg-type]
 
     # ------------------------------------------------------------------ the rational form
     @property
@@ -313,7 +262,7 @@ class AtomCurve:
                 f"the {self.family} family has no exact rational Bézier form: "
                 f"{self.data.RATIONAL_REASON}"
             )
-        num = _combine(form.numerators, self.values)  # (n+1, deg+1)
+        num = combine(form.numerators, self.values)  # (n+1, deg+1)
         if self._exact_points is not None:
             pts = self._exact_points
             rows = [
@@ -443,7 +392,7 @@ class AtomCurve:
         )
         total: Exact = Fraction(0)
         for (m1, m2), mat in gram.items():
-            w = _power(self.values, tuple(a + b for a, b in zip(m1, m2, strict=True)))
+            w = monomial_value(self.values, tuple(a + b for a, b in zip(m1, m2, strict=True)))
             if not w:
                 continue
             for dim in range(self.dimension):
@@ -470,95 +419,18 @@ class AtomCurve:
             return self._float_rational()[0]
         return None
 
-    def _t(self, t: object, name: str) -> float:
+    def _domain_point(self, t: object, name: str) -> float:
         x = float(val.real_number(t, name))
         lo, hi = self.data.DOMAIN
         if not lo - 1e-15 <= x <= hi + 1e-15:
             raise ValueError(f"{name} = {t} is outside the domain {self.data.DOMAIN_TEXT}")
         return min(max(x, lo), hi)
 
-    def arc_length(
-        self, t0: Fraction | float | None = None, t1: Fraction | float | None = None
-    ) -> float:
-        """∫ ‖C'(t)‖ dt from t0 to t1 (default: the whole domain), relative accuracy 1e-12."""
-        lo, hi = self.data.DOMAIN
-        a = lo if t0 is None else self._t(t0, "t0")
-        b = hi if t1 is None else self._t(t1, "t1")
-        if a > b:
-            raise ValueError(f"t0 = {t0} must not exceed t1 = {t1}")
-        rat = self._rational_or_none(floats=False)
-        if rat is not None:
-            return rat.arc_length(self.s_of_t(a), self.s_of_t(b))  # type: ignore[arg-type]
-        from . import _atom_geometry as ag
-
-        return ag.arc_length(self, a, b)
-
-    def parameter_at_length(self, s: npt.ArrayLike) -> np.ndarray | float:
-        """The t at which the arc length from the domain's start equals s."""
-        rat = self._rational_or_none(floats=False)
-        if rat is not None:
-            return self.t_of_s(rat.parameter_at_length(s))
-        from . import _atom_geometry as ag
-
-        return ag.parameter_at_length(self, s)
-
-    def bounding_box(self) -> tuple[np.ndarray, np.ndarray]:
-        """(lo, hi): the tight axis-aligned box of the curve over its domain."""
-        rat = self._rational_or_none()
-        if rat is not None:
-            return rat.bounding_box()
-        from . import _atom_geometry as ag
-
-        return ag.bounding_box(self)
-
-    def closest_point(self, q: npt.ArrayLike) -> ClosestPoint:
-        """The nearest point to q ((d,) or a batch (m, d)); `t` in the family's t."""
-        from .geometry import ClosestPoint
-
-        rat = self._rational_or_none()
-        if rat is not None:
-            found = rat.closest_point(q)
-            return ClosestPoint(self.t_of_s(found.t), found.point, found.distance)
-        from . import _atom_geometry as ag
-
-        return ag.closest_point(self, q)
-
-    def locate(self, point: PointsLike) -> float | None:
-        """The t with C(t) = point (within 1e-10 of the curve's size), or None."""
-        rat = self._rational_or_none()
-        if rat is not None:
-            s = rat.locate(point)
-            return None if s is None else float(self.t_of_s(s))
-        from . import _atom_geometry as ag
-
-        return ag.locate(self, point)
-
-    def intersect(self, other: object) -> list[Intersection]:
-        """Every isolated intersection with another curve, Intersection(s, t, kind) sorted by
-        s: self(s) = other(t), each parameter in its own curve's t."""
-        from . import _atom_geometry as ag
-
-        return ag.intersect(self, other)
-
-    def self_intersections(self) -> list[Intersection]:
-        """Every pair s < t with C(s) = C(t), both in the family's t."""
-        from .hazmat.intersect import Intersection
-
-        rat = self._rational_or_none()
-        if rat is None:
-            from . import _atom_geometry as ag
-
-            return ag.self_intersections(self)
-        return [
-            Intersection(float(self.t_of_s(x.s)), float(self.t_of_s(x.t)), x.kind)
-            for x in rat.self_intersections()
-        ]
-
     def split(self, t: Fraction | float) -> tuple[RationalBezierCurve, RationalBezierCurve]:
         """The pieces over [lo, t] and [t, hi] as rational Bézier curves, each in its own
         parameter on [0, 1] (the rational form split at s(t), in floats: s(t) = tan(t/2) is
         irrational at most t)."""
-        x = self._t(t, "t")
+        x = self._domain_point(t, "t")
         if not self.data.DOMAIN[0] < x < self.data.DOMAIN[1]:
             raise ValueError(f"split needs t inside the domain {self.data.DOMAIN_TEXT}, got {t}")
         rat = self._rational_or_none()

@@ -53,6 +53,7 @@ from .surfaces import (
     _as_net,
     _distance_gap,
     _exact_net,
+    paired,
 )
 
 
@@ -219,13 +220,7 @@ class AtomSurface(Surface):
     def _pair(self, u: ParamLike, v: ParamLike) -> tuple[np.ndarray, np.ndarray, bool]:
         uu, su = _on_domain(self._probes[0], u, "u")
         vv, sv = _on_domain(self._probes[1], v, "v")
-        if su and not sv:
-            uu = np.full(vv.shape, uu[0])
-        elif sv and not su:
-            vv = np.full(uu.shape, vv[0])
-        elif uu.shape != vv.shape:
-            raise ValueError(f"u and v must have the same length, got {uu.size} and {vv.size}")
-        return uu, vv, su and sv
+        return paired(uu, su, vv, sv)
 
     def _basis(self, axis: int, tt: np.ndarray, order: int) -> np.ndarray:
         out: np.ndarray = self._probes[axis].basis(tt, order, extrapolate=True)

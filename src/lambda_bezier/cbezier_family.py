@@ -33,12 +33,13 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _validate as val
+from ._curve_shared import check_curvature_dimension
+from ._domain_geometry import DomainGeometry
 from ._validate import ParamLike, PointsLike
 from .hazmat import atoms as ak
 
 if TYPE_CHECKING:
-    from .geometry import ClosestPoint
-    from .hazmat.intersect import Intersection
+    pass
 
 FORMAT = 5
 MAX_COEFFICIENT_ERROR = 1e-6  # relative: past this a curve at that alpha is refused
@@ -423,7 +424,7 @@ class CBezierFamily:
         }
 
 
-class CBezierCurve:
+class CBezierCurve(DomainGeometry):
     """A curve sum P_i b_i(.; alpha) of a CBezierFamily at one alpha, in the family's own
     parameter (t on [0, alpha], or u on [0, 1])."""
 
@@ -449,14 +450,6 @@ class CBezierCurve:
         self._d = ak.derivative_matrix(
             self._rate, family.powers, family.harmonics, family.hyperbolic
         )
-
-    @property
-    def degree(self) -> int:
-        return int(self.points.shape[0]) - 1
-
-    @property
-    def dimension(self) -> int:
-        return int(self.points.shape[1])
 
     def __repr__(self) -> str:
         p = self.family_object.parameter
@@ -604,6 +597,7 @@ class CBezierCurve:
         return self.derivative(t, 0, extrapolate=extrapolate)
 
     def curvature(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
+        check_curvature_dimension(self.dimension)
         d1 = np.atleast_2d(self.derivative(t, 1, extrapolate=extrapolate))
         d2 = np.atleast_2d(self.derivative(t, 2, extrapolate=extrapolate))
         if self.dimension == 2:
@@ -614,14 +608,6 @@ class CBezierCurve:
         with np.errstate(divide="ignore", invalid="ignore"):
             kappa = np.where(speed > 0, cross / speed**3, np.nan)
         return float(kappa[0]) if np.ndim(np.asarray(t, dtype=float)) == 0 else kappa
-
-    def _curvature(self, t: ParamLike, extrapolate: bool = False) -> np.ndarray:
-        """The curvature as an array, signed in 2D, NaN where C'(t) = 0 (joint reports)."""
-        from .hazmat import rational_kernels as rk
-
-        d1 = self.derivative(t, 1, extrapolate=extrapolate)
-        d2 = self.derivative(t, 2, extrapolate=extrapolate)
-        return rk.curvature_from_derivatives(d1, d2)
 
     def control_points(self) -> list[tuple[float, ...]]:
         """The control points as tuples of floats."""
@@ -642,58 +628,9 @@ class CBezierCurve:
         return float(np.sum(w * np.sum(d * d, axis=1)) * hi / 2)
 
     # ------------------------------------------------------------------ geometry
-    def bounding_box(self) -> tuple[np.ndarray, np.ndarray]:
-        from . import _atom_geometry as ag
-
-        return ag.bounding_box(self)  # type: ignore[arg-type]
-
-    def closest_point(self, q: npt.ArrayLike) -> ClosestPoint:
-        from . import _atom_geometry as ag
-
-        return ag.closest_point(self, q)  # type: ignore[arg-type]
-
-    def intersect(self, other: object) -> list[Intersection]:
-        from . import _atom_geometry as ag
-
-        return ag.intersect(self, other)  # type: ignore[arg-type]
-
-    def self_intersections(self) -> list[Intersection]:
-        """Every pair s < t with C(s) = C(t), both in the family's own parameter."""
-        from . import _atom_geometry as ag
-
-        return ag.self_intersections(self)  # type: ignore[arg-type]
-
-    def locate(self, point: PointsLike) -> float | None:
-        """The parameter with C(t) = point (within 1e-10 of the curve's size), or None."""
-        from . import _atom_geometry as ag
-
-        return ag.locate(self, point)  # type: ignore[arg-type]
-
-    def arc_length(self, t0: float | None = None, t1: float | None = None) -> float:
-        """The length from t0 to t1 (default: the whole domain), relative accuracy 1e-12
-        (adaptive Gauss-Legendre on the speed, on the pieces of _atom_geometry)."""
-        from . import _atom_geometry as ag
-
-        lo, hi = self.domain
-        a = lo if t0 is None else self._inside(t0, "t0")
-        b = hi if t1 is None else self._inside(t1, "t1")
-        if a > b:
-            raise ValueError(f"t0 = {t0} must not exceed t1 = {t1}")
-        return ag.arc_length(self, a, b)  # type: ignore[arg-type]
-
-    def parameter_at_length(self, s: npt.ArrayLike) -> np.ndarray | float:
-        """The parameter at which the length from the domain's start equals s."""
-        from . import _atom_geometry as ag
-
-        return ag.parameter_at_length(self, s)  # type: ignore[arg-type]
-
-    def torsion(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
-        """The signed torsion of a 3D curve (a ValueError where C' x C'' = 0, or in 2D)."""
-        from .geometry import torsion
-
-        return torsion(self, t, extrapolate=extrapolate)  # type: ignore[arg-type]
-
-    def _inside(self, t: object, name: str) -> float:
+    # (arc length, boxes, closest points, location, intersections: _curve_shared.DomainGeometry,
+    # numeric: these curves have no rational form for a general alpha)
+    def _domain_point(self, t: object, name: str) -> float:
         x = float(val.real_number(t, name, keep_exact=False))
         lo, hi = self.domain
         if not lo <= x <= hi:

@@ -535,13 +535,7 @@ class CompositeCurve:
         """The u at which the arc length from u = 0 equals s (a number or an array)."""
         if not self._atoms:
             return _geometry.parameter_at_length(self, s)
-        try:
-            arr = np.asarray(s, dtype=float)
-        except (TypeError, ValueError):
-            raise ValueError(f"s must be a number or a 1-D array of numbers, got {s!r}") from None
-        if arr.ndim > 1 or not np.isfinite(arr).all():
-            raise ValueError("s must be a finite number or a 1-D array of finite numbers")
-        scalar, arr = arr.ndim == 0, np.atleast_1d(arr)
+        arr, scalar = _geometry.length_queries(s)
         lengths = np.array([seg.arc_length() for seg in self.segments])
         arr = _geometry.lengths_within(arr, math.fsum(lengths))
         cum = np.concatenate([[0.0], np.cumsum(lengths)])

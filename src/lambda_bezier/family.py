@@ -25,39 +25,28 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from . import curves as _curves
-from ._atom_document import AtomData, _fraction
+from ._atom_document import AtomData
+
+# re-exported: the document's readers lived here before _family_document
+from ._family_document import FamilyData as FamilyData
+from ._family_document import FixedData
+from ._family_document import SeveralData as SeveralData
 
 # re-exported: they lived here before derive needed them without numpy (issue #29)
 from ._family_file import FamilyFileError as FamilyFileError
 from ._family_file import definition_digest as definition_digest
 from ._family_file import read_family_table as read_family_table
-from ._singular import IsolatedRoot
 from ._validate import PointsLike
 from .atom_family import AtomCurve
-from .curves import BezierCurve, Curve, Matrix, data_curve_class
+from .curves import BezierCurve, Curve, data_curve_class
 
 if TYPE_CHECKING:
-    from .energy import Form
     from .surfaces import NetLike, Surface
 
 FORMAT = 3  # the derived document's format this runtime writes and reads
 # 2: one parameter, laid out as in 3; 4: non-polynomial families (atom_family)
 READS = (2, 3, 4, 5)
 MAX_DOCUMENT_BYTES = 50_000_000
-
-
-def _matrices(value: object, where: str) -> tuple[Matrix, ...]:
-    if not isinstance(value, list):
-        raise FamilyFileError(f"{where}: expected a list of matrices")
-    return tuple(tuple(tuple(_fraction(v, where) for v in row) for row in mat) for mat in value)
-
-
-def _ints(value: object, where: str) -> tuple[tuple[int, ...], ...]:
-    if not isinstance(value, list) or not all(
-        isinstance(row, list) and all(isinstance(v, int) for v in row) for row in value
-    ):
-        raise FamilyFileError(f"{where}: expected a matrix of integers")
-    return tuple(tuple(row) for row in value)
 
 
 def _exact_in_ranges(
@@ -82,158 +71,6 @@ def _exact_in_ranges(
             )
         out.append(Fraction(x))
     return tuple(out)
-
-
-class FamilyData:
-    """The tables of one family, with the attributes of a generated family module (what the
-    Curve base class and the energy and batch code read)."""
-
-    def __init__(self, doc: dict[str, Any], where: str):
-        try:
-            self.FAMILY: str = doc["family"]
-            lo, hi = doc["degrees"]
-            self.DEGREES = tuple(range(int(lo), int(hi) + 1))
-            self.DEGREE_OFFSET = int(doc["degree_offset"])
-            rng = doc["range"]
-            self.LAMBDA_RANGE = (_fraction(rng["lo"], where), _fraction(rng["hi"], where))
-            self.LAMBDA_CLOSED = (bool(rng["closed"][0]), bool(rng["closed"][1]))
-            self.LAMBDA_RANGE_TEXT: str = rng["text"]
-            at = doc["bernstein_at"]
-            self.BERNSTEIN_LAMBDA = None if at is None else _fraction(at, where)
-            self.POWER = {int(k): _matrices(v, where) for k, v in doc["power"].items()}
-            self.CENTRED = {int(k): _matrices(v, where) for k, v in doc["centred"].items()}
-            self.BERNSTEIN = {int(k): _matrices(v, where) for k, v in doc["bernstein"].items()}
-            energy = doc["energy"]
-        except (KeyError, TypeError, ValueError) as exc:
-            if isinstance(exc, FamilyFileError):
-                raise
-            raise FamilyFileError(f"{where}: not a derived family document ({exc!r})") from None
-        # C1/G1/C2 between surface patches, as data (read by surface_joins when asked to)
-        self.SURFACE_JOINS: Any = doc.get("surface_joins")
-        self.ENERGY_REASON: str | None = energy.get("reason")
-        self.ENERGY: dict[tuple[int, int], tuple[Form, ...]] = {}
-        for key, entry in energy.items():
-            if key == "reason":
-                continue
-            n, k = (int(x) for x in key.split(","))
-            self.ENERGY[(n, k)] = tuple(
-                (_fraction(entry[part][0], where), _ints(entry[part][1], where))
-                for part in ("ff", "fg", "gg")
-            )
-        self.SINGULAR: dict[int, tuple[Fraction | IsolatedRoot, ...]] = {}
-        for key, roots in doc.get("singular_parameters", {}).items():
-            self.SINGULAR[int(key)] = tuple(
-                _fraction(r, where)
-                if isinstance(r, str)
-                else IsolatedRoot(
-                    _fraction(r[0][0], where), _fraction(r[0][1], where), tuple(map(int, r[1]))
-                )
-                for r in roots
-            )
-        for n in self.DEGREES:
-            for table in (self.POWER, self.CENTRED, self.BERNSTEIN):
-                if n not in table:
-                    raise FamilyFileError(f"{where}: no table for degree {n}")
-
-
-def _monomial(key: str, size: int, where: str) -> tuple[int, ...]:
-    parts = key.split(",")
-    if len(parts) != size or not all(x.isdigit() for x in parts):
-        raise FamilyFileError(f"{where}: {key!r} is not a monomial of {size} parameters")
-    return tuple(int(x) for x in parts)
-
-
-class SeveralData:
-    """The tables of a family in several parameters: per degree, a matrix per parameter
-    monomial (exponent tuple); E_k as Gram matrices of the affine parts."""
-
-    def __init__(self, doc: dict[str, Any], where: str):
-        try:
-            self.FAMILY: str = doc["family"]
-            lo, hi = doc["degrees"]
-            self.DEGREES = tuple(range(int(lo), int(hi) + 1))
-            self.DEGREE_OFFSET = int(doc["degree_offset"])
-            params = doc["parameters"]
-            self.NAMES: tuple[str, ...] = tuple(str(q["name"]) for q in params)
-            self.RANGES = {
-                str(q["name"]): (
-                    _fraction(q["range"]["lo"], where),
-                    _fraction(q["range"]["hi"], where),
-                    bool(q["range"]["closed"][0]),
-                    bool(q["range"]["closed"][1]),
-                    str(q["range"]["text"]),
-                )
-                for q in params
-            }
-            size = len(self.NAMES)
-            self.TABLES: dict[str, dict[int, dict[tuple[int, ...], Matrix]]] = {
-                kind: {
-                    int(deg): {
-                        _monomial(key, size, where): _matrices([mat], where)[0]
-                        for key, mat in by_mono.items()
-                    }
-                    for deg, by_mono in doc[kind].items()
-                }
-                for kind in ("power", "centred", "bernstein")
-            }
-            energy = doc["energy"]
-            self.JOINS: Any = doc.get("joins")  # derived join weights (_derived_joins)
-            self.ENERGY_REASON: str | None = energy.get("reason")
-            self.GRAM: dict[tuple[int, int], dict[tuple[int, int], Matrix]] = {}
-            for key, entry in energy.items():
-                if key == "reason":
-                    continue
-                n, k = (int(x) for x in key.split(","))
-                self.GRAM[(n, k)] = {
-                    _monomial(pair, 2, where): _matrices([mat], where)[0]  # type: ignore[misc]
-                    for pair, mat in entry.items()
-                }
-            # E_k of a basis not affine in the parameters: Gram matrices per monomial pair
-            self.MONOMIAL_GRAM: dict[tuple[int, int], dict[tuple[tuple[int, ...], ...], Matrix]]
-            self.MONOMIAL_GRAM = {}
-            for key, entry in doc.get("energy_monomials", {}).items():
-                n, k = (int(x) for x in key.split(","))
-                self.MONOMIAL_GRAM[(n, k)] = {
-                    tuple(_monomial(m, size, where) for m in pair.split(";")): _matrices(
-                        [mat], where
-                    )[0]
-                    for pair, mat in entry.items()
-                }
-        except (KeyError, TypeError, ValueError, AttributeError) as exc:
-            if isinstance(exc, FamilyFileError):
-                raise
-            raise FamilyFileError(f"{where}: not a derived family document ({exc!r})") from None
-        for n in self.DEGREES:
-            for kind, table in self.TABLES.items():
-                if n not in table:
-                    raise FamilyFileError(f"{where}: no {kind} table for degree {n}")
-
-
-class _FixedData:
-    """A family in several parameters at fixed parameter values: the tables of one basis
-    (what the Curve engine reads of a family without a parameter)."""
-
-    def __init__(self, several: SeveralData, values: tuple[Fraction, ...]):
-        self.FAMILY = several.FAMILY
-        self.DEGREES = several.DEGREES
-        self.DEGREE_OFFSET = several.DEGREE_OFFSET
-        self.SINGULAR: dict[int, tuple[Fraction, ...]] = {}
-        for kind, table in several.TABLES.items():
-            combined = {}
-            for deg, by_mono in table.items():
-                acc: list[list[Fraction]] | None = None
-                for mono, mat in by_mono.items():
-                    w = Fraction(1)
-                    for v, e in zip(values, mono, strict=True):
-                        w *= v**e
-                    if acc is None:
-                        acc = [[Fraction(0)] * len(mat[0]) for _ in mat]
-                    for r, row in enumerate(mat):
-                        for c, x in enumerate(row):
-                            acc[r][c] += w * x
-                assert acc is not None
-                combined[deg] = (tuple(tuple(row) for row in acc),)
-            setattr(self, kind.upper(), combined)
 
 
 class Family:
@@ -415,7 +252,7 @@ class Family:
         key = _exact_in_ranges(self.name, self.several.RANGES, values, check_range)
         if key not in self._classes:
             shown = ", ".join(f"{n}={v}" for n, v in values.items())
-            data = _FixedData(self.several, key)
+            data = FixedData(self.several, key)
             cls = data_curve_class(
                 self.name, self.curve_class.__name__, data, self.curve_class.__doc__ or ""
             )

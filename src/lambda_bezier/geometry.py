@@ -209,6 +209,18 @@ def _curve_parameter_at_length(curve: Curve, s: np.ndarray) -> np.ndarray:
     return t
 
 
+def length_queries(s: npt.ArrayLike) -> tuple[np.ndarray, bool]:
+    """(the lengths s as a 1-D float array, whether s was one number), for every curve's
+    parameter_at_length: text, booleans and non-numbers are refused by name
+    (`_validate.real_array`), so are an array of more than one dimension and NaN/infinity."""
+    arr = val.real_array(s, "s")
+    if arr.ndim > 1:
+        raise ValueError(f"s must be a number or a 1-D array, got shape {arr.shape}")
+    if not np.isfinite(arr).all():
+        raise ValueError("s contains NaN or infinity")
+    return np.atleast_1d(arr), arr.ndim == 0
+
+
 def lengths_within(arr: np.ndarray, total: float) -> np.ndarray:
     """Arc lengths s checked against [0, total] (rounding slack allowed) and clipped to it;
     ValueError for a curve of zero length or an s outside."""
@@ -225,16 +237,7 @@ def lengths_within(arr: np.ndarray, total: float) -> np.ndarray:
 def parameter_at_length(obj: Curve | CompositeCurve, s: npt.ArrayLike) -> np.ndarray | float:
     """The parameter (t for a curve, u for a composite) at which the arc length from the
     start equals s, for a number or an array of lengths in [0, total length]."""
-    try:
-        arr = np.asarray(s, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError(f"s must be a number or a 1-D array of numbers, got {s!r}") from None
-    if arr.ndim > 1:
-        raise ValueError(f"s must be a number or a 1-D array, got shape {arr.shape}")
-    scalar = arr.ndim == 0
-    arr = np.atleast_1d(arr)
-    if not np.isfinite(arr).all():
-        raise ValueError("s contains NaN or infinity")
+    arr, scalar = length_queries(s)
     segs = _segments(obj)
     lengths = np.array([_length_table(seg)[1][-1] for seg in segs])
     total = math.fsum(lengths)

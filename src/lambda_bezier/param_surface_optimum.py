@@ -67,11 +67,10 @@ from .param_surface_energy import (
     named_point,
 )
 from .param_surface_energy import optimal_parameters as certified_parameters
-from .surface_energies import ENERGIES
+from .surface_energies import ENERGIES, MAX_COORDINATE, check_net_values
 from .surfaces import NetLike
 
 CERTIFIED_TOLERANCE = 1e-12  # the batch certificate: the minimiser within this of its answer
-MAX_COORDINATE = 1e140  # above it the energy of a net overflows a float
 
 
 def _directions(shape: tuple[int, ...], fu: Any, fv: Any) -> tuple[Direction, Direction]:
@@ -249,13 +248,7 @@ def optimal_parameters_batch(nets: np.ndarray, energy: str, family: Any) -> Surf
     fu, fv = _family_pair(family)
     if nets.ndim != 4 or nets.shape[0] == 0:
         raise ValueError(f"a batch of nets must have shape (k, m+1, n+1, d), got {nets.shape}")
-    if not np.isfinite(nets).all():
-        raise ValueError("the nets contain NaN or infinity")
-    if np.abs(nets).max() > MAX_COORDINATE:
-        raise ValueError(
-            f"the nets have coordinates above {MAX_COORDINATE:.0e}, where the energy overflows "
-            "a float; scale them down (the optimal parameters do not depend on the scale)"
-        )
+    check_net_values(nets)
     du, dv = _directions(nets.shape[1:], fu, fv)
     if len(du.names) != 1 or len(dv.names) != 1:
         if not du.names and not dv.names:

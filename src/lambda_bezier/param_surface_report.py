@@ -33,7 +33,7 @@ import numpy as np
 
 from . import _poly_direction as pd
 from ._atom_joins import _atom_at_zero
-from .atom_family import _combine
+from ._family_document import combine
 
 Number = Fraction | float
 SAMPLES = 33
@@ -83,7 +83,7 @@ def _end_weights(surf: Any, axis: int, at_end: bool, order: int) -> list[list[Nu
     data = probe.data
     lo, hi, unit = data.DOMAIN_EXACT
     where = hi if at_end else lo
-    basis = _combine(data.COEFFICIENTS[probe.degree], surf._values[axis])
+    basis = combine(data.COEFFICIENTS[probe.degree], surf._values[axis])
     exact_params = surf._exact_params[axis]
     out: list[list[Number]] = []
     for r in range(order + 1):

@@ -104,6 +104,17 @@ def _solve(a: list[list[Fraction]], b: list[Fraction]) -> list[Fraction] | None:
     return [m[r][size] / m[r][r] for r in range(size)]
 
 
+def _exact_polygon(points: PointsLike, data: Any) -> tuple[list[tuple[Fraction, ...]], bool]:
+    """The control points as exact rows (floats at their exact binary values), checked
+    against the family's degrees and for one width, and whether they were given exactly."""
+    given = val.exact_rows(points)
+    if given is None:
+        arr = np.asarray(val.as_points(points, family=data.FAMILY, degrees=data.DEGREES))
+        return [tuple(Fraction(float(v)) for v in row) for row in arr], False
+    val.exact_shape(given, family=data.FAMILY, degrees=data.DEGREES)
+    return [tuple(Fraction(v) for v in row) for row in given], True
+
+
 def _optimal_several(points: PointsLike, k: int, family: Any, several: Any) -> OptimalParameters:
     """E_k = w^T S w with w = (1, x_1..x_J) for a family affine in its parameters jointly
     (S from the derived Gram matrices, exact); its minimum over the closed box is the least
@@ -112,14 +123,7 @@ def _optimal_several(points: PointsLike, k: int, family: Any, several: Any) -> O
     names = several.NAMES
     if several.ENERGY_REASON is not None and not several.MONOMIAL_GRAM:
         raise ValueError(f"optimal_parameters: {several.ENERGY_REASON}")
-    given = val.exact_rows(points)
-    exact = given is not None
-    rows: list[tuple[Fraction, ...]]
-    if given is None:
-        arr = np.asarray(val.as_points(points, family=several.FAMILY, degrees=several.DEGREES))
-        rows = [tuple(Fraction(float(v)) for v in row) for row in arr]
-    else:
-        rows = [tuple(Fraction(v) for v in row) for row in given]
+    rows, exact = _exact_polygon(points, several)
     n = len(rows) - 1
     if (n, k) not in several.GRAM and (n, k) not in several.MONOMIAL_GRAM:
         raise ValueError(
@@ -164,15 +168,7 @@ def atom_energy_form(
     names = data.NAMES
     if data.ENERGY_REASON is not None and not data.GRAM:
         raise ValueError(f"optimal_parameters: {data.ENERGY_REASON}")
-    given = val.exact_rows(points)
-    exact = given is not None
-    rows: list[tuple[Fraction, ...]]
-    if given is None:
-        arr = np.asarray(val.as_points(points, family=data.FAMILY, degrees=data.DEGREES))
-        rows = [tuple(Fraction(float(v)) for v in row) for row in arr]
-    else:
-        val.exact_shape(given, family=data.FAMILY, degrees=data.DEGREES)
-        rows = [tuple(Fraction(v) for v in row) for row in given]
+    rows, exact = _exact_polygon(points, data)
     n = len(rows) - 1
     if (n, k) not in data.GRAM:
         raise ValueError(

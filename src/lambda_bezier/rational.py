@@ -42,6 +42,7 @@ import numpy.typing as npt
 
 from . import _validate as val
 from ._curve_base import _swapped_intersect
+from ._curve_shared import ControlPointCurve
 from ._validate import ParamLike, PointsLike
 from .curves import BezierCurve, Curve
 from .hazmat import kernels as alg
@@ -93,7 +94,7 @@ def _exact_scalar(t: object, name: str) -> Fraction:
     return Fraction(int(t)) if isinstance(t, np.integer) else Fraction(t)
 
 
-class RationalBezierCurve:
+class RationalBezierCurve(ControlPointCurve):
     r"""A rational Bézier curve :math:`C(t) = \sum_i w_i P_i B_{i,n}(t) / \sum_i w_i
     B_{i,n}(t)` on t ∈ [0, 1], any degree n >= 0, any dimension d >= 1, positive weights.
     All weights equal: the classical Bézier curve, exactly."""
@@ -126,15 +127,6 @@ class RationalBezierCurve:
         )
 
     # ------------------------------------------------------------------ description
-    @property
-    def degree(self) -> int:
-        """The degree n (the curve has n + 1 control points and weights)."""
-        return int(self.points.shape[0]) - 1
-
-    @property
-    def dimension(self) -> int:
-        return int(self.points.shape[1])
-
     @property
     def is_exact(self) -> bool:
         """True when the control points and the weights are all ints/Fractions."""
@@ -316,29 +308,6 @@ class RationalBezierCurve:
             out = bern / bern.sum(axis=1, keepdims=True)
         out = self._checked(out, t, "the basis")
         return out[0] if scalar else out
-
-    def curvature(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
-        """Signed curvature in 2D, unsigned in 3D; a ValueError naming t where C'(t) = 0
-        (undefined there)."""
-        kappa = val.defined_curvature(self._curvature(t, extrapolate), t)
-        return kappa[()] if np.ndim(kappa) == 0 else kappa
-
-    def _curvature(self, t: ParamLike, extrapolate: bool = False) -> np.ndarray:
-        """The curvature as an array, NaN where C'(t) = 0 (for plots and joint reports)."""
-        if self.dimension not in (2, 3):
-            raise ValueError(
-                f"curvature is defined here for planar and space curves (dimension 2 or 3), "
-                f"this curve has dimension {self.dimension}"
-            )
-        d1 = self.derivative(t, 1, extrapolate=extrapolate)
-        d2 = self.derivative(t, 2, extrapolate=extrapolate)
-        return rk.curvature_from_derivatives(d1, d2)
-
-    def torsion(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
-        """Signed torsion of a 3D curve; ValueError where undefined (2D, or C' x C'' = 0)."""
-        from .geometry import torsion
-
-        return torsion(self, t, extrapolate=extrapolate)  # type: ignore[arg-type]
 
     # ------------------------------------------------------------------ subdivision
     def split(self, t: Fraction | float) -> tuple[RationalBezierCurve, RationalBezierCurve]:

@@ -36,6 +36,24 @@ from .hazmat import exact_poly as xp
 from .hazmat.forms import hodograph_matrix
 from .surfaces import NetLike, Surface, _as_family_pair, _check_degree, basis_to_bernstein_split
 
+# the energy is a quadratic form in the net with entries up to about 1e4 (degrees <= 12):
+# coordinates below this keep every coefficient far inside the float range (the batch optima
+# of surface_optimum and param_surface_optimum refuse nets past it)
+MAX_COORDINATE = 1e140
+
+
+def check_net_values(nets: np.ndarray) -> None:
+    """A ValueError for a batch of float nets holding NaN or infinity, or coordinates above
+    MAX_COORDINATE (where the energy overflows a float)."""
+    if not np.isfinite(nets).all():
+        raise ValueError("the nets contain NaN or infinity")
+    if np.abs(nets).max() > MAX_COORDINATE:
+        raise ValueError(
+            f"the nets have coordinates above {MAX_COORDINATE:.0e}, where the energy overflows "
+            "a float; scale them down (the optimal parameters do not depend on the scale)"
+        )
+
+
 _energy = generated("energy")
 _surface_energy = generated("surface_energy")
 

@@ -47,12 +47,14 @@ from .hazmat.surface_weights import BatchWeights, batch_weights, pair_weights
 from .parameter_optimum import OptimalParameters as CurveOptimalParameters
 from .surface_energies import (
     ENERGIES,
+    MAX_COORDINATE,
     SurfaceEnergyMatrices,
     SurfaceOptimalParameters,
     _box,
     _exact_optimum,
     _float_polynomial,
     _param_families,
+    check_net_values,
 )
 from .surface_energies import surface_energy as _one_parameter_energy
 from .surface_energies import surface_energy_matrices as _one_parameter_matrices
@@ -61,9 +63,6 @@ from .surfaces import NetLike, _as_family_pair, _as_net, _exact_net, basis_to_be
 STEP_TOLERANCE = OPTIMUM_STEP_TOLERANCE
 # the fixed-cost path accepts a net when the minimiser is certified within this of its answer
 CERTIFIED_TOLERANCE = 1e-12
-# the energy is a quadratic form in the net with entries up to about 1e4 (degrees <= 12):
-# coordinates below this keep every coefficient far inside the float range
-MAX_COORDINATE = 1e140
 _WHERE = np.array(["edge", "interior", "corner"], dtype=object)  # the compiled kernel's codes
 
 
@@ -149,7 +148,7 @@ def optimal_parameters_batch(
     top = max(max(a, b) for a, b in mats.full)
     fast = _batch_compiled()
     if u_box is None or v_box is None or top > 2 or fast is None:
-        _check_values(nets)
+        check_net_values(nets)
     if u_box is None or v_box is None or top > 2:
         return _all_exact(nets, np.ones(count, bool), None, energy, u_box, v_box, u_cls, v_cls)
     box = np.array([float(u_box[0]), float(u_box[1]), float(v_box[0]), float(v_box[1])])
@@ -161,7 +160,7 @@ def optimal_parameters_batch(
             flat, dim, weights, box, CERTIFIED_TOLERANCE, MAX_COORDINATE
         )
         if not valid:
-            _check_values(nets)  # raises the error that fits
+            check_net_values(nets)  # raises the error that fits
         ok, on_edge = status > 0.5, status > 1.5
     else:
         coeffs = _float_polynomial(mats, nets.reshape(count, m1 * n1, dim))
@@ -189,16 +188,6 @@ def optimal_parameters_batch(
     return SurfaceOptimalParameters(
         bx, by, bx, by, bval, where, admissible, free_u, free_v, exact, int(declined.size)
     )
-
-
-def _check_values(nets: np.ndarray) -> None:
-    if not np.isfinite(nets).all():
-        raise ValueError("the nets contain NaN or infinity")
-    if np.abs(nets).max() > MAX_COORDINATE:
-        raise ValueError(
-            f"the nets have coordinates above {MAX_COORDINATE:.0e}, where the energy overflows "
-            "a float; scale them down (the optimal parameters do not depend on the scale)"
-        )
 
 
 def _careful_batch(

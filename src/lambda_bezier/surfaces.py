@@ -160,6 +160,14 @@ def _lam(cls: type[Curve], lam: object, name: str, check_range: bool) -> Fractio
 def _parameter_pair(u: object, v: object, extrapolate: bool) -> tuple[np.ndarray, np.ndarray, bool]:
     uu, su = val.as_parameters(u, extrapolate=extrapolate, name="u")
     vv, sv = val.as_parameters(v, extrapolate=extrapolate, name="v")
+    return paired(uu, su, vv, sv)
+
+
+def paired(
+    uu: np.ndarray, su: bool, vv: np.ndarray, sv: bool
+) -> tuple[np.ndarray, np.ndarray, bool]:
+    """(u, v, both single): a single u (su) or v (sv) repeated against the other's array;
+    two arrays must have one length."""
     if su and not sv:
         uu = np.full(vv.shape, uu[0])
     elif sv and not su:

@@ -287,3 +287,19 @@ def test_curvature_outside_two_and_three_dimensions_is_refused_by_name(family):
     for method in (four.curvature, four._curvature):
         with pytest.raises(ValueError, match="dimension 2 or 3.*dimension 4"):
             method(0.5)
+
+
+def test_planar_curvature_is_signed_as_for_every_other_curve(family, written):
+    """In 2D the curvature carries the turning direction (x'y'' - y'x'') / |r'|^3, checked
+    against the file's own formulas in mpmath; reversing the control points flips it."""
+    points = [(0, 0), (1, 2), (3, 2), (4, 0)]
+    alpha = 2.0
+    curve = family.curve(points, alpha=alpha)
+    for t in (0.3, 1.0, 1.7):
+        d1 = [sum(written[1][i](t, alpha) * p[c] for i, p in enumerate(points)) for c in (0, 1)]
+        d2 = [sum(written[2][i](t, alpha) * p[c] for i, p in enumerate(points)) for c in (0, 1)]
+        expected = (d1[0] * d2[1] - d1[1] * d2[0]) / (d1[0] ** 2 + d1[1] ** 2) ** 1.5
+        assert expected < 0  # this arch turns clockwise
+        assert curve.curvature(t) == pytest.approx(float(expected), rel=1e-9)
+    backwards = family.curve(points[::-1], alpha=alpha)
+    assert backwards.curvature(alpha - 1.0) == pytest.approx(-curve.curvature(1.0), rel=1e-9)

@@ -33,7 +33,6 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _validate as val
-from ._curve_shared import check_curvature_dimension
 from ._domain_geometry import DomainGeometry
 from ._validate import ParamLike, PointsLike
 from .hazmat import atoms as ak
@@ -595,19 +594,6 @@ class CBezierCurve(DomainGeometry):
 
     def evaluate(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray:
         return self.derivative(t, 0, extrapolate=extrapolate)
-
-    def curvature(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
-        check_curvature_dimension(self.dimension)
-        d1 = np.atleast_2d(self.derivative(t, 1, extrapolate=extrapolate))
-        d2 = np.atleast_2d(self.derivative(t, 2, extrapolate=extrapolate))
-        if self.dimension == 2:
-            cross = np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0])
-        else:
-            cross = np.linalg.norm(np.cross(d1, d2), axis=1)
-        speed = np.linalg.norm(d1, axis=1)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            kappa = np.where(speed > 0, cross / speed**3, np.nan)
-        return float(kappa[0]) if np.ndim(np.asarray(t, dtype=float)) == 0 else kappa
 
     def control_points(self) -> list[tuple[float, ...]]:
         """The control points as tuples of floats."""

@@ -141,15 +141,22 @@ class Family:
         params_v: dict[str, Any] | None = None,
         family_v: object = None,
         check_range: bool = True,
+        **named: Any,
     ) -> Surface:
         """The tensor-product surface Σ P_ij b_i(u; x_u) b_j(v; x_v) of this family on a net
         of (m+1) x (n+1) control points: ``lam_u, lam_v`` for one parameter, or each
-        direction's parameters by name, ``params_u={"lam": .., "mu": ..}``; an indexed family
-        one sequence per direction; an atom family u, v in its own domain (param_surfaces).
-        `family_v`: another family in v (a family from load_family or a built-in family's
-        name), e.g. a trigonometric family across a polynomial one; default this family."""
+        direction's parameters by name, ``params_u={"lam": .., "mu": ..}`` or as keywords
+        with the direction's suffix, ``lam_u=.., mu_u=.., lam_v=.., mu_v=..``; an indexed
+        family one sequence per direction; an atom family u, v in its own domain
+        (param_surfaces). `family_v`: another family in v (a family from load_family or a
+        built-in family's name), e.g. a trigonometric family across a polynomial one; default
+        this family."""
         from .param_surfaces import family_surface
 
+        if named:
+            params_u, params_v, lam_u, lam_v = self._suffixed_parameters(
+                named, family_v, params_u, params_v, lam_u, lam_v
+            )
         if isinstance(family_v, str):
             from .curves import family_class
 
@@ -166,6 +173,63 @@ class Family:
         return family_surface(
             net, pair, lam_u, lam_v, params_u=params_u, params_v=params_v, check_range=check_range
         )
+
+    def _suffixed_parameters(
+        self,
+        named: dict[str, Any],
+        family_v: object,
+        params_u: dict[str, Any] | None,
+        params_v: dict[str, Any] | None,
+        lam_u: object,
+        lam_v: object,
+    ) -> tuple[Any, Any, Any, Any]:
+        """surface()'s keywords NAME_u / NAME_v, each a parameter of that direction's family,
+        folded into params_u / params_v (several parameters) or lam_u / lam_v (one); a
+        TypeError naming the keyword for anything else or for a parameter given twice."""
+        by_side: dict[str, dict[str, Any]] = {"u": dict(params_u or {}), "v": dict(params_v or {})}
+        for key, value in named.items():
+            stem, _, side = key.rpartition("_")
+            if side not in ("u", "v") or not stem:
+                raise TypeError(
+                    f"surface() got an unexpected keyword argument {key!r} (a direction's "
+                    "parameter is given as NAME_u or NAME_v, e.g. mu_u=..., or as "
+                    "params_u={...})"
+                )
+            family = self if side == "u" or family_v is None else family_v
+            names = tuple(getattr(family, "parameters", None) or ("lam",))
+            if stem not in names:
+                label = getattr(family, "name", family)
+                raise TypeError(
+                    f"{key}: {stem!r} is not a parameter of {label!r} (its parameters: "
+                    f"{', '.join(names)})"
+                )
+            if stem in by_side[side]:
+                raise TypeError(f"{key} is given twice ({key}= and params_{side}); give it once")
+            by_side[side][stem] = value
+        one = {
+            side: len(tuple(getattr(fam, "parameters", None) or ("lam",))) == 1
+            and getattr(fam, "several", None) is None
+            for side, fam in (("u", self), ("v", self if family_v is None else family_v))
+        }
+        lams = {"u": lam_u, "v": lam_v}
+        out: dict[str, Any] = {}
+        for side in ("u", "v"):
+            given = by_side[side]
+            if not one[side] and lams[side] is not None and given:
+                if "lam" in given:  # lam_u=... binds to the positional lam_u
+                    raise TypeError(f"lam_{side} is given twice (lam_{side} and params_{side})")
+                given = {"lam": lams[side], **given}  # a parameter named lam, with its fellows
+                lams[side] = None
+            if one[side] and given and (params_u if side == "u" else params_v) is None:
+                if lams[side] is not None:
+                    raise TypeError(
+                        f"lam_{side} is given twice (lam_{side} and {next(iter(given))}_{side})"
+                    )
+                lams[side] = next(iter(given.values()))  # a one-parameter family's own name
+                out[side] = None
+            else:
+                out[side] = given or None
+        return out["u"], out["v"], lams["u"], lams["v"]
 
     def parameter_values(
         self,

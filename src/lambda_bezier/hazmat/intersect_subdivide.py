@@ -100,19 +100,30 @@ def half_matrices(degree: int) -> tuple[np.ndarray, np.ndarray]:
 
 def _boxes_apart(a: np.ndarray, b: np.ndarray, slack: np.ndarray) -> np.ndarray:
     sl = slack[:, None]
-    apart: np.ndarray = np.any(
-        (a.min(axis=1) > b.max(axis=1) + sl) | (b.min(axis=1) > a.max(axis=1) + sl), axis=1
-    )
+    apart: np.ndarray = (
+        (a.min(axis=1) > b.max(axis=1) + sl) | (b.min(axis=1) > a.max(axis=1) + sl)
+    ).any(axis=1)
     return apart
+
+
+# The helpers below run once or twice per level on a few rows each: numpy's fixed cost per
+# call, not the arithmetic, is their time, so they make as few calls as they can (a norm as
+# sqrt of a sum of squares, the same operations np.linalg.norm runs; slices for np.diff;
+# array methods for np.all / np.any). The arithmetic is the same, so the results are
+# bit-identical to the plainer spelling.
 
 
 def _fat_line_apart(a: np.ndarray, b: np.ndarray, slack: np.ndarray) -> np.ndarray:
     """Planar pieces: True where a's control points lie beyond b's fat line (one side)."""
-    chord = b[:, -1] - b[:, 0]
+    base = b[:, :1]
+    chord = b[:, -1] - base[:, 0]
     length = np.hypot(chord[:, 0], chord[:, 1])
     ok = length > 0
-    normal = np.stack([-chord[:, 1], chord[:, 0]], axis=1) / np.where(ok, length, 1.0)[:, None]
-    base = b[:, :1]
+    scale = np.where(ok, length, 1.0)
+    normal = np.empty_like(chord)
+    np.negative(chord[:, 1], out=normal[:, 0])
+    normal[:, 1] = chord[:, 0]
+    normal /= scale[:, None]
     db = np.einsum("kid,kd->ki", b - base, normal)
     da = np.einsum("kid,kd->ki", a - base, normal)
     apart = (da.min(axis=1) > db.max(axis=1) + slack) | (da.max(axis=1) < db.min(axis=1) - slack)
@@ -120,15 +131,21 @@ def _fat_line_apart(a: np.ndarray, b: np.ndarray, slack: np.ndarray) -> np.ndarr
     return result
 
 
+def _norm(x: np.ndarray) -> np.ndarray:
+    """np.linalg.norm(x, axis=-1), the same operations without its checks."""
+    norm: np.ndarray = np.sqrt((x * x).sum(axis=-1))
+    return norm
+
+
 def _thickness(pieces: np.ndarray) -> np.ndarray:
     """The largest distance of a piece's control points from its chord (inf for a closed
     piece, whose chord is a point)."""
-    chord = pieces[:, -1] - pieces[:, 0]
-    length = np.linalg.norm(chord, axis=1)
-    unit = chord / np.where(length > 0, length, 1.0)[:, None]
     rel = pieces - pieces[:, :1]
+    chord = rel[:, -1]
+    length = _norm(chord)
+    unit = chord / np.where(length > 0, length, 1.0)[:, None]
     along = np.einsum("kid,kd->ki", rel, unit)
-    off = np.linalg.norm(rel - along[..., None] * unit[:, None], axis=2).max(axis=1)
+    off = _norm(rel - along[..., None] * unit[:, None]).max(axis=1)
     thickness: np.ndarray = np.where(length > 0, off, np.inf)
     return thickness
 
@@ -138,9 +155,19 @@ def _runs_forward(pieces: np.ndarray) -> np.ndarray:
     chord: the piece never turns back along it (a flat piece that does can pass a point, or
     cross a line, twice)."""
     chord = pieces[:, -1] - pieces[:, 0]
-    along = np.einsum("kid,kd->ki", np.diff(pieces, axis=1), chord)
-    forward: np.ndarray = np.all(along >= 0, axis=1) & np.any(chord != 0, axis=1)
+    along = np.einsum("kid,kd->ki", pieces[:, 1:] - pieces[:, :-1], chord)
+    forward: np.ndarray = (along >= 0).all(axis=1) & (chord != 0).any(axis=1)
     return forward
+
+
+def _flat(pieces: np.ndarray, slack: np.ndarray, among: np.ndarray) -> np.ndarray:
+    """among & (thickness <= slack) & runs forward, the costlier tests only on rows that
+    can still pass (mostly none: a piece is flat to rounding only near the end)."""
+    flat = among & (_thickness(pieces) <= slack)
+    if flat.any():
+        rows = np.flatnonzero(flat)
+        flat[rows] = _runs_forward(pieces[rows])
+    return flat
 
 
 def _cones(pieces: np.ndarray, slack: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -155,18 +182,20 @@ def _cones(pieces: np.ndarray, slack: np.ndarray) -> tuple[np.ndarray, np.ndarra
     pieces it is not small (2^-20 wide at a tangency, about 1e-9 rad), and without it two
     cones that touch along the common tangent line can look
     apart, "isolating" a tangency as a crossing."""
-    h = np.diff(pieces, axis=1)
-    norm = np.linalg.norm(h, axis=2)
-    good = np.all(norm > 2 * BLUR * slack[:, None], axis=1)
+    h = pieces[:, 1:] - pieces[:, :-1]
+    norm = _norm(h)
+    blur_length = 2 * BLUR * slack[:, None]
+    good = (norm > blur_length).all(axis=1)
     unit = h / np.where(norm > 0, norm, 1.0)[..., None]
     axis = unit.sum(axis=1)
-    axis_norm = np.linalg.norm(axis, axis=1)
+    axis_norm = _norm(axis)
     good &= axis_norm > 0
-    axis = axis / np.where(axis_norm > 0, axis_norm, 1.0)[:, None]
+    axis /= np.where(axis_norm > 0, axis_norm, 1.0)[:, None]
     cos = np.einsum("kid,kd->ki", unit, axis).min(axis=1)
     with np.errstate(divide="ignore", invalid="ignore"):
-        blur = np.arcsin(np.clip(2 * BLUR * slack[:, None] / norm, 0.0, 1.0)).max(axis=1)
-    half = np.where(good & (cos > 0), np.arccos(np.clip(cos, -1.0, 1.0)) + blur, np.pi)
+        blur = np.arcsin(np.minimum(np.maximum(blur_length / norm, 0.0), 1.0)).max(axis=1)
+        spread = np.arccos(np.minimum(np.maximum(cos, -1.0), 1.0))
+    half = np.where(good & (cos > 0), spread + blur, np.pi)
     return axis, half
 
 
@@ -281,9 +310,14 @@ def isolate(
         pa: np.ndarray, pb: np.ndarray, sl: np.ndarray, ia: np.ndarray, ib: np.ndarray
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         # one-to-one pieces whose tangent cones share no line hold one root at most
-        axis_a, half_a = _cones(pa, sl)
-        axis_b, half_b = _cones(pb, sl)
-        between = np.arccos(np.clip(np.abs(np.einsum("kd,kd->k", axis_a, axis_b)), 0.0, 1.0))
+        if pa.shape[1] == pb.shape[1]:  # both sides' cones in one set of calls
+            k = pa.shape[0]
+            axis, half = _cones(np.concatenate([pa, pb]), np.concatenate([sl, sl]))
+            axis_a, axis_b, half_a, half_b = axis[:k], axis[k:], half[:k], half[k:]
+        else:
+            axis_a, half_a = _cones(pa, sl)
+            axis_b, half_b = _cones(pb, sl)
+        between = np.arccos(np.minimum(np.abs(np.einsum("kd,kd->k", axis_a, axis_b)), 1.0))
         isolated = _pointed(half_a) & _pointed(half_b) & (between > half_a + half_b + CONE_MARGIN)
         if same:
             isolated &= np.abs(ia - ib) > 1
@@ -334,15 +368,22 @@ def _subdivide(
         sl = slack[pid]
         if fixed:  # the point within the piece's box, as the compiled loop writes it
             target, margin = pb[:, 0], sl[:, None]
-            keep = np.all(
-                (pa.min(axis=1) <= target + margin) & (target - margin <= pa.max(axis=1)), axis=1
+            keep = ((pa.min(axis=1) <= target + margin) & (target - margin <= pa.max(axis=1))).all(
+                axis=1
             )
         else:
             keep = ~_boxes_apart(pa, pb, sl)
         if planar:  # a point has no chord: only the piece's fat line can drop it
-            keep &= ~_fat_line_apart(pb, pa, sl)
-            if not fixed:
-                keep &= ~_fat_line_apart(pa, pb, sl)
+            if fixed or pa.shape[1] != pb.shape[1]:
+                keep &= ~_fat_line_apart(pb, pa, sl)
+                if not fixed:
+                    keep &= ~_fat_line_apart(pa, pb, sl)
+            else:  # both ways in one set of calls
+                k = pa.shape[0]
+                apart = _fat_line_apart(
+                    np.concatenate([pb, pa]), np.concatenate([pa, pb]), np.concatenate([sl, sl])
+                )
+                keep &= ~(apart[:k] | apart[k:])
         width = 0.5**level
         for pair, s0, s1, t0, t1 in skip:
             inside = (pid == pair) & (ia * width >= s0) & ((ia + 1) * width <= s1)
@@ -381,11 +422,10 @@ def _subdivide(
                 break
         # pieces flat to within the slack on both sides are as resolved as subdivision gets
         # (a tangency or a contact of higher order, within rounding of the input)
-        flat = (_thickness(pa) <= slack[pid]) & _runs_forward(pa)
-        if not fixed:
-            flat &= (_thickness(pb) <= slack[pid]) & _runs_forward(pb)
-        if same:
-            flat &= np.abs(ia - ib) > 1
+        sl = slack[pid]
+        flat = _flat(pa, sl, np.abs(ia - ib) > 1 if same else np.ones(pid.size, dtype=bool))
+        if not fixed and flat.any():
+            flat = _flat(pb, sl, flat)
         if flat.any():
             count = int(flat.sum())
             left.append((pid[flat], ia[flat] * width, ib[flat] * width, np.full(count, width)))

@@ -342,14 +342,15 @@ def locate_all(
     exact_point: Sequence[Fraction | int | float] | None = None,
     within: float | None = None,
     exact_end: bool = False,
+    iso: sub.Isolated | None = None,
 ) -> list[float]:
     """Every t in [0, 1] with p(t) = point: within ON_CURVE of the curve's scale, or within
     the distance `within`, or (exact_end: the point is exact, an end of another curve)
-    within the rounding of evaluating p at t (_rounding_at)."""
+    within the rounding of evaluating p at t (_rounding_at). iso: the subdivision's
+    candidates for this point (_isolate_ends), where already found with others'."""
     point = np.asarray(point, dtype=float)
     exact_target = _integer_point(exact_point if exact_point is not None else point.tolist())
-    scale = max(p.scale, float(np.abs(point).max(initial=0.0)))
-    tol = ON_CURVE * scale
+    tol = _locate_tolerance(p, point)
     on_curve = ON_CURVE * max(p.size, float(np.abs(point).max(initial=0.0)))
     accept = on_curve if within is None else within
     found: list[float] = []
@@ -362,7 +363,8 @@ def locate_all(
             found.append(float(end))
     # candidates from the subdivision engine: Newton roots on one-to-one pieces, and the
     # middles of pieces that stay flat around the point (a zero of the speed there)
-    iso = sub.isolate_points(p.pts[None], point[None], np.array([tol]))
+    if iso is None:
+        iso = sub.isolate_points(p.pts[None], point[None], np.array([tol]))
     # a wide piece left over is flat to rounding and runs forward along its chord (a curve
     # on a line, say): one Newton start in its middle can overshoot out of the domain, so
     # bracket the point's projection on the chord, which is monotone along such a piece
@@ -400,6 +402,38 @@ def locate_all(
         elif _exact_distance(p, t, exact_target) < _exact_distance(p, found[same[0]], exact_target):
             found[same[0]] = float(t)
     return sorted(found)
+
+
+def _locate_tolerance(p: Prepared, point: np.ndarray) -> float:
+    """The distance within which locate_all's subdivision keeps pieces around the point."""
+    return ON_CURVE * max(p.scale, float(np.abs(point).max(initial=0.0)))
+
+
+def _isolate_ends(q: Prepared, p: Prepared) -> list[sub.Isolated | None]:
+    """The subdivision's candidates for p's two end points on q, both in one call (each row
+    of isolate_points is subdivided on its own, so each point's candidates are those a call
+    of its own gives, in the same order; the numpy loop's cost is per level, not per row).
+    None for each where q is a point (locate_all decides that case without subdividing)."""
+    if q.is_point:
+        return [None, None]
+    points = p.pts[[0, -1]]
+    tols = np.array([_locate_tolerance(q, x) for x in points])
+    iso = sub.isolate_points(np.stack([q.pts, q.pts]), points, tols)
+    found: list[sub.Isolated | None] = []
+    for g in (0, 1):
+        roots, left = iso.root_pair == g, iso.left_pair == g
+        found.append(
+            sub.Isolated(
+                iso.root_pair[roots],
+                iso.root_s[roots],
+                iso.root_t[roots],
+                iso.left_pair[left],
+                iso.left_s0[left],
+                iso.left_t0[left],
+                iso.left_width[left],
+            )
+        )
+    return found
 
 
 def _rounding_at(p: Prepared, t: float) -> float:
@@ -629,16 +663,17 @@ def _pair_setup(p: Prepared, q: Prepared) -> tuple[list[Intersection], list[Box]
     """The end points located on the other curve, and the shared stretches they bound:
     (hits so far, rectangles of shared stretches for subdivision to skip)."""
     ends: list[Intersection] = []
+    on_q, on_p = _isolate_ends(q, p), _isolate_ends(p, q)
     for s_end in (0, 1):
         for t in locate_all(
-            q, p.pts[-1 if s_end else 0], p.exact_row(-1 if s_end else 0), None, True
+            q, p.pts[-1 if s_end else 0], p.exact_row(-1 if s_end else 0), None, True, on_q[s_end]
         ):
             cand = Intersection(float(s_end), t, "transversal")
             if not _dedupe(ends, cand):
                 ends.append(cand)
     for t_end in (0, 1):
         for s in locate_all(
-            p, q.pts[-1 if t_end else 0], q.exact_row(-1 if t_end else 0), None, True
+            p, q.pts[-1 if t_end else 0], q.exact_row(-1 if t_end else 0), None, True, on_p[t_end]
         ):
             cand = Intersection(s, float(t_end), "transversal")
             if not _dedupe(ends, cand):

@@ -232,10 +232,15 @@ def local_newton(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray, 
     v = np.full(k, 0.5)
     step = np.full(k, np.inf)
     thrown = np.zeros(k, dtype=bool)
+    both = np.concatenate([a, b]) if a.shape[1] == b.shape[1] else None
     with np.errstate(all="ignore"):
         for _ in range(NEWTON_STEPS):
-            pa, da = _eval_with_derivative(a, u)
-            pb, db = _eval_with_derivative(b, v)
+            if both is not None:  # one evaluation of both sides (the same operations)
+                value, slope = _eval_with_derivative(both, np.concatenate([u, v]))
+                pa, pb, da, db = value[:k], value[k:], slope[:k], slope[k:]
+            else:
+                pa, da = _eval_with_derivative(a, u)
+                pb, db = _eval_with_derivative(b, v)
             f = pa - pb
             # normal equations of [da, -db] (du, dv) = -f
             aa = np.einsum("kd,kd->k", da, da)

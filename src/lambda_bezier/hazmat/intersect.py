@@ -409,30 +409,44 @@ def _locate_tolerance(p: Prepared, point: np.ndarray) -> float:
     return ON_CURVE * max(p.scale, float(np.abs(point).max(initial=0.0)))
 
 
-def _isolate_ends(q: Prepared, p: Prepared) -> list[sub.Isolated | None]:
-    """The subdivision's candidates for p's two end points on q, both in one call (each row
-    of isolate_points is subdivided on its own, so each point's candidates are those a call
-    of its own gives, in the same order; the numpy loop's cost is per level, not per row).
-    None for each where q is a point (locate_all decides that case without subdividing)."""
-    if q.is_point:
-        return [None, None]
-    points = p.pts[[0, -1]]
-    tols = np.array([_locate_tolerance(q, x) for x in points])
-    iso = sub.isolate_points(np.stack([q.pts, q.pts]), points, tols)
-    found: list[sub.Isolated | None] = []
-    for g in (0, 1):
-        roots, left = iso.root_pair == g, iso.left_pair == g
-        found.append(
-            sub.Isolated(
-                iso.root_pair[roots],
-                iso.root_s[roots],
-                iso.root_t[roots],
-                iso.left_pair[left],
-                iso.left_s0[left],
-                iso.left_t0[left],
-                iso.left_width[left],
-            )
+def _isolate_ends(
+    curves: Sequence[Prepared], others: Sequence[Prepared]
+) -> list[tuple[sub.Isolated | None, sub.Isolated | None]]:
+    """The subdivision's candidates for the two end points of others[j] on curves[j], every
+    j in one isolate_points call (the curves of one degree and dimension). Each row is
+    subdivided on its own, so each point's candidates are those a call of its own gives, in
+    the same order; the numpy loop's cost is per level, not per row. (None, None) where the
+    curve is a point (locate_all decides that case without subdividing)."""
+    rows = [j for j, q in enumerate(curves) if not q.is_point]
+    found: list[tuple[sub.Isolated | None, sub.Isolated | None]] = [(None, None)] * len(curves)
+    if not rows:
+        return found
+    points = np.concatenate([others[j].pts[[0, -1]] for j in rows])
+    tols = np.array(
+        [
+            _locate_tolerance(curves[j], points[2 * r + e])
+            for r, j in enumerate(rows)
+            for e in (0, 1)
+        ]
+    )
+    iso = sub.isolate_points(np.stack([curves[j].pts for j in rows for _ in (0, 1)]), points, tols)
+    # each row's roots and left pieces, in their order: a stable sort by row, then slices
+    root_order = np.argsort(iso.root_pair, kind="stable")
+    left_order = np.argsort(iso.left_pair, kind="stable")
+    bounds = np.arange(2 * len(rows) + 1)
+    root_at = np.searchsorted(iso.root_pair[root_order], bounds).tolist()
+    left_at = np.searchsorted(iso.left_pair[left_order], bounds).tolist()
+    roots = [x[root_order] for x in iso[:3]]
+    left = [x[left_order] for x in iso[3:]]
+    each = [
+        sub.Isolated(
+            *[x[root_at[g] : root_at[g + 1]] for x in roots],
+            *[x[left_at[g] : left_at[g + 1]] for x in left],
         )
+        for g in range(2 * len(rows))
+    ]
+    for r, j in enumerate(rows):
+        found[j] = (each[2 * r], each[2 * r + 1])
     return found
 
 
@@ -617,7 +631,10 @@ def intersect_pairs(pairs: list[tuple[Prepared, Prepared]]) -> list[list[Interse
 def _careful_pairs(
     pairs: list[tuple[Prepared, Prepared]], members: list[int], results: list[list[Intersection]]
 ) -> None:
-    setups = {k: _pair_setup(*pairs[k]) for k in members}
+    # the end points' subdivisions of every pair of the group in two calls
+    on_q = _isolate_ends([pairs[k][1] for k in members], [pairs[k][0] for k in members])
+    on_p = _isolate_ends([pairs[k][0] for k in members], [pairs[k][1] for k in members])
+    setups = {k: _pair_setup(*pairs[k], on_q[g], on_p[g]) for g, k in enumerate(members)}
     iso = sub.isolate(
         np.stack([pairs[k][0].pts for k in members]),
         np.stack([pairs[k][1].pts for k in members]),
@@ -659,11 +676,17 @@ def _check_pair(p: Prepared, q: Prepared) -> None:
             raise ValueError(f"{name} curve is a single point: use locate() on the other")
 
 
-def _pair_setup(p: Prepared, q: Prepared) -> tuple[list[Intersection], list[Box]]:
+def _pair_setup(
+    p: Prepared,
+    q: Prepared,
+    on_q: tuple[sub.Isolated | None, sub.Isolated | None] = (None, None),
+    on_p: tuple[sub.Isolated | None, sub.Isolated | None] = (None, None),
+) -> tuple[list[Intersection], list[Box]]:
     """The end points located on the other curve, and the shared stretches they bound:
-    (hits so far, rectangles of shared stretches for subdivision to skip)."""
+    (hits so far, rectangles of shared stretches for subdivision to skip). on_q, on_p: the
+    subdivision's candidates for p's end points on q and q's on p (_isolate_ends), where
+    found together with other pairs'; locate_all subdivides for those that are None."""
     ends: list[Intersection] = []
-    on_q, on_p = _isolate_ends(q, p), _isolate_ends(p, q)
     for s_end in (0, 1):
         for t in locate_all(
             q, p.pts[-1 if s_end else 0], p.exact_row(-1 if s_end else 0), None, True, on_q[s_end]

@@ -631,9 +631,14 @@ def intersect_pairs(pairs: list[tuple[Prepared, Prepared]]) -> list[list[Interse
 def _careful_pairs(
     pairs: list[tuple[Prepared, Prepared]], members: list[int], results: list[list[Intersection]]
 ) -> None:
-    # the end points' subdivisions of every pair of the group in two calls
-    on_q = _isolate_ends([pairs[k][1] for k in members], [pairs[k][0] for k in members])
-    on_p = _isolate_ends([pairs[k][0] for k in members], [pairs[k][1] for k in members])
+    # the end points' subdivisions of every pair of the group in two calls (one where the
+    # two curves of each pair have one degree)
+    ps, qs = [pairs[k][0] for k in members], [pairs[k][1] for k in members]
+    if ps[0].degree == qs[0].degree:
+        on_both = _isolate_ends(qs + ps, ps + qs)
+        on_q, on_p = on_both[: len(members)], on_both[len(members) :]
+    else:
+        on_q, on_p = _isolate_ends(qs, ps), _isolate_ends(ps, qs)
     setups = {k: _pair_setup(*pairs[k], on_q[g], on_p[g]) for g, k in enumerate(members)}
     iso = sub.isolate(
         np.stack([pairs[k][0].pts for k in members]),

@@ -430,21 +430,7 @@ def _isolate_ends(
         ]
     )
     iso = sub.isolate_points(np.stack([curves[j].pts for j in rows for _ in (0, 1)]), points, tols)
-    # each row's roots and left pieces, in their order: a stable sort by row, then slices
-    root_order = np.argsort(iso.root_pair, kind="stable")
-    left_order = np.argsort(iso.left_pair, kind="stable")
-    bounds = np.arange(2 * len(rows) + 1)
-    root_at = np.searchsorted(iso.root_pair[root_order], bounds).tolist()
-    left_at = np.searchsorted(iso.left_pair[left_order], bounds).tolist()
-    roots = [x[root_order] for x in iso[:3]]
-    left = [x[left_order] for x in iso[3:]]
-    each = [
-        sub.Isolated(
-            *[x[root_at[g] : root_at[g + 1]] for x in roots],
-            *[x[left_at[g] : left_at[g + 1]] for x in left],
-        )
-        for g in range(2 * len(rows))
-    ]
+    each = sub.split_rows(iso, 2 * len(rows))
     for r, j in enumerate(rows):
         found[j] = (each[2 * r], each[2 * r + 1])
     return found

@@ -77,6 +77,25 @@ class Isolated(NamedTuple):
     left_width: np.ndarray
 
 
+def split_rows(iso: Isolated, rows: int) -> list[Isolated]:
+    """iso's roots and left pieces row by row (rows: the pairs subdivided), each row's in
+    the order iso holds them: a stable sort by row, then slices."""
+    root_order = np.argsort(iso.root_pair, kind="stable")
+    left_order = np.argsort(iso.left_pair, kind="stable")
+    bounds = np.arange(rows + 1)
+    root_at = np.searchsorted(iso.root_pair[root_order], bounds).tolist()
+    left_at = np.searchsorted(iso.left_pair[left_order], bounds).tolist()
+    roots = [x[root_order] for x in iso[:3]]
+    left = [x[left_order] for x in iso[3:]]
+    return [
+        Isolated(
+            *[x[root_at[g] : root_at[g + 1]] for x in roots],
+            *[x[left_at[g] : left_at[g + 1]] for x in left],
+        )
+        for g in range(rows)
+    ]
+
+
 _HALF_CACHE: dict[int, tuple[np.ndarray, np.ndarray]] = {}
 
 
@@ -490,16 +509,22 @@ def _local_foot_newton(
     -(p - x)·p' / p'·p'), from u = 1/2: (u, converged), converged where the step fell below
     1e-12 inside the piece and p(u) is within slack of x. A foot point farther off is not
     the point: a one-to-one piece can curve round so that its box holds x while the foot
-    point Newton finds is a local minimum of the distance, with x on the piece elsewhere."""
+    point Newton finds is a local minimum of the distance, with x on the piece elsewhere.
+
+    Each row stops at its own first step not above 1e-15, as the compiled twin's does: a
+    row's result then does not depend on which other rows share the call (intersect
+    locates the end points of many pairs in one call)."""
     u = np.full(pieces.shape[0], 0.5)
     step = np.full(pieces.shape[0], np.inf)
+    active = np.ones(pieces.shape[0], dtype=bool)
     with np.errstate(all="ignore"):
         for _ in range(NEWTON_STEPS):
             value, slope = _eval_with_derivative(pieces, u)
             du = -np.einsum("kd,kd->k", value - points, slope) / np.einsum("kd,kd->k", slope, slope)
-            u = u + du
-            step = np.abs(du)
-            if not np.any(step > 1e-15):
+            u = np.where(active, u + du, u)
+            step = np.where(active, np.abs(du), step)
+            active &= step > 1e-15
+            if not active.any():
                 break
     converged = np.isfinite(step) & (step < 1e-12) & (u >= -INSIDE) & (u <= 1 + INSIDE)
     with np.errstate(all="ignore"):

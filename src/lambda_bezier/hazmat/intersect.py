@@ -342,14 +342,15 @@ def locate_all(
     exact_point: Sequence[Fraction | int | float] | None = None,
     within: float | None = None,
     exact_end: bool = False,
+    iso: sub.Isolated | None = None,
 ) -> list[float]:
     """Every t in [0, 1] with p(t) = point: within ON_CURVE of the curve's scale, or within
     the distance `within`, or (exact_end: the point is exact, an end of another curve)
-    within the rounding of evaluating p at t (_rounding_at)."""
+    within the rounding of evaluating p at t (_rounding_at). iso: the subdivision's
+    candidates for this point (_isolate_ends), where already found with others'."""
     point = np.asarray(point, dtype=float)
     exact_target = _integer_point(exact_point if exact_point is not None else point.tolist())
-    scale = max(p.scale, float(np.abs(point).max(initial=0.0)))
-    tol = ON_CURVE * scale
+    tol = _locate_tolerance(p, point)
     on_curve = ON_CURVE * max(p.size, float(np.abs(point).max(initial=0.0)))
     accept = on_curve if within is None else within
     found: list[float] = []
@@ -362,7 +363,8 @@ def locate_all(
             found.append(float(end))
     # candidates from the subdivision engine: Newton roots on one-to-one pieces, and the
     # middles of pieces that stay flat around the point (a zero of the speed there)
-    iso = sub.isolate_points(p.pts[None], point[None], np.array([tol]))
+    if iso is None:
+        iso = sub.isolate_points(p.pts[None], point[None], np.array([tol]))
     # a wide piece left over is flat to rounding and runs forward along its chord (a curve
     # on a line, say): one Newton start in its middle can overshoot out of the domain, so
     # bracket the point's projection on the chord, which is monotone along such a piece
@@ -400,6 +402,38 @@ def locate_all(
         elif _exact_distance(p, t, exact_target) < _exact_distance(p, found[same[0]], exact_target):
             found[same[0]] = float(t)
     return sorted(found)
+
+
+def _locate_tolerance(p: Prepared, point: np.ndarray) -> float:
+    """The distance within which locate_all's subdivision keeps pieces around the point."""
+    return ON_CURVE * max(p.scale, float(np.abs(point).max(initial=0.0)))
+
+
+def _isolate_ends(
+    curves: Sequence[Prepared], others: Sequence[Prepared]
+) -> list[tuple[sub.Isolated | None, sub.Isolated | None]]:
+    """The subdivision's candidates for the two end points of others[j] on curves[j], every
+    j in one isolate_points call (the curves of one degree and dimension). Each row is
+    subdivided on its own, so each point's candidates are those a call of its own gives, in
+    the same order; the numpy loop's cost is per level, not per row. (None, None) where the
+    curve is a point (locate_all decides that case without subdividing)."""
+    rows = [j for j, q in enumerate(curves) if not q.is_point]
+    found: list[tuple[sub.Isolated | None, sub.Isolated | None]] = [(None, None)] * len(curves)
+    if not rows:
+        return found
+    points = np.concatenate([others[j].pts[[0, -1]] for j in rows])
+    tols = np.array(
+        [
+            _locate_tolerance(curves[j], points[2 * r + e])
+            for r, j in enumerate(rows)
+            for e in (0, 1)
+        ]
+    )
+    iso = sub.isolate_points(np.stack([curves[j].pts for j in rows for _ in (0, 1)]), points, tols)
+    each = sub.split_rows(iso, 2 * len(rows))
+    for r, j in enumerate(rows):
+        found[j] = (each[2 * r], each[2 * r + 1])
+    return found
 
 
 def _rounding_at(p: Prepared, t: float) -> float:
@@ -583,7 +617,15 @@ def intersect_pairs(pairs: list[tuple[Prepared, Prepared]]) -> list[list[Interse
 def _careful_pairs(
     pairs: list[tuple[Prepared, Prepared]], members: list[int], results: list[list[Intersection]]
 ) -> None:
-    setups = {k: _pair_setup(*pairs[k]) for k in members}
+    # the end points' subdivisions of every pair of the group in two calls (one where the
+    # two curves of each pair have one degree)
+    ps, qs = [pairs[k][0] for k in members], [pairs[k][1] for k in members]
+    if ps[0].degree == qs[0].degree:
+        on_both = _isolate_ends(qs + ps, ps + qs)
+        on_q, on_p = on_both[: len(members)], on_both[len(members) :]
+    else:
+        on_q, on_p = _isolate_ends(qs, ps), _isolate_ends(ps, qs)
+    setups = {k: _pair_setup(*pairs[k], on_q[g], on_p[g]) for g, k in enumerate(members)}
     iso = sub.isolate(
         np.stack([pairs[k][0].pts for k in members]),
         np.stack([pairs[k][1].pts for k in members]),
@@ -625,20 +667,27 @@ def _check_pair(p: Prepared, q: Prepared) -> None:
             raise ValueError(f"{name} curve is a single point: use locate() on the other")
 
 
-def _pair_setup(p: Prepared, q: Prepared) -> tuple[list[Intersection], list[Box]]:
+def _pair_setup(
+    p: Prepared,
+    q: Prepared,
+    on_q: tuple[sub.Isolated | None, sub.Isolated | None] = (None, None),
+    on_p: tuple[sub.Isolated | None, sub.Isolated | None] = (None, None),
+) -> tuple[list[Intersection], list[Box]]:
     """The end points located on the other curve, and the shared stretches they bound:
-    (hits so far, rectangles of shared stretches for subdivision to skip)."""
+    (hits so far, rectangles of shared stretches for subdivision to skip). on_q, on_p: the
+    subdivision's candidates for p's end points on q and q's on p (_isolate_ends), where
+    found together with other pairs'; locate_all subdivides for those that are None."""
     ends: list[Intersection] = []
     for s_end in (0, 1):
         for t in locate_all(
-            q, p.pts[-1 if s_end else 0], p.exact_row(-1 if s_end else 0), None, True
+            q, p.pts[-1 if s_end else 0], p.exact_row(-1 if s_end else 0), None, True, on_q[s_end]
         ):
             cand = Intersection(float(s_end), t, "transversal")
             if not _dedupe(ends, cand):
                 ends.append(cand)
     for t_end in (0, 1):
         for s in locate_all(
-            p, q.pts[-1 if t_end else 0], q.exact_row(-1 if t_end else 0), None, True
+            p, q.pts[-1 if t_end else 0], q.exact_row(-1 if t_end else 0), None, True, on_p[t_end]
         ):
             cand = Intersection(s, float(t_end), "transversal")
             if not _dedupe(ends, cand):

@@ -77,6 +77,25 @@ class Isolated(NamedTuple):
     left_width: np.ndarray
 
 
+def split_rows(iso: Isolated, rows: int) -> list[Isolated]:
+    """iso's roots and left pieces row by row (rows: the pairs subdivided), each row's in
+    the order iso holds them: a stable sort by row, then slices."""
+    root_order = np.argsort(iso.root_pair, kind="stable")
+    left_order = np.argsort(iso.left_pair, kind="stable")
+    bounds = np.arange(rows + 1)
+    root_at = np.searchsorted(iso.root_pair[root_order], bounds).tolist()
+    left_at = np.searchsorted(iso.left_pair[left_order], bounds).tolist()
+    roots = [x[root_order] for x in iso[:3]]
+    left = [x[left_order] for x in iso[3:]]
+    return [
+        Isolated(
+            *[x[root_at[g] : root_at[g + 1]] for x in roots],
+            *[x[left_at[g] : left_at[g + 1]] for x in left],
+        )
+        for g in range(rows)
+    ]
+
+
 _HALF_CACHE: dict[int, tuple[np.ndarray, np.ndarray]] = {}
 
 
@@ -98,37 +117,61 @@ def half_matrices(degree: int) -> tuple[np.ndarray, np.ndarray]:
     return _HALF_CACHE[degree]
 
 
+# ufunc reductions called directly: ndarray.min/max/sum/all/any run the same reduction
+# through a Python wrapper, about a microsecond more on every call
+_lo = np.minimum.reduce
+_hi = np.maximum.reduce
+_sum = np.add.reduce
+_all = np.logical_and.reduce
+_any = np.logical_or.reduce
+
+
 def _boxes_apart(a: np.ndarray, b: np.ndarray, slack: np.ndarray) -> np.ndarray:
     sl = slack[:, None]
-    apart: np.ndarray = np.any(
-        (a.min(axis=1) > b.max(axis=1) + sl) | (b.min(axis=1) > a.max(axis=1) + sl), axis=1
-    )
+    apart: np.ndarray = _any((_lo(a, 1) > _hi(b, 1) + sl) | (_lo(b, 1) > _hi(a, 1) + sl), 1)
     return apart
+
+
+# The helpers below run once or twice per level on a few rows each: numpy's fixed cost per
+# call, not the arithmetic, is their time, so they make as few calls as they can (a norm as
+# sqrt of a sum of squares, the same operations np.linalg.norm runs; slices for np.diff;
+# the ufuncs' reductions for the array methods). The arithmetic is the same, so the results
+# are bit-identical to the plainer spelling.
 
 
 def _fat_line_apart(a: np.ndarray, b: np.ndarray, slack: np.ndarray) -> np.ndarray:
     """Planar pieces: True where a's control points lie beyond b's fat line (one side)."""
-    chord = b[:, -1] - b[:, 0]
+    base = b[:, :1]
+    chord = b[:, -1] - base[:, 0]
     length = np.hypot(chord[:, 0], chord[:, 1])
     ok = length > 0
-    normal = np.stack([-chord[:, 1], chord[:, 0]], axis=1) / np.where(ok, length, 1.0)[:, None]
-    base = b[:, :1]
+    scale = np.where(ok, length, 1.0)
+    normal = np.empty_like(chord)
+    np.negative(chord[:, 1], out=normal[:, 0])
+    normal[:, 1] = chord[:, 0]
+    normal /= scale[:, None]
     db = np.einsum("kid,kd->ki", b - base, normal)
     da = np.einsum("kid,kd->ki", a - base, normal)
-    apart = (da.min(axis=1) > db.max(axis=1) + slack) | (da.max(axis=1) < db.min(axis=1) - slack)
+    apart = (_lo(da, 1) > _hi(db, 1) + slack) | (_hi(da, 1) < _lo(db, 1) - slack)
     result: np.ndarray = apart & ok
     return result
+
+
+def _norm(x: np.ndarray) -> np.ndarray:
+    """np.linalg.norm(x, axis=-1), the same operations without its checks."""
+    norm: np.ndarray = np.sqrt(_sum(x * x, -1))
+    return norm
 
 
 def _thickness(pieces: np.ndarray) -> np.ndarray:
     """The largest distance of a piece's control points from its chord (inf for a closed
     piece, whose chord is a point)."""
-    chord = pieces[:, -1] - pieces[:, 0]
-    length = np.linalg.norm(chord, axis=1)
-    unit = chord / np.where(length > 0, length, 1.0)[:, None]
     rel = pieces - pieces[:, :1]
+    chord = rel[:, -1]
+    length = _norm(chord)
+    unit = chord / np.where(length > 0, length, 1.0)[:, None]
     along = np.einsum("kid,kd->ki", rel, unit)
-    off = np.linalg.norm(rel - along[..., None] * unit[:, None], axis=2).max(axis=1)
+    off = _hi(_norm(rel - along[..., None] * unit[:, None]), 1)
     thickness: np.ndarray = np.where(length > 0, off, np.inf)
     return thickness
 
@@ -138,9 +181,19 @@ def _runs_forward(pieces: np.ndarray) -> np.ndarray:
     chord: the piece never turns back along it (a flat piece that does can pass a point, or
     cross a line, twice)."""
     chord = pieces[:, -1] - pieces[:, 0]
-    along = np.einsum("kid,kd->ki", np.diff(pieces, axis=1), chord)
-    forward: np.ndarray = np.all(along >= 0, axis=1) & np.any(chord != 0, axis=1)
+    along = np.einsum("kid,kd->ki", pieces[:, 1:] - pieces[:, :-1], chord)
+    forward: np.ndarray = _all(along >= 0, 1) & _any(chord != 0, 1)
     return forward
+
+
+def _flat(pieces: np.ndarray, slack: np.ndarray, among: np.ndarray) -> np.ndarray:
+    """among & (thickness <= slack) & runs forward, the costlier tests only on rows that
+    can still pass (mostly none: a piece is flat to rounding only near the end)."""
+    flat = among & (_thickness(pieces) <= slack)
+    if flat.any():
+        rows = np.flatnonzero(flat)
+        flat[rows] = _runs_forward(pieces[rows])
+    return flat
 
 
 def _cones(pieces: np.ndarray, slack: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -155,18 +208,20 @@ def _cones(pieces: np.ndarray, slack: np.ndarray) -> tuple[np.ndarray, np.ndarra
     pieces it is not small (2^-20 wide at a tangency, about 1e-9 rad), and without it two
     cones that touch along the common tangent line can look
     apart, "isolating" a tangency as a crossing."""
-    h = np.diff(pieces, axis=1)
-    norm = np.linalg.norm(h, axis=2)
-    good = np.all(norm > 2 * BLUR * slack[:, None], axis=1)
+    h = pieces[:, 1:] - pieces[:, :-1]
+    norm = _norm(h)
+    blur_length = 2 * BLUR * slack[:, None]
+    good = _all(norm > blur_length, 1)
     unit = h / np.where(norm > 0, norm, 1.0)[..., None]
-    axis = unit.sum(axis=1)
-    axis_norm = np.linalg.norm(axis, axis=1)
+    axis = _sum(unit, 1)
+    axis_norm = _norm(axis)
     good &= axis_norm > 0
-    axis = axis / np.where(axis_norm > 0, axis_norm, 1.0)[:, None]
-    cos = np.einsum("kid,kd->ki", unit, axis).min(axis=1)
+    axis /= np.where(axis_norm > 0, axis_norm, 1.0)[:, None]
+    cos = _lo(np.einsum("kid,kd->ki", unit, axis), 1)
     with np.errstate(divide="ignore", invalid="ignore"):
-        blur = np.arcsin(np.clip(2 * BLUR * slack[:, None] / norm, 0.0, 1.0)).max(axis=1)
-    half = np.where(good & (cos > 0), np.arccos(np.clip(cos, -1.0, 1.0)) + blur, np.pi)
+        blur = _hi(np.arcsin(np.minimum(np.maximum(blur_length / norm, 0.0), 1.0)), 1)
+        spread = np.arccos(np.minimum(np.maximum(cos, -1.0), 1.0))
+    half = np.where(good & (cos > 0), spread + blur, np.pi)
     return axis, half
 
 
@@ -203,10 +258,15 @@ def local_newton(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray, 
     v = np.full(k, 0.5)
     step = np.full(k, np.inf)
     thrown = np.zeros(k, dtype=bool)
+    both = np.concatenate([a, b]) if a.shape[1] == b.shape[1] else None
     with np.errstate(all="ignore"):
         for _ in range(NEWTON_STEPS):
-            pa, da = _eval_with_derivative(a, u)
-            pb, db = _eval_with_derivative(b, v)
+            if both is not None:  # one evaluation of both sides (the same operations)
+                value, slope = _eval_with_derivative(both, np.concatenate([u, v]))
+                pa, pb, da, db = value[:k], value[k:], slope[:k], slope[k:]
+            else:
+                pa, da = _eval_with_derivative(a, u)
+                pb, db = _eval_with_derivative(b, v)
             f = pa - pb
             # normal equations of [da, -db] (du, dv) = -f
             aa = np.einsum("kd,kd->k", da, da)
@@ -281,9 +341,14 @@ def isolate(
         pa: np.ndarray, pb: np.ndarray, sl: np.ndarray, ia: np.ndarray, ib: np.ndarray
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         # one-to-one pieces whose tangent cones share no line hold one root at most
-        axis_a, half_a = _cones(pa, sl)
-        axis_b, half_b = _cones(pb, sl)
-        between = np.arccos(np.clip(np.abs(np.einsum("kd,kd->k", axis_a, axis_b)), 0.0, 1.0))
+        if pa.shape[1] == pb.shape[1]:  # both sides' cones in one set of calls
+            k = pa.shape[0]
+            axis, half = _cones(np.concatenate([pa, pb]), np.concatenate([sl, sl]))
+            axis_a, axis_b, half_a, half_b = axis[:k], axis[k:], half[:k], half[k:]
+        else:
+            axis_a, half_a = _cones(pa, sl)
+            axis_b, half_b = _cones(pb, sl)
+        between = np.arccos(np.minimum(np.abs(np.einsum("kd,kd->k", axis_a, axis_b)), 1.0))
         isolated = _pointed(half_a) & _pointed(half_b) & (between > half_a + half_b + CONE_MARGIN)
         if same:
             isolated &= np.abs(ia - ib) > 1
@@ -324,9 +389,11 @@ def _subdivide(
     left_a, right_a = half_matrices(a.shape[1] - 1)
     left_b, right_b = half_matrices(b.shape[1] - 1)
     pa, pb = a, b
-    pid = np.arange(a.shape[0])
-    ia = np.zeros(a.shape[0], dtype=np.int64)
-    ib = np.zeros(a.shape[0], dtype=np.int64)
+    # each row's (pair, index of its a piece, index of its b piece) in one array: one
+    # selection per filter instead of three (the loop's cost is numpy's per call)
+    ids = np.zeros((3, a.shape[0]), dtype=np.int64)
+    ids[0] = np.arange(a.shape[0])
+    pid, ia, ib = ids
     roots: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
     left: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = []
     level = 0
@@ -334,15 +401,20 @@ def _subdivide(
         sl = slack[pid]
         if fixed:  # the point within the piece's box, as the compiled loop writes it
             target, margin = pb[:, 0], sl[:, None]
-            keep = np.all(
-                (pa.min(axis=1) <= target + margin) & (target - margin <= pa.max(axis=1)), axis=1
-            )
+            keep = _all((_lo(pa, 1) <= target + margin) & (target - margin <= _hi(pa, 1)), 1)
         else:
             keep = ~_boxes_apart(pa, pb, sl)
         if planar:  # a point has no chord: only the piece's fat line can drop it
-            keep &= ~_fat_line_apart(pb, pa, sl)
-            if not fixed:
-                keep &= ~_fat_line_apart(pa, pb, sl)
+            if fixed or pa.shape[1] != pb.shape[1]:
+                keep &= ~_fat_line_apart(pb, pa, sl)
+                if not fixed:
+                    keep &= ~_fat_line_apart(pa, pb, sl)
+            else:  # both ways in one set of calls
+                k = pa.shape[0]
+                apart = _fat_line_apart(
+                    np.concatenate([pb, pa]), np.concatenate([pa, pb]), np.concatenate([sl, sl])
+                )
+                keep &= ~(apart[:k] | apart[k:])
         width = 0.5**level
         for pair, s0, s1, t0, t1 in skip:
             inside = (pid == pair) & (ia * width >= s0) & ((ia + 1) * width <= s1)
@@ -358,7 +430,8 @@ def _subdivide(
                 nb = near & (ia != ib)
                 drop[np.flatnonzero(nb)[_one_to_one_union(pa[nb], pb[nb], sl[nb])]] = True
                 keep &= ~drop
-        pa, pb, pid, ia, ib = pa[keep], pb[keep], pid[keep], ia[keep], ib[keep]
+        pa, pb, ids = pa[keep], pb[keep], ids[:, keep]
+        pid, ia, ib = ids
         if not pid.size:
             break
         if level == depth or children * pid.size > max_rows:
@@ -376,44 +449,44 @@ def _subdivide(
             )
             rest = np.ones(pid.size, dtype=bool)
             rest[hit] = False
-            pa, pb, pid, ia, ib = pa[rest], pb[rest], pid[rest], ia[rest], ib[rest]
+            pa, pb, ids = pa[rest], pb[rest], ids[:, rest]
+            pid, ia, ib = ids
             if not pid.size:
                 break
         # pieces flat to within the slack on both sides are as resolved as subdivision gets
         # (a tangency or a contact of higher order, within rounding of the input)
-        flat = (_thickness(pa) <= slack[pid]) & _runs_forward(pa)
-        if not fixed:
-            flat &= (_thickness(pb) <= slack[pid]) & _runs_forward(pb)
-        if same:
-            flat &= np.abs(ia - ib) > 1
+        sl = slack[pid]
+        flat = _flat(pa, sl, np.abs(ia - ib) > 1 if same else np.ones(pid.size, dtype=bool))
+        if not fixed and flat.any():
+            flat = _flat(pb, sl, flat)
         if flat.any():
             count = int(flat.sum())
             left.append((pid[flat], ia[flat] * width, ib[flat] * width, np.full(count, width)))
             rest = ~flat
-            pa, pb, pid, ia, ib = pa[rest], pb[rest], pid[rest], ia[rest], ib[rest]
+            pa, pb, ids = pa[rest], pb[rest], ids[:, rest]
+            pid, ia, ib = ids
             if not pid.size:
                 break
         al, ar = np.matmul(left_a, pa), np.matmul(right_a, pa)
-        if fixed:
+        k = pid.size
+        if fixed:  # children (2 ia, ib), (2 ia + 1, ib)
             pa, pb = np.concatenate([al, ar]), np.concatenate([pb, pb])
-            pid, ib = np.concatenate([pid, pid]), np.concatenate([ib, ib])
-            ia = np.concatenate([2 * ia, 2 * ia + 1])
-        else:
+            ids = np.concatenate([ids, ids], axis=1)
+            ids[1] *= 2
+            ids[1, k:] += 1
+        else:  # children (2 ia, 2 ib), (2 ia, 2 ib + 1), (2 ia + 1, 2 ib), (2 ia + 1, 2 ib + 1)
             bl, br = np.matmul(left_b, pb), np.matmul(right_b, pb)
             pa = np.concatenate([al, al, ar, ar])
             pb = np.concatenate([bl, br, bl, br])
-            pid = np.concatenate([pid, pid, pid, pid])
-            ia = np.concatenate([2 * ia, 2 * ia, 2 * ia + 1, 2 * ia + 1])
-            ib = np.concatenate([2 * ib, 2 * ib + 1, 2 * ib, 2 * ib + 1])
+            ids = np.concatenate([ids, ids, ids, ids], axis=1)
+            ids[1:] *= 2
+            ids[1, 2 * k :] += 1
+            ids[2].reshape(4, k)[1::2] += 1
+        pid, ia, ib = ids
         if same:
             ok_order = ia <= ib
-            pa, pb, pid, ia, ib = (
-                pa[ok_order],
-                pb[ok_order],
-                pid[ok_order],
-                ia[ok_order],
-                ib[ok_order],
-            )
+            pa, pb, ids = pa[ok_order], pb[ok_order], ids[:, ok_order]
+            pid, ia, ib = ids
         level += 1
     empty = np.zeros(0)
     if roots:
@@ -436,16 +509,22 @@ def _local_foot_newton(
     -(p - x)·p' / p'·p'), from u = 1/2: (u, converged), converged where the step fell below
     1e-12 inside the piece and p(u) is within slack of x. A foot point farther off is not
     the point: a one-to-one piece can curve round so that its box holds x while the foot
-    point Newton finds is a local minimum of the distance, with x on the piece elsewhere."""
+    point Newton finds is a local minimum of the distance, with x on the piece elsewhere.
+
+    Each row stops at its own first step not above 1e-15, as the compiled twin's does: a
+    row's result then does not depend on which other rows share the call (intersect
+    locates the end points of many pairs in one call)."""
     u = np.full(pieces.shape[0], 0.5)
     step = np.full(pieces.shape[0], np.inf)
+    active = np.ones(pieces.shape[0], dtype=bool)
     with np.errstate(all="ignore"):
         for _ in range(NEWTON_STEPS):
             value, slope = _eval_with_derivative(pieces, u)
             du = -np.einsum("kd,kd->k", value - points, slope) / np.einsum("kd,kd->k", slope, slope)
-            u = u + du
-            step = np.abs(du)
-            if not np.any(step > 1e-15):
+            u = np.where(active, u + du, u)
+            step = np.where(active, np.abs(du), step)
+            active &= step > 1e-15
+            if not active.any():
                 break
     converged = np.isfinite(step) & (step < 1e-12) & (u >= -INSIDE) & (u <= 1 + INSIDE)
     with np.errstate(all="ignore"):

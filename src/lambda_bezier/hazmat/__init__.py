@@ -24,7 +24,9 @@ ours (the name follows the `bezier` package's `hazmat`).
   the squared distance, compiled with numba (the `fast` extra; imported on use);
 - `closest_numpy`: the same branch and bound without numba (breadth first over a batch in
   numpy; depth first on Python floats for a few queries);
-- `intersect`: curve/curve intersection, self-intersection and point location;
+- `intersect`: curve/curve intersection and self-intersection;
+- `intersect_locate`: point location on a curve and the end points of a pair located on each
+  other (with the Newton starting points of unresolved pieces and the shared tolerances);
 - `intersect_subdivide`: the candidate isolation `intersect` runs on (subdivision on arrays);
 - `intersect_compiled`: the same loop compiled with numba (the `fast` extra; imported on use);
 - `intersect_certify`: the certified fast path for transversal crossings away from the ends
@@ -120,6 +122,7 @@ __all__ = [
     "intersect_compiled",
     "intersect_exact",
     "intersect_fold",
+    "intersect_locate",
     "intersect_prepared",
     "intersect_subdivide",
     "kernels",

@@ -430,7 +430,7 @@ class Found:
 
 
 def _clusters(pr: Pairs) -> list[np.ndarray]:
-    from .intersect import _interval_clusters
+    from .intersect_locate import _interval_clusters
 
     width = np.maximum(pr.s1 - pr.s0, pr.t1 - pr.t0)
     return _interval_clusters(pr.s0, pr.t0, width)

@@ -198,14 +198,18 @@ def _printed(defn: Definition, text: str, key: str) -> sp.Expr:
     return e
 
 
-def _show(defn: Definition, expr: sp.Expr) -> str:
-    """A derived value as the records write it: C as pi, e or exp(W)."""
-    if not defn.elementary:
-        return str(expr)
+def _constant(defn: Definition) -> str:
+    """C as the records write it: pi, e, or e**W."""
     real = elementary.realiser(defn)
     unit = real.frame.exp_unit
-    name = "pi" if real.space.constant == "pi" else "e" if unit == 1 else f"exp({unit})"
-    return str(expr.xreplace({C: sp.Symbol(name)}))
+    return "pi" if real.space.constant == "pi" else "e" if unit == 1 else f"e**({unit})"
+
+
+def _show(defn: Definition, expr: sp.Expr) -> str:
+    """A derived value as the records write it, C named."""
+    if not defn.elementary:
+        return str(expr)
+    return str(expr.xreplace({C: sp.Symbol(_constant(defn))}))
 
 
 def _parameter_values(record: dict, defn: Definition, side: str) -> dict[sp.Symbol, sp.Expr]:
@@ -244,7 +248,7 @@ def _verdict(diffs: list[str], checked: list[str]) -> Outcome:
 def _exactness(defn: Definition) -> str:
     if not defn.elementary:
         return "exact"
-    constant = elementary.realiser(defn).space.constant
+    constant = _constant(defn)
     return f"exact in Q[{constant}, 1/{constant}] (atoms)"
 
 

@@ -1,7 +1,8 @@
 """Surface claims about families in several parameters and atom families (issue #31):
 `lambda-bezier verify FAMILY.toml RECORDS.toml` decides the surface kinds for a polynomial
-two-parameter family (two_end_bezier), a trigonometric one (han_trig_cubic, entries in Q[pi])
-and hyperbolic ones (hyp_two_shape_cubic, hyp_square_quadratic, entries in Q[e, 1/e]).
+two-parameter family (two_end_bezier), an indexed one (lit_per_leg, lam(i)), a trigonometric
+one (han_trig_cubic, entries in Q[pi]) and hyperbolic ones (hyp_two_shape_cubic,
+hyp_square_quadratic, entries in Q[e, 1/e]).
 
 Each records file holds true claims and deliberate misprints. The true values were computed
 with SymPy on the families' functions directly; here a few of them are recomputed once more
@@ -24,7 +25,13 @@ report_mod = pytest.importorskip("derive.verify.report")
 
 DATA = Path(__file__).parent / "data" / "families"
 ROOT = Path(__file__).parent.parent
-FAMILIES = ("two_end_bezier", "han_trig_cubic", "hyp_two_shape_cubic", "hyp_square_quadratic")
+FAMILIES = (
+    "two_end_bezier",
+    "lit_per_leg",
+    "han_trig_cubic",
+    "hyp_two_shape_cubic",
+    "hyp_square_quadratic",
+)
 MISPRINTS = {
     "teb.s.corners_misprint",
     "teb.s.thin_plate_misprint",
@@ -33,6 +40,7 @@ MISPRINTS = {
     "hts.s.boundary_misprint",
     "hts.s.corners_misprint",
     "hsq.s.thin_plate_misprint",
+    "plg.s.values_misprint",
 }
 
 
@@ -68,7 +76,7 @@ def test_verify_finds_exactly_the_misprints(cli_report):
     verdicts = {r["id"]: r["verdict"] for r in cli_report["records"]}
     assert {rid for rid, v in verdicts.items() if v == "mismatch"} == MISPRINTS
     assert {rid for rid, v in verdicts.items() if v == "match"} == set(verdicts) - MISPRINTS
-    assert len(verdicts) == 21
+    assert len(verdicts) == 27
     for r in cli_report["records"]:
         if r["id"] in MISPRINTS:
             assert r["erratum"]["verdict"] == "match", r["id"]
@@ -218,14 +226,7 @@ def _one_record(tmp_path: Path, family_file: str, body: str) -> list[Path]:
     return [DATA / family_file, rec]
 
 
-def test_an_indexed_family_and_surface_continuity_are_refused_by_name(tmp_path):
-    paths = _one_record(
-        tmp_path,
-        "lit_per_leg.toml",
-        'claim = "surface_corners"\ndegrees = [2, 2]\ncorners = [[0, 0, 0, 0]]',
-    )
-    with pytest.raises(records_mod.RecordsError, match="indexed family 'lit_per_leg'"):
-        records_mod.load_paths(paths)
+def test_surface_continuity_is_refused_by_name(tmp_path):
     paths = _one_record(
         tmp_path,
         "two_end_bezier.toml",
@@ -233,6 +234,34 @@ def test_an_indexed_family_and_surface_continuity_are_refused_by_name(tmp_path):
     )
     with pytest.raises(records_mod.RecordsError, match="surface_continuity"):
         records_mod.load_paths(paths)
+
+
+def test_indexed_values_are_the_formula(records):
+    """plg.s.values from lit_per_leg.toml's basis formula, lam(k) = 0 outside 0..n-1 (SymPy
+    on the formula as printed there, not derive's basis)."""
+    sp = pytest.importorskip("sympy")
+    rec = records["plg.s.values"]
+
+    def basis(n, lams, x):
+        lam = [sp.Rational(v) for v in lams]
+        at = lambda k: lam[k] if 0 <= k <= n - 1 else 0  # noqa: E731
+        return [
+            sp.binomial(n, i) * x**i * (1 - x) ** (n - i)
+            + at(i) * x ** (i + 1) * (1 - x) ** (n - i)
+            - at(i - 1) * x**i * (1 - x) ** (n - i + 1)
+            for i in range(n + 1)
+        ]
+
+    bu = basis(2, ["1/2", "-1"], sp.Rational(1, 3))
+    bv = basis(3, ["0", "1", "1/4"], sp.Rational(1, 2))
+    assert [[str(a * c) for c in bv] for a in bu] == rec["values"]
+
+
+def test_an_indexed_parameter_outside_the_degree_is_named(records):
+    rec = dict(records["plg.s.values"])
+    rec["parameters_u"] = {**rec["parameters_u"], "lam(2)": "1"}  # degree 2 has lam(0), lam(1)
+    res = report_mod.check_record(rec)
+    assert "key parameters_u.lam(2): not a parameter at degree 2" in res.error
 
 
 @pytest.mark.parametrize(

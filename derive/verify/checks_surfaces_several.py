@@ -1,14 +1,15 @@
 """Surface claims (issue #31) about a family in several shape parameters that a records file
 defines: polynomial ones (checks_several.py's families) and trigonometric or hyperbolic ones
-(the atoms of checks_elementary.py). Indexed families (lam(i)) are not decided here yet.
+(the atoms of checks_elementary.py), plain or indexed (lam(i), polynomial).
 
 The surface is S(u, v) = Σ P_ij b_i(u; x_u) b_j(v; x_v) over the square domain × domain, the
 family's basis in both directions with its parameters renamed per direction: `lam` is
 `lam_u` along u and `lam_v` along v (independent symbols). A record gives parameter values as
-`parameters_u` / `parameters_v` = {lam = "1/2", mu = "0"} in the family's own names; its
-formulas (the energy matrix's entries) use the renamed symbols, and `pi` or `e` for an atom
-family. Points `uv` are points of the family's domain ("pi/6"); in `corners` and `side`, 0 and
-1 name the start and the end of the domain.
+`parameters_u` / `parameters_v` = {lam = "1/2", mu = "0"} in the family's own names
+({"lam(0)" = "1/2", ...} for an indexed family, every index of that direction's degree); its
+formulas (the energy matrix's entries) use the renamed symbols (lam_0_u for lam(0) along u),
+and `pi` or `e` for an atom family. Points `uv` are points of the family's domain ("pi/6");
+in `corners` and `side`, 0 and 1 name the start and the end of the domain.
 
 Every quantity is exact: a polynomial family's basis is SymPy polynomials from the family
 engine; an atom family's values and integrals are numbers in Q[C, 1/C] (C = pi or e^W, as
@@ -30,6 +31,7 @@ factor is, and is 1 exactly when both are numbers with product 1.
 
 from __future__ import annotations
 
+import re
 from fractions import Fraction
 
 import sympy as sp
@@ -55,7 +57,7 @@ def _several(record: dict) -> bool:
 
 def _defn(record: dict) -> Definition:
     defn = SEVERAL_FAMILIES[record["family"]]
-    if not isinstance(defn, Definition) or defn.indexed is not None:  # kind_problem refuses
+    if not isinstance(defn, Definition) or (defn.indexed is not None and defn.elementary):
         raise RecordError(f"surface claims are not decided for {defn.name!r}")
     if record.get("family_v", defn.name) != defn.name:
         raise RecordError(
@@ -64,8 +66,10 @@ def _defn(record: dict) -> Definition:
     return defn
 
 
-def _renamed(defn: Definition, side: str) -> dict[str, sp.Symbol]:
-    return {name: sp.Symbol(f"{name}_{side}") for name in defn.parameters}
+def _renamed(at: Definition, side: str) -> dict[str, sp.Symbol]:
+    """The parameters of one degree's family (lam_0, lam_1, ... for an indexed one) along
+    `side`: lam -> lam_u, lam_0 -> lam_0_u."""
+    return {name: sp.Symbol(f"{name}_{side}") for name in at.parameters}
 
 
 class _Direction:
@@ -76,10 +80,11 @@ class _Direction:
         if degree not in defn.degrees:
             raise RecordError(f"key degrees: {degree} is outside {defn.name}'s {defn.degrees}")
         self.defn, self.n, self.side = defn, degree, side
-        self.names = _renamed(defn, side)
+        self.at = defn.at_degree(degree)  # an indexed family's degree-n family
+        self.names = _renamed(self.at, side)
         self.real = elementary.realiser(defn) if defn.elementary else None
         if self.real is None:
-            polys = basis_polys(defn, degree)
+            polys = basis_polys(self.at, degree)
             gens = polys[0].gens  # t, then the parameters
             rename = {g: self.names[g.name] for g in gens[1:]}
             self.t = gens[0]
@@ -168,11 +173,10 @@ def _formula(text: str, symbols: dict, key: str, *, elementary_: bool = False) -
         raise RecordError(f"key {key}: {exc}") from None
 
 
-def _printed(defn: Definition, text: str, key: str) -> sp.Expr:
+def _printed(defn: Definition, text: str, key: str, du: _Direction, dv: _Direction) -> sp.Expr:
     """A printed number or formula in lam_u, ..., lam_v, ... (and pi or e for an atom family),
     with pi / e^W written as C."""
-    symbols = {**{s.name: s for s in _renamed(defn, "u").values()}}
-    symbols.update({s.name: s for s in _renamed(defn, "v").values()})
+    symbols = {s.name: s for s in (*du.names.values(), *dv.names.values())}
     if not defn.elementary:
         return sp.expand(_formula(text, symbols, key))
     real = elementary.realiser(defn)
@@ -212,25 +216,43 @@ def _show(defn: Definition, expr: sp.Expr) -> str:
     return str(expr.xreplace({C: sp.Symbol(_constant(defn))}))
 
 
-def _parameter_values(record: dict, defn: Definition, side: str) -> dict[sp.Symbol, sp.Expr]:
-    key = f"parameters_{side}"
+def _parameter_values(record: dict, direction: _Direction) -> dict[sp.Symbol, sp.Expr]:
+    """The record's `parameters_u` (or `_v`): every parameter of the direction's degree, by
+    the family's name (`lam(1)` for an indexed family)."""
+    key = f"parameters_{direction.side}"
     given = record.get(key)
     if given is None:
         return {}
-    names = _renamed(defn, side)
-    unknown = [name for name in given if name not in names]
-    if unknown:
-        raise RecordError(f"key {key}.{unknown[0]}: not a parameter ({', '.join(names)})")
-    missing = [name for name in names if name not in given]
+    names = direction.names
+    indexed = direction.defn.indexed
+    out = {}
+    for text_name, text in given.items():
+        name = text_name
+        if indexed is not None:
+            m = re.fullmatch(rf"{indexed.name}\((\d+)\)", text_name)  # type: ignore[attr-defined]
+            name = f"{indexed.name}_{m.group(1)}" if m else text_name  # type: ignore[attr-defined]
+        if name not in names:
+            raise RecordError(
+                f"key {key}.{text_name}: not a parameter at degree {direction.n} "
+                f"({', '.join(names)})"
+            )
+        value = _formula(text, {}, f"{key}.{text_name}")
+        if not value.is_Rational:
+            raise RecordError(f"key {key}.{text_name}: {text!r} is not an exact rational number")
+        out[names[name]] = value
+    missing = [name for name, sym in names.items() if sym not in out]
     if missing:
         raise RecordError(f"key {key}: no value of {missing[0]}")
-    out = {}
-    for name, text in given.items():
-        value = _formula(text, {}, f"{key}.{name}")
-        if not value.is_Rational:
-            raise RecordError(f"key {key}.{name}: {text!r} is not an exact rational number")
-        out[names[name]] = value
     return out
+
+
+def _both_values(record: dict, du: _Direction, dv: _Direction, required: bool) -> dict:
+    at = _parameter_values(record, du) | _parameter_values(record, dv)
+    if (at or required) and len(at) != len(du.names) + len(dv.names):
+        raise RecordError(
+            "keys parameters_u, parameters_v: give both" + ("" if required else ", or neither")
+        )
+    return at
 
 
 def _degrees(record: dict, defn: Definition) -> tuple[_Direction, _Direction]:
@@ -282,9 +304,7 @@ def check_surface_basis(record: dict, _context: object) -> Outcome:
         du, dv = _degrees(record, defn)
         if "uv" not in record:
             raise RecordError("key uv: printed `values` need the point `uv`")
-        at = _parameter_values(record, defn, "u") | _parameter_values(record, defn, "v")
-        if len(at) != 2 * len(defn.parameters):
-            raise RecordError("keys parameters_u, parameters_v: printed values need both")
+        at = _both_values(record, du, dv, required=True)
         a = [x.xreplace(at) for x in du.values(record["uv"][0], "uv[0]")]
         c = [x.xreplace(at) for x in dv.values(record["uv"][1], "uv[1]")]
         printed = record["values"]
@@ -293,7 +313,7 @@ def check_surface_basis(record: dict, _context: object) -> Outcome:
         for i, row in enumerate(printed):
             for j, text in enumerate(row):
                 want = sp.expand(a[i] * c[j])
-                if sp.expand(_printed(defn, text, f"values[{i}][{j}]") - want) != 0:
+                if sp.expand(_printed(defn, text, f"values[{i}][{j}]", du, dv) - want) != 0:
                     diffs.append(
                         f"B_{i}{j}({', '.join(record['uv'])}): printed {text}, "
                         f"derived {_show(defn, want)}"
@@ -426,9 +446,7 @@ def check_surface_energy_matrix(record: dict, _context: object) -> Outcome:
     size = (du.n + 1) * (dv.n + 1)
     if len(gram) != size or any(len(row) != size for row in gram):
         raise RecordError(f"key gram: a {size} x {size} matrix")
-    at = _parameter_values(record, defn, "u") | _parameter_values(record, defn, "v")
-    if at and len(at) != 2 * len(defn.parameters):
-        raise RecordError("keys parameters_u, parameters_v: give both, or neither")
+    at = _both_values(record, du, dv, required=False)
     want = _kronecker(du, dv, energy, at)
     how = "the Kronecker sum of the curves' Gram matrices"
     if not defn.elementary:
@@ -442,7 +460,10 @@ def check_surface_energy_matrix(record: dict, _context: object) -> Outcome:
     for r, row in enumerate(gram):
         for c, text in enumerate(row):
             derived = want[r][c]
-            if sp.expand(_printed(defn, text, f"gram[{r}][{c}]").xreplace(at) - derived) != 0:
+            if (
+                sp.expand(_printed(defn, text, f"gram[{r}][{c}]", du, dv).xreplace(at) - derived)
+                != 0
+            ):
                 diffs.append(f"Q[{r}][{c}]: printed {text}, derived {_show(defn, derived)}")
     where = " at the printed parameters" if at else ", every parameter"
     checked = [

@@ -242,7 +242,7 @@ def _nonzero_at_sample(e) -> bool:
 
 _SEVERAL = ("(families in several parameters)",)
 # the claim kinds of a C-Bezier family (checks_cbezier.py, reached through checks_several.py)
-# The surface kinds decided for a plain (not indexed) family in several parameters, polynomial
+# The surface kinds decided for a family in several parameters (plain or indexed), polynomial
 # or trigonometric / hyperbolic (checks_surfaces_several.py); surface_continuity is not yet.
 SEVERAL_SURFACE_KINDS = (
     "surface_basis",
@@ -293,11 +293,6 @@ def kind_problem(family: str, kind: str) -> str | None:
     if family in SEVERAL_FAMILIES:
         several = sorted(k for k, (fams, _) in KIND_FAMILIES.items() if fams == _SEVERAL)
         if kind in SEVERAL_SURFACE_KINDS:  # checks_surfaces_several.py
-            if getattr(SEVERAL_FAMILIES[family], "indexed", None) is not None:
-                return (
-                    f"claim kind {kind!r} is not decided for the indexed family {family!r} yet "
-                    "(surface claims know plain several-parameter and atom families)"
-                )
             return None
         if kind not in several:
             return (

@@ -41,6 +41,7 @@ MISPRINTS = {
     "hts.s.corners_misprint",
     "hsq.s.thin_plate_misprint",
     "plg.s.values_misprint",
+    "teb.s.g1_misprint",
 }
 
 
@@ -76,7 +77,7 @@ def test_verify_finds_exactly_the_misprints(cli_report):
     verdicts = {r["id"]: r["verdict"] for r in cli_report["records"]}
     assert {rid for rid, v in verdicts.items() if v == "mismatch"} == MISPRINTS
     assert {rid for rid, v in verdicts.items() if v == "match"} == set(verdicts) - MISPRINTS
-    assert len(verdicts) == 27
+    assert len(verdicts) == 30
     for r in cli_report["records"]:
         if r["id"] in MISPRINTS:
             assert r["erratum"]["verdict"] == "match", r["id"]
@@ -98,7 +99,10 @@ def test_each_kind_is_decided_exactly_for_each_family_kind(cli_report):
         "surface_boundary",
         "surface_corners",
         "surface_energy_matrix",
+        "surface_continuity",
     }
+    assert "re-proved exactly" in by_id["teb.s.c2"]["checked"][0]
+    assert "linearity in the columns" in by_id["htc.s.g1"]["checked"][0]
 
 
 def test_the_misprints_are_named(cli_report):
@@ -226,14 +230,41 @@ def _one_record(tmp_path: Path, family_file: str, body: str) -> list[Path]:
     return [DATA / family_file, rec]
 
 
-def test_surface_continuity_is_refused_by_name(tmp_path):
-    paths = _one_record(
-        tmp_path,
-        "two_end_bezier.toml",
-        'claim = "surface_continuity"\ncontinuity = "C1"\nweights = []',
-    )
-    with pytest.raises(records_mod.RecordsError, match="surface_continuity"):
-        records_mod.load_paths(paths)
+def test_the_true_c2_weights_solve_the_end_conditions(records):
+    """teb.s.c2 from two_end_bezier.toml's formula at n = 3: patch 2's first three rows solved
+    from p1^(r)(1) = p2^(r)(0), r = 0, 1, 2, with SymPy (not derive's join solve)."""
+    sp = pytest.importorskip("sympy")
+    t, lam1, mu1, lam2, mu2 = sp.symbols("t lam1 mu1 lam2 mu2")
+
+    def b(i, lam, mu):
+        def one(k):
+            return int(k == 0)
+
+        return (
+            t**i
+            * (1 - t) ** (3 - i)
+            * (
+                sp.binomial(3, i)
+                + (lam * one(i - 1) + mu * one(3 - i)) * (1 - t)
+                - (lam * one(i) + mu * one(3 - i - 1)) * t
+            )
+        )
+
+    p, q = sp.symbols("p0:4"), sp.symbols("q0:4")
+    s1 = sum(b(i, lam1, mu1) * p[i] for i in range(4))
+    s2 = sum(b(i, lam2, mu2) * q[i] for i in range(4))
+    eqs = [sp.diff(s1, t, r).subs(t, 1) - sp.diff(s2, t, r).subs(t, 0) for r in range(3)]
+    (sol,) = sp.solve(eqs, q[:3], dict=True)
+    names = {"lam1": lam1, "mu1": mu1, "lam2": lam2, "mu2": mu2}
+    printed = {
+        (w["row"], w["k"]): sp.sympify(w["weight"], locals=names)
+        for w in records["teb.s.c2"]["weights"]
+    }
+    for row in range(3):
+        expr = sp.expand(sol[q[row]])
+        for k in range(4):
+            want = sp.cancel(expr.coeff(p[3 - k]))
+            assert sp.cancel(printed.get((row, k), 0) - want) == 0, (row, k)
 
 
 def test_indexed_values_are_the_formula(records):

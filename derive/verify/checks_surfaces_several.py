@@ -26,7 +26,11 @@ factor is, and is 1 exactly when both are numbers with product 1.
   E = vec(P)ᵀ Q vec(P) (net read row by row), entries formulas, at `parameters_u` /
   `parameters_v` when given (else in the renamed symbols). Derived as the Kronecker sum of
   the curves' Gram matrices; for a polynomial family also by integrating the tensor-product
-  basis directly, and the two must agree.
+  basis directly, and the two must agree;
+* ``surface_continuity``: `continuity` (C1, G1, C2), `n` (for a family of several degrees),
+  `second_family` and `weights` [{row, source, k, weight}] in alpha, lam1, mu1, lam2, mu2
+  (the parameters across the boundary of patch 1 and patch 2), against derive's curve join
+  (derive/formulas/joins_several.py) applied column by column.
 """
 
 from __future__ import annotations
@@ -39,9 +43,11 @@ import sympy as sp
 from ..algebra import atoms as A
 from ..families.definition import Definition
 from ..families.engine import basis_polys
+from ..formulas import joins_several
 from ..formulas.surface_energy import ENERGIES
 from ..grammar import ParseError, parse_formula
 from . import checks_elementary as elementary
+from . import checks_joins_several
 from .checks_core import Outcome, checker
 from .checks_elementary import RecordError
 from .claim_families import SEVERAL_FAMILIES
@@ -471,3 +477,101 @@ def check_surface_energy_matrix(record: dict, _context: object) -> Outcome:
         + _exactness(defn)
     ]
     return _verdict(diffs, checked)
+
+
+_CONTINUITY_ORDER = {"C1": 1, "G1": 1, "C2": 2}
+
+
+@checker("surface_continuity", fits=_several)
+def check_surface_continuity(record: dict, _context: object) -> Outcome:
+    """Printed weights of patch 2's rows next to the boundary u = 1 of patch 1, against the
+    curve join derive solves for the family (derive/formulas/joins_several.py), applied column
+    by column; for a polynomial family with itself the reduction is re-proved exactly on the
+    tensor-product basis (a patch built with the derived weights meets with the continuity
+    along the whole boundary, for every net and parameter)."""
+    defn = _defn(record)
+    continuity = record.get("continuity")
+    if continuity not in _CONTINUITY_ORDER:
+        raise RecordError(f"key continuity: one of {', '.join(_CONTINUITY_ORDER)}")
+    second = record.get("second_family", defn.name)
+    degree = record.get("n")
+    if degree is None and not defn.elementary and len(defn.degrees) > 1:
+        raise RecordError(f"key n: the degree across the boundary (of {defn.degrees})")
+    if degree is not None and degree not in defn.degrees:
+        raise RecordError(f"key n: {degree} is not a degree of {defn.name} ({defn.degrees})")
+    forms, deg, constant = joins_several.end_forms(defn, degree)
+    at = defn.at_degree(deg) if defn.indexed is not None else defn
+    derived = joins_several.pair_weights(at, deg, forms, f"{defn.name}>{second}", continuity)
+    if isinstance(derived, str):
+        return Outcome("mismatch", [f"derive finds no closed-form {continuity} weights: {derived}"])
+    symbols = checks_joins_several._symbols(at)
+    degrees = {symbols["n"]: deg} | ({symbols["m"]: deg} if second == defn.name else {})
+    value = checks_joins_several._constant(constant)
+    want = {
+        key: w.xreplace({joins_several.C: value}).xreplace(degrees) for key, w in derived.items()
+    }
+    got = {}
+    for number, w in enumerate(record.get("weights") or []):
+        try:
+            e = parse_formula(w["weight"], {**symbols, "e": sp.E}, {}, elementary=True)
+        except ParseError as exc:
+            raise RecordError(f"key weights[{number}].weight: {exc}") from None
+        got[f"{w['row']},{w['source']},{w['k']}"] = e.xreplace(degrees)
+    if not got:
+        raise RecordError("key weights: no weight")
+    diffs = []
+    for key in sorted(set(got) | set(want)):
+        printed, wanted = got.get(key, sp.Integer(0)), want.get(key, sp.Integer(0))
+        if sp.cancel(sp.together(printed - wanted)) != 0:
+            row, src, k = key.split(",")
+            diffs.append(f"row {row}, {src} point {k}: printed {printed}, derived {wanted}")
+    how = f"{continuity} weights {defn.name} -> {second} at n = {deg}, exact"
+    if not defn.elementary and second == defn.name:
+        _columnwise(at, deg, want, continuity, symbols)
+        how += "; applied column by column on the tensor-product basis (re-proved exactly)"
+    else:
+        how += "; applied column by column (linearity in the columns)"
+    return _verdict(diffs, [how])
+
+
+def _columnwise(at: Definition, deg: int, weights: dict, continuity: str, symbols: dict) -> None:
+    """Raise unless two patches of `at` (degree `deg` both ways, patch 2's rows 0..order from
+    the weights) meet with the continuity along u = 1 identically in v, the nets and every
+    parameter (patch 1's x1, patch 2's x2, the shared v direction's own)."""
+    u, v = _X["u"], _X["v"]
+    polys = basis_polys(at, deg)
+    gens = polys[0].gens
+    side = {s: [symbols[f"{g.name}{k}"] for g in gens[1:]] for k, s in ((1, "1"), (2, "2"))}
+    along_v = [sp.Symbol(f"{g.name}_v") for g in gens[1:]]
+
+    def basis(x, params):
+        return [
+            p.as_expr().xreplace({gens[0]: x, **dict(zip(gens[1:], params, strict=True))})
+            for p in polys
+        ]
+
+    b1, b2, c = basis(u, side["1"]), basis(u, side["2"]), basis(v, along_v)
+    order = _CONTINUITY_ORDER[continuity]
+    alpha = symbols["alpha"] if continuity == "G1" else sp.Integer(1)
+    p1 = [[sp.Symbol(f"P1_{i}_{j}") for j in range(deg + 1)] for i in range(deg + 1)]
+    p2 = [[sp.Symbol(f"P2_{i}_{j}") for j in range(deg + 1)] for i in range(deg + 1)]
+    for row in range(order + 1):
+        for j in range(deg + 1):
+            p2[row][j] = sum(
+                (
+                    w * (p1[deg - int(k)][j] if src == "first" else p2[int(k)][j])
+                    for key, w in weights.items()
+                    for r_, src, k in [key.split(",")]
+                    if int(r_) == row
+                ),
+                sp.Integer(0),
+            )
+    s1 = sum(p1[i][j] * b1[i] * c[j] for i in range(deg + 1) for j in range(deg + 1))
+    s2 = sum(p2[i][j] * b2[i] * c[j] for i in range(deg + 1) for j in range(deg + 1))
+    for r in range(order + 1):
+        gap = sp.diff(s1, u, r).subs(u, 1) - alpha**r * sp.diff(s2, u, r).subs(u, 0)
+        if sp.cancel(sp.together(sp.expand(gap))) != 0:
+            raise AssertionError(
+                f"{continuity} of {at.name} at degree {deg}: the derived weights, applied "
+                f"column-wise, leave the order-{r} cross-boundary derivatives apart"
+            )

@@ -243,12 +243,13 @@ def _nonzero_at_sample(e) -> bool:
 _SEVERAL = ("(families in several parameters)",)
 # the claim kinds of a C-Bezier family (checks_cbezier.py, reached through checks_several.py)
 # The surface kinds decided for a family in several parameters (plain or indexed), polynomial
-# or trigonometric / hyperbolic (checks_surfaces_several.py); surface_continuity is not yet.
+# or trigonometric / hyperbolic (checks_surfaces_several.py).
 SEVERAL_SURFACE_KINDS = (
     "surface_basis",
     "surface_boundary",
     "surface_corners",
     "surface_energy_matrix",
+    "surface_continuity",
 )
 
 CBEZIER_KINDS = (

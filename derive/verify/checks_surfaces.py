@@ -26,9 +26,15 @@ import sympy as sp
 from ..grammar import SYMBOLS
 from .checks_core import Outcome, checker, derive_module
 from .checks_examples import _frac
-from .claim_families import FAMILIES
+from .claim_families import FAMILIES, SEVERAL_FAMILIES
 from .context import Context
 from .expr_parse import parse
+
+
+def _one_parameter(record: dict) -> bool:
+    """The records these checkers take: a family in several parameters has its surface claims
+    decided by checks_surfaces_several.py."""
+    return record["family"] not in SEVERAL_FAMILIES
 
 
 def _surface_energy():
@@ -82,7 +88,7 @@ def _guard(fn):
     return run
 
 
-@checker("surface_basis", requires=("surface_energy",))
+@checker("surface_basis", requires=("surface_energy",), fits=_one_parameter)
 @_guard
 def check_surface_basis(record: dict, ctx: Context) -> Outcome:
     """Printed values of the tensor-product basis at a point; its partition of unity (at the
@@ -135,7 +141,7 @@ def _line(text: str, m: int, n: int) -> tuple[str, int]:
     return kind, int(idx) if index is None else index if index <= top else -1
 
 
-@checker("surface_boundary", requires=("surface_energy",))
+@checker("surface_boundary", requires=("surface_energy",), fits=_one_parameter)
 @_guard
 def check_surface_boundary(record: dict, ctx: Context) -> Outcome:
     """On a side of the square the surface is the curve of one row (or column) of the net."""
@@ -172,7 +178,7 @@ def _curve(family: str, degree: int, index: int, var: str) -> flint.fmpq_mpoly:
     return se.tensor_basis("bezier", family, 0, degree)[index]
 
 
-@checker("surface_corners", requires=("surface_energy",))
+@checker("surface_corners", requires=("surface_energy",), fits=_one_parameter)
 @_guard
 def check_surface_corners(record: dict, ctx: Context) -> Outcome:
     """S(u, v) = P_ij at the listed corners, for every λ_u, λ_v."""
@@ -188,7 +194,7 @@ def check_surface_corners(record: dict, ctx: Context) -> Outcome:
     return _mismatch_or_match(diffs, [f"corners of {fu} x {fv}, degrees ({m}, {n}), every λ"])
 
 
-@checker("surface_continuity", requires=("surface_joins",))
+@checker("surface_continuity", requires=("surface_joins",), fits=_one_parameter)
 @_guard
 def check_surface_continuity(record: dict, ctx: Context) -> Outcome:
     """Printed weights of patch 2's rows next to the boundary, against the derived ones: in
@@ -260,7 +266,7 @@ def _continuity_per_degree(
     )
 
 
-@checker("surface_energy_matrix", requires=("surface_energy",))
+@checker("surface_energy_matrix", requires=("surface_energy",), fits=_one_parameter)
 @_guard
 def check_surface_energy_matrix(record: dict, ctx: Context) -> Outcome:
     """A printed coefficient matrix (scale · upper-triangular integers) of a surface energy."""

@@ -242,6 +242,16 @@ def _nonzero_at_sample(e) -> bool:
 
 _SEVERAL = ("(families in several parameters)",)
 # the claim kinds of a C-Bezier family (checks_cbezier.py, reached through checks_several.py)
+# The surface kinds decided for a family in several parameters (plain or indexed), polynomial
+# or trigonometric / hyperbolic (checks_surfaces_several.py).
+SEVERAL_SURFACE_KINDS = (
+    "surface_basis",
+    "surface_boundary",
+    "surface_corners",
+    "surface_energy_matrix",
+    "surface_continuity",
+)
+
 CBEZIER_KINDS = (
     "several_basis",
     "several_end_conditions",
@@ -283,6 +293,8 @@ def kind_problem(family: str, kind: str) -> str | None:
         return None
     if family in SEVERAL_FAMILIES:
         several = sorted(k for k, (fams, _) in KIND_FAMILIES.items() if fams == _SEVERAL)
+        if kind in SEVERAL_SURFACE_KINDS:  # checks_surfaces_several.py
+            return None
         if kind not in several:
             return (
                 f"claim kind {kind!r} is about a family with one shape parameter; {family!r} "

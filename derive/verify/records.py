@@ -170,6 +170,9 @@ PAYLOAD = {
     "second_family": {"type": "string", "pattern": r"^[a-z][a-z0-9_]*$"},
     "lam_u": _STR,
     "lam_v": _STR,
+    # ... of a family in several parameters (checks_surfaces_several.py), in its own names
+    "parameters_u": _NAMED_STRS,
+    "parameters_v": _NAMED_STRS,
     "uv": {**_STRS, "minItems": 2, "maxItems": 2},
     "values": _POINTS,
     "sums_to_one": {"type": "boolean"},

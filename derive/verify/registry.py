@@ -28,6 +28,7 @@ from . import (  # noqa: F401 - imported for their registrations
     checks_properties,
     checks_several,
     checks_surfaces,
+    checks_surfaces_several,
 )
 from .checks_core import CHECKERS, Outcome, Pending, claim_kind, missing_requirement
 from .claim_families import (

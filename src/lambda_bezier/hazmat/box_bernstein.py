@@ -23,20 +23,9 @@ from typing import Any
 import numpy as np
 
 from . import box_convex
-from .box_forms import bernstein, value
+from .box_forms import bernstein, float_value, value
 
 Box = list[tuple[Fraction, Fraction]]
-
-
-def _float_value(power: np.ndarray, point: tuple[float, ...]) -> float:
-    """`value` in floats (a screen before the exact evaluation)."""
-    out = power
-    for x in reversed(point):
-        acc = out[..., -1]
-        for k in range(out.shape[-1] - 2, -1, -1):
-            acc = acc * x + out[..., k]
-        out = acc
-    return float(out)
 
 
 def samples(box: Box) -> list[tuple[Fraction, ...]]:
@@ -213,7 +202,7 @@ def _minimum_by_halving(
         # more than rounding: most cannot, and the exact value dominated the cost
         nonlocal best_v, best_p, best_f
         if best_v is not None:
-            approx = _float_value(floats, tuple(float(x) for x in p))
+            approx = float_value(floats, tuple(float(x) for x in p))
             if not approx < best_f - 1e-14 * max(1.0, abs(best_f)):
                 return
         v = value(power, p)

@@ -21,7 +21,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from .box_forms import bernstein, value
+from .box_forms import bernstein, float_value, value
 
 Box = list[tuple[Fraction, Fraction]]
 
@@ -41,16 +41,6 @@ def derivative(power: np.ndarray, axis: int) -> np.ndarray:
     return out
 
 
-def _float_at(power: np.ndarray, point: np.ndarray) -> float:
-    out = power
-    for x in reversed(point):
-        acc = out[..., -1]
-        for k in range(out.shape[-1] - 2, -1, -1):
-            acc = acc * x + out[..., k]
-        out = acc
-    return float(out)
-
-
 def polish(floats: np.ndarray, box: Box, point: tuple[float, ...], steps: int = 12) -> np.ndarray:
     """A float local minimiser over the box near `point`: projected Newton steps (variables
     at an end of their range whose gradient pushes outward are held there; a step that does
@@ -61,14 +51,14 @@ def polish(floats: np.ndarray, box: Box, point: tuple[float, ...], steps: int = 
     grads = [derivative(floats, j) for j in range(count)]
     hess = [[derivative(grads[i], j) for j in range(count)] for i in range(count)]
     x: np.ndarray = np.clip(np.array(point, dtype=float), lo, hi)
-    fx = _float_at(floats, x)
+    fx = float_value(floats, x)
     for _ in range(steps):
-        g = np.array([_float_at(grads[i], x) for i in range(count)])
+        g = np.array([float_value(grads[i], x) for i in range(count)])
         held = ((x <= lo) & (g > 0)) | ((x >= hi) & (g < 0))
         free = np.flatnonzero(~held)
         if free.size == 0:
             break
-        h = np.array([[_float_at(hess[i][j], x) for j in free] for i in free])
+        h = np.array([[float_value(hess[i][j], x) for j in free] for i in free])
         try:
             step = np.linalg.solve(h, g[free])
         except np.linalg.LinAlgError:
@@ -79,7 +69,7 @@ def polish(floats: np.ndarray, box: Box, point: tuple[float, ...], steps: int = 
         for _ in range(30):
             y = x.copy()
             y[free] = np.clip(x[free] - t * step, lo[free], hi[free])
-            fy = _float_at(floats, y)
+            fy = float_value(floats, y)
             if fy <= fx:
                 break
             t /= 2
@@ -94,10 +84,6 @@ def polish(floats: np.ndarray, box: Box, point: tuple[float, ...], steps: int = 
 def _bernstein_range(power: np.ndarray, box: Box) -> tuple[Fraction, Fraction]:
     coeffs = bernstein(power, box)
     return Fraction(min(coeffs.flat)), Fraction(max(coeffs.flat))
-
-
-def _value(power: np.ndarray, point: tuple[Fraction, ...]) -> Fraction:
-    return value(power, point)
 
 
 def _least(g: Fraction, m: Fraction, a: Fraction, b: Fraction) -> Fraction:
@@ -192,13 +178,13 @@ def quadratic_floor(
     centre = [[(lows[i][j] + highs[i][j]) / 2 for j in range(count)] for i in range(count)]
     radius = [[(highs[i][j] - lows[i][j]) / 2 for j in range(count)] for i in range(count)]
     spectral = _spectral_bound(centre, radius, scale)
-    value = _value(power, point)
-    slopes = [_value(g, point) for g in grads]
+    here = value(power, point)
+    slopes = [value(g, point) for g in grads]
     best: Fraction | None = None
     for m in (dominance, spectral):
         if m is None:
             continue
-        floor = value
+        floor = here
         for i in range(count):
             a, b = region[i][0] - point[i], region[i][1] - point[i]
             floor += _least(slopes[i], m[i], a, b)
@@ -212,7 +198,7 @@ def weights(floats: np.ndarray, point: np.ndarray) -> list[Fraction]:
     positive): convex_floor's scaling."""
     out = []
     for i in range(floats.ndim):
-        h = _float_at(derivative(derivative(floats, i), i), point)
+        h = float_value(derivative(derivative(floats, i), i), point)
         out.append(Fraction(1.0 / np.sqrt(h)) if h > 0 and np.isfinite(h) else Fraction(1))
     return out
 

@@ -46,3 +46,14 @@ def value(power: np.ndarray, point: tuple[Fraction, ...]) -> Fraction:
             acc = acc * x + arr[..., k]
         out = acc
     return Fraction(out.item() if isinstance(out, np.ndarray) else out)  # type: ignore[arg-type]
+
+
+def float_value(power: np.ndarray, point: tuple[float, ...] | np.ndarray) -> float:
+    """`value` in floats (a screen before the exact evaluation, and the float Newton steps)."""
+    out = power
+    for x in reversed(point):
+        acc = out[..., -1]
+        for k in range(out.shape[-1] - 2, -1, -1):
+            acc = acc * x + out[..., k]
+        out = acc
+    return float(out)

@@ -131,7 +131,7 @@ def check_surface_basis(record: dict, ctx: Context) -> Outcome:
     return _mismatch_or_match(diffs, checked)
 
 
-_SIDES = {"u=0": ("u", 0), "u=1": ("u", 1), "v=0": ("v", 0), "v=1": ("v", 1)}
+SIDES = {"u=0": ("u", 0), "u=1": ("u", 1), "v=0": ("v", 0), "v=1": ("v", 1)}  # a record's side
 
 
 def _line(text: str, m: int, n: int) -> tuple[str, int]:
@@ -146,7 +146,7 @@ def _line(text: str, m: int, n: int) -> tuple[str, int]:
 def check_surface_boundary(record: dict, ctx: Context) -> Outcome:
     """On a side of the square the surface is the curve of one row (or column) of the net."""
     (fu, fv), m, n, basis = _basis(record, ctx)
-    var, at = _SIDES[record["side"]]
+    var, at = SIDES[record["side"]]
     want_kind = "row" if var == "u" else "column"
     want_index = (m if var == "u" else n) if at else 0
     kind, index = _line(record["line"], m, n)

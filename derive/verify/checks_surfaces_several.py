@@ -50,6 +50,7 @@ from . import checks_elementary as elementary
 from . import checks_joins_several
 from .checks_core import Outcome, checker
 from .checks_elementary import RecordError
+from .checks_surfaces import SIDES
 from .claim_families import SEVERAL_FAMILIES
 
 C = sp.Symbol("C")  # the family's transcendental constant (pi or e^W) of an atom family
@@ -330,9 +331,6 @@ def check_surface_basis(record: dict, _context: object) -> Outcome:
     return _verdict(diffs, checked)
 
 
-_SIDES = {"u=0": ("u", 0), "u=1": ("u", 1), "v=0": ("v", 0), "v=1": ("v", 1)}
-
-
 @checker("surface_boundary", fits=_several)
 def check_surface_boundary(record: dict, _context: object) -> Outcome:
     """On a side of the square the surface is the curve of one row (or column) of the net:
@@ -340,7 +338,7 @@ def check_surface_boundary(record: dict, _context: object) -> Outcome:
     are not identically zero, and the parameters of u and v are independent)."""
     defn = _defn(record)
     du, dv = _degrees(record, defn)
-    var, end = _SIDES[record["side"]]
+    var, end = SIDES[record["side"]]
     across, along = (du, dv) if var == "u" else (dv, du)
     kind, text = record["line"].split()
     want_kind = "row" if var == "u" else "column"

@@ -52,6 +52,8 @@ def test_each_record_has_its_verdict(results):
         "cb.symmetry_equation": "match",
         "cb.energy_matrix_e1": "match",
         "cb.energy_matrix_e1_misprint": "mismatch",
+        "cb.energy_e1": "match",
+        "cb.energy_e1_misprint": "mismatch",
         "cb.nonnegative": "match",
         "cb.nonnegative_wide_misprint": "mismatch",
         "cb.independence": "match",
@@ -168,12 +170,11 @@ def test_other_claim_kinds_are_refused_by_name(tmp_path):
     body = """
 [[record]]
 id = "e"
-claim = "several_energy"
+claim = "several_optimum"
 location = "x"
 k = 1
 control_points = [["0", "0"], ["1", "2"], ["3", "3"], ["4", "0"]]
 parameters = { alpha = "1" }
-expression = "1"
 """
     with pytest.raises(records_mod.RecordsError, match="several_basis, several_end_conditions"):
         _run(tmp_path, FAMILY, body)
@@ -337,3 +338,116 @@ def test_half_angle_claim_flips(records):
         "2*sin(alpha/2)*", "sin(alpha/2)*"
     )
     assert _check(rec) == "mismatch"
+
+
+# --------------------------------------------------------------------------- energies of points
+
+
+@pytest.mark.parametrize("alpha", ["0.4", "2.9"])
+def test_the_printed_energy_against_quadrature(records, alpha):
+    """cb.energy_e1's expression (read by the records grammar, evaluated by mpmath) is
+    int_0^alpha |p'(t)|^2 dt by mpmath quadrature of the file's written functions, so its
+    "match" is the derivation agreeing with an independent number; the misprint is not."""
+    import sympy as sp
+
+    from derive.grammar import parse_formula
+
+    a = mp.mpf(alpha)
+    ders = _written_derivatives(_defn(), 1)
+    sym = sp.Symbol("alpha")
+
+    def printed(rid: str):
+        text = _by_id(records, rid)["expression"]
+        expr = parse_formula(text, {"alpha": sym}, {}, elementary=True, frequency=("alpha",))
+        return sp.lambdify(sym, expr, modules="mpmath")(a)
+
+    pts = _by_id(records, "cb.energy_e1")["control_points"]
+    coords = [[mp.mpf(v) for v in row] for row in pts]
+
+    def speed2(t):
+        return sum(
+            sum(ders[j](t, a) * coords[j][dim] for j in range(len(coords))) ** 2
+            for dim in range(len(coords[0]))
+        )
+
+    want = mp.quad(speed2, [0, a])
+    assert abs(printed("cb.energy_e1") - want) < mp.mpf(10) ** -25 * (1 + abs(want))
+    assert abs(printed("cb.energy_e1_misprint") - want) > mp.mpf(10) ** -3
+
+
+def test_an_energy_flips_and_its_erratum_matches(records):
+    rec = _by_id(records, "cb.energy_e1")
+    rec["control_points"][3][1] = "2"  # y scaled by 2: E_1 gains 3 G33
+    assert _check(rec) == "mismatch"
+    rec = _by_id(records, "cb.energy_e1_misprint")
+    rec["expression"] = rec["erratum"]["expression"]
+    assert _check(rec) == "match"
+
+
+def test_energies_on_the_unit_interval_and_hyperbolic(tmp_path):
+    # u = t/alpha: E_1 in u is alpha times E_1 in t (u-derivatives carry alpha, du = dt/alpha)
+    energy = "(1 - cos(alpha))/(alpha - sin(alpha))"
+    body = """
+[[record]]
+id = "u.energy"
+claim = "several_energy"
+location = "x"
+k = 1
+control_points = [["1"], ["0"], ["0"], ["1"]]
+expression = "alpha*ENERGY"
+[[record]]
+id = "u.energy_in_t"
+claim = "several_energy"
+location = "x"
+k = 1
+control_points = [["1"], ["0"], ["0"], ["1"]]
+expression = "ENERGY"
+"""
+    got = _run(tmp_path, DATA / "c_bezier_cubic_unit.toml", body.replace("ENERGY", energy))
+    assert got == {"u.energy": "match", "u.energy_in_t": "mismatch"}
+    # int_0^alpha cosh(t)^2 dt / sinh(alpha)^2, written by hand
+    body = """
+[[record]]
+id = "h.energy"
+claim = "several_energy"
+location = "x"
+k = 1
+control_points = [["0"], ["1"]]
+expression = "(alpha/2 + sinh(2*alpha)/4)/sinh(alpha)**2"
+[[record]]
+id = "h.energy_sign"
+claim = "several_energy"
+location = "x"
+k = 1
+control_points = [["0"], ["1"]]
+expression = "(alpha/2 - sinh(2*alpha)/4)/sinh(alpha)**2"
+"""
+    got = _run(tmp_path, DATA / "hyp_interpolating.toml", body)
+    assert got == {"h.energy": "match", "h.energy_sign": "mismatch"}
+
+
+@pytest.mark.parametrize(
+    ("extra", "message"),
+    [
+        (
+            'k = 1\ncontrol_points = [["0"], ["1"], ["2"], ["3"]]\nparameters = { alpha = "1" }\n'
+            'expression = "1"',
+            "key parameters: E_1 of 'c_bezier_cubic' is claimed as a function",
+        ),
+        ('k = 1\ncontrol_points = [["0"], ["1"], ["2"]]\nexpression = "1"', "4 points"),
+        ('k = 4\ncontrol_points = [["0"], ["1"], ["2"], ["3"]]\nexpression = "1"', "key k"),
+        ('k = 1\ncontrol_points = [["0"], ["1"], ["2"], ["3"]]', "key expression"),
+        ('k = 1\ncontrol_points = [["0"], ["1"], ["2"], ["3"]]\nexpression = "t"', "depends on t"),
+        (
+            'k = 1\ncontrol_points = [["0"], ["x"], ["2"], ["3"]]\nexpression = "1"',
+            "control_points",
+        ),
+    ],
+)
+def test_bad_energy_records_are_record_errors(tmp_path, extra, message):
+    body = '\n[[record]]\nid = "e"\nclaim = "several_energy"\nlocation = "x"\n' + extra + "\n"
+    path = tmp_path / "r.toml"
+    path.write_text('schema_version = 2\nsource = "t"\nfamily = "c_bezier_cubic"\n' + body)
+    (rec,) = records_mod.load_paths([FAMILY, path])
+    res = report_mod.check_record(rec)
+    assert res.error is not None and message in str(res.error), res.error

@@ -29,6 +29,7 @@ from ..formulas import cbezier as F
 from ..grammar import SYMBOLS, ParseError, parse_formula
 from .checks_core import Outcome
 from .checks_elementary import RecordError, curve_call, walk_equations
+from .checks_elementary import _point_rows as point_rows
 
 KINDS = ("several_basis", "several_end_conditions", "several_symmetry")
 
@@ -222,6 +223,51 @@ def energy_matrix(record: dict, defn: CDefinition) -> Outcome:
         f"the {size} x {size} Gram matrix of E_{k} in {defn.parameter}'s own parameter "
         f"({'u on [0, 1]' if defn.form == 'unit' else 't on [0, ' + defn.parameter + ']'}), "
         f"exact in Q({defn.parameter}, {defn.space} of {defn.parameter})"
+    ]
+    return Outcome("mismatch" if diffs else "match", diffs, checked)
+
+
+def energy(record: dict, defn: CDefinition) -> Outcome:
+    """E_k = sum over coordinates of P^T G_k(alpha) P for the record's rational control points,
+    from derive's exact Gram matrix (formulas/cbezier.gram, in the family's own parameter as
+    in `energy_matrix`), against the printed ``expression``: a function of alpha, sin and cos
+    (or sinh and cosh) of alpha, decided exactly modulo the circle (the hyperbola)."""
+    k, pts, text = record.get("k"), record.get("control_points"), record.get("expression")
+    if k is None or not pts:
+        raise RecordError("keys k and control_points are required")
+    if not isinstance(k, int) or not 1 <= k <= defn.degree:
+        raise RecordError(f"key k: an order of derivative 1..{defn.degree}")
+    if len(pts) != defn.degree + 1:
+        raise RecordError(f"key control_points: {defn.degree + 1} points for {defn.name}")
+    if record.get("parameters"):
+        raise RecordError(
+            f"key parameters: E_{k} of {defn.name!r} is claimed as a function of "
+            f"{defn.parameter} (its {defn.space} functions sit in the field); leave "
+            "`parameters` out and write the expression in " + defn.parameter
+        )
+    if not text:
+        raise RecordError(f"key expression: the claimed E_{k} as a function of {defn.parameter}")
+    rows = point_rows(pts)
+    scale = cb.A ** (2 * k - 1) if defn.form == "unit" else sp.Integer(1)
+    gram = F.gram(defn, k)
+    derived = sp.Integer(0)
+    for dim in range(len(rows[0])):
+        for a, ra in enumerate(rows):
+            for c, rc in enumerate(rows):
+                weight = ra[dim] * rc[dim]
+                if weight:
+                    derived += sp.Rational(weight.numerator, weight.denominator) * gram[a][c]
+    derived *= scale
+    got, base = _constant(defn, text, "expression")
+    diffs = []
+    if not cb.is_zero(got - _in_base(derived, base, defn.hyperbolic), defn.hyperbolic):
+        diffs.append(
+            f"E_{k}: printed {text}, derived {F.show(cb.reduce(derived, defn.hyperbolic), defn)}"
+        )
+    checked = [
+        f"E_{k} of the {len(rows)} control points in {len(rows[0])} coordinates, in "
+        f"{defn.parameter}'s own parameter, exact in Q({defn.parameter}, {defn.space} of "
+        f"{defn.parameter})"
     ]
     return Outcome("mismatch" if diffs else "match", diffs, checked)
 

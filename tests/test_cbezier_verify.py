@@ -5,11 +5,11 @@ end values and derivatives (orders 0..2) at t = 0 and t = alpha, the end conditi
 and the symmetry, with right-hand sides computed by SymPy from the family file's formulas, and
 the Gram matrix of E_1 (checked here against mpmath quadrature of the written functions),
 non-negativity, independence, G1 and C1 join weights (checked here against the curves' end
-derivatives by mpmath) and an end derivative in half angles; four records are deliberate
-misprints. Each verdict must agree with its expectation, and changing a
-single term of a matching record must flip it (a verdict cannot be fixed in advance). The same
-claims are checked on the family written on [0, 1] (sin(alpha*t)) and on a hyperbolic family
-that is not a partition of unity.
+derivatives by mpmath), an end derivative in half angles and E_1 of a polygon (checked here
+against mpmath quadrature of |p'|^2); five records are deliberate misprints. Each verdict
+must agree with its expectation, and changing a single term of a matching record must flip it
+(a verdict cannot be fixed in advance). The same claims are checked on the family written on
+[0, 1] (sin(alpha*t)) and on a hyperbolic family that is not a partition of unity.
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """Claims about a family whose parameter is the length of the domain or sits inside sin/cos
 (C-Bezier families, derive/families/cbezier.py; issue #30).
 
-A records file defining such a family uses three of checks_several.py's claim kinds, which
+A records file defining such a family uses these of checks_several.py's claim kinds, which
 hand its records here:
 
 * ``several_basis`` and ``several_end_conditions``: ``equations`` in t, the parameter (alpha),
@@ -10,6 +10,9 @@ hand its records here:
   ``Subs`` (end values and derivatives at t = 0 and t = alpha, partition of unity, a function
   itself). An equation mentioning i is checked at every i = 0..n.
 * ``several_symmetry`` (no ``swap``): b_i(t) = b_(n-i)(alpha - t) for every i.
+* ``several_energy_matrix`` and ``several_energy`` (``k``, rational ``control_points`` and an
+  ``expression`` in alpha: E_k = sum P^T G_k(alpha) P), from derive's exact Gram matrices;
+* ``several_nonnegative``, ``several_independence`` and ``several_join`` (below).
 
 Each side is built from the derived functions (the family file's functions converted to exact
 atoms by cbezier.read_table) and the difference is converted to the same atoms t^k, cos(m t),
@@ -30,8 +33,6 @@ from ..grammar import SYMBOLS, ParseError, parse_formula
 from .checks_core import Outcome
 from .checks_elementary import RecordError, curve_call, walk_equations
 from .checks_elementary import _point_rows as point_rows
-
-KINDS = ("several_basis", "several_end_conditions", "several_symmetry")
 
 _I, _N = SYMBOLS["i"], SYMBOLS["n"]
 _FUNCTIONS = {name: sp.Function(name) for name in ("P", "b", "p")}

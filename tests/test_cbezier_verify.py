@@ -242,6 +242,27 @@ def _written_derivatives(defn, order: int):
     ]
 
 
+def _own_derivatives(defn, order: int):
+    """As `_written_derivatives`, in the family's own parameter: the file's texts read by the
+    grammar as they stand (u on [0, 1] for a family written there, no change of variable)."""
+    import sympy as sp
+
+    from derive.families import cbezier as cb
+    from derive.grammar import parse_formula
+
+    out = []
+    for text in defn.functions_texts:
+        f = parse_formula(
+            text,
+            {"t": cb.T, defn.parameter: cb.A},
+            {},
+            elementary=True,
+            frequency=(defn.parameter,),
+        )
+        out.append(sp.lambdify((cb.T, cb.A), sp.diff(f, cb.T, order), modules="mpmath"))
+    return out
+
+
 @pytest.mark.parametrize("alpha", ["0.7", "2.9"])
 def test_the_printed_gram_matrix_against_quadrature(records, alpha):
     """Each printed entry (read by the records grammar, evaluated by mpmath) is the integral
@@ -263,25 +284,34 @@ def test_the_printed_gram_matrix_against_quadrature(records, alpha):
             assert abs(printed - want) < mp.mpf(10) ** -25 * (1 + abs(want)), (r, c)
 
 
-@pytest.mark.parametrize("continuity", ["C1", "C2", "G1", "G2"])
-def test_join_weights_make_the_joint(continuity):
-    """derive's weights, evaluated in floats of mpmath, put into a second curve: the joint
-    conditions hold for the curves built from the written formulas (mpmath derivatives)."""
+def _defn_of(path: Path):
+    import tomllib
+
+    from derive.families import cbezier as cb
+
+    return cb.read_table(tomllib.loads(path.read_text())["family"])
+
+
+def _assert_joint(first, second, continuity):
+    """derive's weights, evaluated in floats of mpmath, put into a curve of `second` after one
+    of `first`: the joint conditions hold for the curves built from the written formulas
+    (mpmath derivatives, each in its own parameter: t, or u for a family on [0, 1])."""
     import random
 
     import sympy as sp
 
     from derive.formulas import cbezier_joins as J
 
-    defn = _defn()
-    n = defn.degree
-    weights = J.weights(defn, continuity)
+    n, m = first.degree, second.degree
+    weights = J.weights(first, continuity, second)
     rnd = random.Random(7)
     a1, a2, g, d = mp.mpf("1.3"), mp.mpf("2.4"), mp.mpf("0.8"), mp.mpf("0.35")
     p1 = [mp.mpf(rnd.uniform(-2, 2)) for _ in range(n + 1)]  # one coordinate suffices
-    p2 = [mp.mpf(rnd.uniform(-2, 2)) for _ in range(n + 1)]
-    env = {J.A1: a1, J.S1: mp.sin(a1), J.C1: mp.cos(a1), J.A2: a2, J.S2: mp.sin(a2)}
-    env.update({J.C2: mp.cos(a2), J.G_ALPHA: g, J.G_D: d})
+    p2 = [mp.mpf(rnd.uniform(-2, 2)) for _ in range(m + 1)]
+    sin1, cos1 = (mp.sinh, mp.cosh) if first.hyperbolic else (mp.sin, mp.cos)
+    sin2, cos2 = (mp.sinh, mp.cosh) if second.hyperbolic else (mp.sin, mp.cos)
+    env = {J.A1: a1, J.S1: sin1(a1), J.C1: cos1(a1), J.A2: a2, J.S2: sin2(a2)}
+    env.update({J.C2: cos2(a2), J.G_ALPHA: g, J.G_D: d})
     rows = J.ORDER[continuity] + 1
     for row in range(rows):
         value = mp.mpf(0)
@@ -291,13 +321,15 @@ def test_join_weights_make_the_joint(continuity):
                 x = p1[n - int(k)] if src == "first" else p2[int(k)]
                 value += sp.lambdify(list(env), w, modules="mpmath")(*env.values()) * x
         p2[row] = value
-    ders = [_written_derivatives(defn, r) for r in range(3)]
+    ders1 = [_own_derivatives(first, r) for r in range(3)]
+    ders2 = [_own_derivatives(second, r) for r in range(3)]
+    end = 1 if first.form == "unit" else a1
 
     def end1(r):
-        return sum(ders[r][j](a1, a1) * p1[j] for j in range(n + 1))
+        return sum(ders1[r][j](end, a1) * p1[j] for j in range(n + 1))
 
     def start2(r):
-        return sum(ders[r][j](0, a2) * p2[j] for j in range(n + 1))
+        return sum(ders2[r][j](0, a2) * p2[j] for j in range(m + 1))
 
     tol = mp.mpf(10) ** -20
     assert abs(end1(0) - start2(0)) < tol
@@ -308,6 +340,76 @@ def test_join_weights_make_the_joint(continuity):
         assert abs(end1(1) - g * start2(1)) < tol * (1 + abs(end1(1)))
         if continuity == "G2":
             assert abs(end1(2) - g**2 * start2(2) - d * start2(1)) < tol * (1 + abs(end1(2)))
+
+
+@pytest.mark.parametrize("continuity", ["C1", "C2", "G1", "G2"])
+def test_join_weights_make_the_joint(continuity):
+    _assert_joint(_defn(), _defn(), continuity)
+
+
+@pytest.mark.parametrize(
+    ("first", "second", "continuity"),
+    [
+        ("c_bezier_cubic", "hc_bezier_cubic", "C2"),
+        ("hc_bezier_cubic", "c_bezier_cubic", "G2"),
+        ("c_bezier_cubic", "c_bezier_cubic_unit", "C2"),
+        ("c_bezier_cubic_unit", "hyp_interpolating", "G1"),
+    ],
+)
+def test_join_weights_across_families_make_the_joint(first, second, continuity):
+    """Joins between two different C-Bezier families: trigonometric into hyperbolic and back,
+    [0, alpha] into [0, 1], and a cubic into a degree-1 family."""
+    _assert_joint(_defn_of(DATA / f"{first}.toml"), _defn_of(DATA / f"{second}.toml"), continuity)
+
+
+_CROSS = """
+[[record]]
+id = "x.c1"
+claim = "several_join"
+location = "x"
+pair = "PAIR"
+continuity = "C1"
+join_weights = { "0,first,0" = "1", "1,first,0" = "1 + RATIO", "1,first,1" = "-RATIO" }
+"""
+# P2_1 = P1_3 + c(alpha1)/h(alpha2) (P1_3 - P1_2): the end slopes of b_3 at alpha1 and of b_1
+# at 0, c(x) = (1 - cos x)/(x - sin x), h(x) = (cosh x - 1)/(sinh x - x), written by hand
+_C1 = "(1 - cos(alpha1))/(alpha1 - sin(alpha1))"
+_H2 = "(cosh(alpha2) - 1)/(sinh(alpha2) - alpha2)"
+
+
+def _cross(tmp_path, body: str):
+    path = tmp_path / "r.toml"
+    path.write_text('schema_version = 2\nsource = "t"\nfamily = "c_bezier_cubic"\n' + body)
+    recs = records_mod.load_paths([FAMILY, DATA / "hc_bezier_cubic.toml", path])
+    return report_mod.check_record(recs[0])
+
+
+def test_a_join_with_another_family_is_decided(tmp_path):
+    pair = "c_bezier_cubic>hc_bezier_cubic"
+    right = _CROSS.replace("PAIR", pair).replace("RATIO", f"({_C1})/({_H2})")
+    assert _cross(tmp_path, right).outcome.verdict == "match"
+    inverted = _CROSS.replace("PAIR", pair).replace("RATIO", f"({_H2})/({_C1})")
+    assert _cross(tmp_path, inverted).outcome.verdict == "mismatch"
+    # h of the first curve's parameter: cosh(alpha1) is outside the trigonometric side's field
+    swapped = _CROSS.replace("PAIR", pair).replace("RATIO", f"({_C1})/({_H2.replace('2', '1')})")
+    res = _cross(tmp_path, swapped)
+    assert res.error is not None and re.search(
+        r"(sinh|cosh)\(alpha1\) is not in the field of alpha1", str(res.error)
+    )
+    halved = _CROSS.replace("PAIR", pair).replace("RATIO", f"({_C1})/(2*{_H2})")
+    assert _cross(tmp_path, halved).outcome.verdict == "mismatch"
+
+
+@pytest.mark.parametrize(
+    ("pair", "message"),
+    [
+        ("c_bezier_cubic>bernstein", "'bernstein': joins of 'c_bezier_cubic' are decided with"),
+        ("hc_bezier_cubic>hc_bezier_cubic", "with 'c_bezier_cubic' on one side"),
+    ],
+)
+def test_a_join_with_a_family_not_decided_is_refused(tmp_path, pair, message):
+    res = _cross(tmp_path, _CROSS.replace("PAIR", pair).replace("RATIO", "1"))
+    assert res.error is not None and message in str(res.error), res.error
 
 
 def test_box_claims_flip_and_refuse(tmp_path):

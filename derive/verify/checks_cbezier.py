@@ -358,17 +358,20 @@ def independence(record: dict, defn: CDefinition) -> Outcome:
 # --------------------------------------------------------------------------- joins
 
 
-def _side_value(defn: CDefinition, text: str, key: str) -> sp.Expr:
-    """A join weight as written: n, m, the G constants alpha and d, the curves' parameters
-    (the family's parameter with suffix 1 and 2) and sin/cos (sinh/cosh) of integer
-    multiples of those, converted to (alpha1, S1, C1, alpha2, S2, C2) exactly."""
+def _side_value(first: CDefinition, second: CDefinition, text: str, key: str) -> sp.Expr:
+    """A join weight as written: n and m (the two degrees), the G constants alpha and d, the
+    curves' parameters (first's parameter with suffix 1, second's with suffix 2) and sin/cos
+    (sinh/cosh) of integer multiples of those, each in its own curve's field, converted to
+    (alpha1, S1, C1, alpha2, S2, C2) exactly."""
     from ..formulas import cbezier_joins as J
 
-    name = defn.parameter
-    sides = {f"{name}1": (J.A1, J.S1, J.C1), f"{name}2": (J.A2, J.S2, J.C2)}
+    sides = {
+        f"{first.parameter}1": (J.A1, J.S1, J.C1, first),
+        f"{second.parameter}2": (J.A2, J.S2, J.C2, second),
+    }
     symbols = {
-        "n": sp.Integer(defn.degree),
-        "m": sp.Integer(defn.degree),
+        "n": sp.Integer(first.degree),
+        "m": sp.Integer(second.degree),
         "alpha": J.G_ALPHA,
         "d": J.G_D,
         **{k: v[0] for k, v in sides.items()},
@@ -377,66 +380,96 @@ def _side_value(defn: CDefinition, text: str, key: str) -> sp.Expr:
         expr = parse_formula(text, symbols, {}, elementary=True, frequency=tuple(sides))
     except ParseError as exc:
         raise RecordError(f"key {key}: {exc}") from None
-    calls = expr.atoms(sp.sin, sp.cos, sp.sinh, sp.cosh)
-    hyperbolic = {isinstance(c, sp.sinh | sp.cosh) for c in calls}
-    if hyperbolic and hyperbolic != {defn.hyperbolic}:
-        raise RecordError(f"key {key}: {text!r} is not in the {defn.space} family's field")
     swap = {}
-    for call in calls:
+    for call in sorted(expr.atoms(sp.sin, sp.cos, sp.sinh, sp.cosh), key=str):
         arg = call.args[0]
-        for a, s, c in sides.values():
+        for name, (a, s, c, defn) in sides.items():
             ratio = sp.cancel(arg / a)
             if ratio.is_Integer and 0 < abs(ratio) <= cb.MAX_HARMONIC:
+                if isinstance(call, sp.sinh | sp.cosh) != defn.hyperbolic:
+                    written = call.func(sp.Symbol(name) * ratio)
+                    raise RecordError(
+                        f"key {key}: {written} is not in the field of {name} "
+                        f"({defn.name!r} is {defn.space})"
+                    )
                 cm, sm = cb.angle(int(ratio), defn.hyperbolic)
                 value = cm if isinstance(call, sp.cos | sp.cosh) else sm
                 swap[call] = value.xreplace({cb.C: c, cb.S: s})
                 break
         else:
             raise RecordError(
-                f"key {key}: {call}: the argument is not an integer multiple of {name}1 or {name}2"
+                f"key {key}: {call}: the argument is not an integer multiple of "
+                + " or ".join(sides)
             )
     return expr.xreplace(swap)
 
 
+def _pair(pair: str, defn: CDefinition) -> tuple[CDefinition, CDefinition]:
+    """The two C-Bezier families of `pair` ("first>second"), one of them the record's own;
+    the other defined in this run (its family file given to verify too)."""
+    from .claim_families import SEVERAL_FAMILIES
+
+    names = pair.split(">")
+    if len(names) != 2 or defn.name not in names:
+        raise RecordError(
+            f"key pair: {pair!r}: 'first>second' with {defn.name!r} on one side "
+            f"(e.g. {defn.name}>{defn.name})"
+        )
+    found = []
+    for name in names:
+        other = SEVERAL_FAMILIES.get(name.strip())
+        if not isinstance(other, CDefinition):
+            raise RecordError(
+                f"key pair: {name.strip()!r}: joins of {defn.name!r} are decided with C-Bezier "
+                "families (the parameter is the length of the domain or sits inside sin/cos) "
+                "defined in this run, given to verify as FAMILY.toml files; joins with built-in, "
+                "polynomial or fixed-domain trigonometric families are not decided for them"
+            )
+        found.append(other)
+    return found[0], found[1]
+
+
 def join(record: dict, defn: CDefinition) -> Outcome:
-    """several_join between two curves of this family (formulas/cbezier_joins.py): each
-    printed weight against the derived one, exactly; a derived weight the record leaves out
-    is a discrepancy too."""
+    """several_join between two C-Bezier curves, of this family or of this one and another
+    C-Bezier family of the run (formulas/cbezier_joins.py): each printed weight against the
+    derived one, exactly; a derived weight the record leaves out is a discrepancy too."""
     from ..formulas import cbezier_joins as J
 
     pair, continuity = record.get("pair"), record.get("continuity")
     claimed = record.get("join_weights")
     if not isinstance(pair, str) or continuity not in J.ORDER:
         raise RecordError("keys pair ('first>second') and continuity (C1, C2, G1, G2) are required")
-    if pair != f"{defn.name}>{defn.name}":
-        raise RecordError(
-            f"key pair: {pair!r}: joins of {defn.name!r} are decided with itself only "
-            f"({defn.name}>{defn.name})"
-        )
-    if record.get("n") not in (None, defn.degree):
-        raise RecordError(f"key n: {defn.name} has the one degree {defn.degree}")
+    first, second = _pair(pair, defn)
+    if record.get("n") not in (None, first.degree):
+        raise RecordError(f"key n: {first.name} has the one degree {first.degree}")
     if not isinstance(claimed, dict) or not claimed:
         raise RecordError("key join_weights: a table {'row,src,k': formula} is required")
     try:
-        derived = J.weights(defn, continuity)
+        derived = J.weights(first, continuity, second)
     except ValueError as exc:
         return Outcome("mismatch", [f"derive finds no {continuity} weights: {exc}"])
     diffs, checked = [], []
+    space = (
+        f"their {first.space} functions"
+        if first.hyperbolic == second.hyperbolic
+        else f"the {first.space} and {second.space} functions"
+    )
     for key in sorted(set(claimed) | set(derived)):
         want = derived.get(key, sp.Integer(0))
         if key not in claimed:
             diffs.append(
-                f"{pair} {continuity} weight {key}: not printed, derived {J.show(want, defn)}"
+                f"{pair} {continuity} weight {key}: not printed, derived "
+                f"{J.show(want, first, second)}"
             )
             continue
-        got = _side_value(defn, claimed[key], f"join_weights.{key}")
-        if J.reduce2(got - want, defn.hyperbolic) != 0:
+        got = _side_value(first, second, claimed[key], f"join_weights.{key}")
+        if J.reduce2(got - want, first.hyperbolic, second.hyperbolic) != 0:
             diffs.append(
                 f"{pair} {continuity} weight {key}: printed {claimed[key]}, derived "
-                f"{J.show(want, defn)}"
+                f"{J.show(want, first, second)}"
             )
         checked.append(
-            f"{pair} {continuity} weight {key}: exact in Q({defn.parameter}1, "
-            f"{defn.parameter}2, their {defn.space} functions, alpha, d)"
+            f"{pair} {continuity} weight {key}: exact in Q({first.parameter}1, "
+            f"{second.parameter}2, {space}, alpha, d)"
         )
     return Outcome("mismatch" if diffs else "match", diffs, checked)

@@ -1,6 +1,8 @@
-"""Join weights between two curves of one C-Bezier family (issue #30): the leading control
-points of the second curve that make the joint C1, C2, G1 or G2, solved from the family's
-exact end derivatives (formulas/cbezier.end_table), each curve with its own parameter.
+"""Join weights between two C-Bezier curves (issue #30), of one family or of two (degrees n
+and m, trigonometric or hyperbolic, on [0, alpha] or [0, 1], each side its own): the leading
+control points of the second curve that make the joint C1, C2, G1 or G2, solved from the
+families' exact end derivatives (formulas/cbezier.end_table), each curve with its own
+parameter.
 
 The conventions are derive/formulas/joins.py's, in each curve's own parameter (t on
 [0, alpha], or u on [0, 1] for a family written there, whose r-th derivative carries
@@ -34,25 +36,28 @@ def _side(value: sp.Expr, side: int) -> sp.Expr:
     return value.xreplace({A: a, S: s, C: c})
 
 
-def weights(defn: CDefinition, continuity: str) -> dict[str, sp.Expr]:
-    """{"row,src,k": weight} for the join of a curve of the family (side 1) into another
-    (side 2); ValueError when the conditions do not determine the points. The r-th condition
-    involves P2_0..P2_r (and given points beyond the solved ones): solved in order, each
-    point a linear combination {(src, k): weight} (no general solver: it is triangular)."""
+def weights(
+    defn: CDefinition, continuity: str, other: CDefinition | None = None
+) -> dict[str, sp.Expr]:
+    """{"row,src,k": weight} for the join of a curve of `defn` (side 1) into a curve of
+    `other` (side 2; `defn` again when None); ValueError when the conditions do not determine
+    the points. The r-th condition involves P2_0..P2_r (and given points beyond the solved
+    ones): solved in order, each point a linear combination {(src, k): weight} (no general
+    solver: it is triangular)."""
+    other = defn if other is None else other
     order = ORDER[continuity]
-    n = defn.degree
-    if order > n:
-        raise ValueError(f"{continuity} needs degree >= {order}, the family has {n}")
-    ends = F.end_table(defn)
-    unit = defn.form == "unit"
+    n, m = defn.degree, other.degree
+    if order > min(n, m):
+        raise ValueError(f"{continuity} needs degree >= {order}, the families have {n} and {m}")
+    ends1, ends2 = F.end_table(defn), F.end_table(other)
 
     def first(r: int) -> dict:  # C1^(r) at its end: X_k = P1_(n-k)
-        scale = A1**r if unit else sp.Integer(1)
-        return {("first", n - j): scale * _side(ends[j][1][r], 1) for j in range(n + 1)}
+        scale = A1**r if defn.form == "unit" else sp.Integer(1)
+        return {("first", n - j): scale * _side(ends1[j][1][r], 1) for j in range(n + 1)}
 
     def second(r: int) -> dict:  # C2^(r)(0): the coefficients of P2_i
-        scale = A2**r if unit else sp.Integer(1)
-        return {i: scale * _side(ends[i][0][r], 2) for i in range(n + 1)}
+        scale = A2**r if other.form == "unit" else sp.Integer(1)
+        return {i: scale * _side(ends2[i][0][r], 2) for i in range(m + 1)}
 
     def add(out: dict, combo: dict, factor: sp.Expr) -> None:
         for key, w in combo.items():
@@ -86,17 +91,19 @@ def weights(defn: CDefinition, continuity: str) -> dict[str, sp.Expr]:
     for row, combo in enumerate(solved):
         for (src, k), w in sorted(combo.items()):
             w = sp.together(w)
-            if sp.fraction(w)[0] != 0 and reduce2(w, defn.hyperbolic) != 0:
+            if sp.fraction(w)[0] != 0 and reduce2(w, defn.hyperbolic, other.hyperbolic) != 0:
                 out[f"{row},{src},{k}"] = w
     return out
 
 
-def reduce2(expr: sp.Expr, hyperbolic: bool) -> sp.Expr:
-    """The numerator of expr reduced modulo both circles (hyperbolas): 0 exactly when expr
-    is zero as a function of the two angles."""
+def reduce2(expr: sp.Expr, hyperbolic: bool, second_hyperbolic: bool | None = None) -> sp.Expr:
+    """The numerator of expr reduced modulo both circles (hyperbolas; side 2's as
+    `second_hyperbolic` says, the same as side 1's when None): 0 exactly when expr is zero
+    as a function of the two angles."""
     num = sp.fraction(sp.together(expr))[0]
-    for s, c in ((S1, C1), (S2, C2)):
-        square = c**2 - 1 if hyperbolic else 1 - c**2
+    hyp2 = hyperbolic if second_hyperbolic is None else second_hyperbolic
+    for s, c, hyp in ((S1, C1, hyperbolic), (S2, C2, hyp2)):
+        square = c**2 - 1 if hyp else 1 - c**2
         poly = sp.Poly(sp.expand(num), s)
         num = sp.expand(
             sum(
@@ -107,12 +114,13 @@ def reduce2(expr: sp.Expr, hyperbolic: bool) -> sp.Expr:
     return num
 
 
-def show(expr: sp.Expr, defn: CDefinition) -> str:
-    name = defn.parameter
-    sin, cos = (sp.sinh, sp.cosh) if defn.hyperbolic else (sp.sin, sp.cos)
-    a1, a2 = sp.Symbol(f"{name}1"), sp.Symbol(f"{name}2")
+def show(expr: sp.Expr, defn: CDefinition, other: CDefinition | None = None) -> str:
+    other = defn if other is None else other
+    a1, a2 = sp.Symbol(f"{defn.parameter}1"), sp.Symbol(f"{other.parameter}2")
+    sin1, cos1 = (sp.sinh, sp.cosh) if defn.hyperbolic else (sp.sin, sp.cos)
+    sin2, cos2 = (sp.sinh, sp.cosh) if other.hyperbolic else (sp.sin, sp.cos)
     return str(
         sp.factor(expr).xreplace(
-            {S1: sin(a1), C1: cos(a1), S2: sin(a2), C2: cos(a2), A1: a1, A2: a2}
+            {S1: sin1(a1), C1: cos1(a1), S2: sin2(a2), C2: cos2(a2), A1: a1, A2: a2}
         )
     )

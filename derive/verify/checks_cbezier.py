@@ -1,7 +1,7 @@
 """Claims about a family whose parameter is the length of the domain or sits inside sin/cos
 (C-Bezier families, derive/families/cbezier.py; issue #30).
 
-A records file defining such a family uses three of checks_several.py's claim kinds, which
+A records file defining such a family uses these of checks_several.py's claim kinds, which
 hand its records here:
 
 * ``several_basis`` and ``several_end_conditions``: ``equations`` in t, the parameter (alpha),
@@ -10,6 +10,9 @@ hand its records here:
   ``Subs`` (end values and derivatives at t = 0 and t = alpha, partition of unity, a function
   itself). An equation mentioning i is checked at every i = 0..n.
 * ``several_symmetry`` (no ``swap``): b_i(t) = b_(n-i)(alpha - t) for every i.
+* ``several_energy_matrix`` and ``several_energy`` (``k``, rational ``control_points`` and an
+  ``expression`` in alpha: E_k = sum P^T G_k(alpha) P), from derive's exact Gram matrices;
+* ``several_nonnegative``, ``several_independence`` and ``several_join`` (below).
 
 Each side is built from the derived functions (the family file's functions converted to exact
 atoms by cbezier.read_table) and the difference is converted to the same atoms t^k, cos(m t),
@@ -29,8 +32,7 @@ from ..formulas import cbezier as F
 from ..grammar import SYMBOLS, ParseError, parse_formula
 from .checks_core import Outcome
 from .checks_elementary import RecordError, curve_call, walk_equations
-
-KINDS = ("several_basis", "several_end_conditions", "several_symmetry")
+from .checks_elementary import _point_rows as point_rows
 
 _I, _N = SYMBOLS["i"], SYMBOLS["n"]
 _FUNCTIONS = {name: sp.Function(name) for name in ("P", "b", "p")}
@@ -226,6 +228,51 @@ def energy_matrix(record: dict, defn: CDefinition) -> Outcome:
     return Outcome("mismatch" if diffs else "match", diffs, checked)
 
 
+def energy(record: dict, defn: CDefinition) -> Outcome:
+    """E_k = sum over coordinates of P^T G_k(alpha) P for the record's rational control points,
+    from derive's exact Gram matrix (formulas/cbezier.gram, in the family's own parameter as
+    in `energy_matrix`), against the printed ``expression``: a function of alpha, sin and cos
+    (or sinh and cosh) of alpha, decided exactly modulo the circle (the hyperbola)."""
+    k, pts, text = record.get("k"), record.get("control_points"), record.get("expression")
+    if k is None or not pts:
+        raise RecordError("keys k and control_points are required")
+    if not isinstance(k, int) or not 1 <= k <= defn.degree:
+        raise RecordError(f"key k: an order of derivative 1..{defn.degree}")
+    if len(pts) != defn.degree + 1:
+        raise RecordError(f"key control_points: {defn.degree + 1} points for {defn.name}")
+    if record.get("parameters"):
+        raise RecordError(
+            f"key parameters: E_{k} of {defn.name!r} is claimed as a function of "
+            f"{defn.parameter} (its {defn.space} functions sit in the field); leave "
+            "`parameters` out and write the expression in " + defn.parameter
+        )
+    if not text:
+        raise RecordError(f"key expression: the claimed E_{k} as a function of {defn.parameter}")
+    rows = point_rows(pts)
+    scale = cb.A ** (2 * k - 1) if defn.form == "unit" else sp.Integer(1)
+    gram = F.gram(defn, k)
+    derived = sp.Integer(0)
+    for dim in range(len(rows[0])):
+        for a, ra in enumerate(rows):
+            for c, rc in enumerate(rows):
+                weight = ra[dim] * rc[dim]
+                if weight:
+                    derived += sp.Rational(weight.numerator, weight.denominator) * gram[a][c]
+    derived *= scale
+    got, base = _constant(defn, text, "expression")
+    diffs = []
+    if not cb.is_zero(got - _in_base(derived, base, defn.hyperbolic), defn.hyperbolic):
+        diffs.append(
+            f"E_{k}: printed {text}, derived {F.show(cb.reduce(derived, defn.hyperbolic), defn)}"
+        )
+    checked = [
+        f"E_{k} of the {len(rows)} control points in {len(rows[0])} coordinates, in "
+        f"{defn.parameter}'s own parameter, exact in Q({defn.parameter}, {defn.space} of "
+        f"{defn.parameter})"
+    ]
+    return Outcome("mismatch" if diffs else "match", diffs, checked)
+
+
 # --------------------------------------------------------------------------- box properties
 
 
@@ -311,17 +358,20 @@ def independence(record: dict, defn: CDefinition) -> Outcome:
 # --------------------------------------------------------------------------- joins
 
 
-def _side_value(defn: CDefinition, text: str, key: str) -> sp.Expr:
-    """A join weight as written: n, m, the G constants alpha and d, the curves' parameters
-    (the family's parameter with suffix 1 and 2) and sin/cos (sinh/cosh) of integer
-    multiples of those, converted to (alpha1, S1, C1, alpha2, S2, C2) exactly."""
+def _side_value(first: CDefinition, second: CDefinition, text: str, key: str) -> sp.Expr:
+    """A join weight as written: n and m (the two degrees), the G constants alpha and d, the
+    curves' parameters (first's parameter with suffix 1, second's with suffix 2) and sin/cos
+    (sinh/cosh) of integer multiples of those, each in its own curve's field, converted to
+    (alpha1, S1, C1, alpha2, S2, C2) exactly."""
     from ..formulas import cbezier_joins as J
 
-    name = defn.parameter
-    sides = {f"{name}1": (J.A1, J.S1, J.C1), f"{name}2": (J.A2, J.S2, J.C2)}
+    sides = {
+        f"{first.parameter}1": (J.A1, J.S1, J.C1, first),
+        f"{second.parameter}2": (J.A2, J.S2, J.C2, second),
+    }
     symbols = {
-        "n": sp.Integer(defn.degree),
-        "m": sp.Integer(defn.degree),
+        "n": sp.Integer(first.degree),
+        "m": sp.Integer(second.degree),
         "alpha": J.G_ALPHA,
         "d": J.G_D,
         **{k: v[0] for k, v in sides.items()},
@@ -330,66 +380,96 @@ def _side_value(defn: CDefinition, text: str, key: str) -> sp.Expr:
         expr = parse_formula(text, symbols, {}, elementary=True, frequency=tuple(sides))
     except ParseError as exc:
         raise RecordError(f"key {key}: {exc}") from None
-    calls = expr.atoms(sp.sin, sp.cos, sp.sinh, sp.cosh)
-    hyperbolic = {isinstance(c, sp.sinh | sp.cosh) for c in calls}
-    if hyperbolic and hyperbolic != {defn.hyperbolic}:
-        raise RecordError(f"key {key}: {text!r} is not in the {defn.space} family's field")
     swap = {}
-    for call in calls:
+    for call in sorted(expr.atoms(sp.sin, sp.cos, sp.sinh, sp.cosh), key=str):
         arg = call.args[0]
-        for a, s, c in sides.values():
+        for name, (a, s, c, defn) in sides.items():
             ratio = sp.cancel(arg / a)
             if ratio.is_Integer and 0 < abs(ratio) <= cb.MAX_HARMONIC:
+                if isinstance(call, sp.sinh | sp.cosh) != defn.hyperbolic:
+                    written = call.func(sp.Symbol(name) * ratio)
+                    raise RecordError(
+                        f"key {key}: {written} is not in the field of {name} "
+                        f"({defn.name!r} is {defn.space})"
+                    )
                 cm, sm = cb.angle(int(ratio), defn.hyperbolic)
                 value = cm if isinstance(call, sp.cos | sp.cosh) else sm
                 swap[call] = value.xreplace({cb.C: c, cb.S: s})
                 break
         else:
             raise RecordError(
-                f"key {key}: {call}: the argument is not an integer multiple of {name}1 or {name}2"
+                f"key {key}: {call}: the argument is not an integer multiple of "
+                + " or ".join(sides)
             )
     return expr.xreplace(swap)
 
 
+def _pair(pair: str, defn: CDefinition) -> tuple[CDefinition, CDefinition]:
+    """The two C-Bezier families of `pair` ("first>second"), one of them the record's own;
+    the other defined in this run (its family file given to verify too)."""
+    from .claim_families import SEVERAL_FAMILIES
+
+    names = pair.split(">")
+    if len(names) != 2 or defn.name not in names:
+        raise RecordError(
+            f"key pair: {pair!r}: 'first>second' with {defn.name!r} on one side "
+            f"(e.g. {defn.name}>{defn.name})"
+        )
+    found = []
+    for name in names:
+        other = SEVERAL_FAMILIES.get(name.strip())
+        if not isinstance(other, CDefinition):
+            raise RecordError(
+                f"key pair: {name.strip()!r}: joins of {defn.name!r} are decided with C-Bezier "
+                "families (the parameter is the length of the domain or sits inside sin/cos) "
+                "defined in this run, given to verify as FAMILY.toml files; joins with built-in, "
+                "polynomial or fixed-domain trigonometric families are not decided for them"
+            )
+        found.append(other)
+    return found[0], found[1]
+
+
 def join(record: dict, defn: CDefinition) -> Outcome:
-    """several_join between two curves of this family (formulas/cbezier_joins.py): each
-    printed weight against the derived one, exactly; a derived weight the record leaves out
-    is a discrepancy too."""
+    """several_join between two C-Bezier curves, of this family or of this one and another
+    C-Bezier family of the run (formulas/cbezier_joins.py): each printed weight against the
+    derived one, exactly; a derived weight the record leaves out is a discrepancy too."""
     from ..formulas import cbezier_joins as J
 
     pair, continuity = record.get("pair"), record.get("continuity")
     claimed = record.get("join_weights")
     if not isinstance(pair, str) or continuity not in J.ORDER:
         raise RecordError("keys pair ('first>second') and continuity (C1, C2, G1, G2) are required")
-    if pair != f"{defn.name}>{defn.name}":
-        raise RecordError(
-            f"key pair: {pair!r}: joins of {defn.name!r} are decided with itself only "
-            f"({defn.name}>{defn.name})"
-        )
-    if record.get("n") not in (None, defn.degree):
-        raise RecordError(f"key n: {defn.name} has the one degree {defn.degree}")
+    first, second = _pair(pair, defn)
+    if record.get("n") not in (None, first.degree):
+        raise RecordError(f"key n: {first.name} has the one degree {first.degree}")
     if not isinstance(claimed, dict) or not claimed:
         raise RecordError("key join_weights: a table {'row,src,k': formula} is required")
     try:
-        derived = J.weights(defn, continuity)
+        derived = J.weights(first, continuity, second)
     except ValueError as exc:
         return Outcome("mismatch", [f"derive finds no {continuity} weights: {exc}"])
     diffs, checked = [], []
+    space = (
+        f"their {first.space} functions"
+        if first.hyperbolic == second.hyperbolic
+        else f"the {first.space} and {second.space} functions"
+    )
     for key in sorted(set(claimed) | set(derived)):
         want = derived.get(key, sp.Integer(0))
         if key not in claimed:
             diffs.append(
-                f"{pair} {continuity} weight {key}: not printed, derived {J.show(want, defn)}"
+                f"{pair} {continuity} weight {key}: not printed, derived "
+                f"{J.show(want, first, second)}"
             )
             continue
-        got = _side_value(defn, claimed[key], f"join_weights.{key}")
-        if J.reduce2(got - want, defn.hyperbolic) != 0:
+        got = _side_value(first, second, claimed[key], f"join_weights.{key}")
+        if J.reduce2(got - want, first.hyperbolic, second.hyperbolic) != 0:
             diffs.append(
                 f"{pair} {continuity} weight {key}: printed {claimed[key]}, derived "
-                f"{J.show(want, defn)}"
+                f"{J.show(want, first, second)}"
             )
         checked.append(
-            f"{pair} {continuity} weight {key}: exact in Q({defn.parameter}1, "
-            f"{defn.parameter}2, their {defn.space} functions, alpha, d)"
+            f"{pair} {continuity} weight {key}: exact in Q({first.parameter}1, "
+            f"{second.parameter}2, {space}, alpha, d)"
         )
     return Outcome("mismatch" if diffs else "match", diffs, checked)

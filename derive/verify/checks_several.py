@@ -300,6 +300,8 @@ def _parameters(record: dict, defn: Definition, at: Definition, degree: int) -> 
 
 @checker("several_energy")
 def check_several_energy(record: dict, _context: object) -> Outcome:
+    if isinstance(SEVERAL_FAMILIES[record["family"]], CDefinition):  # checks_cbezier.py
+        return cbezier_checks.energy(record, SEVERAL_FAMILIES[record["family"]])
     if _defn(record).elementary:  # sin, cos, ...: exact atoms (checks_elementary.py)
         return elementary.energy(record, _defn(record))
     defn, at, degree, energy = _energy_setup(record)

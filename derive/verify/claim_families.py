@@ -257,6 +257,7 @@ CBEZIER_KINDS = (
     "several_end_conditions",
     "several_symmetry",
     "several_energy_matrix",
+    "several_energy",
     "several_nonnegative",
     "several_independence",
     "several_join",

@@ -300,12 +300,14 @@ class Curve(ControlPointCurve):
         to Σ |B_j'(t)| |Q_j| over the Bernstein basis and the Bézier control points Q (which
         de Casteljau on the hodograph weighs; ControlPointCurve._speed_floor)."""
         tt, _ = val.as_parameters(t, extrapolate=extrapolate)
-        n = self.degree
+        unit = self.points if self._scale == 1.0 else self.points / self._scale
+        bezier = self.basis_bernstein_matrix().T @ unit  # of the polynomial degree N (>= n)
+        n = bezier.shape[0] - 1
         if n == 0:
             return np.zeros(tt.shape), 1.0
-        b1 = alg.de_casteljau_steps(_float_hodograph(n), tt, n - 1)[:, 0]
-        unit = self.points if self._scale == 1.0 else self.points / self._scale
-        floor, s = speed_floor(b1, self.basis_bernstein_matrix().T @ unit)
+        with np.errstate(over="ignore", invalid="ignore"):  # far outside: NaN, undefined
+            b1 = alg.de_casteljau_steps(_float_hodograph(n), tt, n - 1)[:, 0]
+        floor, s = speed_floor(b1, bezier)
         return floor, s * self._scale
 
     def _curvature(self, t: ParamLike, extrapolate: bool = False) -> np.ndarray:

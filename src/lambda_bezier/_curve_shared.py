@@ -36,16 +36,23 @@ class _Differentiable(Protocol):
 ROUNDING_FACTOR = 32.0
 
 
+def point_sizes(points: np.ndarray, s: float) -> np.ndarray:
+    """An upper bound of each |P_i| / s that does not overflow where |P_i|² would:
+    sqrt(d) times the largest coordinate."""
+    sizes: np.ndarray = np.abs(points / s).max(axis=-1) * np.sqrt(points.shape[-1])
+    return sizes
+
+
 def speed_floor(basis_derivative: np.ndarray, points: np.ndarray) -> tuple[np.ndarray, float]:
     """(the rounding bound c (n + 1) eps Σ_i |b_i'(t)| |P_i| of a computed C'(t), per row of
     `basis_derivative` ((m, n+1) values b_i'(t)), in units of s; s): s is the power of two
-    near the points' size, so the bound neither overflows nor underflows."""
+    near the points' size, so the bound neither overflows nor underflows. A row whose b_i'
+    are not finite (far outside the domain) gives a NaN bound: undefined there."""
     s = val.power_of_two_scale(points)
-    norms = np.linalg.norm(points / s, axis=-1)
-    n1 = points.shape[0]
-    bound: np.ndarray = (
-        ROUNDING_FACTOR * n1 * np.finfo(float).eps * (np.abs(basis_derivative) @ norms)
-    )
+    eps = np.finfo(float).eps
+    with np.errstate(over="ignore", invalid="ignore"):
+        total = np.abs(basis_derivative) @ point_sizes(points, s)
+    bound: np.ndarray = ROUNDING_FACTOR * points.shape[0] * eps * total
     return bound, s
 
 

@@ -42,7 +42,7 @@ import numpy.typing as npt
 
 from . import _validate as val
 from ._curve_base import _swapped_intersect
-from ._curve_shared import ROUNDING_FACTOR, ControlPointCurve
+from ._curve_shared import ROUNDING_FACTOR, ControlPointCurve, point_sizes
 from ._validate import ParamLike, PointsLike
 from .curves import BezierCurve, Curve
 from .hazmat import kernels as alg
@@ -291,10 +291,10 @@ class RationalBezierCurve(ControlPointCurve):
         b1 = rk.de_casteljau(rk.hodograph(np.eye(n + 1)), tt) if n else np.zeros_like(b)
         w = np.abs(self.weights.astype(float))
         scale = val.power_of_two_scale(self.points)
-        with val.overflow_allowed(), np.errstate(divide="ignore", invalid="ignore"):
-            point = np.linalg.norm(self.derivative(t, 0, extrapolate=extrapolate), axis=-1)
-            here = np.atleast_1d(point / scale)
-            sizes = np.linalg.norm(self.points / scale, axis=-1)
+        with val.overflow_allowed(), np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            point = np.atleast_2d(self.derivative(t, 0, extrapolate=extrapolate))
+            here = point_sizes(point, scale)
+            sizes = point_sizes(self.points, scale)
             weigh = np.abs(b1) * w  # (m, n+1)
             top = weigh @ sizes + weigh.sum(axis=1) * here
             wt = np.abs(b @ self.weights.astype(float))

@@ -300,8 +300,9 @@ class Curve(ControlPointCurve):
         to Σ |B_j'(t)| |Q_j| over the Bernstein basis and the Bézier control points Q (which
         de Casteljau on the hodograph weighs; ControlPointCurve._speed_floor)."""
         tt, _ = val.as_parameters(t, extrapolate=extrapolate)
-        unit = self.points if self._scale == 1.0 else self.points / self._scale
-        bezier = self.basis_bernstein_matrix().T @ unit  # of the polynomial degree N (>= n)
+        bezier = self._hodograph_points(0)  # cached, of the polynomial degree N (>= n)
+        if self._scale != 1.0:
+            bezier = self.basis_bernstein_matrix().T @ (self.points / self._scale)
         n = bezier.shape[0] - 1
         if n == 0:
             return np.zeros(tt.shape), 1.0

@@ -24,7 +24,7 @@ import numpy.typing as npt
 
 from . import _singular
 from . import _validate as val
-from ._curve_shared import ControlPointCurve, check_curvature_dimension
+from ._curve_shared import ControlPointCurve, check_curvature_dimension, speed_floor
 from ._lazy import TableSource, deferred, generated
 from ._validate import ParamLike, PointsLike
 from .hazmat import forms
@@ -295,8 +295,25 @@ class Curve(ControlPointCurve):
             out = alg.centred_horner(self._combined("centred"), tt)
         return out[0] if scalar else out
 
+    def _speed_floor(self, t: ParamLike, extrapolate: bool) -> tuple[np.ndarray, float]:
+        """The rounding bound of the computed |p'(t)|, per t, in units of s, and s: relative
+        to Σ |B_j'(t)| |Q_j| over the Bernstein basis and the Bézier control points Q (which
+        de Casteljau on the hodograph weighs; ControlPointCurve._speed_floor)."""
+        tt, _ = val.as_parameters(t, extrapolate=extrapolate)
+        bezier = self._hodograph_points(0)  # cached, of the polynomial degree N (>= n)
+        if self._scale != 1.0:
+            bezier = self.basis_bernstein_matrix().T @ (self.points / self._scale)
+        n = bezier.shape[0] - 1
+        if n == 0:
+            return np.zeros(tt.shape), 1.0
+        with np.errstate(over="ignore", invalid="ignore"):  # far outside: NaN, undefined
+            b1 = alg.de_casteljau_steps(_float_hodograph(n), tt, n - 1)[:, 0]
+        floor, s = speed_floor(b1, bezier)
+        return floor, s * self._scale
+
     def _curvature(self, t: ParamLike, extrapolate: bool = False) -> np.ndarray:
-        """The curvature as an array, NaN where p'(t) = 0 (for plots and joint reports)."""
+        """The curvature as an array, NaN where p'(t) = 0 within its rounding (for plots and
+        joint reports)."""
         check_curvature_dimension(self.dimension)
         with val.overflow_allowed():  # κ(s·p) = κ(p)/s: computed unscaled, scaled back below
             d1 = self._unit_derivative(t, 1, extrapolate)
@@ -306,6 +323,8 @@ class Curve(ControlPointCurve):
             val.finite_result(d2, "the curvature")
         # per point, d1 and d2 divided by a power of two c near their size: κ = κ_c / c
         # without |p'|³ or p'×p'' overflowing (or underflowing) on the way
+        floor, s = self._speed_floor(t, extrapolate)
+        moving = ~val.stopped(d1, floor, s / self._scale)
         size = np.maximum(np.abs(d1).max(axis=-1), np.abs(d2).max(axis=-1))
         c = np.ldexp(1.0, np.frexp(np.where(size > 0, size, 1.0))[1])
         d1, d2 = d1 / c[..., None], d2 / c[..., None]
@@ -317,7 +336,7 @@ class Curve(ControlPointCurve):
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             # divided one speed at a time: speed**3 underflows where |p'| << |p''| (near a
             # cusp) although κ itself is finite
-            kappa = np.where(speed > 0, cross / speed / speed / speed, np.nan) / c / self._scale
+            kappa = np.where(moving, cross / speed / speed / speed, np.nan) / c / self._scale
         if np.isinf(kappa).any():  # a curve of size ~1e-310
             raise ValueError("the curvature overflows the float range for these control points")
         return np.asarray(kappa)

@@ -337,6 +337,27 @@ def defined_curvature(kappa: np.ndarray, t: object, name: str = "t") -> np.ndarr
     return kappa
 
 
+def stopped(d1: np.ndarray, floor: np.ndarray, s: float) -> np.ndarray:
+    """Where |C'(t)| (rows of d1) is within the rounding `floor` (one per row, in units of s)
+    of 0: a stop or a cusp, where curvature, torsion and the unit tangent are undefined."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        speed = np.linalg.norm(np.asarray(d1, dtype=float) / s, axis=-1)
+    out: np.ndarray = ~(speed > np.reshape(floor, np.shape(speed)))
+    return out
+
+
+def check_moving(d1: np.ndarray, floor: np.ndarray, s: float, t: object, what: str) -> None:
+    """A ValueError naming the first t where C'(t) is 0 within its rounding (`stopped`):
+    `what` is undefined there (a cusp, or a curve that stops)."""
+    bad = np.atleast_1d(stopped(d1, floor, s))
+    if bad.any():
+        at = np.asarray(t, dtype=object).ravel()[int(np.argmax(bad.ravel()))]
+        raise ValueError(
+            f"{what} is undefined at t = {at}: the first derivative vanishes there (within "
+            "its rounding: a cusp, or a curve that stops)"
+        )
+
+
 def power_of_two_scale(points: np.ndarray) -> float:
     """1.0 for ordinary coordinates; for magnitudes beyond 2^±900 the power of two that brings
     them near 1, so products with basis coefficients (up to ~1e20) neither overflow nor

@@ -222,12 +222,26 @@ class AtomCurve(DomainGeometry):
         out = ak.evaluate(coeffs, tt - self._mid, sh.omega0, sh.powers, sh.harmonics, sh.hyperbolic)
         return out.T[0] if scalar else out.T
 
+    def _basis_derivative(self, t: ParamLike, extrapolate: bool) -> tuple[np.ndarray, np.ndarray]:
+        """(Σ_a |c_ai'| |atom_a(t)|, the control points): the rounding of C'(t), evaluated
+        over the atoms, is relative to the atoms' terms, not to b_i'(t) (which cancel: at a
+        stop P0 = P1 the computed C'(0) is ~1e-16, not 0) (_speed_floor)."""
+        tt, _ = self._parameters(t, extrapolate)
+        sh = self.shape
+        coeffs = sh.derivative @ (sh.centring.T @ self._basis_float.T)  # (A, n+1)
+        tau = np.atleast_1d(tt) - self._mid
+        atoms = ak.evaluate(
+            np.eye(coeffs.shape[0]), tau, sh.omega0, sh.powers, sh.harmonics, sh.hyperbolic
+        )
+        return (np.abs(coeffs).T @ np.abs(atoms)).T, self.points
+
     def tangent(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray:
-        """The unit tangent C'/‖C'‖; ValueError where C'(t) = 0."""
+        """The unit tangent C'/‖C'‖; ValueError where C'(t) = 0 (within its rounding)."""
         d1 = self.derivative(t, 1, extrapolate=extrapolate)
+        floor, s = self._speed_floor(t, extrapolate)
+        if val.stopped(d1, floor, s).any():
+            raise ValueError("the tangent is undefined where C'(t) = 0 (a cusp, or a stop)")
         norm = np.linalg.norm(d1, axis=-1, keepdims=True)
-        if not (norm > 0).all():
-            raise ValueError("the tangent is undefined where C'(t) = 0")
         out: np.ndarray = d1 / norm
         return out
 

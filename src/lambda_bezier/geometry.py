@@ -366,5 +366,9 @@ def torsion(
     d1 = obj.derivative(t, 1, extrapolate=extrapolate)
     d2 = obj.derivative(t, 2, extrapolate=extrapolate)
     d3 = obj.derivative(t, 3, extrapolate=extrapolate)
+    speed_floor = getattr(obj, "_speed_floor", None)  # a segment class: p' = 0 within its
+    if speed_floor is not None:  # rounding is a stop or cusp (CompositeCurve: its segments')
+        floor, s = speed_floor(t, extrapolate)
+        val.check_moving(d1, floor, s, t, "torsion")
     tau = torsion_from_derivatives(d1, d2, d3, t)
     return float(tau) if np.ndim(tau) == 0 else tau

@@ -42,7 +42,7 @@ import numpy.typing as npt
 
 from . import _validate as val
 from ._curve_base import _swapped_intersect
-from ._curve_shared import ControlPointCurve
+from ._curve_shared import ROUNDING_FACTOR, ControlPointCurve, point_sizes
 from ._validate import ParamLike, PointsLike
 from .curves import BezierCurve, Curve
 from .hazmat import kernels as alg
@@ -278,6 +278,28 @@ class RationalBezierCurve(ControlPointCurve):
             out = rk.quotient_derivatives(h)[order]
         out = self._checked(out, t, "the derivative" if order else "C(t)")
         return out[0] if scalar else out
+
+    def _speed_floor(self, t: ParamLike, extrapolate: bool) -> tuple[np.ndarray, float]:
+        """The rounding bound of the computed |C'(t)| per t, in units of s, and s. By the
+        quotient rule C' = (A' − w' C) / w with A = Σ w_i P_i B_i: c (n+1) eps times
+        Σ |B_i'(t)| |w_i| (|P_i| + |C(t)|) / |w(t)| (ControlPointCurve._speed_floor)."""
+        if self._polynomial is not None:
+            return self._polynomial._speed_floor(t, extrapolate)
+        tt, _ = val.as_parameters(t, extrapolate=extrapolate)
+        n = self.degree
+        b = rk.de_casteljau(np.eye(n + 1), tt)
+        b1 = rk.de_casteljau(rk.hodograph(np.eye(n + 1)), tt) if n else np.zeros_like(b)
+        w = np.abs(self.weights.astype(float))
+        scale = val.power_of_two_scale(self.points)
+        with val.overflow_allowed(), np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            point = np.atleast_2d(self.derivative(t, 0, extrapolate=extrapolate))
+            here = point_sizes(point, scale)
+            sizes = point_sizes(self.points, scale)
+            weigh = np.abs(b1) * w  # (m, n+1)
+            top = weigh @ sizes + weigh.sum(axis=1) * here
+            wt = np.abs(b @ self.weights.astype(float))
+            floor: np.ndarray = ROUNDING_FACTOR * (n + 1) * np.finfo(float).eps * top / wt
+        return floor, scale
 
     def exact_derivative(self, t: Fraction | int, k: int = 0) -> tuple[Fraction, ...]:
         """C^(k)(t) in Fractions, for an exact curve and an exact t (k = 0: the point)."""

@@ -213,19 +213,24 @@ def energy_matrix(record: dict, defn: CDefinition) -> Outcome:
     diffs = []
     for r, row in enumerate(gram):
         for c, text in enumerate(row):
-            got, base = _constant(defn, text, f"gram[{r}][{c}]")
-            derived = want[r][c] * scale
-            if not cb.is_zero(got - _in_base(derived, base, defn.hyperbolic), defn.hyperbolic):
-                diffs.append(
-                    f"G[{r}][{c}]: printed {text}, derived "
-                    f"{F.show(cb.reduce(derived, defn.hyperbolic), defn)}"
-                )
+            diff = _printed_differs(defn, text, f"gram[{r}][{c}]", want[r][c] * scale)
+            if diff:
+                diffs.append(f"G[{r}][{c}]: {diff}")
     checked = [
         f"the {size} x {size} Gram matrix of E_{k} in {defn.parameter}'s own parameter "
         f"({'u on [0, 1]' if defn.form == 'unit' else 't on [0, ' + defn.parameter + ']'}), "
         f"exact in Q({defn.parameter}, {defn.space} of {defn.parameter})"
     ]
     return Outcome("mismatch" if diffs else "match", diffs, checked)
+
+
+def _printed_differs(defn: CDefinition, text: str, key: str, derived: sp.Expr) -> str | None:
+    """None when the printed constant `text` (record key `key`) equals `derived` exactly in
+    the family's field (modulo the circle or the hyperbola), else "printed ..., derived ..."."""
+    got, base = _constant(defn, text, key)
+    if cb.is_zero(got - _in_base(derived, base, defn.hyperbolic), defn.hyperbolic):
+        return None
+    return f"printed {text}, derived {F.show(cb.reduce(derived, defn.hyperbolic), defn)}"
 
 
 def energy(record: dict, defn: CDefinition) -> Outcome:
@@ -259,12 +264,8 @@ def energy(record: dict, defn: CDefinition) -> Outcome:
                 if weight:
                     derived += sp.Rational(weight.numerator, weight.denominator) * gram[a][c]
     derived *= scale
-    got, base = _constant(defn, text, "expression")
-    diffs = []
-    if not cb.is_zero(got - _in_base(derived, base, defn.hyperbolic), defn.hyperbolic):
-        diffs.append(
-            f"E_{k}: printed {text}, derived {F.show(cb.reduce(derived, defn.hyperbolic), defn)}"
-        )
+    diff = _printed_differs(defn, text, "expression", derived)
+    diffs = [f"E_{k}: {diff}"] if diff else []
     checked = [
         f"E_{k} of the {len(rows)} control points in {len(rows[0])} coordinates, in "
         f"{defn.parameter}'s own parameter, exact in Q({defn.parameter}, {defn.space} of "

@@ -371,6 +371,32 @@ def test_hostile_formula_runs_nothing_and_ends_quickly(tmp_path, formula):
     assert code == 2 and "record 'h'" in err and "Traceback" not in err, err
 
 
+@pytest.mark.parametrize("formula", HOSTILE[-5:], ids=range(5))
+def test_hostile_formula_message_quotes_a_readable_stretch(tmp_path, formula):
+    # The refusal names the fault, but quotes at most a few hundred characters of a formula
+    # that may be 40,000 long (or of a number that may have 2,500 digits).
+    path = tmp_path / "hostile.toml"
+    path.write_text(
+        'schema_version = 2\nfamily = "same_degree"\n[[record]]\nid = "h"\n'
+        f'claim = "recursion"\nequations = [{{ lhs = "b(i, n, t)", rhs = {json.dumps(formula)} }}]\n',
+        encoding="utf-8",
+    )
+    code, out, err = run_verify(str(path))
+    assert code == 2 and "record 'h'" in err
+    assert max(len(line) for line in err.splitlines()) < 800, err[:2000]
+
+
+def test_long_family_formula_is_refused_with_a_short_quote(tmp_path):
+    from derive.families.definition import DefinitionError, definition_from_table
+
+    table = {"name": "f", "parameters": ["lam"], "basis": "t" + "+t" * 20_000}
+    with pytest.raises(DefinitionError) as info:
+        definition_from_table(table)
+    message = str(info.value)
+    assert "key basis" in message and "too long" in message and "elided" in message
+    assert len(message) < 600
+
+
 def test_hostile_sum_range_is_refused_while_evaluating(tmp_path):
     path = tmp_path / "sum.toml"
     path.write_text(

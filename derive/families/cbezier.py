@@ -34,6 +34,7 @@ from functools import cache
 import sympy as sp
 
 from ..grammar import ParseError, parse_formula
+from ..grammar.messages import schema_message
 from .definition import SCHEMA, DefinitionError, digest
 
 A, S, C = sp.symbols("alpha_ s_ c_")  # alpha, sin(alpha) or sinh(alpha), cos or cosh
@@ -305,7 +306,7 @@ def read_table(table: dict, where: str = "") -> CDefinition:
     if errors:
         err = errors[0]
         key = ".".join(map(str, err.absolute_path)) or "(table)"
-        raise DefinitionError(f"{prefix}, key {key}: {err.message}")
+        raise DefinitionError(f"{prefix}, key {key}: {schema_message(err)}")
     for key in ("basis", "seed", "recursion", "bernstein_at", "degree_offset"):
         if key in table:
             raise fail(

@@ -26,6 +26,7 @@ from ..grammar import (
     parse_formula,
     tokenize,
 )
+from ..grammar.messages import schema_message
 from . import indexed
 
 # version of the derived JSON document (2: with singular_parameters; 3: several parameters,
@@ -355,7 +356,7 @@ def definition_from_table(table: object, where: str = "", *, builtin: bool = Fal
     if errors:
         err = errors[0]
         key = ".".join(map(str, err.absolute_path)) or "(table)"
-        raise DefinitionError(f"{prefix}, key {key}: {err.message}")
+        raise DefinitionError(f"{prefix}, key {key}: {schema_message(err)}")
     assert isinstance(table, dict)
 
     def fail(key: str, message: str) -> DefinitionError:

@@ -27,6 +27,7 @@ import sympy as sp
 
 from ..grammar import BUILTINS, FUNCTIONS, SYMBOLS, ParseError, parse_formula
 from ..grammar.formula import paper_binomial_expr
+from ..grammar.messages import schema_message
 
 # definition.py imports this module (never the other way round: no import cycle); it builds
 # the Definition and its per-degree expansions from what is read here
@@ -127,9 +128,9 @@ def read_indexed(table: dict, fail, schema: dict, taken_names: tuple[str, ...]) 
             raise fail(
                 "parameters",
                 "an indexed family has exactly one parameter written name(i), e.g. "
-                f'["lam(i)"] ({err.message})',
+                f'["lam(i)"] ({schema_message(err)})',
             )
-        raise fail(key, err.message)
+        raise fail(key, schema_message(err))
     (written,) = table["parameters"]
     base = _INDEXED_NAME.match(written)
     assert base is not None  # the schema's pattern

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from functools import cache
 
 from ..algebra import bernstein as _bernstein
+from ..grammar.messages import schema_message
 from .definition import (
     _NAME,
     FAMILY_DEFINITIONS,
@@ -96,7 +97,7 @@ def builtin_families() -> tuple[Builtin, ...]:
         info = tomllib.loads(path.read_text(encoding="utf-8")).get("builtin")
         errors = list(jsonschema.Draft202012Validator(_BUILTIN_SCHEMA).iter_errors(info))
         if errors:
-            raise DefinitionError(f"{path}: [builtin]: {errors[0].message}")
+            raise DefinitionError(f"{path}: [builtin]: {schema_message(errors[0])}")
         defn = read_definition(path, builtin=True)
         if path.stem != defn.name:
             raise DefinitionError(f"{path}: the file must be named after the family {defn.name}")

@@ -44,6 +44,8 @@ from math import comb
 
 import sympy as sp
 
+from .messages import clip
+
 # --------------------------------------------------------------------------- limits
 
 MAX_TEXT = 10_000  # characters in one formula
@@ -125,8 +127,18 @@ def tokenize(text: str) -> list[Token]:
     return out
 
 
+_SHOWN = 120  # characters of a formula an error message quotes around the column
+
+
 def _at(text: str, pos: int) -> str:
-    return f"{text!r} at column {pos + 1}"
+    # A 10,000-character formula is legal: quote the stretch around the fault, not all of it.
+    if len(text) <= _SHOWN:
+        return f"{text!r} at column {pos + 1}"
+    lo = max(0, min(pos - _SHOWN // 2, len(text) - _SHOWN))
+    piece = text[lo : lo + _SHOWN]
+    before = "..." if lo > 0 else ""
+    after = "..." if lo + _SHOWN < len(text) else ""
+    return f"{before}{piece!r}{after} at column {pos + 1} of {len(text)}"
 
 
 # --------------------------------------------------------------------------- values
@@ -178,7 +190,7 @@ class _Parser:
 
     def error(self, message: str, tok: Token | None = None) -> ParseError:
         tok = tok or self.tok
-        return ParseError(f"{message}: {_at(self.text, tok.pos)}")
+        return ParseError(f"{clip(message)}: {_at(self.text, tok.pos)}")
 
     def accept(self, *ops: str) -> Token | None:
         tok = self.tok

@@ -31,6 +31,7 @@ from ..families.definition import (
     rename_parameter,
 )
 from ..grammar import Interval, ParseError
+from ..grammar.messages import schema_message
 from .expr_parse import fn_name
 from .expr_parse import parse as parse_formula  # cached: the checkers reuse each parse
 from .registry import (
@@ -354,7 +355,7 @@ def read_file(path: Path, data: dict | None = None) -> dict:
             rec = data["record"][parts[1]] if isinstance(data["record"][parts[1]], dict) else {}
             parts = parts[2:]
         more = f" (and {len(errors) - 1} more problems)" if len(errors) > 1 else ""
-        raise RecordsError(f"{_where(path, rec, _key_path(parts))}: {err.message}{more}")
+        raise RecordsError(f"{_where(path, rec, _key_path(parts))}: {schema_message(err)}{more}")
     return data
 
 

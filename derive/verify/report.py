@@ -38,6 +38,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..families.registry import REFERENCE, builtin_families
+from ..grammar.messages import clip
 from . import index as record_index
 from .index import records_by_id as records_by_id  # the run's records, for cross-references
 from .records import RecordsError, load_paths, renamed_record
@@ -331,7 +332,9 @@ def render_text(report: Report) -> str:
         lines.append(f"{r.id:<{width}}  {r.source:<{swidth}}  {r.verdict}")
         if r.verdict != "match":
             detail = [r.error] if r.error else r.outcome.diffs
-            lines += [f"    {d}" for d in detail]
+            # A difference of a large claim can be pages long: the text report quotes a
+            # readable stretch of each (the JSON report keeps them whole).
+            lines += [f"    {clip(d)}" for d in detail]
         if r.erratum is not None:
             lines.append(
                 f"    erratum ({r.record['erratum'].get('origin', '?')}): corrected form "
@@ -340,7 +343,7 @@ def render_text(report: Report) -> str:
             )
     lines.append(_summary(report))
     for rid, p in report.problems():
-        lines.append(f"FAIL {rid}: {p}" if rid else f"FAIL: {p}")
+        lines.append(clip(f"FAIL {rid}: {p}" if rid else f"FAIL: {p}"))
     return "\n".join(lines) + "\n"
 
 

@@ -21,6 +21,33 @@ def test_package_docstring():
     assert result.attempted > 0 and result.failed == 0
 
 
+def _modules_with_examples() -> list[str]:
+    from pathlib import Path
+
+    package = Path(lambda_bezier.__file__).parent
+    names = []
+    for path in sorted(package.rglob("*.py")):
+        if path.name != "__init__.py" or path.parent != package:
+            if ">>>" in path.read_text(encoding="utf-8"):
+                rel = path.relative_to(package).with_suffix("")
+                parts = [p for p in rel.parts if p != "__init__"]
+                names.append(".".join(["lambda_bezier", *parts]))
+    return names
+
+
+@pytest.mark.parametrize("module", _modules_with_examples())
+def test_module_docstring_examples(module):
+    """Every example in a module's docstrings runs as written (the package's own docstring is
+    the test above)."""
+    import importlib
+
+    result = doctest.testmod(
+        importlib.import_module(module),
+        optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE,
+    )
+    assert result.attempted > 0 and result.failed == 0
+
+
 @pytest.mark.skipif(not (ROOT / ".ci" / "run").is_file(), reason="needs the checkout")
 def test_ci_runs_exactly_the_readme_set_up_commands():
     import re

@@ -81,6 +81,12 @@ class ControlPointCurve:
         """The number d of coordinates of a point."""
         return int(self.points.shape[1])
 
+    @property
+    def domain(self) -> tuple[float, float]:
+        """The parameter interval: (0.0, 1.0) for a curve in Bézier form (polynomial or
+        rational). A trigonometric or C-Bézier family's curve has its own, e.g. (0, pi/2)."""
+        return (0.0, 1.0)
+
     def curvature(
         self: _Differentiable, t: ParamLike, *, extrapolate: bool = False
     ) -> np.ndarray | float:

@@ -430,6 +430,11 @@ class CBezierCurve(DomainGeometry):
     intersects_curves = True
     has_rational_form = False
 
+    @property
+    def domain(self) -> tuple[float, float]:
+        """(0, alpha), or (0, 1) for a family written on the unit interval."""
+        return self._domain
+
     def __init__(self, family: CBezierFamily, points: PointsLike, alpha: float):
         n = family.degree
         self.family_object = family
@@ -440,8 +445,8 @@ class CBezierCurve(DomainGeometry):
         self.basis_coefficients = basis
         unit = family.form == "unit"
         self._rate = alpha if unit else 1.0  # u on [0, 1]: t = alpha*u
-        self.domain = (0.0, 1.0) if unit else (0.0, alpha)
-        self._mid = 0.5 * self.domain[1]
+        self._domain = (0.0, 1.0) if unit else (0.0, alpha)
+        self._mid = 0.5 * self._domain[1]
         self.shape = _Shape(self._rate, family.powers, family.harmonics, family.hyperbolic)
         own = self._own_atoms(basis)  # (n+1, A) over the own parameter's atoms
         self._scale = val.power_of_two_scale(self.points)

@@ -3,6 +3,9 @@
 - ``nouri_saeidian.toml``: a family of the user's own (Nouri and Saeidian's enhanced Bernstein
   basis, arXiv:2405.07086) with records about it; ``nouri_saeidian.derived.json`` is what
   ``lambda-bezier derive --family`` makes of it, so ``load_family`` works at once.
+- ``han_trig_cubic.toml`` (the cubic trigonometric basis of Han, Ma and Huang, two
+  parameters on [0, pi/2]) and ``two_shape_cubic.toml`` (a polynomial cubic with two
+  parameters), each with its ``.derived.json``: families as issue #30 writes them.
 - ``user_paper.toml``: a records file about the built-in families, with true and
   deliberately misprinted records.
 
@@ -13,7 +16,9 @@ the installed package).
 
 >>> from lambda_bezier import examples
 >>> examples.names()
-('nouri_saeidian.derived.json', 'nouri_saeidian.toml', 'user_paper.toml')
+('han_trig_cubic.derived.json', 'han_trig_cubic.toml', 'nouri_saeidian.derived.json',
+ 'nouri_saeidian.toml', 'two_shape_cubic.derived.json', 'two_shape_cubic.toml',
+ 'user_paper.toml')
 >>> examples.path("nouri_saeidian.toml").name
 'nouri_saeidian.toml'
 """

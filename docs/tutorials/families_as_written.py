@@ -1,0 +1,1 @@
+../../notebooks/families_as_written.py

@@ -156,7 +156,7 @@ def optimal_parameters_batch(
         classes: tuple[Any, Any] = (u_cls, v_cls)  # hashable: classes hash by identity
         weights = _batch_weights(mats, *classes, dim)
         flat = np.ascontiguousarray(nets.reshape(count, m1 * n1 * dim), dtype=float)
-        bx, by, bval, _, status, valid = fast.optimise(
+        bx, by, bval, _, status, valid = fast.optimise_batch(
             flat, dim, weights, box, CERTIFIED_TOLERANCE, MAX_COORDINATE
         )
         if not valid:

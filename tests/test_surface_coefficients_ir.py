@@ -1,8 +1,9 @@
 """The batch optimum's energy coefficients from emitted vector code
 (hazmat.surface_coefficients_ir): against the exact energy polynomial of each net
 (Fractions), whole blocks and a padded tail, several families, shapes and dimensions; the
-coordinates' check it carries; and the large batch path (surface_batch_compiled.optimise_batch) against the generic compiled kernel and the
-exact method."""
+coordinates' check it carries; and the large batch path
+(surface_batch_compiled.optimise_batch) against the generic compiled kernel and the exact
+method."""
 
 from __future__ import annotations
 

@@ -278,15 +278,16 @@ def optimise_batch(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, bool]:
     """`optimise`'s answers (the same arguments, flat C-contiguous float64), with the
     coefficients from hazmat.surface_coefficients_ir when `use_emitted` (None: for batches of
-    at least EMITTED_MIN_NETS nets whose weights are within its MAX_OPERATIONS)."""
+    at least EMITTED_MIN_NETS nets whose weights are within its MAX_OPERATIONS) and that
+    module can build its code here; otherwise `optimise` itself."""
     count = flat.shape[0]
     if use_emitted is None:
         use_emitted = (
             count >= EMITTED_MIN_NETS and emitted.operations(w, dim) <= emitted.MAX_OPERATIONS
         )
-    if not use_emitted:
+    fn = emitted.kernel(w, dim, flat.shape[1]) if use_emitted else None
+    if fn is None:
         return optimise(flat, dim, w, box, tol, limit)  # type: ignore[no-any-return]
-    fn = emitted.kernel(w, dim, flat.shape[1])
     out = np.empty((5, count))
     span = min(SPAN, count)
     acc, answers = np.empty((9, span)), np.empty((5, span))

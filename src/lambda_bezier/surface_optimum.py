@@ -176,7 +176,7 @@ def optimal_parameters_batch(
         ex, ey = bx[edge], by[edge]
         at_x = (ex == box[0]) | (ex == box[1])
         at_y = (ey == box[2]) | (ey == box[3])
-        where[edge] = np.where(at_x & at_y, "corner", "edge")
+        where[edge] = _WHERE[2 * (at_x & at_y)]  # "corner" or "edge", no str array between
         admissible[edge] = _admissible(ex, u_box) & _admissible(ey, v_box)
     exact = 0
     if declined.size:

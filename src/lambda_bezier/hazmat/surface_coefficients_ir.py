@@ -46,6 +46,7 @@ _Kernel = Callable[[int, int, int, int, float], int]
 _LOCK = threading.Lock()
 # the weights' bytes -> (engine, function), or None where this llvmlite could not build it
 _KERNELS: dict[bytes, tuple[Any, _Kernel] | None] = {}
+_BY_IDENTITY: dict[int, tuple[Any, int, int, _Kernel | None]] = {}  # the last lookups
 
 
 def operations(w: Any, dim: int) -> int:
@@ -205,6 +206,9 @@ def kernel(w: Any, dim: int, rows: int) -> _Kernel | None:
     manager (llvmlite 0.44, numba 0.61, onwards); the caller then runs the generic kernel,
     whose answers these equal to rounding. tests/test_surface_coefficients_ir.py asserts a
     function is built in the test environment."""
+    known = _BY_IDENTITY.get(id(w))
+    if known is not None and known[0] is w and known[1:3] == (dim, rows):
+        return known[3]  # (the callers' weights are cached objects: no bytes to hash)
     key = _key(w, dim, rows)
     if key not in _KERNELS:
         with _LOCK:
@@ -214,7 +218,11 @@ def kernel(w: Any, dim: int, rows: int) -> _Kernel | None:
                 except (ImportError, AttributeError, RuntimeError):  # an older llvmlite
                     _KERNELS[key] = None
     found = _KERNELS[key]
-    return None if found is None else found[1]
+    fn = None if found is None else found[1]
+    if len(_BY_IDENTITY) >= 64:  # bounded: a caller building new weights each call
+        _BY_IDENTITY.clear()
+    _BY_IDENTITY[id(w)] = (w, dim, rows, fn)  # w kept alive: its id is not reused meanwhile
+    return fn
 
 
 def _compile(ir: str) -> tuple[Any, _Kernel]:

@@ -83,7 +83,7 @@ def test_emitted_code_reports_a_coordinate_out_of_range(where, bad):
     assert ir.coefficients(fn, flat, 0, 19, out, MAX_COORDINATE)
 
 
-def test_large_batch_path_agrees_with_the_generic_kernel_and_the_exact_method():
+def test_large_batch_path_agrees_with_the_generic_kernel_and_the_exact_method(monkeypatch):
     """optimise_batch with the emitted coefficients against optimise (the generic compiled
     kernel, the coefficients summed in another order): the same certificate verdicts on
     3,000 nets here, answers within the certified 1e-12; and the public call on a batch large
@@ -102,6 +102,12 @@ def test_large_batch_path_agrees_with_the_generic_kernel_and_the_exact_method():
     old = sbc.optimise(flat, 3, w, box, CERTIFIED_TOLERANCE, MAX_COORDINATE)
     assert new[5] and old[5]
     assert np.array_equal(new[4], old[4])
+    monkeypatch.setattr(sbc, "ONE_PASS", 1000)  # in spans of 1,024 (the last one shorter)
+    monkeypatch.setattr(sbc, "SPAN", 1024)
+    spans = sbc.optimise_batch(flat, 3, w, box, CERTIFIED_TOLERANCE, MAX_COORDINATE)
+    for a, b in zip(spans, new, strict=True):
+        assert np.array_equal(a, b)  # the same arithmetic, net by net
+    monkeypatch.undo()
     assert (new[4] > 0).mean() > 0.95
     done = new[4] > 0
     for i in (0, 1):  # both certified within 1e-12 of the same unique minimiser

@@ -298,10 +298,14 @@ def optimise(
 
 
 # optimise_batch: batches smaller than this take `optimise` (the emitted code's first build,
-# about 0.4 s, pays off only over many nets); SPAN nets per pass keep the coefficients
-# (9 x SPAN floats) and the answers in the core's L2
+# about 0.3 s, pays off only over many nets). Up to ONE_PASS nets run as one span, the
+# certificate writing straight into the result (measured on 10,000 bicubic nets: 0.577 ms
+# against 0.598 ms in spans of 2,048 with a copy of the answers); larger batches in spans of
+# SPAN nets (the coefficients, 9 x SPAN floats, in the core's L2: on 50,000 nets, spans of
+# 2,048 to 16,384 measured alike, 3.6-3.8 ms)
 EMITTED_MIN_NETS = 1024
-SPAN = 2048
+ONE_PASS = 16384
+SPAN = 4096
 
 
 def optimise_batch(
@@ -327,12 +331,14 @@ def optimise_batch(
     if fn is None:
         return optimise(flat, dim, w, box, tol, limit)  # type: ignore[no-any-return]
     out = np.empty((5, count))
-    span = min(SPAN, count)
-    acc, answers = np.empty((9, span)), np.empty((5, span))
+    span = count if count <= ONE_PASS else SPAN
+    acc = np.empty((9, span))
+    answers = out if span == count else np.empty((5, span))  # one span: no copy
     valid = True
     for start in range(0, count, span):
         stop = min(count, start + span)
         valid &= emitted.coefficients(fn, flat, start, stop, acc, limit)
         _certify_chunk(acc, stop - start, box, tol, answers)
-        out[:, start:stop] = answers[:, : stop - start]
+        if answers is not out:
+            out[:, start:stop] = answers[:, : stop - start]
     return out[0], out[1], out[2], out[3], out[4], valid

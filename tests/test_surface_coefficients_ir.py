@@ -121,3 +121,17 @@ def test_large_batch_path_agrees_with_the_generic_kernel_and_the_exact_method(mo
         )
         assert abs(result["lam_u"][k] - exact["lam_u_float"]) <= 1e-12
         assert abs(result["lam_v"][k] - exact["lam_v_float"]) <= 1e-12
+
+
+@pytest.mark.parametrize(
+    ("bad", "message"), [(np.nan, "NaN or infinity"), (1e200, "above 1e\\+140")]
+)
+def test_a_large_batch_with_a_bad_coordinate_is_refused_by_name(bad, message):
+    """The emitted code's check (a batch large enough to take it) raises the same errors as
+    the numpy path, naming the problem."""
+    from lambda_bezier.hazmat import surface_batch_compiled as sbc
+
+    nets = np.random.default_rng(3).normal(size=(sbc.EMITTED_MIN_NETS + 5, 4, 4, 3))
+    nets[sbc.EMITTED_MIN_NETS + 2, 2, 1, 0] = bad  # in the padded tail
+    with pytest.raises(ValueError, match=message):
+        lb.optimal_parameters(nets, "thin_plate")

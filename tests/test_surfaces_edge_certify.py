@@ -105,3 +105,29 @@ def test_edge_certified_nets_report_their_edge_or_corner_in_a_batch():
         assert res["where"][i] == one["where"]
         assert abs(res["lam_u"][i] - one["lam_u_float"]) <= 1e-12
         assert abs(res["lam_v"][i] - one["lam_v_float"]) <= 1e-12
+
+
+@pytest.mark.skipif(find_spec("numba") is None, reason="numba is not installed: compiled only")
+def test_the_compiled_early_stop_is_edge_minimum_bit_for_bit():
+    """surface_batch_compiled._edge_first_at (the four edges in turn, stopping at the first
+    certified) against the compiled edge_minimum (all four, then the first certified), on
+    coefficients certified on each of the four edges and on none."""
+    from lambda_bezier.hazmat import surface_batch_compiled as sbc
+
+    rng = np.random.default_rng(5)
+    raw = rng.integers(
+        [-60, -40, 1, -40, -4, -2, 1, -2, -1], [61, 41, 10, 41, 5, 3, 10, 3, 2], size=(400, 9)
+    )
+    acc = np.ascontiguousarray((raw / 8).T)
+    seen = set()
+    for k in range(acc.shape[1]):
+        want = sbc._edge_minimum(*acc[:, k], *BOX, 1e-12)
+        got = sbc._edge_first_at(acc, k, *BOX, 1e-12)
+        assert bool(got[4]) == bool(want[4])
+        if want[4]:
+            assert [float(v) for v in got[:4]] == [float(v) for v in want[:4]]
+            x, y = float(want[0]), float(want[1])
+            seen.add("x=lo" if x == BOX[0] else "x=hi" if x == BOX[1] else "y=" + str(y))
+        else:
+            seen.add("none")
+    assert {"x=lo", "x=hi", "none"} <= seen and len(seen) >= 5  # every edge took its turn

@@ -103,6 +103,25 @@ def _batch_weights(mats: SurfaceEnergyMatrices, u_cls: Any, v_cls: Any, dim: int
     )
 
 
+@cache
+def _batch_setup(
+    u_cls: Any, v_cls: Any, degrees: tuple[int, int], energy: str
+) -> tuple[SurfaceEnergyMatrices, Any, Any, np.ndarray | None, int]:
+    """What a batch needs besides its nets, once per families, degrees and energy (about
+    10 µs a call otherwise): the energy matrices, each direction's exact box, the box as
+    floats (xlo, xhi, ylo, yhi; None where a direction has no λ) and the highest power of
+    λ_u or λ_v in the energy."""
+    mats = _one_parameter_matrices(degrees, energy, (u_cls, v_cls))
+    u_box, v_box = _box(u_cls), _box(v_cls)
+    top = max(max(a, b) for a, b in mats.full)
+    if u_box is None or v_box is None:
+        return mats, u_box, v_box, None, top
+    box = np.array([float(u_box[0]), float(u_box[1]), float(v_box[0]), float(v_box[1])])
+    # shared by every call and written by none (writeable all the same: numba would compile
+    # its kernels again for a read-only array type)
+    return mats, u_box, v_box, box, top
+
+
 def _polymul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Products of polynomials over a batch: (k, p) x (k, q) -> (k, p + q - 1), low first."""
     out = np.zeros((a.shape[0], a.shape[1] + b.shape[1] - 1))
@@ -140,23 +159,20 @@ def optimal_parameters_batch(
     (``careful_fallbacks`` counts them, ``exact_fallbacks`` those of them the exact method
     then solves)."""
     u_cls, v_cls = _as_family_pair(family)
-    u_box, v_box = _box(u_cls), _box(v_cls)
     if nets.ndim != 4 or nets.shape[0] == 0:
         raise ValueError(f"a batch of nets must have shape (k, m+1, n+1, d), got {nets.shape}")
     count, m1, n1, dim = nets.shape
-    mats = _one_parameter_matrices((m1 - 1, n1 - 1), energy, (u_cls, v_cls))
-    top = max(max(a, b) for a, b in mats.full)
+    classes: tuple[Any, Any] = (u_cls, v_cls)  # hashable: classes hash by identity
+    mats, u_box, v_box, box, top = _batch_setup(*classes, (m1 - 1, n1 - 1), energy)
     fast = _batch_compiled()
-    if u_box is None or v_box is None or top > 2 or fast is None:
+    if box is None or top > 2 or fast is None:
         check_net_values(nets)
-    if u_box is None or v_box is None or top > 2:
+    if box is None or top > 2:
         return _all_exact(nets, np.ones(count, bool), None, energy, u_box, v_box, u_cls, v_cls)
-    box = np.array([float(u_box[0]), float(u_box[1]), float(v_box[0]), float(v_box[1])])
     if fast is not None:
-        classes: tuple[Any, Any] = (u_cls, v_cls)  # hashable: classes hash by identity
         weights = _batch_weights(mats, *classes, dim)
         flat = np.ascontiguousarray(nets.reshape(count, m1 * n1 * dim), dtype=float)
-        bx, by, bval, _, status, valid = fast.optimise(
+        bx, by, bval, _, status, valid = fast.optimise_batch(
             flat, dim, weights, box, CERTIFIED_TOLERANCE, MAX_COORDINATE
         )
         if not valid:
@@ -176,7 +192,7 @@ def optimal_parameters_batch(
         ex, ey = bx[edge], by[edge]
         at_x = (ex == box[0]) | (ex == box[1])
         at_y = (ey == box[2]) | (ey == box[3])
-        where[edge] = np.where(at_x & at_y, "corner", "edge")
+        where[edge] = _WHERE[2 * (at_x & at_y)]  # "corner" or "edge", no str array between
         admissible[edge] = _admissible(ex, u_box) & _admissible(ey, v_box)
     exact = 0
     if declined.size:

@@ -84,6 +84,9 @@ ours (the name follows the `bezier` package's `hazmat`).
   compiled kernel's order (the batch optima's numpy engine);
 - `surface_weights`: the energy's weights for that kernel, in the basis where each
   direction's λ-part is sparse (exact change of basis);
+- `surface_coefficients_ir`: the energy's coefficients of a large batch as vector code
+  emitted from those weights (LLVM IR, compiled by llvmlite, numba's code generator; the
+  `fast` extra, imported on use);
 - `constants`: exact numbers in ℚ(π) and ℚ(e^W) (`ConstantFraction`), signs decided exactly.
 
 The submodules are imported on use: ``from lambda_bezier.hazmat import kernels``.
@@ -136,6 +139,7 @@ __all__ = [
     "settle_compiled",
     "surface_batch_compiled",
     "surface_certify",
+    "surface_coefficients_ir",
     "surface_compiled",
     "surface_fixed_cost",
     "surface_kernels",

@@ -26,19 +26,24 @@ LAMBDA_BEZIER_NO_NUMBA=1 selects it, and the tests run both). The certificate (l
 strong convexity and a global clearing of the rest of the box) puts the minimiser within
 1e-12 of the answer, for the float coefficients; where it declines, its fixed-cost edge
 certificate (surface_certify.edge_minimum) certifies most minima on an edge or at a corner
-(``boundary`` then names the ends, as for one net). The nets both decline (minima near an
-edge or corner, or a family not affine in its parameter) take the one-net certified path
-above and are counted in ``careful_fallbacks``.
+(``boundary`` then names the ends, as for one net). The nets both decline take the
+vectorised careful path below (_careful_batch). For at_cubic's 10,000 benchmark nets that is
+15%: the interior certificate clears the rest of the box with one Bernstein piece per side,
+too coarse where E is only weakly convex across it (A(y) > 0 on [−1, 1] but its three
+Bernstein coefficients not all positive), and it declines every minimum within its R's
+half-width of a face; the careful path certifies all but about one in a thousand of them.
 
-With two or more parameters in a direction (or none in one) the fixed-cost certificate, which
-is for two variables, does not apply: every net's coefficients at every monomial of the
-parameters are computed at once (_monomial_weights, the same Kronecker weights), a vectorised
-float search (a grid, then one-parameter sweeps: float_search) finds each net's start, and
-hazmat.box_batch certifies all nets at once from there (local strong convexity about a
-polished point, with its faces held where the gradient pushes outward, and a Bernstein
-clearing of the rest of the box, every net's sub-boxes as rows of arrays): the minimiser
-within 1e-12 of the answer, for the float coefficients. The nets it declines take the one-net
-certified path and are counted in ``careful_fallbacks``.
+The careful path, and the whole batch with two or more parameters in a direction (or none in
+one; the fixed-cost certificate is for two variables): every net's coefficients at every
+monomial of the parameters are computed at once (_monomial_weights, the same Kronecker
+weights), a vectorised float search (a grid, then one-parameter sweeps: float_search) finds
+each net's start, and hazmat.box_batch certifies all nets at once from there (local strong
+convexity about a polished point, with its faces held where the gradient pushes outward and
+its R cut at the faces, and a Bernstein clearing of the rest of the box, every net's
+sub-boxes as rows of arrays): the minimiser within 1e-12 of the answer, for the float
+coefficients. The nets it declines (two minima of nearly equal energy, a Hessian not
+certified positive) take the one-net certified path started at its point, and are counted in
+``careful_fallbacks``: that count is the number of nets solved one by one.
 """
 
 from __future__ import annotations
@@ -122,8 +127,8 @@ def optimal_parameters(
 class SurfaceParameterBatch(Mapping[str, Any]):
     """The optimal parameters of a batch of nets, by name (``r["lam_u"]``: an array of
     length k), ``energy`` at them (floats), ``boundary`` per net (the parameters at an end of
-    their range, as the one-net result says it; "" inside), and how many nets the fixed-cost
-    certificate declined (``careful_fallbacks``, solved one by one)."""
+    their range, as the one-net result says it; "" inside), and how many nets the vectorised
+    certificates declined (``careful_fallbacks``, solved one by one)."""
 
     parameters: dict[str, np.ndarray]
     energy: np.ndarray
@@ -256,19 +261,79 @@ def optimal_parameters_batch(nets: np.ndarray, energy: str, family: Any) -> Surf
         return _several_batch(nets, energy, (fu, fv), du, dv)
     count = nets.shape[0]
     bx, by, bval, ok, on_edge = fixed_cost(nets, du, dv, energy)
-    declined = np.flatnonzero(~ok)
     boundary = np.empty(count, dtype=object)
     boundary[:] = ""
     for i in np.flatnonzero(on_edge):  # certified on an edge or at a corner: name the ends
         point = (_at_end(float(bx[i]), du), _at_end(float(by[i]), dv))
         boundary[i] = named_point(du, dv, point, exact=False)[1]
-    for i in declined:
-        one = certified_parameters(nets[i], energy, (fu, fv))
-        got = [float(np.ravel(v)[0]) for v in one.parameters.values()]
-        bx[i], by[i], bval[i] = got[0], got[1], float(one.energy)
-        boundary[i] = one.boundary
+    declined = np.flatnonzero(~ok)
+    fallbacks = 0
+    if declined.size:  # the vectorised certificate, then the one-net path for what it declines
+        rest = _careful_batch(nets[declined], energy, (fu, fv), du, dv)
+        bx[declined], by[declined] = rest.values[:, 0], rest.values[:, 1]
+        bval[declined], boundary[declined] = rest.energy, rest.boundary
+        fallbacks = rest.fallbacks
     values = {f"{du.names[0]}_u": bx, f"{dv.names[0]}_v": by}
-    return SurfaceParameterBatch(values, bval, boundary, int(declined.size))
+    return SurfaceParameterBatch(values, bval, boundary, fallbacks)
+
+
+@dataclass(frozen=True)
+class _Careful:
+    """_careful_batch's answer: every parameter (u's then v's) as the columns of `values`,
+    the energy, the boundary note, and how many nets took the one-net path."""
+
+    values: np.ndarray
+    energy: np.ndarray
+    boundary: np.ndarray
+    fallbacks: int
+
+
+def _careful_batch(
+    nets: np.ndarray, energy: str, family: tuple[Any, Any], du: Direction, dv: Direction
+) -> _Careful:
+    """The certified minima of a batch of nets by the vectorised careful path, for any
+    number of parameters a direction: every net's coefficient at every monomial of the
+    parameters at once (one batched product with _monomial_weights), a vectorised float
+    search (float_search), the vectorised certificate (hazmat.box_batch: local strong
+    convexity about the polished point, a face held where the gradient pushes outward, and a
+    Bernstein clearing of the rest of the box), and the nets it declines certified one by one
+    by the one-net path started at its point (counted in ``fallbacks``). A parameter ending
+    on an end of its range is that end exactly, named as the one-net path names it."""
+    count = nets.shape[0]
+    exponents, weights = _monomial_weights(du.family, du.degree, dv.family, dv.degree, energy)
+    flat = nets.reshape(count, -1, nets.shape[-1])
+    with np.errstate(over="ignore", invalid="ignore"):
+        gram = np.matmul(flat, flat.transpose(0, 2, 1)).reshape(count, -1)
+        coeffs = gram @ weights
+    ranges = [du.ranges[x] for x in du.names] + [dv.ranges[x] for x in dv.names]
+    lo = np.array([float(r[0]) for r in ranges])
+    hi = np.array([float(r[1]) for r in ranges])
+    starts = float_search(coeffs, exponents, lo, hi)
+    bx, bval, _, ok = box_batch.certified_minimum(  # bx: polished, a better one-net start
+        coeffs, exponents, lo, hi, starts, CERTIFIED_TOLERANCE
+    )
+    values = np.empty_like(bx)
+    boundary = np.empty(count, dtype=object)
+    boundary[:] = ""
+    for i in range(count):
+        if ok[i]:
+            values[i] = bx[i]
+            if np.any((bx[i] == lo) | (bx[i] == hi)):  # ends named exactly, as one net's are
+                point = tuple(
+                    r[0] if x == float(r[0]) else r[1] if x == float(r[1]) else float(x)
+                    for x, r in zip(bx[i], ranges, strict=True)
+                )
+                boundary[i] = named_point(du, dv, point, exact=False)[1]
+            continue
+        try:
+            one = certified_parameters(nets[i], energy, family, start=tuple(bx[i]))
+        except ValueError as exc:  # the budget ran out: say which net
+            raise ValueError(f"net {i} of the batch: {exc}") from None
+        values[i] = [x for v in one.parameters.values() for x in np.ravel(v)]
+        bval[i], boundary[i] = float(one.energy), one.boundary
+    # E is an integral of squares: a float value below 0 is rounding (an infimum of 0 at
+    # a degenerate end, as at_pi_cubic's at lam = 1), and 0 is nearer the truth
+    return _Careful(values, np.maximum(bval, 0.0), boundary, int(np.count_nonzero(~ok)))
 
 
 # ---------------------------------------------------------------------- several parameters
@@ -341,41 +406,17 @@ def float_search(
 def _several_batch(
     nets: np.ndarray, energy: str, family: tuple[Any, Any], du: Direction, dv: Direction
 ) -> SurfaceParameterBatch:
-    """A batch with two or more parameters in a direction (or none in one): every net's
-    energy coefficients at once (one batched product with _monomial_weights), a vectorised
-    float search (float_search), the vectorised certificate (hazmat.box_batch), and the nets
-    it declines certified by the one-net path started there, counted in
-    ``careful_fallbacks``."""
-    count = nets.shape[0]
-    exponents, weights = _monomial_weights(du.family, du.degree, dv.family, dv.degree, energy)
-    flat = nets.reshape(count, -1, nets.shape[-1])
-    gram = np.matmul(flat, flat.transpose(0, 2, 1)).reshape(count, -1)
-    coeffs = gram @ weights
-    ranges = [du.ranges[x] for x in du.names] + [dv.ranges[x] for x in dv.names]
-    lo = np.array([float(r[0]) for r in ranges])
-    hi = np.array([float(r[1]) for r in ranges])
-    starts = float_search(coeffs, exponents, lo, hi)
-    bx, bval, _, ok = box_batch.certified_minimum(  # bx: polished, a better one-net start
-        coeffs, exponents, lo, hi, starts, CERTIFIED_TOLERANCE
-    )
-    values: dict[str, list[Any]] = {}
-    boundary = np.empty(count, dtype=object)
-    for i in range(count):
-        if ok[i]:  # the vectorised certificate's: ends named exactly, as the one-net path does
-            point = tuple(
-                r[0] if x == float(r[0]) else r[1] if x == float(r[1]) else float(x)
-                for x, r in zip(bx[i], ranges, strict=True)
-            )
-            named, boundary[i] = named_point(du, dv, point, exact=False)
-            for name, v in named.items():
-                values.setdefault(name, []).append(v)
-            continue
-        try:
-            one = certified_parameters(nets[i], energy, family, start=tuple(bx[i]))
-        except ValueError as exc:  # the budget ran out: say which net
-            raise ValueError(f"net {i} of the batch: {exc}") from None
-        for name, v in one.parameters.items():
-            values.setdefault(name, []).append(v)
-        bval[i], boundary[i] = float(one.energy), one.boundary
-    arrays = {name: np.array(v, dtype=float) for name, v in values.items()}
-    return SurfaceParameterBatch(arrays, bval, boundary, int(np.count_nonzero(~ok)))
+    """A batch with two or more parameters in a direction (or none in one): every net by
+    _careful_batch (the fixed-cost certificate is for two variables)."""
+    rest = _careful_batch(nets, energy, family, du, dv)
+    arrays: dict[str, np.ndarray] = {}
+    k = 0
+    for d, suffix in ((du, "u"), (dv, "v")):
+        width = len(d.names)
+        if d.indexed is not None:  # one name, every net's values as a row
+            arrays[f"{d.indexed}_{suffix}"] = rest.values[:, k : k + width]
+        else:
+            for j, x in enumerate(d.names):
+                arrays[f"{x}_{suffix}"] = rest.values[:, k + j]
+        k += width
+    return SurfaceParameterBatch(arrays, rest.energy, rest.boundary, rest.fallbacks)

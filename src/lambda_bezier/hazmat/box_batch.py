@@ -8,15 +8,20 @@ minimiser over the box is unique and within δ <= `tol` of the returned point x 
 coordinate), about the float coefficients. Three parts, each on all nets at once:
 
 1. a start (the caller's) polished by projected Newton steps, batched (a variable at an end
-   of its range whose gradient pushes outward is held there);
+   of its range whose gradient pushes outward is held there), and put on a face it is
+   within tol/2 of;
 2. local: on the box R about x (half-width r a fraction of each side: the widest of 1/8,
-   1/32, 1/128 that certifies; only inward along a held variable), the Hessian is at least
-   μ I, μ > 0, from the Bernstein ranges of its entries over R (weighted diagonal
-   dominance, weights 1/sqrt(H_ii), or the scaled centre matrix's least eigenvalue less the
-   ranges' spread, the larger), so E is strongly convex there and its minimiser over R lies
-   within δ = |∇E(x)| / μ of x, counting the gradient of the free variables only and its
-   rounding (strong monotonicity: μ |t|² <= −∇E(x)·t, and a held variable's term is <= 0);
-   2δ < r and R inside the open box along the free variables put that minimiser inside R.
+   1/32, 1/128 that certifies; cut at the box's faces, so only inward along a held
+   variable, or a free one nearer a face than r), the Hessian is at least μ I, μ > 0, from
+   the Bernstein ranges of its entries over R (weighted diagonal dominance, weights
+   1/sqrt(H_ii), or the scaled centre matrix's least eigenvalue less the ranges' spread,
+   the larger), so E is strongly convex there and its minimiser x_R over R (convex, holding
+   x) is unique and within δ = |∇E(x)| / μ of x, counting the gradient of the free
+   variables only and its rounding: with t = x − x_R, optimality of x_R over R gives
+   ∇E(x_R)·t >= 0, strong monotonicity μ |t|² <= (∇E(x) − ∇E(x_R))·t <= ∇E(x)·t, and a
+   held variable's term g_j t_j is <= 0 (x_j at the face g_j pushes against). Part 3 then
+   puts the box's minimiser in R, so it is x_R: R need not lie inside the open box, and a
+   minimum near a face (within r of it, not on it) is certified like any other;
    Where the float gradient's rounding alone keeps δ above tol (ill-conditioned Hessians),
    Newton steps with the gradient computed exactly (Fractions of the float coefficients
    and point; `refine`) move x to the float lattice's best and bound |∇E| by half an ulp;
@@ -26,8 +31,9 @@ coordinate), about the float coefficients. Three parts, each on all nets at once
    away from its minimum (about μ r²/2), never the 1e-12: generous rounding bounds
    (ROUND times the size of the terms) cost little.
 
-A net is declined (certified False) when its Hessian is not certified over any R, its point
-is within r of a face, or its rows outrun MAX_ROWS or MAX_ROUNDS; the caller solves those
+A net is declined (certified False) when its Hessian is not certified over any R, or its
+rows outrun MAX_ROWS or MAX_ROUNDS (a second minimum nearly as low as the first); the caller
+solves those
 one by one and counts them. Rounding bounds are generous estimates, not interval
 arithmetic, as in surface_certify.
 """
@@ -183,8 +189,8 @@ def _local(
         g, g_round = exact
     at_lo, at_hi = (x <= lo) & (g > g_round), (x >= hi) & (g < -g_round)
     held = at_lo | at_hi
-    rlo = np.where(at_lo, lo, x - r)
-    rhi = np.where(at_hi, hi, x + r)
+    rlo = np.where(at_lo, lo, np.maximum(x - r, lo))  # cut at the faces: see the module's doc
+    rhi = np.where(at_hi, hi, np.minimum(x + r, hi))
     reach = np.maximum(np.abs(rlo), np.abs(rhi))
     low = np.empty((count, dims, dims))
     high = np.empty((count, dims, dims))
@@ -208,8 +214,7 @@ def _local(
     free = np.where(held, 0.0, np.abs(g) + g_round)
     with np.errstate(divide="ignore", invalid="ignore"):
         delta = np.sqrt((free**2).sum(axis=1)) / np.where(mu > 0, mu, 1.0)
-    inside = np.all(held | ((x - r > lo) & (x + r < hi)), axis=1)
-    ok = (mu > 0) & (delta <= tol) & (2 * delta < r.min()) & inside
+    ok = (mu > 0) & (delta <= tol)
     return rlo, rhi, np.where(mu > 0, delta, np.inf), ok
 
 
@@ -272,6 +277,10 @@ def certified_minimum(
     power = dense(coeffs, exponents)
     count, dims = start.shape
     x = polish(power, start, lo, hi)
+    # a coordinate within tol/2 of a face is put on it: polish keeps a point a few ulps
+    # inside a face where E's rounding hides its last step, and the one-net path names such
+    # a minimum's end; the certificate below is of whichever point it is given
+    x = np.where(x - lo <= tol / 2, lo, np.where(hi - x <= tol / 2, hi, x))
     energy = value(power, x)
     size = _size(power, np.broadcast_to(np.maximum(np.abs(lo), np.abs(hi)), (count, dims)))
     rlo, rhi = np.empty((count, dims)), np.empty((count, dims))

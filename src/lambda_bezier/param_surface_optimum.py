@@ -413,10 +413,10 @@ def float_search(
         with np.errstate(divide="ignore", invalid="ignore"):
             vertex = np.where(a2 > 0, -a1 / (2 * a2), lo_j)
         vertex = np.clip(np.nan_to_num(vertex, nan=lo_j), lo_j, hi_j)
-        cands = (np.full(a0.shape, lo_j), np.full(a0.shape, hi_j), vertex)
-        values = np.stack([a0 + (a1 + a2 * t) * t for t in cands])
+        ends = (np.full(a0.shape, lo_j), np.full(a0.shape, hi_j), vertex)
+        values = np.stack([a0 + (a1 + a2 * t) * t for t in ends])
         pick = np.argmin(values, axis=0)
-        t = np.choose(pick, cands)
+        t = np.choose(pick, ends)
         best = np.argmin(np.take_along_axis(values, pick[None], 0)[0], axis=1)
         rows = np.arange(part.shape[0])
         chosen = grid[best]

@@ -1,7 +1,8 @@
-"""The vectorised careful path of batches of atom-family nets with one parameter a direction
-(param_surface_optimum._careful_batch, hazmat.box_batch): the nets both fixed-cost
-certificates decline, whose minima lie inside the box, within r of a face, on an edge or at
-a corner, certified without the one-net path (issue #31).
+"""The nets of a batch of atom-family nets (one parameter a direction) that the compiled
+fixed-cost stage declines, whose minima lie inside the box, within r of a face, on an edge or
+at a corner: certified without the one-net path, by the sharper fixed-cost pass
+(hazmat.surface_recertify) and then the vectorised careful path
+(param_surface_optimum._careful_batch, hazmat.box_batch) (issue #31).
 
 References, independent of the batch's float coefficients and certificate: each net's
 one-net certified minimum (the exact energy polynomial in ℚ[π, 1/π], Bernstein branch and
@@ -116,8 +117,9 @@ def test_the_nets_both_fixed_cost_certificates_decline_are_certified_vectorised(
 
 
 def test_careful_fallbacks_counts_every_net_solved_one_by_one(monkeypatch):
-    """The counter is the number of one-net calls; with the vectorised certificate declining
-    every net, every declined net is solved one by one, to the same answers."""
+    """The counter is the number of one-net calls; with the sharper fixed-cost pass
+    (hazmat.surface_recertify) and the vectorised certificate declining every net, every net
+    the compiled stage declined is solved one by one, to the same answers."""
     nets = _nets(60)
     calls = []
     one_net = po.certified_parameters
@@ -137,8 +139,13 @@ def test_careful_fallbacks_counts_every_net_solved_one_by_one(monkeypatch):
         x = np.clip(start, lo, hi)
         return x, np.zeros(len(x)), np.full(len(x), np.inf), np.zeros(len(x), bool)
 
+    def recertifies_none(c, box, tol):
+        zero = np.zeros(len(c[0]))
+        return zero, zero, zero, np.zeros(len(zero), bool), np.zeros(len(zero), bool)
+
     calls.clear()
     monkeypatch.setattr(po.box_batch, "certified_minimum", declines_all)
+    monkeypatch.setattr(po, "recertified_minimum", recertifies_none)
     slow = lb.optimal_parameters(nets, "thin_plate", family=AT)
     assert slow.careful_fallbacks == len(calls) == declined.size
     assert np.all(slow.boundary == got.boundary)

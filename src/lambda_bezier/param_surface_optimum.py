@@ -26,12 +26,14 @@ LAMBDA_BEZIER_NO_NUMBA=1 selects it, and the tests run both). The certificate (l
 strong convexity and a global clearing of the rest of the box) puts the minimiser within
 1e-12 of the answer, for the float coefficients; where it declines, its fixed-cost edge
 certificate (surface_certify.edge_minimum) certifies most minima on an edge or at a corner
-(``boundary`` then names the ends, as for one net). The nets both decline take the
-vectorised careful path below (_careful_batch). For at_cubic's 10,000 benchmark nets that is
-15%: the interior certificate clears the rest of the box with one Bernstein piece per side,
-too coarse where E is only weakly convex across it (A(y) > 0 on [−1, 1] but its three
-Bernstein coefficients not all positive), and it declines every minimum within its R's
-half-width of a face; the careful path certifies all but about one in a thousand of them.
+(``boundary`` then names the ends, as for one net). For at_cubic's 10,000 benchmark nets
+both decline 15% (1,533): the interior certificate needs E_xx > 0 along every line of the
+box, which it tests by the three Bernstein coefficients of a quadratic, too loose where
+at_cubic's E is only weakly convex across the box; and it declines every minimum within its
+R's half-width of a face. The nets both decline are certified again with that quadratic's
+least value in place of its Bernstein coefficients (hazmat.surface_recertify, numpy: 1,161
+of the 1,533), and what that declines takes the vectorised careful path below
+(_careful_batch: the other 372, none left to the one-net path).
 
 The careful path, and the whole batch with two or more parameters in a direction (or none in
 one; the fixed-cost certificate is for two variables): every net's coefficients at every
@@ -63,6 +65,7 @@ from .hazmat import box_batch
 from .hazmat import surface_kernels as ker
 from .hazmat.constants import constant_bounds
 from .hazmat.surface_fixed_cost import fixed_cost_minimum
+from .hazmat.surface_recertify import recertified_minimum
 from .hazmat.surface_weights import pair_weights, plain_weights
 from .param_surface_energy import (
     Direction,
@@ -261,6 +264,18 @@ def optimal_parameters_batch(nets: np.ndarray, energy: str, family: Any) -> Surf
         return _several_batch(nets, energy, (fu, fv), du, dv)
     count = nets.shape[0]
     bx, by, bval, ok, on_edge = fixed_cost(nets, du, dv, energy)
+    declined = np.flatnonzero(~ok)
+    if declined.size and max(max(a, b) for a, b in energy_weights(du, dv, energy)) <= 2:
+        # the declined nets again, with the sharper quadratic test (hazmat.surface_recertify)
+        coeffs = energy_coefficients(nets[declined], du, dv, energy)
+        zero = np.zeros(declined.size)
+        c = [coeffs.get((a, b), zero) for a in range(3) for b in range(3)]
+        (xlo, xhi), (ylo, yhi) = _box(du), _box(dv)
+        box = np.array([float(xlo), float(xhi), float(ylo), float(yhi)])
+        rx, ry, rval, rok, redge = recertified_minimum(c, box, CERTIFIED_TOLERANCE)
+        done = declined[rok]
+        bx[done], by[done], bval[done] = rx[rok], ry[rok], rval[rok]
+        ok[done], on_edge[done] = True, redge[rok]
     boundary = np.empty(count, dtype=object)
     boundary[:] = ""
     for i in np.flatnonzero(on_edge):  # certified on an edge or at a corner: name the ends

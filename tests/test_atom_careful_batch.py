@@ -152,3 +152,29 @@ def test_careful_fallbacks_counts_every_net_solved_one_by_one(monkeypatch):
     assert np.allclose(slow.energy, got.energy, rtol=1e-12, atol=0)
     for name in ("lam_u", "lam_v"):  # the one-net point is certified in energy: ~sqrt(1e-12)
         assert np.abs(slow[name] - got[name]).max() <= 1e-5
+
+
+@pytest.mark.parametrize(
+    ("file", "energy"),
+    [("lit_hyp_quad.toml", "thin_plate"), ("lit_hyp_quad.toml", "membrane")],
+)
+def test_hyperbolic_families_batches_agree_with_each_nets_certified_minimum(file, energy):
+    """One-parameter hyperbolic families (constant e^W): the same stages, against each net's
+    one-net certified minimum (every eighth net) and the surface's own energy."""
+    fam = lb.load_family("tests/data/families/" + file)
+    nets = np.random.default_rng(9).normal(size=(24, 3, 3, 3))
+    got = lb.optimal_parameters(nets, energy, family=fam)
+    assert got.careful_fallbacks <= 2
+    for i in range(0, 24, 8):
+        one = lb.optimal_parameters(nets[i], energy, family=fam)
+        lower, best = float(one.lower_bound), float(one.energy)
+        slack = 1e-12 * abs(best)
+        assert lower - slack <= got.energy[i] <= best + slack
+        assert got.boundary[i] == one.boundary
+        surface = fam.surface(
+            nets[i],
+            params_u={"lam": F(float(got["lam_u"][i]))},
+            params_v={"lam": F(float(got["lam_v"][i]))},
+        )
+        attained = float(lb.surface_energy(surface, energy))
+        assert abs(attained - got.energy[i]) <= 1e-12 * abs(attained)

@@ -100,10 +100,26 @@ def _builtin_named(family: Any) -> Any:
     return tuple(pd.polynomial_family(f) if isinstance(f, str) else f for f in family)
 
 
-def _at_end(x: float, d: Direction) -> float | Fraction:
-    """x, or the exact end of d's range it is the float of (named_point names ends by them)."""
-    lo, hi = _box(d)
-    return lo if x == float(lo) else hi if x == float(hi) else x
+def _end_labels(points: np.ndarray, du: Direction, dv: Direction) -> np.ndarray:
+    """The boundary note of every row of `points` (every parameter, u's then v's), as the
+    one-net result says it: a coordinate equal to the float of an end of its range is that
+    end exactly. The note depends only on which ends a row is at, so named_point runs once
+    per such pattern (at most 3^P of them), not once per row."""
+    ranges = [du.ranges[x] for x in du.names] + [dv.ranges[x] for x in dv.names]
+    code = np.zeros(points.shape[0], dtype=np.int64)
+    for j, r in enumerate(ranges):
+        at = np.where(points[:, j] == float(r[0]), 1, np.where(points[:, j] == float(r[1]), 2, 0))
+        code += at * 3**j
+    out = np.empty(points.shape[0], dtype=object)
+    out[:] = ""
+    for key in np.unique(code[code > 0]):
+        digits = [(int(key) // 3**j) % 3 for j in range(len(ranges))]
+        point = tuple(
+            Fraction(r[0]) if k == 1 else Fraction(r[1]) if k == 2 else 0.0
+            for k, r in zip(digits, ranges, strict=True)
+        )
+        out[code == key] = named_point(du, dv, point, exact=False)[1]
+    return out
 
 
 def _box(d: Direction) -> tuple[Fraction, Fraction]:
@@ -278,9 +294,8 @@ def optimal_parameters_batch(nets: np.ndarray, energy: str, family: Any) -> Surf
         ok[done], on_edge[done] = True, redge[rok]
     boundary = np.empty(count, dtype=object)
     boundary[:] = ""
-    for i in np.flatnonzero(on_edge):  # certified on an edge or at a corner: name the ends
-        point = (_at_end(float(bx[i]), du), _at_end(float(by[i]), dv))
-        boundary[i] = named_point(du, dv, point, exact=False)[1]
+    edge = np.flatnonzero(on_edge)  # certified on an edge or at a corner: name the ends
+    boundary[edge] = _end_labels(np.stack([bx[edge], by[edge]], axis=1), du, dv)
     declined = np.flatnonzero(~ok)
     fallbacks = 0
     if declined.size:  # the vectorised certificate, then the one-net path for what it declines
@@ -327,19 +342,9 @@ def _careful_batch(
     bx, bval, _, ok = box_batch.certified_minimum(  # bx: polished, a better one-net start
         coeffs, exponents, lo, hi, starts, CERTIFIED_TOLERANCE
     )
-    values = np.empty_like(bx)
-    boundary = np.empty(count, dtype=object)
-    boundary[:] = ""
-    for i in range(count):
-        if ok[i]:
-            values[i] = bx[i]
-            if np.any((bx[i] == lo) | (bx[i] == hi)):  # ends named exactly, as one net's are
-                point = tuple(
-                    r[0] if x == float(r[0]) else r[1] if x == float(r[1]) else float(x)
-                    for x, r in zip(bx[i], ranges, strict=True)
-                )
-                boundary[i] = named_point(du, dv, point, exact=False)[1]
-            continue
+    values = bx.copy()
+    boundary = _end_labels(bx, du, dv)  # ends named exactly, as one net's are
+    for i in np.flatnonzero(~ok):
         try:
             one = certified_parameters(nets[i], energy, family, start=tuple(bx[i]))
         except ValueError as exc:  # the budget ran out: say which net

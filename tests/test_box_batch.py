@@ -120,3 +120,30 @@ def test_a_minimiser_within_half_the_tolerance_of_a_face_is_put_on_it():
     )
     assert ok[0] and x[0, 0] == 2.0
     assert np.abs(x[0] - c).max() <= delta[0] <= 1e-12
+
+
+@pytest.mark.parametrize("shape", [(3, 3), (3, 3, 3, 3), (5, 2, 3)])
+def test_the_exact_gradient_is_the_fractions_one_rounded(shape):
+    """_exact_gradient (integers times powers of two) against the gradient computed in
+    Fractions (box_convex.derivative, box_forms.value) and rounded once: equal bit for bit,
+    on coefficients and points over ten decades, with zeros among them."""
+    from fractions import Fraction
+
+    from lambda_bezier.hazmat.box_convex import derivative
+    from lambda_bezier.hazmat.box_forms import value
+
+    rng = np.random.default_rng(1)
+    power = rng.normal(size=(20, *shape)) * 10.0 ** rng.integers(-5, 5, size=(20, *shape))
+    power[rng.random(power.shape) < 0.2] = 0.0
+    x = rng.normal(size=(20, len(shape))) * 10.0 ** rng.integers(-3, 3, size=(20, len(shape)))
+    x[0, 0] = 0.0
+    got, bound = box_batch._exact_gradient(power, x)
+    for k in range(20):
+        exact = np.empty(shape, dtype=object)
+        for idx, c in np.ndenumerate(power[k]):
+            exact[idx] = Fraction(float(c))
+        point = tuple(Fraction(float(v)) for v in x[k])
+        for i in range(len(shape)):
+            want = value(derivative(exact, i), point)
+            assert got[k, i] == float(want)
+            assert abs(Fraction(float(got[k, i])) - want) <= Fraction(float(bound[k, i]))

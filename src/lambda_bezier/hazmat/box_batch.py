@@ -218,24 +218,48 @@ def _local(
     return rlo, rhi, np.where(mu > 0, delta, np.inf), ok
 
 
+def _dyadic(values: np.ndarray) -> tuple[list[int], list[int]]:
+    """(m, k) with value = m · 2^k exactly, for every float of `values` (flattened)."""
+    mant, expo = np.frexp(np.ravel(values))
+    m = (mant * 2.0**53).astype(np.int64)  # exact: |mant| < 1 has 53 bits
+    return [int(v) for v in m], [int(e) - 53 for e in expo]
+
+
 def _exact_gradient(power: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(g, bound) per row: ∇E at the float point x computed exactly (Fractions of the float
-    coefficients and point), g its float and bound >= |g − exact| (half a unit in the last
-    place, and the least subnormal)."""
-    from fractions import Fraction
+    """(g, bound) per row: ∇E at the float point x computed exactly, g its float and
+    bound >= |g − exact| (half a unit in the last place, and the least subnormal).
 
-    from .box_convex import derivative
-    from .box_forms import value as exact_value
-
+    Every float is an integer times a power of two, so each term c_e e_i Π x_j^(e_j − δ_ij)
+    is one too (Python integers, no rounding); the terms are summed on their least power of
+    two and the sum divided once, which Python rounds correctly (int / int): the same
+    exact value as with Fractions, without their gcd at every step."""
     count, dims = x.shape
+    shape = power.shape[1:]
+    exps = [tuple(int(v) for v in e) for e in np.ndindex(*shape)]
     g = np.empty((count, dims))
     for k in range(count):
-        exact = np.empty(power.shape[1:], dtype=object)
-        for idx, c in np.ndenumerate(power[k]):
-            exact[idx] = Fraction(float(c))
-        point = tuple(Fraction(float(v)) for v in x[k])
+        cm, ck = _dyadic(power[k])
+        xm, xk = _dyadic(x[k])
+        powers = [[xm[j] ** a for a in range(shape[j])] for j in range(dims)]
         for i in range(dims):
-            g[k, i] = float(exact_value(derivative(exact, i), point))
+            nums: list[int] = []
+            twos: list[int] = []
+            for e, m, c_two in zip(exps, cm, ck, strict=True):
+                if m == 0 or e[i] == 0:
+                    continue
+                num, two = m * e[i], c_two
+                for j in range(dims):
+                    a = e[j] - (j == i)
+                    num *= powers[j][a]
+                    two += xk[j] * a
+                nums.append(num)
+                twos.append(two)
+            if not nums:
+                g[k, i] = 0.0
+                continue
+            low = min(twos)
+            total = sum(n << (t - low) for n, t in zip(nums, twos, strict=True))
+            g[k, i] = total * 2.0**low if low >= 0 else total / (1 << -low)
     return g, np.abs(g) * 2.0**-53 + 2.0**-1074
 
 

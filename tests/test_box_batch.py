@@ -96,3 +96,54 @@ def test_the_vectorised_certificate_agrees_with_each_nets_exact_branch_and_bound
         for name in names:  # the one-net point is certified in energy only: ~sqrt(1e-12)
             assert abs(float(one[name]) - got[name][i]) <= 1e-5
         assert got.boundary[i] == one.boundary
+
+
+def test_a_minimiser_near_a_face_is_certified_with_r_cut_at_the_face():
+    """c inside the box but nearer its face x_1 = 2 than any R's half-width (1/128 of the
+    side is 1/32): certified at c (exact in binary), R cut at the face."""
+    c = np.array([2 - 2.0**-8, -0.75, 1.25, 2.0**-9 - 2])
+    coeffs, exponents = _quadratic(A, c)
+    x, e, delta, ok = box_batch.certified_minimum(
+        coeffs, exponents, LO, HI, np.zeros((1, 4)), 1e-12
+    )
+    assert ok[0] and delta[0] <= 1e-12
+    assert np.abs(x[0] - c).max() <= delta[0]
+
+
+def test_a_minimiser_within_half_the_tolerance_of_a_face_is_put_on_it():
+    """c a few ulps inside the face x_1 = 2: the returned point is on the face, and c within
+    its δ (the certificate is of the point on the face, not of the float search's)."""
+    c = np.array([2 - 2.0**-45, -0.75, 1.25, 0.125])
+    coeffs, exponents = _quadratic(np.diag([4.0, 3.0, 2.0, 1.0]), c)
+    x, _, delta, ok = box_batch.certified_minimum(
+        coeffs, exponents, LO, HI, np.zeros((1, 4)), 1e-12
+    )
+    assert ok[0] and x[0, 0] == 2.0
+    assert np.abs(x[0] - c).max() <= delta[0] <= 1e-12
+
+
+@pytest.mark.parametrize("shape", [(3, 3), (3, 3, 3, 3), (5, 2, 3)])
+def test_the_exact_gradient_is_the_fractions_one_rounded(shape):
+    """_exact_gradient (integers times powers of two) against the gradient computed in
+    Fractions (box_convex.derivative, box_forms.value) and rounded once: equal bit for bit,
+    on coefficients and points over ten decades, with zeros among them."""
+    from fractions import Fraction
+
+    from lambda_bezier.hazmat.box_convex import derivative
+    from lambda_bezier.hazmat.box_forms import value
+
+    rng = np.random.default_rng(1)
+    power = rng.normal(size=(20, *shape)) * 10.0 ** rng.integers(-5, 5, size=(20, *shape))
+    power[rng.random(power.shape) < 0.2] = 0.0
+    x = rng.normal(size=(20, len(shape))) * 10.0 ** rng.integers(-3, 3, size=(20, len(shape)))
+    x[0, 0] = 0.0
+    got, bound = box_batch._exact_gradient(power, x)
+    for k in range(20):
+        exact = np.empty(shape, dtype=object)
+        for idx, c in np.ndenumerate(power[k]):
+            exact[idx] = Fraction(float(c))
+        point = tuple(Fraction(float(v)) for v in x[k])
+        for i in range(len(shape)):
+            want = value(derivative(exact, i), point)
+            assert got[k, i] == float(want)
+            assert abs(Fraction(float(got[k, i])) - want) <= Fraction(float(bound[k, i]))

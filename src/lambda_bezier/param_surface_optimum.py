@@ -26,19 +26,26 @@ LAMBDA_BEZIER_NO_NUMBA=1 selects it, and the tests run both). The certificate (l
 strong convexity and a global clearing of the rest of the box) puts the minimiser within
 1e-12 of the answer, for the float coefficients; where it declines, its fixed-cost edge
 certificate (surface_certify.edge_minimum) certifies most minima on an edge or at a corner
-(``boundary`` then names the ends, as for one net). The nets both decline (minima near an
-edge or corner, or a family not affine in its parameter) take the one-net certified path
-above and are counted in ``careful_fallbacks``.
+(``boundary`` then names the ends, as for one net). For at_cubic's 10,000 benchmark nets
+both decline 15% (1,533): the interior certificate needs E_xx > 0 along every line of the
+box, which it tests by the three Bernstein coefficients of a quadratic, too loose where
+at_cubic's E is only weakly convex across the box; and it declines every minimum within its
+R's half-width of a face. The nets both decline are certified again with that quadratic's
+least value in place of its Bernstein coefficients (hazmat.surface_recertify, numpy: 1,161
+of the 1,533), and what that declines takes the vectorised careful path below
+(_careful_batch: the other 372, none left to the one-net path).
 
-With two or more parameters in a direction (or none in one) the fixed-cost certificate, which
-is for two variables, does not apply: every net's coefficients at every monomial of the
-parameters are computed at once (_monomial_weights, the same Kronecker weights), a vectorised
-float search (a grid, then one-parameter sweeps: float_search) finds each net's start, and
-hazmat.box_batch certifies all nets at once from there (local strong convexity about a
-polished point, with its faces held where the gradient pushes outward, and a Bernstein
-clearing of the rest of the box, every net's sub-boxes as rows of arrays): the minimiser
-within 1e-12 of the answer, for the float coefficients. The nets it declines take the one-net
-certified path and are counted in ``careful_fallbacks``.
+The careful path, and the whole batch with two or more parameters in a direction (or none in
+one; the fixed-cost certificate is for two variables): every net's coefficients at every
+monomial of the parameters are computed at once (_monomial_weights, the same Kronecker
+weights), a vectorised float search (a grid, then one-parameter sweeps: float_search) finds
+each net's start, and hazmat.box_batch certifies all nets at once from there (local strong
+convexity about a polished point, with its faces held where the gradient pushes outward and
+its R cut at the faces, and a Bernstein clearing of the rest of the box, every net's
+sub-boxes as rows of arrays): the minimiser within 1e-12 of the answer, for the float
+coefficients. The nets it declines (two minima of nearly equal energy, a Hessian not
+certified positive) take the one-net certified path started at its point, and are counted in
+``careful_fallbacks``: that count is the number of nets solved one by one.
 """
 
 from __future__ import annotations
@@ -58,6 +65,7 @@ from .hazmat import box_batch
 from .hazmat import surface_kernels as ker
 from .hazmat.constants import constant_bounds
 from .hazmat.surface_fixed_cost import fixed_cost_minimum
+from .hazmat.surface_recertify import recertified_minimum
 from .hazmat.surface_weights import pair_weights, plain_weights
 from .param_surface_energy import (
     Direction,
@@ -92,10 +100,26 @@ def _builtin_named(family: Any) -> Any:
     return tuple(pd.polynomial_family(f) if isinstance(f, str) else f for f in family)
 
 
-def _at_end(x: float, d: Direction) -> float | Fraction:
-    """x, or the exact end of d's range it is the float of (named_point names ends by them)."""
-    lo, hi = _box(d)
-    return lo if x == float(lo) else hi if x == float(hi) else x
+def _end_labels(points: np.ndarray, du: Direction, dv: Direction) -> np.ndarray:
+    """The boundary note of every row of `points` (every parameter, u's then v's), as the
+    one-net result says it: a coordinate equal to the float of an end of its range is that
+    end exactly. The note depends only on which ends a row is at, so named_point runs once
+    per such pattern (at most 3^P of them), not once per row."""
+    ranges = [du.ranges[x] for x in du.names] + [dv.ranges[x] for x in dv.names]
+    code = np.zeros(points.shape[0], dtype=np.int64)
+    for j, r in enumerate(ranges):
+        at = np.where(points[:, j] == float(r[0]), 1, np.where(points[:, j] == float(r[1]), 2, 0))
+        code += at * 3**j
+    out = np.empty(points.shape[0], dtype=object)
+    out[:] = ""
+    for key in np.unique(code[code > 0]):
+        digits = [(int(key) // 3**j) % 3 for j in range(len(ranges))]
+        point = tuple(
+            Fraction(r[0]) if k == 1 else Fraction(r[1]) if k == 2 else 0.0
+            for k, r in zip(digits, ranges, strict=True)
+        )
+        out[code == key] = named_point(du, dv, point, exact=False)[1]
+    return out
 
 
 def _box(d: Direction) -> tuple[Fraction, Fraction]:
@@ -122,8 +146,8 @@ def optimal_parameters(
 class SurfaceParameterBatch(Mapping[str, Any]):
     """The optimal parameters of a batch of nets, by name (``r["lam_u"]``: an array of
     length k), ``energy`` at them (floats), ``boundary`` per net (the parameters at an end of
-    their range, as the one-net result says it; "" inside), and how many nets the fixed-cost
-    certificate declined (``careful_fallbacks``, solved one by one)."""
+    their range, as the one-net result says it; "" inside), and how many nets the vectorised
+    certificates declined (``careful_fallbacks``, solved one by one)."""
 
     parameters: dict[str, np.ndarray]
     energy: np.ndarray
@@ -257,18 +281,79 @@ def optimal_parameters_batch(nets: np.ndarray, energy: str, family: Any) -> Surf
     count = nets.shape[0]
     bx, by, bval, ok, on_edge = fixed_cost(nets, du, dv, energy)
     declined = np.flatnonzero(~ok)
+    if declined.size and max(max(a, b) for a, b in energy_weights(du, dv, energy)) <= 2:
+        # the declined nets again, with the sharper quadratic test (hazmat.surface_recertify)
+        coeffs = energy_coefficients(nets[declined], du, dv, energy)
+        zero = np.zeros(declined.size)
+        c = [coeffs.get((a, b), zero) for a in range(3) for b in range(3)]
+        (xlo, xhi), (ylo, yhi) = _box(du), _box(dv)
+        box = np.array([float(xlo), float(xhi), float(ylo), float(yhi)])
+        rx, ry, rval, rok, redge = recertified_minimum(c, box, CERTIFIED_TOLERANCE)
+        done = declined[rok]
+        bx[done], by[done], bval[done] = rx[rok], ry[rok], rval[rok]
+        ok[done], on_edge[done] = True, redge[rok]
     boundary = np.empty(count, dtype=object)
     boundary[:] = ""
-    for i in np.flatnonzero(on_edge):  # certified on an edge or at a corner: name the ends
-        point = (_at_end(float(bx[i]), du), _at_end(float(by[i]), dv))
-        boundary[i] = named_point(du, dv, point, exact=False)[1]
-    for i in declined:
-        one = certified_parameters(nets[i], energy, (fu, fv))
-        got = [float(np.ravel(v)[0]) for v in one.parameters.values()]
-        bx[i], by[i], bval[i] = got[0], got[1], float(one.energy)
-        boundary[i] = one.boundary
+    edge = np.flatnonzero(on_edge)  # certified on an edge or at a corner: name the ends
+    boundary[edge] = _end_labels(np.stack([bx[edge], by[edge]], axis=1), du, dv)
+    declined = np.flatnonzero(~ok)
+    fallbacks = 0
+    if declined.size:  # the vectorised certificate, then the one-net path for what it declines
+        rest = _careful_batch(nets[declined], energy, (fu, fv), du, dv)
+        bx[declined], by[declined] = rest.values[:, 0], rest.values[:, 1]
+        bval[declined], boundary[declined] = rest.energy, rest.boundary
+        fallbacks = rest.fallbacks
     values = {f"{du.names[0]}_u": bx, f"{dv.names[0]}_v": by}
-    return SurfaceParameterBatch(values, bval, boundary, int(declined.size))
+    return SurfaceParameterBatch(values, bval, boundary, fallbacks)
+
+
+@dataclass(frozen=True)
+class _Careful:
+    """_careful_batch's answer: every parameter (u's then v's) as the columns of `values`,
+    the energy, the boundary note, and how many nets took the one-net path."""
+
+    values: np.ndarray
+    energy: np.ndarray
+    boundary: np.ndarray
+    fallbacks: int
+
+
+def _careful_batch(
+    nets: np.ndarray, energy: str, family: tuple[Any, Any], du: Direction, dv: Direction
+) -> _Careful:
+    """The certified minima of a batch of nets by the vectorised careful path, for any
+    number of parameters a direction: every net's coefficient at every monomial of the
+    parameters at once (one batched product with _monomial_weights), a vectorised float
+    search (float_search), the vectorised certificate (hazmat.box_batch: local strong
+    convexity about the polished point, a face held where the gradient pushes outward, and a
+    Bernstein clearing of the rest of the box), and the nets it declines certified one by one
+    by the one-net path started at its point (counted in ``fallbacks``). A parameter ending
+    on an end of its range is that end exactly, named as the one-net path names it."""
+    count = nets.shape[0]
+    exponents, weights = _monomial_weights(du.family, du.degree, dv.family, dv.degree, energy)
+    flat = nets.reshape(count, -1, nets.shape[-1])
+    with np.errstate(over="ignore", invalid="ignore"):
+        gram = np.matmul(flat, flat.transpose(0, 2, 1)).reshape(count, -1)
+        coeffs = gram @ weights
+    ranges = [du.ranges[x] for x in du.names] + [dv.ranges[x] for x in dv.names]
+    lo = np.array([float(r[0]) for r in ranges])
+    hi = np.array([float(r[1]) for r in ranges])
+    starts = float_search(coeffs, exponents, lo, hi)
+    bx, bval, _, ok = box_batch.certified_minimum(  # bx: polished, a better one-net start
+        coeffs, exponents, lo, hi, starts, CERTIFIED_TOLERANCE
+    )
+    values = bx.copy()
+    boundary = _end_labels(bx, du, dv)  # ends named exactly, as one net's are
+    for i in np.flatnonzero(~ok):
+        try:
+            one = certified_parameters(nets[i], energy, family, start=tuple(bx[i]))
+        except ValueError as exc:  # the budget ran out: say which net
+            raise ValueError(f"net {i} of the batch: {exc}") from None
+        values[i] = [x for v in one.parameters.values() for x in np.ravel(v)]
+        bval[i], boundary[i] = float(one.energy), one.boundary
+    # E is an integral of squares: a float value below 0 is rounding (an infimum of 0 at
+    # a degenerate end, as at_pi_cubic's at lam = 1), and 0 is nearer the truth
+    return _Careful(values, np.maximum(bval, 0.0), boundary, int(np.count_nonzero(~ok)))
 
 
 # ---------------------------------------------------------------------- several parameters
@@ -306,19 +391,57 @@ def float_search(
     coeffs: np.ndarray, exponents: np.ndarray, lo: np.ndarray, hi: np.ndarray, sweeps: int = 8
 ) -> np.ndarray:
     """A float minimiser of Σ_K coeffs[:, K] x^exponents[K] over the box [lo, hi] for every
-    row of `coeffs` at once: the best point of a grid of about 4096 points, then `sweeps`
-    rounds of exact minimisation in one parameter at a time, clipped to the box (E is
-    quadratic in each parameter of an affine family; a parameter of higher degree keeps its
-    grid value). Only a start for the certified path: nothing here is certified."""
+    row of `coeffs` at once: the best point of a grid, then `sweeps` rounds of exact
+    minimisation in one parameter at a time, clipped to the box (E is quadratic in each
+    parameter of an affine family; a parameter of higher degree keeps its grid value). Where
+    a parameter is quadratic (the last such), the grid is over the others only, about
+    4096^((P-1)/P) points, with that parameter minimised exactly at each (its quadratic's
+    vertex clipped to its range, or an end): for two parameters, 64 values of one and the
+    exact best of the other, where a 64 × 64 grid took 64 times the work. Only a start for
+    the certified path: nothing here is certified."""
     count, dims = coeffs.shape[0], exponents.shape[1]
     side = max(3, int(round(4096 ** (1 / dims))))
-    axes = [np.linspace(lo[j], hi[j], side) for j in range(dims)]
-    grid = np.stack([g.ravel() for g in np.meshgrid(*axes, indexing="ij")], axis=1)
-    mono = _monomials(grid, exponents)
+    quadratic = [j for j in range(dims) if exponents[:, j].max() <= 2]
+    along = quadratic[-1] if quadratic else None  # minimised exactly at each grid point
+    gridded = [j for j in range(dims) if j != along]
+    axes = [np.linspace(lo[j], hi[j], side) for j in gridded]
+    mesh = np.meshgrid(*axes, indexing="ij") if axes else []
+    grid = np.zeros((int(np.prod([side] * len(gridded))), dims))
+    for j, g in zip(gridded, mesh, strict=True):
+        grid[:, j] = g.ravel()
+    if along is None:
+        powers = [(np.ones(exponents.shape[0], bool), _monomials(grid, exponents))]
+    else:  # the monomials of the other parameters, by the power of this one
+        rest = exponents.copy()
+        rest[:, along] = 0
+        mono = _monomials(grid, rest)
+        powers = [(exponents[:, along] == e, mono) for e in range(3)]
     points = np.empty((count, dims))
-    for first in range(0, count, 256):  # (256, G) energies at a time
-        values = coeffs[first : first + 256] @ mono.T
-        points[first : first + 256] = grid[np.argmin(values, axis=1)]
+    # blocks of products under 2^18 multiply-adds: OpenBLAS's threshold for threads, which
+    # on a loaded machine measured 13-30x slower than one thread here
+    width = sum(int(mask.sum()) for mask, _ in powers) * grid.shape[0]
+    block = max(1, 2**18 // max(1, width))
+    for first in range(0, count, block):
+        part = coeffs[first : first + block]
+        terms = [part[:, mask] @ mono[:, mask].T for mask, mono in powers]
+        if along is None:
+            best = np.argmin(terms[0], axis=1)
+            points[first : first + block] = grid[best]
+            continue
+        a0, a1, a2 = terms
+        lo_j, hi_j = lo[along], hi[along]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            vertex = np.where(a2 > 0, -a1 / (2 * a2), lo_j)
+        vertex = np.clip(np.nan_to_num(vertex, nan=lo_j), lo_j, hi_j)
+        ends = (np.full(a0.shape, lo_j), np.full(a0.shape, hi_j), vertex)
+        values = np.stack([a0 + (a1 + a2 * t) * t for t in ends])
+        pick = np.argmin(values, axis=0)
+        t = np.choose(pick, ends)
+        best = np.argmin(np.take_along_axis(values, pick[None], 0)[0], axis=1)
+        rows = np.arange(part.shape[0])
+        chosen = grid[best]
+        chosen[:, along] = t[rows, best]
+        points[first : first + block] = chosen
     for _ in range(sweeps):
         for j in range(dims):
             if exponents[:, j].max() > 2:
@@ -341,41 +464,17 @@ def float_search(
 def _several_batch(
     nets: np.ndarray, energy: str, family: tuple[Any, Any], du: Direction, dv: Direction
 ) -> SurfaceParameterBatch:
-    """A batch with two or more parameters in a direction (or none in one): every net's
-    energy coefficients at once (one batched product with _monomial_weights), a vectorised
-    float search (float_search), the vectorised certificate (hazmat.box_batch), and the nets
-    it declines certified by the one-net path started there, counted in
-    ``careful_fallbacks``."""
-    count = nets.shape[0]
-    exponents, weights = _monomial_weights(du.family, du.degree, dv.family, dv.degree, energy)
-    flat = nets.reshape(count, -1, nets.shape[-1])
-    gram = np.matmul(flat, flat.transpose(0, 2, 1)).reshape(count, -1)
-    coeffs = gram @ weights
-    ranges = [du.ranges[x] for x in du.names] + [dv.ranges[x] for x in dv.names]
-    lo = np.array([float(r[0]) for r in ranges])
-    hi = np.array([float(r[1]) for r in ranges])
-    starts = float_search(coeffs, exponents, lo, hi)
-    bx, bval, _, ok = box_batch.certified_minimum(  # bx: polished, a better one-net start
-        coeffs, exponents, lo, hi, starts, CERTIFIED_TOLERANCE
-    )
-    values: dict[str, list[Any]] = {}
-    boundary = np.empty(count, dtype=object)
-    for i in range(count):
-        if ok[i]:  # the vectorised certificate's: ends named exactly, as the one-net path does
-            point = tuple(
-                r[0] if x == float(r[0]) else r[1] if x == float(r[1]) else float(x)
-                for x, r in zip(bx[i], ranges, strict=True)
-            )
-            named, boundary[i] = named_point(du, dv, point, exact=False)
-            for name, v in named.items():
-                values.setdefault(name, []).append(v)
-            continue
-        try:
-            one = certified_parameters(nets[i], energy, family, start=tuple(bx[i]))
-        except ValueError as exc:  # the budget ran out: say which net
-            raise ValueError(f"net {i} of the batch: {exc}") from None
-        for name, v in one.parameters.items():
-            values.setdefault(name, []).append(v)
-        bval[i], boundary[i] = float(one.energy), one.boundary
-    arrays = {name: np.array(v, dtype=float) for name, v in values.items()}
-    return SurfaceParameterBatch(arrays, bval, boundary, int(np.count_nonzero(~ok)))
+    """A batch with two or more parameters in a direction (or none in one): every net by
+    _careful_batch (the fixed-cost certificate is for two variables)."""
+    rest = _careful_batch(nets, energy, family, du, dv)
+    arrays: dict[str, np.ndarray] = {}
+    k = 0
+    for d, suffix in ((du, "u"), (dv, "v")):
+        width = len(d.names)
+        if d.indexed is not None:  # one name, every net's values as a row
+            arrays[f"{d.indexed}_{suffix}"] = rest.values[:, k : k + width]
+        else:
+            for j, x in enumerate(d.names):
+                arrays[f"{x}_{suffix}"] = rest.values[:, k + j]
+        k += width
+    return SurfaceParameterBatch(arrays, rest.energy, rest.boundary, rest.fallbacks)

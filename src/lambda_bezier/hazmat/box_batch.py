@@ -8,15 +8,20 @@ minimiser over the box is unique and within δ <= `tol` of the returned point x 
 coordinate), about the float coefficients. Three parts, each on all nets at once:
 
 1. a start (the caller's) polished by projected Newton steps, batched (a variable at an end
-   of its range whose gradient pushes outward is held there);
+   of its range whose gradient pushes outward is held there), and put on a face it is
+   within tol/2 of;
 2. local: on the box R about x (half-width r a fraction of each side: the widest of 1/8,
-   1/32, 1/128 that certifies; only inward along a held variable), the Hessian is at least
-   μ I, μ > 0, from the Bernstein ranges of its entries over R (weighted diagonal
-   dominance, weights 1/sqrt(H_ii), or the scaled centre matrix's least eigenvalue less the
-   ranges' spread, the larger), so E is strongly convex there and its minimiser over R lies
-   within δ = |∇E(x)| / μ of x, counting the gradient of the free variables only and its
-   rounding (strong monotonicity: μ |t|² <= −∇E(x)·t, and a held variable's term is <= 0);
-   2δ < r and R inside the open box along the free variables put that minimiser inside R.
+   1/32, 1/128 that certifies; cut at the box's faces, so only inward along a held
+   variable, or a free one nearer a face than r), the Hessian is at least μ I, μ > 0, from
+   the Bernstein ranges of its entries over R (weighted diagonal dominance, weights
+   1/sqrt(H_ii), or the scaled centre matrix's least eigenvalue less the ranges' spread,
+   the larger), so E is strongly convex there and its minimiser x_R over R (convex, holding
+   x) is unique and within δ = |∇E(x)| / μ of x, counting the gradient of the free
+   variables only and its rounding: with t = x − x_R, optimality of x_R over R gives
+   ∇E(x_R)·t >= 0, strong monotonicity μ |t|² <= (∇E(x) − ∇E(x_R))·t <= ∇E(x)·t, and a
+   held variable's term g_j t_j is <= 0 (x_j at the face g_j pushes against). Part 3 then
+   puts the box's minimiser in R, so it is x_R: R need not lie inside the open box, and a
+   minimum near a face (within r of it, not on it) is certified like any other;
    Where the float gradient's rounding alone keeps δ above tol (ill-conditioned Hessians),
    Newton steps with the gradient computed exactly (Fractions of the float coefficients
    and point; `refine`) move x to the float lattice's best and bound |∇E| by half an ulp;
@@ -26,8 +31,9 @@ coordinate), about the float coefficients. Three parts, each on all nets at once
    away from its minimum (about μ r²/2), never the 1e-12: generous rounding bounds
    (ROUND times the size of the terms) cost little.
 
-A net is declined (certified False) when its Hessian is not certified over any R, its point
-is within r of a face, or its rows outrun MAX_ROWS or MAX_ROUNDS; the caller solves those
+A net is declined (certified False) when its Hessian is not certified over any R, or its
+rows outrun MAX_ROWS or MAX_ROUNDS (a second minimum nearly as low as the first); the caller
+solves those
 one by one and counts them. Rounding bounds are generous estimates, not interval
 arithmetic, as in surface_certify.
 """
@@ -183,8 +189,8 @@ def _local(
         g, g_round = exact
     at_lo, at_hi = (x <= lo) & (g > g_round), (x >= hi) & (g < -g_round)
     held = at_lo | at_hi
-    rlo = np.where(at_lo, lo, x - r)
-    rhi = np.where(at_hi, hi, x + r)
+    rlo = np.where(at_lo, lo, np.maximum(x - r, lo))  # cut at the faces: see the module's doc
+    rhi = np.where(at_hi, hi, np.minimum(x + r, hi))
     reach = np.maximum(np.abs(rlo), np.abs(rhi))
     low = np.empty((count, dims, dims))
     high = np.empty((count, dims, dims))
@@ -208,29 +214,52 @@ def _local(
     free = np.where(held, 0.0, np.abs(g) + g_round)
     with np.errstate(divide="ignore", invalid="ignore"):
         delta = np.sqrt((free**2).sum(axis=1)) / np.where(mu > 0, mu, 1.0)
-    inside = np.all(held | ((x - r > lo) & (x + r < hi)), axis=1)
-    ok = (mu > 0) & (delta <= tol) & (2 * delta < r.min()) & inside
+    ok = (mu > 0) & (delta <= tol)
     return rlo, rhi, np.where(mu > 0, delta, np.inf), ok
 
 
+def _dyadic(values: np.ndarray) -> tuple[list[int], list[int]]:
+    """(m, k) with value = m · 2^k exactly, for every float of `values` (flattened)."""
+    mant, expo = np.frexp(np.ravel(values))
+    m = (mant * 2.0**53).astype(np.int64)  # exact: |mant| < 1 has 53 bits
+    return [int(v) for v in m], [int(e) - 53 for e in expo]
+
+
 def _exact_gradient(power: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(g, bound) per row: ∇E at the float point x computed exactly (Fractions of the float
-    coefficients and point), g its float and bound >= |g − exact| (half a unit in the last
-    place, and the least subnormal)."""
-    from fractions import Fraction
+    """(g, bound) per row: ∇E at the float point x computed exactly, g its float and
+    bound >= |g − exact| (half a unit in the last place, and the least subnormal).
 
-    from .box_convex import derivative
-    from .box_forms import value as exact_value
-
+    Every float is an integer times a power of two, so each term c_e e_i Π x_j^(e_j − δ_ij)
+    is one too (Python integers, no rounding); the terms are summed on their least power of
+    two and the sum divided once, which Python rounds correctly (int / int): the same
+    exact value as with Fractions, without their gcd at every step."""
     count, dims = x.shape
+    shape = power.shape[1:]
+    exps = [tuple(int(v) for v in e) for e in np.ndindex(*shape)]
     g = np.empty((count, dims))
     for k in range(count):
-        exact = np.empty(power.shape[1:], dtype=object)
-        for idx, c in np.ndenumerate(power[k]):
-            exact[idx] = Fraction(float(c))
-        point = tuple(Fraction(float(v)) for v in x[k])
+        cm, ck = _dyadic(power[k])
+        xm, xk = _dyadic(x[k])
+        powers = [[xm[j] ** a for a in range(shape[j])] for j in range(dims)]
         for i in range(dims):
-            g[k, i] = float(exact_value(derivative(exact, i), point))
+            nums: list[int] = []
+            twos: list[int] = []
+            for e, m, c_two in zip(exps, cm, ck, strict=True):
+                if m == 0 or e[i] == 0:
+                    continue
+                num, two = m * e[i], c_two
+                for j in range(dims):
+                    a = e[j] - (j == i)
+                    num *= powers[j][a]
+                    two += xk[j] * a
+                nums.append(num)
+                twos.append(two)
+            if not nums:
+                g[k, i] = 0.0
+                continue
+            low = min(twos)
+            total = sum(n << (t - low) for n, t in zip(nums, twos, strict=True))
+            g[k, i] = total * 2.0**low if low >= 0 else total / (1 << -low)
     return g, np.abs(g) * 2.0**-53 + 2.0**-1074
 
 
@@ -272,6 +301,10 @@ def certified_minimum(
     power = dense(coeffs, exponents)
     count, dims = start.shape
     x = polish(power, start, lo, hi)
+    # a coordinate within tol/2 of a face is put on it: polish keeps a point a few ulps
+    # inside a face where E's rounding hides its last step, and the one-net path names such
+    # a minimum's end; the certificate below is of whichever point it is given
+    x = np.where(x - lo <= tol / 2, lo, np.where(hi - x <= tol / 2, hi, x))
     energy = value(power, x)
     size = _size(power, np.broadcast_to(np.maximum(np.abs(lo), np.abs(hi)), (count, dims)))
     rlo, rhi = np.empty((count, dims)), np.empty((count, dims))

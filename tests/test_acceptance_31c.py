@@ -131,3 +131,20 @@ def test_curvatures_towards_a_collapsed_edge(surf):
         assert pytest.approx(float(H_ref), rel=1e-6) == H
     with pytest.raises(ValueError, match="undefined"):
         surf.curvatures(1e-12, 0.4)
+
+
+# ---------------------------------------------------------------- JSON, untrusted text
+@pytest.mark.parametrize("depth", [100_000, 5_000])
+def test_deeply_nested_json_is_a_value_error(depth):
+    """Before: surface_from_json (and the curves' loader) let the decoder's RecursionError
+    through, a deep traceback from untrusted text."""
+    from lambda_bezier._json_io import _load_document
+    from lambda_bezier.surface_export import surface_from_json
+
+    text = "[" * depth + "]" * depth
+    for load in (surface_from_json, _load_document):
+        with pytest.raises(ValueError, match="nested too deeply"):
+            load(text)
+    inside = '{"lambda_bezier": 1, "kind": "surface", "net": ' + text + "}"
+    with pytest.raises(ValueError, match="nested too deeply"):
+        surface_from_json(inside)

@@ -283,11 +283,20 @@ def _segment_from(
     return curve  # type: ignore[return-value]  # a C-Bézier curve has what JSON reads
 
 
-def _load_document(text: str) -> dict[str, Any]:
+def parse_json(text: str | bytes | bytearray) -> Any:
+    """json.loads with every failure of untrusted text a ValueError: a syntax error, an
+    integer past Python's digit limit, and nesting deeper than the recursion limit (a
+    RecursionError from the decoder otherwise)."""
     try:
-        doc = json.loads(text)
-    except (TypeError, json.JSONDecodeError) as exc:
+        return json.loads(text)
+    except RecursionError:
+        raise ValueError("not valid JSON: nested too deeply") from None
+    except (TypeError, ValueError) as exc:  # json.JSONDecodeError is a ValueError
         raise ValueError(f"not valid JSON: {exc}") from None
+
+
+def _load_document(text: str) -> dict[str, Any]:
+    doc = parse_json(text)
     if not isinstance(doc, dict) or doc.get("lambda_bezier") != FORMAT_VERSION:
         raise ValueError(
             f'not a lambda-bezier JSON document: expected "lambda_bezier": {FORMAT_VERSION}'

@@ -148,3 +148,20 @@ def test_deeply_nested_json_is_a_value_error(depth):
     inside = '{"lambda_bezier": 1, "kind": "surface", "net": ' + text + "}"
     with pytest.raises(ValueError, match="nested too deeply"):
         surface_from_json(inside)
+
+
+def test_deeply_nested_family_files_are_named_errors(tmp_path):
+    """A family definition (TOML) or derived document (JSON) nested past the recursion limit:
+    before, RecursionError from the decoder; now the FamilyFileError (a ValueError) naming
+    the file."""
+    deep = tmp_path / "deep.toml"
+    deep.write_text("a = " + "[" * 100_000 + "]" * 100_000 + "\n", encoding="utf-8")
+    with pytest.raises(ValueError, match="deep.toml: not valid TOML: nested too deeply"):
+        lb.load_family(deep)
+    from lambda_bezier import examples
+
+    src = examples.path("nouri_saeidian.toml")
+    (tmp_path / "nouri_saeidian.toml").write_text(src.read_text(encoding="utf-8"), "utf-8")
+    (tmp_path / "nouri_saeidian.derived.json").write_text("[" * 100_000 + "]" * 100_000)
+    with pytest.raises(ValueError, match="not a derived family document"):
+        lb.load_family(tmp_path / "nouri_saeidian.toml")

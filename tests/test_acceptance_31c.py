@@ -165,3 +165,22 @@ def test_deeply_nested_family_files_are_named_errors(tmp_path):
     (tmp_path / "nouri_saeidian.derived.json").write_text("[" * 100_000 + "]" * 100_000)
     with pytest.raises(ValueError, match="not a derived family document"):
         lb.load_family(tmp_path / "nouri_saeidian.toml")
+
+
+def test_deeply_nested_records_file_is_named(tmp_path):
+    """`lambda-bezier verify` on a records file nested past the recursion limit: before, a
+    RecursionError traceback; now exit 2 with the file named."""
+    import subprocess
+    import sys
+
+    deep = tmp_path / "deep.records.toml"
+    deep.write_text("a = " + "[" * 20_000 + "]" * 20_000 + "\n", encoding="utf-8")
+    run = subprocess.run(
+        [sys.executable, "-m", "lambda_bezier", "verify", str(deep)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert "Traceback" not in run.stderr
+    assert "deep.records.toml: not valid TOML: nested too deeply" in run.stderr
+    assert run.returncode != 0

@@ -246,11 +246,15 @@ class Surface:
     def __repr__(self) -> str:
         m, n = self.degrees
         lams = "".join(
-            f", {name}={lam}"
-            for name, lam in (("lam_u", self.lam_u), ("lam_v", self.lam_v))
+            f", {cls.parameter_name}_{d}={lam}"
+            for d, cls, lam in (("u", self._u_cls, self.lam_u), ("v", self._v_cls, self.lam_v))
             if lam is not None
         )
-        return f"{type(self).__name__}(degrees=({m}, {n}), dimension={self.dimension}{lams})"
+        # the generic class names its families (one, or u x v), as AtomSurface does: the
+        # built-in classes' names say it
+        fu, fv = self._u_cls.family, self._v_cls.family
+        which = "" if type(self) is not Surface else (f"{fu}, " if fu == fv else f"{fu} x {fv}, ")
+        return f"{type(self).__name__}({which}degrees=({m}, {n}), dimension={self.dimension}{lams})"
 
     # ------------------------------------------------------------------ Bézier form
     def _bernstein(self, axis: int) -> Matrix | np.ndarray:

@@ -548,3 +548,20 @@ def test_a_batch_of_float_nets_is_the_independent_minimum():
         best, x, y = _reference_minimum(_energy_poly("bernstein_like", net, "thin_plate"), -1, 1)
         assert abs(r["lam_u"][k] - float(x)) < 1e-10, k
         assert abs(r["lam_v"][k] - float(y)) < 1e-10, k
+
+
+def test_a_batch_with_a_bezier_direction_has_no_nan():
+    """Bézier across same_degree, a batch: λ_u is None as for one net (before: an array of
+    NaN), and each λ_v is the vertex of the exact energy's quadratic in λ_v, clipped to
+    [-2, 1] (from the definitions)."""
+    nets = np.random.default_rng(7).normal(size=(3, 5, 4, 2))
+    r = lb.optimal_parameters(nets, "membrane", ("bezier", "same_degree"))
+    assert r["lam_u"] is None and r["lam_u_float"] is None
+    assert r["free_u"].all()
+    fams = ("bezier", "same_degree")
+    for k in range(3):
+        net = [[tuple(F(float(x)) for x in p) for p in row] for row in nets[k]]
+        e = [_exact_energy(fams, (None, F(y)), net, "membrane") for y in (-1, 0, 1)]
+        a, b = (e[2] + e[0]) / 2 - e[1], (e[2] - e[0]) / 2  # E(y) = a y² + b y + e[1]
+        vertex = min(max(-b / (2 * a), F(-2)), F(1))
+        assert abs(r["lam_v"][k] - float(vertex)) < 1e-12

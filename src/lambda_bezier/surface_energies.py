@@ -400,7 +400,8 @@ class SurfaceOptimalParameters(Mapping[str, Any]):
     For exact input ``lam_u``/``lam_v`` are Fractions or IsolatedRoot (an irrational algebraic
     number: its integer polynomial and an isolating interval), ``lam_u_float``/``lam_v_float``
     their floats, ``energy`` the minimum (a Fraction when both are rational, else a float) and
-    ``where`` "interior", "edge" or "corner". For a batch every field is an array.
+    ``where`` "interior", "edge" or "corner". For a batch every field is an array (but
+    ``lam_u``/``lam_v`` of a direction without a shape parameter, None as for one net).
     ``admissible`` is False where the minimum over the closed box sits on an excluded end of a
     family's range (λ = −2 for same_degree); ``free_u``/``free_v`` mark a parameter the energy
     does not depend on (then the family's Bézier value is returned).

@@ -360,16 +360,20 @@ def _all_exact(
         r = _exact_optimum(poly, u_box, v_box, u_cls, v_cls)
         for key in ("lam_u", "lam_v"):
             value = r[key + "_float"]
-            result[key][i] = np.nan if value is None else value
+            if value is not None:
+                result[key][i] = value
         result["energy"][i] = float(r["energy"])
         result["where"][i] = r["where"]
         result["admissible"][i] = r["admissible"]
         free_u[i], free_v[i] = r["free_u"], r["free_v"]
+    # a direction without a shape parameter (Bézier) has None, as for one net: never NaN
+    lam_u = None if u_box is None else result["lam_u"]
+    lam_v = None if v_box is None else result["lam_v"]
     return SurfaceOptimalParameters(
-        result["lam_u"],
-        result["lam_v"],
-        result["lam_u"],
-        result["lam_v"],
+        lam_u,
+        lam_v,
+        lam_u,
+        lam_v,
         result["energy"],
         result["where"],
         result["admissible"],

@@ -565,3 +565,26 @@ def test_a_batch_with_a_bezier_direction_has_no_nan():
         a, b = (e[2] + e[0]) / 2 - e[1], (e[2] - e[0]) / 2  # E(y) = a y² + b y + e[1]
         vertex = min(max(-b / (2 * a), F(-2)), F(1))
         assert abs(r["lam_v"][k] - float(vertex)) < 1e-12
+
+
+# ------------------------------------------------------------------------------ plots
+@pytest.mark.parametrize(
+    ("kwargs", "error", "match"),
+    [
+        ({"ax": "mean"}, TypeError, "ax must be a matplotlib 3D Axes"),  # before: AttributeError
+        ({"samples": 10**6}, ValueError, "samples must be from 2 to"),  # before: MemoryError
+        ({"net": "no"}, ValueError, "net must be True or False"),  # before: drew the net
+        ({"cmap": "nope"}, ValueError, "cmap 'nope' is not a matplotlib colour map"),
+        ({"cmap": 3}, TypeError, "cmap must be a colour map or its name"),
+    ],
+)
+def test_plot_surface_bad_input_names_the_argument(kwargs, error, match):
+    pytest.importorskip("matplotlib")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from lambda_bezier.surface_plot import plot_surface
+
+    surf = lb.SameDegreeSurface([[(i, j, (i * j) % 3) for j in range(4)] for i in range(4)], 0, 0)
+    with pytest.raises(error, match=match):
+        plot_surface(surf, **kwargs)

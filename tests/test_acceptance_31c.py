@@ -588,3 +588,39 @@ def test_plot_surface_bad_input_names_the_argument(kwargs, error, match):
     surf = lb.SameDegreeSurface([[(i, j, (i * j) % 3) for j in range(4)] for i in range(4)], 0, 0)
     with pytest.raises(error, match=match):
         plot_surface(surf, **kwargs)
+
+
+# ---------------------------------------------------------------- energy matrices as data
+@pytest.mark.parametrize(
+    ("degrees", "family", "energy"),
+    [
+        ((3, 4), "same_degree", "thin_plate"),  # emitted by derive (degrees 1 to 4)
+        ((5, 3), "bernstein_like", "membrane"),  # built at run time (Kronecker products)
+        ((4, 3), ("same_degree", "bernstein_like"), "thin_plate"),  # a mixed pair
+    ],
+)
+def test_energy_matrices_in_paper_form_are_the_energy(degrees, family, energy):
+    """The paper-style terms (coefficient of λ_u^a λ_v^b: scale s and an upper-triangular
+    integer matrix U with vec(P)ᵀ Q vec(P) = s Σ_{r<=c} U_rc P_r·P_c, the net read row by
+    row) give, at rational (λ_u, λ_v), exactly the energy integrated from the definitions."""
+    mats = lb.surface_energy_matrices(degrees, energy, family=family)
+    fams = (family, family) if isinstance(family, str) else family
+    m, n = degrees
+    rng = np.random.default_rng(sum(degrees))
+    net = [
+        [tuple(int(x) for x in rng.integers(-5, 6, size=2)) for _ in range(n + 1)]
+        for _ in range(m + 1)
+    ]
+    flat = [p for row in net for p in row]
+    for lam_u, lam_v in ((F(1, 2), F(-1, 3)), (F(-1), F(1, 7))):
+        total = F(0)
+        for (a, b), (scale, upper) in mats.terms.items():
+            assert all(isinstance(x, int) for row in upper for x in row)
+            assert all(upper[r][c] == 0 for r in range(len(upper)) for c in range(r))
+            quad = sum(
+                upper[r][c] * sum(x * y for x, y in zip(flat[r], flat[c], strict=True))
+                for r in range(len(flat))
+                for c in range(r, len(flat))
+            )
+            total += F(scale) * quad * lam_u**a * lam_v**b
+        assert total == _exact_energy(fams, (lam_u, lam_v), net, energy)

@@ -261,6 +261,15 @@ def _basis(family, n, lam):
                     terms.append(_pscale((1 - lam) * coeff, _pmul(_ppow(_ST, ps), _ppow(_TT, pt))))
             out.append(_padd(*terms))
         return out
+    if family == "nouri_saeidian":  # its definition file's basis, phi = 3t² - 2t³
+        phi = (F(0), F(0), F(3), F(-2))
+        out = [
+            _pscale(lam * _binom(n, i), _pmul(_ppow(_ST, n - i), _ppow(_TT, i)))
+            for i in range(n + 1)
+        ]
+        out[0] = _padd(out[0], _pscale(1 - lam, _padd((F(1),), _pscale(F(-1), phi))))
+        out[n] = _padd(out[n], _pscale(1 - lam, phi))
+        return out
     assert family == "bernstein_like"
     one = (F(1),)
     b = [
@@ -624,3 +633,28 @@ def test_energy_matrices_in_paper_form_are_the_energy(degrees, family, energy):
             )
             total += F(scale) * quad * lam_u**a * lam_v**b
         assert total == _exact_energy(fams, (lam_u, lam_v), net, energy)
+
+
+def test_an_own_family_optimum_by_its_parameter_name():
+    """nouri_saeidian (parameter sigma in [0, 1]), one net and a batch: the optimum is the
+    independent minimiser of the energy integrated from its definition, and is read as
+    r["sigma_u"] too (as its surfaces' keywords and repr name it; before: KeyError)."""
+    from lambda_bezier import examples
+
+    ns = lb.load_family(examples.path("nouri_saeidian.toml"))
+    net = [[(i, j, (i * j) % 3) for j in range(5)] for i in range(4)]
+    surf = ns.surface(net, sigma_u=F(1, 2), sigma_v=F(1, 3))
+    assert repr(surf).startswith("Surface(nouri_saeidian, degrees=(3, 4)")
+    assert "sigma_u=1/2, sigma_v=1/3" in repr(surf)
+    assert lb.surface_energy(surf, "membrane") == _exact_energy(
+        ("nouri_saeidian",) * 2, (F(1, 2), F(1, 3)), net, "membrane"
+    )
+    r = lb.optimal_parameters(net, "membrane", family=ns)
+    best, x, y = _reference_minimum(_energy_poly("nouri_saeidian", net, "membrane"), 0, 1)
+    assert abs(r["sigma_u_float"] - float(x)) < 1e-12 and abs(r["sigma_v_float"] - float(y)) < 1e-12
+    assert r["sigma_u"] is r["lam_u"] and r["sigma_v"] is r["lam_v"]
+    assert "sigma_u" not in list(r) and "lam_u" in list(r)
+    batch = lb.optimal_parameters(np.array([net, net], dtype=float), "membrane", family=ns)
+    np.testing.assert_allclose(batch["sigma_u"], [float(x)] * 2, atol=1e-12)
+    with pytest.raises(KeyError):
+        r["mu_u"]

@@ -420,6 +420,7 @@ class SurfaceOptimalParameters(Mapping[str, Any]):
     careful_fallbacks: int = 0  # a batch: nets the fixed-cost certificate declined
 
     def __getitem__(self, key: str) -> Any:
+        key = self._aliases().get(key, key)
         if key not in self.__dataclass_fields__:
             raise KeyError(key)
         return getattr(self, key)
@@ -429,6 +430,21 @@ class SurfaceOptimalParameters(Mapping[str, Any]):
 
     def __len__(self) -> int:
         return len(self.__dataclass_fields__)
+
+    def named(self, u_name: str, v_name: str) -> SurfaceOptimalParameters:
+        """This result also read by each direction's own parameter name: r["sigma_u"] is
+        r["lam_u"] for a family whose parameter is sigma (as its surfaces' keywords and repr
+        name it); the keys listed stay lam_u, lam_v."""
+        object.__setattr__(self, "_names", (u_name, v_name))
+        return self
+
+    def _aliases(self) -> dict[str, str]:
+        u_name, v_name = getattr(self, "_names", ("lam", "lam"))
+        out = {}
+        for name, d in ((u_name, "u"), (v_name, "v")):
+            if name != "lam":
+                out[f"{name}_{d}"], out[f"{name}_{d}_float"] = f"lam_{d}", f"lam_{d}_float"
+        return out
 
 
 def _box(cls: type[Curve]) -> tuple[Fraction, Fraction, tuple[bool, bool]] | None:

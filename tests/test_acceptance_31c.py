@@ -658,3 +658,37 @@ def test_an_own_family_optimum_by_its_parameter_name():
     np.testing.assert_allclose(batch["sigma_u"], [float(x)] * 2, atol=1e-12)
     with pytest.raises(KeyError):
         r["mu_u"]
+
+
+@pytest.mark.parametrize(
+    ("text", "match"),
+    [
+        ('{"lambda_bezier": 1, "kind": "curve", "family": [1]}', r"curve.family must be one of"),
+        (
+            '{"lambda_bezier": 1, "kind": "composite", "segments": [{"family": {"a": 1}}]}',
+            r"segments\[0\].family must be one of",
+        ),
+    ],
+)
+def test_a_curve_document_with_a_family_not_a_name(text, match):
+    """Before: TypeError "unhashable type: 'list'" from deep in the loader."""
+    from lambda_bezier.export import from_json
+
+    with pytest.raises(ValueError, match=match):
+        from_json(text)
+
+
+def test_curve_writers_and_reader_point_surfaces_to_their_own():
+    """export.to_json / to_step of a surface, and export.from_json of a surface document:
+    before, a TypeError saying only "expected a curve" and, reading, "unhashable type:
+    'list'"; now each names lambda_bezier.surface_export."""
+    from lambda_bezier import export
+    from lambda_bezier.surface_export import surface_from_json, surface_to_json
+
+    surf = lb.SameDegreeSurface([[(i, j, i * j) for j in range(4)] for i in range(4)], 0, 0)
+    with pytest.raises(TypeError, match="surface is written by lambda_bezier.surface_export"):
+        export.to_json(surf)
+    text = surface_to_json(surf)
+    with pytest.raises(ValueError, match="read it with lambda_bezier.surface_export"):
+        export.from_json(text)
+    assert surface_from_json(text).control_net() == surf.control_net()

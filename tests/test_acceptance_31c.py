@@ -113,25 +113,31 @@ def _bezier_curvatures(surf: lb.Surface, u: float, v: float) -> tuple[mp.mpf, mp
 _COLLAPSED = [[(0, 0, 0)] * 4] + [[(i, j, (i * j) % 3) for j in range(4)] for i in range(1, 4)]
 
 
+_COLLAPSED_V = [list(col) for col in zip(*_COLLAPSED, strict=True)]  # the edge v = 0 instead
+
+
 @pytest.mark.parametrize(
-    "surf",
+    ("surf", "along_v"),
     [
-        lb.SameDegreeSurface(_COLLAPSED, F(1, 2), F(-1, 3)),
-        lb.BernsteinLikeSurface(_COLLAPSED, F(1, 3), F(1, 5)),
+        (lb.SameDegreeSurface(_COLLAPSED, F(1, 2), F(-1, 3)), False),
+        (lb.BernsteinLikeSurface(_COLLAPSED, F(1, 3), F(1, 5)), False),
+        (lb.SameDegreeSurface(_COLLAPSED_V, F(-1, 3), F(1, 2)), True),
+        (lb.BernsteinLikeSurface(_COLLAPSED_V, F(1, 5), F(1, 3)), True),
     ],
-    ids=["same_degree", "bernstein_like"],
+    ids=["same_degree", "bernstein_like", "same_degree_v", "bernstein_like_v"],
 )
-def test_curvatures_towards_a_collapsed_edge(surf):
-    """Every curvature returned on the way to the collapsed edge is the exact form's to 1e-6;
-    at u = 1e-12 the point is refused (the normal, or the curvature, undefined within
-    rounding), never a wild float."""
+def test_curvatures_towards_a_collapsed_edge(surf, along_v):
+    """Every curvature returned on the way to the collapsed edge (u = 0, or v = 0) is the
+    exact form's to 1e-6; at 1e-12 from it the point is refused (the normal, or the
+    curvature, undefined within rounding), never a wild float."""
     for k in (2, 4, 6, 8):
-        K, H = surf.curvatures(10.0**-k, 0.4)
-        K_ref, H_ref = _bezier_curvatures(surf, 10.0**-k, 0.4)
-        assert pytest.approx(float(K_ref), rel=1e-6) == K
-        assert pytest.approx(float(H_ref), rel=1e-6) == H
+        u, v = (0.4, 10.0**-k) if along_v else (10.0**-k, 0.4)
+        K, H = surf.curvatures(u, v)
+        K_ref, H_ref = _bezier_curvatures(surf, u, v)
+        assert float(K_ref) == pytest.approx(K, rel=1e-6)
+        assert float(H_ref) == pytest.approx(H, rel=1e-6)
     with pytest.raises(ValueError, match="undefined"):
-        surf.curvatures(1e-12, 0.4)
+        surf.curvatures(*((0.4, 1e-12) if along_v else (1e-12, 0.4)))
 
 
 # ---------------------------------------------------------------- JSON, untrusted text

@@ -332,6 +332,8 @@ def _toml(path: Path) -> dict:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise RecordsError(f"{path}: not valid TOML: {exc}") from None
+    except RecursionError:  # the decoder recurses on nested arrays and tables
+        raise RecordsError(f"{path}: not valid TOML: nested too deeply") from None
     return data
 
 

@@ -46,6 +46,8 @@ def read_family_table(path: str | Path) -> dict[str, Any]:
         raise FamilyFileError(f"{path}: cannot be read ({exc})") from None
     except tomllib.TOMLDecodeError as exc:
         raise FamilyFileError(f"{path}: not valid TOML: {exc}") from None
+    except RecursionError:  # the decoder recurses on nested arrays and tables
+        raise FamilyFileError(f"{path}: not valid TOML: nested too deeply") from None
     table = data.get("family")
     if not isinstance(table, dict):
         raise FamilyFileError(f"{path}: no [family] table (a family definition starts with one)")

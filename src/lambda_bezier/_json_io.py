@@ -42,9 +42,17 @@ def _segments(obj: object) -> tuple[Curve, ...]:
         return obj.segments  # type: ignore[return-value]  # AtomCurves have what JSON reads
     if isinstance(obj, Curve | AtomCurve) or hasattr(obj, "end_derivatives"):
         return (obj,)  # type: ignore[return-value]  # an AtomCurve has what JSON reads
+    # a surface has its own writers (duck-typed: surfaces is imported only by those who use it)
+    surface = hasattr(obj, "curve_at_u") and hasattr(obj, "to_bezier")
+    hint = (
+        "; a surface is written by lambda_bezier.surface_export (surface_to_json, "
+        "to_step_surface, to_mesh_file)"
+        if surface
+        else ""
+    )
     raise TypeError(
         "expected a lambda_bezier curve, RationalBezierCurve or CompositeCurve, got "
-        f"{type(obj).__name__}"
+        f"{type(obj).__name__}{hint}"
     )
 
 
@@ -188,7 +196,7 @@ def _curve_from(
         raise ValueError(f"{where}: expected an object with family, lambda and points")
     family = data.get("family")
     names = sorted(FAMILIES) + ([RationalBezierCurve.family] if rational else [])
-    if family not in names and family not in own:
+    if not isinstance(family, str) or (family not in names and family not in own):
         raise ValueError(
             f"{where}.family must be one of {names} or a family of your own "
             f"passed as family= (from the shell: --family FILE), got {family!r}"
@@ -283,11 +291,20 @@ def _segment_from(
     return curve  # type: ignore[return-value]  # a C-Bézier curve has what JSON reads
 
 
-def _load_document(text: str) -> dict[str, Any]:
+def parse_json(text: str | bytes | bytearray) -> Any:
+    """json.loads with every failure of untrusted text a ValueError: a syntax error, an
+    integer past Python's digit limit, and nesting deeper than the recursion limit (a
+    RecursionError from the decoder otherwise)."""
     try:
-        doc = json.loads(text)
-    except (TypeError, json.JSONDecodeError) as exc:
+        return json.loads(text)
+    except RecursionError:
+        raise ValueError("not valid JSON: nested too deeply") from None
+    except (TypeError, ValueError) as exc:  # json.JSONDecodeError is a ValueError
         raise ValueError(f"not valid JSON: {exc}") from None
+
+
+def _load_document(text: str) -> dict[str, Any]:
+    doc = parse_json(text)
     if not isinstance(doc, dict) or doc.get("lambda_bezier") != FORMAT_VERSION:
         raise ValueError(
             f'not a lambda-bezier JSON document: expected "lambda_bezier": {FORMAT_VERSION}'
@@ -370,7 +387,7 @@ def _own_classes(
     if names is None:
         segs = doc.get("segments") if doc.get("kind") == "composite" else [doc]
         names = (
-            {s.get("family") for s in segs if isinstance(s, dict)}
+            {s["family"] for s in segs if isinstance(s, dict) and isinstance(s.get("family"), str)}
             if isinstance(segs, list)
             else set()
         )
@@ -432,8 +449,12 @@ def from_json(text: str, *, check_range: bool = True, family: object = None) -> 
     from .joins import Joint
 
     doc = _load_document(text)
-    own = _own_classes(doc, family)
     kind = doc.get("kind")
+    if kind == "surface":  # before _own_classes, which reads a curve's "family" (a str)
+        raise ValueError(
+            "a surface document: read it with lambda_bezier.surface_export.surface_from_json"
+        )
+    own = _own_classes(doc, family)
     if kind == "curve":
         return _curve_from(doc, "curve", check_range, own, rational=True)
     if kind != "composite":

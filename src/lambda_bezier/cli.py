@@ -286,7 +286,7 @@ def _derived_beside(path: Path, text: str) -> list[Path]:
 
     try:
         definitions = json.loads(text).get("definitions", {})
-    except (json.JSONDecodeError, AttributeError):
+    except (ValueError, AttributeError, RecursionError):
         return []  # from_json says what is wrong
     if not isinstance(definitions, dict):
         return []

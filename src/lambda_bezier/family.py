@@ -627,8 +627,12 @@ def _derived_family(
         raise FamilyFileError(f"{doc_path}: larger than {MAX_DOCUMENT_BYTES} bytes")
     try:
         doc = json.loads(doc_path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
+    except (OSError, ValueError) as exc:  # UnicodeDecodeError, JSONDecodeError are ValueErrors
         raise FamilyFileError(f"{doc_path}: not a derived family document ({exc})") from None
+    except RecursionError:
+        raise FamilyFileError(
+            f"{doc_path}: not a derived family document (nested too deeply)"
+        ) from None
     if not isinstance(doc, dict) or doc.get("format") not in READS:
         raise FamilyFileError(
             f"{doc_path}: derived by another version of lambda-bezier (format "

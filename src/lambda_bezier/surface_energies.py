@@ -400,7 +400,8 @@ class SurfaceOptimalParameters(Mapping[str, Any]):
     For exact input ``lam_u``/``lam_v`` are Fractions or IsolatedRoot (an irrational algebraic
     number: its integer polynomial and an isolating interval), ``lam_u_float``/``lam_v_float``
     their floats, ``energy`` the minimum (a Fraction when both are rational, else a float) and
-    ``where`` "interior", "edge" or "corner". For a batch every field is an array.
+    ``where`` "interior", "edge" or "corner". For a batch every field is an array (but
+    ``lam_u``/``lam_v`` of a direction without a shape parameter, None as for one net).
     ``admissible`` is False where the minimum over the closed box sits on an excluded end of a
     family's range (λ = −2 for same_degree); ``free_u``/``free_v`` mark a parameter the energy
     does not depend on (then the family's Bézier value is returned).
@@ -419,6 +420,7 @@ class SurfaceOptimalParameters(Mapping[str, Any]):
     careful_fallbacks: int = 0  # a batch: nets the fixed-cost certificate declined
 
     def __getitem__(self, key: str) -> Any:
+        key = self._aliases().get(key, key)
         if key not in self.__dataclass_fields__:
             raise KeyError(key)
         return getattr(self, key)
@@ -428,6 +430,21 @@ class SurfaceOptimalParameters(Mapping[str, Any]):
 
     def __len__(self) -> int:
         return len(self.__dataclass_fields__)
+
+    def named(self, u_name: str, v_name: str) -> SurfaceOptimalParameters:
+        """This result also read by each direction's own parameter name: r["sigma_u"] is
+        r["lam_u"] for a family whose parameter is sigma (as its surfaces' keywords and repr
+        name it); the keys listed stay lam_u, lam_v."""
+        object.__setattr__(self, "_names", (u_name, v_name))
+        return self
+
+    def _aliases(self) -> dict[str, str]:
+        u_name, v_name = getattr(self, "_names", ("lam", "lam"))
+        out = {}
+        for name, d in ((u_name, "u"), (v_name, "v")):
+            if name != "lam":
+                out[f"{name}_{d}"], out[f"{name}_{d}_float"] = f"lam_{d}", f"lam_{d}_float"
+        return out
 
 
 def _box(cls: type[Curve]) -> tuple[Fraction, Fraction, tuple[bool, bool]] | None:

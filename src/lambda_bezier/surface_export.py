@@ -17,7 +17,7 @@ import numpy as np
 from . import _poly_direction as pd
 from . import _validate as val
 from . import surface_approx
-from ._json_io import _own_classes, class_definitions
+from ._json_io import _own_classes, class_definitions, parse_json
 from .builtin_surfaces import most_specific
 from .export import (
     FORMAT_VERSION,
@@ -299,10 +299,7 @@ def surface_from_json(text: str, *, family: object = None, check_range: bool = T
 
     if not isinstance(text, str | bytes | bytearray):
         raise TypeError(f"text must be a JSON string, got {type(text).__name__}")
-    try:
-        doc = json.loads(text)
-    except (TypeError, json.JSONDecodeError) as exc:
-        raise ValueError(f"not valid JSON: {exc}") from None
+    doc = parse_json(text)
     if (
         not isinstance(doc, dict)
         or doc.get("lambda_bezier") != FORMAT_VERSION

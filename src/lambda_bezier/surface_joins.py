@@ -40,6 +40,7 @@ import numpy.typing as npt
 
 from . import _validate as val
 from ._lazy import deferred
+from .builtin_surfaces import most_specific
 from .curves import BezierCurve, family_class
 from .hazmat.forms import elevation_matrix, hodograph_matrix
 from .joins import join
@@ -258,7 +259,7 @@ def join_surface(
         lams = (lam, along_lam) if axis == 0 else (along_lam, lam)
         if not new_cls._has_lambda:
             lams = (None, along_lam) if axis == 0 else (along_lam, None)
-        return Surface(net, lams[0], lams[1], family=fam, check_range=check_range)
+        return most_specific(net, lams[0], lams[1], classes=fam, check_range=check_range)
     new_columns = []
     for j in range(count):
         curve = (
@@ -280,7 +281,7 @@ def join_surface(
     net = _transpose(new_columns) if axis == 0 else new_columns
     fam = (type(nxt), along_cls) if axis == 0 else (along_cls, type(nxt))
     lams = (nxt.lam, along_lam) if axis == 0 else (along_lam, nxt.lam)
-    return Surface(net, lams[0], lams[1], family=fam, check_range=False)
+    return most_specific(net, lams[0], lams[1], classes=fam, check_range=False)
 
 
 def _default_degree(

@@ -376,16 +376,20 @@ def _all_exact(
         r = _exact_optimum(poly, u_box, v_box, u_cls, v_cls)
         for key in ("lam_u", "lam_v"):
             value = r[key + "_float"]
-            result[key][i] = np.nan if value is None else value
+            if value is not None:
+                result[key][i] = value
         result["energy"][i] = float(r["energy"])
         result["where"][i] = r["where"]
         result["admissible"][i] = r["admissible"]
         free_u[i], free_v[i] = r["free_u"], r["free_v"]
+    # a direction without a shape parameter (Bézier) has None, as for one net: never NaN
+    lam_u = None if u_box is None else result["lam_u"]
+    lam_v = None if v_box is None else result["lam_v"]
     return SurfaceOptimalParameters(
-        result["lam_u"],
-        result["lam_v"],
-        result["lam_u"],
-        result["lam_v"],
+        lam_u,
+        lam_v,
+        lam_u,
+        lam_v,
         result["energy"],
         result["where"],
         result["admissible"],
@@ -444,9 +448,10 @@ def optimal_parameters(
         raise ValueError(
             "family: neither direction of a classical Bézier surface has a shape parameter"
         )
+    names = (u_cls.parameter_name, v_cls.parameter_name)
     arr = np.asarray(val.real_array(net, "net"), dtype=float)
     if arr.ndim == 4:
-        return optimal_parameters_batch(arr, energy, family)
+        return optimal_parameters_batch(arr, energy, family).named(*names)
     grid = _as_net(net)
     m, n = grid.shape[0] - 1, grid.shape[1] - 1
     mats = _one_parameter_matrices((m, n), energy, (u_cls, v_cls))
@@ -454,7 +459,8 @@ def optimal_parameters(
     if exact is None or len(exact[0][0]) != grid.shape[2]:
         exact = tuple(tuple(tuple(Fraction(float(c)) for c in p) for p in row) for row in grid)
     poly = mats.polynomial(exact)
-    return _exact_optimum({k: Fraction(v) for k, v in poly.items()}, u_box, v_box, u_cls, v_cls)
+    polynomial = {k: Fraction(v) for k, v in poly.items()}
+    return _exact_optimum(polynomial, u_box, v_box, u_cls, v_cls).named(*names)
 
 
 # ---------------------------------------------------------------------- the public energies

@@ -27,6 +27,7 @@ if TYPE_CHECKING:
     from .surfaces import Surface
 
 COLOURINGS = ("gaussian", "mean", "none")
+MAX_SAMPLES = 2000  # per direction: 4 million points, far past what a plot resolves
 
 
 def plot_surface(
@@ -51,10 +52,22 @@ def plot_surface(
         )
     curvature = val.choice(curvature, "curvature", COLOURINGS)
     samples = val.integer(samples, "samples")
-    if samples < 2:
-        raise ValueError(f"samples must be at least 2, got {samples}")
+    if not 2 <= samples <= MAX_SAMPLES:
+        raise ValueError(f"samples must be from 2 to {MAX_SAMPLES}, got {samples}")
+    net = val.flag(net, "net")
+    if not isinstance(cmap, str | colors.Colormap):
+        raise TypeError(f"cmap must be a colour map or its name, got {type(cmap).__name__}")
+    try:
+        plt.get_cmap(cmap)
+    except ValueError:
+        raise ValueError(f"cmap {cmap!r} is not a matplotlib colour map") from None
     if ax is None:
         ax = plt.figure().add_subplot(projection="3d")
+    elif not hasattr(ax, "plot_surface"):
+        raise TypeError(
+            f"ax must be a matplotlib 3D Axes (add_subplot(projection='3d')), got "
+            f"{type(ax).__name__}"
+        )
     # an AtomSurface (atom_surfaces) lives on its families' domains, every other on [0, 1]²
     (u0, u1), (v0, v1) = getattr(surf, "domain_u", (0.0, 1.0)), getattr(surf, "domain_v", (0, 1))
     tu, tv = np.linspace(u0, u1, samples), np.linspace(v0, v1, samples)

@@ -35,6 +35,7 @@ from . import _atom_joins, _derived_joins
 from . import _poly_direction as pd
 from . import _validate as val
 from ._join_options import JoinOptions
+from .builtin_surfaces import most_specific
 from .curves import Curve, family_class
 from .joins import join
 from .param_surface_joins import _second_side, resolve_sides
@@ -275,7 +276,7 @@ def join_before(patch: Surface, axis: int, continuity: str, opts: JoinOptions) -
     net = _net(lines, axis)
     fam = (new_cls, along_cls) if axis == 0 else (along_cls, new_cls)
     lams = (new_lam, along_lam) if axis == 0 else (along_lam, new_lam)
-    return Surface(net, lams[0], lams[1], family=fam, check_range=False)
+    return most_specific(net, lams[0], lams[1], classes=fam, check_range=False)
 
 
 def _check_new_degree(cls: type[Curve], degree: int) -> None:

@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import numpy.typing as npt
 
+from . import _surface_curvature as _curv
 from . import _surface_shapes as _shapes
 from . import _validate as val
 from ._validate import ParamLike
@@ -245,11 +246,15 @@ class Surface:
     def __repr__(self) -> str:
         m, n = self.degrees
         lams = "".join(
-            f", {name}={lam}"
-            for name, lam in (("lam_u", self.lam_u), ("lam_v", self.lam_v))
+            f", {cls.parameter_name}_{d}={lam}"
+            for d, cls, lam in (("u", self._u_cls, self.lam_u), ("v", self._v_cls, self.lam_v))
             if lam is not None
         )
-        return f"{type(self).__name__}(degrees=({m}, {n}), dimension={self.dimension}{lams})"
+        # the generic class names its families (one, or u x v), as AtomSurface does: the
+        # built-in classes' names say it
+        fu, fv = self._u_cls.family, self._v_cls.family
+        which = "" if type(self) is not Surface else (f"{fu}, " if fu == fv else f"{fu} x {fv}, ")
+        return f"{type(self).__name__}({which}degrees=({m}, {n}), dimension={self.dimension}{lams})"
 
     # ------------------------------------------------------------------ Bézier form
     def _bernstein(self, axis: int) -> Matrix | np.ndarray:
@@ -386,29 +391,32 @@ class Surface:
                 "there, or is within the rounding of S_u and S_v (a degenerate point of the "
                 "surface, such as a collapsed edge)"
             )
-        return uu, vv, su, sv, cross / size[:, None], np.array(scalar), safe
+        # the normal's rounding error (radians, to first order): the partials' own rounding
+        # (ROUNDING times their magnitudes) turns the cross product by at most this much
+        turn = _curv.ROUNDING * (mag_u * len_v + len_u * mag_v) / size
+        return uu, vv, su, sv, cross / size[:, None], np.array(scalar), safe, size, turn
 
     @_shapes.grid_shaped
     def normal(self, u: ParamLike, v: ParamLike) -> np.ndarray:
         """The unit normal S_u × S_v / ‖S_u × S_v‖ (3D); a ValueError where it vanishes."""
-        *_, n, scalar, _ = self._frame(u, v)
+        *_, n, scalar, _, _, _ = self._frame(u, v)
         return n[0] if scalar else n
 
     @_shapes.grid_shaped
     def curvatures(self, u: ParamLike, v: ParamLike) -> tuple[np.ndarray, np.ndarray]:
         """(K, H): Gaussian and mean curvature (H's sign follows the normal S_u x S_v); a
         ValueError where the normal is undefined."""
-        uu, vv, su, sv, n, scalar, c = self._frame(u, v)
+        uu, vv, su, sv, n, scalar, c, size, turn = self._frame(u, v)
+        pairs = ((2, 0), (1, 1), (0, 2))
         with val.overflow_allowed():
-            second = [self._partial(uu, vv, a, b) / c for a, b in ((2, 0), (1, 1), (0, 2))]
+            second = [self._partial(uu, vv, a, b) / c for a, b in pairs]
+            mags = [self._partial_magnitude(uu, vv, a, b) / c[:, 0] for a, b in pairs]
         suu, suv, svv = (val.finite_result(x, "a second derivative") for x in second)
         # every derivative divided by the same c: K = K_scaled / c², H = H_scaled / c
-        e, f, g = (su * su).sum(-1), (su * sv).sum(-1), (sv * sv).sum(-1)
-        l_, m_, n_ = (suu * n).sum(-1), (suv * n).sum(-1), (svv * n).sum(-1)
-        det = e * g - f * f
-        with val.overflow_allowed():
-            gauss = (l_ * n_ - m_ * m_) / det / c[:, 0] / c[:, 0]  # c² could underflow
-            mean = (e * n_ - 2 * f * m_ + g * l_) / (2 * det) / c[:, 0]
+        gauss, mean = _curv.shape_operator(su, sv, n, size, (suu, suv, svv), mags, turn, uu, vv)
+        with val.overflow_allowed(), np.errstate(divide="ignore"):
+            gauss = gauss / c[:, 0] / c[:, 0]  # c² could underflow
+            mean = mean / c[:, 0]
         if not (np.isfinite(gauss).all() and np.isfinite(mean).all()):
             raise ValueError(
                 "the curvature is beyond the float range here (a net this small curves more "

@@ -219,11 +219,10 @@ def measure(
 
 
 def _span(seg: Segment) -> tuple[float, float]:
-    """The interval of the segment's own t: [0, 1], or an AtomCurve's domain."""
-    if _own_domain(seg):
-        lo, hi = seg.domain  # type: ignore[union-attr]  # an AtomCurve or a C-Bézier curve
-        return (float(lo), float(hi))
-    return (0.0, 1.0)
+    """The interval of the segment's own t: [0, 1], or an AtomCurve's or C-Bézier curve's
+    domain (every curve gives its `domain`)."""
+    lo, hi = seg.domain
+    return (float(lo), float(hi))
 
 
 def _no_atom(seg: Segment, index: int) -> Curve:

@@ -9,9 +9,15 @@ the same form. Nothing is evaluated but those sums.
 `CBezierFamily.curve(points, alpha=...)` computes the float coefficients once per curve, with
 a stated bound on their relative error (`coefficient_error`): each numerator and denominator
 is a sum of terms evaluated in floats, so its relative error is at most
-(degree + 3) · 2⁻⁵³ · Σ|terms| / |sum| (plus one ulp from sin and cos); near the singular
-point α → 0 (α − sin α ~ α³/6) that ratio grows like α⁻³, and a curve whose bound exceeds
-MAX_COEFFICIENT_ERROR is refused by name instead of returning amplified rounding.
+(degree + 3) · 2⁻⁵³ · Σ|terms| / |sum| (plus one ulp from sin and cos); near the open end
+α → 0 (α − sin α ~ α³/6) that ratio grows like α⁻³, and the atoms' sum cancels as well
+(measured for the cubic: 1e-12 relative at α = 0.5, 1e-7 at 0.1). So below the document's
+threshold (``small_alpha``, derive/formulas/cbezier_series.py) the basis is taken instead from
+its exact series in α about 0, b_i(α u; α) = Σ_k α^k p_ik(u) with polynomials p_ik in
+u = t/α: a curve there is a polynomial curve in its own parameter (the removable limit α → 0
+is p_i0, for Zhang's cubic the Bernstein cubic), evaluated through the same atom machinery
+with powers only. A curve whose atom-form bound exceeds MAX_COEFFICIENT_ERROR (a singular
+point other than the series' end) is refused by name instead of returning amplified rounding.
 
 A curve is in the family's own parameter: t on [0, α] (``domain = "[0, alpha]"``) or u on
 [0, 1] (``domain = "[0, 1]"`` with sin(alpha*t)). Evaluation, derivatives, curvature and the
@@ -104,6 +110,87 @@ def _exact(terms: list[Any]) -> dict[tuple[int, int, int], Fraction]:
     return out
 
 
+@dataclass(frozen=True)
+class SmallAlpha:
+    """The basis below `below` as series in alpha: rows[i] = [(k, p_ik over u^0, u^1, ...)]."""
+
+    below: float
+    rows: list[list[tuple[int, np.ndarray]]]
+
+    def coefficients(self, x: float) -> tuple[np.ndarray, float]:
+        """((n+1, D+1) coefficients over u^j at alpha = x, normwise relative error bound):
+        the orders k past which every alpha^k sum_j |p_ikj| is below 2^-64 are left out."""
+        width = 1 + max(len(c) for row in self.rows for _, c in row)
+        out = np.zeros((len(self.rows), width))
+        size = np.zeros(len(self.rows))
+        top = 0
+        for i, row in enumerate(self.rows):
+            for k, c in row:
+                term = x**k * c
+                mag = float(np.abs(term).sum())
+                if mag < 2.0**-64 and k > 0:
+                    continue
+                out[i, : len(c)] += term
+                size[i] += mag
+                top = max(top, k)
+        used = max((j for j in range(width) if np.any(out[:, j] != 0)), default=0)
+        norm = np.abs(out).sum(axis=1)
+        rel = float(np.max((top + 3) * _EPS * size / np.maximum(norm, np.finfo(float).tiny)))
+        return out[:, : used + 1], rel + 2.0**-60
+
+
+def _small_alpha(raw: object, where: str, size: int) -> SmallAlpha | None:
+    if raw is None:
+        return None
+    if (
+        not isinstance(raw, dict)
+        or not isinstance(raw.get("below_float"), float)
+        or not isinstance(raw.get("series"), list)
+        or len(raw["series"]) != size
+    ):
+        raise CBezierError(f"{where}: small_alpha is {{'below_float': x, 'series': [...]}}")
+    rows = []
+    for row in raw["series"]:
+        if not isinstance(row, list) or len(row) > 256:
+            raise CBezierError(f"{where}: small_alpha: a series is a list of [k, [...]]")
+        out = []
+        for item in row:
+            if (
+                not isinstance(item, list)
+                or len(item) != 2
+                or not isinstance(item[0], int)
+                or not 0 <= item[0] <= 256
+                or not isinstance(item[1], list)
+                or not 0 < len(item[1]) <= 260
+                or not all(isinstance(v, str) and len(v) < 200 for v in item[1])
+            ):
+                raise CBezierError(f"{where}: small_alpha: a term is [k, ['p/q', ...]]")
+            try:
+                coeffs = np.array([float(Fraction(v)) for v in item[1]])
+            except (ValueError, ZeroDivisionError, OverflowError):
+                raise CBezierError(f"{where}: small_alpha: not a list of rationals") from None
+            out.append((item[0], coeffs))
+        rows.append(out)
+    return SmallAlpha(raw["below_float"], rows)
+
+
+@dataclass(frozen=True)
+class Representation:
+    """A basis at one alpha over atoms of the family's own parameter (t on [0, alpha], or u
+    on [0, 1]): `own` (n+1, len(layout)), the layout's highest power and harmonic, the
+    coefficients as the document or the series gives them (`coefficients` over `atoms`:
+    the document's atoms of t, or ("pow", j) of u = t/alpha below the series' threshold), and
+    their relative error bound."""
+
+    layout: list[tuple[str, int]]
+    own: np.ndarray
+    powers: int
+    harmonics: int
+    coefficients: np.ndarray
+    atoms: list[tuple[str, int]]
+    error: float
+
+
 def _ratfn(raw: object, where: str) -> RatFn:
     if not isinstance(raw, dict) or set(raw) != {"num", "den"}:
         raise CBezierError(f"{where}: a coefficient is {{'num': [...], 'den': [...]}}")
@@ -148,6 +235,7 @@ class CBezierFamily:
                 for k, mat in doc["energies"].items()
             }
             self.range_ends = (str(rng["lo"]), str(rng["hi"]))
+            self.small_alpha = _small_alpha(doc.get("small_alpha"), where, self.degree + 1)
             self.verdicts = doc["verdicts"]
             self.functions = doc["functions"]
         except (KeyError, TypeError, ValueError) as exc:
@@ -218,6 +306,37 @@ class CBezierFamily:
         rows = self.verdicts.get("singular_points", [])
         return "; ".join(f"{self.parameter} = {r['at']}: {r['denominator']} = 0" for r in rows)
 
+    def representation(self, alpha: object) -> Representation:
+        """The basis at alpha over atoms of the own parameter: from the document's series
+        below its threshold (no cancellation there), else from the atom coefficients."""
+        x = self.check_alpha(alpha)
+        unit = self.form == "unit"
+        series = self.small_alpha
+        if series is not None and x < series.below:
+            coeffs, err = series.coefficients(x)
+            degree = coeffs.shape[1] - 1
+            if not unit and x**degree < 1e-290:  # t^k / alpha^k past the float range
+                raise ValueError(
+                    f"{self.parameter} = {x} is too small for a curve in t on [0, "
+                    f"{self.parameter}] in floats (t^{degree} / {self.parameter}^{degree} "
+                    f"underflows); its limit {self.parameter} -> 0 is the polynomial curve of "
+                    "the series' first term"
+                )
+            own = coeffs if unit else coeffs / x ** np.arange(degree + 1)
+            layout = [("pow", j) for j in range(degree + 1)]
+            atoms = [("pow", j) for j in range(degree + 1)]
+            return Representation(layout, own, degree, 0, coeffs, atoms, err)
+        basis, err = self.basis_coefficients(x)
+        rate = x if unit else 1.0  # t = alpha*u on [0, 1]
+        layout = [("pow", k) for k in range(self.powers + 1)]
+        for m in range(1, self.harmonics + 1):
+            layout += [("cos", m), ("sin", m)]
+        own = np.zeros((basis.shape[0], len(layout)))
+        for j, (kind, m) in enumerate(self.atoms):  # t^k = (alpha u)^k; cos(m t) keeps its own
+            factor = rate**m if kind == "pow" else 1.0
+            own[:, layout.index((kind, m))] += basis[:, j] * factor
+        return Representation(layout, own, self.powers, self.harmonics, basis, self.atoms, err)
+
     def basis_coefficients(self, alpha: object) -> tuple[np.ndarray, float]:
         """((n+1, atoms) float coefficients in t on [0, alpha], bound on their relative error)."""
         return self._matrix(self._coefficients, self.check_alpha(alpha), "basis coefficients")
@@ -270,8 +389,7 @@ class CBezierFamily:
         scale = val.power_of_two_scale(arr)
         with val.overflow_allowed():
             pt = np.ascontiguousarray(arr.transpose(1, 0, 2)).reshape(size, m * dim) / scale
-            own = probe._own_atoms(probe.basis_coefficients)  # (n+1, A)
-            coeffs = probe._centring(own.T @ pt)  # (A, m·d)
+            coeffs = probe._centring(probe._own.T @ pt)  # (A, m·d)
             for _ in range(order):
                 coeffs = probe._d @ coeffs
             sh = probe.shape
@@ -291,24 +409,16 @@ class CBezierFamily:
         """s[r][j] = b_j^(r)(0) in the family's own parameter at alpha, r = 0..orders (what a
         join into this family solves with: _atom_joins)."""
         x = self.check_alpha(alpha)
-        basis, _ = self.basis_coefficients(x)
-        rate = x if self.form == "unit" else 1.0  # d/du = alpha d/dt on [0, 1]
-        cycle = {
-            "cos": (1, 0, -1, 0),
-            "sin": (0, 1, 0, -1),
-            "cosh": (1, 0, 1, 0),
-            "sinh": (0, 1, 0, 1),
-        }
+        n = self.degree
+        probe = CBezierCurve(self, np.zeros((n + 1, 2)), x)
+        coeffs = probe._centring(probe._own.T)  # (A, n+1): each basis function centred
+        sh = probe.shape
+        at = np.array([-probe._mid])
         rows = []
-        for r in range(orders + 1):
-            at = []
-            for kind, m in self.atoms:  # the r-th derivative in t of each atom at t = 0
-                if kind == "pow":
-                    at.append(float(math.factorial(m)) if r == m else 0.0)
-                else:
-                    name = (kind + "h") if self.hyperbolic else kind
-                    at.append(float(m) ** r * cycle[name][r % 4])
-            rows.append([float(v) * rate**r for v in basis @ np.array(at)])
+        for _ in range(orders + 1):
+            got = ak.evaluate(coeffs, at, sh.omega0, sh.powers, sh.harmonics, sh.hyperbolic)
+            rows.append([float(v) for v in got[:, 0]])
+            coeffs = probe._d @ coeffs
         return rows
 
     def parameter_value(self, lam: object, params: object, named: dict[str, object]) -> float:
@@ -441,40 +551,29 @@ class CBezierCurve(DomainGeometry):
         self.family = family.name
         self.alpha = alpha
         self.points = val.as_points(points, family=family.name, degrees=(n,))
-        basis, self.coefficient_error = family.basis_coefficients(alpha)
-        self.basis_coefficients = basis
+        rep = family.representation(alpha)
+        self.coefficient_error = rep.error
+        # over `basis_atoms`: the document's atoms of t, or powers of u = t/alpha below the
+        # series' threshold (CBezierFamily.representation)
+        self.basis_coefficients = rep.coefficients
+        self.basis_atoms = rep.atoms
+        self._own = rep.own  # (n+1, A) over the own parameter's atoms
+        self._own_layout = rep.layout
         unit = family.form == "unit"
         self._rate = alpha if unit else 1.0  # u on [0, 1]: t = alpha*u
         self._domain = (0.0, 1.0) if unit else (0.0, alpha)
         self._mid = 0.5 * self._domain[1]
-        self.shape = _Shape(self._rate, family.powers, family.harmonics, family.hyperbolic)
-        own = self._own_atoms(basis)  # (n+1, A) over the own parameter's atoms
+        self.shape = _Shape(self._rate, rep.powers, rep.harmonics, family.hyperbolic)
         self._scale = val.power_of_two_scale(self.points)
-        self._centred = self._centring(own.T @ (self.points / self._scale))
-        self._d = ak.derivative_matrix(
-            self._rate, family.powers, family.harmonics, family.hyperbolic
-        )
+        self._centred = self._centring(self._own.T @ (self.points / self._scale))
+        self._d = ak.derivative_matrix(self._rate, rep.powers, rep.harmonics, family.hyperbolic)
 
     def __repr__(self) -> str:
         p = self.family_object.parameter
         return f"CBezierCurve({self.family}, {p}={self.alpha}, dimension={self.dimension})"
 
     def _layout(self) -> list[tuple[str, int]]:
-        fam = self.family_object
-        out = [("pow", k) for k in range(fam.powers + 1)]
-        for m in range(1, fam.harmonics + 1):
-            out += [("cos", m), ("sin", m)]
-        return out
-
-    def _own_atoms(self, basis: np.ndarray) -> np.ndarray:
-        """The basis over the centred layout's atoms of the own parameter (not yet centred):
-        t^k = (alpha u)^k on [0, 1]; cos(m t) = cos(m alpha u) keeps its coefficient."""
-        layout = self._layout()
-        out = np.zeros((basis.shape[0], len(layout)))
-        for j, (kind, m) in enumerate(self.family_object.atoms):
-            factor = self._rate**m if kind == "pow" else 1.0
-            out[:, layout.index((kind, m))] += basis[:, j] * factor
-        return out
+        return self._own_layout
 
     def _centring(self, coeffs: np.ndarray) -> np.ndarray:
         """Coefficients over atoms of x to atoms of tau = x - mid."""
@@ -604,14 +703,15 @@ class CBezierCurve(DomainGeometry):
         """(Σ_a |c_ai'| |atom_a(t)|, the control points): the rounding of C'(t), evaluated
         over the atoms, is relative to the atoms' terms (_speed_floor; AtomCurve's)."""
         tau, _ = self._tau(t, extrapolate)
-        coeffs = self._d @ self._centring(self._own_atoms(self.basis_coefficients).T)
+        coeffs = self._d @ self._centring(self._own.T)
         sh = self.shape
         eye = np.eye(coeffs.shape[0])
         atoms = ak.evaluate(
             eye, np.atleast_1d(tau), sh.omega0, sh.powers, sh.harmonics, sh.hyperbolic
         )
         # the float basis coefficients carry a relative error up to coefficient_error (1e-14
-        # at alpha = 2, 3e-11 at 0.5): the computed C'(0) at a stop is of that size
+        # at alpha = 2; below the series' threshold a few ulps): the computed C'(0) at a
+        # stop is of that size
         inflate = 1.0 + self.coefficient_error / np.finfo(float).eps
         return inflate * (np.abs(coeffs).T @ np.abs(atoms)).T, self.points
 
@@ -655,38 +755,26 @@ class CBezierCurve(DomainGeometry):
         if len(fam.atoms) != fam.degree + 1:
             raise ValueError("split needs a basis of the whole space (as many atoms as functions)")
         cut = x * self._rate if fam.form == "unit" else x
+        n = fam.degree
+        # the piece's control points from the curve at n + 1 Chebyshev-Lobatto points of the
+        # piece (the ends among them): the piece lies in the same space exactly, so this
+        # collocation solve is exact up to rounding, whichever form (atoms or series) either
+        # side is evaluated in
+        share = (1 - np.cos(np.pi * np.arange(n + 1) / n)) / 2
         out = []
         for start, length in ((0.0, cut), (cut, self.alpha - cut)):
-            basis, _ = fam.basis_coefficients(length)
-            # the curve's t-atoms shifted to start at `start`: r(start + s) over atoms of s
-            own = self._t_atoms_shifted(start)
-            ctrl = np.linalg.solve(basis.T, own)
-            piece = CBezierCurve(fam, ctrl, length)
-            out.append(piece)
+            probe = CBezierCurve(fam, np.zeros_like(self.points), length)
+            own = share * (probe._domain[1])
+            sh = probe.shape
+            basis = ak.evaluate(
+                probe._centring(probe._own.T),
+                own - probe._mid,
+                sh.omega0,
+                sh.powers,
+                sh.harmonics,
+                sh.hyperbolic,
+            )  # (n+1, nodes)
+            values = self.evaluate(np.clip((start + share * length) / self._rate, lo, hi))
+            ctrl = np.linalg.solve(basis.T, values)
+            out.append(CBezierCurve(fam, ctrl, length))
         return out[0], out[1]
-
-    def _t_atoms_shifted(self, start: float) -> np.ndarray:
-        """(atoms, d): r(start + s) over the document's atoms of s (t on [0, alpha])."""
-        from math import comb
-
-        fam = self.family_object
-        coeffs = self.basis_coefficients.T @ self.points  # over the document's atoms of t
-        out = np.zeros_like(coeffs)
-        index = {a: j for j, a in enumerate(fam.atoms)}
-        hyp = fam.hyperbolic
-        for j, (kind, m) in enumerate(fam.atoms):
-            row = coeffs[j]
-            if kind == "pow":
-                for i in range(m + 1):
-                    out[index[("pow", i)]] += comb(m, i) * start ** (m - i) * row
-                continue
-            x = m * start
-            ca, sa = (math.cosh(x), math.sinh(x)) if hyp else (math.cos(x), math.sin(x))
-            if kind == "cos":
-                out[index[("cos", m)]] += ca * row
-                out[index[("sin", m)]] += (sa if hyp else -sa) * row
-            else:
-                out[index[("cos", m)]] += sa * row
-                out[index[("sin", m)]] += ca * row
-        result: np.ndarray = out
-        return result

@@ -139,23 +139,25 @@ def test_energy_at_small_alpha_against_mpmath_quadrature(name):
             assert abs(c.energy(k) - want) < 1e-13 * want, (alpha, k, c.energy(k), want)
 
 
-def test_join_into_a_small_alpha_segment():
+@pytest.mark.parametrize("name", ["c_bezier_cubic", "c_bezier_cubic_unit"])
+def test_join_into_a_small_alpha_segment(name):
     """A C2 join from a curve at alpha = 2 into one at alpha = 1e-3: the new segment's
     start derivatives (mpmath, written functions, at its float control points) equal the
     first curve's end ones, to the rounding the float points allow: |b_i^(r)(0)| grows like
     alpha^-r, so a point rounded by 2^-53 |P| moves the r-th derivative by that much."""
-    fam = _family("c_bezier_cubic")
+    fam = _family(name)
     first = fam.curve(P, alpha=2.0)
     alpha = 1e-3
     nxt = lb.join(first, "C2", 3, params={"alpha": alpha}, rest=[[9.0, 1.0]])
     pts = np.asarray(nxt.points).tolist()
     ends = first.end_derivatives(2)
-    fns, _ = _reference("c_bezier_cubic")
+    fns, unit = _reference(name)
     size = float(np.abs(pts).max())
     with mp.workdps(_digits(alpha)):
         for r in range(3):
-            want = [float(v) for v in _want("c_bezier_cubic", pts, alpha, 0.0, r)]
-            weight = float(sum(abs(f(mp.mpf(0), mp.mpf(alpha))) for f in fns[r]))
+            want = [float(v) for v in _want(name, pts, alpha, 0.0, r)]
+            rate = alpha**r if unit else 1
+            weight = float(sum(abs(f(mp.mpf(0), mp.mpf(alpha))) for f in fns[r]) * rate)
             tol = 4 * np.finfo(float).eps * (size * weight + np.abs(ends[r]).max())
             assert np.abs(np.array(want) - ends[r]).max() <= tol, (r, want, ends[r], tol)
 
@@ -195,3 +197,24 @@ def test_the_old_refusals_are_gone_and_the_floor_is_clear():
     unit = _family("c_bezier_cubic_unit")  # in u on [0, 1] nothing underflows
     got = unit.curve(P, alpha=1e-300).evaluate(0.5)
     assert np.allclose(got, lb.BezierCurve(P).evaluate(0.5), rtol=1e-15)
+
+
+@pytest.mark.parametrize(
+    "change",
+    [
+        lambda sa: sa.update(series="x"),
+        lambda sa: sa.update(below_float="3/2"),
+        lambda sa: sa["series"].pop(),
+        lambda sa: sa["series"][0].append([300, ["1"]]),
+        lambda sa: sa["series"][0].append([2, ["1/0"]]),
+        lambda sa: sa["series"][0].append([2, ["x" * 300]]),
+        lambda sa: sa["series"][0].append([2, [1.5]]),
+    ],
+)
+def test_a_malformed_series_is_refused_by_name(change):
+    from lambda_bezier.cbezier_family import CBezierError, CBezierFamily
+
+    doc = json.loads((DATA / "c_bezier_cubic.derived.json").read_text())
+    change(doc["small_alpha"])
+    with pytest.raises(CBezierError, match="small_alpha"):
+        CBezierFamily(doc, "c.json", "t", {})

@@ -409,16 +409,24 @@ class CBezierFamily:
         """s[r][j] = b_j^(r)(0) in the family's own parameter at alpha, r = 0..orders (what a
         join into this family solves with: _atom_joins)."""
         x = self.check_alpha(alpha)
-        n = self.degree
-        probe = CBezierCurve(self, np.zeros((n + 1, 2)), x)
-        coeffs = probe._centring(probe._own.T)  # (A, n+1): each basis function centred
-        sh = probe.shape
-        at = np.array([-probe._mid])
+        rep = self.representation(x)
+        rate = x if self.form == "unit" else 1.0  # the own atoms are cos(m rate u), u^k
+        cycle = {
+            "cos": (1, 0, -1, 0),
+            "sin": (0, 1, 0, -1),
+            "cosh": (1, 0, 1, 0),
+            "sinh": (0, 1, 0, 1),
+        }
         rows = []
-        for _ in range(orders + 1):
-            got = ak.evaluate(coeffs, at, sh.omega0, sh.powers, sh.harmonics, sh.hyperbolic)
-            rows.append([float(v) for v in got[:, 0]])
-            coeffs = probe._d @ coeffs
+        for r in range(orders + 1):
+            at = []
+            for kind, m in rep.layout:  # the r-th derivative of each own atom at 0
+                if kind == "pow":
+                    at.append(float(math.factorial(m)) if r == m else 0.0)
+                else:
+                    name = (kind + "h") if self.hyperbolic else kind
+                    at.append((m * rate) ** r * cycle[name][r % 4])
+            rows.append([float(v) for v in rep.own @ np.array(at)])
         return rows
 
     def parameter_value(self, lam: object, params: object, named: dict[str, object]) -> float:

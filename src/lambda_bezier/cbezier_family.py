@@ -110,31 +110,32 @@ def _exact(terms: list[Any]) -> dict[tuple[int, int, int], Fraction]:
     return out
 
 
-@dataclass(frozen=True)
 class SmallAlpha:
-    """The basis below `below` as series in alpha: rows[i] = [(k, p_ik over u^0, u^1, ...)]."""
+    """The basis below `below` as series in alpha: table[i, k, j] is the u^j coefficient
+    of p_ik (zeros where the document has none)."""
 
-    below: float
-    rows: list[list[tuple[int, np.ndarray]]]
+    def __init__(self, below: float, rows: list[list[tuple[int, np.ndarray]]]):
+        self.below = below
+        top = max((k for row in rows for k, _ in row), default=0)
+        width = max((len(c) for row in rows for _, c in row), default=1)
+        self.table = np.zeros((len(rows), top + 1, width))
+        for i, row in enumerate(rows):
+            for k, c in row:
+                self.table[i, k, : len(c)] += c
+        self.sizes = np.abs(self.table).sum(axis=2)  # (n+1, K+1): sum_j |p_ikj|
 
     def coefficients(self, x: float) -> tuple[np.ndarray, float]:
         """((n+1, D+1) coefficients over u^j at alpha = x, normwise relative error bound):
-        the orders k past which every alpha^k sum_j |p_ikj| is below 2^-64 are left out."""
-        width = 1 + max(len(c) for row in self.rows for _, c in row)
-        out = np.zeros((len(self.rows), width))
-        size = np.zeros(len(self.rows))
-        top = 0
-        for i, row in enumerate(self.rows):
-            for k, c in row:
-                term = x**k * c
-                mag = float(np.abs(term).sum())
-                if mag < 2.0**-64 and k > 0:
-                    continue
-                out[i, : len(c)] += term
-                size[i] += mag
-                top = max(top, k)
-        used = max((j for j in range(width) if np.any(out[:, j] != 0)), default=0)
+        the orders k whose alpha^k sum_j |p_ikj| is below 2^-64 for every i are left out."""
+        powers = x ** np.arange(self.table.shape[1], dtype=float)
+        mags = self.sizes * powers  # (n+1, K+1)
+        keep = mags.max(axis=0) >= 2.0**-64
+        keep[0] = True
+        top = int(np.flatnonzero(keep)[-1])
+        out = np.einsum("ikj,k->ij", self.table[:, : top + 1], powers[: top + 1])
+        used = max((j for j in range(out.shape[1]) if np.any(out[:, j] != 0)), default=0)
         norm = np.abs(out).sum(axis=1)
+        size = mags[:, : top + 1].sum(axis=1)
         rel = float(np.max((top + 3) * _EPS * size / np.maximum(norm, np.finfo(float).tiny)))
         return out[:, : used + 1], rel + 2.0**-60
 
@@ -588,17 +589,24 @@ class CBezierCurve(DomainGeometry):
         from math import comb
 
         layout = self._layout()
+        index = {atom: j for j, atom in enumerate(layout)}
         mid, w, hyp = self._mid, self._rate, self.family_object.hyperbolic
         out = np.zeros_like(coeffs)
+        # the powers first (the layout starts with t^0..t^P in order): t^m = sum_i C(m, i)
+        # mid^(m-i) tau^i, one (P+1, P+1) product (the series' curves have P up to ~31)
+        top = max((m for kind, m in layout if kind == "pow"), default=-1)
+        shift = np.zeros((top + 1, top + 1))
+        for m in range(top + 1):
+            for i in range(m + 1):
+                shift[i, m] = comb(m, i) * mid ** (m - i)
+        out[: top + 1] = shift @ coeffs[: top + 1]
         for j, (kind, m) in enumerate(layout):
             row = coeffs[j]
             if kind == "pow":
-                for i in range(m + 1):
-                    out[layout.index(("pow", i))] += comb(m, i) * mid ** (m - i) * row
                 continue
             x = m * w * mid
             ca, sa = (math.cosh(x), math.sinh(x)) if hyp else (math.cos(x), math.sin(x))
-            ic, isn = layout.index(("cos", m)), layout.index(("sin", m))
+            ic, isn = index[("cos", m)], index[("sin", m)]
             if kind == "cos":  # cos(a + b) = ca cos b - sa sin b; cosh: ca cosh b + sa sinh b
                 out[ic] += ca * row
                 out[isn] += (sa if hyp else -sa) * row

@@ -124,6 +124,13 @@ def summary(doc: dict) -> str:
             f"{row['where']})"
         )
     lines.append(f"  singular points scan: {v['singular_scan']}")
+    if "small_alpha" in doc:
+        sa = doc["small_alpha"]
+        lines.append(
+            f"  small {doc['parameter']}: exact series to {doc['parameter']}^{sa['order']} "
+            f"used below {sa['below']} (largest omitted term there "
+            f"{sa['omitted_at_threshold']:.2g}, measured)"
+        )
     return "\n".join(lines)
 
 

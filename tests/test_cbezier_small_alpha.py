@@ -221,3 +221,50 @@ def test_a_malformed_series_is_refused_by_name(change):
     change(doc["small_alpha"])
     with pytest.raises(CBezierError, match="small_alpha"):
         CBezierFamily(doc, "c.json", "t", {})
+
+
+@pytest.mark.parametrize("name", ["c_bezier_cubic", "hc_bezier_cubic", "c_bezier_cubic_unit"])
+def test_energy_matrix_at_small_alpha(name):
+    """fam.energy_matrix below the threshold (the float Gram entries cancel there: refused
+    before) against a 16-point Gauss-Legendre rule in mpmath on the written functions (the
+    integrands are entire; at alpha <= 1.2 the rule's error is far below 1e-20), in t on
+    [0, alpha] whatever the form; and P^T G P is the curve's energy."""
+    fam = _family(name)
+    nodes, weights = np.polynomial.legendre.leggauss(16)
+    for alpha in (1e-3, 1.2):
+        for k in (1, 3):
+            got = fam.energy_matrix(alpha, k)
+            with mp.workdps(_digits(alpha)):
+                a = mp.mpf(alpha)
+                vals = [
+                    [fns_k(a * (1 + mp.mpf(float(x))) / 2, a) for fns_k in _derivatives(name, k)]
+                    for x in nodes
+                ]
+                want = np.array(
+                    [
+                        [
+                            float(
+                                sum(w * v[i] * v[j] for w, v in zip(weights, vals, strict=True))
+                                * a
+                                / 2
+                            )
+                            for j in range(4)
+                        ]
+                        for i in range(4)
+                    ]
+                )
+            assert np.abs(got - want).max() <= 1e-13 * np.abs(want).max(), (alpha, k)
+    c = fam.curve(P, alpha=0.3)
+    pts = np.array(P)
+    gram = fam.energy_matrix(0.3, 2)
+    rate = 0.3**3 if fam.form == "unit" else 1.0  # E_k in u is alpha^(2k-1) E_k in t
+    assert c.energy(2) == pytest.approx(rate * np.einsum("ij,id,jd->", gram, pts, pts), rel=1e-13)
+
+
+@cache
+def _derivatives(name: str, k: int):
+    table = tomllib.loads((DATA / f"{name}.toml").read_text())["family"]
+    defn = cb.read_table(table)
+    return [
+        sp.lambdify((cb.T, cb.A), sp.diff(f, cb.T, k), modules="mpmath") for f in defn.written()
+    ]

@@ -343,10 +343,26 @@ class CBezierFamily:
         return self._matrix(self._coefficients, self.check_alpha(alpha), "basis coefficients")
 
     def energy_matrix(self, alpha: object, k: int) -> np.ndarray:
-        """G with E_k = sum_ij G_ij P_i . P_j, in the family's t on [0, alpha]."""
+        """G with E_k = sum_ij G_ij P_i . P_j, in the family's t on [0, alpha]: from the
+        document's exact Gram entries in floats, or, below the series' threshold (where
+        those cancel), G = alpha^(1-2k) int_0^1 B_i^(k) B_j^(k) du of the series' polynomials
+        B_i(u) = b_i(alpha u) by Gauss-Legendre with enough points to be exact for them."""
         if k not in self._energies:
             raise ValueError(f"k must be one of {sorted(self._energies)}, got {k!r}")
-        return self._matrix(self._energies[k], self.check_alpha(alpha), f"E_{k} matrix")[0]
+        x = self.check_alpha(alpha)
+        if self.small_alpha is not None and x < self.small_alpha.below:
+            coeffs, _ = self.small_alpha.coefficients(x)  # (n+1, D+1) over u^j
+            if coeffs.shape[1] > k:  # (D+1-k, n+1): the k-th derivatives in u
+                derived = np.polynomial.polynomial.polyder(coeffs.T, k, axis=0)
+            else:
+                derived = np.zeros((1, coeffs.shape[0]))
+            # degree 2(D-k) <= 2D - 1: exact with D points
+            nodes, weights = np.polynomial.legendre.leggauss(max(1, coeffs.shape[1]))
+            u = (nodes + 1) / 2
+            values = np.polynomial.polynomial.polyval(u, derived)  # (n+1, nodes)
+            gram: np.ndarray = (values * weights) @ values.T / 2 * x ** (1 - 2 * k)
+            return gram
+        return self._matrix(self._energies[k], x, f"E_{k} matrix")[0]
 
     # ------------------------------------------------------------------ curves
     def curve(self, points: PointsLike, alpha: object = None, **params: object) -> CBezierCurve:

@@ -300,6 +300,12 @@ class CBezierFamily:
                 f"{self.parameter} = {x}: the {what} cannot be computed in floats to "
                 f"{MAX_COEFFICIENT_ERROR:g} (bound {worst:.3g}); this is near a singular "
                 f"point of the family ({self.singular_text()})"
+                + (
+                    f"; curves there use the exact series below {self.parameter} = "
+                    f"{self.small_alpha.below} (fam.representation({x}))"
+                    if self.small_alpha is not None and x < self.small_alpha.below
+                    else ""
+                )
             )
         return out, worst
 

@@ -4,7 +4,9 @@ domain or sits inside sin/cos (derive/families/cbezier.py, derive/formulas/cbezi
 Data only: the basis as coefficients over the atoms (1, t^k, cos(m t), sin(m t) or cosh, sinh)
 of the family's t on [0, alpha], each coefficient a rational function of alpha, sin(alpha),
 cos(alpha) as exponent/rational terms the runtime evaluates in floats
-(lambda_bezier.cbezier_family); the Gram matrices of E_1..E_3 in the same form; every verdict
+(lambda_bezier.cbezier_family); below a threshold of alpha, where those coefficients cancel,
+the basis as an exact series in alpha with polynomials in u = t/alpha as coefficients
+(formulas/cbezier_series.py); the Gram matrices of E_1..E_3 in the same form; every verdict
 with its closed forms as text.
 """
 
@@ -15,11 +17,20 @@ from pathlib import Path
 
 from ..families.cbezier import CDefinition, read_table
 from ..formulas import cbezier as F
+from ..formulas.cbezier_series import small_alpha
 
 FORMAT = 5
 
 
 def derive(defn: CDefinition) -> dict:
+    doc = _derive(defn)
+    series = small_alpha(defn)
+    if series is not None:  # (absent where nothing cancels: the documents stay as they were)
+        doc["small_alpha"] = series
+    return doc
+
+
+def _derive(defn: CDefinition) -> dict:
     atoms, matrix = F.coefficient_matrix(defn)
     rank, det = F.rank(defn)
     ends = F.end_table(defn)
@@ -113,6 +124,13 @@ def summary(doc: dict) -> str:
             f"{row['where']})"
         )
     lines.append(f"  singular points scan: {v['singular_scan']}")
+    if "small_alpha" in doc:
+        sa = doc["small_alpha"]
+        lines.append(
+            f"  small {doc['parameter']}: exact series to {doc['parameter']}^{sa['order']} "
+            f"used below {sa['below']} (largest omitted term there "
+            f"{sa['omitted_at_threshold']:.2g}, measured)"
+        )
     return "\n".join(lines)
 
 

@@ -9,9 +9,15 @@ the same form. Nothing is evaluated but those sums.
 `CBezierFamily.curve(points, alpha=...)` computes the float coefficients once per curve, with
 a stated bound on their relative error (`coefficient_error`): each numerator and denominator
 is a sum of terms evaluated in floats, so its relative error is at most
-(degree + 3) · 2⁻⁵³ · Σ|terms| / |sum| (plus one ulp from sin and cos); near the singular
-point α → 0 (α − sin α ~ α³/6) that ratio grows like α⁻³, and a curve whose bound exceeds
-MAX_COEFFICIENT_ERROR is refused by name instead of returning amplified rounding.
+(degree + 3) · 2⁻⁵³ · Σ|terms| / |sum| (plus one ulp from sin and cos); near the open end
+α → 0 (α − sin α ~ α³/6) that ratio grows like α⁻³, and the atoms' sum cancels as well
+(measured for the cubic: 1e-12 relative at α = 0.5, 1e-7 at 0.1). So below the document's
+threshold (``small_alpha``, derive/formulas/cbezier_series.py) the basis is taken instead from
+its exact series in α about 0, b_i(α u; α) = Σ_k α^k p_ik(u) with polynomials p_ik in
+u = t/α: a curve there is a polynomial curve in its own parameter (the removable limit α → 0
+is p_i0, for Zhang's cubic the Bernstein cubic), evaluated through the same atom machinery
+with powers only. A curve whose atom-form bound exceeds MAX_COEFFICIENT_ERROR (a singular
+point other than the series' end) is refused by name instead of returning amplified rounding.
 
 A curve is in the family's own parameter: t on [0, α] (``domain = "[0, alpha]"``) or u on
 [0, 1] (``domain = "[0, 1]"`` with sin(alpha*t)). Evaluation, derivatives, curvature and the
@@ -33,6 +39,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _validate as val
+from ._cbezier_series import small_alpha_of
 from ._domain_geometry import DomainGeometry
 from ._validate import ParamLike, PointsLike
 from .hazmat import atoms as ak
@@ -104,6 +111,23 @@ def _exact(terms: list[Any]) -> dict[tuple[int, int, int], Fraction]:
     return out
 
 
+@dataclass(frozen=True)
+class Representation:
+    """A basis at one alpha over atoms of the family's own parameter (t on [0, alpha], or u
+    on [0, 1]): `own` (n+1, len(layout)), the layout's highest power and harmonic, the
+    coefficients as the document or the series gives them (`coefficients` over `atoms`:
+    the document's atoms of t, or ("pow", j) of u = t/alpha below the series' threshold), and
+    their relative error bound."""
+
+    layout: list[tuple[str, int]]
+    own: np.ndarray
+    powers: int
+    harmonics: int
+    coefficients: np.ndarray
+    atoms: list[tuple[str, int]]
+    error: float
+
+
 def _ratfn(raw: object, where: str) -> RatFn:
     if not isinstance(raw, dict) or set(raw) != {"num", "den"}:
         raise CBezierError(f"{where}: a coefficient is {{'num': [...], 'den': [...]}}")
@@ -148,6 +172,7 @@ class CBezierFamily:
                 for k, mat in doc["energies"].items()
             }
             self.range_ends = (str(rng["lo"]), str(rng["hi"]))
+            self.small_alpha = small_alpha_of(doc.get("small_alpha"), where, self.degree + 1)
             self.verdicts = doc["verdicts"]
             self.functions = doc["functions"]
         except (KeyError, TypeError, ValueError) as exc:
@@ -211,6 +236,12 @@ class CBezierFamily:
                 f"{self.parameter} = {x}: the {what} cannot be computed in floats to "
                 f"{MAX_COEFFICIENT_ERROR:g} (bound {worst:.3g}); this is near a singular "
                 f"point of the family ({self.singular_text()})"
+                + (
+                    f"; curves there use the exact series below {self.parameter} = "
+                    f"{self.small_alpha.below} (fam.representation({x}))"
+                    if self.small_alpha is not None and x < self.small_alpha.below
+                    else ""
+                )
             )
         return out, worst
 
@@ -218,15 +249,62 @@ class CBezierFamily:
         rows = self.verdicts.get("singular_points", [])
         return "; ".join(f"{self.parameter} = {r['at']}: {r['denominator']} = 0" for r in rows)
 
+    def representation(self, alpha: object) -> Representation:
+        """The basis at alpha over atoms of the own parameter: from the document's series
+        below its threshold (no cancellation there), else from the atom coefficients."""
+        x = self.check_alpha(alpha)
+        unit = self.form == "unit"
+        series = self.small_alpha
+        if series is not None and x < series.below:
+            coeffs, err = series.coefficients(x)
+            degree = coeffs.shape[1] - 1
+            if not unit and x**degree < 1e-290:  # t^k / alpha^k past the float range
+                raise ValueError(
+                    f"{self.parameter} = {x} is too small for a curve in t on [0, "
+                    f"{self.parameter}] in floats (t^{degree} / {self.parameter}^{degree} "
+                    f"underflows); its limit {self.parameter} -> 0 is the polynomial curve of "
+                    "the series' first term"
+                )
+            own = coeffs if unit else coeffs / x ** np.arange(degree + 1)
+            layout = [("pow", j) for j in range(degree + 1)]
+            atoms = [("pow", j) for j in range(degree + 1)]
+            return Representation(layout, own, degree, 0, coeffs, atoms, err)
+        basis, err = self.basis_coefficients(x)
+        rate = x if unit else 1.0  # t = alpha*u on [0, 1]
+        layout = [("pow", k) for k in range(self.powers + 1)]
+        for m in range(1, self.harmonics + 1):
+            layout += [("cos", m), ("sin", m)]
+        own = np.zeros((basis.shape[0], len(layout)))
+        for j, (kind, m) in enumerate(self.atoms):  # t^k = (alpha u)^k; cos(m t) keeps its own
+            factor = rate**m if kind == "pow" else 1.0
+            own[:, layout.index((kind, m))] += basis[:, j] * factor
+        return Representation(layout, own, self.powers, self.harmonics, basis, self.atoms, err)
+
     def basis_coefficients(self, alpha: object) -> tuple[np.ndarray, float]:
         """((n+1, atoms) float coefficients in t on [0, alpha], bound on their relative error)."""
         return self._matrix(self._coefficients, self.check_alpha(alpha), "basis coefficients")
 
     def energy_matrix(self, alpha: object, k: int) -> np.ndarray:
-        """G with E_k = sum_ij G_ij P_i . P_j, in the family's t on [0, alpha]."""
+        """G with E_k = sum_ij G_ij P_i . P_j, in the family's t on [0, alpha]: from the
+        document's exact Gram entries in floats, or, below the series' threshold (where
+        those cancel), G = alpha^(1-2k) int_0^1 B_i^(k) B_j^(k) du of the series' polynomials
+        B_i(u) = b_i(alpha u) by Gauss-Legendre with enough points to be exact for them."""
         if k not in self._energies:
             raise ValueError(f"k must be one of {sorted(self._energies)}, got {k!r}")
-        return self._matrix(self._energies[k], self.check_alpha(alpha), f"E_{k} matrix")[0]
+        x = self.check_alpha(alpha)
+        if self.small_alpha is not None and x < self.small_alpha.below:
+            coeffs, _ = self.small_alpha.coefficients(x)  # (n+1, D+1) over u^j
+            if coeffs.shape[1] > k:  # (D+1-k, n+1): the k-th derivatives in u
+                derived = np.polynomial.polynomial.polyder(coeffs.T, k, axis=0)
+            else:
+                derived = np.zeros((1, coeffs.shape[0]))
+            # degree 2(D-k) <= 2D - 1: exact with D points
+            nodes, weights = np.polynomial.legendre.leggauss(max(1, coeffs.shape[1]))
+            u = (nodes + 1) / 2
+            values = np.polynomial.polynomial.polyval(u, derived)  # (n+1, nodes)
+            gram: np.ndarray = (values * weights) @ values.T / 2 * x ** (1 - 2 * k)
+            return gram
+        return self._matrix(self._energies[k], x, f"E_{k} matrix")[0]
 
     # ------------------------------------------------------------------ curves
     def curve(self, points: PointsLike, alpha: object = None, **params: object) -> CBezierCurve:
@@ -270,8 +348,7 @@ class CBezierFamily:
         scale = val.power_of_two_scale(arr)
         with val.overflow_allowed():
             pt = np.ascontiguousarray(arr.transpose(1, 0, 2)).reshape(size, m * dim) / scale
-            own = probe._own_atoms(probe.basis_coefficients)  # (n+1, A)
-            coeffs = probe._centring(own.T @ pt)  # (A, m·d)
+            coeffs = probe._centring(probe._own.T @ pt)  # (A, m·d)
             for _ in range(order):
                 coeffs = probe._d @ coeffs
             sh = probe.shape
@@ -291,8 +368,8 @@ class CBezierFamily:
         """s[r][j] = b_j^(r)(0) in the family's own parameter at alpha, r = 0..orders (what a
         join into this family solves with: _atom_joins)."""
         x = self.check_alpha(alpha)
-        basis, _ = self.basis_coefficients(x)
-        rate = x if self.form == "unit" else 1.0  # d/du = alpha d/dt on [0, 1]
+        rep = self.representation(x)
+        rate = x if self.form == "unit" else 1.0  # the own atoms are cos(m rate u), u^k
         cycle = {
             "cos": (1, 0, -1, 0),
             "sin": (0, 1, 0, -1),
@@ -302,13 +379,13 @@ class CBezierFamily:
         rows = []
         for r in range(orders + 1):
             at = []
-            for kind, m in self.atoms:  # the r-th derivative in t of each atom at t = 0
+            for kind, m in rep.layout:  # the r-th derivative of each own atom at 0
                 if kind == "pow":
                     at.append(float(math.factorial(m)) if r == m else 0.0)
                 else:
                     name = (kind + "h") if self.hyperbolic else kind
-                    at.append(float(m) ** r * cycle[name][r % 4])
-            rows.append([float(v) * rate**r for v in basis @ np.array(at)])
+                    at.append((m * rate) ** r * cycle[name][r % 4])
+            rows.append([float(v) for v in rep.own @ np.array(at)])
         return rows
 
     def parameter_value(self, lam: object, params: object, named: dict[str, object]) -> float:
@@ -441,57 +518,53 @@ class CBezierCurve(DomainGeometry):
         self.family = family.name
         self.alpha = alpha
         self.points = val.as_points(points, family=family.name, degrees=(n,))
-        basis, self.coefficient_error = family.basis_coefficients(alpha)
-        self.basis_coefficients = basis
+        rep = family.representation(alpha)
+        self.coefficient_error = rep.error
+        # over `basis_atoms`: the document's atoms of t, or powers of u = t/alpha below the
+        # series' threshold (CBezierFamily.representation)
+        self.basis_coefficients = rep.coefficients
+        self.basis_atoms = rep.atoms
+        self._own = rep.own  # (n+1, A) over the own parameter's atoms
+        self._own_layout = rep.layout
         unit = family.form == "unit"
         self._rate = alpha if unit else 1.0  # u on [0, 1]: t = alpha*u
         self._domain = (0.0, 1.0) if unit else (0.0, alpha)
         self._mid = 0.5 * self._domain[1]
-        self.shape = _Shape(self._rate, family.powers, family.harmonics, family.hyperbolic)
-        own = self._own_atoms(basis)  # (n+1, A) over the own parameter's atoms
+        self.shape = _Shape(self._rate, rep.powers, rep.harmonics, family.hyperbolic)
         self._scale = val.power_of_two_scale(self.points)
-        self._centred = self._centring(own.T @ (self.points / self._scale))
-        self._d = ak.derivative_matrix(
-            self._rate, family.powers, family.harmonics, family.hyperbolic
-        )
+        self._centred = self._centring(self._own.T @ (self.points / self._scale))
+        self._d = ak.derivative_matrix(self._rate, rep.powers, rep.harmonics, family.hyperbolic)
 
     def __repr__(self) -> str:
         p = self.family_object.parameter
         return f"CBezierCurve({self.family}, {p}={self.alpha}, dimension={self.dimension})"
 
     def _layout(self) -> list[tuple[str, int]]:
-        fam = self.family_object
-        out = [("pow", k) for k in range(fam.powers + 1)]
-        for m in range(1, fam.harmonics + 1):
-            out += [("cos", m), ("sin", m)]
-        return out
-
-    def _own_atoms(self, basis: np.ndarray) -> np.ndarray:
-        """The basis over the centred layout's atoms of the own parameter (not yet centred):
-        t^k = (alpha u)^k on [0, 1]; cos(m t) = cos(m alpha u) keeps its coefficient."""
-        layout = self._layout()
-        out = np.zeros((basis.shape[0], len(layout)))
-        for j, (kind, m) in enumerate(self.family_object.atoms):
-            factor = self._rate**m if kind == "pow" else 1.0
-            out[:, layout.index((kind, m))] += basis[:, j] * factor
-        return out
+        return self._own_layout
 
     def _centring(self, coeffs: np.ndarray) -> np.ndarray:
         """Coefficients over atoms of x to atoms of tau = x - mid."""
         from math import comb
 
         layout = self._layout()
+        index = {atom: j for j, atom in enumerate(layout)}
         mid, w, hyp = self._mid, self._rate, self.family_object.hyperbolic
         out = np.zeros_like(coeffs)
+        # the powers first (the layout starts with t^0..t^P in order): t^m = sum_i C(m, i)
+        # mid^(m-i) tau^i, one (P+1, P+1) product (the series' curves have P up to ~31)
+        top = max((m for kind, m in layout if kind == "pow"), default=-1)
+        shift = np.zeros((top + 1, top + 1))
+        for m in range(top + 1):
+            for i in range(m + 1):
+                shift[i, m] = comb(m, i) * mid ** (m - i)
+        out[: top + 1] = shift @ coeffs[: top + 1]
         for j, (kind, m) in enumerate(layout):
             row = coeffs[j]
             if kind == "pow":
-                for i in range(m + 1):
-                    out[layout.index(("pow", i))] += comb(m, i) * mid ** (m - i) * row
                 continue
             x = m * w * mid
             ca, sa = (math.cosh(x), math.sinh(x)) if hyp else (math.cos(x), math.sin(x))
-            ic, isn = layout.index(("cos", m)), layout.index(("sin", m))
+            ic, isn = index[("cos", m)], index[("sin", m)]
             if kind == "cos":  # cos(a + b) = ca cos b - sa sin b; cosh: ca cosh b + sa sinh b
                 out[ic] += ca * row
                 out[isn] += (sa if hyp else -sa) * row
@@ -604,14 +677,15 @@ class CBezierCurve(DomainGeometry):
         """(Σ_a |c_ai'| |atom_a(t)|, the control points): the rounding of C'(t), evaluated
         over the atoms, is relative to the atoms' terms (_speed_floor; AtomCurve's)."""
         tau, _ = self._tau(t, extrapolate)
-        coeffs = self._d @ self._centring(self._own_atoms(self.basis_coefficients).T)
+        coeffs = self._d @ self._centring(self._own.T)
         sh = self.shape
         eye = np.eye(coeffs.shape[0])
         atoms = ak.evaluate(
             eye, np.atleast_1d(tau), sh.omega0, sh.powers, sh.harmonics, sh.hyperbolic
         )
         # the float basis coefficients carry a relative error up to coefficient_error (1e-14
-        # at alpha = 2, 3e-11 at 0.5): the computed C'(0) at a stop is of that size
+        # at alpha = 2; below the series' threshold a few ulps): the computed C'(0) at a
+        # stop is of that size
         inflate = 1.0 + self.coefficient_error / np.finfo(float).eps
         return inflate * (np.abs(coeffs).T @ np.abs(atoms)).T, self.points
 
@@ -655,38 +729,26 @@ class CBezierCurve(DomainGeometry):
         if len(fam.atoms) != fam.degree + 1:
             raise ValueError("split needs a basis of the whole space (as many atoms as functions)")
         cut = x * self._rate if fam.form == "unit" else x
+        n = fam.degree
+        # the piece's control points from the curve at n + 1 Chebyshev-Lobatto points of the
+        # piece (the ends among them): the piece lies in the same space exactly, so this
+        # collocation solve is exact up to rounding, whichever form (atoms or series) either
+        # side is evaluated in
+        share = (1 - np.cos(np.pi * np.arange(n + 1) / n)) / 2
         out = []
         for start, length in ((0.0, cut), (cut, self.alpha - cut)):
-            basis, _ = fam.basis_coefficients(length)
-            # the curve's t-atoms shifted to start at `start`: r(start + s) over atoms of s
-            own = self._t_atoms_shifted(start)
-            ctrl = np.linalg.solve(basis.T, own)
-            piece = CBezierCurve(fam, ctrl, length)
-            out.append(piece)
+            probe = CBezierCurve(fam, np.zeros_like(self.points), length)
+            own = share * (probe._domain[1])
+            sh = probe.shape
+            basis = ak.evaluate(
+                probe._centring(probe._own.T),
+                own - probe._mid,
+                sh.omega0,
+                sh.powers,
+                sh.harmonics,
+                sh.hyperbolic,
+            )  # (n+1, nodes)
+            values = self.evaluate(np.clip((start + share * length) / self._rate, lo, hi))
+            ctrl = np.linalg.solve(basis.T, values)
+            out.append(CBezierCurve(fam, ctrl, length))
         return out[0], out[1]
-
-    def _t_atoms_shifted(self, start: float) -> np.ndarray:
-        """(atoms, d): r(start + s) over the document's atoms of s (t on [0, alpha])."""
-        from math import comb
-
-        fam = self.family_object
-        coeffs = self.basis_coefficients.T @ self.points  # over the document's atoms of t
-        out = np.zeros_like(coeffs)
-        index = {a: j for j, a in enumerate(fam.atoms)}
-        hyp = fam.hyperbolic
-        for j, (kind, m) in enumerate(fam.atoms):
-            row = coeffs[j]
-            if kind == "pow":
-                for i in range(m + 1):
-                    out[index[("pow", i)]] += comb(m, i) * start ** (m - i) * row
-                continue
-            x = m * start
-            ca, sa = (math.cosh(x), math.sinh(x)) if hyp else (math.cos(x), math.sin(x))
-            if kind == "cos":
-                out[index[("cos", m)]] += ca * row
-                out[index[("sin", m)]] += (sa if hyp else -sa) * row
-            else:
-                out[index[("cos", m)]] += sa * row
-                out[index[("sin", m)]] += ca * row
-        result: np.ndarray = out
-        return result

@@ -161,7 +161,7 @@ for alpha, h in heights.items():
     b3 = (alpha / 2 - math.sin(alpha / 2)) / (alpha - math.sin(alpha))
     assert abs(h - 3 * (1 - 2 * b3)) < 1e-11
 values = list(heights.values())
-assert all(a > b for a, b in zip(values, values[1:])) and abs(values[0] - 2.25) < 0.01
+assert all(a > b for a, b in zip(values, values[1:], strict=False)) and abs(values[0] - 2.25) < 0.01
 
 # %% [markdown]
 # The certified energy-optimal α of this polygon (a one-parameter minimum over (0, π], with a

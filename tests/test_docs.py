@@ -27,11 +27,11 @@ def _modules_with_examples() -> list[str]:
     package = Path(lambda_bezier.__file__).parent
     names = []
     for path in sorted(package.rglob("*.py")):
-        if path.name != "__init__.py" or path.parent != package:
-            if ">>>" in path.read_text(encoding="utf-8"):
-                rel = path.relative_to(package).with_suffix("")
-                parts = [p for p in rel.parts if p != "__init__"]
-                names.append(".".join(["lambda_bezier", *parts]))
+        top = path.name == "__init__.py" and path.parent == package
+        if not top and ">>>" in path.read_text(encoding="utf-8"):
+            rel = path.relative_to(package).with_suffix("")
+            parts = [p for p in rel.parts if p != "__init__"]
+            names.append(".".join(["lambda_bezier", *parts]))
     return names
 
 

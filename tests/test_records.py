@@ -356,16 +356,21 @@ HOSTILE = [
 ]
 
 
-@pytest.mark.parametrize("formula", HOSTILE, ids=range(len(HOSTILE)))
-def test_hostile_formula_runs_nothing_and_ends_quickly(tmp_path, formula):
-    marker = tmp_path / "PWNED"
-    body = formula.replace("{marker}", str(marker))
+def _hostile_file(tmp_path, formula: str):
     path = tmp_path / "hostile.toml"
     path.write_text(
         'schema_version = 2\nfamily = "same_degree"\n[[record]]\nid = "h"\n'
-        f'claim = "recursion"\nequations = [{{ lhs = "b(i, n, t)", rhs = {json.dumps(body)} }}]\n',
+        'claim = "recursion"\n'
+        f'equations = [{{ lhs = "b(i, n, t)", rhs = {json.dumps(formula)} }}]\n',
         encoding="utf-8",
     )
+    return path
+
+
+@pytest.mark.parametrize("formula", HOSTILE, ids=range(len(HOSTILE)))
+def test_hostile_formula_runs_nothing_and_ends_quickly(tmp_path, formula):
+    marker = tmp_path / "PWNED"
+    path = _hostile_file(tmp_path, formula.replace("{marker}", str(marker)))
     code, out, err = run_verify(str(path))
     assert not marker.exists()
     assert code == 2 and "record 'h'" in err and "Traceback" not in err, err
@@ -375,13 +380,7 @@ def test_hostile_formula_runs_nothing_and_ends_quickly(tmp_path, formula):
 def test_hostile_formula_message_quotes_a_readable_stretch(tmp_path, formula):
     # The refusal names the fault, but quotes at most a few hundred characters of a formula
     # that may be 40,000 long (or of a number that may have 2,500 digits).
-    path = tmp_path / "hostile.toml"
-    path.write_text(
-        'schema_version = 2\nfamily = "same_degree"\n[[record]]\nid = "h"\n'
-        f'claim = "recursion"\nequations = [{{ lhs = "b(i, n, t)", rhs = {json.dumps(formula)} }}]\n',
-        encoding="utf-8",
-    )
-    code, out, err = run_verify(str(path))
+    code, out, err = run_verify(str(_hostile_file(tmp_path, formula)))
     assert code == 2 and "record 'h'" in err
     assert max(len(line) for line in err.splitlines()) < 800, err[:2000]
 

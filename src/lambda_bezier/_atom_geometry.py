@@ -26,6 +26,7 @@ The accuracy promises are those of the polynomial and rational curves, reached d
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -205,10 +206,27 @@ def closest_point(curve: AtomCurve, q: npt.ArrayLike) -> ClosestPoint:
     data = _bounds_data(curve)
     ts = np.empty(len(queries))
     for k, qq in enumerate(queries):
-        tau, _ = ab.closest(data, qq / curve._scale, lo - curve._mid, hi - curve._mid)
+        unit_q = qq / curve._scale
+        far = math.frexp(float(np.abs(unit_q).max()))[1] - 500
+        if far > 0:  # |C − q|² would pass the float range: curve and query scaled together
+            # by 2^-far (exact; the curve's coefficients stay normal floats), same minimiser
+            sh = curve.shape
+            scaled = ab.AtomCurveData(
+                np.ldexp(curve._centred, -far), sh.omega0, sh.powers, sh.harmonics, sh.hyperbolic
+            )
+            tau, _ = ab.closest(scaled, np.ldexp(unit_q, -far), lo - curve._mid, hi - curve._mid)
+        else:
+            tau, _ = ab.closest(data, unit_q, lo - curve._mid, hi - curve._mid)
         ts[k] = min(max(tau + curve._mid, lo), hi)
     points = curve.evaluate(ts)
-    dists = np.linalg.norm(points - queries, axis=1)
+    # the difference (and its square) can pass the float range for a query far away (from
+    # 1e154 on the norm came back inf): the norm is taken at a power-of-two scale, exactly
+    with val.overflow_allowed():
+        pre = 0 if np.isfinite(points - queries).all() else 2
+        diff = np.ldexp(points, -pre) - np.ldexp(queries, -pre)
+        big = float(np.abs(diff).max()) if diff.size else 0.0
+        shift = math.frexp(big)[1] if big > 0.0 else 0
+        dists = np.ldexp(np.linalg.norm(np.ldexp(diff, -shift), axis=1), shift + pre)
     if single:
         return ClosestPoint(float(ts[0]), points[0], float(dists[0]))
     return ClosestPoint(ts, points, dists)

@@ -63,6 +63,12 @@ MERGE_RADIUS = 1e-3  # hits closer than this are compared for being one (see _ad
 MERGE_GAP = 64 * float(np.finfo(float).eps)
 NEAR_FOUND = 1e-6  # float Newton this close to a refined root has found that root
 TANGENT_SINE = 1e-6  # below this sine of the angle between tangents, refine as tangent
+# exact input: a hit whose tangents' sine is below this may be two crossings merged (_add
+# merges hits whose curves stay within MERGE_GAP between them: crossings 1e-7 apart on a
+# parabola), so the exact isolation decides it, as it decides a "tangent" hit. Two crossings
+# merged at that gap have a sine of about sqrt(curvature x gap): 1e-4 covers curvatures up to
+# ~1e4 of the size
+EXACT_CHECK_SINE = 1e-4
 # the tolerances above and the subdivision's, as the compiled careful path takes them
 # (settle_compiled.Knobs names the order)
 SETTLE = (
@@ -363,7 +369,13 @@ def _decided_exactly(p: Prepared, q: Prepared, hits: list[Intersection]) -> list
     """hits, or the exact answer where intersect_exact.decided gives one."""
     if p._given_rows is None or q._given_rows is None:  # float input: decided gives none
         return hits
-    got = _exact_iso.decided(p._given_rows, q._given_rows, p.dim, q.dim, [h.kind for h in hits])
+    kinds = [
+        "tangent"
+        if h.kind == "transversal" and p.dim == 2 and _sine(p, q, h.s, h.t) < EXACT_CHECK_SINE
+        else h.kind
+        for h in hits
+    ]
+    got = _exact_iso.decided(p._given_rows, q._given_rows, p.dim, q.dim, kinds)
     if got is None:
         return hits
     return [Intersection(s, t, "tangent" if flat else "transversal") for s, t, flat in got]

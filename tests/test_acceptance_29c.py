@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 import warnings
 from fractions import Fraction as F
+from math import comb
 from pathlib import Path
 
 import mpmath as mp
@@ -18,7 +19,7 @@ import numpy as np
 import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
-from test_acceptance_29 import _polymul, _power_to_bezier
+from test_acceptance_29 import _compose, _polymul, _power_to_bezier
 
 import lambda_bezier as lb
 from lambda_bezier.conversion import from_bezier
@@ -220,3 +221,79 @@ def test_a_c_bezier_curve_measures_a_far_query_without_overflow():
             assert near.distance == pytest.approx(want, rel=1e-15)
         near = curve.closest_point((1.5, 3))  # the symmetric apex: t = 1/2 of [0, 1]
         assert near.t == pytest.approx(0.5, abs=1e-9)
+
+
+# --------------------------------------------- a curve turning back along itself, off a line
+def _composed(points: list[tuple[F, ...]], inner: list[F]) -> lb.BezierCurve:
+    """Q(g(s)) exactly, for the Bézier curve Q of `points` and g = Σ inner[k] s^k."""
+    n, dim = len(points) - 1, len(points[0])
+    power = [
+        [
+            sum(comb(n, k) * comb(k, i) * (-1) ** (k - i) * points[i][c] for i in range(k + 1))
+            for k in range(n + 1)
+        ]
+        for c in range(dim)
+    ]
+    cols = [_compose(col, inner) for col in power]
+    width = max(map(len, cols))
+    cols = [col + [F(0)] * (width - len(col)) for col in cols]
+    m = width - 1
+    return lb.BezierCurve(
+        [
+            tuple(sum(F(comb(j, k), comb(m, k)) * col[k] for k in range(j + 1)) for col in cols)
+            for j in range(m + 1)
+        ]
+    )
+
+
+CUBIC = [(F(0), F(0)), (F(1), F(3)), (F(3), F(-1)), (F(4), F(2))]
+SPACE_CUBIC = [(F(0), F(0), F(0)), (F(1), F(3), F(1)), (F(3), F(-1), F(2)), (F(4), F(2), F(-1))]
+
+
+@pytest.mark.parametrize(
+    ("points", "inner", "want", "exact"),
+    [
+        # g = 4s(1 − s): out along Q and back along all of it
+        (CUBIC, [F(0), F(4), F(-4)], [(0, 1), (F(1, 2), F(1, 2))], True),
+        (SPACE_CUBIC, [F(0), F(4), F(-4)], [(0, 1), (F(1, 2), F(1, 2))], False),
+        # g = 3s − 9s²/2: to Q(1/2) at s = 1/3, back past Q(0) at s = 2/3
+        (CUBIC, [F(0), F(3), F(-9, 2)], [(0, F(2, 3)), (F(1, 3), F(1, 3))], True),
+    ],
+    ids=["planar-exact", "space-float", "partial-exact"],
+)
+def test_a_curve_retracing_itself_reports_its_shared_stretch(points, inner, want, exact):
+    """P(s) = Q(g(s)) with g turning at s = m retraces Q: p(s) = p(t) along a whole stretch,
+    to be reported as coincident end pairs, as intersect reports two curves sharing a stretch
+    and self_intersections a curve on a line turning back; it gave 6-9 arbitrary "tangent"
+    points. The float case is the same curve scaled to integer control points (exact
+    floats), so that it turns back exactly too."""
+    curve = _composed(points, inner)
+    if not exact:
+        den = math.lcm(*(x.denominator for row in curve.control_points() for x in row))
+        curve = lb.BezierCurve(
+            np.array([[float(x * den) for x in row] for row in curve.control_points()])
+        )
+    got = curve.self_intersections()
+    assert [(h.s, h.t, h.kind) for h in got] == [
+        (float(s), float(t), "coincident") for s, t in want
+    ]
+
+
+def test_a_curve_turning_twice_shares_three_stretches():
+    """g = 10s³ − 27s²/2 + 9s/2: turning at m = (9 ∓ √21)/20, with g(0) = g(3/5) = g(3/4) = 0
+    and g(m₁) = g(9/20 + √21/10): three stretches (pieces 1-2, 1-3, 2-3), their end pairs."""
+    curve = _composed(CUBIC, [F(0), F(9, 2), F(-27, 2), F(10)])
+    mp.mp.dps = 50
+    m1, m2 = (9 - mp.sqrt(21)) / 20, (9 + mp.sqrt(21)) / 20
+    far = mp.mpf(9) / 20 + mp.sqrt(21) / 10
+    want = [
+        (0, 0.6),
+        (0, 0.75),
+        (float(m1), float(m1)),
+        (float(m1), float(far)),
+        (float(m2), float(m2)),
+    ]
+    got = curve.self_intersections()
+    assert [h.kind for h in got] == ["coincident"] * 5
+    for h, (s, t) in zip(got, want, strict=True):
+        assert abs(h.s - s) <= 1e-15 and abs(h.t - t) <= 1e-15, (got, want)

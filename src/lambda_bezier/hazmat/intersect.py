@@ -30,6 +30,7 @@ stretches and common lines at _root_bound. The certificate holds its roots to _r
 from __future__ import annotations
 
 import functools
+from fractions import Fraction
 from typing import NamedTuple
 
 import numpy as np
@@ -37,6 +38,7 @@ import numpy as np
 from . import intersect_certify as cert
 from . import intersect_exact as _exact_iso
 from . import intersect_fold as fold
+from . import intersect_refold as refold
 from . import intersect_subdivide as sub
 from .intersect_locate import (  # the point location half, and the tolerances both share
     ON_CURVE,
@@ -648,4 +650,34 @@ def self_intersections(p: Prepared) -> list[Intersection]:
             hit = Intersection(hit.t, hit.s, hit.kind)
         if not _dedupe(found, hit):
             _add(found, hit, p, p)
+    if any(h.kind == "tangent" for h in found):
+        # touching itself, or turning back along itself (P = Q(g), g not monotone): a shared
+        # stretch is reported by its end pairs (intersect_refold), as intersect reports one
+        rows = [[Fraction(x) for x in row] for row in (p._given_rows or p.pts.tolist())]
+        shared = refold.refolded(rows, _rows_intersect)
+        if shared is not None:
+            # the pieces' crossings with each other are there; a crossing within one piece
+            # (a loop of its own) is one the subdivision found, "transversal", kept unless
+            # it lies on a shared stretch
+            hits, boxes = shared
+            out = [Intersection(s, t, kind) for s, t, kind in hits]
+            for h in found:
+                on_stretch = any(
+                    s0 - SAME_ROOT <= h.s <= s1 + SAME_ROOT
+                    and t0 - SAME_ROOT <= h.t <= t1 + SAME_ROOT
+                    for s0, s1, t0, t1 in boxes
+                )
+                if h.kind == "transversal" and not on_stretch and not _dedupe(out, h):
+                    out.append(h)
+            return sorted(out)
     return sorted(found)
+
+
+def _prepared_rows(rows: list[list[Fraction]]) -> Prepared:
+    return Prepared(np.array([[float(x) for x in row] for row in rows]), tuple(map(tuple, rows)))
+
+
+def _rows_intersect(
+    a: list[list[Fraction]], b: list[list[Fraction]]
+) -> list[tuple[float, float, str]]:
+    return [(h.s, h.t, h.kind) for h in intersect(_prepared_rows(a), _prepared_rows(b))]

@@ -297,3 +297,21 @@ def test_a_curve_turning_twice_shares_three_stretches():
     assert [h.kind for h in got] == ["coincident"] * 5
     for h, (s, t) in zip(got, want, strict=True):
         assert abs(h.s - s) <= 1e-15 and abs(h.t - t) <= 1e-15, (got, want)
+
+
+@pytest.mark.parametrize("exact", [True, False], ids=["exact", "float"])
+def test_a_curve_retracing_another_shares_two_stretches_listed_once(exact):
+    """Q against P = Q(4s(1 − s)): P[0, 1/2] is Q run forwards and P[1/2, 1] Q run back. The
+    end pair at P's turning point (s = 1/2, t = 1) ends both stretches: it came twice, and at
+    s = 0.5000000082 (a double root of locating Q(1) on P, found to about 1e-8); now once,
+    exactly at the turning point."""
+    q = lb.BezierCurve(CUBIC)
+    p = _composed(CUBIC, [F(0), F(4), F(-4)])
+    if not exact:
+        den = math.lcm(*(x.denominator for row in p.control_points() for x in row))
+        p = lb.BezierCurve(np.array([[float(x * den) for x in row] for row in p.control_points()]))
+        q = lb.BezierCurve(np.array([[float(x * den) for x in row] for row in CUBIC]))
+    want = [(0.0, 0.0), (0.5, 1.0), (1.0, 0.0)]
+    got = p.intersect(q)
+    assert [(h.s, h.t) for h in got] == want and {h.kind for h in got} == {"coincident"}
+    assert sorted((h.t, h.s) for h in q.intersect(p)) == want

@@ -515,8 +515,16 @@ def _pair_setup(
                 continue
             if _same_piece(p, q, a.s, b.s, a.t, b.t) or _same_image(p, q, a.s, b.s, a.t, b.t):
                 lo, hi = sorted((a, b))
-                coincident += [lo._replace(kind="coincident"), hi._replace(kind="coincident")]
+                # an end pair bounding two stretches (a curve turning back along the other)
+                # is listed once, as self_intersections lists it
+                coincident += [
+                    h._replace(kind="coincident")
+                    for h in (lo, hi)
+                    if h._replace(kind="coincident") not in coincident
+                ]
                 skip.append((lo.s, hi.s, min(a.t, b.t), max(a.t, b.t)))
+    if coincident:
+        coincident = [_at_turning_point(p, q, h) for h in coincident]
     found = list(coincident)
     for e in ends:
         if not _dedupe(found, e):
@@ -524,6 +532,25 @@ def _pair_setup(
     if not coincident:
         _refuse_collinear_overlap(p, q)
     return found, skip
+
+
+def _at_turning_point(p: Prepared, q: Prepared, hit: Intersection) -> Intersection:
+    """An end of a shared stretch where one curve turns back along the other (its whole
+    derivative vanishes: a double root of the location, found only to about 1e-8) moved to
+    that turning point, exact in rationals (intersect_refold.turning_points), when the exact
+    residual there is no larger."""
+    for curve, value, other in ((p, hit.s, hit.t), (q, hit.t, hit.s)):
+        if value in (0.0, 1.0) or np.linalg.norm(curve.at(value, 1)) > 1e-6 * curve.scale:
+            continue
+        rows = [[Fraction(x) for x in row] for row in (curve._given_rows or curve.pts.tolist())]
+        for m in refold.turning_points(rows):
+            moved = float(m)
+            if abs(moved - value) < 1e-6:
+                s, t = (moved, other) if curve is p else (other, moved)
+                before = np.linalg.norm(_residual(p, q, hit.s, hit.t, True))
+                if np.linalg.norm(_residual(p, q, s, t, True)) <= before:
+                    hit = hit._replace(s=s, t=t)
+    return hit
 
 
 def _pair_finish(

@@ -315,3 +315,35 @@ def test_a_curve_retracing_another_shares_two_stretches_listed_once(exact):
     got = p.intersect(q)
     assert [(h.s, h.t) for h in got] == want and {h.kind for h in got} == {"coincident"}
     assert sorted((h.t, h.s) for h in q.intersect(p)) == want
+
+
+# ------------------------------------------------ intersect, locate at any size of the curves
+@pytest.mark.parametrize("exponent", [-1060, -700, -332, 0, 332, 700, 1020])
+def test_intersections_do_not_depend_on_the_size_of_the_curves(exponent):
+    """Curves multiplied by 2^k are the same curves in the same parameters. Lines crossing at
+    their middles came back "tangent" at 2^-332 (1e-100: a product of four coordinates
+    underflows), 1e-10 off at 2^-700 and not at all at 2^1020; a point on the arch at 2^1020
+    was not located. Expected answers: exact (1/2, and 1/2 ∓ √2/4 for the arch at half its
+    height, 1/2 ∓ √3/6 for the loop)."""
+    k = exponent
+
+    def curve(points):
+        return lb.BezierCurve(np.ldexp(np.array(points, dtype=float), k))
+
+    lines = curve([(0, 0), (2, 2)]), curve([(0, 2), (2, 0)])
+    assert [tuple(h) for h in lines[0].intersect(lines[1])] == [(0.5, 0.5, "transversal")]
+    assert lb.intersect_many([lines[0]], [lines[1]]) == [lines[0].intersect(lines[1])]
+    arch = curve([(0, 0), (1, 2), (2, 0)])
+    assert [tuple(h) for h in arch.intersect(curve([(0, 1), (2, 1)]))] == [(0.5, 0.5, "tangent")]
+    r = math.sqrt(2) / 4
+    got = arch.intersect(curve([(0, 0.5), (2, 0.5)]))
+    assert [h.kind for h in got] == ["transversal"] * 2
+    assert [h.s for h in got] == pytest.approx([0.5 - r, 0.5 + r], abs=1e-15)
+    loop = curve([(0, 0), (4, 2), (-1, 2), (3, 0)])
+    (hit,) = loop.self_intersections()
+    assert (hit.s, hit.t) == pytest.approx(
+        (0.5 - math.sqrt(3) / 6, 0.5 + math.sqrt(3) / 6), abs=1e-15
+    )
+    assert arch.locate(np.ldexp([1.0, 1.0], k)) == 0.5
+    assert arch.locate(np.ldexp([0.5, 0.75], k)) == 0.25
+    assert arch.locate(np.ldexp([1.0, 0.9], k)) is None

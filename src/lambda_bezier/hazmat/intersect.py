@@ -30,6 +30,7 @@ stretches and common lines at _root_bound. The certificate holds its roots to _r
 from __future__ import annotations
 
 import functools
+import math
 from fractions import Fraction
 from typing import NamedTuple
 
@@ -354,10 +355,42 @@ def _dedupe_isolated(found: list[Intersection], new: Intersection) -> bool:
 Box = tuple[float, float, float, float]  # s0, s1, t0, t1 of a coincident stretch
 
 
+NORMAL_EXPONENT = 128  # pairs whose largest coordinate is beyond 2^±this are scaled near 1
+
+
+def normalised(p: Prepared, q: Prepared) -> tuple[Prepared, Prepared]:
+    """p and q divided by one power of two (exact: the same parameters) when their size is
+    beyond 2^±NORMAL_EXPONENT: the tests multiply up to four coordinates, so lines crossing at
+    1e-100 came back "tangent", at 1e-200 1e-10 off, and at 5e307 not at all."""
+    top = max(p.exponent, q.exponent)
+    if -NORMAL_EXPONENT <= top <= NORMAL_EXPONENT:
+        return p, q
+    return p.scaled(top), q.scaled(top)
+
+
+def locate_point(
+    p: Prepared, point: np.ndarray, exact_point: tuple[Fraction, ...] | None
+) -> list[float]:
+    """locate_all for a point the user gives (Curve.locate), curve and point scaled near 1
+    when the curve's size is beyond 2^±NORMAL_EXPONENT (at 1e300 on-curve points came back
+    None, at 1e-300 1e-10 off). A point 2^64 times farther out than the curve's largest
+    coordinate is not on it."""
+    shift = p.exponent
+    if -NORMAL_EXPONENT <= shift <= NORMAL_EXPONENT:
+        return locate_all(p, point, exact_point)
+    big = float(np.abs(point).max(initial=0.0))
+    if big and math.frexp(big)[1] - shift > 64:
+        return []
+    if exact_point is not None:
+        exact_point = tuple(Fraction(x) * Fraction(2) ** -shift for x in exact_point)
+    return locate_all(p.scaled(shift), np.ldexp(point, -shift), exact_point)
+
+
 def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
     """Every intersection of p and q, sorted by s: the certified fast path when both are
     floats exactly, else (or where it does not certify) the careful path: compiled
     (settle_one) where it can, in Python otherwise."""
+    p, q = normalised(p, q)
     compiled = _compiled_pair(p, q)
     if compiled is not None:
         return _decided_exactly(p, q, compiled)
@@ -410,6 +443,7 @@ def intersect_pairs(pairs: list[tuple[Prepared, Prepared]]) -> list[list[Interse
     decline, take the careful way in Python together, pairs of equal degrees and dimension
     in one group: the end points and shared stretches pair by pair, the subdivision in one
     set of arrays (intersect_subdivide.isolate), then refinement pair by pair."""
+    pairs = [normalised(p, q) for p, q in pairs]
     results: list[list[Intersection]] = [[] for _ in pairs]
     groups: dict[tuple[int, int, int], list[int]] = {}
     for k, (p, q) in enumerate(pairs):
@@ -646,6 +680,7 @@ def self_intersections(p: Prepared) -> list[Intersection]:
     """Pairs s < t with p(s) = p(t), sorted by s."""
     if p.dim < 2:
         raise ValueError("self-intersections need dimension >= 2")
+    p = normalised(p, p)[0]
     found: list[Intersection] = []
     if p.degree < 2 or p.is_point:
         return found

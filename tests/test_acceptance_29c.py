@@ -347,3 +347,25 @@ def test_intersections_do_not_depend_on_the_size_of_the_curves(exponent):
     assert arch.locate(np.ldexp([1.0, 1.0], k)) == 0.5
     assert arch.locate(np.ldexp([0.5, 0.75], k)) == 0.25
     assert arch.locate(np.ldexp([1.0, 0.9], k)) is None
+
+
+@pytest.mark.parametrize("exponent", [-1000, -700, 0, 332, 1000])
+def test_rational_intersections_do_not_depend_on_the_size_of_the_curves(exponent):
+    """The rational arch (0,0), (1,2), (2,0) with weights 1, 2, 1 has height
+    8u / (1 + 2u), u = t(1 − t): it meets y = 1 where u = 1/6, t = (1 ∓ 1/√3)/2. Scaled by
+    2^k: at 2^-700 one crossing was lost and the other called "tangent", at 2^1000 the search
+    overflowed (RuntimeWarning)."""
+    k = exponent
+    arch = lb.RationalBezierCurve(np.ldexp([(0.0, 0.0), (1.0, 2.0), (2.0, 0.0)], k), [1, 2, 1])
+    line = lb.BezierCurve(np.ldexp([(-1.0, 1.0), (3.0, 1.0)], k))
+    want = [(1 - 1 / math.sqrt(3)) / 2, (1 + 1 / math.sqrt(3)) / 2]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for got in (arch.intersect(line), [h._replace(s=h.t) for h in line.intersect(arch)]):
+            assert [h.kind for h in got] == ["transversal", "transversal"]
+            assert [h.s for h in got] == pytest.approx(want, abs=1e-15)
+        loop = lb.RationalBezierCurve(
+            np.ldexp([(0.0, 0.0), (4.0, 2.0), (-1.0, 2.0), (3.0, 0.0)], k), [1, 2, 2, 1]
+        )
+        (hit,) = loop.self_intersections()
+        assert hit.t == pytest.approx(1 - hit.s, abs=1e-15)  # symmetric under t -> 1 - t

@@ -369,3 +369,52 @@ def test_rational_intersections_do_not_depend_on_the_size_of_the_curves(exponent
         )
         (hit,) = loop.self_intersections()
         assert hit.t == pytest.approx(1 - hit.s, abs=1e-15)  # symmetric under t -> 1 - t
+
+
+def _bisect_roots(f, lo: float, hi: float, n: int = 400) -> list[float]:
+    """The sign changes of f on n intervals of [lo, hi], bisected to the last bit."""
+    xs = np.linspace(lo, hi, n + 1)
+    out = []
+    for a, b in zip(xs[:-1], xs[1:], strict=True):
+        fa = f(a)
+        if fa * f(b) > 0:
+            continue
+        while True:
+            m = (a + b) / 2
+            if m in (a, b):
+                break
+            if f(m) * fa > 0:
+                a, fa = m, f(m)
+            else:
+                b = m
+        out.append(a)
+    return out
+
+
+@pytest.mark.parametrize("exponent", [-1000, -700, 0, 700, 1000])
+@pytest.mark.parametrize(
+    ("name", "params"),
+    [("han_trig_cubic", {"lam": 0.5, "mu": -0.5}), ("c_bezier_cubic", {"alpha": 1.0})],
+)
+def test_atom_intersections_do_not_depend_on_the_size_of_the_curves(name, params, exponent):
+    """A trigonometric and a C-Bézier curve scaled by 2^k against y = 2^k: the crossings are
+    where the unscaled curve's height is 1 (bisection on its evaluate, independent of the
+    intersection engine). At 2^-700 one was lost and the other called "tangent", at 2^1000 the
+    search overflowed; a point on the C-Bézier curve at 2^-700 was not located."""
+    fam = lb.load_family(FAMILIES / f"{name}.toml")
+    pts = [(0.0, 0.0), (1.0, 2.0), (2.0, 2.0), (3.0, 0.0)]
+    unit = fam.curve(pts, **params)
+    lo, hi = unit.domain
+    want = _bisect_roots(lambda t: float(unit.evaluate(t)[1]) - 1.0, lo, hi)
+    assert len(want) == 2
+    k = exponent
+    curve = fam.curve(np.ldexp(pts, k), **params)
+    line = lb.BezierCurve(np.ldexp([(0.0, 1.0), (3.0, 1.0)], k))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        got = curve.intersect(line)
+        assert [h.kind for h in got] == ["transversal", "transversal"]
+        assert [h.s for h in got] == pytest.approx(want, abs=1e-12)
+        assert [h.t for h in line.intersect(curve)] == [h.s for h in got]
+        t = lo + 0.3 * (hi - lo)
+        assert curve.locate(curve.evaluate(t)) == pytest.approx(t, abs=1e-12)

@@ -207,14 +207,16 @@ def closest_point(curve: AtomCurve, q: npt.ArrayLike) -> ClosestPoint:
     ts = np.empty(len(queries))
     for k, qq in enumerate(queries):
         unit_q = qq / curve._scale
-        # |C − q|² passes the float range for a query past 2^500, and underflows for a curve
-        # and query below 2^-500 (at 2^-700 a point on the curve was not located): curve and
-        # query scaled together by a power of two (exact, the same minimiser), the curve's
-        # coefficients kept normal floats
+        # |C − q|² passes the float range for a query past 2^512 (the sum of squares from
+        # 2^511), and underflows for a curve and query below 2^-500 (at 2^-700 a point on
+        # the curve was not located): curve and query scaled together by a power of two
+        # (exact, the same minimiser) when either is beyond 2^±256, the query then at most
+        # 2^256 and the curve's coefficients normal floats
         big_q = float(np.abs(unit_q).max())
         own = math.frexp(float(np.abs(curve._centred).max()))[1]
-        shift = max(own, math.frexp(big_q)[1] - 500 if big_q else own)
-        if not -NORMAL_EXPONENT <= shift <= NORMAL_EXPONENT:
+        q_exp = math.frexp(big_q)[1] if big_q else own
+        shift = max(own, q_exp - 256) if q_exp > 256 or not -256 <= own <= 256 else 0
+        if shift:
             sh = curve.shape
             scaled = ab.AtomCurveData(
                 np.ldexp(curve._centred, -shift), sh.omega0, sh.powers, sh.harmonics, sh.hyperbolic

@@ -26,6 +26,7 @@ The accuracy promises are those of the polynomial and rational curves, reached d
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -36,7 +37,7 @@ from .curves import BezierCurve, Curve
 from .geometry import ClosestPoint, length_queries
 from .hazmat import atom_bounds as ab
 from .hazmat import atom_intersect as ai
-from .hazmat.intersect import Intersection
+from .hazmat.intersect import NORMAL_EXPONENT, Intersection
 from .rational import RationalBezierCurve
 
 if TYPE_CHECKING:
@@ -205,10 +206,34 @@ def closest_point(curve: AtomCurve, q: npt.ArrayLike) -> ClosestPoint:
     data = _bounds_data(curve)
     ts = np.empty(len(queries))
     for k, qq in enumerate(queries):
-        tau, _ = ab.closest(data, qq / curve._scale, lo - curve._mid, hi - curve._mid)
+        unit_q = qq / curve._scale
+        # |C − q|² passes the float range for a query past 2^512 (the sum of squares from
+        # 2^511), and underflows for a curve and query below 2^-500 (at 2^-700 a point on
+        # the curve was not located): curve and query scaled together by a power of two
+        # (exact, the same minimiser) when either is beyond 2^±256, the query then at most
+        # 2^256 and the curve's coefficients normal floats
+        big_q = float(np.abs(unit_q).max())
+        own = math.frexp(float(np.abs(curve._centred).max()))[1]
+        q_exp = math.frexp(big_q)[1] if big_q else own
+        shift = max(own, q_exp - 256) if q_exp > 256 or not -256 <= own <= 256 else 0
+        if shift:
+            sh = curve.shape
+            scaled = ab.AtomCurveData(
+                np.ldexp(curve._centred, -shift), sh.omega0, sh.powers, sh.harmonics, sh.hyperbolic
+            )
+            tau, _ = ab.closest(scaled, np.ldexp(unit_q, -shift), lo - curve._mid, hi - curve._mid)
+        else:
+            tau, _ = ab.closest(data, unit_q, lo - curve._mid, hi - curve._mid)
         ts[k] = min(max(tau + curve._mid, lo), hi)
     points = curve.evaluate(ts)
-    dists = np.linalg.norm(points - queries, axis=1)
+    # the difference (and its square) can pass the float range for a query far away (from
+    # 1e154 on the norm came back inf): the norm is taken at a power-of-two scale, exactly
+    with val.overflow_allowed():
+        pre = 0 if np.isfinite(points - queries).all() else 2
+        diff = np.ldexp(points, -pre) - np.ldexp(queries, -pre)
+        big = float(np.abs(diff).max()) if diff.size else 0.0
+        shift = math.frexp(big)[1] if big > 0.0 else 0
+        dists = np.ldexp(np.linalg.norm(np.ldexp(diff, -shift), axis=1), shift + pre)
     if single:
         return ClosestPoint(float(ts[0]), points[0], float(dists[0]))
     return ClosestPoint(ts, points, dists)
@@ -285,6 +310,25 @@ def _part(c: Any) -> tuple[Any, float]:
     return ai.BernsteinPart(rows), 0.0
 
 
+def _normalised_parts(*parts: Any) -> tuple[Any, ...]:
+    """The certified search's parts divided by one power of two (the same parameters) when
+    their size is beyond 2^±NORMAL_EXPONENT (as hazmat.intersect.normalised): at 2^-700 a
+    trigonometric curve's crossing with a line was lost and the other called "tangent", at
+    2^1000 the search overflowed."""
+    top = max(math.frexp(part.size)[1] for part in parts)
+    if -NORMAL_EXPONENT <= top <= NORMAL_EXPONENT:
+        return parts
+    out: list[Any] = []
+    for part in parts:
+        if isinstance(part, ai.AtomPart):
+            out.append(ai.AtomPart(part.data, part.lo, part.hi, math.ldexp(part.scale, -top)))
+        else:
+            rows = part.rows.copy()
+            rows[:, :-1] = np.ldexp(rows[:, :-1], -top)  # the coordinates, not the weights
+            out.append(ai.BernsteinPart(rows, part.lo, part.hi))
+    return tuple(out)
+
+
 def intersect(p: AtomCurve, q: Any) -> list[Intersection]:
     if getattr(q, "dimension", None) != p.dimension:
         if not isinstance(q, Curve | RationalBezierCurve) and not _is_atom(q):
@@ -299,6 +343,7 @@ def intersect(p: AtomCurve, q: Any) -> list[Intersection]:
     # the search on the rational form's blossoms costs about 10x this one
     if p.dimension in (2, 3):
         (pp, ps), (qq, qs) = _part(p), _part(q)
+        pp, qq = _normalised_parts(pp, qq)
         certified = ai.pairs(pp, qq)
         if certified is not None:
             return [Intersection(f.s + ps, f.t + qs, f.kind) for f in certified]
@@ -372,6 +417,7 @@ def self_intersections(curve: AtomCurve) -> list[Intersection]:
     3D, else (a curve running over itself) from the polynomial pieces."""
     if curve.dimension in (2, 3):
         part, shift = _part(curve)
+        (part,) = _normalised_parts(part)
         certified = ai.self_pairs(part)
         if certified is not None:
             return [Intersection(f.s + shift, f.t + shift, f.kind) for f in certified]

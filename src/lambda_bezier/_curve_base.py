@@ -454,7 +454,7 @@ class Curve(ControlPointCurve):
         is not on the curve. A ValueError when several t give the point (a self-crossing)."""
         arr = val.as_point(point, self.dimension)
         exact = val.exact_rows([point])
-        found = _intersect.locate_all(self._prepared, arr, None if exact is None else exact[0])
+        found = _intersect.locate_point(self._prepared, arr, None if exact is None else exact[0])
         if len(found) > 1:
             raise ValueError(f"the point is on the curve at several parameters: {found}")
         return found[0] if found else None

@@ -42,7 +42,7 @@ from .hazmat import atom_intersect as ai
 from .hazmat import coincide as co
 from .hazmat import intersect_exact as ie
 from .hazmat import rational_kernels as rk
-from .hazmat.intersect import Intersection
+from .hazmat.intersect import EXACT_CHECK_SINE, Intersection
 
 if TYPE_CHECKING:
     from .rational import RationalBezierCurve
@@ -482,10 +482,25 @@ def _decided_exactly(
     if exact is None:
         return hits
     (p_rows, q_rows), weights = exact
-    got = ie.decided(p_rows, q_rows, 2, 2, [h.kind for h in hits], weights=weights)
+    # a crossing at a small angle may be two merged (as in hazmat.intersect._decided_exactly),
+    # and its float parameter is only as good as 1/sine: the exact isolation answers there too
+    kinds = [
+        "tangent"
+        if h.kind == "transversal" and _sine(p, q, h.s, h.t) < EXACT_CHECK_SINE
+        else h.kind
+        for h in hits
+    ]
+    got = ie.decided(p_rows, q_rows, 2, 2, kinds, weights=weights)
     if got is None:
         return hits
     return [Intersection(s, t, "tangent" if flat else "transversal") for s, t, flat in got]
+
+
+def _sine(p: RationalBezierCurve, q: RationalBezierCurve, s: float, t: float) -> float:
+    """|sin| of the angle between the tangents at p(s) and q(t); 0 where one vanishes."""
+    u, v = p.derivative(s), q.derivative(t)
+    size = float(np.linalg.norm(u) * np.linalg.norm(v))
+    return abs(float(u[0] * v[1] - u[1] * v[0])) / size if size else 0.0
 
 
 def _shared(p: RationalBezierCurve, q: RationalBezierCurve, size: float) -> list[co.Stretch]:

@@ -383,13 +383,20 @@ def overflow_allowed() -> np.errstate:
 
 
 def as_point(point: object, dimension: int, name: str = "point") -> np.ndarray:
-    """One point as a (d,) float array matching the curve's dimension, all finite."""
+    """One point as a (d,) float array matching the curve's dimension, all finite. Text,
+    booleans, complex values and exact values beyond the float range are refused by name
+    (real_array), as for control points: np.array(..., dtype=float) took (True, False) as
+    (1, 0) and raised a bare OverflowError on an int past 1.8e308."""
+    if isinstance(point, str | bytes):
+        raise ValueError(f"{name} must be a sequence of {dimension} numbers, got {point!r}")
     try:
-        arr = np.array(point, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError(
-            f"{name} must be a sequence of {dimension} numbers, got {point!r}"
-        ) from None
+        arr = np.array(real_array(point, name), dtype=float)
+    except ValueError as exc:
+        if "must be a regular array" in str(exc) or "must be a real number" in str(exc):
+            raise ValueError(
+                f"{name} must be a sequence of {dimension} numbers, got {describe(point)}"
+            ) from None
+        raise
     if arr.shape != (dimension,):
         raise ValueError(f"{name} must have shape ({dimension},), got shape {arr.shape}")
     if not np.all(np.isfinite(arr)):

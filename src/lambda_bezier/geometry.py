@@ -82,7 +82,16 @@ def _centred_coefficients(curve: Curve) -> tuple[np.ndarray, float]:
     assert rows is not None  # an exact curve has an exact Bézier form
     cols = tuple(zip(*forms.centred_matrix(bez.degree), strict=True))  # row i: B_i about 1/2
     exact = alg.exact_matmul(cols, rows)  # (N+1, d)
-    return np.array([[float(v) for v in row] for row in exact]).T.copy(), 1.0
+    # exact coordinates near the float limit have coefficients past it (and tiny ones lose
+    # their digits in subnormals): divided by a power of two, exactly, as float curves are
+    big = max((abs(v) for row in exact for v in row), default=Fraction(0))
+    shift = 0
+    if big and not Fraction(1, 2**500) <= big <= 2**500:
+        shift = big.numerator.bit_length() - big.denominator.bit_length()
+        shift = min(max(shift, -1022), 1023)  # the scale itself a (normal) float
+    scale = Fraction(2) ** shift
+    coeffs = np.array([[float(v / scale) for v in row] for row in exact]).T.copy()
+    return coeffs, math.ldexp(1.0, shift)
 
 
 def _poly(curve: Curve) -> _Poly:
@@ -257,7 +266,12 @@ def parameter_at_length(obj: Curve | CompositeCurve, s: npt.ArrayLike) -> np.nda
 def _curve_box(curve: Curve) -> tuple[np.ndarray, np.ndarray]:
     poly = _poly(curve)
     ends = curve.to_bezier().points[[0, -1]]
-    return extremes.box(poly[0], poly[1], poly[2], ends)
+    # poly holds p / scale (a power of two): the ends go in at that scale and the box comes
+    # back out of it (the inner extremes were the scaled curve's, 1e-300 times too small)
+    shift = math.frexp(poly.scale)[1] - 1
+    with val.overflow_allowed():
+        lo, hi = extremes.box(poly[0], poly[1], poly[2], np.ldexp(ends, -shift))
+        return np.ldexp(lo, shift), np.ldexp(hi, shift)
 
 
 def bounding_box(obj: Curve | CompositeCurve) -> tuple[np.ndarray, np.ndarray]:
@@ -304,14 +318,37 @@ def _curve_closest(curve: Curve, q: np.ndarray) -> tuple[np.ndarray, np.ndarray,
     poly = _poly(curve)
     # (p − q)·p′ squares coordinates: at 2^600 that overflows, at 2^-600 it underflows. The
     # coefficients and the queries are divided by one power of two (exact), so that the
-    # larger of them is near 1; distances are scaled back at the end.
-    unit_q = q / poly.scale
-    big = float(max(np.abs(poly[0]).max(), np.abs(unit_q).max()))
-    norm = math.ldexp(1.0, math.frexp(big)[1]) if big > 0 and math.isfinite(big) else 1.0
-    t, pts, dist2 = extremes.closest(poly[0] / norm, unit_q / norm)
-    factor = poly.scale * norm  # a power of two: exact
-    with val.overflow_allowed():
-        return t, pts * factor, np.sqrt(dist2) * factor
+    # larger of them is near 1; distances are scaled back at the end. The power is applied
+    # as an exponent (ldexp), never as a float factor: 2^1024 (a query at 1e308, or a curve
+    # scaled by 2^1023) is not a float, and a factor of inf made a finite point inf. Queries
+    # far larger than the curve (2^256 times) take their own power: one power for a whole
+    # batch shrank its near queries' distances with the far one's, to 0 past 2^540.
+    # in exponents: q / poly.scale itself overflows for a far query to a tiny curve
+    offset = math.frexp(poly.scale)[1] - 1  # poly.scale is a power of two: exact
+    own = math.frexp(float(np.abs(poly[0]).max()))[1]
+    query_big = float(np.abs(q).max())
+    if query_big == 0.0 or math.frexp(query_big)[1] - offset <= own + 256:  # every query near
+        shift = max(own, math.frexp(query_big)[1] - offset if query_big else own)
+        t, pts, dist2 = extremes.closest(np.ldexp(poly[0], -shift), np.ldexp(q, -shift - offset))
+        with val.overflow_allowed():
+            return t, np.ldexp(pts, shift + offset), np.ldexp(np.sqrt(dist2), shift + offset)
+    sizes = np.abs(q).max(axis=1)
+    query_exp = np.frexp(sizes)[1] - offset
+    far = (sizes > 0) & (query_exp > own + 256)
+    shifts = np.where(far, query_exp, own)
+    shifts[~far] = max(own, int(query_exp[~far & (sizes > 0)].max(initial=own)))
+    t = np.empty(len(q))
+    pts = np.empty(q.shape)
+    dist = np.empty(len(q))
+    for shift in np.unique(shifts).tolist():
+        rows = shifts == shift
+        t[rows], p_rows, dist2 = extremes.closest(
+            np.ldexp(poly[0], -shift), np.ldexp(q[rows], -shift - offset)
+        )
+        with val.overflow_allowed():
+            pts[rows] = np.ldexp(p_rows, shift + offset)
+            dist[rows] = np.ldexp(np.sqrt(dist2), shift + offset)
+    return t, pts, dist
 
 
 def closest_point(obj: Curve | CompositeCurve, q: npt.ArrayLike) -> ClosestPoint:

@@ -33,6 +33,7 @@ changing the curve.
 
 from __future__ import annotations
 
+import math
 import sys
 from fractions import Fraction
 from typing import TYPE_CHECKING, NoReturn
@@ -92,6 +93,21 @@ def _exact_scalar(t: object, name: str) -> Fraction:
     if not val.is_exact_scalar(t):
         raise ValueError(f"{name} must be an int or a Fraction for an exact result, got {t!r}")
     return Fraction(int(t)) if isinstance(t, np.integer) else Fraction(t)
+
+
+NORMAL_EXPONENT = 128  # as hazmat.intersect: pairs beyond 2^±this in size are scaled near 1
+
+
+def _normalised(
+    a: RationalBezierCurve, b: RationalBezierCurve
+) -> tuple[RationalBezierCurve, RationalBezierCurve]:
+    """a and b divided by one power of two (the same parameters) when their size is beyond
+    2^±NORMAL_EXPONENT: at 2^-700 a crossing with a line was lost and the other called
+    "tangent", at 2^1000 the search overflowed."""
+    top = max(math.frexp(float(np.abs(c.points).max(initial=0.0)))[1] for c in (a, b))
+    if -NORMAL_EXPONENT <= top <= NORMAL_EXPONENT:
+        return a, b
+    return a._divided(top), (a._divided(top) if b is a else b._divided(top))
 
 
 class RationalBezierCurve(ControlPointCurve):
@@ -470,13 +486,22 @@ class RationalBezierCurve(ControlPointCurve):
             raise ValueError(
                 f"the curves have different dimensions ({self.dimension} and {other.dimension})"
             )
-        return rg.intersect(self, other)
+        return rg.intersect(*_normalised(self, other))
 
     def self_intersections(self) -> list[Intersection]:
         """Every pair s < t with C(s) = C(t), as Intersection(s, t, kind), sorted by s."""
         from . import _rational_geometry as rg
 
-        return rg.self_intersections(self)
+        return rg.self_intersections(_normalised(self, self)[0])
+
+    def _divided(self, shift: int) -> RationalBezierCurve:
+        """The same curve, its control points divided by 2^shift (exactly), same weights."""
+        if self.is_exact:
+            assert self._exact_points is not None
+            factor = Fraction(2) ** -shift
+            exact = [[x * factor for x in row] for row in self._exact_points]
+            return RationalBezierCurve(exact, self._exact_weights or self.weights)
+        return RationalBezierCurve(np.ldexp(self.points, -shift), self.weights)
 
     def implicitize(self) -> Poly:
         """The algebraic curve f(x, y) = 0 containing this planar curve, as an exact

@@ -42,7 +42,8 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `exact_flint`: its costly exact steps (resultants, gcds, real-root isolation) on
   python-flint (the `exact` extra; imported on use), `exact_poly` the fallback;
 - `intersect_fold`: the self-intersections of a curve on a line that turns back along it
-  (the end pairs of the stretches its monotone pieces share);
+  (the end pairs of the stretches its monotone pieces share); `intersect_refold` the same
+  for a curve off a line (P = Q(g), g not monotone), cut at its exact turning points;
 - `intersect_prepared`: a curve as the intersection solvers use it (floats, exact rows);
 - `reduce`: degree reduction, exact or least squares;
 - `implicit`: implicitization (imports SymPy when called, never at import);
@@ -130,6 +131,7 @@ __all__ = [
     "intersect_fold",
     "intersect_locate",
     "intersect_prepared",
+    "intersect_refold",
     "intersect_subdivide",
     "kernels",
     "kernels_compiled",

@@ -30,6 +30,8 @@ stretches and common lines at _root_bound. The certificate holds its roots to _r
 from __future__ import annotations
 
 import functools
+import math
+from fractions import Fraction
 from typing import NamedTuple
 
 import numpy as np
@@ -37,6 +39,7 @@ import numpy as np
 from . import intersect_certify as cert
 from . import intersect_exact as _exact_iso
 from . import intersect_fold as fold
+from . import intersect_refold as refold
 from . import intersect_subdivide as sub
 from .intersect_locate import (  # the point location half, and the tolerances both share
     ON_CURVE,
@@ -63,6 +66,12 @@ MERGE_RADIUS = 1e-3  # hits closer than this are compared for being one (see _ad
 MERGE_GAP = 64 * float(np.finfo(float).eps)
 NEAR_FOUND = 1e-6  # float Newton this close to a refined root has found that root
 TANGENT_SINE = 1e-6  # below this sine of the angle between tangents, refine as tangent
+# exact input: a hit whose tangents' sine is below this may be two crossings merged (_add
+# merges hits whose curves stay within MERGE_GAP between them: crossings 1e-7 apart on a
+# parabola), so the exact isolation decides it, as it decides a "tangent" hit. Two crossings
+# merged at that gap have a sine of about sqrt(curvature x gap): 1e-4 covers curvatures up to
+# ~1e4 of the size
+EXACT_CHECK_SINE = 1e-4
 # the tolerances above and the subdivision's, as the compiled careful path takes them
 # (settle_compiled.Knobs names the order)
 SETTLE = (
@@ -346,10 +355,42 @@ def _dedupe_isolated(found: list[Intersection], new: Intersection) -> bool:
 Box = tuple[float, float, float, float]  # s0, s1, t0, t1 of a coincident stretch
 
 
+NORMAL_EXPONENT = 128  # pairs whose largest coordinate is beyond 2^±this are scaled near 1
+
+
+def normalised(p: Prepared, q: Prepared) -> tuple[Prepared, Prepared]:
+    """p and q divided by one power of two (exact: the same parameters) when their size is
+    beyond 2^±NORMAL_EXPONENT: the tests multiply up to four coordinates, so lines crossing at
+    1e-100 came back "tangent", at 1e-200 1e-10 off, and at 5e307 not at all."""
+    top = max(p.exponent, q.exponent)
+    if -NORMAL_EXPONENT <= top <= NORMAL_EXPONENT:
+        return p, q
+    return p.scaled(top), q.scaled(top)
+
+
+def locate_point(
+    p: Prepared, point: np.ndarray, exact_point: tuple[Fraction, ...] | None
+) -> list[float]:
+    """locate_all for a point the user gives (Curve.locate), curve and point scaled near 1
+    when the curve's size is beyond 2^±NORMAL_EXPONENT (at 1e300 on-curve points came back
+    None, at 1e-300 1e-10 off). A point 2^64 times farther out than the curve's largest
+    coordinate is not on it."""
+    shift = p.exponent
+    if -NORMAL_EXPONENT <= shift <= NORMAL_EXPONENT:
+        return locate_all(p, point, exact_point)
+    big = float(np.abs(point).max(initial=0.0))
+    if big and math.frexp(big)[1] - shift > 64:
+        return []
+    if exact_point is not None:
+        exact_point = tuple(Fraction(x) * Fraction(2) ** -shift for x in exact_point)
+    return locate_all(p.scaled(shift), np.ldexp(point, -shift), exact_point)
+
+
 def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
     """Every intersection of p and q, sorted by s: the certified fast path when both are
     floats exactly, else (or where it does not certify) the careful path: compiled
     (settle_one) where it can, in Python otherwise."""
+    p, q = normalised(p, q)
     compiled = _compiled_pair(p, q)
     if compiled is not None:
         return _decided_exactly(p, q, compiled)
@@ -363,7 +404,13 @@ def _decided_exactly(p: Prepared, q: Prepared, hits: list[Intersection]) -> list
     """hits, or the exact answer where intersect_exact.decided gives one."""
     if p._given_rows is None or q._given_rows is None:  # float input: decided gives none
         return hits
-    got = _exact_iso.decided(p._given_rows, q._given_rows, p.dim, q.dim, [h.kind for h in hits])
+    kinds = [
+        "tangent"
+        if h.kind == "transversal" and p.dim == 2 and _sine(p, q, h.s, h.t) < EXACT_CHECK_SINE
+        else h.kind
+        for h in hits
+    ]
+    got = _exact_iso.decided(p._given_rows, q._given_rows, p.dim, q.dim, kinds)
     if got is None:
         return hits
     return [Intersection(s, t, "tangent" if flat else "transversal") for s, t, flat in got]
@@ -396,6 +443,7 @@ def intersect_pairs(pairs: list[tuple[Prepared, Prepared]]) -> list[list[Interse
     decline, take the careful way in Python together, pairs of equal degrees and dimension
     in one group: the end points and shared stretches pair by pair, the subdivision in one
     set of arrays (intersect_subdivide.isolate), then refinement pair by pair."""
+    pairs = [normalised(p, q) for p, q in pairs]
     results: list[list[Intersection]] = [[] for _ in pairs]
     groups: dict[tuple[int, int, int], list[int]] = {}
     for k, (p, q) in enumerate(pairs):
@@ -501,8 +549,16 @@ def _pair_setup(
                 continue
             if _same_piece(p, q, a.s, b.s, a.t, b.t) or _same_image(p, q, a.s, b.s, a.t, b.t):
                 lo, hi = sorted((a, b))
-                coincident += [lo._replace(kind="coincident"), hi._replace(kind="coincident")]
+                # an end pair bounding two stretches (a curve turning back along the other)
+                # is listed once, as self_intersections lists it
+                coincident += [
+                    h._replace(kind="coincident")
+                    for h in (lo, hi)
+                    if h._replace(kind="coincident") not in coincident
+                ]
                 skip.append((lo.s, hi.s, min(a.t, b.t), max(a.t, b.t)))
+    if coincident:
+        coincident = [_at_turning_point(p, q, h) for h in coincident]
     found = list(coincident)
     for e in ends:
         if not _dedupe(found, e):
@@ -510,6 +566,25 @@ def _pair_setup(
     if not coincident:
         _refuse_collinear_overlap(p, q)
     return found, skip
+
+
+def _at_turning_point(p: Prepared, q: Prepared, hit: Intersection) -> Intersection:
+    """An end of a shared stretch where one curve turns back along the other (its whole
+    derivative vanishes: a double root of the location, found only to about 1e-8) moved to
+    that turning point, exact in rationals (intersect_refold.turning_points), when the exact
+    residual there is no larger."""
+    for curve, value, other in ((p, hit.s, hit.t), (q, hit.t, hit.s)):
+        if value in (0.0, 1.0) or np.linalg.norm(curve.at(value, 1)) > 1e-6 * curve.scale:
+            continue
+        rows = [[Fraction(x) for x in row] for row in (curve._given_rows or curve.pts.tolist())]
+        for m in refold.turning_points(rows):
+            moved = float(m)
+            if abs(moved - value) < 1e-6:
+                s, t = (moved, other) if curve is p else (other, moved)
+                before = np.linalg.norm(_residual(p, q, hit.s, hit.t, True))
+                if np.linalg.norm(_residual(p, q, s, t, True)) <= before:
+                    hit = hit._replace(s=s, t=t)
+    return hit
 
 
 def _pair_finish(
@@ -605,6 +680,7 @@ def self_intersections(p: Prepared) -> list[Intersection]:
     """Pairs s < t with p(s) = p(t), sorted by s."""
     if p.dim < 2:
         raise ValueError("self-intersections need dimension >= 2")
+    p = normalised(p, p)[0]
     found: list[Intersection] = []
     if p.degree < 2 or p.is_point:
         return found
@@ -636,4 +712,34 @@ def self_intersections(p: Prepared) -> list[Intersection]:
             hit = Intersection(hit.t, hit.s, hit.kind)
         if not _dedupe(found, hit):
             _add(found, hit, p, p)
+    if any(h.kind == "tangent" for h in found):
+        # touching itself, or turning back along itself (P = Q(g), g not monotone): a shared
+        # stretch is reported by its end pairs (intersect_refold), as intersect reports one
+        rows = [[Fraction(x) for x in row] for row in (p._given_rows or p.pts.tolist())]
+        shared = refold.refolded(rows, _rows_intersect)
+        if shared is not None:
+            # the pieces' crossings with each other are there; a crossing within one piece
+            # (a loop of its own) is one the subdivision found, "transversal", kept unless
+            # it lies on a shared stretch
+            hits, boxes = shared
+            out = [Intersection(s, t, kind) for s, t, kind in hits]
+            for h in found:
+                on_stretch = any(
+                    s0 - SAME_ROOT <= h.s <= s1 + SAME_ROOT
+                    and t0 - SAME_ROOT <= h.t <= t1 + SAME_ROOT
+                    for s0, s1, t0, t1 in boxes
+                )
+                if h.kind == "transversal" and not on_stretch and not _dedupe(out, h):
+                    out.append(h)
+            return sorted(out)
     return sorted(found)
+
+
+def _prepared_rows(rows: list[list[Fraction]]) -> Prepared:
+    return Prepared(np.array([[float(x) for x in row] for row in rows]), tuple(map(tuple, rows)))
+
+
+def _rows_intersect(
+    a: list[list[Fraction]], b: list[list[Fraction]]
+) -> list[tuple[float, float, str]]:
+    return [(h.s, h.t, h.kind) for h in intersect(_prepared_rows(a), _prepared_rows(b))]

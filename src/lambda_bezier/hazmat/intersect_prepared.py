@@ -26,8 +26,21 @@ class Prepared:
         self._given_rows = rows
         self.degree = self.pts.shape[0] - 1
         self.dim = self.pts.shape[1]
+        # the largest |coordinate|'s binary exponent: intersect.normalised brings a pair
+        # outside 2^±128 near 1 (its tests multiply four coordinates: 1e-100 underflowed)
+        flat = self.pts.ravel().tolist() if self.pts.size <= _SMALL else None
+        big = max(max(flat), -min(flat)) if flat else float(np.abs(self.pts).max(initial=0.0))
+        self.exponent = math.frexp(big)[1] if big else 0
         if rows is None:  # floats given: set here, not read through cached_property's lock
             self.__dict__["floats_exact"] = True
+
+    def scaled(self, shift: int) -> Prepared:
+        """The same curve divided by 2^shift, exactly (its rows as Fractions when given)."""
+        rows = self._given_rows
+        if rows is not None:
+            factor = Fraction(2) ** -shift
+            rows = tuple(tuple(Fraction(x) * factor for x in row) for row in rows)
+        return Prepared(np.ldexp(self.pts, -shift), rows)
 
     @functools.cached_property
     def _extent(self) -> tuple[float, float]:

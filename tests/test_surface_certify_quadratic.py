@@ -169,3 +169,56 @@ def test_the_newly_certified_sets_are_the_vectorised_box_certificates(monkeypatc
     assert np.abs(boxed.values[:, 0] - x[new]).max() <= 2e-12
     assert np.abs(boxed.values[:, 1] - y[new]).max() <= 2e-12
     assert np.allclose(boxed.energy, energy[new], rtol=1e-12, atol=0)
+
+
+def adversarial_energies():
+    """Nine coefficient arrays of E = A(y) x² + B(y) x + C(y) over [−1, 1]², every
+    coefficient a dyadic float (so exact): A = (y − y0)² + α, with a double root in the box,
+    at a face, just outside it, or near-zero least value α; B = −2 x1 + σ y, an
+    unconstrained minimiser inside, on a face or outside; C = β y² − 2 y1 y + y1²."""
+    rows = []
+    for y0 in (-1.0, 0.0, 0.5, 1.0, 1.0 + 2.0**-20):
+        for alpha in (0.0, 2.0**-40, 2.0**-10, 1.0):
+            for x1 in (-1.0, 0.25, 1.0, 1.5):
+                for sigma in (0.0, 0.125):
+                    for y1 in (-1.0, 0.375, 1.25):
+                        for beta in (1.0, 2.0**-30):
+                            a = (y0 * y0 + alpha, -2 * y0, 1.0)
+                            b = (-2 * x1, sigma, 0.0)
+                            c = (y1 * y1, -2 * y1, beta)
+                            # c[3 i + j]: x^i y^j
+                            rows.append((*c, *b, *a))
+    return [np.array(col) for col in zip(*rows, strict=True)]
+
+
+def test_certified_minima_of_adversarial_energies_are_the_least_on_a_fine_grid():
+    """Where either certificate accepts, the returned point's energy, exactly (Fractions),
+    is no more than the least value of E over a fine grid of the box (each grid line's
+    exact minimum over x in closed form, in floats): a certificate that accepted a point
+    that is not the box's minimum (a local one, or one misplaced by a loose A > 0) fails.
+    And every quadratic A here is nonnegative: where A has a root in the box no interior
+    minimum may rest on A > 0 there."""
+    c = adversarial_energies()
+    box = np.array([-1.0, 1.0, -1.0, 1.0])
+    x, y, value, ok, on_edge = fixed_cost_minimum(c, box, 1e-12)
+    assert 0.2 * ok.size < np.count_nonzero(ok) < ok.size  # both outcomes occur
+    assert np.count_nonzero(on_edge) > 0 and np.count_nonzero(ok & ~on_edge) > 0
+    ys = np.unique(np.concatenate([np.linspace(-1, 1, 4097), np.clip(c[7] / -2, -1, 1)]))
+    e = [v[:, None] for v in c]
+    big_a = e[6] + (e[7] + e[8] * ys) * ys
+    big_b = e[3] + (e[4] + e[5] * ys) * ys
+    big_c = e[0] + (e[1] + e[2] * ys) * ys
+    vertex = np.clip(-big_b / np.where(big_a > 0, 2 * big_a, 1.0), -1, 1)
+    least = np.inf
+    for xs in (-1.0, 1.0, vertex):
+        least = np.minimum(least, big_c + (big_b + big_a * xs) * xs)
+    grid = least.min(axis=1)
+    for k in np.flatnonzero(ok):
+        p, q = Fraction(float(x[k])), Fraction(float(y[k]))
+        assert -1 <= p <= 1 and -1 <= q <= 1
+        exact = sum(
+            Fraction(float(c[3 * i + j][k])) * p**i * q**j for i in range(3) for j in range(3)
+        )
+        scale = 1 + abs(grid[k])
+        assert float(exact) <= grid[k] + 1e-10 * scale, (k, float(exact), grid[k])
+        assert abs(float(exact) - value[k]) <= 1e-13 * scale

@@ -1,7 +1,6 @@
 """The nets of a batch of atom-family nets (one parameter a direction) that the compiled
 fixed-cost stage declines, whose minima lie inside the box, within r of a face, on an edge or
-at a corner: certified without the one-net path, by the sharper fixed-cost pass
-(hazmat.surface_recertify) and then the vectorised careful path
+at a corner: certified without the one-net path, by the vectorised careful path
 (param_surface_optimum._careful_batch, hazmat.box_batch) (issue #31).
 
 References, independent of the batch's float coefficients and certificate: each net's
@@ -94,8 +93,10 @@ def test_the_nets_both_fixed_cost_certificates_decline_are_certified_vectorised(
     got = lb.optimal_parameters(nets, energy, family=AT)
     x = np.stack([got["lam_u"], got["lam_v"]], axis=1)
     classes = _classes(x[declined])
-    # the benchmark's nets hold every kind of declined minimum (thin plate: none at a corner)
-    kinds = ["interior", "near a face", "edge"] + (["corner"] if energy == "membrane" else [])
+    # the benchmark's nets hold every kind of declined minimum but corners: the fixed-cost
+    # stage certifies every corner minimum among them (thin plate has none; membrane's take
+    # the careful path in the next test)
+    kinds = ["interior", "near a face", "edge"]
     assert all(classes[k].size for k in kinds), {k: v.size for k, v in classes.items()}
     # the one-net path takes only a few of them (counted), the careful path the rest
     assert got.careful_fallbacks <= 0.1 * declined.size
@@ -116,10 +117,32 @@ def test_the_nets_both_fixed_cost_certificates_decline_are_certified_vectorised(
             assert np.abs(exact - x[i]).max() <= 1e-12, (kind, i, exact - x[i])
 
 
+def test_corner_minima_are_certified_alike_by_the_fixed_cost_stage_and_the_careful_path():
+    """Membrane's corner minima among the benchmark's nets, certified by the fixed-cost
+    stage's edge certificate, against the careful path (param_surface_optimum._careful_batch)
+    on the same nets and against each net's one-net certified minimum (the first two)."""
+    nets = _nets(400)
+    x, y, energy, ok, on_edge = po.fixed_cost(nets, D, D, "membrane")
+    corners = np.flatnonzero(ok & on_edge & (np.abs(x) == 1) & (np.abs(y) == 1))
+    assert corners.size >= 2
+    careful = po._careful_batch(nets[corners], "membrane", (AT, AT), D, D)
+    assert careful.fallbacks <= 1
+    assert np.array_equal(careful.values[:, 0], x[corners])
+    assert np.array_equal(careful.values[:, 1], y[corners])
+    assert np.allclose(careful.energy, energy[corners], rtol=1e-12, atol=0)
+    got = lb.optimal_parameters(nets[corners], "membrane", family=AT)
+    assert np.all(got.boundary == careful.boundary) and got.careful_fallbacks == 0
+    for k, i in enumerate(corners[:2]):
+        one = lb.optimal_parameters(nets[i], "membrane", family=AT)
+        lower, best = float(one.lower_bound), float(one.energy)
+        assert lower - 1e-12 * abs(best) <= energy[i] <= best + 1e-12 * abs(best)
+        assert got.boundary[k] == one.boundary
+
+
 def test_careful_fallbacks_counts_every_net_solved_one_by_one(monkeypatch):
-    """The counter is the number of one-net calls; with the sharper fixed-cost pass
-    (hazmat.surface_recertify) and the vectorised certificate declining every net, every net
-    the compiled stage declined is solved one by one, to the same answers."""
+    """The counter is the number of one-net calls; with the vectorised certificate declining
+    every net, every net the compiled stage declined is solved one by one, to the same
+    answers."""
     nets = _nets(60)
     calls = []
     one_net = po.certified_parameters
@@ -139,13 +162,8 @@ def test_careful_fallbacks_counts_every_net_solved_one_by_one(monkeypatch):
         x = np.clip(start, lo, hi)
         return x, np.zeros(len(x)), np.full(len(x), np.inf), np.zeros(len(x), bool)
 
-    def recertifies_none(c, box, tol):
-        zero = np.zeros(len(c[0]))
-        return zero, zero, zero, np.zeros(len(zero), bool), np.zeros(len(zero), bool)
-
     calls.clear()
     monkeypatch.setattr(po.box_batch, "certified_minimum", declines_all)
-    monkeypatch.setattr(po, "recertified_minimum", recertifies_none)
     slow = lb.optimal_parameters(nets, "thin_plate", family=AT)
     assert slow.careful_fallbacks == len(calls) == declined.size
     assert np.all(slow.boundary == got.boundary)

@@ -146,7 +146,8 @@ def test_atom_across_polynomial_is_an_atom_surface_either_way():
 
 
 def test_batch_engines_agree(monkeypatch):
-    """The compiled kernel (numba) and the numpy engine on the same nets."""
+    """The compiled kernel (numba; its generic coefficients, and the coefficients emitted
+    for these weights as a large batch takes them) and the numpy engine on the same nets."""
     from lambda_bezier.hazmat import surface_kernels as ker
     from lambda_bezier.param_surface_energy import _direction
 
@@ -154,6 +155,16 @@ def test_batch_engines_agree(monkeypatch):
     nets[..., 0] += np.arange(4)[:, None]
     d = _direction(AT, 3)
     compiled = po.fixed_cost(nets, d, d, "thin_plate")
+    fast = po._batch_compiled()
+    if fast is not None:  # the emitted coefficients, as for a batch of 1,024 nets or more
+        with monkeypatch.context() as patch:
+            patch.setattr(fast, "EMITTED_MIN_NETS", 1)
+            emitted = po.fixed_cost(nets, d, d, "thin_plate")
+        assert np.array_equal(emitted[3], compiled[3])
+        assert np.array_equal(emitted[4], compiled[4])
+        ok = compiled[3]
+        for a, b in zip(emitted[:3], compiled[:3], strict=True):
+            assert np.allclose(a[ok], b[ok], rtol=1e-12, atol=1e-12)
     monkeypatch.setattr(ker, "USE_COMPILED", False)
     plain = po.fixed_cost(nets, d, d, "thin_plate")
     assert po._batch_compiled() is None

@@ -20,20 +20,19 @@ energy's nine coefficients e_ab (x^a y^b, a, b <= 2) of every net at once, as we
 nets' Gram products P_ij · P_kl (each direction's Gram matrices in floats, the constant c at
 its float, in Kronecker products); then the fixed-cost certificate of one-parameter surfaces.
 With numba both run in the one-parameter surfaces' compiled kernel
-(hazmat.surface_batch_compiled.optimise, which takes any such weights), else in numpy (one
-batched matrix product, then hazmat.surface_certify.certified_minimum on arrays;
-LAMBDA_BEZIER_NO_NUMBA=1 selects it, and the tests run both). The certificate (local
-strong convexity and a global clearing of the rest of the box) puts the minimiser within
-1e-12 of the answer, for the float coefficients; where it declines, its fixed-cost edge
-certificate (surface_certify.edge_minimum) certifies most minima on an edge or at a corner
-(``boundary`` then names the ends, as for one net). For at_cubic's 10,000 benchmark nets
-both decline 15% (1,533): the interior certificate needs E_xx > 0 along every line of the
-box, which it tests by the three Bernstein coefficients of a quadratic, too loose where
-at_cubic's E is only weakly convex across the box; and it declines every minimum within its
-R's half-width of a face. The nets both decline are certified again with that quadratic's
-least value in place of its Bernstein coefficients (hazmat.surface_recertify, numpy: 1,161
-of the 1,533), and what that declines takes the vectorised careful path below
-(_careful_batch: the other 372, none left to the one-net path).
+(hazmat.surface_batch_compiled.optimise_batch, which takes any such weights: for large
+batches the coefficients from straight-line code emitted for these weights,
+hazmat.surface_coefficients_ir), else in numpy (one batched matrix product, then
+hazmat.surface_certify.certified_minimum on arrays; LAMBDA_BEZIER_NO_NUMBA=1 selects it, and
+the tests run both). The certificate (local strong convexity and a global clearing of the
+rest of the box) puts the minimiser within 1e-12 of the answer, for the float coefficients;
+where it declines, its fixed-cost edge certificate (surface_certify.edge_minimum) certifies
+most minima on an edge or at a corner (``boundary`` then names the ends, as for one net).
+Both decide a quadratic's positivity on an interval by its least value there (at_cubic's
+E is only weakly convex across its box, and the quadratic's Bernstein coefficients, used
+before, declined 1,533 of the 10,000 benchmark nets, not 372: see surface_certify's doc).
+What they decline takes the vectorised careful path below (_careful_batch), and what that
+declines the one-net path.
 
 The careful path, and the whole batch with two or more parameters in a direction (or none in
 one; the fixed-cost certificate is for two variables): every net's coefficients at every
@@ -65,7 +64,6 @@ from .hazmat import box_batch
 from .hazmat import surface_kernels as ker
 from .hazmat.constants import constant_bounds
 from .hazmat.surface_fixed_cost import fixed_cost_minimum
-from .hazmat.surface_recertify import recertified_minimum
 from .hazmat.surface_weights import pair_weights, plain_weights
 from .param_surface_energy import (
     Direction,
@@ -210,6 +208,17 @@ def _energy_weights(
     return out
 
 
+@cache
+def _batch_weights(family_u: Any, m: int, family_v: Any, n: int, energy: str) -> Any:
+    """energy_weights in the compiled kernels' form (hazmat.surface_weights.plain_weights),
+    once per pair of families, degrees and energy: optimise_batch finds its emitted code by
+    the weights' identity (no 12 kB key hashed per call)."""
+    weights = _energy_weights(family_u, m, family_v, n, energy)
+    size = next(iter(weights.values())).shape[0]
+    forms = {3 * a + b: w for (a, b), w in weights.items()}
+    return plain_weights(*pair_weights(forms, size))
+
+
 def energy_coefficients(nets: np.ndarray, du: Direction, dv: Direction, energy: str) -> Any:
     """{(a, b): e_ab over the batch}: the energy of every net as Σ e_ab x^a y^b (floats): the
     nets' Gram products P_ij · P_kl (one batched matrix product) against each weight."""
@@ -249,12 +258,10 @@ def fixed_cost(
         return bx, by, bval, ok, np.zeros(count, bool)
     if fast is not None:  # the one-parameter surfaces' compiled kernel, on these weights
         flat = np.ascontiguousarray(nets.reshape(count, -1), dtype=float)
-        size = next(iter(weights.values())).shape[0]
-        forms = {3 * a + b: w for (a, b), w in weights.items()}
-        bx, by, bval, _, status, _valid = fast.optimise(
+        bx, by, bval, _, status, _valid = fast.optimise_batch(
             flat,
             nets.shape[-1],
-            plain_weights(*pair_weights(forms, size)),
+            _batch_weights(du.family, du.degree, dv.family, dv.degree, energy),
             box,
             CERTIFIED_TOLERANCE,
             MAX_COORDINATE,
@@ -280,18 +287,6 @@ def optimal_parameters_batch(nets: np.ndarray, energy: str, family: Any) -> Surf
         return _several_batch(nets, energy, (fu, fv), du, dv)
     count = nets.shape[0]
     bx, by, bval, ok, on_edge = fixed_cost(nets, du, dv, energy)
-    declined = np.flatnonzero(~ok)
-    if declined.size and max(max(a, b) for a, b in energy_weights(du, dv, energy)) <= 2:
-        # the declined nets again, with the sharper quadratic test (hazmat.surface_recertify)
-        coeffs = energy_coefficients(nets[declined], du, dv, energy)
-        zero = np.zeros(declined.size)
-        c = [coeffs.get((a, b), zero) for a in range(3) for b in range(3)]
-        (xlo, xhi), (ylo, yhi) = _box(du), _box(dv)
-        box = np.array([float(xlo), float(xhi), float(ylo), float(yhi)])
-        rx, ry, rval, rok, redge = recertified_minimum(c, box, CERTIFIED_TOLERANCE)
-        done = declined[rok]
-        bx[done], by[done], bval[done] = rx[rok], ry[rok], rval[rok]
-        ok[done], on_edge[done] = True, redge[rok]
     boundary = np.empty(count, dtype=object)
     boundary[:] = ""
     edge = np.flatnonzero(on_edge)  # certified on an edge or at a corner: name the ends

@@ -83,9 +83,6 @@ ours (the name follows the `bezier` package's `hazmat`).
   `fast` extra; imported on use);
 - `surface_fixed_cost`: that certificate and its edge and corner one, run in numpy in the
   compiled kernel's order (the batch optima's numpy engine);
-- `surface_recertify`: the same two certificates with a quadratic's positivity on an
-  interval decided by its least value, not its Bernstein coefficients (numpy, for the nets
-  the compiled stage declines);
 - `surface_weights`: the energy's weights for that kernel, in the basis where each
   direction's λ-part is sparse (exact change of basis);
 - `surface_coefficients_ir`: the energy's coefficients of a large batch as vector code
@@ -148,6 +145,5 @@ __all__ = [
     "surface_compiled",
     "surface_fixed_cost",
     "surface_kernels",
-    "surface_recertify",
     "surface_weights",
 ]

@@ -38,11 +38,15 @@ from .pieces_compiled import (
 )
 
 
-def _compiled_twins(module: ModuleType, names: tuple[str, ...]) -> dict[str, Any]:
+def _compiled_twins(
+    module: ModuleType, names: tuple[str, ...], replaced: dict[str, Any]
+) -> dict[str, Any]:
     """module's functions compiled from their own source (one source for numpy's fallback
     and the kernels): each rebuilt on a copy of the module's globals in which the others
-    are the compiled ones, so that numba resolves their calls to each other."""
+    are the compiled ones (and `replaced` names the compiled stand-ins of its own helpers),
+    so that numba resolves their calls to each other."""
     names_space = dict(vars(module))
+    names_space.update(replaced)
     for name in names:
         plain = getattr(module, name)
         twin = types.FunctionType(plain.__code__, names_space, name, plain.__defaults__)
@@ -51,9 +55,21 @@ def _compiled_twins(module: ModuleType, names: tuple[str, ...]) -> dict[str, Any
     return {name: names_space[name] for name in names}
 
 
+@numba.njit(**_JIT)
+def _rows(count: int, width: int) -> np.ndarray:
+    """intersect_contact._rows compiled: scratch rows as an array."""
+    return np.zeros((count, width))
+
+
+@numba.njit(**_JIT)
+def _blocks(count: int, rows: int, width: int) -> np.ndarray:
+    return np.zeros((count, rows, width))
+
+
 _CONTACT = _compiled_twins(
     _contact,
     ("_second_order", "_part", "_interval", "_apart", "_confined", "contact_cell", "tries"),
+    {"_rows": _rows, "_blocks": _blocks},
 )
 contact_cell = _CONTACT["contact_cell"]
 contact_tries = _CONTACT["tries"]

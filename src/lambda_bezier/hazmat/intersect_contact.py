@@ -40,8 +40,7 @@ The same source runs in numpy's fallback (plain Python on floats) and compiled
 from __future__ import annotations
 
 import math
-
-import numpy as np
+from typing import Any
 
 CONTACT_LEVEL = 2  # the first level whose halved pairs try the certificate ...
 CONTACT_EVERY = 3  # ... and every third level after it (each try costs ~1 us compiled)
@@ -59,73 +58,82 @@ CONDITION = 1e-6  # ... and its Jacobian's determinant, relative to its terms, a
 GAP = 1 / 16
 
 
-def _second_order(piece: np.ndarray, u: float, work: np.ndarray, out: np.ndarray) -> None:
+def _rows(count: int, width: int) -> Any:
+    """Scratch rows of floats: nested lists here (Python indexes them faster than numpy's
+    scalars), an array in the compiled twin (intersect_compiled replaces this function)."""
+    return [[0.0] * width for _ in range(count)]
+
+
+def _blocks(count: int, rows: int, width: int) -> Any:
+    """count blocks of scratch rows (_rows)."""
+    return [_rows(rows, width) for _ in range(count)]
+
+
+def _second_order(piece: Any, u: float, work: Any, out: Any) -> None:
     """A planar piece's value, first and second derivative at u (rows 0, 1, 2 of out), by
     de Casteljau in work."""
-    n = piece.shape[0] - 1
+    n = len(piece) - 1
     for i in range(n + 1):
         for j in range(2):
-            work[i, j] = piece[i, j]
+            work[i][j] = piece[i][j]
     for j in range(2):
-        out[1, j] = 0.0
-        out[2, j] = 0.0
+        out[1][j] = 0.0
+        out[2][j] = 0.0
     for level in range(n):
         if level == n - 2:
             for j in range(2):
-                out[2, j] = (n * (n - 1)) * ((work[2, j] - work[1, j]) - (work[1, j] - work[0, j]))
+                out[2][j] = (n * (n - 1)) * ((work[2][j] - work[1][j]) - (work[1][j] - work[0][j]))
         if level == n - 1:
             for j in range(2):
-                out[1, j] = n * (work[1, j] - work[0, j])
+                out[1][j] = n * (work[1][j] - work[0][j])
         for i in range(n - level):
             for j in range(2):
-                work[i, j] = work[i, j] + u * (work[i + 1, j] - work[i, j])
+                work[i][j] = work[i][j] + u * (work[i + 1][j] - work[i][j])
     for j in range(2):
-        out[0, j] = work[0, j]
+        out[0][j] = work[0][j]
 
 
-def _part(piece: np.ndarray, u0: float, u1: float, work: np.ndarray, out: np.ndarray) -> None:
+def _part(piece: Any, u0: float, u1: float, work: Any, out: Any) -> None:
     """The control points of piece over [u0, u1] (0 <= u0 < u1 <= 1) into out: de Casteljau
     at u1 (its left part), then at u0 / u1 (the right part of that)."""
-    n = piece.shape[0] - 1
+    n = len(piece) - 1
     for i in range(n + 1):
         for j in range(2):
-            work[i, j] = piece[i, j]
+            work[i][j] = piece[i][j]
     for level in range(n + 1):  # the left part at u1: the first point of each level
         for j in range(2):
-            out[level, j] = work[0, j]
+            out[level][j] = work[0][j]
         for i in range(n - level):
             for j in range(2):
-                work[i, j] = work[i, j] + u1 * (work[i + 1, j] - work[i, j])
+                work[i][j] = work[i][j] + u1 * (work[i + 1][j] - work[i][j])
     if u0 <= 0.0:
         return
     x = u0 / u1
     for i in range(n + 1):
         for j in range(2):
-            work[i, j] = out[i, j]
+            work[i][j] = out[i][j]
     for level in range(n + 1):  # the right part at x: the last point of each level
         for j in range(2):
-            out[n - level, j] = work[n - level, j]
+            out[n - level][j] = work[n - level][j]
         for i in range(n - level):
             for j in range(2):
-                work[i, j] = work[i, j] + x * (work[i + 1, j] - work[i, j])
+                work[i][j] = work[i][j] + x * (work[i + 1][j] - work[i][j])
 
 
 def _interval(
-    points: np.ndarray, count: int, ox: float, oy: float, x: float, y: float
+    points: Any, count: int, ox: float, oy: float, x: float, y: float
 ) -> tuple[float, float]:
     lo, hi = math.inf, -math.inf
     for i in range(count):
-        d = (points[i, 0] - ox) * x + (points[i, 1] - oy) * y
+        d = (points[i][0] - ox) * x + (points[i][1] - oy) * y
         lo, hi = min(lo, d), max(hi, d)
     return lo, hi
 
 
-def _apart(
-    p: np.ndarray, q: np.ndarray, ox: float, oy: float, ex: float, ey: float, gap: float
-) -> bool:
+def _apart(p: Any, q: Any, ox: float, oy: float, ex: float, ey: float, gap: float) -> bool:
     """p and q (control points) apart by more than gap along the normal (-ey, ex) or along
     the tangent (ex, ey)."""
-    count_p, count_q = p.shape[0], q.shape[0]
+    count_p, count_q = len(p), len(q)
     p_lo, p_hi = _interval(p, count_p, ox, oy, -ey, ex)
     q_lo, q_hi = _interval(q, count_q, ox, oy, -ey, ex)
     if p_lo > q_hi + gap or p_hi < q_lo - gap:
@@ -136,8 +144,8 @@ def _apart(
 
 
 def _confined(
-    a: np.ndarray,
-    b: np.ndarray,
+    a: Any,
+    b: Any,
     u: float,
     v: float,
     ra: float,
@@ -147,53 +155,59 @@ def _confined(
     ex: float,
     ey: float,
     gap: float,
-    parts_a: np.ndarray,
-    parts_b: np.ndarray,
-    work: np.ndarray,
-) -> bool:
-    """Every pair of the parts of a ([0, u - ra], [u - ra, u + ra], [u + ra, 1]) and of b
-    (likewise with v, rb) but the two middle ones apart (_apart); empty parts skipped."""
+    parts_a: Any,
+    parts_b: Any,
+    work: Any,
+) -> int:
+    """Whether every pair of the parts of a ([0, u - ra], [u - ra, u + ra], [u + ra, 1]) and
+    of b (likewise with v, rb) but the two middle ones is apart (_apart), empty parts
+    skipped: 0 when they are; else 1 where two outer parts are not (the curves on one side
+    of the tangent, which other radii do not change), 2 where a middle part is not. Outer
+    pairs first (where most failures are), each part made when first needed."""
     cuts_a = (0.0, max(u - ra, 0.0), min(u + ra, 1.0), 1.0)
     cuts_b = (0.0, max(v - rb, 0.0), min(v + rb, 1.0), 1.0)
-    for k in range(3):
-        if cuts_a[k + 1] > cuts_a[k]:
-            _part(a, cuts_a[k], cuts_a[k + 1], work, parts_a[k])
-        if cuts_b[k + 1] > cuts_b[k]:
-            _part(b, cuts_b[k], cuts_b[k + 1], work, parts_b[k])
-    for i in range(3):
-        if not cuts_a[i + 1] > cuts_a[i]:
+    made_a, made_b = [False, False, False], [False, False, False]
+    for m in range(8):  # (0, 0), (2, 2), (0, 2), (2, 0), then (0, 1), (2, 1), (1, 0), (1, 2)
+        if m < 4:
+            i, j = (0, 2, 0, 2)[m], (0, 2, 2, 0)[m]
+        else:
+            i, j = (0, 2, 1, 1)[m - 4], (1, 1, 0, 2)[m - 4]
+        if not (cuts_a[i + 1] > cuts_a[i] and cuts_b[j + 1] > cuts_b[j]):
             continue
-        for j in range(3):
-            if (i == 1 and j == 1) or not cuts_b[j + 1] > cuts_b[j]:
-                continue
-            if not _apart(parts_a[i, : a.shape[0]], parts_b[j, : b.shape[0]], ox, oy, ex, ey, gap):
-                return False
-    return True
+        if not made_a[i]:
+            _part(a, cuts_a[i], cuts_a[i + 1], work, parts_a[i])
+            made_a[i] = True
+        if not made_b[j]:
+            _part(b, cuts_b[j], cuts_b[j + 1], work, parts_b[j])
+            made_b[j] = True
+        if not _apart(parts_a[i][: len(a)], parts_b[j][: len(b)], ox, oy, ex, ey, gap):
+            return 1 if m < 4 else 2
+    return 0
 
 
 def contact_cell(
-    a: np.ndarray, b: np.ndarray, ka: int, kb: int, level: int, deep: int, slack: float
+    a: Any, b: Any, ka: int, kb: int, level: int, deep: int, slack: float
 ) -> tuple[bool, int, int]:
     """A planar pair of pieces a, b (the ka-th and kb-th of width 2^-level): (True, the
     indices of the cell of width 2^-deep holding its point of contact) where the certificate
-    above confines every common point of the pair to within 2^-deep of it; else (False, 0,
-    0)."""
-    n1, n2 = a.shape[0], b.shape[0]
+    above confines every common point of the pair to within R = 2^-RADIUS of it; else
+    (False, 0, 0). a and b: arrays (n+1, 2), or nested lists (faster in plain Python)."""
+    n1, n2 = len(a), len(b)
     size = max(n1, n2)
-    wa, wb = np.empty((n1, 2)), np.empty((n2, 2))
-    da, db = np.empty((3, 2)), np.empty((3, 2))
+    wa, wb = _rows(n1, 2), _rows(n2, 2)
+    da, db = _rows(3, 2), _rows(3, 2)
     u = v = 0.5
     converged = False
     for _ in range(STEPS):
         _second_order(a, u, wa, da)
         _second_order(b, v, wb, db)
-        a1x, a1y, b1x, b1y = da[1, 0], da[1, 1], db[1, 0], db[1, 1]
-        ex, ey = da[0, 0] - db[0, 0], da[0, 1] - db[0, 1]
+        a1x, a1y, b1x, b1y = da[1][0], da[1][1], db[1][0], db[1][1]
+        ex, ey = da[0][0] - db[0][0], da[0][1] - db[0][1]
         f1 = a1x * b1y - a1y * b1x
         f2 = ex * a1x + ey * a1y
-        j11 = da[2, 0] * b1y - da[2, 1] * b1x
-        j12 = a1x * db[2, 1] - a1y * db[2, 0]
-        j21 = (a1x * a1x + a1y * a1y) + (ex * da[2, 0] + ey * da[2, 1])
+        j11 = da[2][0] * b1y - da[2][1] * b1x
+        j12 = a1x * db[2][1] - a1y * db[2][0]
+        j21 = (a1x * a1x + a1y * a1y) + (ex * da[2][0] + ey * da[2][1])
         j22 = -(b1x * a1x + b1y * a1y)
         det = j11 * j22 - j12 * j21
         if not (det != 0.0 and math.isfinite(det)):
@@ -212,19 +226,19 @@ def contact_cell(
         return False, 0, 0
     _second_order(a, u, wa, da)
     _second_order(b, v, wb, db)
-    gx, gy = da[0, 0] - db[0, 0], da[0, 1] - db[0, 1]
+    gx, gy = da[0][0] - db[0][0], da[0][1] - db[0][1]
     if not math.sqrt(gx * gx + gy * gy) <= GAP * slack:
         return False, 0, 0  # apart, or crossing twice beyond the pieces' rounding: subdivide
-    length_a = math.sqrt(da[1, 0] * da[1, 0] + da[1, 1] * da[1, 1])
-    length_b = math.sqrt(db[1, 0] * db[1, 0] + db[1, 1] * db[1, 1])
+    length_a = math.sqrt(da[1][0] * da[1][0] + da[1][1] * da[1][1])
+    length_b = math.sqrt(db[1][0] * db[1][0] + db[1][1] * db[1][1])
     if not (length_a > 0.0 and length_b > 0.0):
         return False, 0, 0
-    ex, ey = da[1, 0] / length_a, da[1, 1] / length_a
+    ex, ey = da[1][0] / length_a, da[1][1] / length_a
     width = 0.5**level
     radius = 0.5**RADIUS / width  # R in a's and b's local parameters
-    parts_a, parts_b = np.empty((3, size, 2)), np.empty((3, size, 2))
-    work = np.empty((size, 2))
-    ox, oy, gap = da[0, 0], da[0, 1], 2.0 * slack
+    parts_a, parts_b = _blocks(3, size, 2), _blocks(3, size, 2)
+    work = _rows(size, 2)
+    ox, oy, gap = da[0][0], da[0][1], 2.0 * slack
     for wider in range(2):  # b's middle part twice as long along the tangent as a's, or a's
         if wider == 0:
             ra, rb = radius, 2.0 * radius * length_a / length_b
@@ -232,7 +246,10 @@ def contact_cell(
             ra, rb = 2.0 * radius * length_b / length_a, radius
         if not (u - ra < 1.0 and u + ra > 0.0 and v - rb < 1.0 and v + rb > 0.0):
             continue  # the contact is a neighbour's: its pair reports it
-        if _confined(a, b, u, v, ra, rb, ox, oy, ex, ey, gap, parts_a, parts_b, work):
+        failed = _confined(a, b, u, v, ra, rb, ox, oy, ex, ey, gap, parts_a, parts_b, work)
+        if failed == 1:
+            return False, 0, 0  # two outer parts meet: the other radii would not separate them
+        if failed == 0:
             # the cell of the contact (or, just past the pair's edge, the pair's cell next
             # to it)
             cells = 2 ** (deep - level)

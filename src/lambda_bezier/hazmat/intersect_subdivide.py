@@ -466,7 +466,13 @@ def _subdivide(
             # a tangency confined to a small cell (intersect_contact): left as that cell
             for k in np.flatnonzero(~flat).tolist():
                 found, ca, cb = _contact.contact_cell(
-                    pa[k], pb[k], int(ia[k]), int(ib[k]), level, _contact.DEEP, float(sl[k])
+                    pa[k].tolist(),  # nested lists: plain Python indexes them fastest
+                    pb[k].tolist(),
+                    int(ia[k]),
+                    int(ib[k]),
+                    level,
+                    _contact.DEEP,
+                    float(sl[k]),
                 )
                 if found:
                     cells.append((k, ca, cb))

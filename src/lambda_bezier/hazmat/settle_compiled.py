@@ -185,6 +185,8 @@ def _isolate(
             continue
         if _skipped(ka, kb, 0.5**lev, skip, skips):
             continue
+        width = 0.5**lev
+        s0, t0 = ka * width, kb * width  # where it is left (or its contact's cell)
         leave = lev == depth
         if not leave:
             half_a, half_b = cone(pa, axis_a, slack), cone(pb, axis_b, slack)
@@ -199,23 +201,17 @@ def _isolate(
                         if roots == r_lev.size:
                             r_lev, r_ia, r_ib = _grow(r_lev), _grow(r_ia), _grow(r_ib)
                             r_s, r_t = _grow(r_s), _grow(r_t)
-                        width = 0.5**lev
                         r_lev[roots], r_ia[roots], r_ib[roots] = lev, ka, kb
                         r_s[roots] = (ka + min(max(u, 0.0), 1.0)) * width
                         r_t[roots] = (kb + min(max(v, 0.0), 1.0)) * width
                         roots += 1
                         continue
             leave = flat_forward(pa, slack) and flat_forward(pb, slack)
-            width = 0.5**lev
-            s0, t0 = ka * width, kb * width
             if not leave and planar and contact_tries(lev):
                 # a tangency confined to a small cell (intersect_contact): left as that cell
                 leave, ca, cb = contact_cell(pa, pb, ka, kb, lev, CONTACT_DEEP, slack)
                 if leave:
                     s0, t0, width = ca * cell, cb * cell, cell
-        else:
-            width = 0.5**lev
-            s0, t0 = ka * width, kb * width
         if leave:
             if lefts == l_lev.size:
                 l_lev, l_ia, l_ib = _grow(l_lev), _grow(l_ia), _grow(l_ib)

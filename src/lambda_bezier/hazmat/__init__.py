@@ -29,6 +29,9 @@ ours (the name follows the `bezier` package's `hazmat`).
   other (with the Newton starting points of unresolved pieces and the shared tolerances);
 - `intersect_subdivide`: the candidate isolation `intersect` runs on (subdivision on arrays);
 - `intersect_compiled`: the same loop compiled with numba (the `fast` extra; imported on use);
+- `intersect_contact`: a tangency's pair of pieces confined to a small cell around its point
+  of contact (a certificate), instead of halved to the flat pieces; one source, run as plain
+  Python by the numpy loop and compiled by intersect_compiled for the kernels;
 - `intersect_certify`: the certified fast path for transversal crossings away from the ends
   (numpy, or `certify_compiled`: the whole per-pair pipeline in one numba call);
 - `pieces_compiled`: the compiled helpers on one or two pieces those kernels share (boxes,
@@ -124,6 +127,7 @@ __all__ = [
     "intersect",
     "intersect_certify",
     "intersect_compiled",
+    "intersect_contact",
     "intersect_exact",
     "intersect_fold",
     "intersect_locate",

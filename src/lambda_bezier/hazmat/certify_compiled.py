@@ -21,6 +21,7 @@ import math
 import numba
 import numpy as np
 
+from .intersect_compiled import CONTACT_DEEP, contact_cell, contact_tries
 from .pieces_compiled import JIT as _JIT
 from .pieces_compiled import (
     boxes_apart,
@@ -187,6 +188,13 @@ def _certify_one(
                     continue
         if flat_forward(pa, slack) and flat_forward(pb, slack):
             return -1  # flat to rounding on both sides: the careful path's tangent refinement
+        # a tangency, confined to a cell around its contact (intersect_contact): likewise
+        if (
+            planar
+            and contact_tries(lev)
+            and contact_cell(pa, pb, ka, kb, lev, CONTACT_DEEP, slack)[0]
+        ):
+            return -1
         if top + 4 > cap:
             return -1
         split(pa, wa, la, ra)

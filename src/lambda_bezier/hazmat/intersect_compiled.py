@@ -17,11 +17,15 @@ numba compiles on first use and caches the machine code next to this file.
 from __future__ import annotations
 
 import math
+import types
+from types import ModuleType
+from typing import Any
 
 import numba
 import numpy as np
 from numba.typed import List
 
+from . import intersect_contact as _contact
 from .pieces_compiled import JIT as _JIT
 from .pieces_compiled import (
     boxes_apart,
@@ -32,6 +36,44 @@ from .pieces_compiled import (
     pointed,
     value_slope,
 )
+
+
+def _compiled_twins(
+    module: ModuleType, names: tuple[str, ...], replaced: dict[str, Any]
+) -> dict[str, Any]:
+    """module's functions compiled from their own source (one source for numpy's fallback
+    and the kernels): each rebuilt on a copy of the module's globals in which the others
+    are the compiled ones (and `replaced` names the compiled stand-ins of its own helpers),
+    so that numba resolves their calls to each other."""
+    names_space = dict(vars(module))
+    names_space.update(replaced)
+    for name in names:
+        plain = getattr(module, name)
+        twin = types.FunctionType(plain.__code__, names_space, name, plain.__defaults__)
+        twin.__qualname__ = plain.__qualname__
+        names_space[name] = numba.njit(**_JIT)(twin)
+    return {name: names_space[name] for name in names}
+
+
+@numba.njit(**_JIT)
+def _rows(count: int, width: int) -> np.ndarray:
+    """intersect_contact._rows compiled: scratch rows as an array."""
+    return np.zeros((count, width))
+
+
+@numba.njit(**_JIT)
+def _blocks(count: int, rows: int, width: int) -> np.ndarray:
+    return np.zeros((count, rows, width))
+
+
+_CONTACT = _compiled_twins(
+    _contact,
+    ("_second_order", "_part", "_interval", "_apart", "_confined", "contact_cell", "tries"),
+    {"_rows": _rows, "_blocks": _blocks},
+)
+contact_cell = _CONTACT["contact_cell"]
+contact_tries = _CONTACT["tries"]
+CONTACT_DEEP = _contact.DEEP
 
 
 @numba.njit(**_JIT)
@@ -162,6 +204,8 @@ def isolate(
                 root_s.append((ia[k] + min(max(u, 0.0), 1.0)) * width)
                 root_t.append((ib[k] + min(max(v, 0.0), 1.0)) * width)
                 rest[k] = False
+        contact = planar and not same and contact_tries(level)
+        cell = 0.5**CONTACT_DEEP
         for k in range(count):
             if not rest[k] or (same and abs(ia[k] - ib[k]) <= 1):
                 continue
@@ -172,6 +216,14 @@ def isolate(
                 left_t.append(ib[k] * width)
                 left_w.append(width)
                 rest[k] = False
+            elif contact:  # a tangency confined to a small cell (intersect_contact)
+                found, ca, cb = contact_cell(pa[k], pb[k], ia[k], ib[k], level, CONTACT_DEEP, sl)
+                if found:
+                    left_pair.append(pid[k])
+                    left_s.append(ca * cell)
+                    left_t.append(cb * cell)
+                    left_w.append(cell)
+                    rest[k] = False
         pa, pb, pid, ia, ib = pa[rest], pb[rest], pid[rest], ia[rest], ib[rest]
         if pid.size == 0:
             break

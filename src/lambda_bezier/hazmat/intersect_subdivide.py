@@ -39,6 +39,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from . import intersect_contact as _contact
+
 DEPTH = 32  # halvings at most: 2^-32 ~ 2.3e-10 in parameter, below which a pair is unresolved
 MAX_ROWS = 200_000  # pairs of pieces alive at one level, a guard against runaway subdivision
 NEWTON_STEPS = 10  # local Newton iterations on an isolated pair (quadratic from its middle)
@@ -459,9 +461,28 @@ def _subdivide(
         flat = _flat(pa, sl, np.abs(ia - ib) > 1 if same else np.ones(pid.size, dtype=bool))
         if not fixed and flat.any():
             flat = _flat(pb, sl, flat)
-        if flat.any():
-            count = int(flat.sum())
-            left.append((pid[flat], ia[flat] * width, ib[flat] * width, np.full(count, width)))
+        cells: list[tuple[int, int, int]] = []  # (row, cell of a, cell of b)
+        if planar and not same and not fixed and _contact.tries(level):
+            # a tangency confined to a small cell (intersect_contact): left as that cell
+            for k in np.flatnonzero(~flat).tolist():
+                found, ca, cb = _contact.contact_cell(
+                    pa[k].tolist(),  # nested lists: plain Python indexes them fastest
+                    pb[k].tolist(),
+                    int(ia[k]),
+                    int(ib[k]),
+                    level,
+                    _contact.DEEP,
+                    float(sl[k]),
+                )
+                if found:
+                    cells.append((k, ca, cb))
+        if cells or flat.any():
+            at_s, at_t, widths = ia * width, ib * width, np.full(pid.size, width)
+            cell = 0.5**_contact.DEEP
+            for k, ca, cb in cells:
+                flat[k] = True
+                at_s[k], at_t[k], widths[k] = ca * cell, cb * cell, cell
+            left.append((pid[flat], at_s[flat], at_t[flat], widths[flat]))
             rest = ~flat
             pa, pb, ids = pa[rest], pb[rest], ids[:, rest]
             pid, ia, ib = ids

@@ -29,7 +29,13 @@ import math
 import numba
 import numpy as np
 
-from .intersect_compiled import _local_foot_newton, isolate_points
+from .intersect_compiled import (
+    CONTACT_DEEP,
+    _local_foot_newton,
+    contact_cell,
+    contact_tries,
+    isolate_points,
+)
 from .pieces_compiled import JIT as _JIT
 from .pieces_compiled import (
     boxes_apart,
@@ -159,6 +165,8 @@ def _isolate(
     r_lev, r_ia, r_ib = np.empty(room, np.int64), np.empty(room, np.int64), np.empty(room, np.int64)
     r_s, r_t = np.empty(room), np.empty(room)
     l_lev, l_ia, l_ib = np.empty(room, np.int64), np.empty(room, np.int64), np.empty(room, np.int64)
+    l_s, l_t, l_w = np.empty(room), np.empty(room), np.empty(room)
+    cell = 0.5**CONTACT_DEEP
     roots = lefts = 0
     sa[0], sb[0] = a, b
     level[0] = ia[0] = ib[0] = 0
@@ -177,6 +185,8 @@ def _isolate(
             continue
         if _skipped(ka, kb, 0.5**lev, skip, skips):
             continue
+        width = 0.5**lev
+        s0, t0 = ka * width, kb * width  # where it is left (or its contact's cell)
         leave = lev == depth
         if not leave:
             half_a, half_b = cone(pa, axis_a, slack), cone(pb, axis_b, slack)
@@ -191,17 +201,23 @@ def _isolate(
                         if roots == r_lev.size:
                             r_lev, r_ia, r_ib = _grow(r_lev), _grow(r_ia), _grow(r_ib)
                             r_s, r_t = _grow(r_s), _grow(r_t)
-                        width = 0.5**lev
                         r_lev[roots], r_ia[roots], r_ib[roots] = lev, ka, kb
                         r_s[roots] = (ka + min(max(u, 0.0), 1.0)) * width
                         r_t[roots] = (kb + min(max(v, 0.0), 1.0)) * width
                         roots += 1
                         continue
             leave = flat_forward(pa, slack) and flat_forward(pb, slack)
+            if not leave and planar and contact_tries(lev):
+                # a tangency confined to a small cell (intersect_contact): left as that cell
+                leave, ca, cb = contact_cell(pa, pb, ka, kb, lev, CONTACT_DEEP, slack)
+                if leave:
+                    s0, t0, width = ca * cell, cb * cell, cell
         if leave:
             if lefts == l_lev.size:
                 l_lev, l_ia, l_ib = _grow(l_lev), _grow(l_ia), _grow(l_ib)
+                l_s, l_t, l_w = _grow(l_s), _grow(l_t), _grow(l_w)
             l_lev[lefts], l_ia[lefts], l_ib[lefts] = lev, ka, kb
+            l_s[lefts], l_t[lefts], l_w[lefts] = s0, t0, width
             lefts += 1
             continue
         if top + 4 > cap:
@@ -225,8 +241,7 @@ def _isolate(
     left_s0, left_t0, left_w = np.empty(lefts), np.empty(lefts), np.empty(lefts)
     for m in range(lefts):
         k = order[m]
-        width = 0.5 ** l_lev[k]
-        left_s0[m], left_t0[m], left_w[m] = l_ia[k] * width, l_ib[k] * width, width
+        left_s0[m], left_t0[m], left_w[m] = l_s[k], l_t[k], l_w[k]
     return True, root_s, root_t, left_s0, left_t0, left_w
 
 

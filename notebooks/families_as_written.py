@@ -21,7 +21,7 @@
 # - `han_trig_cubic`: the cubic trigonometric basis of Han, Ma and Huang on [0, π/2], with one
 #   parameter per end, λ and μ in [−2, 1] (shipped with the package: `lambda_bezier.examples`);
 # - `c_bezier_cubic`: the C-Bézier cubic of Zhang on [0, α], where the parameter α is the
-#   length of the domain and sits inside sin and cos (a test fixture of the checkout).
+#   length of the domain and sits inside sin and cos (also shipped: `lambda_bezier.examples`).
 #
 # The control polygon is **our own choice** (the papers print none for these bases).
 
@@ -39,11 +39,6 @@ from lambda_bezier import examples
 
 FIGURES = Path(os.environ.get("LAMBDA_BEZIER_FIGURES", Path.cwd() / "figures"))
 FIGURES.mkdir(parents=True, exist_ok=True)
-
-# the C-Bezier definition is a fixture of the checkout (tests/data/families), found from here
-# whether this runs from notebooks/ or from the documentation's tutorials/
-CHECKOUT = next(p for p in [Path.cwd(), *Path.cwd().parents] if (p / "tests" / "data").is_dir())
-FIXTURES = CHECKOUT / "tests" / "data" / "families"
 
 POLYGON = [(0, 0), (1, 3), (4, 3), (5, 0)]
 
@@ -140,7 +135,7 @@ assert np.allclose(rational.evaluate(s), c.evaluate(c.t_of_s(s)))
 # polygon's middle.
 
 # %%
-cbez = lb.load_family(FIXTURES / "c_bezier_cubic.toml")
+cbez = lb.load_family(examples.path("c_bezier_cubic.toml"))
 print(cbez)
 fig, ax = plt.subplots(figsize=(6, 4))
 draw(ax, lb.BezierCurve(POLYGON), "cubic Bézier", color="k", lw=2.5, alpha=0.3)

@@ -47,6 +47,17 @@ settings.load_profile("default")
 ROOT = Path(__file__).resolve().parents[1]
 
 
+def family_file(name: str, suffix: str = ".toml") -> Path:
+    """A family definition (or its `.derived.json`) by name: the test fixtures in
+    tests/data/families, or the examples shipped with the package (c_bezier_cubic)."""
+    fixture = Path(__file__).parent / "data" / "families" / f"{name}{suffix}"
+    if fixture.exists():
+        return fixture
+    from lambda_bezier import examples
+
+    return examples.path(f"{name}{suffix}")
+
+
 def examples_per_profile(default: int, fuzz: int) -> int:
     """max_examples for a property whose examples cost seconds each (an mpmath reference):
     `default` in the reproducible run (CI's), `fuzz` under --hypothesis-profile=fuzz. Read when

@@ -17,11 +17,13 @@ from pathlib import Path
 import mpmath as mp
 import numpy as np
 import pytest
+from conftest import family_file
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from test_acceptance_29 import _compose, _polymul, _power_to_bezier
 
 import lambda_bezier as lb
+from lambda_bezier import examples
 from lambda_bezier.conversion import from_bezier
 
 FAMILIES = Path(__file__).parent / "data" / "families"
@@ -210,7 +212,7 @@ def test_a_c_bezier_curve_measures_a_far_query_without_overflow():
     """C-Bézier (atom) curves: a query past 1e154 overflowed the squared distances (inf, and a
     RuntimeWarning under -W error); the search and the distance now run at a power-of-two
     scale."""
-    fam = lb.load_family(FAMILIES / "c_bezier_cubic.toml")
+    fam = lb.load_family(examples.path("c_bezier_cubic.toml"))
     curve = fam.curve([(0, 0), (1, 2), (2, 2), (3, 0)], alpha=1.0)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
@@ -401,7 +403,7 @@ def test_atom_intersections_do_not_depend_on_the_size_of_the_curves(name, params
     where the unscaled curve's height is 1 (bisection on its evaluate, independent of the
     intersection engine). At 2^-700 one was lost and the other called "tangent", at 2^1000 the
     search overflowed; a point on the C-Bézier curve at 2^-700 was not located."""
-    fam = lb.load_family(FAMILIES / f"{name}.toml")
+    fam = lb.load_family(family_file(name))
     pts = [(0.0, 0.0), (1.0, 2.0), (2.0, 2.0), (3.0, 0.0)]
     unit = fam.curve(pts, **params)
     lo, hi = unit.domain

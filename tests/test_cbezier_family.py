@@ -17,19 +17,21 @@ import numpy as np
 import pytest
 import sympy as sp
 import tomllib
+from conftest import family_file
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from derive.families import cbezier as cb
 from derive.families.definition import DefinitionError
 from derive.formulas import cbezier as F
+from lambda_bezier import examples
 
 DATA = Path(__file__).parent / "data" / "families"
 mp.mp.dps = 40
 
 
 def _table(name: str) -> dict:
-    return tomllib.loads((DATA / f"{name}.toml").read_text())["family"]
+    return tomllib.loads(family_file(name).read_text())["family"]
 
 
 @pytest.fixture(scope="module")
@@ -260,7 +262,7 @@ def test_a_parameter_in_the_domain_is_recognised():
 def family():
     import lambda_bezier as lb
 
-    return lb.load_family(DATA / "c_bezier_cubic.toml")
+    return lb.load_family(examples.path("c_bezier_cubic.toml"))
 
 
 P = [[0.0, 0.0], [1.0, 2.0], [3.0, 2.5], [4.0, 0.5]]

@@ -18,6 +18,7 @@ import mpmath as mp
 import pytest
 import sympy as sp
 import tomllib
+from conftest import family_file
 
 from derive.families import cbezier as cb
 from derive.formulas import cbezier as F
@@ -28,7 +29,7 @@ mp.mp.dps = 40
 
 
 def _table(name: str) -> dict:
-    return tomllib.loads((DATA / f"{name}.toml").read_text())["family"]
+    return tomllib.loads(family_file(name).read_text())["family"]
 
 
 def _written(defn: cb.CDefinition, i: int):

@@ -16,9 +16,11 @@ import mpmath as mp
 import pytest
 import sympy as sp
 import tomllib
+from conftest import family_file
 
 import lambda_bezier as lb
 from derive.families import cbezier as cb
+from lambda_bezier import examples
 
 DATA = Path(__file__).parent / "data" / "families"
 P = [[0.0, 0.0], [1.0, 2.0], [3.0, 2.5], [4.0, 0.5]]
@@ -26,7 +28,7 @@ P = [[0.0, 0.0], [1.0, 2.0], [3.0, 2.5], [4.0, 0.5]]
 
 def _reference(name: str, points, k: int):
     """E_k(alpha) by quadrature of |p^(k)|^2 over the family's own parameter."""
-    table = tomllib.loads((DATA / f"{name}.toml").read_text())["family"]
+    table = tomllib.loads((family_file(name)).read_text())["family"]
     defn = cb.read_table(table)
     x = sp.Symbol("x")
     unit = table["domain"] == "[0, 1]"
@@ -81,7 +83,7 @@ def _dense_minimum(energy, lo: float, hi: float, count: int = 12):
 )
 def test_certified_minimum_against_quadrature(name, k, where):
     mp.mp.dps = 30
-    fam = lb.load_family(DATA / f"{name}.toml")
+    fam = lb.load_family(family_file(name))
     got = lb.optimal_parameters(P, k, family=fam)
     assert got.method == "certified" and got.lower_bound is not None
     alpha = got["alpha"]
@@ -119,7 +121,7 @@ def test_the_infimum_at_the_open_end_is_the_bezier_limit():
 
 
 def test_refusals():
-    fam = lb.load_family(DATA / "c_bezier_cubic.toml")
+    fam = lb.load_family(examples.path("c_bezier_cubic.toml"))
     with pytest.raises(ValueError, match="k must be 1, 2 or 3"):
         lb.optimal_parameters(P, 4, family=fam)
     with pytest.raises(ValueError, match="points"):
@@ -131,7 +133,7 @@ def test_a_range_holding_a_singular_point_is_refused(tmp_path):
     the refusal is immediate (the derived verdicts name the point)."""
     from lambda_bezier.cli import main
 
-    text = (DATA / "c_bezier_cubic.toml").read_text()
+    text = (examples.path("c_bezier_cubic.toml")).read_text()
     text = text.replace('range = "(0, pi]"', 'range = "(0, 3*pi]"')
     text = text.replace('name = "c_bezier_cubic"', 'name = "c_bezier_wide"')
     path = tmp_path / "c_bezier_wide.toml"
@@ -147,7 +149,7 @@ def test_cli_optimal_lambda_says_certified(capsys):
 
     from lambda_bezier.cli import main
 
-    args = ["optimal-lambda", "--family", str(DATA / "c_bezier_cubic.toml"), "-k", "2"]
+    args = ["optimal-lambda", "--family", str(examples.path("c_bezier_cubic.toml")), "-k", "2"]
     pts = ["0,0", "1,2", "3,2.5", "4,0.5"]
     assert main([*args, *pts]) == 0
     out = capsys.readouterr().out

@@ -19,10 +19,11 @@ import numpy as np
 import pytest
 import sympy as sp
 import tomllib
+from conftest import family_file
 
 import lambda_bezier as lb
 from derive.families import cbezier as cb
-from lambda_bezier import export
+from lambda_bezier import examples, export
 
 DATA = Path(__file__).parent / "data" / "families"
 P = [[0.0, 0.0], [1.0, 2.0], [3.0, 2.5], [4.0, 0.5]]
@@ -30,13 +31,13 @@ P = [[0.0, 0.0], [1.0, 2.0], [3.0, 2.5], [4.0, 0.5]]
 
 @pytest.fixture(scope="module")
 def family():
-    return lb.load_family(DATA / "c_bezier_cubic.toml")
+    return lb.load_family(examples.path("c_bezier_cubic.toml"))
 
 
 @pytest.fixture(scope="module")
 def written():
     """d^r/dt^r b_i(t; alpha) from the file's own formulas, r = 0..2, in mpmath."""
-    table = tomllib.loads((DATA / "c_bezier_cubic.toml").read_text())["family"]
+    table = tomllib.loads((examples.path("c_bezier_cubic.toml")).read_text())["family"]
     defn = cb.read_table(table)
     return [
         [sp.lambdify((cb.T, cb.A), sp.diff(f, cb.T, r), modules="mpmath") for f in defn.written()]
@@ -183,7 +184,7 @@ def test_json_round_trip_with_fingerprint(family):
         back = export.from_json(text, family=family)
         u = np.linspace(*shape.domain, 9)
         assert np.array_equal(back.evaluate(u), shape.evaluate(u))
-        assert export.from_json(text, family=DATA / "c_bezier_cubic.toml").evaluate(
+        assert export.from_json(text, family=examples.path("c_bezier_cubic.toml")).evaluate(
             0.5
         ) == pytest.approx(shape.evaluate(0.5))
     with pytest.raises(ValueError, match="not built in"):
@@ -222,7 +223,7 @@ def test_rational_form_against_the_formula(tmp_path, name):
         assert main(["derive", "--family", str(path)]) == 0
         f = [lambda t, a: mp.sin(a - t) / mp.sin(a), lambda t, a: mp.sin(t) / mp.sin(a)]
     else:
-        path = DATA / f"{name}.toml"
+        path = family_file(name)
         f = [lambda t, a: mp.sinh(a - t) / mp.sinh(a), lambda t, a: mp.sinh(t) / mp.sinh(a)]
     fam = lb.load_family(path)
     pts = [[0.0, 0.0], [3.0, 1.0]]

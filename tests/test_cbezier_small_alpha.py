@@ -23,10 +23,11 @@ import numpy as np
 import pytest
 import sympy as sp
 import tomllib
+from conftest import family_file
 
 import lambda_bezier as lb
 from derive.families import cbezier as cb
-from lambda_bezier import export
+from lambda_bezier import examples, export
 
 DATA = Path(__file__).parent / "data" / "families"
 P = [[0.0, 0.0], [1.0, 3.0], [4.0, 3.0], [5.0, 0.0]]
@@ -37,14 +38,14 @@ U = [0.0, 0.05, 0.2, 1 / 3, 0.5, 0.7, 0.9, 0.999, 1.0]
 
 @cache
 def _family(name: str):
-    return lb.load_family(str(DATA / f"{name}.toml"))
+    return lb.load_family(str(family_file(name)))
 
 
 @cache
 def _reference(name: str):
     """(d^r/dt^r b_i for r = 0..2) as mpmath functions of (t, alpha), from the file's
     written formulas (t on [0, alpha], alpha as cb.A), and whether the family is in u."""
-    table = tomllib.loads((DATA / f"{name}.toml").read_text())["family"]
+    table = tomllib.loads((family_file(name)).read_text())["family"]
     defn = cb.read_table(table)
     fns = [
         [sp.lambdify((cb.T, cb.A), sp.diff(f, cb.T, r), modules="mpmath") for f in defn.written()]
@@ -106,7 +107,7 @@ def test_the_limit_is_the_bezier_cubic(name):
     alpha = 1e-6 is the Bézier curve of its control points up to O(alpha^2) in value and in
     the derivatives in u."""
     fam = _family(name)
-    doc = json.loads((DATA / f"{name}.derived.json").read_text())
+    doc = json.loads((family_file(name, ".derived.json")).read_text())
     first = [dict(row)[0] for row in doc["small_alpha"]["series"]]
     for i, coeffs in enumerate(first):
         bern = [Fraction(0)] * 4  # B_i^3(u) = C(3, i) u^i (1 - u)^(3 - i), expanded here
@@ -224,7 +225,7 @@ def test_the_old_refusals_are_gone_and_the_floor_is_clear():
 def test_a_malformed_series_is_refused_by_name(change):
     from lambda_bezier.cbezier_family import CBezierError, CBezierFamily
 
-    doc = json.loads((DATA / "c_bezier_cubic.derived.json").read_text())
+    doc = json.loads((examples.path("c_bezier_cubic.derived.json")).read_text())
     change(doc["small_alpha"])
     with pytest.raises(CBezierError, match="small_alpha"):
         CBezierFamily(doc, "c.json", "t", {})
@@ -270,7 +271,7 @@ def test_energy_matrix_at_small_alpha(name):
 
 @cache
 def _derivatives(name: str, k: int):
-    table = tomllib.loads((DATA / f"{name}.toml").read_text())["family"]
+    table = tomllib.loads((family_file(name)).read_text())["family"]
     defn = cb.read_table(table)
     return [
         sp.lambdify((cb.T, cb.A), sp.diff(f, cb.T, k), modules="mpmath") for f in defn.written()

@@ -19,9 +19,12 @@ import re
 from pathlib import Path
 
 import pytest
+from conftest import family_file
+
+from lambda_bezier import examples
 
 DATA = Path(__file__).parent / "data" / "families"
-FAMILY = DATA / "c_bezier_cubic.toml"
+FAMILY = examples.path("c_bezier_cubic.toml")
 RECORDS = DATA / "c_bezier_cubic.records.toml"
 
 records_mod = pytest.importorskip("derive.verify.records")
@@ -359,7 +362,7 @@ def test_join_weights_make_the_joint(continuity):
 def test_join_weights_across_families_make_the_joint(first, second, continuity):
     """Joins between two different C-Bezier families: trigonometric into hyperbolic and back,
     [0, alpha] into [0, 1], and a cubic into a degree-1 family."""
-    _assert_joint(_defn_of(DATA / f"{first}.toml"), _defn_of(DATA / f"{second}.toml"), continuity)
+    _assert_joint(_defn_of(family_file(first)), _defn_of(family_file(second)), continuity)
 
 
 _CROSS = """

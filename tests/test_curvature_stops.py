@@ -7,7 +7,6 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from fractions import Fraction as F
-from pathlib import Path
 
 import mpmath
 import numpy as np
@@ -18,7 +17,7 @@ import lambda_bezier as lb
 from lambda_bezier import examples
 
 _TRIG = lb.load_family(examples.path("han_trig_cubic.toml"))
-_CB = lb.load_family(Path(__file__).parent / "data" / "families" / "c_bezier_cubic.toml")
+_CB = lb.load_family(examples.path("c_bezier_cubic.toml"))
 
 MAKERS: dict[str, Callable[[object], object]] = {
     "bezier": lambda p: lb.BezierCurve(p),

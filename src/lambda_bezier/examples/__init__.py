@@ -6,6 +6,8 @@
 - ``han_trig_cubic.toml`` (the cubic trigonometric basis of Han, Ma and Huang, two
   parameters on [0, pi/2]) and ``two_shape_cubic.toml`` (a polynomial cubic with two
   parameters), each with its ``.derived.json``: families as issue #30 writes them.
+- ``c_bezier_cubic.toml`` (Zhang's C-Bezier cubic on [0, alpha]: the parameter is the length
+  of the domain and sits inside sin and cos), with its ``.derived.json``.
 - ``user_paper.toml``: a records file about the built-in families, with true and
   deliberately misprinted records.
 
@@ -16,9 +18,10 @@ the installed package).
 
 >>> from lambda_bezier import examples
 >>> examples.names()
-('han_trig_cubic.derived.json', 'han_trig_cubic.toml', 'nouri_saeidian.derived.json',
- 'nouri_saeidian.toml', 'two_shape_cubic.derived.json', 'two_shape_cubic.toml',
- 'user_paper.toml')
+('c_bezier_cubic.derived.json', 'c_bezier_cubic.toml', 'han_trig_cubic.derived.json',
+ 'han_trig_cubic.toml', 'nouri_saeidian.derived.json',
+ 'nouri_saeidian.toml', 'two_shape_cubic.derived.json',
+ 'two_shape_cubic.toml', 'user_paper.toml')
 >>> examples.path("nouri_saeidian.toml").name
 'nouri_saeidian.toml'
 """

@@ -119,9 +119,9 @@ def exact_point(rows, t):
     ]
 
 
-def reflected(rows, weights, t0: F, offset: F = F(0)) -> lb.RationalBezierCurve:
-    """The rational curve reflected in its own tangent line at t0 (an affine map: it acts on
-    the control points, the weights stay), moved by `offset` along the normal."""
+def point_and_tangent(rows, weights, t0: F) -> tuple[tuple[F, F], tuple[F, F]]:
+    """The rational curve's point at t0 and a tangent vector there (h[2]^2 times the
+    derivative, from the homogeneous form; (0, 0) at a cusp or on a point curve)."""
     hom = [(x * w, y * w, w) for (x, y), w in zip(rows, weights, strict=True)]
     n = len(rows) - 1
     h = exact_point(hom, t0)
@@ -133,7 +133,13 @@ def reflected(rows, weights, t0: F, offset: F = F(0)) -> lb.RationalBezierCurve:
         t0,
     )
     point = (h[0] / h[2], h[1] / h[2])
-    d = (dh[0] * h[2] - h[0] * dh[2], dh[1] * h[2] - h[1] * dh[2])  # h[2]^2 × the tangent
+    return point, (dh[0] * h[2] - h[0] * dh[2], dh[1] * h[2] - h[1] * dh[2])
+
+
+def reflected(rows, weights, t0: F, offset: F = F(0)) -> lb.RationalBezierCurve:
+    """The rational curve reflected in its own tangent line at t0 (an affine map: it acts on
+    the control points, the weights stay), moved by `offset` along the normal."""
+    point, d = point_and_tangent(rows, weights, t0)
     dd = d[0] ** 2 + d[1] ** 2
 
     def reflect(v):
@@ -225,17 +231,7 @@ def test_reflected_tangencies_of_random_rational_curves(curve_data, t0):
     points, weights = curve_data
     rows = [(F(x), F(y)) for x, y in points]
     curve = lb.RationalBezierCurve(rows, weights)
-    hom = [(x * w, y * w, w) for (x, y), w in zip(rows, weights, strict=True)]
-    n = len(rows) - 1
-    h = exact_point(hom, t0)
-    dh = exact_point(
-        [
-            [n * (b - a) for a, b in zip(r0, r1, strict=True)]
-            for r0, r1 in zip(hom, hom[1:], strict=False)
-        ],
-        t0,
-    )
-    if dh[0] * h[2] - h[0] * dh[2] == 0 and dh[1] * h[2] - h[1] * dh[2] == 0:
+    if point_and_tangent(rows, weights, t0)[1] == (0, 0):
         return  # a cusp or a point curve at t0: no tangent line
     mirror = reflected(rows, weights, t0)
     try:

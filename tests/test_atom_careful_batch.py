@@ -29,7 +29,8 @@ R = 1 / 32  # the fixed-cost certificate's R half-width on [-1, 1]: nearer a fac
 
 
 def _nets(count: int) -> np.ndarray:
-    """The benchmark's nets (benchmarks/run.py, bench_param_surfaces): the first `count`."""
+    """The benchmark's nets (benchmarks/bench_surfaces.py, bench_param_surfaces): the first
+    `count`."""
     rng = np.random.default_rng(4)
     nets = rng.normal(size=(count, 4, 4, 3))
     nets[..., 0] += np.arange(4)[:, None]

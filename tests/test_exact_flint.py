@@ -8,10 +8,10 @@ from __future__ import annotations
 
 import random
 from fractions import Fraction as F
-from math import comb
 
 import pytest
 import sympy as sp
+from exact_curves import point_and_tangent, reflect_line
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -125,12 +125,6 @@ def test_gcd_and_squarefree_match_sympy():
 
 
 # -------------------------------------------------------------- reflected tangencies
-def exact_point(rows, t):
-    n = len(rows) - 1
-    return tuple(
-        sum(comb(n, i) * t**i * (1 - t) ** (n - i) * r[k] for i, r in enumerate(rows))
-        for k in range(2)
-    )
 
 
 def reflected(n: int, seed: int, t0: F, offset: F = F(0)):
@@ -138,22 +132,7 @@ def reflected(n: int, seed: int, t0: F, offset: F = F(0)):
     (moved by `offset` along the normal): the two touch at (t0, t0) when offset is 0."""
     rnd = random.Random(seed)
     rows = [(F(rnd.randint(-9, 9)), F(rnd.randint(-9, 9))) for _ in range(n + 1)]
-    point = exact_point(rows, t0)
-    hodograph = [
-        tuple(n * (b - a) for a, b in zip(r0, r1, strict=True))
-        for r0, r1 in zip(rows, rows[1:], strict=False)
-    ]
-    d = exact_point(hodograph, t0)
-    dd = d[0] ** 2 + d[1] ** 2
-
-    def reflect(v):
-        w = (v[0] - point[0], v[1] - point[1])
-        along = (w[0] * d[0] + w[1] * d[1]) / dd
-        return (
-            point[0] + 2 * along * d[0] - w[0] - offset * d[1],
-            point[1] + 2 * along * d[1] - w[1] + offset * d[0],
-        )
-
+    reflect = reflect_line(*point_and_tangent(rows, [F(1)] * len(rows), t0), offset)
     return rows, [reflect(v) for v in rows]
 
 

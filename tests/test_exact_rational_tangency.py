@@ -8,10 +8,10 @@ from __future__ import annotations
 
 import random
 from fractions import Fraction as F
-from math import comb
 
 import pytest
 import sympy as sp
+from exact_curves import point_and_tangent, reflect_line
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -111,45 +111,12 @@ def test_a_circle_near_its_tangent_line(gap):
 
 
 # ------------------------------------------------------------------ reflected tangencies
-def exact_point(rows, t):
-    n = len(rows) - 1
-    return [
-        sum(comb(n, i) * t**i * (1 - t) ** (n - i) * r[k] for i, r in enumerate(rows))
-        for k in range(len(rows[0]))
-    ]
-
-
-def point_and_tangent(rows, weights, t0: F) -> tuple[tuple[F, F], tuple[F, F]]:
-    """The rational curve's point at t0 and a tangent vector there (h[2]^2 times the
-    derivative, from the homogeneous form; (0, 0) at a cusp or on a point curve)."""
-    hom = [(x * w, y * w, w) for (x, y), w in zip(rows, weights, strict=True)]
-    n = len(rows) - 1
-    h = exact_point(hom, t0)
-    dh = exact_point(
-        [
-            [n * (b - a) for a, b in zip(r0, r1, strict=True)]
-            for r0, r1 in zip(hom, hom[1:], strict=False)
-        ],
-        t0,
-    )
-    point = (h[0] / h[2], h[1] / h[2])
-    return point, (dh[0] * h[2] - h[0] * dh[2], dh[1] * h[2] - h[1] * dh[2])
 
 
 def reflected(rows, weights, t0: F, offset: F = F(0)) -> lb.RationalBezierCurve:
     """The rational curve reflected in its own tangent line at t0 (an affine map: it acts on
     the control points, the weights stay), moved by `offset` along the normal."""
-    point, d = point_and_tangent(rows, weights, t0)
-    dd = d[0] ** 2 + d[1] ** 2
-
-    def reflect(v):
-        w = (v[0] - point[0], v[1] - point[1])
-        along = (w[0] * d[0] + w[1] * d[1]) / dd
-        return (
-            point[0] + 2 * along * d[0] - w[0] - offset * d[1],
-            point[1] + 2 * along * d[1] - w[1] + offset * d[0],
-        )
-
+    reflect = reflect_line(*point_and_tangent(rows, weights, t0), offset)
     return lb.RationalBezierCurve([reflect(v) for v in rows], weights)
 
 

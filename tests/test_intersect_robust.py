@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 import sympy
 from conftest import assert_same_isolated, on_both_subdivision_paths
+from exact_curves import exact_point, point_and_tangent, reflect_line
 from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
@@ -65,15 +66,6 @@ def curve_from_power(xs: list[Fraction], ys: list[Fraction]) -> lb.BezierCurve:
     xs = xs + [F(0)] * (n + 1 - len(xs))
     ys = ys + [F(0)] * (n + 1 - len(ys))
     return lb.BezierCurve(list(zip(power_to_bernstein(xs), power_to_bernstein(ys), strict=True)))
-
-
-def exact_point(rows, t: Fraction) -> tuple[Fraction, ...]:
-    n = len(rows) - 1
-    weights = [math.comb(n, i) * t**i * (1 - t) ** (n - i) for i in range(n + 1)]
-    return tuple(
-        sum((w * r[c] for w, r in zip(weights, rows, strict=True)), F(0))
-        for c in range(len(rows[0]))
-    )
 
 
 def assert_on_both(a: lb.Curve, b: lb.Curve, hits) -> None:
@@ -225,21 +217,9 @@ def test_close_self_crossings(r1, gap, rotation):
 def reflect_in_tangent(rows, t0: Fraction):
     """The control points reflected in the tangent line of the curve (rows, a Bézier form)
     at t0: the reflected curve touches the original at t0 (same point, same tangent line)."""
-    n = len(rows) - 1
-    point = exact_point(rows, t0)
-    hodograph = [
-        tuple(n * (b - a) for a, b in zip(r0, r1, strict=True))
-        for r0, r1 in zip(rows, rows[1:], strict=False)
-    ]
-    d = exact_point(hodograph, t0)
+    point, d = point_and_tangent(rows, [Fraction(1)] * len(rows), t0)
     dd = sum(x * x for x in d)
-
-    def reflect(v):
-        w = [x - y for x, y in zip(v, point, strict=True)]
-        along = sum(x * y for x, y in zip(w, d, strict=True)) / dd
-        return tuple(p + 2 * along * dx - wx for p, dx, wx in zip(point, d, w, strict=True))
-
-    return point, d, dd, reflect
+    return point, d, dd, reflect_line(point, d)
 
 
 def diagonal_roots(rows, point, d) -> list[sympy.Rational]:

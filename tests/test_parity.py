@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from exact_curves import exact_point
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -43,16 +44,6 @@ def control_rows(curve_id: str) -> tuple[tuple[Fraction, ...], ...]:
     """The fixtures store one row per coordinate; our curves take one row per point."""
     cols = CURVES[curve_id]["control_points"]
     return tuple(zip(*[[number(v) for v in row] for row in cols], strict=True))
-
-
-def exact_point(rows, t: Fraction) -> tuple[Fraction, ...]:
-    """Independent evaluation: Σ C(n,i) t^i (1-t)^(n-i) P_i in Fractions."""
-    n = len(rows) - 1
-    weights = [math.comb(n, i) * t**i * (1 - t) ** (n - i) for i in range(n + 1)]
-    return tuple(
-        sum((w * r[c] for w, r in zip(weights, rows, strict=True)), Fraction(0))
-        for c in range(len(rows[0]))
-    )
 
 
 def elevate_to(rows, degree: int):

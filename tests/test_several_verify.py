@@ -149,3 +149,15 @@ def test_several_kinds_refused_for_one_parameter_families(tmp_path):
 def test_bad_several_records_are_errors_naming_the_key(tmp_path, body, message):
     (res,) = _check(tmp_path, f'[[record]]\nid = "bad"\n{body}\n')
     assert res.verdict == "error" and message in res.error
+
+
+def test_a_wrong_optimum_names_the_certified_minimum(records):
+    """A printed minimiser moved off the optimum: the report gives E_k there, the certified
+    minimum over the box and where it lies (λ_3 = 5/4, as printed before the change)."""
+    rec = copy.deepcopy(next(r for r in records if r["id"] == "qb.optimum"))
+    rec["parameters"]["lam(3)"] = "1"
+    res = report_mod.check_record(rec)
+    assert res.verdict == "mismatch"
+    assert res.outcome.diffs[0].startswith("E_2 at the printed parameters is 219 ≈ 219; ")
+    assert "certified minimum over the box is 216 at" in res.outcome.diffs[0]
+    assert "lam_3 = 5/4" in res.outcome.diffs[0]

@@ -31,7 +31,13 @@ from ..families.cbezier import CDefinition
 from ..formulas import cbezier as F
 from ..grammar import SYMBOLS, ParseError, parse_formula
 from .checks_core import Outcome
-from .checks_elementary import RecordError, curve_call, walk_equations
+from .checks_elementary import (
+    RecordError,
+    claimed_flag,
+    curve_call,
+    flag_mismatch,
+    walk_equations,
+)
 from .checks_elementary import _point_rows as point_rows
 
 _I, _N = SYMBOLS["i"], SYMBOLS["n"]
@@ -293,20 +299,13 @@ def _boxed(record: dict, defn: CDefinition) -> CDefinition:
 def nonnegative(record: dict, defn: CDefinition) -> Outcome:
     """b_i >= 0 on [0, alpha] for every alpha of the box: formulas/cbezier.nonnegative (a
     certified counterexample from point balls, or the certificate of cbezier_nonnegative)."""
-    claimed = record.get("nonnegative")
-    if not isinstance(claimed, bool):
-        raise RecordError("key nonnegative: true or false is required")
+    claimed = claimed_flag(record, "nonnegative")
     boxed = _boxed(record, defn)
     decided = F.nonnegative(boxed)
     where = f"{defn.parameter} in {boxed.range_text}"
     if decided["verdict"] not in (True, False):
         return Outcome("pending", [f"not decided by derive over {where}: {decided['reason']}"])
-    diffs = []
-    if decided["verdict"] != claimed:
-        extra = (
-            f": counterexample {decided['counterexample']}" if "counterexample" in decided else ""
-        )
-        diffs.append(f"printed nonnegative = {claimed}, derived {decided['verdict']}{extra}")
+    diffs = flag_mismatch("nonnegative", claimed, decided["verdict"], decided)
     how = "certified" if decided["verdict"] else "a certified counterexample"
     return Outcome(
         "mismatch" if diffs else "match",
@@ -323,9 +322,7 @@ def independence(record: dict, defn: CDefinition) -> Outcome:
     there is a singular point, where the basis is not defined)."""
     from ..formulas.cbezier_nonnegative import nonvanishing
 
-    claimed = record.get("independent")
-    if not isinstance(claimed, bool):
-        raise RecordError("key independent: true or false is required")
+    claimed = claimed_flag(record, "independent")
     boxed = _boxed(record, defn)
     where = f"every {defn.parameter} in {boxed.range_text}"
     rank, det = F.rank(boxed)

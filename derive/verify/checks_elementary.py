@@ -555,20 +555,63 @@ def _approximate(elem: A.Elem, real: Realiser, digits: int = 60) -> sp.Poly:
     return sp.Poly(expr, *syms)
 
 
-def optimum(record: dict, defn: Definition):
-    """The claimed minimiser of E_k over the closed box: E_k there against the certified
-    minimum (derive's exact Bernstein branch and bound on E_k with pi or e^W to 60 digits;
-    that approximation moves E_k by far less than the 1e-12 tolerance)."""
+def claimed_flag(record: dict, key: str) -> bool:
+    """A record's printed true/false claim under `key` (refused if it is anything else)."""
+    claimed = record.get(key)
+    if not isinstance(claimed, bool):
+        raise RecordError(f"key {key}: true or false is required")
+    return claimed
+
+
+def flag_mismatch(key: str, claimed: bool, derived: object, decided: dict) -> list[str]:
+    """The mismatch line of a true/false claim the derivation decided otherwise, with the
+    derivation's counterexample when it gives one."""
+    if derived == claimed:
+        return []
+    extra = f": counterexample {decided['counterexample']}" if "counterexample" in decided else ""
+    return [f"printed {key} = {claimed}, derived {derived}{extra}"]
+
+
+def outside_box(params, values) -> list[str]:
+    """The claimed parameter values outside their closed ranges, one line each."""
+    return [
+        f"{q.name} = {v} is outside [{q.lo}, {q.hi}]"
+        for q, v in zip(params, values, strict=True)
+        if not q.lo <= v <= q.hi
+    ]
+
+
+def certified_box_minimum(
+    energy: sp.Poly, params, at_claim: Fraction, shown: str, k: object
+) -> tuple[dict, list[str]]:
+    """E_k (an exact polynomial in the parameters) at the claimed point against its certified
+    minimum over the closed box of `params` (exact Bernstein branch and bound to 1e-12
+    relative): the minimum, and the mismatch line if the claim is above it by more."""
     from lambda_bezier.hazmat import box_bernstein
 
     from ..formulas import box
 
+    boxed = [(q.lo, q.hi) for q in params]
+    best = box_bernstein.minimum(box.dense(energy), boxed, Fraction(1, 10**12), 20_000)
+    if not best["certified"]:
+        raise RecordError("the minimum over the box was not certified within the budget")
+    tol = Fraction(1, 10**12) * max(Fraction(1), abs(best["value"]))
+    if at_claim - best["lower"] <= tol:
+        return best, []
+    where = ", ".join(f"{q.name} = {v}" for q, v in zip(params, best["point"], strict=True))
+    return best, [
+        f"E_{k} at the printed parameters is {shown}; the certified minimum over the box is "
+        f"{float(best['value']):.12g} at {where}"
+    ]
+
+
+def optimum(record: dict, defn: Definition):
+    """The claimed minimiser of E_k over the closed box: E_k there against the certified
+    minimum (derive's exact Bernstein branch and bound on E_k with pi or e^W to 60 digits;
+    that approximation moves E_k by far less than the 1e-12 tolerance)."""
     real = realiser(defn)
     values = _values(record, defn)
-    diffs = []
-    for q, v in zip(defn.params, values, strict=True):
-        if not q.lo <= v <= q.hi:
-            diffs.append(f"{q.name} = {v} is outside [{q.lo}, {q.hi}]")
+    diffs = outside_box(defn.params, values)
     pts = record.get("control_points") or []
     k = record.get("k")
     if k is None or not pts:
@@ -583,20 +626,11 @@ def optimum(record: dict, defn: Definition):
             for c, rc in enumerate(rows):
                 total = A.add(total, gram[a][c], ra[dim] * rc[dim])
     poly = _approximate(total, real)
-    boxed = [(q.lo, q.hi) for q in defn.params]
-    best = box_bernstein.minimum(box.dense(poly), boxed, Fraction(1, 10**12), 20_000)
-    if not best["certified"]:
-        raise RecordError("the minimum over the box was not certified within the budget")
     at_claim = Fraction(
         str(poly.eval(tuple(sp.Rational(v.numerator, v.denominator) for v in values)))
     )
-    tol = Fraction(1, 10**12) * max(Fraction(1), abs(best["value"]))
-    if at_claim - best["lower"] > tol:
-        diffs.append(
-            f"E_{k} at the printed parameters is {float(at_claim):.12g}; the certified minimum "
-            f"over the box is {float(best['value']):.12g} at "
-            + ", ".join(f"{q.name} = {v}" for q, v in zip(defn.params, best["point"], strict=True))
-        )
+    best, gap = certified_box_minimum(poly, defn.params, at_claim, f"{float(at_claim):.12g}", k)
+    diffs += gap
     if record.get("expression"):
         claimed = real.element(record["expression"], "expression")
         got = _energy_at(record, real, values)
@@ -679,9 +713,7 @@ def _boxed(record: dict, defn: Definition) -> Definition:
 
 
 def nonnegative(record: dict, defn: Definition):
-    claimed = record.get("nonnegative")
-    if not isinstance(claimed, bool):
-        raise RecordError("key nonnegative: true or false is required")
+    claimed = claimed_flag(record, "nonnegative")
     boxed = _boxed(record, defn)
     decided = touching.nonnegative_over_box(boxed, space_of(boxed))
     where = ", ".join(f"{q.name} in {q.range_text}" for q in boxed.params)
@@ -689,12 +721,7 @@ def nonnegative(record: dict, defn: Definition):
         from .checks_core import Outcome
 
         return Outcome("pending", [f"not decided by derive: {decided['reason']}"])
-    diffs = []
-    if decided["nonnegative"] != claimed:
-        extra = (
-            f": counterexample {decided['counterexample']}" if "counterexample" in decided else ""
-        )
-        diffs.append(f"printed nonnegative = {claimed}, derived {decided['nonnegative']}{extra}")
+    diffs = flag_mismatch("nonnegative", claimed, decided["nonnegative"], decided)
     how = (
         "certified (arb ball branch and bound)"
         if F.nonnegative_is_certified(space_of(boxed))
@@ -705,9 +732,7 @@ def nonnegative(record: dict, defn: Definition):
 
 
 def independence(record: dict, defn: Definition):
-    claimed = record.get("independent")
-    if not isinstance(claimed, bool):
-        raise RecordError("key independent: true or false is required")
+    claimed = claimed_flag(record, "independent")
     boxed = _boxed(record, defn)
     decided = atom_independence.independence(boxed, space_of(boxed))
     if "reason" in decided:

@@ -31,12 +31,9 @@ from fractions import Fraction
 
 import sympy as sp
 
-from lambda_bezier.hazmat import box_bernstein
-
 from ..families.cbezier import CDefinition
 from ..families.definition import Definition
 from ..families.engine import basis_polys
-from ..formulas import box
 from ..grammar import SYMBOLS, ParseError, parse_formula
 from . import checks_cbezier as cbezier_checks
 from . import checks_closed_n as closed_n
@@ -325,24 +322,14 @@ def check_several_optimum(record: dict, _context: object) -> Outcome:
         return elementary.optimum(record, _defn(record))
     defn, at, degree, energy = _energy_setup(record)
     values = _parameters(record, defn, at, degree)
-    diffs = []
-    for q in at.params:
-        v = Fraction(str(values[sp.Symbol(q.name)]))
-        if not q.lo <= v <= q.hi:
-            diffs.append(f"{q.name} = {v} is outside [{q.lo}, {q.hi}]")
+    claimed_at = [Fraction(str(values[sp.Symbol(q.name)])) for q in at.params]
+    diffs = elementary.outside_box(at.params, claimed_at)
     got = energy.as_expr().xreplace(values)
-    boxed = [(q.lo, q.hi) for q in at.params]
-    best = box_bernstein.minimum(box.dense(energy), boxed, Fraction(1, 10**12), 20_000)
-    if not best["certified"]:
-        raise RecordError("the minimum over the box was not certified within the budget")
-    tol = Fraction(1, 10**12) * max(Fraction(1), abs(best["value"]))
     at_claim = Fraction(str(got))
-    if at_claim - best["lower"] > tol:
-        diffs.append(
-            f"E_{record['k']} at the printed parameters is {at_claim} ≈ {float(at_claim):.12g}; "
-            f"the certified minimum over the box is {float(best['value']):.12g} at "
-            + ", ".join(f"{q.name} = {v}" for q, v in zip(at.params, best["point"], strict=True))
-        )
+    best, gap = elementary.certified_box_minimum(
+        energy, at.params, at_claim, f"{at_claim} ≈ {float(at_claim):.12g}", record["k"]
+    )
+    diffs += gap
     if record.get("expression"):
         claimed = _number(record["expression"], "expression")
         if claimed != got:

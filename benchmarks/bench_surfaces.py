@@ -107,11 +107,14 @@ def bench_param_surfaces(nets: int) -> None:
         return po.fixed_cost(batch, d, d, "thin_plate")
 
     stage()  # the energy weights, once
-    best = interleaved({"ours": stage, "read": batch.sum}, 9)
+    # taking turns, best of 21, wall and CPU (both sides one thread): the CPU ratio shows
+    # what the shared machine's load did to the wall ratio
+    best, cpu = interleaved_clocks({"ours": stage, "read": batch.sum}, 21)
     declined = np.flatnonzero(~stage()[3])
     record(
         f"optimal parameters of at_cubic (trig., one a direction), thin plate: {nets:,} "
-        f"bicubic nets, fixed-cost stage ({declined.size} declined)",
+        f"bicubic nets, fixed-cost stage ({declined.size} declined; CPU time "
+        f"{cpu['ours'] / cpu['read']:.2f}x)",
         best["ours"],
         "one read pass (arr.sum())",
         best["read"],
@@ -121,16 +124,17 @@ def bench_param_surfaces(nets: int) -> None:
     # the whole public call: the fixed-cost stage, the vectorised careful path for the nets
     # it declines (param_surface_optimum._careful_batch), the one-net path for the rest
     public = lb.optimal_parameters(batch, "thin_plate", family=fam)
-    calls = interleaved(
+    calls, calls_cpu = interleaved_clocks(
         {
             "ours": lambda: lb.optimal_parameters(batch, "thin_plate", family=fam),
             "read": batch.sum,
         },
-        3,
+        5,
     )
     record(
         f"the same, the whole public call ({declined.size} declined, "
-        f"{public.careful_fallbacks} of them solved one by one)",
+        f"{public.careful_fallbacks} of them solved one by one; CPU time "
+        f"{calls_cpu['ours'] * 1e3:.1f} ms)",
         calls["ours"],
         "one read pass (arr.sum())",
         calls["read"],

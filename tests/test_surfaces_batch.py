@@ -119,3 +119,35 @@ def test_grid_evaluation_on_both_paths(path):
         atol=1e-11,
     )
     assert s.evaluate_grid([], vs).shape == (0, 23, 3)
+
+
+@pytest.mark.parametrize(
+    "shape", [(4, 4, 3), (1, 1, 1), (2, 3, 2), (6, 5, 3), (3, 8, 1), (9, 9, 2)]
+)
+def test_grid_kernel_against_exact_sums(path, shape):
+    # every degree pattern of the compiled kernel's passes over a row (one pass up to N = 3,
+    # then three coefficients a pass; the zero padding above the degree), strided parameter
+    # arrays, against the Taylor sums in Fractions: the inputs are floats, so the exact value
+    # is known and the error is bounded by a few ulps of the sum of the absolute terms
+    from fractions import Fraction
+
+    rng = np.random.default_rng(sum(shape))
+    coeffs = rng.normal(size=shape)
+    us = np.linspace(0, 1, 11)[::2]
+    vs = np.concatenate([[0.0, 1.0], rng.random(5)])
+    got = surface_kernels.evaluate_grid(coeffs, us, vs)
+    assert got.shape == (us.size, vs.size, shape[2])
+    big_m, big_n, _ = shape
+    half = Fraction(1, 2)
+    for a, u in enumerate(us):
+        for b, v in enumerate(vs):
+            su, sv = Fraction(u) - half, Fraction(v) - half
+            for c in range(shape[2]):
+                terms = [
+                    Fraction(coeffs[i, k, c]) * su**i * sv**k
+                    for i in range(big_m)
+                    for k in range(big_n)
+                ]
+                size = float(sum(abs(t) for t in terms))
+                err = abs(Fraction(got[a, b, c]) - sum(terms))
+                assert err <= 4 * (big_m + big_n) * 2.0**-52 * size, (a, b, c)

@@ -1,11 +1,13 @@
 """Surface kernels compiled with numba (the `fast` extra): the batch optimum of (λ_u, λ_v),
-one pass per net, and the products of grid evaluation.
+one pass per net, and grid evaluation.
 
-Grid evaluation (`grid_products`): out[c] = left[c] @ right for every coordinate c, with an
-inner size of N+1 (4 for a bicubic). numpy hands each product to BLAS, whose threads cost
+Grid evaluation (`grid_rows`): every output row once, from its weights by Horner, one thread.
+numpy's version is a product per coordinate, which numpy hands to BLAS, whose threads cost
 more than the arithmetic when the machine is busy (measured on a loaded two-core machine:
-3.5x the output's write cost with one BLAS thread, 50x with OpenBLAS's threads); here one
-thread writes each output row once for up to four inner terms (1.0x the write cost there).
+3.5x the output's write cost with one BLAS thread, 50x with OpenBLAS's threads). Until
+round 20 this module did that product itself, four loads and four products a value from a
+table of powers of (v - 1/2) (1.6-2.1x the one-thread fill in the benchmark, load 7);
+Horner on (v - 1/2) takes one load and three multiply-adds (1.07x there).
 
 The batch optimum:
 
@@ -346,27 +348,41 @@ def optimise(
     return out[0], out[1], out[2], where, uncertain
 
 
-@numba.njit(**_JIT)
-def grid_products(left: np.ndarray, right: np.ndarray, out: np.ndarray) -> None:
-    """out[c] = left[c] @ right for left (d, p, K), right (K, q), out (d, p, q), written in
-    place. Four terms of the inner sum per pass over an output row (K is padded with zeros to
-    a multiple of 4), so a bicubic's row is written once, its four weights in registers."""
-    dim, rows, inner = left.shape
-    cols = right.shape[1]
-    padded = (inner + 3) // 4 * 4
-    lp = np.zeros((dim, rows, padded))
-    lp[:, :, :inner] = left
-    rp = np.zeros((padded, cols))
-    rp[:inner] = right
+@numba.njit(cache=True, error_model="numpy", fastmath={"contract"})
+def grid_rows(coeffs: np.ndarray, us: np.ndarray, vs: np.ndarray, out: np.ndarray) -> None:
+    """out[c, a, b] = S_c(us[a], vs[b]) for the Taylor tensor coeffs (M+1, N+1, d) about
+    (1/2, 1/2); out (d, len(us), len(vs)), C-contiguous, written in place.
+
+    Per row: the N+1 weights w_k = Σ_i coeffs[i, k, c] (u - 1/2)^i by Horner (registers),
+    then out[c, a, b] = Σ_k w_k (v_b - 1/2)^k by Horner, three coefficients a pass over the
+    row (one pass for N <= 3, a bicubic's row written once, from L1 while it is built):
+    one load of (v_b - 1/2) and three fused multiply-adds per value, where the products with
+    a powers table cost four loads and four products. fastmath "contract" only (one rounding
+    per multiply-add, no reassociation)."""
+    big_m, big_n, dim = coeffs.shape
+    nv = vs.size
+    # the row's weights padded with zeros above the degree to 4 + 3j (zeros change nothing:
+    # 0 * s + w is w exactly), so every pass takes three of them
+    size = 4 if big_n <= 4 else 4 + (big_n - 2) // 3 * 3
+    w = np.zeros(size)
+    sv = np.empty(nv)
+    for b in range(nv):
+        sv[b] = vs[b] - 0.5
     for c in range(dim):
-        for a in range(rows):
+        for a in range(us.size):
+            su = us[a] - 0.5
+            for k in range(big_n):
+                acc = coeffs[big_m - 1, k, c]
+                for i in range(big_m - 2, -1, -1):
+                    acc = acc * su + coeffs[i, k, c]
+                w[k] = acc
             row = out[c, a]
-            for k in range(0, padded, 4):
-                w0, w1, w2, w3 = lp[c, a, k], lp[c, a, k + 1], lp[c, a, k + 2], lp[c, a, k + 3]
-                r0, r1, r2, r3 = rp[k], rp[k + 1], rp[k + 2], rp[k + 3]
-                if k == 0:
-                    for b in range(cols):
-                        row[b] = w0 * r0[b] + w1 * r1[b] + w2 * r2[b] + w3 * r3[b]
-                else:
-                    for b in range(cols):
-                        row[b] += w0 * r0[b] + w1 * r1[b] + w2 * r2[b] + w3 * r3[b]
+            w0, w1, w2, w3 = w[size - 4], w[size - 3], w[size - 2], w[size - 1]
+            for b in range(nv):
+                s = sv[b]
+                row[b] = w0 + s * (w1 + s * (w2 + s * w3))
+            for k in range(size - 5, 0, -3):
+                w0, w1, w2 = w[k - 2], w[k - 1], w[k]
+                for b in range(nv):
+                    s = sv[b]
+                    row[b] = w0 + s * (w1 + s * (w2 + s * row[b]))

@@ -58,6 +58,10 @@ CONDITION = 1e-6  # ... and its Jacobian's determinant, relative to its terms, a
 GAP = 1 / 16
 # curvatures closer than this share of their sizes are not parted by the parabola between them
 CURVED = 1e-3
+# a corner where the pieces' ends meet is a contact when their end tangents' sine is below this
+# (intersect.TANGENT_SINE: the careful path refines such a hit as a tangency)
+CORNER_SINE = 1e-6
+EPS = 2.0**-52
 
 
 def _rows(count: int, width: int) -> Any:
@@ -195,14 +199,30 @@ def _binomial(n: int, k: int) -> float:
 
 
 def _curved_range(
-    part: Any, count: int, ox: float, oy: float, ex: float, ey: float, c: float, sign: float
-) -> tuple[float, float]:
+    part: Any,
+    count: int,
+    ox: float,
+    oy: float,
+    ex: float,
+    ey: float,
+    c: float,
+    sign: float,
+    slack: float,
+) -> tuple[float, float, float]:
     """The range of f(p) = sign (n . (p - o) - c/2 (e . (p - o))^2) (n = (-ey, ex)) over the
     part (count control points): within its Bernstein coefficients of degree 2 (count - 1),
     those of the polynomial f(part(w)) (the convex hull property), made from the products
-    B_i B_j = C(n, i) C(n, j) / C(2n, i + j) B_(i+j) of the part's own coefficients."""
+    B_i B_j = C(n, i) C(n, j) / C(2n, i + j) B_(i+j) of the part's own coefficients.
+    Returned as (lo, hi, err), err bounding the error of both: a control point off by the
+    pieces' rounding (slack) moves each coefficient by at most slack (1 + |c| T) (T: the
+    largest |e . (p - o)| of the part), and their rounding is below 8 (2n + 2) eps of their
+    terms."""
     n = count - 1
     lo, hi = math.inf, -math.inf
+    reach_n = reach_t = 0.0
+    for i in range(count):
+        reach_n = max(reach_n, abs(-(part[i][0] - ox) * ey + (part[i][1] - oy) * ex))
+        reach_t = max(reach_t, abs((part[i][0] - ox) * ex + (part[i][1] - oy) * ey))
     for k in range(2 * n + 1):
         total = 0.0
         for i in range(max(0, k - n), min(n, k) + 1):
@@ -213,7 +233,8 @@ def _curved_range(
             total += _binomial(n, i) * _binomial(n, j) * (ni - 0.5 * c * ti * tj)
         g = sign * total / _binomial(2 * n, k)
         lo, hi = min(lo, g), max(hi, g)
-    return lo, hi
+    rounding = 8.0 * (2 * n + 2) * EPS * (reach_n + abs(c) * reach_t * reach_t)
+    return lo, hi, slack * (1.0 + abs(c) * reach_t) + rounding
 
 
 def _curved_confined(
@@ -229,7 +250,7 @@ def _curved_confined(
     ey: float,
     c: float,
     sign: float,
-    gap: float,
+    slack: float,
     parts_a: Any,
     parts_b: Any,
     work: Any,
@@ -237,38 +258,34 @@ def _curved_confined(
     """Whether every pair of the parts of a ([0, u - ra], [u - ra, u], [u, u + ra],
     [u + ra, 1]) and of b (likewise with v, rb) but the middle ones is apart along the
     parabola f = 0 (_curved_range: a's parts on its positive side, b's on its negative one,
-    the middle ones touching it at the contact), or along the normal or the tangent
-    (_apart). The separator's own error: a control point off by the pieces' rounding
-    moves f by at most that times (1 + |c| |e . (p - o)|), and the coefficients' rounding
-    is below 8 (2n + 2) eps of their terms."""
+    the middle ones touching it at the contact), by more than both ranges' errors, or
+    along the normal or the tangent (_apart)."""
     n1, n2 = len(a), len(b)
     cuts_a = (0.0, min(max(u - ra, 0.0), 1.0), min(max(u, 0.0), 1.0), min(u + ra, 1.0), 1.0)
     cuts_b = (0.0, min(max(v - rb, 0.0), 1.0), min(max(v, 0.0), 1.0), min(v + rb, 1.0), 1.0)
-    lo_a, hi_a = [0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0]
-    lo_b, hi_b = [0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0]
-    reach = 0.0  # the largest |e . (p - o)| and |n . (p - o)| over both pieces' hulls
-    for i in range(n1):
-        reach = max(reach, abs(a[i][0] - ox) + abs(a[i][1] - oy))
-    for i in range(n2):
-        reach = max(reach, abs(b[i][0] - ox) + abs(b[i][1] - oy))
-    order = 2 * max(n1, n2)
-    margin = gap * (1.0 + abs(c) * reach) + 8.0 * order * 2.2e-16 * (reach + abs(c) * reach * reach)
+    lo_a, hi_a, err_a = [0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0]
+    lo_b, hi_b, err_b = [0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0]
     for i in range(4):
         if cuts_a[i + 1] > cuts_a[i]:
             _part(a, cuts_a[i], cuts_a[i + 1], work, parts_a[i])
-            lo_a[i], hi_a[i] = _curved_range(parts_a[i], n1, ox, oy, ex, ey, c, sign)
+            lo_a[i], hi_a[i], err_a[i] = _curved_range(
+                parts_a[i], n1, ox, oy, ex, ey, c, sign, slack
+            )
         if cuts_b[i + 1] > cuts_b[i]:
             _part(b, cuts_b[i], cuts_b[i + 1], work, parts_b[i])
-            lo_b[i], hi_b[i] = _curved_range(parts_b[i], n2, ox, oy, ex, ey, c, sign)
+            lo_b[i], hi_b[i], err_b[i] = _curved_range(
+                parts_b[i], n2, ox, oy, ex, ey, c, sign, slack
+            )
     for i in range(4):
         if not cuts_a[i + 1] > cuts_a[i]:
             continue
         for j in range(4):
             if not cuts_b[j + 1] > cuts_b[j] or (0 < i < 3 and 0 < j < 3):
                 continue
+            margin = err_a[i] + err_b[j]
             if lo_a[i] > hi_b[j] + margin or hi_a[i] < lo_b[j] - margin:
                 continue
-            if not _apart(parts_a[i][:n1], parts_b[j][:n2], ox, oy, ex, ey, gap):
+            if not _apart(parts_a[i][:n1], parts_b[j][:n2], ox, oy, ex, ey, 2.0 * slack):
                 return False
     return True
 
@@ -307,14 +324,23 @@ def _newton_contact(
 
 def _corner_contact(a: Any, b: Any, slack: float) -> tuple[bool, float, float]:
     """A corner of the pair where the pieces' end points meet within their rounding (GAP of
-    the slack): where two curves join, their contact is known without Newton (whose
-    Jacobian is singular there when the curvatures agree, as at a smooth join)."""
+    the slack) and their tangents are parallel (sine below CORNER_SINE): where two curves
+    join smoothly their contact is known without Newton (whose Jacobian is singular there
+    when the curvatures agree). A corner where they cross is left to the cones, which
+    isolate it."""
     n1, n2 = len(a), len(b)
     for corner in range(4):
         i = 0 if corner < 2 else n1 - 1
         j = 0 if corner % 2 == 0 else n2 - 1
         gx, gy = a[i][0] - b[j][0], a[i][1] - b[j][1]
-        if math.sqrt(gx * gx + gy * gy) <= GAP * slack:
+        if not math.sqrt(gx * gx + gy * gy) <= GAP * slack:
+            continue
+        i2 = 1 if corner < 2 else n1 - 2
+        j2 = 1 if corner % 2 == 0 else n2 - 2
+        ax, ay = a[i2][0] - a[i][0], a[i2][1] - a[i][1]
+        bx, by = b[j2][0] - b[j][0], b[j2][1] - b[j][1]
+        norms = math.sqrt(ax * ax + ay * ay) * math.sqrt(bx * bx + by * by)
+        if norms > 0.0 and abs(ax * by - ay * bx) <= CORNER_SINE * norms:
             return True, (0.0 if corner < 2 else 1.0), (0.0 if corner % 2 == 0 else 1.0)
     return False, 0.0, 0.0
 
@@ -396,7 +422,7 @@ def _certified(
         sign = 1.0 if curve_a > curve_b else -1.0
         c = 0.5 * (curve_a + curve_b)
         confined = _curved_confined(
-            a, b, u, v, ra, rb, ox, oy, ex, ey, c, sign, gap, parts_a, parts_b, work
+            a, b, u, v, ra, rb, ox, oy, ex, ey, c, sign, slack, parts_a, parts_b, work
         )
     return confined
 

@@ -24,14 +24,32 @@ to that point when
    sound, these are the ones that separate the parts next to a tangency whose curves lie on
    the two sides of the common tangent). One of the two ways of doubling must do it.
 
+Where a straight axis cannot part them (both curves on ONE side of the common tangent, a
+circle inside another: the parts beside the contact overlap along both axes), a curved one
+may (issue #29 round 20): with signed curvatures ka != kb along n at the contact and
+c = (ka + kb) / 2, the parabola f(p) = n . (p - o) - c/2 (e . (p - o))^2 = 0 has a on one
+side and b on the other near the contact (f(a) ~ (ka - c) s^2 / 2, f(b) ~ (kb - c) s^2 / 2).
+Each piece is cut at its contact and at -+ R of it into four parts; f on a part is a
+polynomial of degree 2n, whose range lies within its Bernstein coefficients (made from the
+part's control points: B_i B_j = C(n, i) C(n, j) / C(2n, i + j) B_(i+j)); every pair of
+parts but the middle ones must have ranges apart by more than both ranges' error bounds
+(the pieces' rounding times f's slope there, and the coefficients' own rounding), or be
+apart along n or e as above.
+
+The contact comes from Newton; where Newton fails (its Jacobian is singular where the
+curvatures agree, as at a smooth join of two curves), a corner of the pair where the
+pieces' end points meet within GAP of the slack with parallel tangents (sine below
+CORNER_SINE) is taken as the contact instead, and certified the same way (a smooth join's
+parts lie apart along the tangent).
+
 Then every common point of the pair lies within R of (u*, v*), and the pair is reported as the
 unresolved piece of width R at level `deep` holding the contact (the cell the subdivision
 would reach on its way down there): the careful path's tangent refinement starts from its
-middle. A contact whose curves lie on one side of the common tangent (one circle inside
-another), one of higher order (an inflection on the other curve) or two crossings farther
-apart than the rounding fail a test, and the pair is halved as before. Only the starts
-change: the answers are the careful path's to the tolerance of its tangent refinement
-(tests/test_contact_cell.py compares them with the subdivision to the flat pieces).
+middle. A contact of equal curvatures away from a corner, one of higher order (an
+inflection on the other curve) or two crossings farther apart than the rounding fail a
+test, and the pair is halved as before. Only the starts change: the answers are the careful
+path's to the tolerance of its tangent refinement (tests/test_contact_cell.py and
+tests/test_contact_one_side.py compare them with the subdivision to the flat pieces).
 
 The same source runs in numpy's fallback (plain Python on floats) and compiled
 (intersect_compiled wraps it with numba): one sum in one order, so both take the same pairs.

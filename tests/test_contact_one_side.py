@@ -5,7 +5,8 @@ hazmat.intersect_contact cannot confine, confined without halving to the flat pi
   them (its curvature the mean of theirs) parts them away from the contact. Sound: where the
   certificate holds, every crossing of the pair lies within R of the contact, checked against
   the exact crossings of two parabolas y = c1 (x - x0)^2 and y = c2 (x - x0)^2 + h; and it
-  holds at true one-sided tangencies (else that check could pass by never holding);
+  holds at true one-sided tangencies (else that check could pass by never holding); a pair
+  holding a second crossing 1e-4 to 0.1 away from a one-sided tangency is never confined;
 - a smooth join (the pieces' end points meet, tangents parallel, curvatures equal: Newton's
   Jacobian is singular) is confined at its corner; a corner where the curves cross is not
   (the cones isolate it);
@@ -87,6 +88,52 @@ def test_one_sided_crossings_farther_apart_than_the_cell_are_not_confined():
                     piece(a, level, ka), piece(b, level, kb), ka, kb, level, contact.DEEP, SLACK
                 )
                 assert not got[0], (h, level, ka, kb)
+
+
+def cubic_graph(c: float, k: float, x0: float) -> np.ndarray:
+    """y = c (x - x0)^2 + k (x - x0)^3 over x = -1/2 + 2 t as a cubic Bézier curve (its
+    control points solved from four samples: the curve tested is these floats)."""
+    ts = np.array([0.0, 1 / 3, 2 / 3, 1.0])
+    xs = -0.5 + 2 * ts
+    basis = np.array([[math.comb(3, j) * t**j * (1 - t) ** (3 - j) for j in range(4)] for t in ts])
+    ys = np.linalg.solve(basis, c * (xs - x0) ** 2 + k * (xs - x0) ** 3)
+    return np.column_stack([-0.5 + 2 * np.arange(4) / 3, ys])
+
+
+@settings(max_examples=80, deadline=None, derandomize=True)
+@given(
+    curvatures=st.sampled_from([(4.0, 1.0), (1.0, 4.0), (2.0, 1.0), (-1.0, -4.0)]),
+    u0=st.integers(8, 56).map(lambda k: k / 64),
+    away=st.sampled_from([1e-4, 1e-3, 1e-2, 0.1, -1e-4, -1e-3, -0.1]),
+    level=st.integers(2, 14),
+)
+def test_a_one_sided_contact_with_another_crossing_in_the_pair_is_not_confined(
+    curvatures, u0, away, level
+):
+    """The parabola y = c1 (x - x0)^2 against y = c2 (x - x0)^2 + k (x - x0)^3: tangent at
+    x0 (both on one side), crossing again at x0 + away (k = (c1 - c2) / away). A pair of
+    pieces holding that crossing, farther than R from the contact, must not be confined."""
+    c1, c2 = curvatures
+    a, b = parabola(c1, u0), cubic_graph(c2, (c1 - c2) / away, u0)
+    # the second crossing of these very floats: a root of the difference along x (b's x is
+    # linear in t, so both curves are graphs of polynomials in x)
+    xs = np.linspace(-0.5, 1.5, 9)
+    tb = (xs + 0.5) / 2
+    yb = sum(math.comb(3, j) * tb**j * (1 - tb) ** (3 - j) * b[j, 1] for j in range(4))
+    difference = np.polynomial.Polynomial.fit(xs, c1 * (xs - u0) ** 2 - yb, 3).convert()
+    roots = difference.roots()
+    x2 = float(roots[np.argmin(np.abs(roots - (u0 + away)))].real)
+    assert abs(x2 - (u0 + away)) < 1e-6 * max(1.0, abs(away) * 1e3)
+    ka = min(int(u0 * 2**level), 2**level - 1)
+    kb = min(int((u0 + 0.5) / 2 * 2**level), 2**level - 1)
+    width = 0.5**level
+    inside_a = ka * width <= x2 <= (ka + 1) * width
+    inside_b = kb * width <= (x2 + 0.5) / 2 <= (kb + 1) * width
+    found, _, _ = contact.contact_cell(
+        piece(a, level, ka), piece(b, level, kb), ka, kb, level, contact.DEEP, SLACK
+    )
+    if inside_a and inside_b:
+        assert not found
 
 
 def split(points: np.ndarray, at: float) -> tuple[np.ndarray, np.ndarray]:

@@ -68,7 +68,21 @@ def _blocks(count: int, rows: int, width: int) -> np.ndarray:
 
 _CONTACT = _compiled_twins(
     _contact,
-    ("_second_order", "_part", "_interval", "_apart", "_confined", "contact_cell", "tries"),
+    (
+        "_second_order",
+        "_part",
+        "_interval",
+        "_apart",
+        "_confined",
+        "_binomial",
+        "_curved_range",
+        "_curved_confined",
+        "_newton_contact",
+        "_corner_contact",
+        "_certified",
+        "contact_cell",
+        "tries",
+    ),
     {"_rows": _rows, "_blocks": _blocks},
 )
 contact_cell = _CONTACT["contact_cell"]

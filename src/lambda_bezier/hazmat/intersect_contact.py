@@ -24,14 +24,32 @@ to that point when
    sound, these are the ones that separate the parts next to a tangency whose curves lie on
    the two sides of the common tangent). One of the two ways of doubling must do it.
 
+Where a straight axis cannot part them (both curves on ONE side of the common tangent, a
+circle inside another: the parts beside the contact overlap along both axes), a curved one
+may (issue #29 round 20): with signed curvatures ka != kb along n at the contact and
+c = (ka + kb) / 2, the parabola f(p) = n . (p - o) - c/2 (e . (p - o))^2 = 0 has a on one
+side and b on the other near the contact (f(a) ~ (ka - c) s^2 / 2, f(b) ~ (kb - c) s^2 / 2).
+Each piece is cut at its contact and at -+ R of it into four parts; f on a part is a
+polynomial of degree 2n, whose range lies within its Bernstein coefficients (made from the
+part's control points: B_i B_j = C(n, i) C(n, j) / C(2n, i + j) B_(i+j)); every pair of
+parts but the middle ones must have ranges apart by more than both ranges' error bounds
+(the pieces' rounding times f's slope there, and the coefficients' own rounding), or be
+apart along n or e as above.
+
+The contact comes from Newton; where Newton fails (its Jacobian is singular where the
+curvatures agree, as at a smooth join of two curves), a corner of the pair where the
+pieces' end points meet within GAP of the slack with parallel tangents (sine below
+CORNER_SINE) is taken as the contact instead, and certified the same way (a smooth join's
+parts lie apart along the tangent).
+
 Then every common point of the pair lies within R of (u*, v*), and the pair is reported as the
 unresolved piece of width R at level `deep` holding the contact (the cell the subdivision
 would reach on its way down there): the careful path's tangent refinement starts from its
-middle. A contact whose curves lie on one side of the common tangent (one circle inside
-another), one of higher order (an inflection on the other curve) or two crossings farther
-apart than the rounding fail a test, and the pair is halved as before. Only the starts
-change: the answers are the careful path's to the tolerance of its tangent refinement
-(tests/test_contact_cell.py compares them with the subdivision to the flat pieces).
+middle. A contact of equal curvatures away from a corner, one of higher order (an
+inflection on the other curve) or two crossings farther apart than the rounding fail a
+test, and the pair is halved as before. Only the starts change: the answers are the careful
+path's to the tolerance of its tangent refinement (tests/test_contact_cell.py and
+tests/test_contact_one_side.py compare them with the subdivision to the flat pieces).
 
 The same source runs in numpy's fallback (plain Python on floats) and compiled
 (intersect_compiled wraps it with numba): one sum in one order, so both take the same pairs.
@@ -56,6 +74,12 @@ CONDITION = 1e-6  # ... and its Jacobian's determinant, relative to its terms, a
 # several Newton starts then decide (two crossings 2e-7 apart whose curves separate by 1e-14
 # between them are one transversal hit there, and stay so)
 GAP = 1 / 16
+# curvatures closer than this share of their sizes are not parted by the parabola between them
+CURVED = 1e-3
+# a corner where the pieces' ends meet is a contact when their end tangents' sine is below this
+# (intersect.TANGENT_SINE: the careful path refines such a hit as a tangency)
+CORNER_SINE = 1e-6
+EPS = 2.0**-52
 
 
 def _rows(count: int, width: int) -> Any:
@@ -185,19 +209,111 @@ def _confined(
     return 0
 
 
-def contact_cell(
-    a: Any, b: Any, ka: int, kb: int, level: int, deep: int, slack: float
-) -> tuple[bool, int, int]:
-    """A planar pair of pieces a, b (the ka-th and kb-th of width 2^-level): (True, the
-    indices of the cell of width 2^-deep holding its point of contact) where the certificate
-    above confines every common point of the pair to within R = 2^-RADIUS of it; else
-    (False, 0, 0). a and b: arrays (n+1, 2), or nested lists (faster in plain Python)."""
+def _binomial(n: int, k: int) -> float:
+    out = 1.0
+    for i in range(k):
+        out = out * (n - i) / (i + 1)
+    return out
+
+
+def _curved_range(
+    part: Any,
+    count: int,
+    ox: float,
+    oy: float,
+    ex: float,
+    ey: float,
+    c: float,
+    sign: float,
+    slack: float,
+) -> tuple[float, float, float]:
+    """The range of f(p) = sign (n . (p - o) - c/2 (e . (p - o))^2) (n = (-ey, ex)) over the
+    part (count control points): within its Bernstein coefficients of degree 2 (count - 1),
+    those of the polynomial f(part(w)) (the convex hull property), made from the products
+    B_i B_j = C(n, i) C(n, j) / C(2n, i + j) B_(i+j) of the part's own coefficients.
+    Returned as (lo, hi, err), err bounding the error of both: a control point off by the
+    pieces' rounding (slack) moves each coefficient by at most slack (1 + |c| T) (T: the
+    largest |e . (p - o)| of the part), and their rounding is below 8 (2n + 2) eps of their
+    terms."""
+    n = count - 1
+    lo, hi = math.inf, -math.inf
+    reach_n = reach_t = 0.0
+    for i in range(count):
+        reach_n = max(reach_n, abs(-(part[i][0] - ox) * ey + (part[i][1] - oy) * ex))
+        reach_t = max(reach_t, abs((part[i][0] - ox) * ex + (part[i][1] - oy) * ey))
+    for k in range(2 * n + 1):
+        total = 0.0
+        for i in range(max(0, k - n), min(n, k) + 1):
+            j = k - i
+            ni = -(part[i][0] - ox) * ey + (part[i][1] - oy) * ex
+            ti = (part[i][0] - ox) * ex + (part[i][1] - oy) * ey
+            tj = (part[j][0] - ox) * ex + (part[j][1] - oy) * ey
+            total += _binomial(n, i) * _binomial(n, j) * (ni - 0.5 * c * ti * tj)
+        g = sign * total / _binomial(2 * n, k)
+        lo, hi = min(lo, g), max(hi, g)
+    rounding = 8.0 * (2 * n + 2) * EPS * (reach_n + abs(c) * reach_t * reach_t)
+    return lo, hi, slack * (1.0 + abs(c) * reach_t) + rounding
+
+
+def _curved_confined(
+    a: Any,
+    b: Any,
+    u: float,
+    v: float,
+    ra: float,
+    rb: float,
+    ox: float,
+    oy: float,
+    ex: float,
+    ey: float,
+    c: float,
+    sign: float,
+    slack: float,
+    parts_a: Any,
+    parts_b: Any,
+    work: Any,
+) -> bool:
+    """Whether every pair of the parts of a ([0, u - ra], [u - ra, u], [u, u + ra],
+    [u + ra, 1]) and of b (likewise with v, rb) but the middle ones is apart along the
+    parabola f = 0 (_curved_range: a's parts on its positive side, b's on its negative one,
+    the middle ones touching it at the contact), by more than both ranges' errors, or
+    along the normal or the tangent (_apart)."""
     n1, n2 = len(a), len(b)
-    size = max(n1, n2)
-    wa, wb = _rows(n1, 2), _rows(n2, 2)
-    da, db = _rows(3, 2), _rows(3, 2)
+    cuts_a = (0.0, min(max(u - ra, 0.0), 1.0), min(max(u, 0.0), 1.0), min(u + ra, 1.0), 1.0)
+    cuts_b = (0.0, min(max(v - rb, 0.0), 1.0), min(max(v, 0.0), 1.0), min(v + rb, 1.0), 1.0)
+    lo_a, hi_a, err_a = [0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0]
+    lo_b, hi_b, err_b = [0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0]
+    for i in range(4):
+        if cuts_a[i + 1] > cuts_a[i]:
+            _part(a, cuts_a[i], cuts_a[i + 1], work, parts_a[i])
+            lo_a[i], hi_a[i], err_a[i] = _curved_range(
+                parts_a[i], n1, ox, oy, ex, ey, c, sign, slack
+            )
+        if cuts_b[i + 1] > cuts_b[i]:
+            _part(b, cuts_b[i], cuts_b[i + 1], work, parts_b[i])
+            lo_b[i], hi_b[i], err_b[i] = _curved_range(
+                parts_b[i], n2, ox, oy, ex, ey, c, sign, slack
+            )
+    for i in range(4):
+        if not cuts_a[i + 1] > cuts_a[i]:
+            continue
+        for j in range(4):
+            if not cuts_b[j + 1] > cuts_b[j] or (0 < i < 3 and 0 < j < 3):
+                continue
+            margin = err_a[i] + err_b[j]
+            if lo_a[i] > hi_b[j] + margin or hi_a[i] < lo_b[j] - margin:
+                continue
+            if not _apart(parts_a[i][:n1], parts_b[j][:n2], ox, oy, ex, ey, 2.0 * slack):
+                return False
+    return True
+
+
+def _newton_contact(
+    a: Any, b: Any, wa: Any, wb: Any, da: Any, db: Any
+) -> tuple[bool, float, float]:
+    """Newton on the tangency system from the pieces' middles: (True, u*, v*) where it
+    converges and its Jacobian there is regular (curvatures that differ)."""
     u = v = 0.5
-    converged = False
     for _ in range(STEPS):
         _second_order(a, u, wa, da)
         _second_order(b, v, wb, db)
@@ -211,45 +327,58 @@ def contact_cell(
         j22 = -(b1x * a1x + b1y * a1y)
         det = j11 * j22 - j12 * j21
         if not (det != 0.0 and math.isfinite(det)):
-            return False, 0, 0
+            return False, 0.0, 0.0
         du = (j12 * f2 - j22 * f1) / det
         dv = (j21 * f1 - j11 * f2) / det
         u, v = u + du, v + dv
         if not (-FAR < u < 1.0 + FAR and -FAR < v < 1.0 + FAR):
-            return False, 0, 0  # no contact of these pieces near
+            return False, 0.0, 0.0  # no contact of these pieces near
         if abs(du) + abs(dv) < STEP:
             # regular there: curvatures that differ (equal ones, as where two pieces of one
             # curve meet, leave det at rounding level, and the decision to rounding)
-            converged = abs(det) > CONDITION * (abs(j11 * j22) + abs(j12 * j21))
-            break
-    if not converged:
-        return False, 0, 0
-    _second_order(a, u, wa, da)
-    _second_order(b, v, wb, db)
-    gx, gy = da[0][0] - db[0][0], da[0][1] - db[0][1]
-    if not math.sqrt(gx * gx + gy * gy) <= GAP * slack:
-        return False, 0, 0  # apart, or crossing twice beyond the pieces' rounding: subdivide
-    length_a = math.sqrt(da[1][0] * da[1][0] + da[1][1] * da[1][1])
-    length_b = math.sqrt(db[1][0] * db[1][0] + db[1][1] * db[1][1])
-    if not (length_a > 0.0 and length_b > 0.0):
-        return False, 0, 0
-    ex, ey = da[1][0] / length_a, da[1][1] / length_a
-    width = 0.5**level
-    radius = 0.5**RADIUS / width  # R in a's and b's local parameters
-    parts_a, parts_b = _blocks(3, size, 2), _blocks(3, size, 2)
-    work = _rows(size, 2)
-    ox, oy, gap = da[0][0], da[0][1], 2.0 * slack
-    for wider in range(2):  # b's middle part twice as long along the tangent as a's, or a's
-        if wider == 0:
-            ra, rb = radius, 2.0 * radius * length_a / length_b
+            return abs(det) > CONDITION * (abs(j11 * j22) + abs(j12 * j21)), u, v
+    return False, 0.0, 0.0
+
+
+def _corner_contact(a: Any, b: Any, slack: float) -> tuple[bool, float, float]:
+    """A corner of the pair where the pieces' end points meet within their rounding (GAP of
+    the slack) and their tangents are parallel (sine below CORNER_SINE): where two curves
+    join smoothly their contact is known without Newton (whose Jacobian is singular there
+    when the curvatures agree). A corner where they cross is left to the cones, which
+    isolate it."""
+    n1, n2 = len(a), len(b)
+    for corner in range(4):
+        i = 0 if corner < 2 else n1 - 1
+        j = 0 if corner % 2 == 0 else n2 - 1
+        gx, gy = a[i][0] - b[j][0], a[i][1] - b[j][1]
+        if not math.sqrt(gx * gx + gy * gy) <= GAP * slack:
+            continue
+        i2 = 1 if corner < 2 else n1 - 2
+        j2 = 1 if corner % 2 == 0 else n2 - 2
+        ax, ay = a[i2][0] - a[i][0], a[i2][1] - a[i][1]
+        bx, by = b[j2][0] - b[j][0], b[j2][1] - b[j][1]
+        norms = math.sqrt(ax * ax + ay * ay) * math.sqrt(bx * bx + by * by)
+        if norms > 0.0 and abs(ax * by - ay * bx) <= CORNER_SINE * norms:
+            return True, (0.0 if corner < 2 else 1.0), (0.0 if corner % 2 == 0 else 1.0)
+    return False, 0.0, 0.0
+
+
+def contact_cell(
+    a: Any, b: Any, ka: int, kb: int, level: int, deep: int, slack: float
+) -> tuple[bool, int, int]:
+    """A planar pair of pieces a, b (the ka-th and kb-th of width 2^-level): (True, the
+    indices of the cell of width 2^-deep holding its point of contact) where the certificate
+    above confines every common point of the pair to within R = 2^-RADIUS of it; else
+    (False, 0, 0). a and b: arrays (n+1, 2), or nested lists (faster in plain Python)."""
+    n1, n2 = len(a), len(b)
+    wa, wb = _rows(n1, 2), _rows(n2, 2)
+    da, db = _rows(3, 2), _rows(3, 2)
+    for attempt in range(2):  # the contact by Newton, else a corner where the pieces join
+        if attempt == 0:
+            found, u, v = _newton_contact(a, b, wa, wb, da, db)
         else:
-            ra, rb = 2.0 * radius * length_b / length_a, radius
-        if not (u - ra < 1.0 and u + ra > 0.0 and v - rb < 1.0 and v + rb > 0.0):
-            continue  # the contact is a neighbour's: its pair reports it
-        failed = _confined(a, b, u, v, ra, rb, ox, oy, ex, ey, gap, parts_a, parts_b, work)
-        if failed == 1:
-            return False, 0, 0  # two outer parts meet: the other radii would not separate them
-        if failed == 0:
+            found, u, v = _corner_contact(a, b, slack)
+        if found and _certified(a, b, u, v, level, slack, wa, wb, da, db):
             # the cell of the contact (or, just past the pair's edge, the pair's cell next
             # to it)
             cells = 2 ** (deep - level)
@@ -259,6 +388,61 @@ def contact_cell(
             cell_b = min(int(math.floor(at_b)), (kb + 1) * cells - 1)
             return True, cell_a, cell_b
     return False, 0, 0
+
+
+def _certified(
+    a: Any, b: Any, u: float, v: float, level: int, slack: float, wa: Any, wb: Any, da: Any, db: Any
+) -> bool:
+    """Whether every common point of the pair lies within R of (u, v): the curves meet
+    there within the pieces' rounding, and the parts away from it are apart (_confined,
+    else _curved_confined)."""
+    n1, n2 = len(a), len(b)
+    size = max(n1, n2)
+    _second_order(a, u, wa, da)
+    _second_order(b, v, wb, db)
+    gx, gy = da[0][0] - db[0][0], da[0][1] - db[0][1]
+    if not math.sqrt(gx * gx + gy * gy) <= GAP * slack:
+        return False  # apart, or crossing twice beyond the pieces' rounding: subdivide
+    length_a = math.sqrt(da[1][0] * da[1][0] + da[1][1] * da[1][1])
+    length_b = math.sqrt(db[1][0] * db[1][0] + db[1][1] * db[1][1])
+    if not (length_a > 0.0 and length_b > 0.0):
+        return False
+    ex, ey = da[1][0] / length_a, da[1][1] / length_a
+    width = 0.5**level
+    radius = 0.5**RADIUS / width  # R in a's and b's local parameters
+    parts_a, parts_b = _blocks(4, size, 2), _blocks(4, size, 2)
+    work = _rows(size, 2)
+    ox, oy, gap = da[0][0], da[0][1], 2.0 * slack
+    confined = False
+    for wider in range(2):  # b's middle part twice as long along the tangent as a's, or a's
+        if wider == 0:
+            ra, rb = radius, 2.0 * radius * length_a / length_b
+        else:
+            ra, rb = 2.0 * radius * length_b / length_a, radius
+        if not (u - ra < 1.0 and u + ra > 0.0 and v - rb < 1.0 and v + rb > 0.0):
+            continue  # the contact is a neighbour's: its pair reports it
+        failed = _confined(a, b, u, v, ra, rb, ox, oy, ex, ey, gap, parts_a, parts_b, work)
+        if failed == 0:
+            confined = True
+            break
+        if failed == 1:
+            break  # two outer parts meet: the other radii would not separate them
+    if not confined:
+        # both curves on one side of the common tangent: a parabola between them (its
+        # curvature the mean of theirs, along the normal) parts them away from the contact
+        ra, rb = radius, radius * length_a / length_b
+        if not (u - ra < 1.0 and u + ra > 0.0 and v - rb < 1.0 and v + rb > 0.0):
+            return False
+        curve_a = (-ey * da[2][0] + ex * da[2][1]) / (length_a * length_a)
+        curve_b = (-ey * db[2][0] + ex * db[2][1]) / (length_b * length_b)
+        if not abs(curve_a - curve_b) > CURVED * (abs(curve_a) + abs(curve_b)):
+            return False
+        sign = 1.0 if curve_a > curve_b else -1.0
+        c = 0.5 * (curve_a + curve_b)
+        confined = _curved_confined(
+            a, b, u, v, ra, rb, ox, oy, ex, ey, c, sign, slack, parts_a, parts_b, work
+        )
+    return confined
 
 
 def tries(level: int) -> bool:

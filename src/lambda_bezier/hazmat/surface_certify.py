@@ -79,6 +79,13 @@ F = Any  # a float, or an array of floats (the numpy engine)
 _where = np.where
 
 
+def _none(c: F) -> bool:
+    """Whether no set is still undecided (`c` False everywhere): the compiled engine rebinds
+    it to a scalar `not c`, so that `_edge` stops at its first failed test; the answers are
+    the same either way (a False stays False under every later `&`)."""
+    return not np.any(c)
+
+
 def _clip(t: F, lo: float, hi: float) -> F:
     return np.minimum(np.maximum(t, lo), hi)
 
@@ -410,6 +417,8 @@ def _edge(
     )
     ok = cup & (delta <= tol) & _quadratic_positive(a0, a1, a2, lo, hi, slack)
     ok = ok & _quadratic_positive(g0, g1, g2, np.maximum(t - r, lo), np.minimum(t + r, hi), slack)
+    if _none(ok):  # declined already: the pieces below could only keep it so
+        return t, energy, delta, ok
     p0, p1, p2, p3, p4, p_slack = _discriminant(
         a0, a1, a2, b0, b1, b2, c0, c1, c2, level, m + 1.0, emax
     )
@@ -425,6 +434,8 @@ def _edge(
             )
             clear = grows | _quartic_positive(p0, p1, p2, p3, p4, u0, u1, p_slack)
             ok = ok & ((end <= start) | clear)  # an empty side (t within r of an end)
+            if _none(ok):  # the compiled engine's nets one at a time: most stop early
+                return t, energy, delta, ok
     return t, energy, delta, ok
 
 

@@ -10,6 +10,7 @@ now be certified."""
 from __future__ import annotations
 
 from fractions import Fraction
+from functools import cache
 from importlib.util import find_spec
 
 import numpy as np
@@ -125,3 +126,49 @@ def test_a_concave_direction_near_a_face_is_declined(engine):
     # face; the box's minimum is at x = xhi, the far face
     e = expand({(2, 0): -1.0, (0, 2): 1.0}, BOX[0] + 1e-3, -0.5)
     assert not check(engine, e)
+
+
+def benchmark_nets(count):
+    """The surfaces benchmark's batch (benchmarks/bench_surfaces.py): its first `count` nets."""
+    rng = np.random.default_rng(4)
+    rng.normal(size=(4, 4, 3))  # the grid row's surface, drawn first
+    nets = rng.normal(size=(count, 4, 4, 3))
+    nets[..., 0] += np.arange(4)[:, None]
+    nets[..., 1] += np.arange(4)[None, :]
+    return nets
+
+
+NEAR_FACE_NETS = (271, 333, 938)  # of the benchmark's batch: interior minima near a face
+
+
+@cache
+def exact_answers():
+    """The exact optimum of each of those nets read as exact binary fractions (the one-net
+    path: resultants and exact real-root isolation), once for both engines."""
+    import lambda_bezier as lb
+
+    out = []
+    for net in benchmark_nets(max(NEAR_FACE_NETS) + 1)[list(NEAR_FACE_NETS)]:
+        exact_net = [[[Fraction(float(c)) for c in p] for p in row] for row in net]
+        one = lb.optimal_parameters(exact_net, "thin_plate")
+        out.append((one["where"], one["lam_u_float"], one["lam_v_float"]))
+    return out
+
+
+@pytest.mark.parametrize("engine", list(_engines()))
+def test_the_benchmark_nets_near_a_face_take_the_fixed_cost_path(engine, monkeypatch):
+    """Three nets of the benchmark's batch with interior minima 0.002-0.045 from a face,
+    which the fixed RADIUS sent to the careful path: now certified, each within 1e-12 of the
+    exact optimum."""
+    import lambda_bezier as lb
+    from lambda_bezier.hazmat import surface_kernels
+
+    monkeypatch.setattr(surface_kernels, "USE_COMPILED", engine == "numba")
+    nets = benchmark_nets(max(NEAR_FACE_NETS) + 1)[list(NEAR_FACE_NETS)]
+    res = lb.optimal_parameters(nets, "thin_plate")
+    assert res["careful_fallbacks"] == 0
+    for i, (where, u, v) in enumerate(exact_answers()):
+        assert where == res["where"][i] == "interior"
+        assert abs(u - res["lam_u"][i]) <= 1e-12 and abs(v - res["lam_v"][i]) <= 1e-12
+        gap = min(abs(t - end) for t in (u, v) for end in (BOX[0], BOX[1]))
+        assert gap < R0  # the fixed R would not have fitted in the box

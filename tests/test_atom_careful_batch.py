@@ -94,15 +94,26 @@ def test_the_nets_both_fixed_cost_certificates_decline_are_certified_vectorised(
     got = lb.optimal_parameters(nets, energy, family=AT)
     x = np.stack([got["lam_u"], got["lam_v"]], axis=1)
     classes = _classes(x[declined])
-    # the benchmark's nets hold every kind of declined minimum but corners: the fixed-cost
-    # stage certifies every corner minimum among them (thin plate has none; membrane's take
-    # the careful path in the next test)
-    kinds = ["interior", "near a face", "edge"]
-    assert all(classes[k].size for k in kinds), {k: v.size for k, v in classes.items()}
-    # the one-net path takes only a few of them (counted), the careful path the rest
-    assert got.careful_fallbacks <= 0.1 * declined.size
-    for kind in kinds:
-        for i in declined[classes[kind][:2]]:
+    # the benchmark's nets hold declined interior and edge minima; the fixed-cost stage
+    # certifies every corner minimum among them (thin plate has none; membrane's take the
+    # careful path in the next test) and, since its R shrinks near a face (round 20,
+    # hazmat.surface_certify), the minima within the fixed R of a face: those are checked
+    # here all the same, whichever stage certified them
+    assert classes["interior"].size and classes["edge"].size, {
+        k: v.size for k, v in classes.items()
+    }
+    near = _classes(x)["near a face"]
+    assert near.size
+    checked = {
+        "interior": declined[classes["interior"][:2]],
+        "edge": declined[classes["edge"][:2]],
+        "near a face": near[:2],
+    }
+    # the one-net path takes only a few of them (counted: one membrane net of the 400, of
+    # the 9 declined), the careful path the rest
+    assert got.careful_fallbacks <= 1 < declined.size
+    for kind, rows in checked.items():
+        for i in rows:
             one = lb.optimal_parameters(nets[i], energy, family=AT)
             lower, best = float(one.lower_bound), float(one.energy)
             slack = 1e-12 * abs(best)

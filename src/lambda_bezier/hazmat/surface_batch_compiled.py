@@ -45,7 +45,7 @@ from . import surface_coefficients_ir as emitted
 # editing this file too (tests/test_surfaces_certify.py checks the two agree). Where they
 # differ anyway (an edit without the tests), the kernels compile afresh, uncached, rather
 # than load code of the old certificate.
-CERTIFY_SHA256 = "2cd2307aeb13b01b85be92f33b471e0694c2e2aaf864be49d8b24673639ed87c"
+CERTIFY_SHA256 = "ab9b255ec70b16eab97835e20155ebfa291189bf7c3f9048cb8f7201752a2765"
 
 
 def certify_source_sha256() -> str:
@@ -65,11 +65,18 @@ def _select(c: bool, a: float, b: float) -> float:
     return a if c else b
 
 
+@numba.njit(inline="always", error_model="numpy")
+def _none_scalar(c: bool) -> bool:
+    return not c
+
+
 def _recompiled(names: tuple[str, ...]) -> dict[str, Callable[..., Any]]:
     """surface_certify's functions compiled for scalars: the same code objects with `_where`
-    bound to a scalar selection (and their calls to each other bound to the compiled ones)."""
+    bound to a scalar selection and `_none` to a scalar `not` (and their calls to each other
+    bound to the compiled ones)."""
     space: dict[str, Any] = dict(vars(sc))
     space["_where"] = _select
+    space["_none"] = _none_scalar
     out: dict[str, Callable[..., Any]] = {}
     for name in names:  # callees first
         fn = getattr(sc, name)

@@ -257,12 +257,8 @@ def fixed_cost(
         bx, by, bval, ok = np.zeros(count), np.zeros(count), np.zeros(count), np.zeros(count, bool)
         return bx, by, bval, ok, np.zeros(count, bool)
     if fast is not None:  # the one-parameter surfaces' compiled kernel, on these weights
-        # with its edge pass screened (the same answers; at_cubic's interior certificate
-        # declines about one net in eleven to it: hazmat/surface_edge_screen.py)
-        from .hazmat import surface_edge_screen
-
         flat = np.ascontiguousarray(nets.reshape(count, -1), dtype=float)
-        bx, by, bval, _, status, _valid = surface_edge_screen.optimise_batch(
+        bx, by, bval, _, status, _valid = fast.optimise_batch(
             flat,
             nets.shape[-1],
             _batch_weights(du.family, du.degree, dv.family, dv.degree, energy),

@@ -91,9 +91,6 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `surface_coefficients_ir`: the energy's coefficients of a large batch as vector code
   emitted from those weights (LLVM IR, compiled by llvmlite, numba's code generator; the
   `fast` extra, imported on use);
-- `surface_edge_screen`: the batch optimum's fixed-cost stage with each edge of its edge
-  certificate screened by that certificate's cheap conditions first (the same answers; for
-  the atom families, whose interior certificate declines many nets; numba, imported on use);
 - `constants`: exact numbers in ℚ(π) and ℚ(e^W) (`ConstantFraction`), signs decided exactly.
 
 The submodules are imported on use: ``from lambda_bezier.hazmat import kernels``.
@@ -150,7 +147,6 @@ __all__ = [
     "surface_certify",
     "surface_coefficients_ir",
     "surface_compiled",
-    "surface_edge_screen",
     "surface_fixed_cost",
     "surface_kernels",
     "surface_weights",

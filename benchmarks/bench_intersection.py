@@ -36,7 +36,7 @@ def bench_intersection() -> None:
     from lambda_bezier.hazmat import intersect_subdivide as sub
 
     pairs, ref_total, skipped = 0, 0.0, []
-    theirs, kept = [], []
+    theirs, kept, peer_nodes = [], [], []
     for case in cases:
         n1, n2 = nodes(case["curve1"]), nodes(case["curve2"])
         f1, f2 = np.asfortranarray(n1), np.asfortranarray(n2)
@@ -53,6 +53,7 @@ def bench_intersection() -> None:
             continue
         theirs.append(best_of(ref))
         kept.append((n1.T.copy(), n2.T.copy()))
+        peer_nodes.append((f1, f2))
         pairs += len(case["curve1_params"])
     ref_total = sum(theirs)
     per_ref = ref_total / pairs
@@ -83,6 +84,27 @@ def bench_intersection() -> None:
                 "<= 1x",
                 ours_total <= ref_total and geomean <= 1,
             )
+            if path == "numpy fallback":
+                # for scale: the peer without its compiled speed-up, the same geometric
+                # algorithm in pure Python (bezier.hazmat.geometric_intersection)
+                from bezier.hazmat import geometric_intersection
+
+                peer_python = sum(
+                    best_of(
+                        lambda f1=f1, f2=f2: geometric_intersection.all_intersections(f1, f2), 3
+                    )
+                    for f1, f2 in peer_nodes
+                )
+                record(
+                    f"intersect (numpy fallback) against the peer's own pure-Python path: the "
+                    f"same {len(kept)} cases (for scale: the issue's target is the compiled "
+                    f"peer, the row above)",
+                    ours_total,
+                    "bezier.hazmat.geometric_intersection.all_intersections",
+                    peer_python,
+                    "-",
+                    ours_total <= peer_python,
+                )
             batch = best_of(
                 lambda: lb.intersect_many(
                     [lb.BezierCurve(p) for p, _ in kept], [lb.BezierCurve(q) for _, q in kept]

@@ -22,6 +22,7 @@ import pytest
 from test_acceptance_31c import _energy_poly, _reference_minimum
 
 import lambda_bezier as lb
+from lambda_bezier import examples
 from lambda_bezier.cli import main
 
 _BOX = {"same_degree": (-2, 1), "bernstein_like": (-1, 1)}
@@ -70,6 +71,121 @@ def test_a_mixed_pair_batch_far_from_the_origin():
         one = lb.optimal_parameters(nets[k], "membrane", families)  # exact, its own path
         assert abs(r["lam_u"][k] - one["lam_u_float"]) <= 1e-12
         assert abs(r["lam_v"][k] - one["lam_v_float"]) <= 1e-12
+
+
+# ---------------------------------------------------------- closest point far from 0
+def _bernstein(degree: int, t: np.ndarray, order: int = 0) -> np.ndarray:
+    """(len(t), degree + 1): the order-th derivatives of the Bernstein polynomials, from
+    their definition (binomials and powers), independent of the package."""
+    from math import comb, factorial
+
+    out = np.zeros((len(t), degree + 1))
+    for i in range(degree + 1):
+        for k in range(degree + 1):  # B_i = Σ_k (-1)^(k-i) C(n, k) C(k, i) t^k, k >= i
+            if k < i or k < order:
+                continue
+            c = (-1) ** (k - i) * comb(degree, k) * comb(k, i)
+            out[:, i] += c * factorial(k) / factorial(k - order) * t ** (k - order)
+    return out
+
+
+def _reference_distance(net: np.ndarray, q: np.ndarray, basis=None, end: float = 1.0) -> float:
+    """min |S - q| over [0, end]², S = Σ P_ij b_i(u) b_j(v) (Bernstein unless `basis(degree,
+    t, order)` is given), in coordinates centred on q: a 121 x 121 grid, then projected Newton
+    on the gradient of |S - q|² from its best points."""
+    net = net - q
+    m, n = net.shape[0] - 1, net.shape[1] - 1
+    basis = basis or _bernstein
+
+    def partial(u: float, v: float, a: int, b: int) -> np.ndarray:
+        bu, bv = basis(m, np.array([u]), a)[0], basis(n, np.array([v]), b)[0]
+        return np.einsum("i,j,ijd->d", bu, bv, net)
+
+    t = np.linspace(0, end, 121)
+    grid = np.einsum("ui,vj,ijd->uvd", basis(m, t), basis(n, t), net)
+    dist = np.linalg.norm(grid, axis=2)
+    best = float(dist.min())
+    for flat in np.argsort(dist, axis=None)[:6]:
+        u, v = t[flat // 121], t[flat % 121]
+        for _ in range(
+            40
+        ):  # projected Newton: a variable at an end the gradient pushes out of stays
+            s, su, sv = partial(u, v, 0, 0), partial(u, v, 1, 0), partial(u, v, 0, 1)
+            suu, suv, svv = partial(u, v, 2, 0), partial(u, v, 1, 1), partial(u, v, 0, 2)
+            g = np.array([s @ su, s @ sv])
+            h = np.array(
+                [[su @ su + s @ suu, su @ sv + s @ suv], [su @ sv + s @ suv, sv @ sv + s @ svv]]
+            )
+            x = np.array([u, v])
+            free = ~(((x == 0) & (g > 0)) | ((x == end) & (g < 0)))
+            if not free.any():
+                break
+            step = np.zeros(2)
+            sub = h[np.ix_(free, free)]
+            if np.linalg.det(sub) <= 0:
+                break
+            step[free] = np.linalg.solve(sub, g[free])
+            u, v = np.clip(x - step, 0, end)
+        best = min(best, float(np.linalg.norm(partial(u, v, 0, 0))))
+    return best
+
+
+@pytest.mark.parametrize("offset", [0.0, 1e3, 1e6])
+def test_closest_point_far_from_the_origin(offset):
+    """A unit-size patch at (offset, offset, offset): the distance to a nearby query does not
+    depend on where both are. Before, at 1e6 the returned distance was 2% of the patch's
+    size above the true minimum and lower_bound 3% below it (the search's tolerance and its
+    squared distance's rounding scaled with the coordinates' magnitude, 1e6, not with the
+    net seen from q)."""
+    rng = np.random.default_rng(8)
+    net = rng.normal(size=(4, 4, 3)) + offset
+    surf = lb.SameDegreeSurface(net, 0.5, -0.5)
+    bezier = np.array(surf.to_bezier().control_net(), dtype=float)
+    for q in rng.normal(size=(3, 3)) * 2 + offset:
+        cp = surf.closest_point(q)
+        ref = _reference_distance(bezier, q)
+        assert abs(cp.distance - ref) <= 1e-9, (cp.distance, ref)
+        assert cp.lower_bound <= ref + 1e-12
+        assert ref - cp.lower_bound <= 1e-9, (cp.lower_bound, ref)
+        assert np.linalg.norm(surf.evaluate(cp.u, cp.v) - q) == pytest.approx(cp.distance, abs=1e-9)
+
+
+def _han_basis(lam: float, mu: float):
+    """Han, Ma and Huang's cubic trigonometric basis (2009) at (λ, μ) as printed, and its
+    derivatives, by SymPy (tests/han_surface_reference.py has the same formula in mpmath)."""
+    import sympy as sp
+
+    t = sp.Symbol("t")
+    s, c = sp.sin(t), sp.cos(t)
+    b = [
+        (1 - s) ** 2 * (1 - lam * s),
+        s * (1 - s) * (2 + lam - lam * s),
+        c * (1 - c) * (2 + mu - mu * c),
+        (1 - c) ** 2 * (1 - mu * c),
+    ]
+    funcs = [[sp.lambdify(t, sp.diff(f, t, k), "numpy") for f in b] for k in range(3)]
+
+    def basis(degree: int, ts: np.ndarray, order: int = 0) -> np.ndarray:
+        assert degree == 3
+        return np.stack([np.broadcast_to(f(ts), ts.shape) for f in funcs[order]], axis=1)
+
+    return basis
+
+
+@pytest.mark.parametrize("offset", [0.0, 1e6])
+def test_trigonometric_closest_point_far_from_the_origin(offset):
+    """The same through the rational form of han_trig_cubic (λ = μ in each direction: the
+    same basis both ways). Before, at 1e6: 0.9% of the patch's size above the minimum."""
+    trig = lb.load_family(examples.path("han_trig_cubic.toml"))
+    rng = np.random.default_rng(8)
+    net = rng.normal(size=(4, 4, 3)) + offset
+    surf = trig.surface(net, params_u={"lam": 0.5, "mu": 0.5}, params_v={"lam": 0.5, "mu": 0.5})
+    basis = _han_basis(0.5, 0.5)
+    for q in rng.normal(size=(2, 3)) * 2 + offset:
+        cp = surf.closest_point(q)
+        ref = _reference_distance(net, q, basis, np.pi / 2)
+        assert abs(cp.distance - ref) <= 1e-9, (cp.distance, ref)
+        assert ref - cp.lower_bound <= 1e-9, (cp.lower_bound, ref)
 
 
 # ------------------------------------------------------------------ verify: missing keys

@@ -510,19 +510,20 @@ class AtomSurface(Surface):
 
     def _closest(self, q: object, tol: float) -> SurfaceClosestPoint:
         point = val.as_point(q, self.dimension, "q")
-        rat = self.to_rational_bezier()
-        h = rat.homogeneous.net
+        h = self.to_rational_bezier().homogeneous.net
         w = h[:, :, -1]
-        size = float(np.abs(h[:, :, :-1] / w[:, :, None]).max()) + float(np.abs(point).max())
-        size = size or 1.0
+        # in coordinates centred on q, as for polynomial surfaces (surfaces.Surface._closest):
+        # the tolerance and the rounding floor scale with the net seen from q
+        moved = h[:, :, :-1] - point * w[:, :, None]
+        size = float(np.abs(moved / w[:, :, None]).max()) or 1.0
         num = sum(
-            ker.bernstein_product(h[:, :, c] - point[c] * w, h[:, :, c] - point[c] * w)
-            for c in range(self.dimension)
+            ker.bernstein_product(moved[:, :, c], moved[:, :, c]) for c in range(self.dimension)
         )
         den = ker.bernstein_product(w, w)
+        rat = RationalBezierSurface(BezierSurface(np.concatenate([moved, w[:, :, None]], axis=2)))
 
         def value(s: np.ndarray, t: np.ndarray) -> np.ndarray:
-            diff = rat.evaluate(s, t) - point
+            diff = rat.evaluate(s, t)
             out: np.ndarray = (diff * diff).sum(axis=1)
             return out
 

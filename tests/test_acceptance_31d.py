@@ -19,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import ROOT
 from test_acceptance_31c import _energy_poly, _reference_minimum
 
 import lambda_bezier as lb
@@ -150,6 +151,19 @@ def test_closest_point_far_from_the_origin(offset):
         assert np.linalg.norm(surf.evaluate(cp.u, cp.v) - q) == pytest.approx(cp.distance, abs=1e-9)
 
 
+def _sympy_basis(b, t):
+    """basis(degree, ts, order) for _reference_distance from SymPy expressions b_i(t)."""
+    import sympy as sp
+
+    funcs = [[sp.lambdify(t, sp.diff(f, t, k), "numpy") for f in b] for k in range(3)]
+
+    def basis(degree: int, ts: np.ndarray, order: int = 0) -> np.ndarray:
+        assert degree == 3
+        return np.stack([np.broadcast_to(f(ts), ts.shape) for f in funcs[order]], axis=1)
+
+    return basis
+
+
 def _han_basis(lam: float, mu: float):
     """Han, Ma and Huang's cubic trigonometric basis (2009) at (λ, μ) as printed, and its
     derivatives, by SymPy (tests/han_surface_reference.py has the same formula in mpmath)."""
@@ -163,13 +177,33 @@ def _han_basis(lam: float, mu: float):
         c * (1 - c) * (2 + mu - mu * c),
         (1 - c) ** 2 * (1 - mu * c),
     ]
-    funcs = [[sp.lambdify(t, sp.diff(f, t, k), "numpy") for f in b] for k in range(3)]
+    return _sympy_basis(b, t)
 
-    def basis(degree: int, ts: np.ndarray, order: int = 0) -> np.ndarray:
-        assert degree == 3
-        return np.stack([np.broadcast_to(f(ts), ts.shape) for f in funcs[order]], axis=1)
 
-    return basis
+def _at_cubic_basis(lam: float):
+    """tests/data/families/at_cubic.toml's four functions, typed from the file, by SymPy."""
+    import sympy as sp
+
+    t = sp.Symbol("t")
+    s, c = sp.sin(t), sp.cos(t)
+    b = [1 - s, (s + c - 1) / 2 + lam * (t - s), (s + c - 1) / 2 - lam * (t - s), 1 - c]
+    return _sympy_basis(b, t)
+
+
+@pytest.mark.parametrize("offset", [0.0, 1e6])
+def test_mixed_family_closest_point_far_from_the_origin(offset):
+    """at_cubic ({1, t, cos t, sin t}: no rational form, the branch and bound over atoms).
+    Before, at 1e6: 37 s a query, to a lower bound 80% of the patch's size below."""
+    at = lb.load_family(ROOT / "tests" / "data" / "families" / "at_cubic.toml")
+    rng = np.random.default_rng(8)
+    net = rng.normal(size=(4, 4, 3)) + offset
+    surf = at.surface(net, 0.5, 0.5)
+    basis = _at_cubic_basis(0.5)
+    for q in rng.normal(size=(2, 3)) * 2 + offset:
+        cp = surf.closest_point(q)
+        ref = _reference_distance(net, q, basis, np.pi / 2)
+        assert abs(cp.distance - ref) <= 1e-9, (cp.distance, ref)
+        assert ref - cp.lower_bound <= 1e-9, (cp.lower_bound, ref)
 
 
 @pytest.mark.parametrize("offset", [0.0, 1e6])

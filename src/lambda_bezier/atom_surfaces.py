@@ -581,6 +581,29 @@ class AtomSurface(Surface):
                 one_u and one_v,
             )
             self.__dict__["_surface_bounds"] = cached
+            self.__dict__["_surface_scale"] = su * sv
+        return cached
+
+    def _closest_data(self) -> tuple[asb.SurfaceData, np.ndarray]:
+        """The surface moved by the centre c of its net's box, and c, where the bases sum to
+        one exactly (S − c = Σ (P_ij − c) b_i b_j): the distance search's tolerance and
+        rounding then scale with the net seen from the queries near it, not with how far both
+        are from the origin (at 1e6 the search ran 37 s to a gap of 80% of the patch's size,
+        tests/test_acceptance_31d.py)."""
+        cached: tuple[asb.SurfaceData, np.ndarray] | None = self.__dict__.get("_closest_data_")
+        if cached is None:
+            data = self._surface_data()
+            origin = np.zeros(self.dimension)
+            if data.unity:
+                net = np.asarray(self.net, dtype=float)
+                flat = net.reshape(-1, net.shape[-1])
+                origin = flat.min(axis=0) / 2 + flat.max(axis=0) / 2
+                moved = (net - origin) * self.__dict__["_surface_scale"]
+                data = asb.SurfaceData(
+                    data.basis_u, data.basis_v, data.domain_u, data.domain_v, moved, data.unity
+                )
+            cached = (data, origin)
+            self.__dict__["_closest_data_"] = cached
         return cached
 
     def _certified_box(self, tol: float) -> tuple[np.ndarray, np.ndarray]:
@@ -592,7 +615,16 @@ class AtomSurface(Surface):
         if not points.size:
             empty = np.empty(0)
             return SurfaceClosestPoint(empty, empty, np.empty((0, self.dimension)), empty, empty)
-        tu, tv, _, lower = asb.closest(self._surface_data(), points, tol)
+        data, origin = self._closest_data()
+        moved = points - origin
+        plain = self._surface_data()
+        # moved only where that shrinks every query's size (the search's tolerance is tol
+        # times it): a net far from the origin, never a net about it
+        if not np.all(
+            data.size() + np.abs(moved).max(axis=1) <= plain.size() + np.abs(points).max(axis=1)
+        ):
+            data, moved = plain, points
+        tu, tv, _, lower = asb.closest(data, moved, tol)
         (ua, ub), (va, vb) = self.domain_u, self.domain_v
         mid_u, mid_v = (_centre(p) for p in self._probes)
         u, v = np.clip(tu + mid_u, ua, ub), np.clip(tv + mid_v, va, vb)

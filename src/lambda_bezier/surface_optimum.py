@@ -118,7 +118,8 @@ def _centred(nets: np.ndarray, mats: SurfaceEnergyMatrices) -> np.ndarray:
     rounding is now relative to the net's own extent."""
     if not _depends_on_differences(mats):
         return nets
-    return nets - nets[:, :1, :1, :]
+    moved: np.ndarray = nets - nets[:, :1, :1, :]
+    return moved
 
 
 @cache

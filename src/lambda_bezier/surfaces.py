@@ -524,9 +524,10 @@ class Surface:
         """The global nearest point of the surface (over the unit square) to q, certified: the
         squared distance's Bézier net bounds it from below on every patch of a branch and
         bound, which stops when the best attained distance is within `tol` times the net's
-        size (seen from q: the largest coordinate of P_ij − q) of the bound (``lower_bound``). Within about 1e-7 of the net's size from the
-        surface, float rounding of the squared distance limits that gap to about
-        sqrt(256 eps) times the size; ``lower_bound`` always says what was certified.
+        size (seen from q: the largest coordinate of P_ij − q) of the bound
+        (``lower_bound``). Within about 1e-7 of the net's size from the surface, float
+        rounding of the squared distance limits that gap to about sqrt(256 eps) times the
+        size; ``lower_bound`` always says what was certified.
         q is one point (d,) or a batch (k, d) (then every field is an array over the batch)."""
         from ._surface_results import SurfaceClosestPoint
 

@@ -74,6 +74,65 @@ def test_a_mixed_pair_batch_far_from_the_origin():
         assert abs(r["lam_v"][k] - one["lam_v_float"]) <= 1e-12
 
 
+# ------------------------------------------------- exact optimum: curves of critical points
+_ZERO2, _ZERO3 = [(0, 0)] * 4, [(0, 0, 0)] * 4
+_CURVE_NETS = [
+    ([[(0,)] * 4, [(0,), (0,), (2,), (0,)], [(0,)] * 4, [(0,)] * 4], "thin_plate"),
+    ([_ZERO2, [(1, 0), (0, 0), (0, 0), (0, 1)], [(2, 0), (0, 0), (0, 0), (0, 1)], _ZERO2],
+     "membrane"),
+    ([_ZERO3, [(0, 0, 0), (0, 1, 1), (0, 0, 0), (1, 1, 0)],
+      [(0, 1, 0), (0, 0, 0), (0, 1, 0), (0, 0, 0)], _ZERO3], "membrane"),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize("case", range(len(_CURVE_NETS)))
+def test_an_exact_optimum_where_the_critical_points_form_a_curve(case):
+    """same_degree nets of zeros and a few small integers, d = 1, 2, 3: E_x and E_y share a
+    factor. Before: ValueError "the energy's critical points form a curve ... cannot isolate
+    them" (about 1% of 3,000 small sparse nets). The minimum over the box is the independent
+    one (the definitions' energy, minimised by mpmath), attained exactly at the answer."""
+    net, kind = _CURVE_NETS[case]
+    r = lb.optimal_parameters(net, kind, "same_degree")
+    poly = _energy_poly("same_degree", net, kind)
+    best, _, _ = _reference_minimum(poly, -2, 1)
+    x, y = r["lam_u"], r["lam_v"]
+    assert isinstance(x, F) and isinstance(y, F)
+    assert r["energy"] == sum((c * x**a * y**b for (a, b), c in poly.items()), F(0))
+    assert float(r["energy"]) <= float(best) + 1e-12
+
+
+def _poly(expr: str) -> dict[tuple[int, int], F]:
+    """{(a, b): coefficient of x^a y^b} of a polynomial in x, y, expanded by SymPy."""
+    import sympy as sp
+
+    x, y = sp.symbols("x y")
+    p = sp.Poly(sp.expand(sp.sympify(expr)), x, y)
+    return {k: F(int(c.p), int(c.q)) for k, c in zip(p.monoms(), p.coeffs(), strict=True)}
+
+
+@pytest.mark.parametrize(
+    ("expr", "minimum"),
+    [
+        # critical line y = 1/4 (E = 1 there) and q(x) = x² - 1/4 < 0 at x = 0: the least
+        # value is at the far edge, E(0, -1) = 1 - (25/16)(1/4)
+        ("(y - 1/4)**2 * (x**2 - 1/4) + 1", F(39, 64)),
+        # critical curve x y = 1/4, where E = 0, its least value; (0, 0) an isolated saddle
+        ("(x*y - 1/4)**2", F(0)),
+        # critical line x - y = -1/2, where E = -1/4
+        ("(x - y)**2 + (x - y)", F(-1, 4)),
+    ],
+)
+def test_the_minimum_of_a_polynomial_with_a_curve_of_critical_points(expr, minimum):
+    """minimise_polynomial (the exact optimum's engine) on biquadratics whose partials share
+    a factor, over [-1, 1]²: the least value, worked out by hand, exactly."""
+    from lambda_bezier.surface_energies import minimise_polynomial
+
+    e = _poly(expr)
+    x, y, _ = minimise_polynomial(e, (F(-1), F(1)), (F(-1), F(1)))
+    assert isinstance(x, F) and isinstance(y, F)
+    assert sum((c * x**a * y**b for (a, b), c in e.items()), F(0)) == minimum
+
+
 # ---------------------------------------------------------- closest point far from 0
 def _bernstein(degree: int, t: np.ndarray, order: int = 0) -> np.ndarray:
     """(len(t), degree + 1): the order-th derivatives of the Bernstein polynomials, from

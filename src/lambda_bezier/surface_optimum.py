@@ -132,6 +132,7 @@ def _centred(nets: np.ndarray, mats: SurfaceEnergyMatrices) -> np.ndarray:
     far = size > 4 * reach
     if not far.any():
         return nets
+    check_net_values(nets)  # the limits hold for the nets as given, moved or not
     moved: np.ndarray = nets - np.where(far[:, None], first, 0.0)[:, None, None, :]
     return moved
 

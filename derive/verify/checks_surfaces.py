@@ -25,6 +25,7 @@ import sympy as sp
 
 from ..grammar import SYMBOLS
 from .checks_core import Outcome, checker, derive_module
+from .checks_elementary import RecordError
 from .checks_examples import _frac
 from .claim_families import FAMILIES, SEVERAL_FAMILIES
 from .context import Context
@@ -75,21 +76,44 @@ def _mismatch_or_match(diffs: list[str], checked: list[str]) -> Outcome:
     return Outcome("mismatch" if diffs else "match", diffs, checked)
 
 
-def _guard(fn):
-    """A record outside what the derivation covers is a mismatch with the reason, not a crash."""
+# What each key a claim cannot do without holds: a record leaving one out is malformed (the
+# verdict "error", naming the key, as checks_surfaces_several does), never a bare KeyError.
+_KEYS = {
+    "degrees": "the degrees [m, n]",
+    "side": 'the side ("u=0", "u=1", "v=0" or "v=1")',
+    "line": 'the row or column of the net ("row 0", "column n", ...)',
+    "corners": "the corners [[u, v, i, j], ...]",
+    "continuity": "the continuity (C1, G1 or C2)",
+    "weights": "the printed weights [{row, source, k, weight}, ...]",
+    "energy": 'the energy ("membrane" or "thin_plate")',
+    "term": "the term [a, b] of λ_u^a λ_v^b",
+    "scale": "the printed scale",
+    "matrix": "the printed upper-triangular integer matrix",
+}
 
-    def run(record: dict, ctx: Context) -> Outcome:
-        try:
-            return fn(record, ctx)
-        except ValueError as exc:
-            return Outcome("mismatch", [str(exc)])
 
-    run.__doc__ = fn.__doc__
-    return run
+def _guard(*required: str):
+    """A record outside what the derivation covers is a mismatch with the reason, not a crash;
+    one without a `required` key is malformed (a RecordError naming the key)."""
+
+    def wrap(fn):
+        def run(record: dict, ctx: Context) -> Outcome:
+            for key in required:
+                if key not in record:
+                    raise RecordError(f"key {key} is required: {_KEYS[key]}")
+            try:
+                return fn(record, ctx)
+            except ValueError as exc:
+                return Outcome("mismatch", [str(exc)])
+
+        run.__doc__ = fn.__doc__
+        return run
+
+    return wrap
 
 
 @checker("surface_basis", requires=("surface_energy",), fits=_one_parameter)
-@_guard
+@_guard()
 def check_surface_basis(record: dict, ctx: Context) -> Outcome:
     """Printed values of the tensor-product basis at a point; its partition of unity (at the
     record's `degrees`, or at every degree pair derive emits when it gives none)."""
@@ -142,7 +166,7 @@ def _line(text: str, m: int, n: int) -> tuple[str, int]:
 
 
 @checker("surface_boundary", requires=("surface_energy",), fits=_one_parameter)
-@_guard
+@_guard("degrees", "side", "line")
 def check_surface_boundary(record: dict, ctx: Context) -> Outcome:
     """On a side of the square the surface is the curve of one row (or column) of the net."""
     (fu, fv), m, n, basis = _basis(record, ctx)
@@ -179,7 +203,7 @@ def _curve(family: str, degree: int, index: int, var: str) -> flint.fmpq_mpoly:
 
 
 @checker("surface_corners", requires=("surface_energy",), fits=_one_parameter)
-@_guard
+@_guard("degrees", "corners")
 def check_surface_corners(record: dict, ctx: Context) -> Outcome:
     """S(u, v) = P_ij at the listed corners, for every λ_u, λ_v."""
     (fu, fv), m, n, basis = _basis(record, ctx)
@@ -195,7 +219,7 @@ def check_surface_corners(record: dict, ctx: Context) -> Outcome:
 
 
 @checker("surface_continuity", requires=("surface_joins",), fits=_one_parameter)
-@_guard
+@_guard("continuity", "weights")
 def check_surface_continuity(record: dict, ctx: Context) -> Outcome:
     """Printed weights of patch 2's rows next to the boundary, against the derived ones: in
     closed form in the degrees n, m where both families have closed end forms, else at every
@@ -267,7 +291,7 @@ def _continuity_per_degree(
 
 
 @checker("surface_energy_matrix", requires=("surface_energy",), fits=_one_parameter)
-@_guard
+@_guard("degrees", "energy", "term", "scale", "matrix")
 def check_surface_energy_matrix(record: dict, ctx: Context) -> Outcome:
     """A printed coefficient matrix (scale · upper-triangular integers) of a surface energy."""
     fams = _families(record, ctx)

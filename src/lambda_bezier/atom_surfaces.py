@@ -510,19 +510,20 @@ class AtomSurface(Surface):
 
     def _closest(self, q: object, tol: float) -> SurfaceClosestPoint:
         point = val.as_point(q, self.dimension, "q")
-        rat = self.to_rational_bezier()
-        h = rat.homogeneous.net
+        h = self.to_rational_bezier().homogeneous.net
         w = h[:, :, -1]
-        size = float(np.abs(h[:, :, :-1] / w[:, :, None]).max()) + float(np.abs(point).max())
-        size = size or 1.0
+        # in coordinates centred on q, as for polynomial surfaces (surfaces.Surface._closest):
+        # the tolerance and the rounding floor scale with the net seen from q
+        moved = h[:, :, :-1] - point * w[:, :, None]
+        size = float(np.abs(moved / w[:, :, None]).max()) or 1.0
         num = sum(
-            ker.bernstein_product(h[:, :, c] - point[c] * w, h[:, :, c] - point[c] * w)
-            for c in range(self.dimension)
+            ker.bernstein_product(moved[:, :, c], moved[:, :, c]) for c in range(self.dimension)
         )
         den = ker.bernstein_product(w, w)
+        rat = RationalBezierSurface(BezierSurface(np.concatenate([moved, w[:, :, None]], axis=2)))
 
         def value(s: np.ndarray, t: np.ndarray) -> np.ndarray:
-            diff = rat.evaluate(s, t) - point
+            diff = rat.evaluate(s, t)
             out: np.ndarray = (diff * diff).sum(axis=1)
             return out
 
@@ -580,6 +581,29 @@ class AtomSurface(Surface):
                 one_u and one_v,
             )
             self.__dict__["_surface_bounds"] = cached
+            self.__dict__["_surface_scale"] = su * sv
+        return cached
+
+    def _closest_data(self) -> tuple[asb.SurfaceData, np.ndarray]:
+        """The surface moved by the centre c of its net's box, and c, where the bases sum to
+        one exactly (S − c = Σ (P_ij − c) b_i b_j): the distance search's tolerance and
+        rounding then scale with the net seen from the queries near it, not with how far both
+        are from the origin (at 1e6 the search ran 37 s to a gap of 80% of the patch's size,
+        tests/test_acceptance_31d.py)."""
+        cached: tuple[asb.SurfaceData, np.ndarray] | None = self.__dict__.get("_closest_data_")
+        if cached is None:
+            data = self._surface_data()
+            origin = np.zeros(self.dimension)
+            if data.unity:
+                net = np.asarray(self.net, dtype=float)
+                flat = net.reshape(-1, net.shape[-1])
+                origin = flat.min(axis=0) / 2 + flat.max(axis=0) / 2
+                moved = (net - origin) * self.__dict__["_surface_scale"]
+                data = asb.SurfaceData(
+                    data.basis_u, data.basis_v, data.domain_u, data.domain_v, moved, data.unity
+                )
+            cached = (data, origin)
+            self.__dict__["_closest_data_"] = cached
         return cached
 
     def _certified_box(self, tol: float) -> tuple[np.ndarray, np.ndarray]:
@@ -591,7 +615,16 @@ class AtomSurface(Surface):
         if not points.size:
             empty = np.empty(0)
             return SurfaceClosestPoint(empty, empty, np.empty((0, self.dimension)), empty, empty)
-        tu, tv, _, lower = asb.closest(self._surface_data(), points, tol)
+        data, origin = self._closest_data()
+        moved = points - origin
+        plain = self._surface_data()
+        # moved only where that shrinks every query's size (the search's tolerance is tol
+        # times it): a net far from the origin, never a net about it
+        if not np.all(
+            data.size() + np.abs(moved).max(axis=1) <= plain.size() + np.abs(points).max(axis=1)
+        ):
+            data, moved = plain, points
+        tu, tv, _, lower = asb.closest(data, moved, tol)
         (ua, ub), (va, vb) = self.domain_u, self.domain_v
         mid_u, mid_v = (_centre(p) for p in self._probes)
         u, v = np.clip(tu + mid_u, ua, ub), np.clip(tv + mid_v, va, vb)

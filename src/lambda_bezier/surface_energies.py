@@ -513,17 +513,58 @@ def minimise_polynomial(
     if fx and fy:
         ry = xp.resultant(fx, fy, 0)
         rx = xp.resultant(fx, fy, 1)
-        if not ry or not rx:
-            raise ValueError(
-                "the energy's critical points form a curve for this net (the derivatives share "
-                "a factor); optimal_parameters cannot isolate them"
-            )
-        ys, xs = _roots(ry, ylo, yhi), _roots(rx, xlo, xhi)
-        for xr in xs:
-            for yr in ys:
-                if _pair(fx, fy, rx, ry, xr, yr) is not None:
-                    cands.append((xr, yr, rx, ry, "interior"))
+        systems = [(fx, fy, rx, ry)] if ry and rx else _isolated_parts(e, fx, fy)
+        for gx, gy, rx, ry in systems:
+            ys, xs = _roots(ry, ylo, yhi), _roots(rx, xlo, xhi)
+            for xr in xs:
+                for yr in ys:
+                    if _pair(gx, gy, rx, ry, xr, yr) is not None:
+                        cands.append((xr, yr, rx, ry, "interior"))
     return _least(e, cands)
+
+
+def _isolated_parts(
+    e: xp.Bivariate, fx: xp.Bivariate, fy: xp.Bivariate
+) -> list[tuple[xp.Bivariate, xp.Bivariate, list[Fraction], list[Fraction]]]:
+    """Where E_x and E_y share a factor, the critical points form curves as well as isolated
+    points (a net zero but for one inner point does it). E is constant along a curve of
+    critical points, and for E of degree <= 2 in x every such curve in the box reaches its
+    boundary: E_x = c(y)·p(x, y) with p primitive and of degree <= 1 in x, so a common factor
+    is p (whose zeros are a graph x(y)) or a factor h(y) of c (lines y = y0). There both
+    partials vanish, so the corners and the edges' critical points, which are candidates
+    already, attain every value the curves take. What remains is the isolated critical
+    points: the common zeros of p and E_y when p does not divide E_y, and of c/h and E_y.
+    Returns those systems (f, g, res_y(f, g), res_x(f, g)), each with nonzero resultants."""
+    if max(a for a, _ in e) > 2:
+        raise ValueError(
+            "the energy's critical points form a curve for this net (the derivatives share "
+            "a factor); optimal_parameters cannot isolate them"
+        )
+
+    def column(f: xp.Bivariate, a: int) -> list[Fraction]:  # the coefficient of x^a, in y
+        top = max((j for _, j in f), default=0)
+        return xp.trim([f.get((a, j), Fraction(0)) for j in range(top + 1)])
+
+    def bivariate(polys: dict[int, list[Fraction]]) -> xp.Bivariate:
+        return {(a, j): c for a, p in polys.items() for j, c in enumerate(p) if c}
+
+    alpha, beta = column(fx, 1), column(fx, 0)
+    content = xp.gcd(alpha, beta) if alpha else beta
+    systems = []
+    if alpha:  # p = E_x / c, of degree 1 in x
+        p = bivariate({1: xp._divide(alpha, content), 0: xp._divide(beta, content)})
+        ry = xp.resultant(p, fy, 0)
+        if ry:  # p does not divide E_y: isolated common zeros only
+            systems.append((p, fy, xp.resultant(p, fy, 1), ry))
+    fy_content: list[Fraction] = []
+    for a in range(1 + max(a for a, _ in fy)):
+        fy_content = xp.gcd(fy_content, column(fy, a)) if fy_content else column(fy, a)
+    lines = xp.gcd(content, fy_content) if fy_content else content
+    rest = xp._divide(content, lines) if len(lines) > 1 else content
+    if len(rest) > 1:  # lines y = y0 of E_x's content on which E_y is not identically 0
+        c = bivariate({0: rest})
+        systems.append((c, fy, xp.resultant(c, fy, 1), rest))
+    return [sys_ for sys_ in systems if sys_[2] and sys_[3]]
 
 
 def _pair(

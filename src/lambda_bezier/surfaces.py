@@ -524,9 +524,10 @@ class Surface:
         """The global nearest point of the surface (over the unit square) to q, certified: the
         squared distance's Bézier net bounds it from below on every patch of a branch and
         bound, which stops when the best attained distance is within `tol` times the net's
-        size of the bound (``lower_bound``). Within about 1e-7 of the net's size from the
-        surface, float rounding of the squared distance limits that gap to about
-        sqrt(256 eps) times the size; ``lower_bound`` always says what was certified.
+        size (seen from q: the largest coordinate of P_ij − q) of the bound
+        (``lower_bound``). Within about 1e-7 of the net's size from the surface, float
+        rounding of the squared distance limits that gap to about sqrt(256 eps) times the
+        size; ``lower_bound`` always says what was certified.
         q is one point (d,) or a batch (k, d) (then every field is an array over the batch)."""
         from ._surface_results import SurfaceClosestPoint
 
@@ -547,8 +548,13 @@ class Surface:
         from ._surface_results import SurfaceClosestPoint
 
         point = val.as_point(q, self.dimension, "q")
+        # the search works in coordinates centred on q: its tolerance, the rounding floor of
+        # the squared distance and the values it attains then scale with the net seen from q,
+        # not with how far both are from the origin (a unit patch at 1e6 came back 2% of its
+        # size off, tests/test_acceptance_31d.py)
         net = self._bezier_net - point
-        size = float(np.abs(self._bezier_net).max()) + float(np.abs(point).max()) or 1.0
+        size = float(np.abs(net).max()) or 1.0
+        shifted = ker.centred_coefficients(net)
         f_net = sum(
             ker.bernstein_product(net[:, :, c], net[:, :, c]) for c in range(self.dimension)
         )
@@ -561,7 +567,7 @@ class Surface:
         )
 
         def value(u: np.ndarray, v: np.ndarray) -> np.ndarray:
-            diff = ker.evaluate_points(self._coefficients, u, v) - point
+            diff = ker.evaluate_points(shifted, u, v)
             out: np.ndarray = (diff * diff).sum(axis=1)
             return out
 

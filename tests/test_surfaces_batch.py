@@ -151,3 +151,20 @@ def test_grid_kernel_against_exact_sums(path, shape):
                 size = float(sum(abs(t) for t in terms))
                 err = abs(Fraction(got[a, b, c]) - sum(terms))
                 assert err <= 4 * (big_m + big_n) * 2.0**-52 * size, (a, b, c)
+
+
+def test_far_from_origin_compiled_matches_numpy():
+    """The compiled corner pass that picks the nets to move to the origin (surface_optimum
+    ._centred) picks the same nets as its numpy column-by-column version."""
+    pytest.importorskip("numba")
+    from lambda_bezier import surface_optimum as so
+    from lambda_bezier.hazmat import surface_batch_compiled as sbc
+
+    rng = np.random.default_rng(7)
+    nets = rng.normal(size=(500, 4, 5, 2)) * 10.0 ** rng.integers(-3, 4, (500, 1, 1, 1))
+    nets += rng.normal(size=(500, 1, 1, 2)) * 10.0 ** rng.integers(-2, 7, (500, 1, 1, 1))
+    mats = so._batch_setup(*so._as_family_pair("same_degree"), (3, 4), "thin_plate")[0]
+    assert so._depends_on_differences(mats)
+    np.testing.assert_array_equal(so._centred(nets, mats, sbc), so._centred(nets, mats, None))
+    far = sbc.far_from_origin(nets, 4.0)
+    assert 50 < far.sum() < 450

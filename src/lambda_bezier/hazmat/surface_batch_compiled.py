@@ -60,6 +60,27 @@ _JIT: dict[str, Any] = {
 CHUNK = 64  # nets per chunk: the transposed chunk (s·d x CHUNK floats) stays in L1
 
 
+@numba.njit(cache=True, error_model="numpy")
+def far_from_origin(nets: np.ndarray, ratio: float) -> np.ndarray:
+    """For (k, m+1, n+1, d) nets: whether each net's first point is more than `ratio` times as
+    far from the origin (max norm) as the farthest of its other corners is from it (NaN is
+    not screened here: the caller's checks refuse it). One pass over the corners
+    (numpy's column-by-column version took 2.6 read passes of a bicubic batch)."""
+    k, m1, n1, d = nets.shape
+    out = np.zeros(k, np.bool_)
+    for i in range(k):
+        size = 0.0
+        reach = 0.0
+        for c in range(d):
+            f = nets[i, 0, 0, c]
+            size = max(size, abs(f))
+            reach = max(reach, abs(nets[i, 0, n1 - 1, c] - f))
+            reach = max(reach, abs(nets[i, m1 - 1, 0, c] - f))
+            reach = max(reach, abs(nets[i, m1 - 1, n1 - 1, c] - f))
+        out[i] = size > ratio * reach
+    return out
+
+
 @numba.njit(inline="always", error_model="numpy")
 def _select(c: bool, a: float, b: float) -> float:
     return a if c else b

@@ -9,11 +9,10 @@ from __future__ import annotations
 from fractions import Fraction as F
 
 import pytest
+from test_self_crossings_exact import algebra, assert_exactly, crossing, folded, loop
 
 import lambda_bezier as lb
 from lambda_bezier.hazmat import intersect_self_exact as se
-
-from test_self_crossings_exact import algebra, assert_exactly, crossing, folded, loop
 
 __all__ = ["algebra"]  # the fixture, imported for the tests below
 

@@ -27,7 +27,11 @@ def moved(u: F, c: F) -> F:
     return c * u / (1 - u + c * u)
 
 
-@pytest.mark.parametrize(("r", "c"), [(F(1, 10**7), F(1)), (F(1, 10**9), F(2))])
+@pytest.mark.parametrize(
+    ("r", "c", "algebra"),
+    [(F(1, 10**7), F(1), "flint"), (F(1, 10**9), F(2), "fractions")],
+    indirect=["algebra"],
+)
 def test_small_loops_of_rational_curves(algebra, r, c):
     """Main refused the first as a cusp (ValueError) and gave the second as one "tangent" hit
     with s and t 7e-9 apart; the float search takes 1-3 s on these (most of the tests' time)."""
@@ -36,7 +40,9 @@ def test_small_loops_of_rational_curves(algebra, r, c):
     assert_exactly(curve.self_intersections(), [(moved(s, c), moved(t, c), "transversal")])
 
 
-@pytest.mark.parametrize("c", [F(1), F(3, 2)])
+@pytest.mark.parametrize(
+    ("c", "algebra"), [(F(1), "fractions"), (F(3, 2), "flint")], indirect=["algebra"]
+)
 def test_a_rational_cusp_is_no_crossing(algebra, c):
     """Main refused it at c = 1 (C' vanishes: "such curves are not supported") and gave none at
     c = 3/2; decided exactly: none."""

@@ -208,9 +208,7 @@ def test_a_lambda_curve_with_a_tiny_loop():
 
 
 # ------------------------------------------------------------------------ against SymPy
-def sympy_self_crossings(rows) -> list[tuple[sp.Expr, sp.Expr]]:
-    """The pairs s < t in [0, 1] with p(s) = p(t), from SymPy alone: the divided differences by
-    exact division, their resultant's real roots, each pair checked at 60 digits."""
+def _sympy_divided(rows) -> list[sp.Expr]:
     n = len(rows) - 1
     g = []
     for axis in (0, 1):
@@ -222,6 +220,13 @@ def sympy_self_crossings(rows) -> list[tuple[sp.Expr, sp.Expr]]:
             )
 
         g.append(sp.cancel((form(S) - form(T)) / (S - T)))
+    return g
+
+
+def sympy_self_crossings(rows) -> list[tuple[sp.Expr, sp.Expr]]:
+    """The pairs s < t in [0, 1] with p(s) = p(t), from SymPy alone: the divided differences by
+    exact division, their resultant's real roots, each pair checked at 60 digits."""
+    g = _sympy_divided(rows)
     resultant = sp.Poly(sp.resultant(g[0], g[1], T), S)
     roots = [r for r in resultant.real_roots() if 0 <= r <= 1]
     roots = sorted(set(roots), key=lambda r: float(r))
@@ -289,3 +294,45 @@ def test_past_the_budget_the_float_answer_stands(monkeypatch):
     monkeypatch.setitem(se.SELF_DEGREE, ie.algebra().name, 4)
     hits = folded(F(1, 2), F(1, 2) + F(1, 10**9)).self_intersections()
     assert len(hits) == 1  # the float answer: the two crossings as one (the documented limit)
+
+
+# ------------------------------------------------------------------------ the engine itself
+def test_a_triple_point_gives_its_three_pairs(algebra):
+    """x = m(w), y = w m(w) with m = (w − a)(w − b)(w − c): p(a) = p(b) = p(c), three branches
+    through one point; the exact isolation pairs every two of them (one s over two t)."""
+    a, b, c = F(-1, 2), F(1, 10), F(3, 5)
+    m = [-a * b * c, a * b + a * c + b * c, -(a + b + c), F(1)]
+    curve = bezier_from_power(compose(m, W), compose([F(0), *m], W), ROTATIONS[1])
+    want = [((u + 1) / 2, (v + 1) / 2, False) for u, v in ((a, b), (a, c), (b, c))]
+    got = se.self_exact_answer(curve.control_points(), algebra)
+    assert got == [(float(s), float(t), flat) for s, t, flat in want]
+    assert_exactly(curve.self_intersections(), [(s, t, "transversal") for s, t, _ in want])
+
+
+LOOPED = st.tuples(*[st.integers(0, 3)] * 6).map(
+    lambda d: [(0, 0), (4 + d[0], 2 + d[1]), (-1 - d[2], 2 + d[3]), (3 + d[4], d[5] - 1)]
+)
+RANDOM = st.lists(st.tuples(st.integers(-6, 6), st.integers(-6, 6)), min_size=4, max_size=5)
+
+
+@settings(max_examples=10, derandomize=True, deadline=None)
+@given(st.one_of(LOOPED, RANDOM))
+def test_random_curves_against_sympy(points):
+    """Cubics around the README's loop (a crossing, mostly) and random small-integer cubics and
+    quartics: the exact isolation's pairs (both algebras) are SymPy's, to the rounding of the
+    2^-64 boxes."""
+    rows = [(F(x), F(y)) for x, y in points]
+    if len({r[0] for r in rows}) == 1 or len({r[1] for r in rows}) == 1:
+        return  # a coordinate constant: on a line (self_intersections answers it elsewhere)
+    try:
+        want = sympy_self_crossings(rows)
+    except sp.PolynomialError:
+        return
+    for alg in (ie.PURE, ie.FLINT) if exact_flint.available() else (ie.PURE,):
+        got = se.self_exact_answer(rows, alg)
+        if got is None:  # no finite set (the curve runs back along itself): SymPy's resultant is 0
+            assert sp.resultant(*_sympy_divided(rows), T) == 0
+            continue
+        assert len(got) == len(want), (alg.name, got, want)
+        for (s, t, _), (a, b) in zip(got, want, strict=True):
+            assert abs(s - sp.N(a, 30)) <= 2**-53 and abs(t - sp.N(b, 30)) <= 2**-53

@@ -41,6 +41,7 @@ from .geometry import (
 from .hazmat import atom_intersect as ai
 from .hazmat import coincide as co
 from .hazmat import intersect_exact as ie
+from .hazmat import intersect_self_exact as se
 from .hazmat import rational_kernels as rk
 from .hazmat.intersect import EXACT_CHECK_SINE, Intersection
 
@@ -595,9 +596,40 @@ def _monotone_pieces(curve: RationalBezierCurve) -> list[tuple[float, float, np.
 
 
 def self_intersections(curve: RationalBezierCurve) -> list[Intersection]:
+    """The float answer (_float_self_intersections), or for an exact planar curve in doubt the
+    exact one (hazmat.intersect_self_exact on X(s) W(t) − X(t) W(s) divided by s − t, within
+    its degree budget): where the float answer has a "tangent" hit or a crossing whose
+    tangents' sine is below EXACT_CHECK_SINE (near-double crossings merged), or where it
+    refuses a curve with a cusp (C' vanishing: an exact cusp is no crossing, a loop next to it
+    is one)."""
     _check_dimension(curve)
     if curve.degree < 2:
         return []
+    try:
+        hits = _float_self_intersections(curve)
+    except ValueError:
+        exact = _self_decided_exactly(curve)
+        if exact is None:
+            raise
+        return exact
+    if any(h.kind == "tangent" or _sine(curve, curve, h.s, h.t) < EXACT_CHECK_SINE for h in hits):
+        exact = _self_decided_exactly(curve)
+        if exact is not None:
+            return exact
+    return hits
+
+
+def _self_decided_exactly(curve: RationalBezierCurve) -> list[Intersection] | None:
+    rows, weights = curve._exact_points, curve._exact_weights
+    if rows is None or weights is None or curve.dimension != 2:
+        return None
+    got = se.self_decided(rows, 2, weights=weights)
+    if got is None:
+        return None
+    return [Intersection(s, t, "tangent" if flat else "transversal") for s, t, flat in got]
+
+
+def _float_self_intersections(curve: RationalBezierCurve) -> list[Intersection]:
     found = ai.self_pairs(ai.BernsteinPart(_float_rows(curve)))
     if found is not None:
         return [Intersection(f.s, f.t, f.kind) for f in found]

@@ -41,7 +41,8 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `coincide`: shared stretches of two rational curves under any parameterisation (exact by
   gcds over Q for exact rows, to rounding for floats);
 - `intersect_exact`: exact, certified isolation of planar crossings (resultants, Sturm,
-  Krawczyk in rational interval arithmetic);
+  Krawczyk in rational interval arithmetic); `intersect_self_exact` the same for a curve's
+  crossings with itself (its divided differences (p(s) − p(t)) / (s − t));
 - `exact_flint`: its costly exact steps (resultants, gcds, real-root isolation) on
   python-flint (the `exact` extra; imported on use), `exact_poly` the fallback;
 - `intersect_fold`: the self-intersections of a curve on a line that turns back along it
@@ -133,6 +134,7 @@ __all__ = [
     "intersect_locate",
     "intersect_prepared",
     "intersect_refold",
+    "intersect_self_exact",
     "intersect_subdivide",
     "kernels",
     "kernels_compiled",

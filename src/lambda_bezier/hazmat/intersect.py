@@ -40,6 +40,7 @@ from . import intersect_certify as cert
 from . import intersect_exact as _exact_iso
 from . import intersect_fold as fold
 from . import intersect_refold as refold
+from . import intersect_self_exact as _self_exact
 from . import intersect_subdivide as sub
 from .intersect_locate import (  # the point location half, and the tolerances both share
     ON_CURVE,
@@ -689,9 +690,15 @@ def self_intersections(p: Prepared) -> list[Intersection]:
         stretches = fold.folded_stretches([p.exact_row(k) for k in range(p.degree + 1)])
         return [Intersection(s, t, "coincident") for s, t in stretches]
     iso = sub.isolate(p.pts[None], None, np.array([BOX_SLACK * p.degree * p.scale]))
+    # near_diagonal: a hit or unresolved pieces dropped as a cusp, which a tiny loop (a
+    # crossing) looks like in floats; for exact input that is decided exactly below
+    near_diagonal = False
     for s, t in zip(iso.root_s.tolist(), iso.root_t.tolist(), strict=True):
         hit = _solve_from(p, p, s, t, found, isolated=True)
-        if hit is None or abs(hit.s - hit.t) < 1e-7 or _cusp_loop(p, hit):
+        if hit is not None and (abs(hit.s - hit.t) < 1e-7 or _cusp_loop(p, hit)):
+            near_diagonal = True
+            continue
+        if hit is None:
             continue
         if hit.s > hit.t:
             hit = Intersection(hit.t, hit.s, hit.kind)
@@ -699,19 +706,26 @@ def self_intersections(p: Prepared) -> list[Intersection]:
             found.append(hit)
     # unresolved pieces on the diagonal are not one-to-one even at width 2^-DEPTH: a cusp
     # (p' = 0), where p(s) - p(t) vanishes to third order, not a crossing
-    starts = [
-        (s, t) for s, t in _starts(iso.left_s0, iso.left_t0, iso.left_width) if abs(s - t) > 1e-7
-    ]
+    starts = []
+    for s, t in _starts(iso.left_s0, iso.left_t0, iso.left_width):
+        if abs(s - t) > 1e-7:
+            starts.append((s, t))
+        else:
+            near_diagonal = True
     for s, t in starts:
         hit = _solve_from(p, p, s, t, found)
-        if hit is None or abs(hit.s - hit.t) < 1e-7:
+        if hit is None:
             continue
-        if _cusp_loop(p, hit):
+        if abs(hit.s - hit.t) < 1e-7 or _cusp_loop(p, hit):
+            near_diagonal = True
             continue
         if hit.s > hit.t:
             hit = Intersection(hit.t, hit.s, hit.kind)
         if not _dedupe(found, hit):
             _add(found, hit, p, p)
+    exact = _self_decided_exactly(p, found, near_diagonal)
+    if exact is not None:
+        return exact
     if any(h.kind == "tangent" for h in found):
         # touching itself, or turning back along itself (P = Q(g), g not monotone): a shared
         # stretch is reported by its end pairs (intersect_refold), as intersect reports one
@@ -733,6 +747,29 @@ def self_intersections(p: Prepared) -> list[Intersection]:
                     out.append(h)
             return sorted(out)
     return sorted(found)
+
+
+def _self_decided_exactly(
+    p: Prepared, found: list[Intersection], near_diagonal: bool
+) -> list[Intersection] | None:
+    """The exact answer (intersect_self_exact) for an exact planar curve whose float answer
+    is in doubt: a "tangent" hit, a crossing whose tangents' sine is below EXACT_CHECK_SINE
+    (two crossings closer than the float path separates come back as one such, or as one
+    "tangent"), or a hit or unresolved pieces dropped next to the diagonal (a cusp, or a
+    loop too small for floats); None otherwise, or where the exact isolation declines."""
+    if p._given_rows is None or p.dim != 2:
+        return None
+    doubt = near_diagonal or any(
+        h.kind == "tangent"
+        or (h.kind == "transversal" and _sine(p, p, h.s, h.t) < EXACT_CHECK_SINE)
+        for h in found
+    )
+    if not doubt:
+        return None
+    got = _self_exact.self_decided(p._given_rows, p.dim)
+    if got is None:
+        return None
+    return [Intersection(s, t, "tangent" if flat else "transversal") for s, t, flat in got]
 
 
 def _prepared_rows(rows: list[list[Fraction]]) -> Prepared:

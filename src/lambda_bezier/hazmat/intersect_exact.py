@@ -232,16 +232,32 @@ def isolate(
     `weights` (p's, q's: positive Fractions), of the two rational Bézier curves, on the
     cross-multiplied system (`rational_system`). ValueError when the curves share a
     component (the resultant vanishes identically)."""
-    alg = alg or algebra()
     if weights is None:
         fx = _difference(power_coefficients(p_rows, 0), power_coefficients(q_rows, 0))
         fy = _difference(power_coefficients(p_rows, 1), power_coefficients(q_rows, 1))
     else:
         fx, fy = rational_system(p_rows, weights[0], q_rows, weights[1])
+    return isolate_system(fx, fy, narrow, alg)
+
+
+def isolate_system(
+    fx: xp.Bivariate,
+    fy: xp.Bivariate,
+    narrow: Fraction | None = None,
+    alg: Algebra | None = None,
+    symmetric: bool = False,
+) -> list[ExactCrossing]:
+    """The common zeros of fx, fy in [0, 1]², isolated and certified as `isolate` describes.
+    symmetric: fx and fy are symmetric in s and t (a curve's divided differences,
+    intersect_self_exact), so the two resultants are one polynomial and its isolating
+    intervals serve both variables; only the zeros with s < t are sought (the boxes pairing
+    the i-th root with the j-th, i < j: a box pairing a root with itself holds a zero on the
+    diagonal s = t, if any, which is not sought)."""
+    alg = alg or algebra()
     if not fx or not fy:
         raise ValueError("a coordinate of p - q vanishes identically: no finite set of crossings")
     r_s = alg.resultant(fx, fy, 1)  # t eliminated: a polynomial in s
-    r_t = alg.resultant(fx, fy, 0)
+    r_t = r_s if symmetric else alg.resultant(fx, fy, 0)
     if not r_s or not r_t:
         raise ValueError(
             "the curves share a component (their resultant vanishes identically): their "
@@ -249,11 +265,15 @@ def isolate(
         )
     f = [fx, fy]
     jac = [[xp.partial(g, 0), xp.partial(g, 1)] for g in f]
-    boxes = (_roots(r_s, alg), _roots(r_t, alg))  # isolating intervals of s, of t
+    roots_s = _roots(r_s, alg)
+    boxes = (roots_s, list(roots_s) if symmetric else _roots(r_t, alg))  # of s, of t
     halvings = ([0] * len(boxes[0]), [0] * len(boxes[1]))
-    squares = (alg.squarefree(xp.trim(r_s)), alg.squarefree(xp.trim(r_t)))
+    square_s = alg.squarefree(xp.trim(r_s))
+    squares = (square_s, square_s if symmetric else alg.squarefree(xp.trim(r_t)))
     decider = _Decider(f, jac, squares, alg)
-    pending = [(i, j) for i in range(len(boxes[0])) for j in range(len(boxes[1]))]
+    pending = [
+        (i, j) for i in range(len(boxes[0])) for j in range(len(boxes[1])) if not symmetric or i < j
+    ]
     failures: dict[tuple[int, int], int] = {}  # Krawczyk's failures on each box
     found: list[ExactCrossing] = []
     while pending:

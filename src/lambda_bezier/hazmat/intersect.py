@@ -405,15 +405,26 @@ def _decided_exactly(p: Prepared, q: Prepared, hits: list[Intersection]) -> list
     if p._given_rows is None or q._given_rows is None:  # float input: decided gives none
         return hits
     kinds = [
-        "tangent"
-        if h.kind == "transversal" and p.dim == 2 and _sine(p, q, h.s, h.t) < EXACT_CHECK_SINE
-        else h.kind
+        "tangent" if h.kind == "transversal" and p.dim == 2 and _ill_posed(p, q, h) else h.kind
         for h in hits
     ]
     got = _exact_iso.decided(p._given_rows, q._given_rows, p.dim, q.dim, kinds)
     if got is None:
         return hits
     return [Intersection(s, t, "tangent" if flat else "transversal") for s, t, flat in got]
+
+
+def _ill_posed(p: Prepared, q: Prepared, h: Intersection) -> bool:
+    """A crossing that may stand for several merged ones (_add): the tangents nearly parallel
+    (sine below EXACT_CHECK_SINE), or one curve nearly stopped there (speed below
+    EXACT_CHECK_SINE of its degree times its extent: by a near-cusp, whose tiny loop
+    crosses a line through it twice more within the merge gap, 1e-5 apart)."""
+    if _sine(p, q, h.s, h.t) < EXACT_CHECK_SINE:
+        return True
+    return any(
+        float(np.linalg.norm(c.at(x, 1))) < EXACT_CHECK_SINE * c.degree * c._span
+        for c, x in ((p, h.s), (q, h.t))
+    )
 
 
 def _compiled_pair(p: Prepared, q: Prepared) -> list[Intersection] | None:

@@ -435,7 +435,10 @@ def exact_answer(
         return None
     if not all(c.certified for c in boxes):
         return None
-    return [(float((c.s[0] + c.s[1]) / 2), float((c.t[0] + c.t[1]) / 2), c.tangent) for c in boxes]
+    # sorted as the floats (boxes with one rounded s in the order of their t), as intersect's
+    return sorted(
+        (float((c.s[0] + c.s[1]) / 2), float((c.t[0] + c.t[1]) / 2), c.tangent) for c in boxes
+    )
 
 
 def decided(

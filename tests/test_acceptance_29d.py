@@ -53,3 +53,56 @@ def test_a_line_through_the_tiny_loop_of_a_near_cusp_meets_it_three_times(k):
 
 def _mp(x: F) -> mp.mpf:
     return mp.mpf(x.numerator) / x.denominator
+
+
+# -------------------------------------------- exact space curves in one plane: decided exactly
+def _in_space(curve: lb.BezierCurve) -> lb.BezierCurve:
+    """(x, y) -> (3x/5 + 1, y + 2, 4x/5 + 3): the same curve, exactly, in a tilted plane of
+    space (an isometry onto it, so the same parameters meet)."""
+    return lb.BezierCurve(
+        [(F(3, 5) * x + 1, y + 2, F(4, 5) * x + 3) for x, y in curve.control_points()]
+    )
+
+
+@pytest.mark.parametrize("gap_exponent", [7, 9])
+def test_exact_space_curves_in_one_plane_cross_twice_close_together(gap_exponent):
+    """A graph with roots a and a + 10^-k against its axis, in a tilted plane: the planar
+    pair gives both crossings (the exact isolation), the space pair gave one "tangent" hit
+    (the exact isolation was for planar curves only)."""
+    a = F(437, 1000)
+    b = a + F(1, 10**gap_exponent)
+    # (s, 3 (s − a)(s − b)) on s in [0, 1], as a Bézier quadratic, against y = 0
+    y = [3 * a * b, 3 * a * b - F(3, 2) * (a + b), 3 * a * b - 3 * (a + b) + 3]
+    graph = lb.BezierCurve([(F(k, 2), y[k]) for k in range(3)])
+    axis = lb.BezierCurve([(F(-1, 10), 0), (F(11, 10), 0)])
+    want = [(float(r), float((r + F(1, 10)) / F(12, 10)), "transversal") for r in (a, b)]
+    assert [tuple(h) for h in graph.intersect(axis)] == want
+    assert [tuple(h) for h in _in_space(graph).intersect(_in_space(axis))] == want
+    assert lb.intersect_many([_in_space(graph)], [_in_space(axis)]) == [
+        _in_space(graph).intersect(_in_space(axis))
+    ]
+
+
+@pytest.mark.parametrize(
+    ("lift", "want"),
+    [
+        (F(1, 10**20), []),  # 1e-20 above the arch's apex: no common point
+        (F(0), [(0.5, 0.5, "tangent")]),  # touching at the apex
+        # 1e-20 below: (2s − 1)² = 10^-20, s = 1/2 ∓ 5·10^-11, both transversal
+        (F(-1, 10**20), "two"),
+    ],
+)
+def test_exact_space_curves_in_one_plane_touch_or_miss_exactly(lift, want):
+    """The arch (0,0), (1,2), (2,0) (height 4s(1 − s)) against y = 1 + lift, in a tilted plane
+    of space: as in the plane (the float answer, a "tangent" at 1e-20 above, stood in space)."""
+    arch = _in_space(lb.BezierCurve([(0, 0), (1, 2), (2, 0)]))
+    line = _in_space(lb.BezierCurve([(0, 1 + lift), (2, 1 + lift)]))
+    got = [tuple(h) for h in arch.intersect(line)]
+    if want == "two":
+        mp.mp.dps = 50
+        r = mp.sqrt(mp.mpf(10) ** -20) / 2  # 4s(1 − s) = 1 + lift <=> (2s − 1)² = −lift
+        want = [
+            (float(mp.mpf(1) / 2 + sg * r), float(mp.mpf(1) / 2 + sg * r), "transversal")
+            for sg in (-1, 1)
+        ]
+    assert got == want

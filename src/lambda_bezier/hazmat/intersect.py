@@ -405,7 +405,7 @@ def _decided_exactly(p: Prepared, q: Prepared, hits: list[Intersection]) -> list
     if p._given_rows is None or q._given_rows is None:  # float input: decided gives none
         return hits
     kinds = [
-        "tangent" if h.kind == "transversal" and p.dim == 2 and _ill_posed(p, q, h) else h.kind
+        "tangent" if h.kind == "transversal" and p.dim <= 3 and _ill_posed(p, q, h) else h.kind
         for h in hits
     ]
     got = _exact_iso.decided(p._given_rows, q._given_rows, p.dim, q.dim, kinds)

@@ -106,3 +106,22 @@ def test_exact_space_curves_in_one_plane_touch_or_miss_exactly(lift, want):
             for sg in (-1, 1)
         ]
     assert got == want
+
+
+# ------------------------------------------- exact curves whose floats are subnormal (< 2^-1022)
+@pytest.mark.parametrize("exponent", [-1060, -1040])
+def test_exact_curves_below_the_normal_floats_keep_every_digit(exponent):
+    """The issue's parabola and line, times 2^k, in Fractions: the same crossings, s = 0.5495
+    and 0.5505, exactly. Their floats are subnormal (1e-6 · 2^-1060 is 0), and the pair,
+    scaled up by a power of two, was rebuilt from those floats: no crossing at all. A point
+    on the parabola, exact, was not located either (t = 3/5)."""
+    scale = F(2) ** exponent
+    par = lb.BezierCurve(
+        [(-scale, F(121, 100) * scale), (0, F(-99, 100) * scale), (scale, F(81, 100) * scale)]
+    )
+    line = lb.BezierCurve([(-scale, scale / 10**6), (scale, scale / 10**6)])
+    want = [(0.5495, 0.5495, "transversal"), (0.5505, 0.5505, "transversal")]
+    assert [tuple(h) for h in par.intersect(line)] == want
+    assert [tuple(h) for h in lb.intersect_many([par], [line])[0]] == want
+    # y(3/5) = 4 (3/5)² − 4.4 (3/5) + 1.21 = 1/100, x(3/5) = 1/5
+    assert par.locate((scale / 5, scale / 100)) == 0.6

@@ -381,9 +381,12 @@ def locate_point(
     big = float(np.abs(point).max(initial=0.0))
     if big and math.frexp(big)[1] - shift > 64:
         return []
+    scaled_point = np.ldexp(point, -shift)
     if exact_point is not None:
         exact_point = tuple(Fraction(x) * Fraction(2) ** -shift for x in exact_point)
-    return locate_all(p.scaled(shift), np.ldexp(point, -shift), exact_point)
+        # from the exact point: its floats near 2^-1074 are subnormal (a few bits, or 0)
+        scaled_point = np.array([float(x) for x in exact_point])
+    return locate_all(p.scaled(shift), scaled_point, exact_point)
 
 
 def intersect(p: Prepared, q: Prepared) -> list[Intersection]:

@@ -10,8 +10,10 @@ from fractions import Fraction as F
 
 import mpmath as mp
 import pytest
+from conftest import family_file
 
 import lambda_bezier as lb
+from lambda_bezier import examples
 
 
 # ------------------------------------------- a line through the tiny loop of a near-cusp cubic
@@ -125,3 +127,43 @@ def test_exact_curves_below_the_normal_floats_keep_every_digit(exponent):
     assert [tuple(h) for h in lb.intersect_many([par], [line])[0]] == want
     # y(3/5) = 4 (3/5)² − 4.4 (3/5) + 1.21 = 1/100, x(3/5) = 1/5
     assert par.locate((scale / 5, scale / 100)) == 0.6
+
+
+# ------------------------------------- trigonometric, mixed, C-Bézier: meetings at the domain ends
+def _atom(name: str, points: list[tuple[int, int]]) -> object:
+    if name == "c_bezier_cubic":
+        return lb.load_family(examples.path("c_bezier_cubic.toml")).curve(points, alpha=1.0)
+    params = {"han_trig_cubic": {"lam": F(1, 2), "mu": F(1, 2)}, "at_pi_cubic": {"lam": F(1, 2)}}
+    return lb.load_family(family_file(name)).curve(points, **params[name])
+
+
+ATOMS = ["han_trig_cubic", "at_pi_cubic", "c_bezier_cubic"]
+
+
+@pytest.mark.parametrize("name", ATOMS)
+def test_two_pieces_of_a_spline_meet_at_their_join_exactly(name):
+    """P = (0,0), (1,2), (2,2), (3,0) and its image under (x, y) -> (6 − x, −y), reversed: a
+    curve of a family symmetric under reversal that starts where the first ends, with the
+    same tangent (a C1 join at (3, 0)); the first lies above y = 0, the second below. They
+    meet once, at (end of the first, start of the second), "tangent". It came back at
+    t = 1.1e-16 (trigonometric), 5.6e-17 (mixed), s = 0.9999999999999998 (C-Bézier)."""
+    pts = [(0, 0), (1, 2), (2, 2), (3, 0)]
+    first = _atom(name, pts)
+    second = _atom(name, [(6 - x, -y) for x, y in reversed(pts)])
+    lo, hi = first.domain
+    assert first.intersect(second) == [(hi, lo, "tangent")]
+    assert second.intersect(first) == [(lo, hi, "tangent")]
+
+
+@pytest.mark.parametrize("name", ["han_trig_cubic", "at_pi_cubic"])
+def test_a_curve_against_its_reversal_shares_it_end_to_end_exactly(name):
+    """The family is symmetric under reversal (λ = μ for the trigonometric one): the curve of
+    the reversed control points is the same curve run backwards, t -> lo + hi − t. The mixed
+    family's stretch ended at t = 0.9999999999999999."""
+    pts = [(0, 0), (1, 2), (3, 2), (4, -1)]
+    curve = _atom(name, pts)
+    lo, hi = curve.domain
+    assert curve.intersect(_atom(name, pts[::-1])) == [
+        (lo, hi, "coincident"),
+        (hi, lo, "coincident"),
+    ]

@@ -51,6 +51,7 @@ EXPORT_DEGREE = DEGREE
 APPROX_TOL = 1e-13  # relative to the curve's size
 MAX_PIECES = 512
 SAME = 1e-9  # parameters closer than this (relative to the domain) are one intersection
+END_ULPS = 4  # a parameter this many ulps (of the domain) from an end is at the end
 
 
 def _size(curve: AtomCurve) -> float:
@@ -346,8 +347,21 @@ def intersect(p: AtomCurve, q: Any) -> list[Intersection]:
         pp, qq = _normalised_parts(pp, qq)
         certified = ai.pairs(pp, qq)
         if certified is not None:
-            return [Intersection(f.s + ps, f.t + qs, f.kind) for f in certified]
-    return _pieces_intersect(p, q)
+            return _at_ends(p, q, [Intersection(f.s + ps, f.t + qs, f.kind) for f in certified])
+    return _at_ends(p, q, _pieces_intersect(p, q))
+
+
+def _at_ends(p: Any, q: Any, hits: list[Intersection]) -> list[Intersection]:
+    """hits with a parameter within a few ulps of its domain's end at that end exactly: the
+    search and the shift from its parameter to t round (two pieces of a spline met at their
+    join at t = 1.1e-16, a curve against its reversal at 0.9999999999999999)."""
+    (a, b), (c, d) = _dom(p), _dom(q)
+    return [h._replace(s=_snapped(h.s, a, b), t=_snapped(h.t, c, d)) for h in hits]
+
+
+def _snapped(x: float, lo: float, hi: float) -> float:
+    tol = END_ULPS * math.ulp(max(abs(lo), abs(hi), hi - lo))
+    return lo if abs(x - lo) <= tol else hi if abs(x - hi) <= tol else x
 
 
 def _pieces_intersect(p: AtomCurve, q: Any) -> list[Intersection]:
@@ -420,8 +434,9 @@ def self_intersections(curve: AtomCurve) -> list[Intersection]:
         (part,) = _normalised_parts(part)
         certified = ai.self_pairs(part)
         if certified is not None:
-            return [Intersection(f.s + shift, f.t + shift, f.kind) for f in certified]
-    return _pieces_self_intersections(curve)
+            hits = [Intersection(f.s + shift, f.t + shift, f.kind) for f in certified]
+            return _at_ends(curve, curve, hits)
+    return _at_ends(curve, curve, _pieces_self_intersections(curve))
 
 
 def _pieces_self_intersections(curve: AtomCurve) -> list[Intersection]:

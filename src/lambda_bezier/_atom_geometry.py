@@ -331,9 +331,9 @@ def _normalised_parts(*parts: Any) -> tuple[Any, ...]:
 
 
 def intersect(p: AtomCurve, q: Any) -> list[Intersection]:
-    if getattr(q, "dimension", None) != p.dimension:
-        if not isinstance(q, Curve | RationalBezierCurve) and not _is_atom(q):
-            raise TypeError(f"other must be a curve, got {type(q).__name__}")
+    if not isinstance(q, Curve | RationalBezierCurve) and not _is_atom(q):
+        raise TypeError(f"other must be a curve, got {type(q).__name__}")
+    if q.dimension != p.dimension:
         raise ValueError(f"the curves have different dimensions ({p.dimension} and {q.dimension})")
     for name, c in (("the first", p), ("the second", q)):
         pts = np.asarray(c.points if hasattr(c, "points") else c.to_bezier().points, float)

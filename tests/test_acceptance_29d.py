@@ -197,3 +197,31 @@ def test_intersect_refuses_a_composite_curve_by_name_on_every_class(name):
     for curve in (_atom(name, [(0, 0), (1, 2), (2, 2), (3, 0)]), lb.BezierCurve([(0, 1), (1, 0)])):
         with pytest.raises(TypeError, match="other must be a curve, got CompositeCurve"):
             curve.intersect(comp)
+
+
+# ------------------------------------------------------ locate where the curve turns or stops
+@pytest.mark.parametrize(
+    ("points", "point", "want"),
+    [
+        ([(0, 0), (1, 1), (0, 0)], (F(1, 2), F(1, 2)), 0.5),  # out along y = x and back
+        ([(0, 0), (1, 1), (0, 0)], (0.5, 0.5), 0.5),
+        ([(0, 0, 0), (1, 1, 1), (0, 0, 0)], (F(1, 2), F(1, 2), F(1, 2)), 0.5),
+        ([[0], [1], [0]], [F(1, 2)], 0.5),  # a curve on the real line
+        ([(0, 0), (1, 1), (0, 1), (1, 0)], (F(1, 2), F(3, 4)), 0.5),  # a cusp
+    ],
+)
+def test_locate_at_a_turning_point_or_a_cusp_is_exact(points, point, want):
+    """Where the curve's whole derivative vanishes the point is a double root of the
+    location, which Newton found to about 1e-8 only (0.49999999172697857); the exact turning
+    point (the common root of the derivative's coordinates) is the answer."""
+    assert lb.BezierCurve(points).locate(point) == want
+
+
+def test_locate_at_an_irrational_turning_point():
+    """x = y = 3s + 3s² − 4s³ turns at s = (1 + √5)/4, its tip located to the last bits."""
+    curve = lb.BezierCurve([(0, 0), (1, 1), (3, 3), (2, 2)])
+    mp.mp.dps = 50
+    m = (1 + mp.sqrt(5)) / 4
+    tip = 3 * m + 3 * m**2 - 4 * m**3
+    got = curve.locate((float(tip), float(tip)))
+    assert abs(got - m) <= 2e-16

@@ -377,7 +377,7 @@ def locate_point(
     coordinate is not on it."""
     shift = p.exponent
     if -NORMAL_EXPONENT <= shift <= NORMAL_EXPONENT:
-        return locate_all(p, point, exact_point)
+        return _at_turning_points(p, point, exact_point, locate_all(p, point, exact_point))
     big = float(np.abs(point).max(initial=0.0))
     if big and math.frexp(big)[1] - shift > 64:
         return []
@@ -386,7 +386,36 @@ def locate_point(
         exact_point = tuple(Fraction(x) * Fraction(2) ** -shift for x in exact_point)
         # from the exact point: its floats near 2^-1074 are subnormal (a few bits, or 0)
         scaled_point = np.array([float(x) for x in exact_point])
-    return locate_all(p.scaled(shift), scaled_point, exact_point)
+    p = p.scaled(shift)
+    found = locate_all(p, scaled_point, exact_point)
+    return _at_turning_points(p, scaled_point, exact_point, found)
+
+
+def _at_turning_points(
+    p: Prepared, point: np.ndarray, exact_point: tuple[Fraction, ...] | None, found: list[float]
+) -> list[float]:
+    """found, each t where the curve nearly stops moved to its exact turning point
+    (intersect_refold.turning_points) when that is no farther from the point, exactly: there
+    the point is a double root of the location, found to about 1e-8 only (the tip of a
+    curve folded back along a line: 0.4999999917 for 1/2), as _at_turning_point does for
+    the ends of a shared stretch."""
+    target = [Fraction(x) for x in (exact_point or point.tolist())]
+
+    def gap(u: float) -> Fraction:
+        nums, den = p.exact_at(u)
+        return sum(
+            ((Fraction(a, den) - b) ** 2 for a, b in zip(nums, target, strict=True)), Fraction(0)
+        )
+
+    out = []
+    for t in found:
+        if t not in (0.0, 1.0) and np.linalg.norm(p.at(t, 1)) <= 1e-6 * p.scale:
+            rows = [[Fraction(x) for x in row] for row in (p._given_rows or p.pts.tolist())]
+            for m in refold.turning_points(rows):
+                if abs(float(m) - t) < 1e-6 and gap(float(m)) <= gap(t):
+                    t = float(m)
+        out.append(t)
+    return out
 
 
 def intersect(p: Prepared, q: Prepared) -> list[Intersection]:

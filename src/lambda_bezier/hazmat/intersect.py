@@ -399,23 +399,24 @@ def _at_turning_points(
     the point is a double root of the location, found to about 1e-8 only (the tip of a
     curve folded back along a line: 0.4999999917 for 1/2), as _at_turning_point does for
     the ends of a shared stretch."""
-    target = [Fraction(x) for x in (exact_point or point.tolist())]
-
-    def gap(u: float) -> Fraction:
-        nums, den = p.exact_at(u)
-        return sum(
-            ((Fraction(a, den) - b) ** 2 for a, b in zip(nums, target, strict=True)), Fraction(0)
-        )
-
     out = []
     for t in found:
         if t not in (0.0, 1.0) and np.linalg.norm(p.at(t, 1)) <= 1e-6 * p.scale:
+            target = [Fraction(x) for x in (exact_point or point.tolist())]
             rows = [[Fraction(x) for x in row] for row in (p._given_rows or p.pts.tolist())]
             for m in refold.turning_points(rows):
-                if abs(float(m) - t) < 1e-6 and gap(float(m)) <= gap(t):
-                    t = float(m)
+                moved = float(m)
+                if abs(moved - t) < 1e-6 and _gap(p, moved, target) <= _gap(p, t, target):
+                    t = moved
         out.append(t)
     return out
+
+
+def _gap(p: Prepared, u: float, target: list[Fraction]) -> Fraction:
+    """|p(u) − target|², exactly."""
+    nums, den = p.exact_at(u)
+    diffs = [Fraction(a, den) - b for a, b in zip(nums, target, strict=True)]
+    return sum((d * d for d in diffs), Fraction(0))
 
 
 def intersect(p: Prepared, q: Prepared) -> list[Intersection]:

@@ -225,3 +225,35 @@ def test_locate_at_an_irrational_turning_point():
     tip = 3 * m + 3 * m**2 - 4 * m**3
     got = curve.locate((float(tip), float(tip)))
     assert abs(got - m) <= 2e-16
+
+
+# ------------------------------ exact trigonometric curves: a tangency cluster decided exactly
+@pytest.mark.parametrize("heights", [[3, 6, -9, 6], [2, -1, -6, 6], [-4, 6, -7, -3]])
+def test_exact_trig_curve_and_a_line_1e13_above_its_minimum_cross_twice(heights):
+    """A Han trigonometric cubic with exact points and parameters against y = its least
+    interior value + 1e-13 (to the float evaluation's rounding): two crossings 3e-7 to 5e-7
+    apart, against the exact rational form's roots (Y(s) − level W(s) = 0 at 50 digits,
+    t = t_of_s(s)). The certified search reported them as one "tangent" hit; the exact
+    isolation on the curves' exact rational forms now decides such a hit."""
+    from test_acceptance_29_classes import (
+        ATOM_PARAMS,
+        _family,
+        _level_above_minimum,
+        _trig_pair_reference,
+    )
+
+    curve = _family("han_trig_cubic").curve(
+        [(F(i), F(h, 4)) for i, h in enumerate(heights)], **ATOM_PARAMS["han_trig_cubic"]
+    )
+    lo, hi = (float(v) for v in curve.domain)
+    t = [lo + (hi - lo) * k / 4000 for k in range(4001)]
+    y = curve.evaluate(t)[:, 1]
+    inner = [i for i in range(1, 4000) if y[i] < y[i - 1] and y[i] <= y[i + 1]]
+    level = _level_above_minimum(curve, t[inner[0] - 1], t[inner[0] + 1]) - F(1, 10**7)
+    level += F(1, 10**13)
+    want = _trig_pair_reference(curve, level)
+    assert len(want) >= 2
+    got = curve.intersect(lb.BezierCurve([(-1, level), (4, level)]))
+    assert len(got) == len(want), (got, want)
+    for h, w in zip(got, want, strict=True):
+        assert abs(h.s - w) <= 1e-12 and h.kind == "transversal"

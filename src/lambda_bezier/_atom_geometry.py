@@ -347,8 +347,44 @@ def intersect(p: AtomCurve, q: Any) -> list[Intersection]:
         pp, qq = _normalised_parts(pp, qq)
         certified = ai.pairs(pp, qq)
         if certified is not None:
-            return _at_ends(p, q, [Intersection(f.s + ps, f.t + qs, f.kind) for f in certified])
+            hits = [Intersection(f.s + ps, f.t + qs, f.kind) for f in certified]
+            return _at_ends(p, q, _decided_exactly(p, q, hits))
     return _at_ends(p, q, _pieces_intersect(p, q))
+
+
+def _exact_form(c: Any) -> tuple[RationalBezierCurve, Any, Any] | None:
+    """(the exact rational Bézier form, its s -> the curve's t, t -> s), or None where the
+    curve has none (floats, a mixed or hyperbolic family)."""
+    if _is_atom(c):
+        if not (c.has_rational_form and c.is_exact):
+            return None
+        form = c.to_rational_bezier()
+        return (form, c.t_of_s, c.s_of_t) if form.is_exact else None
+    if not c.is_exact:
+        return None
+    form = c if isinstance(c, RationalBezierCurve) else RationalBezierCurve.from_bezier(c)
+    return form, float, float
+
+
+def _decided_exactly(p: Any, q: Any, hits: list[Intersection]) -> list[Intersection]:
+    """hits, or where both curves have exact rational forms (exact trigonometric curves,
+    exact polynomial and rational ones) and the search reports a "tangent" hit or a crossing
+    at a small angle, the exact isolation's answer on those forms (_rational_geometry's, in
+    its degree budget), mapped back to t: a cluster of two crossings 3e-7 apart (a line
+    1e-13 above a trigonometric curve's minimum) came back as one "tangent" hit."""
+    if p.dimension != 2 or not hits:
+        return hits
+    forms = (_exact_form(p), _exact_form(q))
+    if forms[0] is None or forms[1] is None:
+        return hits
+    from . import _rational_geometry as rg
+
+    (fp, p_t, p_s), (fq, q_t, q_s) = forms
+    in_s = [Intersection(float(p_s(h.s)), float(q_s(h.t)), h.kind) for h in hits]
+    got = rg._decided_exactly(fp, fq, in_s)
+    if got is in_s:
+        return hits
+    return [Intersection(float(p_t(h.s)), float(q_t(h.t)), h.kind) for h in got]
 
 
 def _at_ends(p: Any, q: Any, hits: list[Intersection]) -> list[Intersection]:

@@ -374,12 +374,12 @@ def _decided_exactly(p: Any, q: Any, hits: list[Intersection]) -> list[Intersect
     1e-13 above a trigonometric curve's minimum) came back as one "tangent" hit."""
     if p.dimension != 2 or not hits:
         return hits
-    forms = (_exact_form(p), _exact_form(q))
-    if forms[0] is None or forms[1] is None:
+    form_p, form_q = _exact_form(p), _exact_form(q)
+    if form_p is None or form_q is None:
         return hits
     from . import _rational_geometry as rg
 
-    (fp, p_t, p_s), (fq, q_t, q_s) = forms
+    (fp, p_t, p_s), (fq, q_t, q_s) = form_p, form_q
     in_s = [Intersection(float(p_s(h.s)), float(q_s(h.t)), h.kind) for h in hits]
     got = rg._decided_exactly(fp, fq, in_s)
     if got is in_s:

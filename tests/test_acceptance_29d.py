@@ -170,25 +170,6 @@ def test_a_curve_against_its_reversal_shares_it_end_to_end_exactly(name):
 
 
 # ------------------------------------------------------------- bad input, the same on every class
-def test_a_rational_curve_that_is_a_single_point_is_refused_as_a_polynomial_one_is():
-    """Every t of such a curve gives its point, so there is no isolated (s, t) to report: the
-    polynomial classes refuse it by name ("use locate() on the other"); the rational class
-    reported one "tangent" hit at an arbitrary t = 0.5 where the point lies on the other
-    curve (the arch's apex (1, 4/3)), and its locate answered t = 0.0 where the polynomial
-    curve's says every t gives the point."""
-    arch = lb.RationalBezierCurve([(0, 0), (1, 2), (2, 0)], [1, 2, 1])
-    dot = lb.RationalBezierCurve([(1, F(4, 3)), (1, F(4, 3))], [1, 1])
-    for a, b in [(arch, dot), (dot, arch), (lb.BezierCurve([(0, 0), (2, F(8, 3))]), dot)]:
-        with pytest.raises(ValueError, match="single point: use locate"):
-            a.intersect(b)
-    with pytest.raises(ValueError, match="single point: use locate"):
-        lb.BezierCurve([(1, F(4, 3)), (1, F(4, 3))]).intersect(arch)
-    for curve in (dot, lb.BezierCurve([(1, 1), (1, 1)])):
-        with pytest.raises(ValueError, match="the curve is a single point"):
-            curve.locate((1, F(4, 3)) if curve is dot else (1, 1))
-    assert arch.locate((1, F(4, 3))) == 0.5  # the apex, on the curve that is not a point
-
-
 @pytest.mark.parametrize("name", ATOMS)
 def test_intersect_refuses_a_composite_curve_by_name_on_every_class(name):
     """CompositeCurve has no intersect; every class refused it with "other must be a curve"

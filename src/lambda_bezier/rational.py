@@ -467,10 +467,7 @@ class RationalBezierCurve(ControlPointCurve):
         arr = val.as_point(point, self.dimension)
         found = self.closest_point(arr)
         size = max(float(np.abs(self.points).max()), float(np.ptp(self.points, axis=0).max()))
-        on = float(found.distance) <= ON_CURVE * max(size, 1e-300)
-        if on and not np.ptp(self.points, axis=0).any():  # as the polynomial curves' locate
-            raise ValueError("the curve is a single point: every t gives it")
-        return float(found.t) if on else None
+        return float(found.t) if float(found.distance) <= ON_CURVE * max(size, 1e-300) else None
 
     def intersect(self, other: RationalBezierCurve | Curve) -> list[Intersection]:
         """Every isolated intersection with another rational or polynomial curve, as
@@ -489,9 +486,6 @@ class RationalBezierCurve(ControlPointCurve):
             raise ValueError(
                 f"the curves have different dimensions ({self.dimension} and {other.dimension})"
             )
-        for c in (self, other):  # every t of it is one point: no isolated s, t (issue #29)
-            if not np.ptp(c.points, axis=0).any():
-                raise ValueError("one of the curves is a single point: use locate() on the other")
         return rg.intersect(*_normalised(self, other))
 
     def self_intersections(self) -> list[Intersection]:

@@ -457,7 +457,13 @@ def decided(
     a product of the degrees past the algebra's decide_degree (decide_degree_rational with
     `weights`: the exact isolation's cost, see PURE and FLINT)."""
     alg = alg or algebra()
-    if p_rows is not None and q_rows is not None and p_dim == q_dim == 3 and weights is None:
+    if (
+        p_rows is not None
+        and q_rows is not None
+        and p_dim == q_dim == 3
+        and weights is None
+        and "tangent" in kinds
+    ):
         planar = _in_one_plane(p_rows, q_rows)  # issue #29: crossings in 3-D, in one plane
         if planar is not None:
             (p_rows, q_rows), p_dim, q_dim = planar, 2, 2

@@ -1,8 +1,11 @@
 """Issue #29, an independent audit (round 20) beside tests/test_acceptance_29*.py, which it does
-not repeat: a line through the tiny loop of a cubic near its cusp (three crossings 1e-5 to
-1e-7 apart on exact input, the middle one where the curve nearly stops), crossings of lines
-parallel to an axis decided by the exact isolation, ... Every expected answer is exact by
-construction or computed by mpmath at 50 digits; none comes from the code under test."""
+not repeat: a line through the tiny loop of a cubic near its cusp (three exact crossings 1e-5
+to 1e-7 apart, one on a line parallel to an axis), exact space curves in one plane (crossings
+1e-7 apart, touching, missing by 1e-20), exact curves whose floats are subnormal, trigonometric,
+mixed and C-Bézier meetings at the ends of their domains, a non-curve refused by every class,
+locate at a turning point or cusp, and an exact trigonometric curve against a line 1e-13 above
+its minimum. Every expected answer is exact by construction or computed by mpmath at 50 digits
+(the trigonometric one from its exact rational form); none comes from the code under test."""
 
 from __future__ import annotations
 

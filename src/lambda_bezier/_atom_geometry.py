@@ -51,6 +51,7 @@ EXPORT_DEGREE = DEGREE
 APPROX_TOL = 1e-13  # relative to the curve's size
 MAX_PIECES = 512
 SAME = 1e-9  # parameters closer than this (relative to the domain) are one intersection
+END_ULPS = 4  # a parameter this many ulps (of the domain) from an end is at the end
 
 
 def _size(curve: AtomCurve) -> float:
@@ -330,9 +331,9 @@ def _normalised_parts(*parts: Any) -> tuple[Any, ...]:
 
 
 def intersect(p: AtomCurve, q: Any) -> list[Intersection]:
-    if getattr(q, "dimension", None) != p.dimension:
-        if not isinstance(q, Curve | RationalBezierCurve) and not _is_atom(q):
-            raise TypeError(f"other must be a curve, got {type(q).__name__}")
+    if not isinstance(q, Curve | RationalBezierCurve) and not _is_atom(q):
+        raise TypeError(f"other must be a curve, got {type(q).__name__}")
+    if q.dimension != p.dimension:
         raise ValueError(f"the curves have different dimensions ({p.dimension} and {q.dimension})")
     for name, c in (("the first", p), ("the second", q)):
         pts = np.asarray(c.points if hasattr(c, "points") else c.to_bezier().points, float)
@@ -346,8 +347,57 @@ def intersect(p: AtomCurve, q: Any) -> list[Intersection]:
         pp, qq = _normalised_parts(pp, qq)
         certified = ai.pairs(pp, qq)
         if certified is not None:
-            return [Intersection(f.s + ps, f.t + qs, f.kind) for f in certified]
-    return _pieces_intersect(p, q)
+            hits = [Intersection(f.s + ps, f.t + qs, f.kind) for f in certified]
+            return _at_ends(p, q, _decided_exactly(p, q, hits))
+    return _at_ends(p, q, _pieces_intersect(p, q))
+
+
+def _exact_form(c: Any) -> tuple[RationalBezierCurve, Any, Any] | None:
+    """(the exact rational Bézier form, its s -> the curve's t, t -> s), or None where the
+    curve has none (floats, a mixed or hyperbolic family)."""
+    if _is_atom(c):
+        if not (c.has_rational_form and c.is_exact):
+            return None
+        form = c.to_rational_bezier()
+        return (form, c.t_of_s, c.s_of_t) if form.is_exact else None
+    if not c.is_exact:
+        return None
+    form = c if isinstance(c, RationalBezierCurve) else RationalBezierCurve.from_bezier(c)
+    return form, float, float
+
+
+def _decided_exactly(p: Any, q: Any, hits: list[Intersection]) -> list[Intersection]:
+    """hits, or where both curves have exact rational forms (exact trigonometric curves,
+    exact polynomial and rational ones) and the search reports a "tangent" hit or a crossing
+    at a small angle, the exact isolation's answer on those forms (_rational_geometry's, in
+    its degree budget), mapped back to t: a cluster of two crossings 3e-7 apart (a line
+    1e-13 above a trigonometric curve's minimum) came back as one "tangent" hit."""
+    if p.dimension != 2 or not hits:
+        return hits
+    form_p, form_q = _exact_form(p), _exact_form(q)
+    if form_p is None or form_q is None:
+        return hits
+    from . import _rational_geometry as rg
+
+    (fp, p_t, p_s), (fq, q_t, q_s) = form_p, form_q
+    in_s = [Intersection(float(p_s(h.s)), float(q_s(h.t)), h.kind) for h in hits]
+    got = rg._decided_exactly(fp, fq, in_s)
+    if got is in_s:
+        return hits
+    return [Intersection(float(p_t(h.s)), float(q_t(h.t)), h.kind) for h in got]
+
+
+def _at_ends(p: Any, q: Any, hits: list[Intersection]) -> list[Intersection]:
+    """hits with a parameter within a few ulps of its domain's end at that end exactly: the
+    search and the shift from its parameter to t round (two pieces of a spline met at their
+    join at t = 1.1e-16, a curve against its reversal at 0.9999999999999999)."""
+    (a, b), (c, d) = _dom(p), _dom(q)
+    return [h._replace(s=_snapped(h.s, a, b), t=_snapped(h.t, c, d)) for h in hits]
+
+
+def _snapped(x: float, lo: float, hi: float) -> float:
+    tol = END_ULPS * math.ulp(max(abs(lo), abs(hi), hi - lo))
+    return lo if abs(x - lo) <= tol else hi if abs(x - hi) <= tol else x
 
 
 def _pieces_intersect(p: AtomCurve, q: Any) -> list[Intersection]:
@@ -420,8 +470,9 @@ def self_intersections(curve: AtomCurve) -> list[Intersection]:
         (part,) = _normalised_parts(part)
         certified = ai.self_pairs(part)
         if certified is not None:
-            return [Intersection(f.s + shift, f.t + shift, f.kind) for f in certified]
-    return _pieces_self_intersections(curve)
+            hits = [Intersection(f.s + shift, f.t + shift, f.kind) for f in certified]
+            return _at_ends(curve, curve, hits)
+    return _at_ends(curve, curve, _pieces_self_intersections(curve))
 
 
 def _pieces_self_intersections(curve: AtomCurve) -> list[Intersection]:

@@ -274,14 +274,17 @@ def first_subresultant(
     constant leading coefficients in `var` and a1(x0) ≠ 0, S_1(x0, ·) is their gcd, so their
     only common root is var = −a0(x0)/a1(x0) (real when x0 is); with leading coefficients in
     `var` that depend on the other variable, the same holds where one of them does not vanish
-    at x0 (the caller checks it). None when a degree in `var` is 0 (no such form). Found like
+    at x0 (the caller checks it). When one of them does not involve `var` (a vertical or
+    horizontal line: then Res = f^dg, so it vanishes at x0) and the other is linear in it,
+    that linear one is the gcd at x0. None when a degree in `var` is 0 and the other's is not
+    1 (no such form). Found like
     `resultant`: the minors of the Sylvester matrix at integer points, interpolated (their
     determinants by `determinant`, Gaussian elimination in Fractions by default; the
     interpolation by `interpolate`, Newton's divided differences by default)."""
     other = 1 - var
     df = max((k[var] for k in f if f[k]), default=0)
     dg = max((k[var] for k in g if g[k]), default=0)
-    if df == 0 or dg == 0:
+    if (df == 0 or dg == 0) and df + dg != 1:
         return None
     if df == 1 or dg == 1:  # a linear one is its own S_1 (up to a constant)
         h = f if df == 1 else g

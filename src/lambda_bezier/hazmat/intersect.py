@@ -378,13 +378,46 @@ def locate_point(
     coordinate is not on it."""
     shift = p.exponent
     if -NORMAL_EXPONENT <= shift <= NORMAL_EXPONENT:
-        return locate_all(p, point, exact_point)
+        return _at_turning_points(p, point, exact_point, locate_all(p, point, exact_point))
     big = float(np.abs(point).max(initial=0.0))
     if big and math.frexp(big)[1] - shift > 64:
         return []
+    scaled_point = np.ldexp(point, -shift)
     if exact_point is not None:
         exact_point = tuple(Fraction(x) * Fraction(2) ** -shift for x in exact_point)
-    return locate_all(p.scaled(shift), np.ldexp(point, -shift), exact_point)
+        # from the exact point: its floats near 2^-1074 are subnormal (a few bits, or 0)
+        scaled_point = np.array([float(x) for x in exact_point])
+    p = p.scaled(shift)
+    found = locate_all(p, scaled_point, exact_point)
+    return _at_turning_points(p, scaled_point, exact_point, found)
+
+
+def _at_turning_points(
+    p: Prepared, point: np.ndarray, exact_point: tuple[Fraction, ...] | None, found: list[float]
+) -> list[float]:
+    """found, each t where the curve nearly stops moved to its exact turning point
+    (intersect_refold.turning_points) when that is no farther from the point, exactly: there
+    the point is a double root of the location, found to about 1e-8 only (the tip of a
+    curve folded back along a line: 0.4999999917 for 1/2), as _at_turning_point does for
+    the ends of a shared stretch."""
+    out = []
+    for t in found:
+        if t not in (0.0, 1.0) and np.linalg.norm(p.at(t, 1)) <= 1e-6 * p.scale:
+            target = [Fraction(x) for x in (exact_point or point.tolist())]
+            rows = [[Fraction(x) for x in row] for row in (p._given_rows or p.pts.tolist())]
+            for m in refold.turning_points(rows):
+                moved = float(m)
+                if abs(moved - t) < 1e-6 and _gap(p, moved, target) <= _gap(p, t, target):
+                    t = moved
+        out.append(t)
+    return out
+
+
+def _gap(p: Prepared, u: float, target: list[Fraction]) -> Fraction:
+    """|p(u) − target|², exactly."""
+    nums, den = p.exact_at(u)
+    diffs = [Fraction(a, den) - b for a, b in zip(nums, target, strict=True)]
+    return sum((d * d for d in diffs), Fraction(0))
 
 
 def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
@@ -406,15 +439,26 @@ def _decided_exactly(p: Prepared, q: Prepared, hits: list[Intersection]) -> list
     if p._given_rows is None or q._given_rows is None:  # float input: decided gives none
         return hits
     kinds = [
-        "tangent"
-        if h.kind == "transversal" and p.dim == 2 and _sine(p, q, h.s, h.t) < EXACT_CHECK_SINE
-        else h.kind
+        "tangent" if h.kind == "transversal" and p.dim <= 3 and _ill_posed(p, q, h) else h.kind
         for h in hits
     ]
     got = _exact_iso.decided(p._given_rows, q._given_rows, p.dim, q.dim, kinds)
     if got is None:
         return hits
     return [Intersection(s, t, "tangent" if flat else "transversal") for s, t, flat in got]
+
+
+def _ill_posed(p: Prepared, q: Prepared, h: Intersection) -> bool:
+    """A crossing that may stand for several merged ones (_add): the tangents nearly parallel
+    (sine below EXACT_CHECK_SINE), or one curve nearly stopped there (speed below
+    EXACT_CHECK_SINE of its degree times its extent: by a near-cusp, whose tiny loop
+    crosses a line through it twice more within the merge gap, 1e-5 apart)."""
+    if _sine(p, q, h.s, h.t) < EXACT_CHECK_SINE:
+        return True
+    return any(
+        float(np.linalg.norm(c.at(x, 1))) < EXACT_CHECK_SINE * c.degree * c._span
+        for c, x in ((p, h.s), (q, h.t))
+    )
 
 
 def _compiled_pair(p: Prepared, q: Prepared) -> list[Intersection] | None:

@@ -455,7 +455,10 @@ def exact_answer(
         return None
     if not all(c.certified for c in boxes):
         return None
-    return [(float((c.s[0] + c.s[1]) / 2), float((c.t[0] + c.t[1]) / 2), c.tangent) for c in boxes]
+    # sorted as the floats (boxes with one rounded s in the order of their t), as intersect's
+    return sorted(
+        (float((c.s[0] + c.s[1]) / 2), float((c.t[0] + c.t[1]) / 2), c.tangent) for c in boxes
+    )
 
 
 def decided(
@@ -475,6 +478,16 @@ def decided(
     `weights`: the exact isolation's cost, see PURE and FLINT)."""
     alg = alg or algebra()
     if (
+        p_rows is not None
+        and q_rows is not None
+        and p_dim == q_dim == 3
+        and weights is None
+        and "tangent" in kinds
+    ):
+        planar = _in_one_plane(p_rows, q_rows)  # issue #29: crossings in 3-D, in one plane
+        if planar is not None:
+            (p_rows, q_rows), p_dim, q_dim = planar, 2, 2
+    if (
         p_rows is None
         or q_rows is None
         or p_dim != 2
@@ -486,3 +499,32 @@ def decided(
     ):
         return None
     return exact_answer(p_rows, q_rows, alg, weights)
+
+
+def _in_one_plane(
+    p_rows: Sequence[Sequence[Fraction]], q_rows: Sequence[Sequence[Fraction]]
+) -> tuple[list[list[Fraction]], list[list[Fraction]]] | None:
+    """Two exact space curves whose control points all lie in one plane, as planar curves
+    with the same parameters: projected along the axis the plane's normal is largest on
+    (exactly; a bijection of the plane, so crossings and tangencies are kept). None when the
+    points span space, or lie on one line."""
+    rows = [[Fraction(x) for x in row] for row in (*p_rows, *q_rows)]
+    base = rows[0]
+    diffs = [[a - b for a, b in zip(row, base, strict=True)] for row in rows[1:]]
+    normal = None
+    for i, u in enumerate(diffs):
+        for v in diffs[i + 1 :]:
+            n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
+            if any(n):
+                normal = n
+                break
+        if normal is not None:
+            break
+    if normal is None or any(sum(a * b for a, b in zip(normal, d, strict=True)) for d in diffs):
+        return None
+    drop = max(range(3), key=lambda k: abs(normal[k]))
+    keep = [k for k in range(3) if k != drop]
+    return (
+        [[Fraction(row[k]) for k in keep] for row in p_rows],
+        [[Fraction(row[k]) for k in keep] for row in q_rows],
+    )

@@ -40,6 +40,9 @@ class Prepared:
         if rows is not None:
             factor = Fraction(2) ** -shift
             rows = tuple(tuple(Fraction(x) * factor for x in row) for row in rows)
+            # rounded from the exact rows: the floats of exact points near 2^-1074 are
+            # subnormal (a few bits, or 0), and scaling them up would keep only those bits
+            return Prepared(np.array([[float(x) for x in row] for row in rows]), rows)
         return Prepared(np.ldexp(self.pts, -shift), rows)
 
     @functools.cached_property

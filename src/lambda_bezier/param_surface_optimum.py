@@ -70,10 +70,11 @@ from .param_surface_energy import (
     SurfaceParameterOptimum,
     _direction,
     _family_pair,
+    _grams,
     named_point,
 )
 from .param_surface_energy import optimal_parameters as certified_parameters
-from .surface_energies import ENERGIES, MAX_COORDINATE, check_net_values
+from .surface_energies import ENERGIES, MAX_COORDINATE, check_net_values, moved_to_origin
 from .surfaces import NetLike
 
 CERTIFIED_TOLERANCE = 1e-12  # the batch certificate: the minimiser within this of its answer
@@ -273,6 +274,27 @@ def fixed_cost(
     return fixed_cost_minimum(c, box, CERTIFIED_TOLERANCE)
 
 
+@cache
+def _differences_only(fu: Any, du: int, fv: Any, dv: int, energy: str) -> bool:
+    """Whether the energy depends on the net's differences alone (E(P + c) = E(P)): every
+    Gram matrix of a derivative it takes, in each direction, has zero row sums exactly (each
+    term of ENERGIES differentiates at least one direction). True where each direction's
+    basis sums to a constant for every parameter value; decided once per families, degrees
+    and energy."""
+    orders = {a for a, _, _ in ENERGIES[energy]} | {b for _, b, _ in ENERGIES[energy]}
+    for family, degree in ((fu, du), (fv, dv)):
+        for k in sorted(orders - {0}):
+            for mat in _grams(family, degree, k).values():
+                for row in mat:
+                    total: dict[int, Fraction] = {}
+                    for entry in row:
+                        for power, c in entry.items():
+                            total[power] = total.get(power, Fraction(0)) + c
+                    if any(total.values()):
+                        return False
+    return True
+
+
 def optimal_parameters_batch(nets: np.ndarray, energy: str, family: Any) -> SurfaceParameterBatch:
     """optimal_parameters for (k, m+1, n+1, d) float nets; see the module's doc."""
     energy = val.choice(energy, "energy", tuple(ENERGIES))
@@ -286,6 +308,8 @@ def optimal_parameters_batch(nets: np.ndarray, energy: str, family: Any) -> Surf
             raise ValueError("net: neither direction has a shape parameter: nothing to optimise")
         return _several_batch(nets, energy, (fu, fv), du, dv)
     count = nets.shape[0]
+    if _differences_only(du.family, du.degree, dv.family, dv.degree, energy):
+        nets = moved_to_origin(nets, _batch_compiled())  # far nets: the floats cancel less
     bx, by, bval, ok, on_edge = fixed_cost(nets, du, dv, energy)
     boundary = np.empty(count, dtype=object)
     boundary[:] = ""

@@ -54,6 +54,36 @@ def check_net_values(nets: np.ndarray) -> None:
         )
 
 
+def moved_to_origin(nets: np.ndarray, fast: Any = None) -> np.ndarray:
+    """The nets moved so that each far from the origin starts there; for an energy that
+    depends on the net's differences alone (E(P + c) = E(P)), which the caller decides. The
+    float coefficients are sums of Gram products P_i · P_j: for a net far from the origin
+    (CAD coordinates about 1e3 or 1e6) they cancel, and a batch's λ came out 1e-10 to 1e-4
+    off (tests/test_acceptance_31d.py); each difference is rounded relative to itself.
+    A net is moved when its first point is more than 4 times as far from the origin as its
+    farthest corner is from it (at most 16 times the rounding of a net about the origin
+    otherwise). Only the corners are read: in one compiled pass with numba (`fast`, the
+    hazmat.surface_batch_compiled module; 0.01 ms for 10,000 bicubic nets), else column by
+    column (numpy's reductions over a short last axis cost ten times more; this way 0.19 ms,
+    2.6 read passes). Moving every net, a new array, doubled the time of a batch of 10,000
+    bicubic nets about the origin."""
+    first = nets[:, 0, 0, :]
+    if fast is not None and nets.dtype == np.float64:
+        far = fast.far_from_origin(nets, 4.0)
+    else:
+        size, reach = np.zeros(nets.shape[0]), np.zeros(nets.shape[0])
+        for c in range(nets.shape[3]):
+            np.maximum(size, np.abs(first[:, c]), out=size)
+            for i, j in ((0, -1), (-1, 0), (-1, -1)):
+                np.maximum(reach, np.abs(nets[:, i, j, c] - first[:, c]), out=reach)
+        far = size > 4 * reach
+    if not far.any():
+        return nets
+    check_net_values(nets)  # the limits hold for the nets as given, moved or not
+    moved: np.ndarray = nets - np.where(far[:, None], first, 0.0)[:, None, None, :]
+    return moved
+
+
 _energy = generated("energy")
 _surface_energy = generated("surface_energy")
 

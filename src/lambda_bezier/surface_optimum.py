@@ -55,6 +55,7 @@ from .surface_energies import (
     _float_polynomial,
     _param_families,
     check_net_values,
+    moved_to_origin,
 )
 from .surface_energies import surface_energy as _one_parameter_energy
 from .surface_energies import surface_energy_matrices as _one_parameter_matrices
@@ -113,33 +114,9 @@ def _depends_on_differences(mats: SurfaceEnergyMatrices) -> bool:
 def _centred(
     nets: np.ndarray, mats: SurfaceEnergyMatrices, fast: ModuleType | None = None
 ) -> np.ndarray:
-    """The nets moved so that each far from the origin starts there, where the energy allows
-    it. The float coefficients are sums of Gram products P_i · P_j: for a net far from the
-    origin (CAD coordinates about 1e3 or 1e6) they cancel, and the batch's λ came out 1e-10 to
-    1e-4 off (tests/test_acceptance_31d.py); each difference is rounded relative to itself.
-    A net is moved when its first point is more than 4 times as far from the origin as its
-    farthest corner is from it (at most 16 times the rounding of a net about the origin
-    otherwise). Only the corners are read: in one compiled pass with numba (`fast`, 0.01 ms
-    for 10,000 bicubic nets), else column by column (numpy's reductions over a short last
-    axis cost ten times more; this way 0.19 ms, 2.6 read passes). Moving every net, a new
-    array, doubled the time of a batch of 10,000 bicubic nets about the origin."""
-    if not _depends_on_differences(mats):
-        return nets
-    first = nets[:, 0, 0, :]
-    if fast is not None and nets.dtype == np.float64:
-        far = fast.far_from_origin(nets, 4.0)
-    else:
-        size, reach = np.zeros(nets.shape[0]), np.zeros(nets.shape[0])
-        for c in range(nets.shape[3]):
-            np.maximum(size, np.abs(first[:, c]), out=size)
-            for i, j in ((0, -1), (-1, 0), (-1, -1)):
-                np.maximum(reach, np.abs(nets[:, i, j, c] - first[:, c]), out=reach)
-        far = size > 4 * reach
-    if not far.any():
-        return nets
-    check_net_values(nets)  # the limits hold for the nets as given, moved or not
-    moved: np.ndarray = nets - np.where(far[:, None], first, 0.0)[:, None, None, :]
-    return moved
+    """The nets moved to the origin where that sharpens their floats (`moved_to_origin`),
+    where the energy allows it (it depends on the net's differences alone)."""
+    return moved_to_origin(nets, fast) if _depends_on_differences(mats) else nets
 
 
 @cache

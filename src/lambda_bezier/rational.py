@@ -48,6 +48,7 @@ from ._validate import ParamLike, PointsLike
 from .curves import BezierCurve, Curve
 from .hazmat import kernels as alg
 from .hazmat import rational_kernels as rk
+from .hazmat.intersect_locate import NORMAL_EXPONENT
 
 if TYPE_CHECKING:
     from sympy import Poly
@@ -93,9 +94,6 @@ def _exact_scalar(t: object, name: str) -> Fraction:
     if not val.is_exact_scalar(t):
         raise ValueError(f"{name} must be an int or a Fraction for an exact result, got {t!r}")
     return Fraction(int(t)) if isinstance(t, np.integer) else Fraction(t)
-
-
-NORMAL_EXPONENT = 128  # as hazmat.intersect: pairs beyond 2^±this in size are scaled near 1
 
 
 def _normalised(

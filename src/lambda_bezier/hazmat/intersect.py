@@ -30,7 +30,6 @@ stretches and common lines at _root_bound. The certificate holds its roots to _r
 from __future__ import annotations
 
 import functools
-import math
 from fractions import Fraction
 from typing import NamedTuple
 
@@ -43,6 +42,7 @@ from . import intersect_refold as refold
 from . import intersect_self_exact as _self_exact
 from . import intersect_subdivide as sub
 from .intersect_locate import (  # the point location half, and the tolerances both share
+    NORMAL_EXPONENT,
     ON_CURVE,
     ROOT_RESIDUAL,
     SAME_ROOT,
@@ -51,6 +51,7 @@ from .intersect_locate import (  # the point location half, and the tolerances b
     _starts,
 )
 from .intersect_locate import locate_all as locate_all  # Curve.locate's entry
+from .intersect_locate import locate_point as locate_point  # (a user's point)
 from .intersect_prepared import Prepared as Prepared
 from .intersect_prepared import _exact_difference
 
@@ -356,9 +357,6 @@ def _dedupe_isolated(found: list[Intersection], new: Intersection) -> bool:
 Box = tuple[float, float, float, float]  # s0, s1, t0, t1 of a coincident stretch
 
 
-NORMAL_EXPONENT = 128  # pairs whose largest coordinate is beyond 2^±this are scaled near 1
-
-
 def normalised(p: Prepared, q: Prepared) -> tuple[Prepared, Prepared]:
     """p and q divided by one power of two (exact: the same parameters) when their size is
     beyond 2^±NORMAL_EXPONENT: the tests multiply up to four coordinates, so lines crossing at
@@ -367,57 +365,6 @@ def normalised(p: Prepared, q: Prepared) -> tuple[Prepared, Prepared]:
     if -NORMAL_EXPONENT <= top <= NORMAL_EXPONENT:
         return p, q
     return p.scaled(top), q.scaled(top)
-
-
-def locate_point(
-    p: Prepared, point: np.ndarray, exact_point: tuple[Fraction, ...] | None
-) -> list[float]:
-    """locate_all for a point the user gives (Curve.locate), curve and point scaled near 1
-    when the curve's size is beyond 2^±NORMAL_EXPONENT (at 1e300 on-curve points came back
-    None, at 1e-300 1e-10 off). A point 2^64 times farther out than the curve's largest
-    coordinate is not on it."""
-    shift = p.exponent
-    if -NORMAL_EXPONENT <= shift <= NORMAL_EXPONENT:
-        return _at_turning_points(p, point, exact_point, locate_all(p, point, exact_point))
-    big = float(np.abs(point).max(initial=0.0))
-    if big and math.frexp(big)[1] - shift > 64:
-        return []
-    scaled_point = np.ldexp(point, -shift)
-    if exact_point is not None:
-        exact_point = tuple(Fraction(x) * Fraction(2) ** -shift for x in exact_point)
-        # from the exact point: its floats near 2^-1074 are subnormal (a few bits, or 0)
-        scaled_point = np.array([float(x) for x in exact_point])
-    p = p.scaled(shift)
-    found = locate_all(p, scaled_point, exact_point)
-    return _at_turning_points(p, scaled_point, exact_point, found)
-
-
-def _at_turning_points(
-    p: Prepared, point: np.ndarray, exact_point: tuple[Fraction, ...] | None, found: list[float]
-) -> list[float]:
-    """found, each t where the curve nearly stops moved to its exact turning point
-    (intersect_refold.turning_points) when that is no farther from the point, exactly: there
-    the point is a double root of the location, found to about 1e-8 only (the tip of a
-    curve folded back along a line: 0.4999999917 for 1/2), as _at_turning_point does for
-    the ends of a shared stretch."""
-    out = []
-    for t in found:
-        if t not in (0.0, 1.0) and np.linalg.norm(p.at(t, 1)) <= 1e-6 * p.scale:
-            target = [Fraction(x) for x in (exact_point or point.tolist())]
-            rows = [[Fraction(x) for x in row] for row in (p._given_rows or p.pts.tolist())]
-            for m in refold.turning_points(rows):
-                moved = float(m)
-                if abs(moved - t) < 1e-6 and _gap(p, moved, target) <= _gap(p, t, target):
-                    t = moved
-        out.append(t)
-    return out
-
-
-def _gap(p: Prepared, u: float, target: list[Fraction]) -> Fraction:
-    """|p(u) − target|², exactly."""
-    nums, den = p.exact_at(u)
-    diffs = [Fraction(a, den) - b for a, b in zip(nums, target, strict=True)]
-    return sum((d * d for d in diffs), Fraction(0))
 
 
 def intersect(p: Prepared, q: Prepared) -> list[Intersection]:

@@ -1,15 +1,18 @@
-"""Point location on a classical Bézier curve (`locate_all`), the end points of a pair of
+"""Point location on a classical Bézier curve (`locate_all`; `locate_point` for a user's point,
+scaled near 1 and snapped to exact turning points), the end points of a pair of
 curves located on each other (`_isolate_ends`), and the clusters of unresolved pieces that give
 Newton its starting points (`_starts`): the one-dimensional half of the intersection engine
 (hazmat/intersect.py), which imports it; the tolerances both halves share live here."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from fractions import Fraction
 
 import numpy as np
 
+from . import intersect_refold as refold
 from . import intersect_subdivide as sub
 from .intersect_prepared import Prepared, _exact_difference, _integer_point
 
@@ -22,6 +25,7 @@ SAME_ROOT = 1e-9  # parameters closer than this are one intersection
 ROOT_RESIDUAL = 64 * float(np.finfo(float).eps)
 # a piece locate_all is left with that is wider than this is flat, not unresolved at depth
 WIDE_PIECE = 1e-6
+NORMAL_EXPONENT = 128  # pairs whose largest coordinate is beyond 2^±this are scaled near 1
 
 
 # ---------------------------------------------------------------------------- clusters
@@ -224,3 +228,54 @@ def _locate_newton(
 
 
 # ---------------------------------------------------------------------------- drivers
+
+
+def locate_point(
+    p: Prepared, point: np.ndarray, exact_point: tuple[Fraction, ...] | None
+) -> list[float]:
+    """locate_all for a point the user gives (Curve.locate), curve and point scaled near 1
+    when the curve's size is beyond 2^±NORMAL_EXPONENT (at 1e300 on-curve points came back
+    None, at 1e-300 1e-10 off). A point 2^64 times farther out than the curve's largest
+    coordinate is not on it."""
+    shift = p.exponent
+    if -NORMAL_EXPONENT <= shift <= NORMAL_EXPONENT:
+        return _at_turning_points(p, point, exact_point, locate_all(p, point, exact_point))
+    big = float(np.abs(point).max(initial=0.0))
+    if big and math.frexp(big)[1] - shift > 64:
+        return []
+    scaled_point = np.ldexp(point, -shift)
+    if exact_point is not None:
+        exact_point = tuple(Fraction(x) * Fraction(2) ** -shift for x in exact_point)
+        # from the exact point: its floats near 2^-1074 are subnormal (a few bits, or 0)
+        scaled_point = np.array([float(x) for x in exact_point])
+    p = p.scaled(shift)
+    found = locate_all(p, scaled_point, exact_point)
+    return _at_turning_points(p, scaled_point, exact_point, found)
+
+
+def _at_turning_points(
+    p: Prepared, point: np.ndarray, exact_point: tuple[Fraction, ...] | None, found: list[float]
+) -> list[float]:
+    """found, each t where the curve nearly stops moved to its exact turning point
+    (intersect_refold.turning_points) when that is no farther from the point, exactly: there
+    the point is a double root of the location, found to about 1e-8 only (the tip of a
+    curve folded back along a line: 0.4999999917 for 1/2), as _at_turning_point does for
+    the ends of a shared stretch."""
+    out = []
+    for t in found:
+        if t not in (0.0, 1.0) and np.linalg.norm(p.at(t, 1)) <= 1e-6 * p.scale:
+            target = [Fraction(x) for x in (exact_point or point.tolist())]
+            rows = [[Fraction(x) for x in row] for row in (p._given_rows or p.pts.tolist())]
+            for m in refold.turning_points(rows):
+                moved = float(m)
+                if abs(moved - t) < 1e-6 and _gap(p, moved, target) <= _gap(p, t, target):
+                    t = moved
+        out.append(t)
+    return out
+
+
+def _gap(p: Prepared, u: float, target: list[Fraction]) -> Fraction:
+    """|p(u) − target|², exactly."""
+    nums, den = p.exact_at(u)
+    diffs = [Fraction(a, den) - b for a, b in zip(nums, target, strict=True)]
+    return sum((d * d for d in diffs), Fraction(0))

@@ -31,6 +31,7 @@ import sympy as sp
 
 import lambda_bezier as lb
 from lambda_bezier import cli, examples, export
+from lambda_bezier.joins import Joint, leading_weights
 
 DATA = Path(__file__).parent / "data" / "families"
 POLYGON = [(0, 0), (1, 2), (3, 2), (4, 0)]
@@ -287,3 +288,38 @@ def test_a_c_bezier_curve_takes_its_parameter_by_its_own_name_only():
         own.curve(POLYGON, alpha=2.0)
     with pytest.raises(TypeError, match="once"):
         own.curve(POLYGON, h=2.0, params={"h": 2.0})
+
+
+# ---- one-parameter functions given an indexed or a C-Bézier family ------------------------
+
+
+C1 = Joint("C1", 1, 0)
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda q: lb.energy_matrices(3, 2, family=q),
+        lambda q: lb.energy_coefficients(POLYGON, 2, family=q),
+        lambda q: lb.optimal_lambda(POLYGON, 2, family=q),
+        lambda q: leading_weights(lb.BezierCurve([(0, 0), (1, 1), (2, 0)]), C1, q, 3, [0, 0, 0]),
+    ],
+    ids=["energy_matrices", "energy_coefficients", "optimal_lambda", "leading_weights"],
+)
+def test_an_indexed_family_in_a_one_parameter_function_is_a_type_error(call):
+    # these read the indexed family's lowest degree's tables: an AttributeError ('SeveralData'
+    # object has no attribute 'ENERGY' / 'POWER'), or "degree 3 is not supported for
+    # q_bezier: generated data covers degrees 2..2" for a family of degrees 2..5
+    q = lb.load_family(DATA / "q_bezier.toml")
+    with pytest.raises(TypeError, match=r"'q_bezier' has one parameter per index \(lam\(i\)\)"):
+        call(q)
+
+
+def test_a_c_bezier_family_surface_is_refused_naming_what_takes_it():
+    from lambda_bezier.param_surfaces import family_surface
+
+    fam = lb.load_family(examples.path("c_bezier_cubic.toml"))
+    net = [[(i, j, (i * j) % 3) for j in range(4)] for i in range(4)]
+    # was AttributeError: 'CBezierFamily' object has no attribute 'parameter_values'
+    with pytest.raises(TypeError, match="'c_bezier_cubic' has its parameter alpha in the domain"):
+        family_surface(net, fam, params_u={"alpha": 1}, params_v={"alpha": 1})

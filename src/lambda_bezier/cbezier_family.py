@@ -186,7 +186,7 @@ class CBezierFamily:
             f"has its parameter {self.parameter} in the {where_param} "
             "(C-Bézier): this function takes polynomial families only; optimal_parameters, "
             "optimal_lambda, evaluate_many(..., params={...}), join(..., params={...}), "
-            "CompositeCurve and to_json take it, and its curves come from "
+            "CompositeCurve and export (JSON, STEP, DXF, SVG) take it; its curves come from "
             f"fam.curve(points, {self.parameter}=...)"
         )
         self.title = title

@@ -323,3 +323,47 @@ def test_a_c_bezier_family_surface_is_refused_naming_what_takes_it():
     # was AttributeError: 'CBezierFamily' object has no attribute 'parameter_values'
     with pytest.raises(TypeError, match="'c_bezier_cubic' has its parameter alpha in the domain"):
         family_surface(net, fam, params_u={"alpha": 1}, params_v={"alpha": 1})
+
+
+# ---- a hyperbolic family with fast decaying atoms -----------------------------------------
+
+
+def _fast_decay(t, lam, k=0):
+    """b_0 = e^(-40 t), b_2 = lam (e^(-20 t) - e^(-40 t)), b_1 = 1 - b_0 - b_2: the k-th
+    derivatives, in mpmath."""
+    e40 = (-40) ** k * mp.exp(-40 * t)
+    e20 = (-20) ** k * mp.exp(-20 * t)
+    b2 = lam * (e20 - e40)
+    return [e40, (1 if k == 0 else 0) - e40 - b2, b2]
+
+
+def test_a_fast_decaying_hyperbolic_curve_against_its_definition():
+    # e^(-40 t) over cosh(40 t), sinh(40 t), centred about t = 1/2 in floats: C(0) came out
+    # as (2.5, 1) instead of P_0 = (0, 0), C(1) 29 off; its arc length then never ended
+    fam = lb.load_family(DATA / "hyp_fast_decay.toml")
+    points = [(0, 0), (1, 2), (4, 0)]
+    curve = fam.curve(points, lam=Fraction(1, 2))
+    lam = mp.mpf(1) / 2
+    mp.mp.dps = 40
+    try:
+        for k in (0, 1, 2):
+            scale = 40.0**k
+            for t in (0.0, 0.01, 0.1, 0.5, 0.9, 1.0):
+                b = _fast_decay(mp.mpf(t), lam, k)
+                want = [sum(bi * p[c] for bi, p in zip(b, points, strict=True)) for c in range(2)]
+                got = curve.derivative(t, k) if k else curve.evaluate(t)
+                assert (
+                    max(abs(float(g - w)) for g, w in zip(got, want, strict=True)) < 1e-13 * scale
+                )
+
+        def speed(t):
+            b = _fast_decay(t, lam, 1)
+            return mp.hypot(
+                *(sum(bi * p[c] for bi, p in zip(b, points, strict=True)) for c in (0, 1))
+            )
+
+        length = mp.quad(speed, [0, 0.01, 0.05, 0.1, 0.3, 1])
+        assert abs(curve.arc_length() - length) <= 1e-12 * length
+    finally:
+        mp.mp.dps = 15
+    assert np.allclose(curve.derivative(0.0), [70, 60], rtol=1e-14, atol=0)  # 30 P_1 + 10 P_2

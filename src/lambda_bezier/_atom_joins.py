@@ -211,13 +211,14 @@ def _exact_end_derivatives(curve: AtomCurve, orders: int) -> list[list[Number]] 
     data = curve.family_object.atom_data
     _, hi, unit = data.DOMAIN_EXACT
     given = curve.atom_parameter_values()
-    values = tuple(Fraction(given[x]) for x in data.NAMES)  # type: ignore[arg-type]
+    values = tuple(Fraction(given[x]) for x in data.NAMES)
     basis = combine(data.COEFFICIENTS[curve.degree], values)
-    points = curve.control_points()
+    points: Any = curve.control_points()  # Fractions: the curve is exact
     out: list[list[Number]] = []
     for r in range(orders + 1):
-        at = [_atom_at_end(a, r, hi, unit) for a in data.SHAPES[curve.degree].atoms]
-        if any(v is None for v in at):
+        found = [_atom_at_end(a, r, hi, unit) for a in data.SHAPES[curve.degree].atoms]
+        at = [v for v in found if v is not None]
+        if len(at) < len(found):
             return None
         weights = [sum((c * v for c, v in zip(b, at, strict=True)), Fraction(0)) for b in basis]
         out.append(

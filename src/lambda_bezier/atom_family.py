@@ -43,7 +43,7 @@ def _not_available(what: str, why: str) -> NoReturn:
     raise NotImplementedError(f"{what} is not available for this curve: {why}")
 
 
-def centred_basis(basis: Any, shape: Any, mid: float, family: str) -> np.ndarray:
+def _centred_basis(basis: Any, shape: Any, mid: float, name: str) -> np.ndarray:
     """(A, n+1): the exact basis (rows over the document's atoms) over the centred atoms
     about t = mid, in floats. A hyperbolic pair a cosh x + b sinh x (x = j w0 t) is
     p e^x + q e^-x with p = (a + b)/2, q = (a - b)/2 taken exactly, and about mid it is
@@ -58,7 +58,7 @@ def centred_basis(basis: Any, shape: Any, mid: float, family: str) -> np.ndarray
         phi = j * shape.omega0 * mid
         if abs(phi) > 700:
             raise ValueError(
-                f"the {family} family's atom e^({j * shape.omega0:g} t) at the middle of its "
+                f"the {name} family's atom e^({j * shape.omega0:g} t) at the middle of its "
                 "domain is past the float range: its curves cannot be evaluated in floats"
             )
         grow, decay = math.exp(phi), math.exp(-phi)
@@ -110,7 +110,7 @@ class AtomCurve(DomainGeometry):
         scale = val.power_of_two_scale(self.points)
         lo, hi = data.DOMAIN
         self._mid = 0.5 * (lo + hi)
-        self._centred_basis = centred_basis(basis, self.shape, self._mid, data.FAMILY)
+        self._centred_basis = _centred_basis(basis, self.shape, self._mid, data.FAMILY)
         with val.overflow_allowed():
             self._centred = self._centre(self.points / scale)
         self._scale = scale
@@ -123,7 +123,7 @@ class AtomCurve(DomainGeometry):
 
     def _centre(self, rows: np.ndarray) -> np.ndarray:
         """Coefficients over the centred atoms of the curves with control points `rows`
-        ((n+1, d)): the hyperbolic ones through `centred_basis`, the others through the
+        ((n+1, d)): the hyperbolic ones through `_centred_basis`, the others through the
         centring matrix after the points (that order's rounding is what the tests pin)."""
         if self.shape.hyperbolic:
             return self._centred_basis @ rows

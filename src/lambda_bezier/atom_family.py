@@ -126,8 +126,10 @@ class AtomCurve(DomainGeometry):
         ((n+1, d)): the hyperbolic ones through `_centred_basis`, the others through the
         centring matrix after the points (that order's rounding is what the tests pin)."""
         if self.shape.hyperbolic:
-            return self._centred_basis @ rows
-        return self.shape.centring.T @ (self._basis_float.T @ rows)
+            out: np.ndarray = self._centred_basis @ rows
+            return out
+        out = self.shape.centring.T @ (self._basis_float.T @ rows)
+        return out
 
     # ------------------------------------------------------------------ description
     @property

@@ -137,12 +137,16 @@ def _adaptive(curve: AtomCurve, a: float, b: float, tol: float, depth: int = 0) 
 def arc_length(curve: AtomCurve, a: float, b: float) -> float:
     if a == b:
         return 0.0
+    spans = [(max(pa, a), min(pb, b)) for pa, pb, _ in pieces(curve)]
+    spans = [(lo, hi) for lo, hi in spans if lo < hi]
+    roughs = [_gauss(curve, lo, hi, _GL) for lo, hi in spans]
+    # each piece to 1e-13 of itself, or of its share of the whole: a piece far shorter than
+    # the rest (the tail of exp(-40 t), 1e-10 long) cannot reach 1e-13 of its own length
+    # through the rounding of its speed, and halving it to depth 40 never ended
+    share = sum(abs(r) for r in roughs) / max(len(spans), 1)
     total = 0.0
-    for pa, pb, _ in pieces(curve):
-        lo, hi = max(pa, a), min(pb, b)
-        if lo < hi:
-            rough = _gauss(curve, lo, hi, _GL)
-            total += _adaptive(curve, lo, hi, 1e-13 * max(abs(rough), 1e-300))
+    for (lo, hi), rough in zip(spans, roughs, strict=True):
+        total += _adaptive(curve, lo, hi, 1e-13 * max(abs(rough), share, 1e-300))
     return total
 
 

@@ -10,8 +10,9 @@ own parameter (a trigonometric curve's t on [0, π/2], a polynomial curve's t on
 points: s[r][j] is the coefficient of P_j in C2^(r)(start) (the r-th derivative of b_j at the
 start of the domain: from the atoms, exactly when the domain starts at 0 and no frequency is a
 multiple of π; from the power tables for a polynomial family). The first curve's end
-derivatives are vectors: exact for an exact polynomial curve, floats for a curve of an atom
-family (sin and cos at the end of its domain are irrational in general). P_{0..R,2} then
+derivatives are vectors: exact for an exact polynomial curve and for an exact curve of an atom
+family where every atom's derivatives at the end of its domain are rational (a trigonometric
+family: W·hi is a multiple of π/2 there), floats otherwise (e^hi, a power of π). P_{0..R,2} then
 solve an (R+1) x (R+1) system, the given points P_{R+1..m,2} on its right-hand side.
 """
 
@@ -173,9 +174,69 @@ def _atom_float(atom: Any, r: int, x: float) -> float:
     return w**r * (even if r % 2 == 0 else odd)
 
 
+def _atom_at_end(atom: ak.Atom, r: int, hi: Fraction, unit: str) -> Fraction | None:
+    """The r-th derivative of `atom` at the domain's end hi (times pi when `unit` is "pi"),
+    exactly when it is rational, else None. A trigonometric atom at an end where its phase is
+    a multiple of pi/2 (the domain rule of a trigonometric family) is 0 or +-W^r, rational
+    when W has no factor pi; t^k at a rational end; cosh and sinh only at 0."""
+    on_pi = unit == "pi"
+    if atom.kind == "1":
+        return Fraction(1 if r == 0 else 0)
+    if atom.kind == "t":
+        k = atom.power
+        if r > k or k == r:
+            return Fraction(0 if r > k else math.factorial(k))
+        if on_pi and hi != 0:
+            return None  # a power of pi
+        return Fraction(math.factorial(k), math.factorial(k - r)) * hi ** (k - r)
+    if hi == 0:
+        return _atom_at_zero(atom, r) if not atom.pi or r == 0 else None
+    if atom.kind in ("cosh", "sinh") or atom.pi == on_pi or (atom.pi and r > 0):
+        return None  # e^x, a phase that is no multiple of pi/2, or a factor pi^r
+    quarters = 2 * atom.omega * hi  # the phase W hi in quarter turns
+    if quarters.denominator != 1:
+        return None
+    cycle = {"cos": (1, 0, -1, 0), "sin": (0, 1, 0, -1)}[atom.kind]
+    return Fraction(atom.omega**r * cycle[(int(quarters) + r) % 4])
+
+
+def _exact_end_derivatives(curve: AtomCurve, orders: int) -> list[list[Number]] | None:
+    """C^(r)(end) as Fractions, r = 0..orders, for an exact curve whose atoms' derivatives
+    at the end of its domain are rational (a trigonometric family on [0, pi/2]: there
+    sin and cos are 0 or +-1), else None."""
+    from ._family_document import combine
+
+    if not curve.is_exact:
+        return None
+    data = curve.family_object.atom_data
+    _, hi, unit = data.DOMAIN_EXACT
+    given = curve.atom_parameter_values()
+    values = tuple(Fraction(given[x]) for x in data.NAMES)
+    basis = combine(data.COEFFICIENTS[curve.degree], values)
+    points: Any = curve.control_points()  # Fractions: the curve is exact
+    out: list[list[Number]] = []
+    for r in range(orders + 1):
+        found = [_atom_at_end(a, r, hi, unit) for a in data.SHAPES[curve.degree].atoms]
+        at = [v for v in found if v is not None]
+        if len(at) < len(found):
+            return None
+        weights = [sum((c * v for c, v in zip(b, at, strict=True)), Fraction(0)) for b in basis]
+        out.append(
+            [
+                sum((w * Fraction(p[k]) for w, p in zip(weights, points, strict=True)), Fraction(0))
+                for k in range(curve.dimension)
+            ]
+        )
+    return out
+
+
 def _end_derivatives(curve: Any, orders: int) -> list[list[Number]]:
-    """C1^(r)(end) as vectors, r = 0..orders."""
+    """C1^(r)(end) as vectors, r = 0..orders: exact for an exact curve whose end derivatives
+    are rational (a polynomial curve; an atom curve by _exact_end_derivatives)."""
     if isinstance(curve, AtomCurve):
+        exact = _exact_end_derivatives(curve, orders)
+        if exact is not None:
+            return exact
         hi = curve.domain[1]
         return [[float(v) for v in curve.derivative(hi, r)] for r in range(orders + 1)]
     if hasattr(curve, "end_derivatives"):

@@ -45,6 +45,13 @@ def read_family_table(path: str | Path) -> dict[str, Any]:
     except (OSError, UnicodeDecodeError) as exc:
         raise FamilyFileError(f"{path}: cannot be read ({exc})") from None
     except tomllib.TOMLDecodeError as exc:
+        if str(path).endswith(".json"):  # a derived document, or a curve's JSON form
+            raise FamilyFileError(
+                f"{path}: a JSON file, not a family definition: a family is defined by a TOML "
+                "file with a [family] table (NAME.toml); NAME.derived.json is what `lambda-bezier "
+                "derive --family NAME.toml` writes beside it and is found from it, so pass the "
+                "TOML definition"
+            ) from None
         raise FamilyFileError(f"{path}: not valid TOML: {exc}") from None
     except RecursionError:  # the decoder recurses on nested arrays and tables
         raise FamilyFileError(f"{path}: not valid TOML: nested too deeply") from None

@@ -81,7 +81,10 @@ def run(path: Path, out_dir: Path | None, check: bool, quiet: bool = False) -> i
         if frequency.is_frequency_family(table):
             _say(quiet, document.summary(json.loads(text)))
     except definition.DefinitionError as exc:
-        print(f"lambda-bezier derive: {exc}", file=sys.stderr)
+        text = str(exc)
+        if not text.startswith(f"{path}:"):  # every refusal names the file it is about
+            text = f"{path}: {text}"
+        print(f"lambda-bezier derive: {text}", file=sys.stderr)
         return 2
     target = document.derived_path(path, defn.name, out_dir)
     installed = _installed_location(target) if out_dir is None else None

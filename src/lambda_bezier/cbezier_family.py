@@ -186,7 +186,7 @@ class CBezierFamily:
             f"has its parameter {self.parameter} in the {where_param} "
             "(C-Bézier): this function takes polynomial families only; optimal_parameters, "
             "optimal_lambda, evaluate_many(..., params={...}), join(..., params={...}), "
-            "CompositeCurve and to_json take it, and its curves come from "
+            "CompositeCurve and export (JSON, STEP, DXF, SVG) take it; its curves come from "
             f"fam.curve(points, {self.parameter}=...)"
         )
         self.title = title
@@ -278,7 +278,38 @@ class CBezierFamily:
         for j, (kind, m) in enumerate(self.atoms):  # t^k = (alpha u)^k; cos(m t) keeps its own
             factor = rate**m if kind == "pow" else 1.0
             own[:, layout.index((kind, m))] += basis[:, j] * factor
+        self._check_cancellation(x, own, layout, 1.0 if unit else x, rate, err)
         return Representation(layout, own, self.powers, self.harmonics, basis, self.atoms, err)
+
+    def _check_cancellation(
+        self,
+        x: float,
+        own: np.ndarray,
+        layout: list[tuple[str, int]],
+        hi: float,
+        rate: float,
+        err: float,
+    ) -> None:
+        """Refuse an alpha where the atom form's sum cancels past MAX_COEFFICIENT_ERROR: `err`
+        bounds the coefficients' relative error, but b_i(t) = sum_a c_ia a(t) sums terms of
+        size sum_a |c_ia| |a(t)| (|a| <= hi^k, 1, cosh(m rate hi) on [0, hi]). A hyperbolic
+        basis on [0, 40] has terms near e^40 / 4: its floats were wrong by 2 (P_0 at (0.95, 2))."""
+        sizes = []
+        for kind, m in layout:
+            if kind == "pow":
+                sizes.append(hi**m)
+            elif self.hyperbolic:
+                sizes.append(math.cosh(min(m * rate * hi, 700.0)))
+            else:
+                sizes.append(1.0)
+        terms = float((np.abs(own) @ np.array(sizes)).max())
+        bound = (err + 4 * len(layout) * _EPS) * terms
+        if not bound <= MAX_COEFFICIENT_ERROR:
+            raise ValueError(
+                f"{self.parameter} = {x}: the {self.name} basis cannot be evaluated in floats "
+                f"to {MAX_COEFFICIENT_ERROR:g} there: its atoms' terms reach {terms:.3g} for "
+                f"values of size 1 (bound {bound:.3g}); a smaller {self.parameter} is needed"
+            )
 
     def basis_coefficients(self, alpha: object) -> tuple[np.ndarray, float]:
         """((n+1, atoms) float coefficients in t on [0, alpha], bound on their relative error)."""
@@ -307,18 +338,25 @@ class CBezierFamily:
         return self._matrix(self._energies[k], x, f"E_{k} matrix")[0]
 
     # ------------------------------------------------------------------ curves
-    def curve(self, points: PointsLike, alpha: object = None, **params: object) -> CBezierCurve:
-        if alpha is None:
-            if set(params) != {self.parameter}:
-                raise TypeError(f"curve() takes the parameter {self.parameter}=...")
-            alpha = params[self.parameter]
-        elif params:
-            raise TypeError(f"unexpected arguments {sorted(params)}")
-        return CBezierCurve(self, points, self.check_alpha(alpha))
+    def curve(
+        self, points: PointsLike, value: object = None, /, *, params: object = None, **named: object
+    ) -> CBezierCurve:
+        """The curve at the parameter, by the family's own name (``alpha=2.0``), as
+        ``params={name: value}`` or positionally; another name is a TypeError naming it."""
+        if params is not None and not isinstance(params, dict):
+            raise TypeError("params must be a dict {name: value}")
+        names = [self.parameter] * (value is not None) + [*(params or {}), *named]
+        for x in names:
+            if x != self.parameter:
+                raise TypeError(f"{x!r} is not a parameter of {self.name!r} ({self.parameter})")
+        if len(names) != 1:
+            raise TypeError(f"curve() takes the parameter {self.parameter}=... once")
+        x = value if value is not None else {**(params or {}), **named}[self.parameter]
+        return CBezierCurve(self, points, self.check_alpha(x))
 
     def energy(self, points: PointsLike, alpha: object, k: int) -> float:
         """E_k of the curve at alpha (CBezierCurve.energy)."""
-        return self.curve(points, alpha=alpha).energy(k)
+        return self.curve(points, alpha).energy(k)
 
     def evaluate_curves(
         self,
@@ -640,6 +678,14 @@ class CBezierCurve(DomainGeometry):
             raise ValueError(f"the rational form at {self.alpha} has weights that are not positive")
         numer = np.linalg.solve(bern, values * den[:, None])
         return RationalBezierCurve(numer / weights[:, None], weights / weights[0])
+
+    def to_bezier(self) -> Any:
+        """Refused: not a polynomial curve (export writes certified polynomial pieces)."""
+        raise NotImplementedError(
+            f"to_bezier is not available for this curve: a {self.family} curve is a sum of "
+            "atoms (t and sin/cos or sinh/cosh of t), not a polynomial curve; "
+            "lambda_bezier.export writes it as certified polynomial pieces"
+        )
 
     def end_derivatives(self, orders: int) -> list[list[float]]:
         """The curve's derivatives of orders 0..orders at the end of its domain (a join from

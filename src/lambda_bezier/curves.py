@@ -125,6 +125,14 @@ def family_class(family: object) -> type[Curve]:
             f"unknown family {family!r}: choose one of {', '.join(map(repr, families))}, or "
             "pass a family from lambda_bezier.load_family"
         )
+    index = getattr(family, "index_name", None)
+    if index is not None:  # an IndexedFamily: its curve_class is only its lowest degree's
+        raise TypeError(
+            f"the family {getattr(family, 'name', '?')!r} has one parameter per index "
+            f"({index}(i)): one curve class per degree and values; use fam.curve(points, "
+            f"{index}=[...]), optimal_parameters, evaluate_many(..., params={{...}}) or "
+            f"join(..., {index}=[...])"
+        )
     several = getattr(family, "several", None)
     if several is not None:
         names = ", ".join(several.NAMES)

@@ -321,11 +321,11 @@ def _exportable(obj: Any, tolerance: float | None = None) -> Any:
 
     The pieces of a curve without a rational form are within `tolerance` (a distance in the
     curve's units; default DEFAULT_DEVIATION times its size) of it at every t, certified
-    (_atom_geometry.certified_pieces)."""
-    from .atom_family import AtomCurve
+    (_atom_geometry.certified_pieces). A C-Bézier curve (cbezier_family: its space depends
+    on its alpha) is always written by these certified pieces."""
     from .composite import CompositeCurve
 
-    if isinstance(obj, CompositeCurve) and any(isinstance(s, AtomCurve) for s in obj.segments):
+    if isinstance(obj, CompositeCurve) and any(_over_atoms(s) for s in obj.segments):
         # one polynomial B-spline: every AtomCurve segment by its polynomial pieces (a NURBS
         # segment and polynomial ones share no exact common form); the joints are measured
         # on the pieces as on any composite, so the knots say what continuity they keep
@@ -333,25 +333,40 @@ def _exportable(obj: Any, tolerance: float | None = None) -> Any:
             [
                 p
                 for seg in obj.segments
-                for p in (_pieces_of(seg, tolerance) if isinstance(seg, AtomCurve) else [seg])
+                for p in (_pieces_of(seg, tolerance) if _over_atoms(seg) else [seg])
             ]
         )
-    if not isinstance(obj, AtomCurve):
+    if not _over_atoms(obj):
         return obj
-    if obj.has_rational_form or obj.data.SPACE == "hyperbolic":  # hyperbolic: in floats
+    if not _by_certified_pieces(obj):  # an exact rational form; hyperbolic: in floats
         return obj.to_rational_bezier()
     return CompositeCurve(_pieces_of(obj, tolerance))
 
 
-def _has_mixed(obj: Any) -> bool:
-    """Whether obj is, or has a segment that is, a curve without a rational form."""
+def _over_atoms(curve: Any) -> bool:
+    """Whether `curve` is a sum of atoms (1, t^k, cos, sin, cosh, sinh) with no polynomial
+    form: a curve of a trigonometric, hyperbolic or mixed family, or a C-Bézier curve."""
     from .atom_family import AtomCurve
+    from .cbezier_family import CBezierCurve
 
+    return isinstance(curve, AtomCurve | CBezierCurve)
+
+
+def _by_certified_pieces(curve: Any) -> bool:
+    """Whether a curve over atoms is written by certified polynomial pieces: a mixed one (no
+    rational form) and every C-Bézier curve (the float rational form some of these have is
+    not certified, and none has an exact one for a general alpha)."""
+    from .cbezier_family import CBezierCurve
+
+    if isinstance(curve, CBezierCurve):
+        return True
+    return not curve.has_rational_form and curve.data.SPACE != "hyperbolic"
+
+
+def _has_mixed(obj: Any) -> bool:
+    """Whether obj is, or has a segment that is, a curve written by certified pieces."""
     segs = getattr(obj, "segments", [obj])
-    return any(
-        isinstance(c, AtomCurve) and not c.has_rational_form and c.data.SPACE != "hyperbolic"
-        for c in segs
-    )
+    return any(_over_atoms(c) and _by_certified_pieces(c) for c in segs)
 
 
 DEFAULT_DEVIATION = 1e-10  # relative to the curve's size: the export's default tolerance
@@ -363,7 +378,7 @@ def _pieces_of(curve: Any, tolerance: float | None = None) -> list[Any]:
     `tolerance` of it, certified (_atom_geometry.certified_pieces)."""
     from . import _atom_geometry as ag
 
-    if curve.has_rational_form or curve.data.SPACE == "hyperbolic":
+    if not _by_certified_pieces(curve):
         return [piece for _, _, piece in ag.pieces(curve, ag.EXPORT_DEGREE)]
     if tolerance is None:
         tolerance = DEFAULT_DEVIATION * max(float(np.abs(curve.points).max()), 1e-300)

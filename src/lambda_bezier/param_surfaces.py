@@ -22,6 +22,7 @@ from typing import Any
 from . import _poly_direction as pd
 from . import _validate as val
 from .atom_surfaces import AtomSurface
+from .curves import elsewhere
 from .surfaces import NetLike, Surface, _as_net
 
 _is_atom, _is_indexed = pd.is_atom, pd.is_indexed
@@ -150,6 +151,10 @@ def family_surface(
     fu, fv = family if isinstance(family, tuple | list) else (family, family)
     if isinstance(family, tuple | list) and len(family) != 2:
         raise ValueError(f"family must be one family or a pair (u, v), got {len(family)} items")
+    for f in (fu, fv):
+        told = elsewhere(f)  # a C-Bézier family: no surfaces; what it does take, named
+        if told is not None:
+            raise TypeError(told)
     if any(_is_atom(f) or isinstance(f, str) or pd.is_class(f) for f in (fu, fv)):
         # a built-in direction by name (or class), across an atom family or any other
         fu, fv = pd.polynomial_family(fu), pd.polynomial_family(fv)

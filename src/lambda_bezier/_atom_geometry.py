@@ -38,7 +38,7 @@ from .geometry import ClosestPoint, length_queries
 from .hazmat import atom_bounds as ab
 from .hazmat import atom_intersect as ai
 from .hazmat.intersect import Intersection
-from .hazmat.intersect_locate import NORMAL_EXPONENT
+from .hazmat.intersect_prepared import NORMAL_EXPONENT
 from .rational import RationalBezierCurve
 
 if TYPE_CHECKING:

@@ -48,7 +48,7 @@ from ._validate import ParamLike, PointsLike
 from .curves import BezierCurve, Curve
 from .hazmat import kernels as alg
 from .hazmat import rational_kernels as rk
-from .hazmat.intersect_locate import NORMAL_EXPONENT
+from .hazmat.intersect_prepared import NORMAL_EXPONENT
 
 if TYPE_CHECKING:
     from sympy import Poly

@@ -42,7 +42,6 @@ from . import intersect_refold as refold
 from . import intersect_self_exact as _self_exact
 from . import intersect_subdivide as sub
 from .intersect_locate import (  # the point location half, and the tolerances both share
-    NORMAL_EXPONENT,
     ON_CURVE,
     ROOT_RESIDUAL,
     SAME_ROOT,
@@ -52,8 +51,8 @@ from .intersect_locate import (  # the point location half, and the tolerances b
 )
 from .intersect_locate import locate_all as locate_all  # Curve.locate's entry
 from .intersect_locate import locate_point as locate_point  # (a user's point)
+from .intersect_prepared import NORMAL_EXPONENT, _exact_difference
 from .intersect_prepared import Prepared as Prepared
-from .intersect_prepared import _exact_difference
 
 # relative, per unit of degree: pieces whose boxes or fat lines are this close still overlap.
 # It covers the rounding of repeated halving (a few ulps of the control points' size per

@@ -14,7 +14,7 @@ import numpy as np
 
 from . import intersect_refold as refold
 from . import intersect_subdivide as sub
-from .intersect_prepared import Prepared, _exact_difference, _integer_point
+from .intersect_prepared import NORMAL_EXPONENT, Prepared, _exact_difference, _integer_point
 
 # relative distance below which `locate` counts a user's point as on a curve. Intersection
 # does not use it: two curves meet only where they are within the rounding of evaluating
@@ -25,7 +25,6 @@ SAME_ROOT = 1e-9  # parameters closer than this are one intersection
 ROOT_RESIDUAL = 64 * float(np.finfo(float).eps)
 # a piece locate_all is left with that is wider than this is flat, not unresolved at depth
 WIDE_PIECE = 1e-6
-NORMAL_EXPONENT = 128  # pairs whose largest coordinate is beyond 2^±this are scaled near 1
 
 
 # ---------------------------------------------------------------------------- clusters

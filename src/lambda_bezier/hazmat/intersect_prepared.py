@@ -14,6 +14,8 @@ import numpy as np
 from . import forms
 from . import kernels as alg
 
+NORMAL_EXPONENT = 128  # pairs whose largest coordinate is beyond 2^±this are scaled near 1
+
 _SMALL = 64  # control point arrays up to this many coordinates: _extent over Python lists
 
 

@@ -50,6 +50,13 @@ if TYPE_CHECKING:
 
 RTOL = 1e-12
 SAME_ROOT = 1e-7  # intersection parameters closer than this are one intersection
+# exact input: a self-crossing whose float parameters rounding can move by more than
+# SELF_PLACED (_float_error, with the points' rounding taken as SELF_ROUNDING per degree of
+# the size: n eps for de Casteljau's n levels, times 4) is decided exactly, as a tangent or
+# small-angle one is. A crossing at a clear angle with speeds near the size is placed to
+# ~1e-15 and keeps the float answer and its speed.
+SELF_PLACED = 1e-13
+SELF_ROUNDING = 4 * float(np.finfo(float).eps)
 TANGENT_SINE = 1e-5  # below this sine of the angle between tangents an intersection is tangent
 ON_CURVE = 1e-10  # Newton's residual must be below this times the curves' size
 # relative, per degree: points this close are on both curves when deciding a shared stretch
@@ -606,17 +613,36 @@ def self_intersections(curve: RationalBezierCurve) -> list[Intersection]:
     if curve.degree < 2:
         return []
     try:
-        hits = _float_self_intersections(curve)
+        hits, gave_up = _float_self_intersections(curve)
     except ValueError:
         exact = _self_decided_exactly(curve)
         if exact is None:
             raise
         return exact
-    if any(h.kind == "tangent" or _sine(curve, curve, h.s, h.t) < EXACT_CHECK_SINE for h in hits):
+    size = _size(curve)
+    if gave_up or any(
+        h.kind == "tangent"
+        or _sine(curve, curve, h.s, h.t) < EXACT_CHECK_SINE
+        or _float_error(curve, h, size) > SELF_PLACED
+        for h in hits
+    ):
         exact = _self_decided_exactly(curve)
         if exact is not None:
             return exact
     return hits
+
+
+def _float_error(curve: RationalBezierCurve, h: Intersection, size: float) -> float:
+    """How far rounding can move a self-crossing found in floats, in parameter: the points
+    round by about n eps of the size (SELF_ROUNDING per degree), and the root moves by that
+    over the smallest singular value of the Jacobian [C'(s) | -C'(t)]. On a small loop next
+    to a cusp both speeds and the angle between them are small: the cubic (0,0), (a,1),
+    (1-a,1), (1,0) with a = 1 + 8/3 10^-8 crosses itself at s = 0.4999, where this is 2e-9
+    (and the float search was 3.6e-10 off)."""
+    jac = np.stack([curve.derivative(h.s), -curve.derivative(h.t)], axis=1)
+    smallest = float(np.linalg.svd(jac, compute_uv=False)[-1])
+    rounding = SELF_ROUNDING * curve.degree * size
+    return rounding / smallest if smallest > 0.0 else math.inf
 
 
 def _self_decided_exactly(curve: RationalBezierCurve) -> list[Intersection] | None:
@@ -629,10 +655,16 @@ def _self_decided_exactly(curve: RationalBezierCurve) -> list[Intersection] | No
     return [Intersection(s, t, "tangent" if flat else "transversal") for s, t, flat in got]
 
 
-def _float_self_intersections(curve: RationalBezierCurve) -> list[Intersection]:
+def _float_self_intersections(curve: RationalBezierCurve) -> tuple[list[Intersection], bool]:
+    """The self-crossings found in floats, and whether the certified search gave up (then
+    they come from Newton starts, _fallback_self_intersections)."""
     found = ai.self_pairs(ai.BernsteinPart(_float_rows(curve)))
     if found is not None:
-        return [Intersection(f.s, f.t, f.kind) for f in found]
+        return [Intersection(f.s, f.t, f.kind) for f in found], False
+    return _fallback_self_intersections(curve), True
+
+
+def _fallback_self_intersections(curve: RationalBezierCurve) -> list[Intersection]:
     pieces = _monotone_pieces(curve)
     size = _size(curve)
     starts = []

@@ -41,6 +41,7 @@ from . import intersect_exact as _exact_iso
 from . import intersect_fold as fold
 from . import intersect_refold as refold
 from . import intersect_self_exact as _self_exact
+from . import intersect_self_polish as _self_polish
 from . import intersect_subdivide as sub
 from .intersect_locate import (  # the point location half, and the tolerances both share
     ON_CURVE,
@@ -73,6 +74,15 @@ TANGENT_SINE = 1e-6  # below this sine of the angle between tangents, refine as 
 # merged at that gap have a sine of about sqrt(curvature x gap): 1e-4 covers curvatures up to
 # ~1e4 of the size
 EXACT_CHECK_SINE = 1e-4
+# relative, per unit of degree: a self-intersection "loop" whose points all lie this close to
+# each other is what rounding makes of a cusp (p(s) - p(t) vanishes to third order there), not
+# a crossing. Evaluating a degree-n curve rounds by at most about n eps of its size (de
+# Casteljau: n levels of one convex combination each), so two points of a cusp can seem apart
+# by twice that; 8 eps per degree leaves a factor of 4. A loop above it is real at the
+# precision of the input: the cubic (0,0), (a,1), (1-a,1), (1,0) with a = 1 + 8/3 10^-14
+# crosses itself at s = 1/2 -+ 1e-7 and its loop spans 3e-14 of its size, 18 times the bound.
+# It was 1e-8 (undocumented), which dropped that cubic's loop up to a = 1 + 8/3 10^-9.
+CUSP_LOOP = 8 * float(np.finfo(float).eps)
 # the tolerances above and the subdivision's, as the compiled careful path takes them
 # (settle_compiled.Knobs names the order)
 SETTLE = (
@@ -716,9 +726,9 @@ def _refuse_collinear_overlap(p: Prepared, q: Prepared) -> None:
 
 def _cusp_loop(p: Prepared, hit: Intersection) -> bool:
     """Near a cusp p(s) - p(t) vanishes to third order for s close to t: a "loop" whose
-    points all lie within rounding of each other is that, not a crossing."""
+    points all lie within rounding of each other (CUSP_LOOP) is that, not a crossing."""
     loop = np.array([p.at(u) for u in np.linspace(hit.s, hit.t, 9)])
-    return bool(np.ptp(loop, axis=0).max() <= 1e-8 * p.scale)
+    return bool(np.ptp(loop, axis=0).max() <= CUSP_LOOP * p.degree * p.scale)
 
 
 def self_intersections(p: Prepared) -> list[Intersection]:
@@ -767,6 +777,7 @@ def self_intersections(p: Prepared) -> list[Intersection]:
             hit = Intersection(hit.t, hit.s, hit.kind)
         if not _dedupe(found, hit):
             _add(found, hit, p, p)
+    found = _polished_self(p, found)
     exact = _self_decided_exactly(p, found, near_diagonal)
     if exact is not None:
         return exact
@@ -791,6 +802,23 @@ def self_intersections(p: Prepared) -> list[Intersection]:
                     out.append(h)
             return sorted(out)
     return sorted(found)
+
+
+def _polished_self(p: Prepared, found: list[Intersection]) -> list[Intersection]:
+    """Each crossing refined on the divided difference (p(s) - p(t)) / (s - t)
+    (intersect_self_polish), which places one on a small loop to the rounding of the points
+    where Newton on p(s) - p(t) is off by up to the loop's width; its kind by the sine rule
+    (TANGENT_SINE) there. Where that Newton does not settle (a self-tangency's divided
+    difference has a singular Jacobian) the hit stays as it was."""
+    out: list[Intersection] = []
+    for h in found:
+        got = _self_polish.polished(p.h1, p.h2, h.s, h.t) if h.kind != "coincident" else None
+        if got is not None:
+            kind = "tangent" if _sine(p, p, *got) < TANGENT_SINE else "transversal"
+            h = Intersection(got[0], got[1], kind)
+        if not _dedupe(out, h):
+            out.append(h)
+    return out
 
 
 def _self_decided_exactly(

@@ -43,20 +43,13 @@ from .hazmat import coincide as co
 from .hazmat import intersect_exact as ie
 from .hazmat import intersect_self_exact as se
 from .hazmat import rational_kernels as rk
-from .hazmat.intersect import EXACT_CHECK_SINE, Intersection
+from .hazmat.intersect import EXACT_CHECK_SINE, SELF_PLACED, SELF_ROUNDING, Intersection
 
 if TYPE_CHECKING:
     from .rational import RationalBezierCurve
 
 RTOL = 1e-12
 SAME_ROOT = 1e-7  # intersection parameters closer than this are one intersection
-# exact input: a self-crossing whose float parameters rounding can move by more than
-# SELF_PLACED (_float_error, with the points' rounding taken as SELF_ROUNDING per degree of
-# the size: n eps for de Casteljau's n levels, times 4) is decided exactly, as a tangent or
-# small-angle one is. A crossing at a clear angle with speeds near the size is placed to
-# ~1e-15 and keeps the float answer and its speed.
-SELF_PLACED = 1e-13
-SELF_ROUNDING = 4 * float(np.finfo(float).eps)
 TANGENT_SINE = 1e-5  # below this sine of the angle between tangents an intersection is tangent
 ON_CURVE = 1e-10  # Newton's residual must be below this times the curves' size
 # relative, per degree: points this close are on both curves when deciding a shared stretch
@@ -633,8 +626,9 @@ def self_intersections(curve: RationalBezierCurve) -> list[Intersection]:
 
 
 def _float_error(curve: RationalBezierCurve, h: Intersection, size: float) -> float:
-    """How far rounding can move a self-crossing found in floats, in parameter: the points
-    round by about n eps of the size (SELF_ROUNDING per degree), and the root moves by that
+    """How far rounding can move a self-crossing found in floats, in parameter (exact input
+    past SELF_PLACED is decided exactly): the points round by about n eps of the size
+    (SELF_ROUNDING per degree, hazmat.intersect), and the root moves by that
     over the smallest singular value of the Jacobian [C'(s) | -C'(t)]. On a small loop next
     to a cusp both speeds and the angle between them are small: the cubic (0,0), (a,1),
     (1-a,1), (1,0) with a = 1 + 8/3 10^-8 crosses itself at s = 0.4999, where this is 2e-9

@@ -83,6 +83,13 @@ EXACT_CHECK_SINE = 1e-4
 # crosses itself at s = 1/2 -+ 1e-7 and its loop spans 3e-14 of its size, 18 times the bound.
 # It was 1e-8 (undocumented), which dropped that cubic's loop up to a = 1 + 8/3 10^-9.
 CUSP_LOOP = 8 * float(np.finfo(float).eps)
+# a self-crossing that rounding of the points (SELF_ROUNDING per degree of the size: n eps
+# for de Casteljau's n levels, times 4) can move by more than SELF_PLACED in parameter is,
+# for float input, polished on the divided difference (intersect_self_polish), and for
+# exact rational input decided exactly. A crossing at a clear angle, with speeds near the
+# size, is placed to ~1e-15 and keeps its answer and speed.
+SELF_PLACED = 1e-13
+SELF_ROUNDING = 4 * float(np.finfo(float).eps)
 # the tolerances above and the subdivision's, as the compiled careful path takes them
 # (settle_compiled.Knobs names the order)
 SETTLE = (
@@ -808,17 +815,31 @@ def _polished_self(p: Prepared, found: list[Intersection]) -> list[Intersection]
     """Each crossing refined on the divided difference (p(s) - p(t)) / (s - t)
     (intersect_self_polish), which places one on a small loop to the rounding of the points
     where Newton on p(s) - p(t) is off by up to the loop's width; its kind by the sine rule
-    (TANGENT_SINE) there. Where that Newton does not settle (a self-tangency's divided
-    difference has a singular Jacobian) the hit stays as it was."""
+    (TANGENT_SINE) there. Float input only, and only where rounding can move the hit by
+    more than SELF_PLACED (_self_misplaced): exact input's hits are refined on exact
+    residuals, and decided exactly where in doubt. Where that Newton does not settle (a
+    self-tangency's divided difference has a singular Jacobian) the hit stays as it was."""
     out: list[Intersection] = []
     for h in found:
-        got = _self_polish.polished(p.h1, p.h2, h.s, h.t) if h.kind != "coincident" else None
+        got = None
+        if p._given_rows is None and h.kind != "coincident" and _self_misplaced(p, h):
+            got = _self_polish.polished(p.h1, p.h2, h.s, h.t)
         if got is not None:
             kind = "tangent" if _sine(p, p, *got) < TANGENT_SINE else "transversal"
             h = Intersection(got[0], got[1], kind)
         if not _dedupe(out, h):
             out.append(h)
     return out
+
+
+def _self_misplaced(p: Prepared, h: Intersection) -> bool:
+    """Rounding of the points (SELF_ROUNDING per degree of the size) can move the float
+    root of p(s) = p(t) by more than SELF_PLACED: that over the smallest singular value of
+    the Jacobian [p'(s) | -p'(t)]. Small next to a cusp, where both speeds and the angle
+    between them are small."""
+    jac = np.stack([p.at(h.s, 1), -p.at(h.t, 1)], axis=1)
+    smallest = float(np.linalg.svd(jac, compute_uv=False)[-1])
+    return SELF_ROUNDING * p.degree * p.scale > SELF_PLACED * smallest
 
 
 def _self_decided_exactly(

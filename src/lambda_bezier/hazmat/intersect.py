@@ -839,7 +839,7 @@ def _self_misplaced(p: Prepared, h: Intersection) -> bool:
     between them are small."""
     jac = np.stack([p.at(h.s, 1), -p.at(h.t, 1)], axis=1)
     smallest = float(np.linalg.svd(jac, compute_uv=False)[-1])
-    return SELF_ROUNDING * p.degree * p.scale > SELF_PLACED * smallest
+    return bool(SELF_ROUNDING * p.degree * p.scale > SELF_PLACED * smallest)
 
 
 def _self_decided_exactly(

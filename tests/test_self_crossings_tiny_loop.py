@@ -13,10 +13,14 @@ p(1/2 − w) = p(1/2 + w) evaluated at 60 digits (mpmath), for the exact value o
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction as F
 
 import mpmath
 import pytest
+from conftest import examples_per_profile
+from hypothesis import example, given, settings
+from hypothesis import strategies as st
 
 import lambda_bezier as lb
 from lambda_bezier.hazmat.intersect import TANGENT_SINE
@@ -123,3 +127,56 @@ def test_float_loop_below_rounding_is_not_reported(k):
     s, t, _, _ = crossing(exact)
     got = lb.BezierCurve(cubic(exact)).self_intersections()
     assert len(got) == 1 and abs(got[0].s - s) <= 2.0**-53 and abs(got[0].t - t) <= 2.0**-53
+
+
+def _reference_crossing(pts, s0, t0):
+    """The float curve's own crossing near (s0, t0), at 60 digits: mpmath's findroot on the
+    divided difference (p(s) − p(t)) / (s − t) (regular there, unlike p(s) − p(t)), from the
+    unrotated loop's exact answer; checked to be a crossing with s ≠ t."""
+    with mpmath.workdps(60):
+        rows = [(_mp(x), _mp(y)) for x, y in pts]
+
+        def at(u):
+            b = [mpmath.binomial(3, i) * u**i * (1 - u) ** (3 - i) for i in range(4)]
+            return [sum(bi * r[c] for bi, r in zip(b, rows, strict=True)) for c in (0, 1)]
+
+        def g(s, t):
+            ps, pt = at(s), at(t)
+            return [(ps[c] - pt[c]) / (s - t) for c in (0, 1)]
+
+        s, t = mpmath.findroot(g, (s0, t0))
+        ps, pt = at(s), at(t)
+        assert max(abs(ps[0] - pt[0]), abs(ps[1] - pt[1])) < mpmath.mpf(10) ** -45
+        assert t - s > mpmath.mpf(10) ** -9
+        jac = mpmath.matrix(2, 2)
+        h = mpmath.mpf(10) ** -25
+        for j, (ds, dt) in enumerate(((h, 0), (0, h))):
+            hi, lo = g(s + ds, t + dt), g(s - ds, t - dt)
+            for c in (0, 1):
+                jac[c, j] = (hi[c] - lo[c]) / (2 * h)
+        return s, t, float(min(mpmath.svd_r(jac, compute_uv=False)))
+
+
+@settings(max_examples=examples_per_profile(12, 200), deadline=None, derandomize=True)
+@example(k=9.1875, turn=0.0, scale=1.0)  # found by the fuzz profile: Newton from the starts
+# fell onto the diagonal and the loop was lost (intersect._loop_from)
+@given(
+    k=st.floats(6, 13.5),
+    turn=st.floats(0, 2 * math.pi),
+    scale=st.sampled_from([1.0, 1e-3, 1e5]),
+)
+def test_float_rotated_tiny_loops_are_placed(k, turn, scale):
+    """Rotated and scaled float versions (every coordinate rounded): the loop is one
+    crossing, placed to the rounding bound (4 n ε of the size over the divided difference's
+    smallest singular value, with the size's factor) of the float input's own crossing."""
+    a = 1 + 8 / 3 * 10**-k
+    c, s_ = math.cos(turn), math.sin(turn)
+    pts = [(scale * (c * x - s_ * y), scale * (s_ * x + c * y)) for x, y in cubic(a)]
+    e = mpmath.mpf(a) - 1
+    w = mpmath.sqrt((3 * e / 8) / (1 + 3 * e / 2))
+    s, t, smallest = _reference_crossing(pts, 0.5 - w, 0.5 + w)
+    got = lb.BezierCurve(pts).self_intersections()
+    assert len(got) == 1
+    size = max(max(abs(v) for p in pts for v in p), scale)
+    tol = 4 * 3 * EPS * size / smallest
+    assert abs(got[0].s - s) <= tol and abs(got[0].t - t) <= tol, (got, float(s), float(t), tol)

@@ -43,7 +43,7 @@ from .hazmat import coincide as co
 from .hazmat import intersect_exact as ie
 from .hazmat import intersect_self_exact as se
 from .hazmat import rational_kernels as rk
-from .hazmat.intersect import EXACT_CHECK_SINE, Intersection
+from .hazmat.intersect import EXACT_CHECK_SINE, SELF_PLACED, SELF_ROUNDING, Intersection
 
 if TYPE_CHECKING:
     from .rational import RationalBezierCurve
@@ -606,17 +606,37 @@ def self_intersections(curve: RationalBezierCurve) -> list[Intersection]:
     if curve.degree < 2:
         return []
     try:
-        hits = _float_self_intersections(curve)
+        hits, gave_up = _float_self_intersections(curve)
     except ValueError:
         exact = _self_decided_exactly(curve)
         if exact is None:
             raise
         return exact
-    if any(h.kind == "tangent" or _sine(curve, curve, h.s, h.t) < EXACT_CHECK_SINE for h in hits):
+    size = _size(curve)
+    if gave_up or any(
+        h.kind == "tangent"
+        or _sine(curve, curve, h.s, h.t) < EXACT_CHECK_SINE
+        or _float_error(curve, h, size) > SELF_PLACED
+        for h in hits
+    ):
         exact = _self_decided_exactly(curve)
         if exact is not None:
             return exact
     return hits
+
+
+def _float_error(curve: RationalBezierCurve, h: Intersection, size: float) -> float:
+    """How far rounding can move a self-crossing found in floats, in parameter (exact input
+    past SELF_PLACED is decided exactly): the points round by about n eps of the size
+    (SELF_ROUNDING per degree, hazmat.intersect), and the root moves by that
+    over the smallest singular value of the Jacobian [C'(s) | -C'(t)]. On a small loop next
+    to a cusp both speeds and the angle between them are small: the cubic (0,0), (a,1),
+    (1-a,1), (1,0) with a = 1 + 8/3 10^-8 crosses itself at s = 0.4999, where this is 2e-9
+    (and the float search was 3.6e-10 off)."""
+    jac = np.stack([curve.derivative(h.s), -curve.derivative(h.t)], axis=1)
+    smallest = float(np.linalg.svd(jac, compute_uv=False)[-1])
+    rounding = SELF_ROUNDING * curve.degree * size
+    return rounding / smallest if smallest > 0.0 else math.inf
 
 
 def _self_decided_exactly(curve: RationalBezierCurve) -> list[Intersection] | None:
@@ -629,10 +649,16 @@ def _self_decided_exactly(curve: RationalBezierCurve) -> list[Intersection] | No
     return [Intersection(s, t, "tangent" if flat else "transversal") for s, t, flat in got]
 
 
-def _float_self_intersections(curve: RationalBezierCurve) -> list[Intersection]:
+def _float_self_intersections(curve: RationalBezierCurve) -> tuple[list[Intersection], bool]:
+    """The self-crossings found in floats, and whether the certified search gave up (then
+    they come from Newton starts, _fallback_self_intersections)."""
     found = ai.self_pairs(ai.BernsteinPart(_float_rows(curve)))
     if found is not None:
-        return [Intersection(f.s, f.t, f.kind) for f in found]
+        return [Intersection(f.s, f.t, f.kind) for f in found], False
+    return _fallback_self_intersections(curve), True
+
+
+def _fallback_self_intersections(curve: RationalBezierCurve) -> list[Intersection]:
     pieces = _monotone_pieces(curve)
     size = _size(curve)
     starts = []

@@ -43,6 +43,8 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `intersect_exact`: exact, certified isolation of planar crossings (resultants, Sturm,
   Krawczyk in rational interval arithmetic); `intersect_self_exact` the same for a curve's
   crossings with itself (its divided differences (p(s) − p(t)) / (s − t));
+  `intersect_self_polish` refines a float curve's self-crossing on those divided differences
+  in floats (by blossoms of the hodograph), where a small loop puts it out of Newton's reach;
 - `exact_flint`: its costly exact steps (resultants, gcds, real-root isolation) on
   python-flint (the `exact` extra; imported on use), `exact_poly` the fallback;
 - `intersect_fold`: the self-intersections of a curve on a line that turns back along it
@@ -135,6 +137,7 @@ __all__ = [
     "intersect_prepared",
     "intersect_refold",
     "intersect_self_exact",
+    "intersect_self_polish",
     "intersect_subdivide",
     "kernels",
     "kernels_compiled",

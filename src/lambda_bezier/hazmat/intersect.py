@@ -40,6 +40,7 @@ from . import intersect_exact as _exact_iso
 from . import intersect_fold as fold
 from . import intersect_refold as refold
 from . import intersect_self_exact as _self_exact
+from . import intersect_self_polish as _self_polish
 from . import intersect_subdivide as sub
 from .intersect_locate import (  # the point location half, and the tolerances both share
     ON_CURVE,
@@ -73,6 +74,22 @@ TANGENT_SINE = 1e-6  # below this sine of the angle between tangents, refine as 
 # merged at that gap have a sine of about sqrt(curvature x gap): 1e-4 covers curvatures up to
 # ~1e4 of the size
 EXACT_CHECK_SINE = 1e-4
+# relative, per unit of degree: a self-intersection "loop" whose points all lie this close to
+# each other is what rounding makes of a cusp (p(s) - p(t) vanishes to third order there), not
+# a crossing. Evaluating a degree-n curve rounds by at most about n eps of its size (de
+# Casteljau: n levels of one convex combination each), so two points of a cusp can seem apart
+# by twice that; 8 eps per degree leaves a factor of 4. A loop above it is real at the
+# precision of the input: the cubic (0,0), (a,1), (1-a,1), (1,0) with a = 1 + 8/3 10^-14
+# crosses itself at s = 1/2 -+ 1e-7 and its loop spans 3e-14 of its size, 18 times the bound.
+# It was 1e-8 (undocumented), which dropped that cubic's loop up to a = 1 + 8/3 10^-9.
+CUSP_LOOP = 8 * float(np.finfo(float).eps)
+# a self-crossing that rounding of the points (SELF_ROUNDING per degree of the size: n eps
+# for de Casteljau's n levels, times 4) can move by more than SELF_PLACED in parameter is,
+# for float input, polished on the divided difference (intersect_self_polish), and for
+# exact rational input decided exactly. A crossing at a clear angle, with speeds near the
+# size, is placed to ~1e-15 and keeps its answer and speed.
+SELF_PLACED = 1e-13
+SELF_ROUNDING = 4 * float(np.finfo(float).eps)
 # the tolerances above and the subdivision's, as the compiled careful path takes them
 # (settle_compiled.Knobs names the order)
 SETTLE = (
@@ -662,9 +679,9 @@ def _refuse_collinear_overlap(p: Prepared, q: Prepared) -> None:
 
 def _cusp_loop(p: Prepared, hit: Intersection) -> bool:
     """Near a cusp p(s) - p(t) vanishes to third order for s close to t: a "loop" whose
-    points all lie within rounding of each other is that, not a crossing."""
+    points all lie within rounding of each other (CUSP_LOOP) is that, not a crossing."""
     loop = np.array([p.at(u) for u in np.linspace(hit.s, hit.t, 9)])
-    return bool(np.ptp(loop, axis=0).max() <= 1e-8 * p.scale)
+    return bool(np.ptp(loop, axis=0).max() <= CUSP_LOOP * p.degree * p.scale)
 
 
 def self_intersections(p: Prepared) -> list[Intersection]:
@@ -704,15 +721,21 @@ def self_intersections(p: Prepared) -> list[Intersection]:
             near_diagonal = True
     for s, t in starts:
         hit = _solve_from(p, p, s, t, found)
-        if hit is None:
-            continue
-        if abs(hit.s - hit.t) < 1e-7 or _cusp_loop(p, hit):
+        if hit is not None and (abs(hit.s - hit.t) < 1e-7 or _cusp_loop(p, hit)):
             near_diagonal = True
-            continue
+            hit = None
+        if hit is None:
+            # Newton on p(s) - p(t) falls onto the diagonal s = t from a start next to a
+            # small loop (a = 1 + 8/3 10^-9.1875 in the tiny-loop tests); on the divided
+            # difference the diagonal is no root, and the loop's crossing is reached
+            hit = _loop_from(p, s, t)
+            if hit is None:
+                continue
         if hit.s > hit.t:
             hit = Intersection(hit.t, hit.s, hit.kind)
         if not _dedupe(found, hit):
             _add(found, hit, p, p)
+    found = _polished_self(p, found)
     exact = _self_decided_exactly(p, found, near_diagonal)
     if exact is not None:
         return exact
@@ -737,6 +760,55 @@ def self_intersections(p: Prepared) -> list[Intersection]:
                     out.append(h)
             return sorted(out)
     return sorted(found)
+
+
+def _polished_self(p: Prepared, found: list[Intersection]) -> list[Intersection]:
+    """Each crossing refined on the divided difference (p(s) - p(t)) / (s - t)
+    (intersect_self_polish), which places one on a small loop to the rounding of the points
+    where Newton on p(s) - p(t) is off by up to the loop's width; its kind by the sine rule
+    (TANGENT_SINE) there. Float input only, and only where rounding can move the hit by
+    more than SELF_PLACED (_self_misplaced): exact input's hits are refined on exact
+    residuals, and decided exactly where in doubt. Where that Newton does not settle (a
+    self-tangency's divided difference has a singular Jacobian) the hit stays as it was."""
+    out: list[Intersection] = []
+    for h in found:
+        got = None
+        if p._given_rows is None and h.kind != "coincident" and _self_misplaced(p, h):
+            got = _self_polish.polished(p.h1, p.h2, h.s, h.t)
+        if got is not None:
+            kind = "tangent" if _sine(p, p, *got) < TANGENT_SINE else "transversal"
+            h = Intersection(got[0], got[1], kind)
+        if not _dedupe(out, h):
+            out.append(h)
+    return out
+
+
+def _loop_from(p: Prepared, s: float, t: float) -> Intersection | None:
+    """The self-crossing Newton on the divided difference reaches from the start (s, t)
+    (intersect_self_polish), if it is one: the points meet (within ON_CURVE of the size)
+    and the loop between them is not a cusp's rounding (_cusp_loop)."""
+    got = _self_polish.polished(p.h1, p.h2, min(s, t), max(s, t))
+    if got is None:
+        return None
+    gap = float(np.linalg.norm(p.at(got[0]) - p.at(got[1])))
+    if gap > ON_CURVE * p.scale:
+        return None
+    kind = "tangent" if _sine(p, p, *got) < TANGENT_SINE else "transversal"
+    hit = Intersection(got[0], got[1], kind)
+    return None if _cusp_loop(p, hit) else hit
+
+
+def _self_misplaced(p: Prepared, h: Intersection) -> bool:
+    """Rounding of the points (SELF_ROUNDING per degree of the size) can move the float
+    root of p(s) = p(t) by more than SELF_PLACED: that over the smallest singular value of
+    the Jacobian [p'(s) | -p'(t)]. Small next to a cusp, where both speeds and the angle
+    between them are small. That value is |p'(s)| |p'(t)| sine / (the largest), within a
+    factor sqrt(2) of the lower bound taken here (the largest below the columns' root sum
+    of squares): no SVD per hit (it added a tenth to self_intersections of random curves)."""
+    u, v = p.at(h.s, 1), p.at(h.t, 1)
+    nu, nv = float(np.linalg.norm(u)), float(np.linalg.norm(v))
+    smallest = nu * nv * _sine(p, p, h.s, h.t) / max(math.hypot(nu, nv), 1e-300)
+    return bool(SELF_ROUNDING * p.degree * p.scale > SELF_PLACED * smallest)
 
 
 def _self_decided_exactly(

@@ -159,7 +159,7 @@ def _reference_crossing(pts, s0, t0):
 
 @settings(max_examples=examples_per_profile(12, 200), deadline=None, derandomize=True)
 @example(k=9.1875, turn=0.0, scale=1.0)  # found by the fuzz profile: Newton from the starts
-# fell onto the diagonal and the loop was lost (intersect._loop_from)
+# fell onto the diagonal and the loop was lost (intersect_self._loop_from)
 @given(
     k=st.floats(6, 13.5),
     turn=st.floats(0, 2 * math.pi),

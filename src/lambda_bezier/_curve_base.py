@@ -37,6 +37,7 @@ if TYPE_CHECKING:
 
     from . import geometry as _geometry
     from .hazmat import intersect as _intersect
+    from .hazmat import intersect_self as _intersect_self
     from .hazmat import reduce as _reduce
 else:
 
@@ -50,6 +51,11 @@ else:
 
         return intersect
 
+    def _load_intersect_self() -> ModuleType:
+        from .hazmat import intersect_self
+
+        return intersect_self
+
     def _load_reduce() -> ModuleType:
         from .hazmat import reduce
 
@@ -58,6 +64,7 @@ else:
     # imported when a method first needs them, then bound (`import lambda_bezier` stays light)
     _geometry = deferred(_load_geometry)
     _intersect = deferred(_load_intersect)
+    _intersect_self = deferred(_load_intersect_self)
     _reduce = deferred(_load_reduce)
 
 _bernstein = generated("bernstein")
@@ -447,7 +454,7 @@ class Curve(ControlPointCurve):
 
     def self_intersections(self) -> list[_intersect.Intersection]:
         """Every pair s < t with p(s) = p(t), as Intersection(s, t, kind), sorted by s."""
-        return _intersect.self_intersections(self._prepared)
+        return _intersect_self.self_intersections(self._prepared)
 
     def locate(self, point: PointsLike) -> float | None:
         """The t with p(t) = point (within 1e-10 of the curve's size), or None when the point

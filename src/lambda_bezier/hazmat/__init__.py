@@ -24,7 +24,8 @@ ours (the name follows the `bezier` package's `hazmat`).
   the squared distance, compiled with numba (the `fast` extra; imported on use);
 - `closest_numpy`: the same branch and bound without numba (breadth first over a batch in
   numpy; depth first on Python floats for a few queries);
-- `intersect`: curve/curve intersection and self-intersection;
+- `intersect`: curve/curve intersection; `intersect_self` a curve's self-intersections on
+  the same engine;
 - `intersect_locate`: point location on a curve and the end points of a pair located on each
   other (with the Newton starting points of unresolved pieces and the shared tolerances);
 - `intersect_subdivide`: the candidate isolation `intersect` runs on (subdivision on arrays);
@@ -136,6 +137,7 @@ __all__ = [
     "intersect_locate",
     "intersect_prepared",
     "intersect_refold",
+    "intersect_self",
     "intersect_self_exact",
     "intersect_self_polish",
     "intersect_subdivide",

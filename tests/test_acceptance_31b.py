@@ -381,7 +381,7 @@ def test_verify_finds_a_misprinted_surface_claim(tmp_path: Path):
     assert failed == ["b.misprint", "c.misprint"]
     verdict = {ln.split()[0]: ln.split()[-1] for ln in lines if ln.startswith(("b.", "c."))}
     assert verdict == {"b.ok": "match", "b.misprint": "mismatch", "c.misprint": "mismatch"}
-    assert f"B_21('1/3', '1/4'): printed {bad[2][1]}, derived {vals[2][1]}" in run.stdout
+    assert f"B_21(1/3, 1/4): printed {bad[2][1]}, derived {vals[2][1]}" in run.stdout
     assert "S(0, 1): printed P_01, derived weights at [(0, 2)]" in run.stdout
 
 

@@ -285,3 +285,34 @@ def test_the_per_degree_weights_join_the_tensor_product_patches(results, continu
         sj._check_weights(
             "end_shape_bezier", "end_shape_bezier", continuity, sj.tensor_basis, weights, (3, 4)
         )
+
+
+@pytest.mark.parametrize(
+    ("change", "message"),
+    [
+        ({"drop": "lam_u"}, "key lam_u is required with `values`: the basis depends on it"),
+        ({"drop": "uv"}, "key uv is required with `values`"),
+        ({"uv": ["1/3"]}, "key uv: a list of 2 numbers"),
+        ({"uv": ["1/3", "x"]}, "key uv:"),
+        ({"values": [["1"]]}, "key values:"),
+    ],
+)
+def test_a_malformed_values_record_is_an_error_naming_its_key(records, change, message):
+    """A surface_basis record with printed values: a parameter the basis depends on left out
+    was read as 0 (a wrong verdict); a malformed point or table was a "mismatch" with a
+    parser's message. Both are the verdict "error" naming the key."""
+    rec = {k: v for k, v in records["es.values"].items() if k != change.get("drop")}
+    rec |= {k: v for k, v in change.items() if k != "drop"}
+    res = report_mod.check_record(rec)
+    assert res.verdict == "error", (res.verdict, res.outcome)
+    assert message in str(res.error)
+
+
+def test_a_wrong_printed_value_names_the_point_plainly(records):
+    rec = dict(records["es.values"])
+    rec["values"] = [list(row) for row in rec["values"]]
+    rec["values"][0][0] = "7"
+    res = report_mod.check_record(rec)
+    assert res.verdict == "mismatch"
+    u0, v0 = rec["uv"]
+    assert res.outcome.diffs[0].startswith(f"B_00({u0}, {v0}): printed 7, derived ")

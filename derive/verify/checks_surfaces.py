@@ -72,6 +72,16 @@ def _fmpq(x: Fraction) -> flint.fmpq:
     return flint.fmpq(x.numerator, x.denominator)
 
 
+def _numbers(items: object, key: str, count: int) -> list[Fraction]:
+    """`count` exact numbers of a record's list under `key` (a RecordError naming it)."""
+    if not isinstance(items, list) or len(items) != count:
+        raise RecordError(f"key {key}: a list of {count} numbers")
+    try:
+        return [_frac(x) for x in items]
+    except (ValueError, TypeError, ZeroDivisionError) as exc:
+        raise RecordError(f"key {key}: {exc}") from None
+
+
 def _mismatch_or_match(diffs: list[str], checked: list[str]) -> Outcome:
     return Outcome("mismatch" if diffs else "match", diffs, checked)
 
@@ -103,6 +113,8 @@ def _guard(*required: str):
                     raise RecordError(f"key {key} is required: {_KEYS[key]}")
             try:
                 return fn(record, ctx)
+            except RecordError:
+                raise  # malformed: the verdict "error", naming the key
             except ValueError as exc:
                 return Outcome("mismatch", [str(exc)])
 
@@ -134,24 +146,30 @@ def check_surface_basis(record: dict, ctx: Context) -> Outcome:
     if "values" in record:
         (fu, fv), m, n, basis = _basis(record, ctx)
         if "uv" not in record:
-            raise ValueError("printed `values` need the point `uv`")
-        u, v = (_frac(x) for x in record["uv"])
+            raise RecordError("key uv is required with `values`: the point [u, v]")
+        u, v = _numbers(record["uv"], "uv", 2)
         subs = {"u": _fmpq(u), "v": _fmpq(v)}
-        for name in ("lam_u", "lam_v"):
-            subs[name] = _fmpq(_frac(record.get(name, "0")))
-        printed = [[_frac(x) for x in row] for row in record["values"]]
-        if len(printed) != m + 1 or any(len(row) != n + 1 for row in printed):
-            return Outcome("mismatch", [f"printed values are not {m + 1} x {n + 1}"])
+        for slot, name in ((2, "lam_u"), (3, "lam_v")):
+            if name in record:
+                subs[name] = _fmpq(_numbers([record[name]], name, 1)[0])
+            elif any(int(e[slot]) for b in basis for e in b.to_dict()):
+                raise RecordError(f"key {name} is required with `values`: the basis depends on it")
+            else:
+                subs[name] = _fmpq(Fraction(0))  # the basis does not depend on it
+        rows = record["values"]
+        if not isinstance(rows, list) or not all(isinstance(row, list) for row in rows):
+            raise RecordError(f"key values: {m + 1} rows of {n + 1} numbers")
+        printed = [_numbers(row, "values", n + 1) for row in rows]
+        if len(printed) != m + 1:
+            raise RecordError(f"key values: {m + 1} rows of {n + 1} numbers, got {len(printed)}")
         for i in range(m + 1):
             for j in range(n + 1):
                 got = basis[i * (n + 1) + j].subs(subs)
                 if got != _fmpq(printed[i][j]):
-                    diffs.append(
-                        f"B_{i}{j}{tuple(record['uv'])}: printed {printed[i][j]}, derived {got}"
-                    )
+                    diffs.append(f"B_{i}{j}({u}, {v}): printed {printed[i][j]}, derived {got}")
         checked.append(f"values at (u, v) = ({u}, {v})")
     if not checked:
-        raise ValueError("a surface_basis record states `values` (with `uv`) or `sums_to_one`")
+        raise RecordError("a surface_basis record states `values` (with `uv`) or `sums_to_one`")
     return _mismatch_or_match(diffs, checked)
 
 

@@ -194,3 +194,20 @@ def test_a_definition_edited_and_derived_again_in_one_process():
     second = derive_document(definition_from_table(_user_family("3*lam - 1"), "fam.toml"))
     assert first["singular_parameters"] == {"2": ["1/2"]}
     assert second["singular_parameters"] == {"2": ["1/3"]}
+
+
+@pytest.mark.parametrize("at", ["5", "-2"])
+def test_bernstein_at_lies_in_the_parameter_range(at):
+    """`bernstein_at` names a value of the parameter: outside its range it was accepted (and
+    checked there), an open end is outside too."""
+    table = {
+        "name": "end_shape_at",
+        "parameter": "lam",
+        "range": "(-2, 1]",
+        "bernstein_at": at,
+        "degrees": "3..4",
+        "degree_offset": 1,
+        "basis": "t**i*(1 - t)**(n - i)*(binomial(n, i) + lam*(binomial(0, i - 1) - "
+        "binomial(0, n - i))*(1 - t) - lam*(binomial(0, i) - binomial(0, n - i - 1))*t)",
+    }
+    assert_refused(table, ["key bernstein_at", f"{at} is outside the range (-2, 1]"], derive=False)

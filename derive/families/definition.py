@@ -393,7 +393,11 @@ def definition_from_table(table: object, where: str = "", *, builtin: bool = Fal
         lo, hi, lo_closed, hi_closed = _interval(ranges[name], key, fail)
         at = None
         if name in ats:
-            at = _number(ats[name], "bernstein_at" if len(names) == 1 else f"bernstein_at.{name}")
+            at_key = "bernstein_at" if len(names) == 1 else f"bernstein_at.{name}"
+            at = _number(ats[name], at_key)
+            inside = (lo < at or (lo_closed and lo == at)) and (at < hi or (hi_closed and at == hi))
+            if not inside:
+                raise fail(at_key, f"{at} is outside the range {ranges[name].strip()} of {name}")
         params.append(Parameter(name, ranges[name].strip(), lo, hi, lo_closed, hi_closed, at))
     dom_lo, dom_hi, dom_unit = (
         _domain(table["domain"], fail, tuple(names))

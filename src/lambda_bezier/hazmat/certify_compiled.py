@@ -96,28 +96,66 @@ def _refine(
 
 
 @numba.njit(**_JIT)
-def _shared_end(a: np.ndarray, b: np.ndarray) -> bool:
-    """An end point of a is an end point of b, exactly. The certificate then always fails,
-    so it is not run: halving keeps an end point exactly (the end piece's first or last
-    control point), so the two pieces holding the shared point are never dropped (both boxes
-    and both fat lines hold it); they stay unresolved to the depth, or are isolated with
-    that point as their only common point, whose root lies within END_MARGIN of an end or
-    drifts from its start."""
+def _shared_corners(a: np.ndarray, b: np.ndarray, shared_sine: float) -> int:
+    """The corners (i, k) of the parameter square where end i of a (0 at s = 0, 1 at s = 1)
+    is end k of b exactly, as a mask (bit 2 i + k); -1 where at one of them the end tangents
+    are not clearly apart (a sine of their angle at most shared_sine, or an end that stops):
+    the careful path tells tangencies there.
+
+    Halving keeps an end point exactly (the end piece's first or last control point), so the
+    pieces holding a shared point are never dropped (both boxes and both fat lines hold it).
+    The shared point is a common point known exactly: where a pair of pieces holding it is
+    isolated (disjoint hodograph cones: at most one common point on the pair), it is that
+    pair's only one, and _certify_one records it as it is, with no Newton."""
     n1, n2, dim = a.shape[0] - 1, b.shape[0] - 1, a.shape[1]
-    for i in (0, n1):
-        for k in (0, n2):
+    mask = 0
+    for i in range(2):
+        ra = n1 if i else 0
+        for k in range(2):
+            rb = n2 if k else 0
             equal = True
             for j in range(dim):
-                if a[i, j] != b[k, j]:
+                if a[ra, j] != b[rb, j]:
                     equal = False
-            if equal:
-                return True
-    return False
+            if not equal:
+                continue
+            # the end tangents: the hodograph's end control points, as _refine measures them
+            nu = nv = dot = 0.0
+            for j in range(dim):
+                da = n1 * (a[n1, j] - a[n1 - 1, j] if i else a[1, j] - a[0, j])
+                db = n2 * (b[n2, j] - b[n2 - 1, j] if k else b[1, j] - b[0, j])
+                nu += da * da
+                nv += db * db
+                dot += da * db
+            if not nu * nv > 0.0:
+                return -1
+            sine = math.sqrt(max(nu * nv - dot * dot, 0.0)) / math.sqrt(nu * nv)
+            if not sine > shared_sine:
+                return -1
+            mask |= 1 << (2 * i + k)
+    return mask
+
+
+@numba.njit(**_JIT)
+def _corner_held(corners: int, ka: int, kb: int, lev: int) -> int:
+    """The shared corner (bit index 2 i + k) the pair of pieces (ka, kb) at level lev holds,
+    -1 where it holds none, -2 where it holds more than one."""
+    last = (1 << lev) - 1
+    held = -1
+    for i in range(2):
+        if ka != (last if i else 0):
+            continue
+        for k in range(2):
+            if kb != (last if k else 0) or not (corners >> (2 * i + k)) & 1:
+                continue
+            held = 2 * i + k if held == -1 else -2
+    return held
 
 
 # intersect_certify.SETTINGS: depth, max pieces, local Newton steps, inside, cone margin, end
-# margin, drift, same, least sine (the certificate's knobs, named there)
-Settings = tuple[int, int, int, float, float, float, float, float, float]
+# margin, drift, same, least sine, least sine at a shared end, a shared end's neighbourhood
+# (the certificate's knobs, named there)
+Settings = tuple[int, int, int, float, float, float, float, float, float, float, float]
 
 
 @numba.njit(**_JIT)
@@ -132,10 +170,16 @@ def _certify_one(
 ) -> int:
     """Certified intersections of one pair into out_s, out_t: their count, or -1 where the
     certificate fails (the careful path decides)."""
-    depth, max_pieces, newton_steps, inside, margin, end_margin, drift, same, sine_min = settings
+    depth, max_pieces, newton_steps, inside, margin, end_margin, drift, same, sine_min = settings[
+        :9
+    ]
+    shared_sine, shared_near = settings[9], settings[10]
     n1, n2, dim = a.shape[0], b.shape[0], a.shape[1]
-    if _shared_end(a, b):
+    corners = _shared_corners(a, b, shared_sine)
+    if corners < 0:
         return -1
+    corner_s, corner_t = np.empty(4), np.empty(4)
+    at_corners = 0
     planar = dim == 2
     cap = 4 * depth + 8  # depth first: at most 3 siblings wait per level
     sa = np.empty((cap, n1, dim))
@@ -178,6 +222,16 @@ def _certify_one(
                 dot += axis_a[j] * axis_b[j]
             between = math.acos(min(abs(dot), 1.0))
             if between > half_a + half_b + margin:
+                held = _corner_held(corners, ka, kb, lev) if corners else -1
+                if held == -2:
+                    return -1
+                if held >= 0:  # its only common point: the shared end point, exactly
+                    if at_corners == 4:
+                        return -1
+                    corner_s[at_corners] = float(held >> 1)
+                    corner_t[at_corners] = float(held & 1)
+                    at_corners += 1
+                    continue
                 u, v, ok = local_newton(pa, pb, newton_steps, inside, la, lb, vec4)
                 if ok:
                     if found == room:
@@ -218,6 +272,9 @@ def _certify_one(
             return -1
         if not (end_margin <= s <= 1 - end_margin and end_margin <= t <= 1 - end_margin):
             return -1  # at an end: the careful path locates the ends exactly
+        for m in range(at_corners):  # the careful path may merge hits this close (_add)
+            if abs(s - corner_s[m]) < shared_near and abs(t - corner_t[m]) < shared_near:
+                return -1
         duplicate = False
         for m in range(count):
             if abs(out_s[m] - s) < same and abs(out_t[m] - t) < same:
@@ -226,6 +283,12 @@ def _certify_one(
             out_s[count] = s
             out_t[count] = t
             count += 1
+    for m in range(at_corners):
+        if count == room:
+            return -1
+        out_s[count] = corner_s[m]
+        out_t[count] = corner_t[m]
+        count += 1
     return count
 
 

@@ -26,7 +26,14 @@ The certificate, for a pair p, q of classical Bézier curves with float control 
    and the sine of the angle between p'(s) and q'(t) exceeds SINE_MIN (with the residual r,
    a common point lies within r / sine of it: a near-double crossing goes the careful way);
 3. each root lies at least END_MARGIN inside both parameter ranges: roots at or next to an
-   end are the careful path's (it locates the ends exactly and tells tangencies there).
+   end are the careful path's (it locates the ends exactly and tells tangencies there);
+4. but for an end point of one curve that is an end point of the other exactly: there the
+   end tangents must be clearly apart (the sine of their angle above SHARED_SINE, far above
+   the careful path's TANGENT_SINE, so both call it a crossing), the pair of pieces holding
+   that corner of the parameter square must end up isolated (its cones apart: the shared
+   point is its only common point, recorded exactly, with no Newton), and no other root may
+   lie within SHARED_NEAR of it in both parameters (the careful path's MERGE_RADIUS, within
+   which it compares hits for being one).
 
 Roots found in two neighbouring pairs of pieces (at their shared edge) merge when both
 parameters agree within SAME, the careful path's rule for isolated roots (ISOLATED_SAME).
@@ -50,6 +57,8 @@ MAX_ROWS = 400  # the numpy path's guard: pairs of pieces alive at one level, pe
 # stretch, crossings closer than ~1.5e-5, whose small angle SINE_MIN would refuse anyway) is
 # the careful path's, which subdivides to 2^-32; stopping here saves half of that work
 DEPTH = 16
+SHARED_SINE = 1e-4  # a shared end point's end tangents: a smaller sine is the careful path's
+SHARED_NEAR = 1e-3  # intersect.MERGE_RADIUS: another root this near a shared end point declines
 _SPLITTER = 134217729.0
 # the compiled kernels' knobs, in the order certify_compiled.Settings names them
 SETTINGS = (
@@ -62,6 +71,8 @@ SETTINGS = (
     DRIFT,
     SAME,
     SINE_MIN,
+    SHARED_SINE,
+    SHARED_NEAR,
 )
 
 

@@ -21,6 +21,7 @@ import math
 import numba
 import numpy as np
 
+from . import intersect_certify as _cert
 from .intersect_compiled import CONTACT_DEEP, contact_cell, contact_tries
 from .pieces_compiled import JIT as _JIT
 from .pieces_compiled import (
@@ -95,61 +96,9 @@ def _refine(
     return s, t, size, math.sqrt(res), sine
 
 
-@numba.njit(**_JIT)
-def _shared_corners(a: np.ndarray, b: np.ndarray, shared_sine: float) -> int:
-    """The corners (i, k) of the parameter square where end i of a (0 at s = 0, 1 at s = 1)
-    is end k of b exactly, as a mask (bit 2 i + k); -1 where at one of them the end tangents
-    are not clearly apart (a sine of their angle at most shared_sine, or an end that stops):
-    the careful path tells tangencies there.
-
-    Halving keeps an end point exactly (the end piece's first or last control point), so the
-    pieces holding a shared point are never dropped (both boxes and both fat lines hold it).
-    The shared point is a common point known exactly: where a pair of pieces holding it is
-    isolated (disjoint hodograph cones: at most one common point on the pair), it is that
-    pair's only one, and _certify_one records it as it is, with no Newton."""
-    n1, n2, dim = a.shape[0] - 1, b.shape[0] - 1, a.shape[1]
-    mask = 0
-    for i in range(2):
-        ra = n1 if i else 0
-        for k in range(2):
-            rb = n2 if k else 0
-            equal = True
-            for j in range(dim):
-                if a[ra, j] != b[rb, j]:
-                    equal = False
-            if not equal:
-                continue
-            # the end tangents: the hodograph's end control points, as _refine measures them
-            nu = nv = dot = 0.0
-            for j in range(dim):
-                da = n1 * (a[n1, j] - a[n1 - 1, j] if i else a[1, j] - a[0, j])
-                db = n2 * (b[n2, j] - b[n2 - 1, j] if k else b[1, j] - b[0, j])
-                nu += da * da
-                nv += db * db
-                dot += da * db
-            if not nu * nv > 0.0:
-                return -1
-            sine = math.sqrt(max(nu * nv - dot * dot, 0.0)) / math.sqrt(nu * nv)
-            if not sine > shared_sine:
-                return -1
-            mask |= 1 << (2 * i + k)
-    return mask
-
-
-@numba.njit(**_JIT)
-def _corner_held(corners: int, ka: int, kb: int, lev: int) -> int:
-    """The shared corner (bit index 2 i + k) the pair of pieces (ka, kb) at level lev holds,
-    -1 where it holds none, -2 where it holds more than one."""
-    last = (1 << lev) - 1
-    held = -1
-    for i in range(2):
-        if ka != (last if i else 0):
-            continue
-        for k in range(2):
-            if kb != (last if k else 0) or not (corners >> (2 * i + k)) & 1:
-                continue
-            held = 2 * i + k if held == -1 else -2
-    return held
+# the shared end points' rules, from the one source the numpy reference runs
+_shared_corners = numba.njit(**_JIT)(_cert.shared_corners)
+_corner_held = numba.njit(**_JIT)(_cert.corner_held)
 
 
 # intersect_certify.SETTINGS: depth, max pieces, local Newton steps, inside, cone margin, end
@@ -178,8 +127,7 @@ def _certify_one(
     corners = _shared_corners(a, b, shared_sine)
     if corners < 0:
         return -1
-    corner_s, corner_t = np.empty(4), np.empty(4)
-    at_corners = 0
+    at_corners = 0  # the shared end points found, as a mask like corners
     planar = dim == 2
     cap = 4 * depth + 8  # depth first: at most 3 siblings wait per level
     sa = np.empty((cap, n1, dim))
@@ -226,11 +174,7 @@ def _certify_one(
                 if held == -2:
                     return -1
                 if held >= 0:  # its only common point: the shared end point, exactly
-                    if at_corners == 4:
-                        return -1
-                    corner_s[at_corners] = float(held >> 1)
-                    corner_t[at_corners] = float(held & 1)
-                    at_corners += 1
+                    at_corners |= 1 << held
                     continue
                 u, v, ok = local_newton(pa, pb, newton_steps, inside, la, lb, vec4)
                 if ok:
@@ -272,8 +216,9 @@ def _certify_one(
             return -1
         if not (end_margin <= s <= 1 - end_margin and end_margin <= t <= 1 - end_margin):
             return -1  # at an end: the careful path locates the ends exactly
-        for m in range(at_corners):  # the careful path may merge hits this close (_add)
-            if abs(s - corner_s[m]) < shared_near and abs(t - corner_t[m]) < shared_near:
+        for m in range(4):  # the careful path may merge hits this close (_add)
+            near = abs(s - (m >> 1)) < shared_near and abs(t - (m & 1)) < shared_near
+            if (at_corners >> m) & 1 and near:
                 return -1
         duplicate = False
         for m in range(count):
@@ -283,12 +228,13 @@ def _certify_one(
             out_s[count] = s
             out_t[count] = t
             count += 1
-    for m in range(at_corners):
-        if count == room:
-            return -1
-        out_s[count] = corner_s[m]
-        out_t[count] = corner_t[m]
-        count += 1
+    for m in range(4):  # last, in the order of (s, t): a stable sort by s keeps it
+        if (at_corners >> m) & 1:
+            if count == room:
+                return -1
+            out_s[count] = float(m >> 1)
+            out_t[count] = float(m & 1)
+            count += 1
     return count
 
 

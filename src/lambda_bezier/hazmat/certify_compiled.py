@@ -21,6 +21,7 @@ import math
 import numba
 import numpy as np
 
+from . import intersect_certify as _cert
 from .intersect_compiled import CONTACT_DEEP, contact_cell, contact_tries
 from .pieces_compiled import JIT as _JIT
 from .pieces_compiled import (
@@ -95,29 +96,15 @@ def _refine(
     return s, t, size, math.sqrt(res), sine
 
 
-@numba.njit(**_JIT)
-def _shared_end(a: np.ndarray, b: np.ndarray) -> bool:
-    """An end point of a is an end point of b, exactly. The certificate then always fails,
-    so it is not run: halving keeps an end point exactly (the end piece's first or last
-    control point), so the two pieces holding the shared point are never dropped (both boxes
-    and both fat lines hold it); they stay unresolved to the depth, or are isolated with
-    that point as their only common point, whose root lies within END_MARGIN of an end or
-    drifts from its start."""
-    n1, n2, dim = a.shape[0] - 1, b.shape[0] - 1, a.shape[1]
-    for i in (0, n1):
-        for k in (0, n2):
-            equal = True
-            for j in range(dim):
-                if a[i, j] != b[k, j]:
-                    equal = False
-            if equal:
-                return True
-    return False
+# the shared end points' rules, from the one source the numpy reference runs
+_shared_corners = numba.njit(**_JIT)(_cert.shared_corners)
+_corner_held = numba.njit(**_JIT)(_cert.corner_held)
 
 
 # intersect_certify.SETTINGS: depth, max pieces, local Newton steps, inside, cone margin, end
-# margin, drift, same, least sine (the certificate's knobs, named there)
-Settings = tuple[int, int, int, float, float, float, float, float, float]
+# margin, drift, same, least sine, least sine at a shared end, a shared end's neighbourhood
+# (the certificate's knobs, named there)
+Settings = tuple[int, int, int, float, float, float, float, float, float, float, float]
 
 
 @numba.njit(**_JIT)
@@ -132,10 +119,15 @@ def _certify_one(
 ) -> int:
     """Certified intersections of one pair into out_s, out_t: their count, or -1 where the
     certificate fails (the careful path decides)."""
-    depth, max_pieces, newton_steps, inside, margin, end_margin, drift, same, sine_min = settings
+    depth, max_pieces, newton_steps, inside, margin, end_margin, drift, same, sine_min = settings[
+        :9
+    ]
+    shared_sine, shared_near = settings[9], settings[10]
     n1, n2, dim = a.shape[0], b.shape[0], a.shape[1]
-    if _shared_end(a, b):
+    corners = _shared_corners(a, b, shared_sine)
+    if corners < 0:
         return -1
+    at_corners = 0  # the shared end points found, as a mask like corners
     planar = dim == 2
     cap = 4 * depth + 8  # depth first: at most 3 siblings wait per level
     sa = np.empty((cap, n1, dim))
@@ -178,6 +170,12 @@ def _certify_one(
                 dot += axis_a[j] * axis_b[j]
             between = math.acos(min(abs(dot), 1.0))
             if between > half_a + half_b + margin:
+                held = _corner_held(corners, ka, kb, lev) if corners else -1
+                if held == -2:
+                    return -1
+                if held >= 0:  # its only common point: the shared end point, exactly
+                    at_corners |= 1 << held
+                    continue
                 u, v, ok = local_newton(pa, pb, newton_steps, inside, la, lb, vec4)
                 if ok:
                     if found == room:
@@ -218,6 +216,10 @@ def _certify_one(
             return -1
         if not (end_margin <= s <= 1 - end_margin and end_margin <= t <= 1 - end_margin):
             return -1  # at an end: the careful path locates the ends exactly
+        for m in range(4):  # the careful path may merge hits this close (_add)
+            near = abs(s - (m >> 1)) < shared_near and abs(t - (m & 1)) < shared_near
+            if (at_corners >> m) & 1 and near:
+                return -1
         duplicate = False
         for m in range(count):
             if abs(out_s[m] - s) < same and abs(out_t[m] - t) < same:
@@ -225,6 +227,13 @@ def _certify_one(
         if not duplicate:
             out_s[count] = s
             out_t[count] = t
+            count += 1
+    for m in range(4):  # last, in the order of (s, t): a stable sort by s keeps it
+        if (at_corners >> m) & 1:
+            if count == room:
+                return -1
+            out_s[count] = float(m >> 1)
+            out_t[count] = float(m & 1)
             count += 1
     return count
 

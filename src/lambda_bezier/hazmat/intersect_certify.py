@@ -26,7 +26,14 @@ The certificate, for a pair p, q of classical Bézier curves with float control 
    and the sine of the angle between p'(s) and q'(t) exceeds SINE_MIN (with the residual r,
    a common point lies within r / sine of it: a near-double crossing goes the careful way);
 3. each root lies at least END_MARGIN inside both parameter ranges: roots at or next to an
-   end are the careful path's (it locates the ends exactly and tells tangencies there).
+   end are the careful path's (it locates the ends exactly and tells tangencies there);
+4. but for an end point of one curve that is an end point of the other exactly: there the
+   end tangents must be clearly apart (the sine of their angle above SHARED_SINE, far above
+   the careful path's TANGENT_SINE, so both call it a crossing), the pair of pieces holding
+   that corner of the parameter square must end up isolated (its cones apart: the shared
+   point is its only common point, recorded exactly, with no Newton), and no other root may
+   lie within SHARED_NEAR of it in both parameters (the careful path's MERGE_RADIUS, within
+   which it compares hits for being one).
 
 Roots found in two neighbouring pairs of pieces (at their shared edge) merge when both
 parameters agree within SAME, the careful path's rule for isolated roots (ISOLATED_SAME).
@@ -34,6 +41,7 @@ parameters agree within SAME, the careful path's rule for isolated roots (ISOLAT
 
 from __future__ import annotations
 
+import math
 from types import ModuleType
 
 import numpy as np
@@ -50,6 +58,8 @@ MAX_ROWS = 400  # the numpy path's guard: pairs of pieces alive at one level, pe
 # stretch, crossings closer than ~1.5e-5, whose small angle SINE_MIN would refuse anyway) is
 # the careful path's, which subdivides to 2^-32; stopping here saves half of that work
 DEPTH = 16
+SHARED_SINE = 1e-4  # a shared end point's end tangents: a smaller sine is the careful path's
+SHARED_NEAR = 1e-3  # intersect.MERGE_RADIUS: another root this near a shared end point declines
 _SPLITTER = 134217729.0
 # the compiled kernels' knobs, in the order certify_compiled.Settings names them
 SETTINGS = (
@@ -62,6 +72,8 @@ SETTINGS = (
     DRIFT,
     SAME,
     SINE_MIN,
+    SHARED_SINE,
+    SHARED_NEAR,
 )
 
 
@@ -103,6 +115,61 @@ def _settle_compiled() -> ModuleType | None:
 
         kernel = _kernels["settle"] = settle_compiled
     return kernel
+
+
+def shared_corners(a: np.ndarray, b: np.ndarray, shared_sine: float) -> int:
+    """The corners (i, k) of the parameter square where end i of a (0 at s = 0, 1 at s = 1)
+    is end k of b exactly, as a mask (bit 2 i + k); -1 where at one of them the end tangents
+    are not clearly apart (a sine of their angle at most shared_sine, or an end that stops):
+    the careful path tells tangencies there.
+
+    Halving keeps an end point exactly (the end piece's first or last control point), so the
+    pieces holding a shared point are never dropped (both boxes and both fat lines hold it).
+    The shared point is a common point known exactly: where a pair of pieces holding it is
+    isolated (disjoint hodograph cones: at most one common point on the pair), it is that
+    pair's only one, and the certificate records it as it is, with no Newton."""
+    n1, n2, dim = a.shape[0] - 1, b.shape[0] - 1, a.shape[1]
+    mask = 0
+    for i in range(2):
+        ra = n1 if i else 0
+        for k in range(2):
+            rb = n2 if k else 0
+            equal = True
+            for j in range(dim):
+                if a[ra, j] != b[rb, j]:
+                    equal = False
+            if not equal:
+                continue
+            # the end tangents: the hodograph's end control points, as _refine measures them
+            nu = nv = dot = 0.0
+            for j in range(dim):
+                da = n1 * (a[n1, j] - a[n1 - 1, j] if i else a[1, j] - a[0, j])
+                db = n2 * (b[n2, j] - b[n2 - 1, j] if k else b[1, j] - b[0, j])
+                nu += da * da
+                nv += db * db
+                dot += da * db
+            if not nu * nv > 0.0:
+                return -1
+            sine = math.sqrt(max(nu * nv - dot * dot, 0.0)) / math.sqrt(nu * nv)
+            if not sine > shared_sine:
+                return -1
+            mask |= 1 << (2 * i + k)
+    return mask
+
+
+def corner_held(corners: int, ka: int, kb: int, lev: int) -> int:
+    """The shared corner (bit index 2 i + k) the pair of pieces (ka, kb) at level lev holds,
+    -1 where it holds none, -2 where it holds more than one."""
+    last = (1 << lev) - 1
+    held = -1
+    for i in range(2):
+        if ka != (last if i else 0):
+            continue
+        for k in range(2):
+            if kb != (last if k else 0) or not (corners >> (2 * i + k)) & 1:
+                continue
+            held = 2 * i + k if held == -1 else -2
+    return held
 
 
 def settle_one(
@@ -191,25 +258,41 @@ def _certify_numpy(
     every root of every pair."""
     # the row guard at the compiled kernel's budget: a shared stretch or a tangency, where
     # pieces survive in numbers, is the careful path's, and is declined cheaply here
-    iso = sub.isolate(a, b, slack, depth=DEPTH, max_rows=MAX_ROWS * a.shape[0])
-    good = np.ones(a.shape[0], dtype=bool)
+    corners = np.array([shared_corners(x, y, SHARED_SINE) for x, y in zip(a, b, strict=True)])
+    iso = sub.isolate(
+        a, b, slack, depth=DEPTH, max_rows=MAX_ROWS * a.shape[0], corners=np.maximum(corners, 0)
+    )
+    good = corners >= 0
     good[iso.left_pair] = False
     pair = iso.root_pair
+    # a shared end point, reported exactly by its isolated pair of pieces: kept as it is
+    held = (iso.root_s % 1 == 0) & (iso.root_t % 1 == 0)
+    bit = np.where(held, 2 * np.where(held, iso.root_s, 0) + np.where(held, iso.root_t, 0), 0)
+    held &= (corners[pair] >> bit.astype(np.int64)) & 1 == 1
     s, t, step, res, sine = refine(a[pair], b[pair], iso.root_s, iso.root_t)
     ok = (step < 1e-12) & (res <= bound[pair]) & (sine > SINE_MIN)
     ok &= (np.abs(s - iso.root_s) <= DRIFT) & (np.abs(t - iso.root_t) <= DRIFT)
     ok &= (s >= END_MARGIN) & (s <= 1 - END_MARGIN) & (t >= END_MARGIN) & (t <= 1 - END_MARGIN)
+    s, t = np.where(held, iso.root_s, s), np.where(held, iso.root_t, t)
+    ok |= held
+    for k in np.flatnonzero(held).tolist():  # the careful path may merge hits this close
+        near = ~held & (pair == pair[k])
+        near &= (np.abs(s - s[k]) < SHARED_NEAR) & (np.abs(t - t[k]) < SHARED_NEAR)
+        ok[near] = False
     good[pair[~ok]] = False
     results: list[tuple[list[float], list[float]] | None] = []
     for k in range(a.shape[0]):
         if not good[k]:
             results.append(None)
             continue
-        mine = pair == k
+        mine = (pair == k) & ~held
         kept: list[tuple[float, float]] = []
         for x, y in zip(s[mine].tolist(), t[mine].tolist(), strict=True):
             if not any(abs(x - u) < SAME and abs(y - v) < SAME for u, v in kept):
                 kept.append((x, y))
+        # the shared end points last, in the order of (s, t), as the compiled kernel has them
+        mine = (pair == k) & held
+        kept += sorted(zip(s[mine].tolist(), t[mine].tolist(), strict=True))
         kept.sort(key=lambda h: h[0])
         results.append(([h[0] for h in kept], [h[1] for h in kept]))
     return results

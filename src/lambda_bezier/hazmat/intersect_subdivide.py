@@ -311,16 +311,20 @@ def isolate(
     skip: list[tuple[int, float, float, float, float]] | None = None,
     depth: int = DEPTH,
     max_rows: int = MAX_ROWS,
+    corners: np.ndarray | None = None,
 ) -> Isolated:
     """Subdivide P pairs of curves at once. a: (P, n+1, d); b: (P, m+1, d), or None for each
     curve of a against itself (pairs of pieces ia <= ib; neighbouring pieces are dropped
     once provably one-to-one, and never isolated: they share an end point). slack: (P,),
     the distance within which boxes still count as touching. skip: (pair, s0, s1, t0, t1)
     rectangles of a shared stretch, whose pairs of pieces are dropped. max_rows: the guard
-    on the pairs of pieces alive at one level (those left then are reported unresolved)."""
+    on the pairs of pieces alive at one level (those left then are reported unresolved).
+    corners: (P,) the certificate's shared end points (intersect_certify.shared_corners), on
+    the numpy loop only: an isolated pair of pieces holding one reports it as its root, exactly
+    and without Newton, as certify_compiled does in its own loop; holding two, a NaN root."""
     same = b is None
     bb_all = a if b is None else b
-    compiled = _compiled()
+    compiled = _compiled() if corners is None else None
     if compiled is not None:
         return Isolated(
             *compiled.isolate(
@@ -340,7 +344,13 @@ def isolate(
         )
 
     def isolate_pairs(
-        pa: np.ndarray, pb: np.ndarray, sl: np.ndarray, ia: np.ndarray, ib: np.ndarray
+        pa: np.ndarray,
+        pb: np.ndarray,
+        sl: np.ndarray,
+        ia: np.ndarray,
+        ib: np.ndarray,
+        pid: np.ndarray,
+        level: int,
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         # one-to-one pieces whose tangent cones share no line hold one root at most
         if pa.shape[1] == pb.shape[1]:  # both sides' cones in one set of calls
@@ -357,16 +367,33 @@ def isolate(
         idx = np.flatnonzero(isolated)
         if not idx.size:
             return idx, np.zeros(0), np.zeros(0), np.zeros(0, dtype=bool)
-        u, v, ok = local_newton(pa[idx], pb[idx])
+        if corners is None:
+            u, v, ok = local_newton(pa[idx], pb[idx])
+            return idx, u, v, ok
+        from .intersect_certify import corner_held
+
+        held = np.array(
+            [
+                corner_held(int(corners[pid[k]]), int(ia[k]), int(ib[k]), level)
+                for k in idx.tolist()
+            ],
+            dtype=np.int64,
+        )
+        u, v, ok = np.full(idx.size, np.nan), np.full(idx.size, np.nan), held != -1
+        newton = held == -1
+        if newton.any():
+            u[newton], v[newton], ok[newton] = local_newton(pa[idx[newton]], pb[idx[newton]])
+        at = held >= 0
+        u[at], v[at] = held[at] >> 1, held[at] & 1
         return idx, u, v, ok
 
     return _subdivide(a, bb_all, slack, isolate_pairs, same, skip or [], depth, max_rows)
 
 
-# one level's test of pairs of pieces for isolation: (pieces a, pieces b, slack, ia, ib) ->
-# (indices tested, u, v, converged)
+# one level's test of pairs of pieces for isolation: (pieces a, pieces b, slack, ia, ib,
+# pair of each row, level) -> (indices tested, u, v, converged)
 _Isolation = Callable[
-    [np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray],
+    [np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, int],
     tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
 ]
 
@@ -439,7 +466,7 @@ def _subdivide(
         if level == depth or children * pid.size > max_rows:
             left.append((pid, ia * width, ib * width, np.full(pid.size, width)))
             break
-        idx, u, v, ok = isolation(pa, pb, slack[pid], ia, ib)
+        idx, u, v, ok = isolation(pa, pb, slack[pid], ia, ib, pid, level)
         if idx.size:
             hit = idx[ok]
             roots.append(
@@ -585,7 +612,13 @@ def isolate_points(
         )
 
     def isolate_pieces(
-        pieces: np.ndarray, target: np.ndarray, sl: np.ndarray, ia: np.ndarray, ib: np.ndarray
+        pieces: np.ndarray,
+        target: np.ndarray,
+        sl: np.ndarray,
+        ia: np.ndarray,
+        ib: np.ndarray,
+        pid: np.ndarray,
+        level: int,
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         # a one-to-one piece (pointed hodograph cone) passes the point at most once
         _, half = _cones(pieces, sl)

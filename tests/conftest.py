@@ -234,3 +234,15 @@ def occt_surface(path):
     reader.TransferRoots()
     face = TopoDS.Face(TopExp_Explorer(reader.OneShape(), TopAbs_FACE).Current())
     return BRep_Tool.Surface_s(face)
+
+
+@pytest.fixture
+def no_contact_cells(monkeypatch):
+    """A switch for intersect_contact's cells: on, or off (pairs of pieces halved to the flat
+    pieces, the subdivision as it was before round 19; the numpy loop reads it per call)."""
+    from lambda_bezier.hazmat import intersect_contact
+
+    def switch(on: bool) -> None:
+        monkeypatch.setattr(intersect_contact, "CONTACT_LEVEL", 2 if on else 99)
+
+    return switch

@@ -145,28 +145,25 @@ TANGENT_PAIRS += [
 ]
 
 
-@pytest.fixture
-def no_contact_cells(monkeypatch):
-    """The subdivision as it was: pairs of pieces halved to the flat pieces (numpy loop)."""
-
-    def switch(on: bool) -> None:
-        monkeypatch.setattr(contact, "CONTACT_LEVEL", 2 if on else 99)
-
-    return switch
+def with_and_without_cells(a, b, switch) -> tuple[list, list]:
+    """careful(a, b) on the numpy loop with the contact cells (`switch(True)`) and halved to
+    the flat pieces (`switch(False)`): (got, want)."""
+    saved = sub.USE_COMPILED
+    sub.USE_COMPILED = False  # the numpy loop reads the switch per call
+    try:
+        switch(False)
+        want = careful(a, b)
+        switch(True)
+        got = careful(a, b)
+    finally:
+        sub.USE_COMPILED = saved
+    return got, want
 
 
 @pytest.mark.parametrize("pair", range(len(TANGENT_PAIRS)))
 def test_answers_are_the_subdivisions_to_the_flat_pieces(pair, no_contact_cells):
     a, b = TANGENT_PAIRS[pair]
-    saved = sub.USE_COMPILED
-    sub.USE_COMPILED = False  # the numpy loop reads the switch per call
-    try:
-        no_contact_cells(False)
-        want = careful(a, b)
-        no_contact_cells(True)
-        got = careful(a, b)
-    finally:
-        sub.USE_COMPILED = saved
+    got, want = with_and_without_cells(a, b, no_contact_cells)
     assert_same_answer(got, want)
     if b == [(-1.0, 1e-6), (1.0, 1e-6)]:  # the issue's near-double crossing: still two
         assert [h.kind for h in got] == ["transversal", "transversal"]

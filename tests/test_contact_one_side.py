@@ -24,7 +24,13 @@ from conftest import assert_same_isolated as same
 from conftest import on_both_subdivision_paths as both
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from test_contact_cell import SLACK, assert_same_answer, careful, parabola, piece
+from test_contact_cell import (
+    SLACK,
+    assert_same_answer,
+    parabola,
+    piece,
+    with_and_without_cells,
+)
 from test_parity import CASES, control_rows
 
 import lambda_bezier as lb
@@ -197,28 +203,9 @@ PAIRS += [  # one-sided parabolas: touching, and crossing twice near the vertex
 ]
 
 
-@pytest.fixture
-def no_contact_cells(monkeypatch):
-    """The subdivision as it was before round 19: pairs halved to the flat pieces."""
-
-    def switch(on: bool) -> None:
-        monkeypatch.setattr(contact, "CONTACT_LEVEL", 2 if on else 99)
-
-    return switch
-
-
 @pytest.mark.parametrize("pair", range(len(PAIRS)))
 def test_answers_are_the_subdivisions_to_the_flat_pieces(pair, no_contact_cells):
-    a, b = PAIRS[pair]
-    saved = sub.USE_COMPILED
-    sub.USE_COMPILED = False  # the numpy loop reads the switch per call
-    try:
-        no_contact_cells(False)
-        want = careful(a, b)
-        no_contact_cells(True)
-        got = careful(a, b)
-    finally:
-        sub.USE_COMPILED = saved
+    got, want = with_and_without_cells(*PAIRS[pair], no_contact_cells)
     assert_same_answer(got, want)
 
 

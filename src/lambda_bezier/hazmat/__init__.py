@@ -25,7 +25,8 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `closest_numpy`: the same branch and bound without numba (breadth first over a batch in
   numpy; depth first on Python floats for a few queries);
 - `intersect`: curve/curve intersection; `intersect_self` a curve's self-intersections on
-  the same engine;
+  the same engine; `intersect_shared_ends` the exact end points a pair shares (its
+  certificate's corners);
 - `intersect_locate`: point location on a curve and the end points of a pair located on each
   other (with the Newton starting points of unresolved pieces and the shared tolerances);
 - `intersect_subdivide`: the candidate isolation `intersect` runs on (subdivision on arrays);
@@ -138,6 +139,7 @@ __all__ = [
     "intersect_prepared",
     "intersect_refold",
     "intersect_self",
+    "intersect_shared_ends",
     "intersect_self_exact",
     "intersect_self_polish",
     "intersect_subdivide",

@@ -21,7 +21,7 @@ import math
 import numba
 import numpy as np
 
-from . import intersect_certify as _cert
+from . import intersect_shared_ends as _ends
 from .intersect_compiled import CONTACT_DEEP, contact_cell, contact_tries
 from .pieces_compiled import JIT as _JIT
 from .pieces_compiled import (
@@ -97,8 +97,8 @@ def _refine(
 
 
 # the shared end points' rules, from the one source the numpy reference runs
-_shared_corners = numba.njit(**_JIT)(_cert.shared_corners)
-_corner_held = numba.njit(**_JIT)(_cert.corner_held)
+_shared_corners = numba.njit(**_JIT)(_ends.shared_corners)
+_corner_held = numba.njit(**_JIT)(_ends.corner_held)
 
 
 # intersect_certify.SETTINGS: depth, max pieces, local Newton steps, inside, cone margin, end

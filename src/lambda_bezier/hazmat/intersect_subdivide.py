@@ -319,7 +319,7 @@ def isolate(
     the distance within which boxes still count as touching. skip: (pair, s0, s1, t0, t1)
     rectangles of a shared stretch, whose pairs of pieces are dropped. max_rows: the guard
     on the pairs of pieces alive at one level (those left then are reported unresolved).
-    corners: (P,) the certificate's shared end points (intersect_certify.shared_corners), on
+    corners: (P,) the certificate's shared end points (intersect_shared_ends.shared_corners), on
     the numpy loop only: an isolated pair of pieces holding one reports it as its root, exactly
     and without Newton, as certify_compiled does in its own loop; holding two, a NaN root."""
     same = b is None
@@ -370,7 +370,7 @@ def isolate(
         if corners is None:
             u, v, ok = local_newton(pa[idx], pb[idx])
             return idx, u, v, ok
-        from .intersect_certify import corner_held
+        from .intersect_shared_ends import corner_held
 
         held = np.array(
             [

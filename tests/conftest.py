@@ -246,3 +246,15 @@ def no_contact_cells(monkeypatch):
         monkeypatch.setattr(intersect_contact, "CONTACT_LEVEL", 2 if on else 99)
 
     return switch
+
+
+def careful_path(a, b) -> list:
+    """intersect's careful path alone, in Python (no certificate, no compiled careful path),
+    on two curves or two arrays of control points: the reference the fast paths are held to."""
+    from lambda_bezier.hazmat import intersect as engine
+
+    p, q = (x._prepared if hasattr(x, "_prepared") else lb.BezierCurve(x)._prepared for x in (a, b))
+    engine._check_pair(p, q)
+    results: list[list[engine.Intersection]] = [[]]
+    engine._careful_pairs([(p, q)], [0], results)
+    return results[0]

@@ -11,21 +11,13 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from conftest import careful_path as careful
 
 import lambda_bezier as lb
 from lambda_bezier.hazmat import intersect as engine
 from lambda_bezier.hazmat import intersect_certify as cert
 
 pytestmark = pytest.mark.usefixtures("intersect_engine")
-
-
-def careful(a: np.ndarray, b: np.ndarray) -> list[engine.Intersection]:
-    """The careful path alone, in Python (no certificate, no compiled careful path)."""
-    p, q = lb.BezierCurve(a)._prepared, lb.BezierCurve(b)._prepared
-    engine._check_pair(p, q)
-    results: list[list[engine.Intersection]] = [[]]
-    engine._careful_pairs([(p, q)], [0], results)
-    return results[0]
 
 
 def glued_pairs() -> list[tuple[np.ndarray, np.ndarray]]:

@@ -19,6 +19,7 @@ import math
 import numpy as np
 import pytest
 from conftest import assert_same_isolated as same
+from conftest import careful_path as careful
 from conftest import on_both_subdivision_paths as both
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -91,14 +92,6 @@ def test_crossings_farther_apart_than_the_cell_are_not_confined():
                     piece(a, level, ka), piece(b, level, kb), ka, kb, level, contact.DEEP, SLACK
                 )
                 assert not got[0], (h, level, ka, kb)
-
-
-def careful(a, b) -> list[engine.Intersection]:
-    p, q = lb.BezierCurve(a)._prepared, lb.BezierCurve(b)._prepared
-    engine._check_pair(p, q)
-    results: list[list[engine.Intersection]] = [[]]
-    engine._careful_pairs([(p, q)], [0], results)
-    return results[0]
 
 
 def assert_same_answer(got, want) -> None:

@@ -13,6 +13,7 @@ from fractions import Fraction as F
 
 import numpy as np
 import pytest
+from conftest import careful_path as careful
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -22,14 +23,6 @@ from lambda_bezier.hazmat import intersect as engine
 from lambda_bezier.hazmat import intersect_certify as cert
 
 pytestmark = pytest.mark.usefixtures("intersect_engine")
-
-
-def careful(p: lb.BezierCurve, q: lb.BezierCurve) -> list[engine.Intersection]:
-    """The careful path alone, in Python (no certificate, no compiled careful path)."""
-    engine._check_pair(p._prepared, q._prepared)
-    results: list[list[engine.Intersection]] = [[]]
-    engine._careful_pairs([(p._prepared, q._prepared)], [0], results)
-    return results[0]
 
 
 def certified(p: lb.BezierCurve, q: lb.BezierCurve):

@@ -19,6 +19,7 @@ from __future__ import annotations
 from fractions import Fraction as F
 
 import numpy as np
+from conftest import careful_path as careful
 from hypothesis import assume, example, given
 from hypothesis import strategies as st
 
@@ -29,14 +30,6 @@ from lambda_bezier.hazmat import intersect_subdivide
 
 # gaps this close to the bound are decided by the last bits of a float norm: not asserted
 BAND = 0.01
-
-
-def careful(a, b) -> list[engine.Intersection]:
-    """The careful path in Python alone (no certificate, no compiled careful path)."""
-    p, q = lb.BezierCurve(a)._prepared, lb.BezierCurve(b)._prepared
-    results: list[list[engine.Intersection]] = [[]]
-    engine._careful_pairs([(p, q)], [0], results)
-    return results[0]
 
 
 def every_answer(a, b) -> dict[str, list[engine.Intersection]]:

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from conftest import careful_path as careful
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -27,15 +28,6 @@ def _compiled_engine():
     intersect_subdivide.USE_COMPILED = True
     yield
     intersect_subdivide.USE_COMPILED = before
-
-
-def careful(a, b) -> list[engine.Intersection]:
-    """The careful path in Python alone (no certificate, no compiled careful path)."""
-    p, q = lb.BezierCurve(a)._prepared, lb.BezierCurve(b)._prepared
-    engine._check_pair(p, q)
-    results: list[list[engine.Intersection]] = [[]]
-    engine._careful_pairs([(p, q)], [0], results)
-    return results[0]
 
 
 def settled(a, b) -> list[engine.Intersection] | None:

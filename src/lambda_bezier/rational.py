@@ -227,7 +227,14 @@ class RationalBezierCurve(ControlPointCurve):
             out: np.ndarray = h[:-1].T
             return out[0] if scalar else out
         if self._wide_weights and not extrapolate:  # de Casteljau: w(t) to full accuracy
-            h = self._homogeneous.de_casteljau(t)
+            # in the form (1 - t) a + t b (rk.de_casteljau): a + t (b - a) is not relatively
+            # accurate near t = 1 when the weights there are tiny (a hyperbolic curve's float
+            # form, weights 1 .. 7e-17, was 3e-8 off near its end); the rows scaled by a power
+            # of two, which the projection does not see
+            tt, scalar = val.as_parameters(t, extrapolate=False)
+            hom = self._homogeneous
+            h = rk.de_casteljau(hom.points / hom._scale, tt)
+            h = h[0] if scalar else h
         else:
             h = self._homogeneous.evaluate(t, extrapolate=extrapolate)
         with val.overflow_allowed(), np.errstate(divide="ignore"):
@@ -332,7 +339,13 @@ class RationalBezierCurve(ControlPointCurve):
 
     def de_casteljau(self, t: ParamLike, *, extrapolate: bool = False) -> np.ndarray:
         """C(t) by de Casteljau's algorithm on the homogeneous points (a second evaluator)."""
-        h = self._homogeneous.de_casteljau(t, extrapolate=extrapolate)
+        if extrapolate:
+            h = self._homogeneous.de_casteljau(t, extrapolate=True)
+        else:  # the form (1 - t) a + t b, relatively accurate at both ends (see evaluate)
+            tt, scalar = val.as_parameters(t, extrapolate=False)
+            hom = self._homogeneous
+            h = rk.de_casteljau(hom.points / hom._scale, tt)
+            h = h[0] if scalar else h
         with val.overflow_allowed(), np.errstate(divide="ignore"):
             return self._checked(rk.project(h), t, "C(t)")
 

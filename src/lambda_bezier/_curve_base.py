@@ -142,13 +142,24 @@ class Curve(ControlPointCurve):
     # by data names its own (``parameter = "mu"``); the attribute stays ``lam``
     parameter_name: ClassVar[str] = "lam"
     _any_degree: ClassVar[bool] = False  # True: degrees past the generated tables are allowed
+    # the control points' largest |coordinate| (set in __init__; None on an instance that
+    # bypassed it, e.g. unpickled from an older version: Prepared then reads the points)
+    _magnitude: float | None = None
+    # the control points are the curve's classical Bézier points (to_bezier() is self)
+    _bezier_form: ClassVar[bool] = False
 
     def __init__(
         self, points: PointsLike, lam: Fraction | float | None = None, *, check_range: bool = True
     ) -> None:
         degrees = (0, sys.maxsize) if self._any_degree else tuple(self._data.DEGREES)
-        self.points = val.as_points(points, family=self.family, degrees=degrees)
-        self._exact_points = val.exact_rows(points)
+        small = val.small_points(points, family=self.family, degrees=degrees)
+        if small is not None:  # a small float array: no exact rows, its magnitude read once
+            self.points, self._magnitude = small
+            self._exact_points: val.ExactRows | None = None
+        else:
+            self.points = val.as_points(points, family=self.family, degrees=degrees)
+            self._exact_points = val.exact_rows(points)
+            self._magnitude = val.magnitude(self.points)
         if self._has_lambda:
             if lam is None:
                 raise ValueError(
@@ -164,7 +175,7 @@ class Curve(ControlPointCurve):
         # Coordinates near the float limit (or near its bottom) would overflow (underflow) in
         # the basis products although p(t) is representable: the coefficients are then kept
         # for the points scaled by a power of two (exact), and evaluation scales back.
-        self._scale = val.power_of_two_scale(self.points)
+        self._scale = val.scale_for_magnitude(self._magnitude)
         # k -> Taylor coefficients of p^(k) about t = 1/2, coordinate-major (d, N+1 - k): what
         # evaluation uses at the tabulated degrees; filled on demand (_centred), so that a
         # curve built only to be intersected or located does not pay for them (issue #29)
@@ -436,7 +447,7 @@ class Curve(ControlPointCurve):
         prepared: _intersect.Prepared | None = self.__dict__.get("_prepared_cache")
         if prepared is None:
             bez = self.to_bezier()
-            prepared = _intersect.Prepared(bez.points, bez._exact_points)
+            prepared = _intersect.Prepared(bez.points, bez._exact_points, bez._magnitude)
             self.__dict__["_prepared_cache"] = prepared
         return prepared
 
@@ -450,6 +461,23 @@ class Curve(ControlPointCurve):
             if swapped is None:
                 raise TypeError(f"other must be a curve, got {type(other).__name__}")
             return swapped
+        if (
+            self._bezier_form
+            and other._bezier_form
+            and self._exact_points is None
+            and other._exact_points is None
+            and self._magnitude is not None
+            and other._magnitude is not None
+            and _intersect.float_pair_ready(
+                self.points, other.points, self._magnitude, other._magnitude
+            )
+        ):
+            # float Bézier points are the curves exactly: the compiled kernels take them as
+            # they are, no Prepared built (issue #29: a share of a small pair's whole time)
+            found = _intersect.float_pair(self.points, other.points)
+            if found is not None:
+                return found
+            return _intersect.intersect(self._prepared, other._prepared, compiled=False)
         return _intersect.intersect(self._prepared, other._prepared)
 
     def self_intersections(self) -> list[_intersect.Intersection]:
@@ -498,6 +526,7 @@ class BezierCurve(Curve):
     _data = _bernstein
     _has_lambda = False
     _any_degree = True  # any degree >= 0: de Casteljau past the generated tables
+    _bezier_form = True
 
     def __init__(self, points: PointsLike) -> None:
         super().__init__(points)

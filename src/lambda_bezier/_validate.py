@@ -225,23 +225,40 @@ def exact_shape(rows: ExactRows, *, family: str, degrees: tuple[int, ...]) -> No
 _SMALL = 64
 
 
+_F64 = np.dtype(np.float64)
+
+
+def small_points(
+    points: object, *, family: str, degrees: tuple[int, ...]
+) -> tuple[np.ndarray, float] | None:
+    """as_points' short way, with the largest |coordinate| it finds on the way: for a small
+    float64 array (the common case; issue #29: a curve built to be intersected costs more
+    than the intersection otherwise), (a read-only copy, its largest |coordinate|); None for
+    any other input, or one that needs as_points' general way to say what is wrong. A sum of
+    floats is finite only when every term is (an inf or a NaN survives every addition); a sum
+    that overflows although every term is finite takes the general way, which says which.
+    The curve classes reuse the magnitude for their power-of-two scale and the intersection's
+    normalisation, which would each read the points again."""
+    if not (type(points) is np.ndarray and points.dtype is _F64 and points.ndim == 2):
+        return None
+    rows, width = points.shape
+    if rows * width > _SMALL:
+        return None
+    if not (width >= 1 and degrees[0] <= rows - 1 <= degrees[-1]):
+        check_point_shape(points.shape, family=family, degrees=degrees)  # raises: says why
+    small = points.copy()
+    flat = small.ravel().tolist()
+    if not math.isfinite(sum(flat)):
+        return None
+    small.setflags(write=False)
+    return small, max(max(flat), -min(flat))
+
+
 def as_points(points: object, *, family: str, degrees: tuple[int, ...]) -> np.ndarray:
     """(n+1, d) float array (a read-only copy), d >= 1, n in `degrees`, all finite."""
-    if (
-        type(points) is np.ndarray
-        and points.dtype == np.float64
-        and points.ndim == 2
-        and points.size <= _SMALL
-    ):
-        # the common case (a small float array; issue #29: a curve built to be intersected
-        # costs more than the intersection otherwise). A sum of floats is finite only when
-        # every term is (an inf or a NaN survives every addition); a sum that overflows
-        # although every term is finite takes the general way below, which says which
-        small = points.copy()
-        check_point_shape(small.shape, family=family, degrees=degrees)
-        if math.isfinite(sum(small.ravel().tolist())):
-            small.setflags(write=False)
-            return small
+    small = small_points(points, family=family, degrees=degrees)
+    if small is not None:
+        return small[0]
     arr = np.array(real_array(points, "control points"), dtype=float)
     check_point_shape(arr.shape, family=family, degrees=degrees)
     bad = ~np.isfinite(arr)
@@ -362,10 +379,15 @@ def power_of_two_scale(points: np.ndarray) -> float:
     """1.0 for ordinary coordinates; for magnitudes beyond 2^±900 the power of two that brings
     them near 1, so products with basis coefficients (up to ~1e20) neither overflow nor
     underflow. Dividing by a power of two is exact."""
+    return scale_for_magnitude(magnitude(points))
+
+
+def magnitude(points: np.ndarray) -> float:
+    """The largest |coordinate| of finite float points (0.0 when there are none)."""
     if points.size <= _SMALL:  # as in as_points: a list's max beats numpy's per-call cost
         flat = points.ravel().tolist()
-        return scale_for_magnitude(max(max(flat), -min(flat)) if flat else 0.0)
-    return scale_for_magnitude(float(np.abs(points).max()))
+        return float(max(max(flat), -min(flat))) if flat else 0.0
+    return float(np.abs(points).max())
 
 
 def scale_for_magnitude(big: float) -> float:

@@ -30,6 +30,7 @@ stretches and common lines at _root_bound. The certificate holds its roots to _r
 from __future__ import annotations
 
 import functools
+import math
 from fractions import Fraction
 from typing import NamedTuple
 
@@ -37,6 +38,7 @@ import numpy as np
 
 from . import intersect_certify as cert
 from . import intersect_exact as _exact_iso
+from . import intersect_pairs as _pairs_engine
 from . import intersect_refold as refold
 from . import intersect_subdivide as sub
 from .intersect_locate import (  # the point location half, and the tolerances both share
@@ -380,14 +382,15 @@ def normalised(p: Prepared, q: Prepared) -> tuple[Prepared, Prepared]:
     return p.scaled(top), q.scaled(top)
 
 
-def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
+def intersect(p: Prepared, q: Prepared, compiled: bool = True) -> list[Intersection]:
     """Every intersection of p and q, sorted by s: the certified fast path when both are
     floats exactly, else (or where it does not certify) the careful path: compiled
-    (settle_one) where it can, in Python otherwise."""
+    (settle_one) where it can, in Python otherwise. compiled False: the compiled kernels
+    have declined this pair already (float_pair_ready and float_pair), skip them."""
     p, q = normalised(p, q)
-    compiled = _compiled_pair(p, q)
-    if compiled is not None:
-        return _decided_exactly(p, q, compiled)
+    found = _compiled_pair(p, q) if compiled else None
+    if found is not None:
+        return _decided_exactly(p, q, found)
     _check_pair(p, q)
     results: list[list[Intersection]] = [[]]
     _careful_pairs([(p, q)], [0], results)  # declined (or exact input): not certified again
@@ -423,38 +426,54 @@ def _ill_posed(p: Prepared, q: Prepared, h: Intersection) -> bool:
 
 def _compiled_pair(p: Prepared, q: Prepared) -> list[Intersection] | None:
     """The pair's answer from the compiled kernels (numba): the certificate, then the careful
-    path compiled where it declines; None when neither answers (not compiled, input that
-    is not floats exactly, or declined by both). Both kernels decline a curve that is a
-    point, so _check_pair (its error) runs only on the way to the careful path in Python:
-    on a fresh curve it costs a share of a small pair's whole time."""
+    path compiled where it declines, in one call (intersect_pairs); None when neither
+    answers (not compiled, input that is not floats exactly, or declined by both). Both
+    kernels decline a curve that is a point, so _check_pair (its error) runs only on the way
+    to the careful path in Python: on a fresh curve it costs a share of a small pair's whole
+    time."""
     if not (cert.in_use() and p.floats_exact and q.floats_exact and p.dim == q.dim >= 2):
         return None
-    got = cert.certify_one(p.pts, q.pts, BOX_SLACK, ROOT_RESIDUAL)
-    if got is not None:
-        s, t = got
-        return [Intersection(x, y, "transversal") for x, y in zip(s, t, strict=True)]
-    settled = cert.settle_one(p.pts, q.pts, SETTLE)
-    if settled is None:
+    return float_pair(p.pts, q.pts)
+
+
+def float_pair_ready(a: np.ndarray, b: np.ndarray, big_a: float, big_b: float) -> bool:
+    """Whether float_pair takes the curves whose float Bézier points a, b are the curves
+    exactly, with largest |coordinate| big_a, big_b, as intersect would take their Prepared
+    forms: compiled kernels in use, one dimension >= 2, no normalisation (intersect's first
+    step leaves the pair as it is). A curve's class asks this before building a Prepared."""
+    if not (cert.in_use() and a.shape[1] == b.shape[1] >= 2):
+        return False
+    top = max(math.frexp(big_a)[1] if big_a else 0, math.frexp(big_b)[1] if big_b else 0)
+    return -NORMAL_EXPONENT <= top <= NORMAL_EXPONENT
+
+
+def float_pair(a: np.ndarray, b: np.ndarray) -> list[Intersection] | None:
+    """The compiled kernels' answer for float Bézier points a, b (float_pair_ready), or None
+    where both kernels decline: then intersect(..., compiled=False) on their Prepared forms
+    gives the answer."""
+    found = _pairs_engine.pair(a, b, BOX_SLACK, ROOT_RESIDUAL, SETTLE)
+    if found is None:
         return None
-    return [Intersection(x, y, _KINDS[kind]) for x, y, kind in settled]
+    return [Intersection(x, y, _KINDS[int(kind)]) for x, y, kind in found]
 
 
-def intersect_pairs(pairs: list[tuple[Prepared, Prepared]]) -> list[list[Intersection]]:
+def intersect_pairs(
+    pairs: list[tuple[Prepared, Prepared]], compiled: list[bool] | None = None
+) -> list[list[Intersection]]:
     """Every intersection of each pair, sorted by s. With numba, each pair whose floats are
-    the curves exactly goes through the compiled kernels as intersect takes it (one call
-    runs a pair's whole certificate, another its whole careful path: measured on the
-    `bezier` fixtures, certifying the pairs together in one batch cost more than it saved,
-    its per-pair slack and bound set up in Python). The rest, and those both kernels
-    decline, take the careful way in Python together, pairs of equal degrees and dimension
-    in one group: the end points and shared stretches pair by pair, the subdivision in one
-    set of arrays (intersect_subdivide.isolate), then refinement pair by pair."""
+    the curves exactly goes through the compiled kernels as intersect takes it (unless
+    compiled[k] is False: the kernels declined it already, in intersect_many's batch). The
+    rest, and those both kernels decline, take the careful way in Python together, pairs of
+    equal degrees and dimension in one group: the end points and shared stretches pair by
+    pair, the subdivision in one set of arrays (intersect_subdivide.isolate), then
+    refinement pair by pair."""
     pairs = [normalised(p, q) for p, q in pairs]
     results: list[list[Intersection]] = [[] for _ in pairs]
     groups: dict[tuple[int, int, int], list[int]] = {}
     for k, (p, q) in enumerate(pairs):
-        compiled = _compiled_pair(p, q)
-        if compiled is not None:
-            results[k] = compiled
+        compiled_hits = _compiled_pair(p, q) if compiled is None or compiled[k] else None
+        if compiled_hits is not None:
+            results[k] = compiled_hits
         else:
             _check_pair(p, q)
             groups.setdefault((p.degree, q.degree, p.dim), []).append(k)

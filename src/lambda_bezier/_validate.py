@@ -226,19 +226,24 @@ _SMALL = 64
 
 
 _F64 = np.dtype(np.float64)
+# points whose Euclidean norm lies in here have their largest |coordinate| within 2^±100 (the
+# norm is at most sqrt(_SMALL) = 8 times it where it is computed): an ordinary size, which
+# no power-of-two scaling touches (power_of_two_scale: 2^±900; the intersection's
+# normalisation: 2^±128)
+_ORDINARY = (2.0**-100, 2.0**100)
 
 
 def small_points(
     points: object, *, family: str, degrees: tuple[int, ...]
-) -> tuple[np.ndarray, float] | None:
-    """as_points' short way, with the largest |coordinate| it finds on the way: for a small
-    float64 array (the common case; issue #29: a curve built to be intersected costs more
-    than the intersection otherwise), (a read-only copy, its largest |coordinate|); None for
-    any other input, or one that needs as_points' general way to say what is wrong. A sum of
-    floats is finite only when every term is (an inf or a NaN survives every addition); a sum
-    that overflows although every term is finite takes the general way, which says which.
-    The curve classes reuse the magnitude for their power-of-two scale and the intersection's
-    normalisation, which would each read the points again."""
+) -> tuple[np.ndarray, bool] | None:
+    """as_points' short way, for a small float64 array (the common case; issue #29: a curve
+    built to be intersected costs more than the intersection otherwise): (a read-only copy,
+    whether its size is ordinary); None for any other input, or one that needs as_points'
+    general way to say what is wrong. The norm (one call) is finite only when every
+    coordinate is (an inf or a NaN survives it); a norm that overflows although every
+    coordinate is finite takes the general way, which says which. The curve classes use
+    `ordinary` for their power-of-two scale and the intersection's kernels, which would
+    each read the points again."""
     if not (type(points) is np.ndarray and points.dtype is _F64 and points.ndim == 2):
         return None
     rows, width = points.shape
@@ -247,11 +252,18 @@ def small_points(
     if not (width >= 1 and degrees[0] <= rows - 1 <= degrees[-1]):
         check_point_shape(points.shape, family=family, degrees=degrees)  # raises: says why
     small = points.copy()
-    flat = small.ravel().tolist()
-    if not math.isfinite(sum(flat)):
+    norm = math.hypot(*small.ravel().tolist())
+    if not math.isfinite(norm):
         return None
     small.setflags(write=False)
-    return small, max(max(flat), -min(flat))
+    return small, _ORDINARY[0] <= norm <= _ORDINARY[1]
+
+
+def ordinary(points: np.ndarray) -> bool:
+    """Whether finite points have an ordinary size (see _ORDINARY): False where unsure."""
+    if points.size > _SMALL:
+        return False
+    return _ORDINARY[0] <= math.hypot(*points.ravel().tolist()) <= _ORDINARY[1]
 
 
 def as_points(points: object, *, family: str, degrees: tuple[int, ...]) -> np.ndarray:
@@ -259,7 +271,9 @@ def as_points(points: object, *, family: str, degrees: tuple[int, ...]) -> np.nd
     small = small_points(points, family=family, degrees=degrees)
     if small is not None:
         return small[0]
-    arr = np.array(real_array(points, "control points"), dtype=float)
+    # C order (a Fortran-ordered input stays Fortran-ordered otherwise): the compiled
+    # intersection kernels take a curve's own points as they are, compiled for C order
+    arr = np.array(real_array(points, "control points"), dtype=float, order="C")
     check_point_shape(arr.shape, family=family, degrees=degrees)
     bad = ~np.isfinite(arr)
     if bad.any():
@@ -379,15 +393,10 @@ def power_of_two_scale(points: np.ndarray) -> float:
     """1.0 for ordinary coordinates; for magnitudes beyond 2^±900 the power of two that brings
     them near 1, so products with basis coefficients (up to ~1e20) neither overflow nor
     underflow. Dividing by a power of two is exact."""
-    return scale_for_magnitude(magnitude(points))
-
-
-def magnitude(points: np.ndarray) -> float:
-    """The largest |coordinate| of finite float points (0.0 when there are none)."""
     if points.size <= _SMALL:  # as in as_points: a list's max beats numpy's per-call cost
         flat = points.ravel().tolist()
-        return float(max(max(flat), -min(flat))) if flat else 0.0
-    return float(np.abs(points).max())
+        return scale_for_magnitude(max(max(flat), -min(flat)) if flat else 0.0)
+    return scale_for_magnitude(float(np.abs(points).max()))
 
 
 def scale_for_magnitude(big: float) -> float:

@@ -30,7 +30,6 @@ stretches and common lines at _root_bound. The certificate holds its roots to _r
 from __future__ import annotations
 
 import functools
-import math
 from fractions import Fraction
 from typing import NamedTuple
 
@@ -382,13 +381,12 @@ def normalised(p: Prepared, q: Prepared) -> tuple[Prepared, Prepared]:
     return p.scaled(top), q.scaled(top)
 
 
-def intersect(p: Prepared, q: Prepared, compiled: bool = True) -> list[Intersection]:
+def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
     """Every intersection of p and q, sorted by s: the certified fast path when both are
     floats exactly, else (or where it does not certify) the careful path: compiled
-    (settle_one) where it can, in Python otherwise. compiled False: the compiled kernels
-    have declined this pair already (float_pair_ready and float_pair), skip them."""
+    (settle_one) where it can, in Python otherwise."""
     p, q = normalised(p, q)
-    found = _compiled_pair(p, q) if compiled else None
+    found = _compiled_pair(p, q)
     if found is not None:
         return _decided_exactly(p, q, found)
     _check_pair(p, q)
@@ -433,28 +431,44 @@ def _compiled_pair(p: Prepared, q: Prepared) -> list[Intersection] | None:
     time."""
     if not (cert.in_use() and p.floats_exact and q.floats_exact and p.dim == q.dim >= 2):
         return None
-    return float_pair(p.pts, q.pts)
-
-
-def float_pair_ready(a: np.ndarray, b: np.ndarray, big_a: float, big_b: float) -> bool:
-    """Whether float_pair takes the curves whose float Bézier points a, b are the curves
-    exactly, with largest |coordinate| big_a, big_b, as intersect would take their Prepared
-    forms: compiled kernels in use, one dimension >= 2, no normalisation (intersect's first
-    step leaves the pair as it is). A curve's class asks this before building a Prepared."""
-    if not (cert.in_use() and a.shape[1] == b.shape[1] >= 2):
-        return False
-    top = max(math.frexp(big_a)[1] if big_a else 0, math.frexp(big_b)[1] if big_b else 0)
-    return -NORMAL_EXPONENT <= top <= NORMAL_EXPONENT
-
-
-def float_pair(a: np.ndarray, b: np.ndarray) -> list[Intersection] | None:
-    """The compiled kernels' answer for float Bézier points a, b (float_pair_ready), or None
-    where both kernels decline: then intersect(..., compiled=False) on their Prepared forms
-    gives the answer."""
-    found = _pairs_engine.pair(a, b, BOX_SLACK, ROOT_RESIDUAL, SETTLE)
+    found = _pairs_engine.pair(p.pts, q.pts, BOX_SLACK, ROOT_RESIDUAL, SETTLE)
     if found is None:
         return None
     return [Intersection(x, y, _KINDS[int(kind)]) for x, y, kind in found]
+
+
+def float_pair(a: np.ndarray, b: np.ndarray) -> list[Intersection] | None:
+    """intersect's answer for two curves whose float Bézier points a, b (a curve's own: C
+    order) are the curves exactly, their largest |coordinate| within 2^±100 (the caller
+    knows: normalised leaves them as they are), with no Prepared built (a share of a small
+    pair's whole time, issue #29): the compiled kernels' answer where they run (numba, one
+    dimension >= 2) and answer; None otherwise, and intersect on the Prepared forms then
+    gives the answer (trying the kernels again where they declined: such a pair takes the
+    careful path in Python, whose cost that try does not change)."""
+    if not (a.shape[1] == b.shape[1] >= 2 and cert.in_use()):
+        return None
+    found = _pairs_engine.pair(a, b, BOX_SLACK, ROOT_RESIDUAL, SETTLE, own=True)
+    if found is None:
+        return None
+    return [Intersection(x, y, _KINDS[int(kind)]) for x, y, kind in found]
+
+
+def compiled_in_use() -> bool:
+    """Whether the compiled kernels run (numba installed and not disabled)."""
+    return cert.in_use()
+
+
+def float_pairs(
+    curves: list[np.ndarray], first: list[int], second: list[int]
+) -> list[list[Intersection] | None]:
+    """float_pair for many pairs in one compiled call: pair k is curves[first[k]] against
+    curves[second[k]], each pair one float_pair takes (the caller checks its conditions),
+    all of one dimension; None for a pair both kernels decline."""
+    found = _pairs_engine.pairs(curves, first, second, BOX_SLACK, ROOT_RESIDUAL, SETTLE)
+    return [
+        None if hits is None else [Intersection(x, y, _KINDS[int(kind)]) for x, y, kind in hits]
+        for hits in found
+    ]
 
 
 def intersect_pairs(

@@ -54,9 +54,10 @@ def _compiled() -> ModuleType:
 def _half_table(degrees: Sequence[int]) -> tuple[np.ndarray, np.ndarray]:
     """(table, offsets) holding the half matrices of `degrees` (and of those seen before)."""
     table, offsets, have = _halves
-    if all(n in have for n in degrees):
-        return table, offsets
-    return _grown(degrees)
+    for n in degrees:
+        if n not in have:
+            return _grown(degrees)
+    return table, offsets
 
 
 def _grown(degrees: Sequence[int]) -> tuple[np.ndarray, np.ndarray]:
@@ -86,11 +87,15 @@ def pair(
     box_slack: float,
     root_residual: float,
     knobs: tuple[float | int, ...],
+    own: bool = False,
 ) -> list[Hit] | None:
     """One pair (n+1, d), (m+1, d): its hits (s, t, kind code) from the certificate, or
     the careful path compiled where the certificate declines (when intersect_certify's
-    USE_SETTLE is on); None where both decline. knobs: intersect.SETTLE."""
-    a, b = sub.read_only(a), sub.read_only(b)
+    USE_SETTLE is on); None where both decline. knobs: intersect.SETTLE. own: a and b are
+    curves' own points, float arrays in C order (the kernels are compiled for such arrays
+    read-only, intersect_subdivide.read_only: an unpickled curve's are writeable)."""
+    if not own or a.flags.writeable or b.flags.writeable:
+        a, b = sub.read_only(a), sub.read_only(b)
     table, offsets = _half_table((a.shape[0] - 1, b.shape[0] - 1))
     count, hits = _compiled().pair(
         a, b, box_slack, root_residual, cert.SETTINGS, knobs, cert.USE_SETTLE, table, offsets

@@ -23,24 +23,15 @@ class Prepared:
     """A classical Bézier curve as the solvers use it: float and exact control points and
     the first two hodographs of each."""
 
-    def __init__(
-        self,
-        points: np.ndarray,
-        rows: tuple[tuple[Fraction, ...], ...] | None,
-        magnitude: float | None = None,
-    ) -> None:
-        """magnitude: the points' largest |coordinate| where the caller knows it (a curve
-        reads it once when it is built: issue #29, a share of a small pair's whole time)."""
+    def __init__(self, points: np.ndarray, rows: tuple[tuple[Fraction, ...], ...] | None) -> None:
         self.pts = np.ascontiguousarray(points, dtype=float)
         self._given_rows = rows
-        count, self.dim = self.pts.shape
-        self.degree = count - 1
+        self.degree = self.pts.shape[0] - 1
+        self.dim = self.pts.shape[1]
         # the largest |coordinate|'s binary exponent: intersect.normalised brings a pair
         # outside 2^±128 near 1 (its tests multiply four coordinates: 1e-100 underflowed)
-        big = magnitude
-        if big is None:
-            flat = self.pts.ravel().tolist() if self.pts.size <= _SMALL else None
-            big = max(max(flat), -min(flat)) if flat else float(np.abs(self.pts).max(initial=0.0))
+        flat = self.pts.ravel().tolist() if self.pts.size <= _SMALL else None
+        big = max(max(flat), -min(flat)) if flat else float(np.abs(self.pts).max(initial=0.0))
         self.exponent = math.frexp(big)[1] if big else 0
         if rows is None:  # floats given: set here, not read through cached_property's lock
             self.__dict__["floats_exact"] = True

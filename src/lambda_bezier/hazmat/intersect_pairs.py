@@ -81,6 +81,45 @@ def _grown(degrees: Sequence[int]) -> tuple[np.ndarray, np.ndarray]:
         return grown_table, grown_offsets
 
 
+# which knobs are counts (ints), by position: certify_compiled.Settings, refine_compiled.Knobs
+_SETTINGS_COUNTS = (True, True, True) + (False,) * 8
+_KNOBS_COUNTS = (False,) * 10 + (True, True, True, False, False)
+# the last row packed and what it was packed from, replaced as one tuple (threads)
+_packed_last: list[tuple[object, object, float, float, np.ndarray]] = [
+    (None, None, 0.0, 0.0, np.zeros(0))
+]
+
+
+def packed(box_slack: float, root_residual: float, knobs: tuple[float | int, ...]) -> np.ndarray:
+    """intersect_certify.SETTINGS, knobs (intersect.SETTLE), box_slack and root_residual as
+    one float row, as intersect_pairs_compiled takes them (its _settings and _knobs make the
+    tuples back, every value exact: the counts are small integers). The last row is kept:
+    the knobs are module constants, so a call mostly finds it."""
+    settings = cert.SETTINGS
+    was_settings, was_knobs, was_slack, was_residual, row = _packed_last[0]
+    if (
+        was_settings is settings
+        and was_knobs is knobs
+        and was_slack == box_slack
+        and was_residual == root_residual
+    ):
+        return row
+    for name, values, counts in (
+        ("intersect_certify.SETTINGS", settings, _SETTINGS_COUNTS),
+        ("the knobs (intersect.SETTLE)", knobs, _KNOBS_COUNTS),
+    ):
+        kinds = tuple(isinstance(v, int) for v in values)
+        if kinds != counts:
+            raise TypeError(
+                f"{name} does not have the layout intersect_pairs_compiled reads: counts at "
+                f"{[k for k, c in enumerate(counts) if c]}, got {values!r}"
+            )
+    row = np.array([*settings, *knobs, box_slack, root_residual], dtype=float)
+    row.setflags(write=False)
+    _packed_last[0] = (settings, knobs, box_slack, root_residual, row)
+    return row
+
+
 def pair(
     a: np.ndarray,
     b: np.ndarray,
@@ -98,7 +137,7 @@ def pair(
         a, b = sub.read_only(a), sub.read_only(b)
     table, offsets = _half_table((a.shape[0] - 1, b.shape[0] - 1))
     count, hits = _compiled().pair(
-        a, b, box_slack, root_residual, cert.SETTINGS, knobs, cert.USE_SETTLE, table, offsets
+        a, b, packed(box_slack, root_residual, knobs), cert.USE_SETTLE, table, offsets
     )
     if count < 0:
         return None
@@ -128,10 +167,7 @@ def pairs(
         starts,
         np.asarray(first, dtype=np.int64),
         np.asarray(second, dtype=np.int64),
-        box_slack,
-        root_residual,
-        cert.SETTINGS,
-        knobs,
+        packed(box_slack, root_residual, knobs),
         cert.USE_SETTLE,
         table,
         offsets,

@@ -9,7 +9,9 @@ saves is the Python between and around them (issue #29): per pair one call inste
 and for a batch one call for every pair (`pairs`) instead of one or two a pair.
 
 The half matrices of every degree a call needs come in one flat table (`halves`: left then
-right, row-major, at `offsets[degree]`), reshaped here without a copy.
+right, row-major, at `offsets[degree]`), reshaped here without a copy. The knobs come as one
+float row (`constants`: intersect_pairs.packed), made back into the tuples the kernels take
+here: numba types a tuple of 26 numbers on every call, ~0.3 us of a small pair's ~5 us.
 
 Imported only by intersect_pairs, and only when numba is installed and not disabled; numba
 compiles on first use and caches the machine code next to this file (its cache does not see
@@ -38,18 +40,44 @@ def _halves(table: np.ndarray, offsets: np.ndarray, degree: int) -> tuple[np.nda
 
 
 @numba.njit(**_JIT)
+def _settings(c: np.ndarray) -> Settings:
+    """certify_compiled.Settings from constants[0:11] (its first three are counts)."""
+    return (int(c[0]), int(c[1]), int(c[2]), c[3], c[4], c[5], c[6], c[7], c[8], c[9], c[10])
+
+
+@numba.njit(**_JIT)
+def _knobs(c: np.ndarray) -> Knobs:
+    """refine_compiled.Knobs from constants[11:26] (its 11th to 13th are counts)."""
+    return (
+        c[11],
+        c[12],
+        c[13],
+        c[14],
+        c[15],
+        c[16],
+        c[17],
+        c[18],
+        c[19],
+        c[20],
+        int(c[21]),
+        int(c[22]),
+        int(c[23]),
+        c[24],
+        c[25],
+    )
+
+
+@numba.njit(**_JIT)
 def _one(
     a: np.ndarray,
     b: np.ndarray,
-    box_slack: float,
-    root_residual: float,
-    settings: Settings,
-    knobs: Knobs,
+    constants: np.ndarray,
     careful: bool,
     table: np.ndarray,
     offsets: np.ndarray,
 ) -> tuple[int, np.ndarray]:
-    count, roots = certify_one(a, b, box_slack, root_residual, settings)
+    box_slack, root_residual = constants[26], constants[27]
+    count, roots = certify_one(a, b, box_slack, root_residual, _settings(constants))
     if count >= 0:
         hits = np.empty((count, 3))
         for k in range(count):
@@ -60,7 +88,7 @@ def _one(
     count, hits = settle(
         a,
         b,
-        knobs,
+        _knobs(constants),
         _halves(table, offsets, a.shape[0] - 1),
         _halves(table, offsets, b.shape[0] - 1),
     )
@@ -71,10 +99,7 @@ def _one(
 def pair(
     a: np.ndarray,
     b: np.ndarray,
-    box_slack: float,
-    root_residual: float,
-    settings: Settings,
-    knobs: Knobs,
+    constants: np.ndarray,
     careful: bool,
     table: np.ndarray,
     offsets: np.ndarray,
@@ -83,7 +108,7 @@ def pair(
     (count, hits) with hits (count, 3) rows (s, t, kind code) in the careful path's order,
     count -1 where the certificate declines and (careful False, or) the careful path
     declines too."""
-    count, hits = _one(a, b, box_slack, root_residual, settings, knobs, careful, table, offsets)
+    count, hits = _one(a, b, constants, careful, table, offsets)
     return count, hits
 
 
@@ -93,10 +118,7 @@ def pairs(
     starts: np.ndarray,
     first: np.ndarray,
     second: np.ndarray,
-    box_slack: float,
-    root_residual: float,
-    settings: Settings,
-    knobs: Knobs,
+    constants: np.ndarray,
     careful: bool,
     table: np.ndarray,
     offsets: np.ndarray,
@@ -112,7 +134,7 @@ def pairs(
         i, j = first[k], second[k]
         a = points[starts[i] : starts[i + 1]]
         b = points[starts[j] : starts[j + 1]]
-        count, hits = _one(a, b, box_slack, root_residual, settings, knobs, careful, table, offsets)
+        count, hits = _one(a, b, constants, careful, table, offsets)
         counts[k] = count
         if count > 0:
             if used + count > out.shape[0]:

@@ -120,6 +120,7 @@ def _float_batch(
     """The pairs of float Bézier curves the compiled kernels take as they are (as
     Curve.intersect takes them: engine.float_pair), all of one dimension in one
     compiled call (engine.float_pairs): (answers by pair, pairs both kernels declined)."""
+    from .curves import Curve
     from .hazmat import intersect as engine
 
     answered: dict[int, list[Intersection]] = {}
@@ -127,7 +128,11 @@ def _float_batch(
     if not engine.compiled_in_use():
         return answered, declined
     # float Bézier curves of an ordinary size, as Curve.intersect gives them to float_pair
-    ready = {id(c): c._bezier_form and c._exact_points is None and c._ordinary for c in (*a, *b)}
+    # (a rational or trigonometric curve is none of them)
+    ready = {
+        id(c): isinstance(c, Curve) and c._bezier_form and c._exact_points is None and c._ordinary
+        for c in (*a, *b)
+    }
     groups: dict[int, tuple[list[int], list[int], list[int], dict[int, int]]] = {}
     for k in poly:
         i, j = index[k]

@@ -113,7 +113,7 @@ def bench_intersection() -> None:
             record(
                 f"intersect_many ({path}): the same {len(kept)} cases as one batch ("
                 + (
-                    "each pair through the compiled kernels, as intersect takes it)"
+                    "every pair of float Bézier curves in one compiled call)"
                     if path == "numba kernel"
                     else "pairs of equal degrees subdivided in one set of arrays)"
                 ),

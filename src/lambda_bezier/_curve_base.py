@@ -142,13 +142,24 @@ class Curve(ControlPointCurve):
     # by data names its own (``parameter = "mu"``); the attribute stays ``lam``
     parameter_name: ClassVar[str] = "lam"
     _any_degree: ClassVar[bool] = False  # True: degrees past the generated tables are allowed
+    # the control points' size is ordinary (_validate._ORDINARY: no power-of-two scaling
+    # anywhere); set in __init__, False on an instance that bypassed it
+    _ordinary: bool = False
+    # the control points are the curve's classical Bézier points (to_bezier() is self)
+    _bezier_form: ClassVar[bool] = False
 
     def __init__(
         self, points: PointsLike, lam: Fraction | float | None = None, *, check_range: bool = True
     ) -> None:
         degrees = (0, sys.maxsize) if self._any_degree else tuple(self._data.DEGREES)
-        self.points = val.as_points(points, family=self.family, degrees=degrees)
-        self._exact_points = val.exact_rows(points)
+        small = val.small_points(points, family=self.family, degrees=degrees)
+        if small is not None:  # a small float array: no exact rows, its size read once
+            self.points, self._ordinary = small
+            self._exact_points: val.ExactRows | None = None
+        else:
+            self.points = val.as_points(points, family=self.family, degrees=degrees)
+            self._exact_points = val.exact_rows(points)
+            self._ordinary = val.ordinary(self.points)
         if self._has_lambda:
             if lam is None:
                 raise ValueError(
@@ -164,7 +175,7 @@ class Curve(ControlPointCurve):
         # Coordinates near the float limit (or near its bottom) would overflow (underflow) in
         # the basis products although p(t) is representable: the coefficients are then kept
         # for the points scaled by a power of two (exact), and evaluation scales back.
-        self._scale = val.power_of_two_scale(self.points)
+        self._scale = 1.0 if self._ordinary else val.power_of_two_scale(self.points)
         # k -> Taylor coefficients of p^(k) about t = 1/2, coordinate-major (d, N+1 - k): what
         # evaluation uses at the tabulated degrees; filled on demand (_centred), so that a
         # curve built only to be intersected or located does not pay for them (issue #29)
@@ -450,6 +461,19 @@ class Curve(ControlPointCurve):
             if swapped is None:
                 raise TypeError(f"other must be a curve, got {type(other).__name__}")
             return swapped
+        if (
+            self._bezier_form
+            and other._bezier_form
+            and self._exact_points is None
+            and other._exact_points is None
+            and self._ordinary
+            and other._ordinary
+        ):
+            # float Bézier points are the curves exactly: the compiled kernels take them as
+            # they are, no Prepared built (issue #29: a share of a small pair's whole time)
+            found = _intersect.float_pair(self.points, other.points)
+            if found is not None:
+                return found
         return _intersect.intersect(self._prepared, other._prepared)
 
     def self_intersections(self) -> list[_intersect.Intersection]:
@@ -498,6 +522,7 @@ class BezierCurve(Curve):
     _data = _bernstein
     _has_lambda = False
     _any_degree = True  # any degree >= 0: de Casteljau past the generated tables
+    _bezier_form = True
 
     def __init__(self, points: PointsLike) -> None:
         super().__init__(points)

@@ -225,24 +225,55 @@ def exact_shape(rows: ExactRows, *, family: str, degrees: tuple[int, ...]) -> No
 _SMALL = 64
 
 
+_F64 = np.dtype(np.float64)
+# points whose Euclidean norm lies in here have their largest |coordinate| within 2^±100 (the
+# norm is at most sqrt(_SMALL) = 8 times it where it is computed): an ordinary size, which
+# no power-of-two scaling touches (power_of_two_scale: 2^±900; the intersection's
+# normalisation: 2^±128)
+_ORDINARY = (2.0**-100, 2.0**100)
+
+
+def small_points(
+    points: object, *, family: str, degrees: tuple[int, ...]
+) -> tuple[np.ndarray, bool] | None:
+    """as_points' short way, for a small float64 array (the common case; issue #29: a curve
+    built to be intersected costs more than the intersection otherwise): (a read-only copy,
+    whether its size is ordinary); None for any other input, or one that needs as_points'
+    general way to say what is wrong. The norm (one call) is finite only when every
+    coordinate is (an inf or a NaN survives it); a norm that overflows although every
+    coordinate is finite takes the general way, which says which. The curve classes use
+    `ordinary` for their power-of-two scale and the intersection's kernels, which would
+    each read the points again."""
+    if not (type(points) is np.ndarray and points.dtype is _F64 and points.ndim == 2):
+        return None
+    rows, width = points.shape
+    if rows * width > _SMALL:
+        return None
+    if not (width >= 1 and degrees[0] <= rows - 1 <= degrees[-1]):
+        check_point_shape(points.shape, family=family, degrees=degrees)  # raises: says why
+    small = points.copy()
+    norm = math.hypot(*small.ravel().tolist())
+    if not math.isfinite(norm):
+        return None
+    small.setflags(write=False)
+    return small, _ORDINARY[0] <= norm <= _ORDINARY[1]
+
+
+def ordinary(points: np.ndarray) -> bool:
+    """Whether finite points have an ordinary size (see _ORDINARY): False where unsure."""
+    if points.size > _SMALL:
+        return False
+    return _ORDINARY[0] <= math.hypot(*points.ravel().tolist()) <= _ORDINARY[1]
+
+
 def as_points(points: object, *, family: str, degrees: tuple[int, ...]) -> np.ndarray:
     """(n+1, d) float array (a read-only copy), d >= 1, n in `degrees`, all finite."""
-    if (
-        type(points) is np.ndarray
-        and points.dtype == np.float64
-        and points.ndim == 2
-        and points.size <= _SMALL
-    ):
-        # the common case (a small float array; issue #29: a curve built to be intersected
-        # costs more than the intersection otherwise). A sum of floats is finite only when
-        # every term is (an inf or a NaN survives every addition); a sum that overflows
-        # although every term is finite takes the general way below, which says which
-        small = points.copy()
-        check_point_shape(small.shape, family=family, degrees=degrees)
-        if math.isfinite(sum(small.ravel().tolist())):
-            small.setflags(write=False)
-            return small
-    arr = np.array(real_array(points, "control points"), dtype=float)
+    small = small_points(points, family=family, degrees=degrees)
+    if small is not None:
+        return small[0]
+    # C order (a Fortran-ordered input stays Fortran-ordered otherwise): the compiled
+    # intersection kernels take a curve's own points as they are, compiled for C order
+    arr = np.array(real_array(points, "control points"), dtype=float, order="C")
     check_point_shape(arr.shape, family=family, degrees=degrees)
     bad = ~np.isfinite(arr)
     if bad.any():

@@ -86,25 +86,74 @@ def intersect_many(
     else:
         raise ValueError(f"mode must be 'pairs' or 'all', got {mode!r}")
     from .curves import Curve
+    from .hazmat import intersect as engine
 
-    # polynomial pairs together (each curve prepared once); a pair with a rational or
-    # trigonometric/hyperbolic/mixed curve through that curve's own intersect
+    # polynomial pairs together; a pair with a rational or trigonometric/hyperbolic/mixed
+    # curve through that curve's own intersect
     poly = [
         k for k, (i, j) in enumerate(index) if isinstance(a[i], Curve) and isinstance(b[j], Curve)
     ]
-    prepared_a = {i: a[i]._prepared for i, _ in (index[k] for k in poly)}
-    prepared_b = {j: b[j]._prepared for _, j in (index[k] for k in poly)}
-    from .hazmat.intersect import intersect_pairs
-
-    together = intersect_pairs([(prepared_a[index[k][0]], prepared_b[index[k][1]]) for k in poly])
     found: list[list[Intersection]] = [[] for _ in index]
-    for k, hits in zip(poly, together, strict=True):
+    answered, declined = _float_batch(a, b, index, poly)
+    for k, hits in answered.items():
+        found[k] = hits
+    rest = [k for k in poly if k not in answered]
+    # the others, and those the kernels declined, the careful way (each curve prepared once)
+    prepared_a = {i: a[i]._prepared for i, _ in (index[k] for k in rest)}
+    prepared_b = {j: b[j]._prepared for _, j in (index[k] for k in rest)}
+    together = engine.intersect_pairs(
+        [(prepared_a[index[k][0]], prepared_b[index[k][1]]) for k in rest],
+        [k not in declined for k in rest],
+    )
+    for k, hits in zip(rest, together, strict=True):
         found[k] = hits
     for k in sorted(set(range(len(index))) - set(poly)):
         found[k] = a[index[k][0]].intersect(b[index[k][1]])
     if mode == "pairs":
         return found
     return [found[i * len(b) : (i + 1) * len(b)] for i in range(len(a))]
+
+
+def _float_batch(
+    a: list[Curve], b: list[Curve], index: list[tuple[int, int]], poly: list[int]
+) -> tuple[dict[int, list[Intersection]], set[int]]:
+    """The pairs of float Bézier curves the compiled kernels take as they are (as
+    Curve.intersect takes them: engine.float_pair), all of one dimension in one
+    compiled call (engine.float_pairs): (answers by pair, pairs both kernels declined)."""
+    from .curves import Curve
+    from .hazmat import intersect as engine
+
+    answered: dict[int, list[Intersection]] = {}
+    declined: set[int] = set()
+    if not engine.compiled_in_use():
+        return answered, declined
+    # float Bézier curves of an ordinary size, as Curve.intersect gives them to float_pair
+    # (a rational or trigonometric curve is none of them)
+    ready = {
+        id(c): isinstance(c, Curve) and c._bezier_form and c._exact_points is None and c._ordinary
+        for c in (*a, *b)
+    }
+    groups: dict[int, tuple[list[int], list[int], list[int], dict[int, int]]] = {}
+    for k in poly:
+        i, j = index[k]
+        if not (ready[id(a[i])] and ready[id(b[j])]):
+            continue
+        dim = a[i].dimension
+        if dim != b[j].dimension or dim < 2:
+            continue
+        pairs, lefts, rights, slots = groups.setdefault(dim, ([], [], [], {}))
+        pairs.append(k)
+        lefts.append(slots.setdefault(id(a[i]), len(slots)))
+        rights.append(slots.setdefault(id(b[j]), len(slots)))
+    curves = {id(c): c for c in (*a, *b)}
+    for pairs, lefts, rights, slots in groups.values():
+        points = [curves[key].points for key in slots]  # in slot order (dicts keep it)
+        for k, hits in zip(pairs, engine.float_pairs(points, lefts, rights), strict=True):
+            if hits is None:
+                declined.add(k)
+            else:
+                answered[k] = hits
+    return answered, declined
 
 
 def intersect_exact(

@@ -53,6 +53,9 @@ ours (the name follows the `bezier` package's `hazmat`).
   (the end pairs of the stretches its monotone pieces share); `intersect_refold` the same
   for a curve off a line (P = Q(g), g not monotone), cut at its exact turning points;
 - `intersect_prepared`: a curve as the intersection solvers use it (floats, exact rows);
+- `intersect_pairs`: the compiled kernels' entry for one pair (certificate, then the careful
+  path compiled, in one call) or many pairs in one call; `intersect_pairs_compiled` its
+  kernels (numba, the `fast` extra; imported on use);
 - `reduce`: degree reduction, exact or least squares;
 - `implicit`: implicitization (imports SymPy when called, never at import);
 - `numbers`: the exact-number grammar of the command line and of export files;
@@ -136,6 +139,8 @@ __all__ = [
     "intersect_exact",
     "intersect_fold",
     "intersect_locate",
+    "intersect_pairs",
+    "intersect_pairs_compiled",
     "intersect_prepared",
     "intersect_refold",
     "intersect_self",

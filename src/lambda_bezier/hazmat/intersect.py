@@ -37,6 +37,7 @@ import numpy as np
 
 from . import intersect_certify as cert
 from . import intersect_exact as _exact_iso
+from . import intersect_pairs as _pairs_engine
 from . import intersect_refold as refold
 from . import intersect_subdivide as sub
 from .intersect_locate import (  # the point location half, and the tolerances both share
@@ -385,9 +386,9 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
     floats exactly, else (or where it does not certify) the careful path: compiled
     (settle_one) where it can, in Python otherwise."""
     p, q = normalised(p, q)
-    compiled = _compiled_pair(p, q)
-    if compiled is not None:
-        return _decided_exactly(p, q, compiled)
+    found = _compiled_pair(p, q)
+    if found is not None:
+        return _decided_exactly(p, q, found)
     _check_pair(p, q)
     results: list[list[Intersection]] = [[]]
     _careful_pairs([(p, q)], [0], results)  # declined (or exact input): not certified again
@@ -423,38 +424,70 @@ def _ill_posed(p: Prepared, q: Prepared, h: Intersection) -> bool:
 
 def _compiled_pair(p: Prepared, q: Prepared) -> list[Intersection] | None:
     """The pair's answer from the compiled kernels (numba): the certificate, then the careful
-    path compiled where it declines; None when neither answers (not compiled, input that
-    is not floats exactly, or declined by both). Both kernels decline a curve that is a
-    point, so _check_pair (its error) runs only on the way to the careful path in Python:
-    on a fresh curve it costs a share of a small pair's whole time."""
+    path compiled where it declines, in one call (intersect_pairs); None when neither
+    answers (not compiled, input that is not floats exactly, or declined by both). Both
+    kernels decline a curve that is a point, so _check_pair (its error) runs only on the way
+    to the careful path in Python: on a fresh curve it costs a share of a small pair's whole
+    time."""
     if not (cert.in_use() and p.floats_exact and q.floats_exact and p.dim == q.dim >= 2):
         return None
-    got = cert.certify_one(p.pts, q.pts, BOX_SLACK, ROOT_RESIDUAL)
-    if got is not None:
-        s, t = got
-        return [Intersection(x, y, "transversal") for x, y in zip(s, t, strict=True)]
-    settled = cert.settle_one(p.pts, q.pts, SETTLE)
-    if settled is None:
+    found = _pairs_engine.pair(p.pts, q.pts, BOX_SLACK, ROOT_RESIDUAL, SETTLE)
+    if found is None:
         return None
-    return [Intersection(x, y, _KINDS[kind]) for x, y, kind in settled]
+    return [Intersection(x, y, _KINDS[int(kind)]) for x, y, kind in found]
 
 
-def intersect_pairs(pairs: list[tuple[Prepared, Prepared]]) -> list[list[Intersection]]:
+def float_pair(a: np.ndarray, b: np.ndarray) -> list[Intersection] | None:
+    """intersect's answer for two curves whose float Bézier points a, b (a curve's own: C
+    order) are the curves exactly, their largest |coordinate| within 2^±100 (the caller
+    knows: normalised leaves them as they are), with no Prepared built (a share of a small
+    pair's whole time, issue #29): the compiled kernels' answer where they run (numba, one
+    dimension >= 2) and answer; None otherwise, and intersect on the Prepared forms then
+    gives the answer (trying the kernels again where they declined: such a pair takes the
+    careful path in Python, whose cost that try does not change)."""
+    if not (a.shape[1] == b.shape[1] >= 2 and cert.in_use()):
+        return None
+    found = _pairs_engine.pair(a, b, BOX_SLACK, ROOT_RESIDUAL, SETTLE, own=True)
+    if found is None:
+        return None
+    return [Intersection(x, y, _KINDS[int(kind)]) for x, y, kind in found]
+
+
+def compiled_in_use() -> bool:
+    """Whether the compiled kernels run (numba installed and not disabled)."""
+    return cert.in_use()
+
+
+def float_pairs(
+    curves: list[np.ndarray], first: list[int], second: list[int]
+) -> list[list[Intersection] | None]:
+    """float_pair for many pairs in one compiled call: pair k is curves[first[k]] against
+    curves[second[k]], each pair one float_pair takes (the caller checks its conditions),
+    all of one dimension; None for a pair both kernels decline."""
+    found = _pairs_engine.pairs(curves, first, second, BOX_SLACK, ROOT_RESIDUAL, SETTLE)
+    return [
+        None if hits is None else [Intersection(x, y, _KINDS[int(kind)]) for x, y, kind in hits]
+        for hits in found
+    ]
+
+
+def intersect_pairs(
+    pairs: list[tuple[Prepared, Prepared]], compiled: list[bool] | None = None
+) -> list[list[Intersection]]:
     """Every intersection of each pair, sorted by s. With numba, each pair whose floats are
-    the curves exactly goes through the compiled kernels as intersect takes it (one call
-    runs a pair's whole certificate, another its whole careful path: measured on the
-    `bezier` fixtures, certifying the pairs together in one batch cost more than it saved,
-    its per-pair slack and bound set up in Python). The rest, and those both kernels
-    decline, take the careful way in Python together, pairs of equal degrees and dimension
-    in one group: the end points and shared stretches pair by pair, the subdivision in one
-    set of arrays (intersect_subdivide.isolate), then refinement pair by pair."""
+    the curves exactly goes through the compiled kernels as intersect takes it (unless
+    compiled[k] is False: the kernels declined it already, in intersect_many's batch). The
+    rest, and those both kernels decline, take the careful way in Python together, pairs of
+    equal degrees and dimension in one group: the end points and shared stretches pair by
+    pair, the subdivision in one set of arrays (intersect_subdivide.isolate), then
+    refinement pair by pair."""
     pairs = [normalised(p, q) for p, q in pairs]
     results: list[list[Intersection]] = [[] for _ in pairs]
     groups: dict[tuple[int, int, int], list[int]] = {}
     for k, (p, q) in enumerate(pairs):
-        compiled = _compiled_pair(p, q)
-        if compiled is not None:
-            results[k] = compiled
+        compiled_hits = _compiled_pair(p, q) if compiled is None or compiled[k] else None
+        if compiled_hits is not None:
+            results[k] = compiled_hits
         else:
             _check_pair(p, q)
             groups.setdefault((p.degree, q.degree, p.dim), []).append(k)

@@ -27,7 +27,7 @@ pytestmark = pytest.mark.usefixtures("intersect_engine")
 
 def certified(p: lb.BezierCurve, q: lb.BezierCurve):
     return cert.certify_one(
-        p._prepared.pts, q._prepared.pts, engine.BOX_SLACK, engine.ROOT_RESIDUAL
+        p._prepared.pts, q._prepared.pts, engine.BOX_SLACK, engine.ROOT_RESIDUAL, engine.SETTLE
     )
 
 

@@ -429,7 +429,7 @@ def _compiled_pair(p: Prepared, q: Prepared) -> list[Intersection] | None:
     on a fresh curve it costs a share of a small pair's whole time."""
     if not (cert.in_use() and p.floats_exact and q.floats_exact and p.dim == q.dim >= 2):
         return None
-    got = cert.certify_one(p.pts, q.pts, BOX_SLACK, ROOT_RESIDUAL)
+    got = cert.certify_one(p.pts, q.pts, BOX_SLACK, ROOT_RESIDUAL, SETTLE)
     if got is not None:
         s, t = got
         return [Intersection(x, y, "transversal") for x, y in zip(s, t, strict=True)]

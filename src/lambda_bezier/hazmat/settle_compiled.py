@@ -29,6 +29,7 @@ import math
 import numba
 import numpy as np
 
+from . import intersect_shared_ends as _ends
 from .intersect_compiled import (
     CONTACT_DEEP,
     _local_foot_newton,
@@ -589,6 +590,9 @@ def _locate_all(
 
 
 # ---------------------------------------------------------------------------- the pair
+_collinear = numba.njit(**_JIT)(_ends.collinear)  # one source with the certificate's
+
+
 @numba.njit(**_JIT)
 def _after(s: float, t: float, kind: int, s2: float, t2: float, kind2: int) -> bool:
     """(s, t, kind) > (s2, t2, kind2) as tuples compare."""
@@ -620,38 +624,6 @@ def _in_stretch(s: float, t: float, skip: np.ndarray, skips: int, start: bool) -
         if not start and skip[r, 0] < s < skip[r, 1]:
             return True
     return False
-
-
-@numba.njit(**_JIT)
-def _collinear(a: np.ndarray, b: np.ndarray, tol: float) -> bool:
-    """intersect._common_line is not None: every control point of both within tol of one line
-    (the points of a, then of b; no array made per point)."""
-    n, dim = a.shape[0], a.shape[1]
-    base = a[0]
-    far, length = 0, -1.0
-    for i in range(n + b.shape[0]):
-        x = a[i] if i < n else b[i - n]
-        total = 0.0
-        for j in range(dim):
-            total += (x[j] - base[j]) * (x[j] - base[j])
-        d = math.sqrt(total)
-        if d > length:
-            far, length = i, d
-    if length == 0.0:
-        return False
-    unit = ((a[far] if far < n else b[far - n]) - base) / length
-    for i in range(n + b.shape[0]):
-        x = a[i] if i < n else b[i - n]
-        along = 0.0
-        for j in range(dim):
-            along += (x[j] - base[j]) * unit[j]
-        total = 0.0
-        for j in range(dim):
-            off = (x[j] - base[j]) - along * unit[j]
-            total += off * off
-        if math.sqrt(total) > tol:
-            return False
-    return True
 
 
 @numba.njit(**_JIT)

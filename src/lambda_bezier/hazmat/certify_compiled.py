@@ -180,8 +180,8 @@ def _certify_one(
     out_t: np.ndarray,
 ) -> int:
     """Certified intersections of one pair into out_s, out_t: their count, or -1 where the
-    certificate fails (the careful path decides). knobs: the careful path's (intersect.SETTLE,
-    as intersect_certify.CAREFUL has it), for the location of an end point at a T-junction."""
+    certificate fails (the careful path decides). knobs: the careful path's (intersect.SETTLE),
+    for the location of an end point at a T-junction (_end_hit)."""
     depth, max_pieces, newton_steps, inside, margin, end_margin, drift, same, sine_min = settings[
         :9
     ]

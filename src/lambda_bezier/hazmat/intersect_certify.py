@@ -26,7 +26,15 @@ The certificate, for a pair p, q of classical Bézier curves with float control 
    and the sine of the angle between p'(s) and q'(t) exceeds SINE_MIN (with the residual r,
    a common point lies within r / sine of it: a near-double crossing goes the careful way);
 3. each root lies at least END_MARGIN inside both parameter ranges: roots at or next to an
-   end are the careful path's (it locates the ends exactly and tells tangencies there);
+   end are the careful path's (it locates the ends exactly and tells tangencies there),
+   but for a T-junction: one root (and no other, and no shared corner) next to an end of
+   one curve only, the other parameter inside by END_MARGIN, the tangents' sine above
+   SHARED_SINE. The careful path reports there the end point as it locates it on the other
+   curve, and drops its own root there as that hit; the certificate locates it with the
+   careful path's own location (compiled: settle_compiled's; numpy: intersect_locate's)
+   and answers that hit when it is located once, within DRIFT of the root, the root within
+   SAME / 8 of it (intersect_shared_ends.end_merged), no other root within SHARED_NEAR, and
+   the control points not on one line;
 4. but for an end point of one curve that is an end point of the other exactly: there the
    end tangents must be clearly apart (the sine of their angle above SHARED_SINE, far above
    the careful path's TANGENT_SINE, so both call it a crossing), the pair of pieces holding

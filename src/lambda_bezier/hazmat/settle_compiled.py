@@ -352,11 +352,9 @@ def _isolate_point(
     level, index = ints[:cap], ints[cap : 2 * cap]
     alive = ints[2 * cap : 2 * cap + depth + 1]
     alive[:] = 0
-    r_lev, r_ix = ints[2 * cap + depth + 1 :][:room], ints[2 * cap + depth + 1 :][room : 2 * room]
-    l_lev, l_ix = (
-        ints[2 * cap + depth + 1 :][2 * room : 3 * room],
-        ints[2 * cap + depth + 1 :][3 * room :],
-    )
+    found = ints[2 * cap + depth + 1 :]  # the roots' and left pieces' levels and indices
+    r_lev, r_ix = found[:room], found[room : 2 * room]
+    l_lev, l_ix = found[2 * room : 3 * room], found[3 * room :]
     floats = np.empty(room + dim)
     r_s, axis = floats[:room], floats[room:]
     target = point.reshape((1, dim))

@@ -48,7 +48,7 @@ def test_certified_shared_ends_are_the_careful_answers():
     answered = 0
     for a, b in glued_pairs():
         slow = careful(a, b)
-        got = cert.certify_one(a, b, engine.BOX_SLACK, engine.ROOT_RESIDUAL)
+        got = cert.certify_one(a, b, engine.BOX_SLACK, engine.ROOT_RESIDUAL, engine.SETTLE)
         if got is None:
             continue
         answered += 1
@@ -69,5 +69,8 @@ def test_a_smooth_join_is_declined():
         a = np.array(left.control_points(), dtype=float)
         b = np.array(right.control_points(), dtype=float)
         for x, y in ((a, b), (b, a), (a[::-1].copy(), b), (a, b[::-1].copy())):
-            assert cert.certify_one(x, y, engine.BOX_SLACK, engine.ROOT_RESIDUAL) is None
+            assert (
+                cert.certify_one(x, y, engine.BOX_SLACK, engine.ROOT_RESIDUAL, engine.SETTLE)
+                is None
+            )
             assert any(h.kind == "tangent" for h in careful(x, y))

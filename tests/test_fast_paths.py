@@ -27,7 +27,7 @@ pytestmark = pytest.mark.usefixtures("intersect_engine")
 
 def certified(p: lb.BezierCurve, q: lb.BezierCurve):
     return cert.certify_one(
-        p._prepared.pts, q._prepared.pts, engine.BOX_SLACK, engine.ROOT_RESIDUAL
+        p._prepared.pts, q._prepared.pts, engine.BOX_SLACK, engine.ROOT_RESIDUAL, engine.SETTLE
     )
 
 
@@ -84,8 +84,8 @@ def test_most_crossings_are_certified():
 @pytest.mark.parametrize(
     ("a", "b", "why"),
     [
-        # an end of one curve on the other: located exactly by the careful path
-        ([(1, 0.5), (1, 2)], [(0, 1), (1, 0), (2, 1)], "end"),
+        # both ends of one curve on the other: two end hits, located by the careful path
+        ([(0.25, 0.375), (0.75, 0.375)], [(0, 0), (0.5, 1), (1, 0)], "ends"),
         # a tangency: the parabola touches the line
         ([(-1, 1), (0, -1), (1, 1)], [(-1, 0), (1, 0)], "tangent"),
         # crossings 1e-3 apart (sine ~ 1e-3 ok) and 2e-7 apart (sine below SINE_MIN)
@@ -98,6 +98,15 @@ def test_the_certificate_declines(a, b, why):
     p, q = lb.BezierCurve(a), lb.BezierCurve(b)
     assert certified(p, q) is None, why
     assert p.intersect(q) == careful(p, q)
+
+
+def test_an_end_on_the_other_curve_is_certified_as_located():
+    """A T-junction (round 21): the end point as the careful path locates it, to the bit."""
+    p = lb.BezierCurve([(1, 0.5), (1, 2)])
+    q = lb.BezierCurve([(0, 1), (1, 0), (2, 1)])
+    got = certified(p, q)
+    assert got is not None
+    assert list(zip(*got, strict=True)) == [(h.s, h.t) for h in careful(p, q)] == [(0.0, 0.5)]
 
 
 def test_crossings_1e3_apart_are_certified_and_exact():

@@ -35,6 +35,8 @@ from .pieces_compiled import (
     split,
     two_sum,
 )
+from .refine_compiled import Knobs, _curve
+from .settle_compiled import _collinear, _locate_all
 
 
 @numba.njit(**_JIT)
@@ -96,9 +98,68 @@ def _refine(
     return s, t, size, math.sqrt(res), sine
 
 
-# the shared end points' rules, from the one source the numpy reference runs
+# the shared end points' and T-junctions' rules, from the one source the numpy reference runs
 _shared_corners = numba.njit(**_JIT)(_ends.shared_corners)
 _corner_held = numba.njit(**_JIT)(_ends.corner_held)
+_end_crossing = numba.njit(**_JIT)(_ends.end_crossing)
+_end_merged = numba.njit(**_JIT)(_ends.end_merged)
+HALVES_UP_TO = 60  # half_matrices' binomials exact in int64 up to this degree
+
+
+@numba.njit(**_JIT)
+def half_matrices(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """intersect_subdivide.half_matrices(n) (left[i, k] = C(i, k) / 2^i, right[i, k] =
+    C(n-i, k-i) / 2^(n-i)), made here: passing them in would cost every pair a Python call,
+    and only a T-junction needs them. The binomials from Pascal's triangle, exact in int64
+    up to degree HALVES_UP_TO, so the quotients are the same floats."""
+    pascal = np.zeros((n + 1, n + 1), np.int64)
+    for i in range(n + 1):
+        pascal[i, 0] = 1
+        for k in range(1, i + 1):
+            pascal[i, k] = pascal[i - 1, k - 1] + pascal[i - 1, k]
+    left, right = np.zeros((n + 1, n + 1)), np.zeros((n + 1, n + 1))
+    for i in range(n + 1):
+        for k in range(i + 1):
+            left[i, k] = pascal[i, k] / 2.0**i
+        for k in range(i, n + 1):
+            right[i, k] = pascal[n - i, k - i] / 2.0 ** (n - i)
+    return left, right
+
+
+@numba.njit(**_JIT)
+def _end_hit(
+    a: np.ndarray,
+    b: np.ndarray,
+    end: int,
+    s: float,
+    t: float,
+    bound: float,
+    drift: float,
+    same: float,
+    knobs: Knobs,
+) -> tuple[bool, float, float]:
+    """The careful path's hit at a T-junction: the certified root (s, t) lies next to end
+    `end & 1` of curve `end >> 1` (0: a, 1: b) only (_ends.end_crossing), and the careful
+    path reports that end point as it locates it on the other curve (settle_compiled's
+    _locate_all, the very function and arguments it runs), its own isolated root there
+    merged into it. (ok, s, t) of that hit; not ok where the careful path may answer
+    otherwise: the point located other than once, or farther than drift from the root; the
+    root not merged into it (_ends.end_merged); the control points on one line (the careful
+    path declines those)."""
+    e = end & 1
+    own, other = (a, b) if end >> 1 == 0 else (b, a)
+    x, y = (s, t) if end >> 1 == 0 else (t, s)
+    if other.shape[0] - 1 > HALVES_UP_TO or _collinear(a, b, bound):
+        return False, 0.0, 0.0
+    point = own[own.shape[0] - 1 if e else 0]
+    _, scale = span_scale(other)
+    halves = half_matrices(other.shape[0] - 1)
+    located = _locate_all(_curve(other), scale, np.full(1, -1.0), point, 0.0, True, knobs, halves)
+    if located.size != 1 or not abs(located[0] - y) <= drift:
+        return False, 0.0, 0.0
+    if not _end_merged(x, y, float(e), located[0], same):
+        return False, 0.0, 0.0
+    return (True, float(e), located[0]) if end >> 1 == 0 else (True, located[0], float(e))
 
 
 # intersect_certify.SETTINGS: depth, max pieces, local Newton steps, inside, cone margin, end
@@ -114,11 +175,13 @@ def _certify_one(
     slack: float,
     bound: float,
     settings: Settings,
+    knobs: Knobs,
     out_s: np.ndarray,
     out_t: np.ndarray,
 ) -> int:
     """Certified intersections of one pair into out_s, out_t: their count, or -1 where the
-    certificate fails (the careful path decides)."""
+    certificate fails (the careful path decides). knobs: the careful path's (intersect.SETTLE),
+    for the location of an end point at a T-junction (_end_hit)."""
     depth, max_pieces, newton_steps, inside, margin, end_margin, drift, same, sine_min = settings[
         :9
     ]
@@ -208,14 +271,23 @@ def _certify_one(
     work = (np.empty((n1, dim)), np.empty((n1, dim)), np.empty((n2, dim)), np.empty((n2, dim)))
     vec = np.empty((3, dim))
     count = 0
+    tee, tee_s, tee_t = -1, 0.0, 0.0  # a root at an end of one curve only (a T-junction)
     for k in range(found):
         s, t, step, res, sine = _refine(a, b, start_s[k], start_t[k], work, vec)
         if not (step < 1e-12 and res <= bound and sine > sine_min):
             return -1
         if abs(s - start_s[k]) > drift or abs(t - start_t[k]) > drift:
             return -1
-        if not (end_margin <= s <= 1 - end_margin and end_margin <= t <= 1 - end_margin):
-            return -1  # at an end: the careful path locates the ends exactly
+        end = _end_crossing(s, t, end_margin)
+        if end >= 0:  # its end point located on the other curve below, as the careful path
+            if tee >= 0 and end == tee and abs(s - tee_s) < same and abs(t - tee_t) < same:
+                continue  # the same root, found in the next pair of pieces
+            if tee >= 0 or corners or not sine > shared_sine:
+                return -1  # the careful path's (two end hits, or a small angle)
+            tee, tee_s, tee_t = end, s, t
+            continue
+        if end == -2:
+            return -1  # next to a corner: the careful path locates the ends exactly
         for m in range(4):  # the careful path may merge hits this close (_add)
             near = abs(s - (m >> 1)) < shared_near and abs(t - (m & 1)) < shared_near
             if (at_corners >> m) & 1 and near:
@@ -235,6 +307,17 @@ def _certify_one(
             out_s[count] = float(m >> 1)
             out_t[count] = float(m & 1)
             count += 1
+    if tee >= 0:
+        if count == room:
+            return -1
+        ok, x, y = _end_hit(a, b, tee, tee_s, tee_t, bound, drift, same, knobs)
+        if not ok:
+            return -1
+        for m in range(count):  # the careful path may merge hits this close (_add)
+            if abs(out_s[m] - x) < shared_near and abs(out_t[m] - y) < shared_near:
+                return -1
+        out_s[count], out_t[count] = x, y
+        count += 1
     return count
 
 
@@ -245,6 +328,7 @@ def certify(
     slack: np.ndarray,
     bound: np.ndarray,
     settings: Settings,
+    knobs: Knobs,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """P pairs (P, n+1, d) and (P, m+1, d): (count (P,), -1 where the certificate fails;
     s (P, room), t (P, room)), the first count entries of each row being its roots."""
@@ -260,6 +344,7 @@ def certify(
             slack[k],
             bound[k],
             settings,
+            knobs,
             out_s[k],
             out_t[k],
         )
@@ -273,6 +358,7 @@ def certify_one(
     box_slack: float,
     root_residual: float,
     settings: Settings,
+    knobs: Knobs,
 ) -> tuple[int, np.ndarray]:
     """One pair, with its slack and residual bound computed here as the careful path does
     (intersect._slack, _root_bound): (count, roots) with roots (2, count) the s and t of its
@@ -294,6 +380,7 @@ def certify_one(
         box_slack * degree * scale,
         root_residual * degree * scale,
         settings,
+        knobs,
         out_s,
         out_t,
     )

@@ -26,7 +26,15 @@ The certificate, for a pair p, q of classical Bézier curves with float control 
    and the sine of the angle between p'(s) and q'(t) exceeds SINE_MIN (with the residual r,
    a common point lies within r / sine of it: a near-double crossing goes the careful way);
 3. each root lies at least END_MARGIN inside both parameter ranges: roots at or next to an
-   end are the careful path's (it locates the ends exactly and tells tangencies there);
+   end are the careful path's (it locates the ends exactly and tells tangencies there),
+   but for a T-junction: one root (and no other, and no shared corner) next to an end of
+   one curve only, the other parameter inside by END_MARGIN, the tangents' sine above
+   SHARED_SINE. The careful path reports there the end point as it locates it on the other
+   curve, and drops its own root there as that hit; the certificate locates it with the
+   careful path's own location (compiled: settle_compiled's; numpy: intersect_locate's)
+   and answers that hit when it is located once, within DRIFT of the root, the root within
+   SAME / 8 of it (intersect_shared_ends.end_merged), no other root within SHARED_NEAR, and
+   the control points not on one line;
 4. but for an end point of one curve that is an end point of the other exactly: there the
    end tangents must be clearly apart (the sine of their angle above SHARED_SINE, far above
    the careful path's TANGENT_SINE, so both call it a crossing), the pair of pieces holding
@@ -46,7 +54,9 @@ from types import ModuleType
 import numpy as np
 
 from . import intersect_subdivide as sub
-from .intersect_shared_ends import shared_corners
+from .intersect_locate import locate_all
+from .intersect_prepared import Prepared
+from .intersect_shared_ends import collinear, end_crossing, end_merged, shared_corners
 
 END_MARGIN = 1e-9  # roots closer than this to an end of either curve: the careful path
 DRIFT = 1e-9  # refinement moving a root farther than this from its start: the careful path
@@ -142,12 +152,17 @@ def settle_one(
 
 
 def certify(
-    a: np.ndarray, b: np.ndarray, slack: np.ndarray, bound: np.ndarray
+    a: np.ndarray,
+    b: np.ndarray,
+    slack: np.ndarray,
+    bound: np.ndarray,
+    knobs: tuple[float | int, ...],
 ) -> list[tuple[list[float], list[float]] | None]:
     """P pairs of curves of equal degrees, a (P, n+1, d) and b (P, m+1, d) in floats; slack
     (P,): the distance within which boxes still touch; bound (P,): the largest residual
-    |p(s) - q(t)| of a root. For each pair its crossings (s sorted, t) when certified, else
-    None."""
+    |p(s) - q(t)| of a root; knobs: the careful path's (intersect.SETTLE: a T-junction's end
+    point is located as it locates it). For each pair its crossings (s sorted, t) when
+    certified, else None."""
     compiled = _compiled()
     if compiled is not None:
         counts, out_s, out_t = compiled.certify(
@@ -156,6 +171,7 @@ def certify(
             np.ascontiguousarray(slack, dtype=float),
             np.ascontiguousarray(bound, dtype=float),
             SETTINGS,
+            knobs,
         )
         results: list[tuple[list[float], list[float]] | None] = []
         for k, count in enumerate(counts.tolist()):
@@ -169,14 +185,19 @@ def certify(
 
 
 def certify_one(
-    a: np.ndarray, b: np.ndarray, box_slack: float, root_residual: float
+    a: np.ndarray,
+    b: np.ndarray,
+    box_slack: float,
+    root_residual: float,
+    knobs: tuple[float | int, ...],
 ) -> tuple[list[float], list[float]] | None:
     """One pair (n+1, d), (m+1, d) of float curves: its crossings (s sorted, t) when
     certified, else None. The slack and the residual bound are the careful path's, from
-    the relative box_slack and root_residual (per unit of degree and of the curves' size)."""
+    the relative box_slack and root_residual (per unit of degree and of the curves' size);
+    knobs: the careful path's (intersect.SETTLE), for a T-junction's end point."""
     compiled = _compiled()
     if compiled is not None:
-        count, roots = compiled.certify_one(a, b, box_slack, root_residual, SETTINGS)
+        count, roots = compiled.certify_one(a, b, box_slack, root_residual, SETTINGS, knobs)
         if count < 0:
             return None
         s: list[float]
@@ -217,30 +238,80 @@ def _certify_numpy(
     s, t, step, res, sine = refine(a[pair], b[pair], iso.root_s, iso.root_t)
     ok = (step < 1e-12) & (res <= bound[pair]) & (sine > SINE_MIN)
     ok &= (np.abs(s - iso.root_s) <= DRIFT) & (np.abs(t - iso.root_t) <= DRIFT)
-    ok &= (s >= END_MARGIN) & (s <= 1 - END_MARGIN) & (t >= END_MARGIN) & (t <= 1 - END_MARGIN)
+    pairs_st = zip(s.tolist(), t.tolist(), strict=True)
+    ends = np.array([end_crossing(x, y, END_MARGIN) for x, y in pairs_st], dtype=np.int64)
+    tee = ok & (ends >= 0) & ~held  # at an end of one curve: located below
+    ok &= ends == -1
     s, t = np.where(held, iso.root_s, s), np.where(held, iso.root_t, t)
     ok |= held
     for k in np.flatnonzero(held).tolist():  # the careful path may merge hits this close
         near = ~held & (pair == pair[k])
         near &= (np.abs(s - s[k]) < SHARED_NEAR) & (np.abs(t - t[k]) < SHARED_NEAR)
         ok[near] = False
+    for k in sorted(set(pair[tee].tolist())):  # a T-junction: the careful path's end hit
+        mine = np.flatnonzero(tee & (pair == k))
+        hit = _end_hit_numpy(
+            a[k], b[k], int(corners[k]), bound[k], ends[mine], s[mine], t[mine], sine[mine]
+        )
+        others = (pair == k) & ~tee
+        if hit is None or np.any(
+            others & (np.abs(s - hit[0]) < SHARED_NEAR) & (np.abs(t - hit[1]) < SHARED_NEAR)
+        ):
+            good[k] = False
+            continue
+        s[mine], t[mine], ok[mine] = hit[0], hit[1], True
     good[pair[~ok]] = False
     results: list[tuple[list[float], list[float]] | None] = []
     for k in range(a.shape[0]):
         if not good[k]:
             results.append(None)
             continue
-        mine = (pair == k) & ~held
+        mine = (pair == k) & ~held & ~tee
         kept: list[tuple[float, float]] = []
         for x, y in zip(s[mine].tolist(), t[mine].tolist(), strict=True):
             if not any(abs(x - u) < SAME and abs(y - v) < SAME for u, v in kept):
                 kept.append((x, y))
-        # the shared end points last, in the order of (s, t), as the compiled kernel has them
+        # the shared end points last, in the order of (s, t), then a T-junction's end hit,
+        # as the compiled kernel has them
         mine = (pair == k) & held
         kept += sorted(zip(s[mine].tolist(), t[mine].tolist(), strict=True))
+        mine = (pair == k) & tee
+        kept += [(float(s[mine][0]), float(t[mine][0]))] if mine.any() else []
         kept.sort(key=lambda h: h[0])
         results.append(([h[0] for h in kept], [h[1] for h in kept]))
     return results
+
+
+def _end_hit_numpy(
+    a: np.ndarray,
+    b: np.ndarray,
+    corners: int,
+    bound: float,
+    ends: np.ndarray,
+    s: np.ndarray,
+    t: np.ndarray,
+    sine: np.ndarray,
+) -> tuple[float, float] | None:
+    """certify_compiled._end_hit's rules on one pair whose refined roots (s, t) lie next to
+    an end of one curve only (ends: end_crossing's codes): one root (those in the next pair
+    of pieces within SAME of it), tangents clearly apart, no shared corner, not on one line,
+    the end point located once by the careful path in Python (intersect_locate.locate_all,
+    as _pair_setup calls it), within DRIFT of the root, which merges into it. The hit
+    (s, t), or None (declined)."""
+    x0, y0, end = float(s[0]), float(t[0]), int(ends[0])
+    if corners or np.any((ends != end) | (np.abs(s - x0) >= SAME) | (np.abs(t - y0) >= SAME)):
+        return None
+    if not sine[0] > SHARED_SINE or collinear(a, b, bound):
+        return None
+    e = end & 1
+    own, other = (a, b) if end >> 1 == 0 else (b, a)
+    x, y = (x0, y0) if end >> 1 == 0 else (y0, x0)
+    located = locate_all(Prepared(other, None), own[-1 if e else 0], None, None, True)
+    if len(located) != 1 or not abs(located[0] - y) <= DRIFT:
+        return None
+    if not end_merged(x, y, float(e), located[0], SAME):
+        return None
+    return (float(e), located[0]) if end >> 1 == 0 else (located[0], float(e))
 
 
 def _two_sum(x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -268,12 +268,18 @@ def _local_foot_newton(
     piece: np.ndarray, point: np.ndarray, steps: int, inside: float, slack: float
 ) -> tuple[float, bool]:
     dim = piece.shape[1]
-    value, slope = np.empty(dim), np.empty(dim)
-    work = np.empty(piece.shape)
+    scratch = np.empty((piece.shape[0] + 2, dim))  # one allocation, not three
+    value, slope, work = scratch[0], scratch[1], scratch[2:]
     u, step = 0.5, np.inf
     for _ in range(steps):
         value_slope(piece, u, work, value, slope)
-        du = -float(np.sum((value - point) * slope)) / float(np.sum(slope * slope))
+        # np.sum's order (from 0, element by element), without its temporaries
+        along = speed = 0.0
+        for j in range(dim):
+            along += (value[j] - point[j]) * slope[j]
+        for j in range(dim):
+            speed += slope[j] * slope[j]
+        du = -along / speed
         u += du
         step = abs(du)
         if not step > 1e-15:
@@ -281,7 +287,10 @@ def _local_foot_newton(
     ok = math.isfinite(step) and step < 1e-12 and -inside <= u <= 1 + inside
     if ok:  # the point itself, not a foot point off it (see intersect_subdivide)
         value_slope(piece, u, work, value, slope)
-        ok = math.sqrt(float(np.sum((value - point) ** 2))) <= slack
+        gap = 0.0
+        for j in range(dim):
+            gap += (value[j] - point[j]) ** 2
+        ok = math.sqrt(gap) <= slack
     return u, ok
 
 

@@ -77,7 +77,8 @@ def _one(
     offsets: np.ndarray,
 ) -> tuple[int, np.ndarray]:
     box_slack, root_residual = constants[26], constants[27]
-    count, roots = certify_one(a, b, box_slack, root_residual, _settings(constants))
+    knobs = _knobs(constants)
+    count, roots = certify_one(a, b, box_slack, root_residual, _settings(constants), knobs)
     if count >= 0:
         hits = np.empty((count, 3))
         for k in range(count):
@@ -88,7 +89,7 @@ def _one(
     count, hits = settle(
         a,
         b,
-        _knobs(constants),
+        knobs,
         _halves(table, offsets, a.shape[0] - 1),
         _halves(table, offsets, b.shape[0] - 1),
     )

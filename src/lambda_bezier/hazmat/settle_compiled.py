@@ -29,6 +29,7 @@ import math
 import numba
 import numpy as np
 
+from . import intersect_shared_ends as _ends
 from .intersect_compiled import (
     CONTACT_DEEP,
     _local_foot_newton,
@@ -342,16 +343,21 @@ def _isolate_point(
     if depth > 32:  # _breadth_first's keys hold 32 halvings
         return False, np.empty(0), np.empty(0), np.empty(0)
     cap = 2 * depth + 4
-    stack = np.empty((cap, size, dim))
-    level, index = np.empty(cap, np.int64), np.empty(cap, np.int64)
-    alive = np.zeros(depth + 1, np.int64)
-    piece = np.empty((size, dim))
-    left_half, right_half = np.empty((size, dim)), np.empty((size, dim))
-    axis = np.empty(dim)
-    target = point.reshape((1, dim))
+    # the work arrays as views of three allocations (each costs ~50 ns, a share of a
+    # location, which runs four times per pair the certificate declines; issue #29)
+    stack = np.empty((cap + 3, size, dim))
+    piece, left_half, right_half = stack[cap], stack[cap + 1], stack[cap + 2]
     room = 16
-    r_lev, r_ix, r_s = np.empty(room, np.int64), np.empty(room, np.int64), np.empty(room)
-    l_lev, l_ix = np.empty(room, np.int64), np.empty(room, np.int64)
+    ints = np.empty(2 * cap + depth + 1 + 4 * room, np.int64)
+    level, index = ints[:cap], ints[cap : 2 * cap]
+    alive = ints[2 * cap : 2 * cap + depth + 1]
+    alive[:] = 0
+    found = ints[2 * cap + depth + 1 :]  # the roots' and left pieces' levels and indices
+    r_lev, r_ix = found[:room], found[room : 2 * room]
+    l_lev, l_ix = found[2 * room : 3 * room], found[3 * room :]
+    floats = np.empty(room + dim)
+    r_s, axis = floats[:room], floats[room:]
+    target = point.reshape((1, dim))
     roots = lefts = 0
     stack[0] = pts
     level[0] = index[0] = 0
@@ -395,6 +401,8 @@ def _isolate_point(
         stack[top], level[top], index[top] = right_half, lev + 1, 2 * k + 1
         stack[top + 1], level[top + 1], index[top + 1] = left_half, lev + 1, 2 * k
         top += 2
+    if roots <= 1 and lefts == 0:  # nothing to order (most locations)
+        return True, r_s[:roots], r_s[:0], r_s[:0]
     none = np.zeros(max(roots, lefts), np.int64)
     order = _breadth_first(r_lev, none, r_ix, roots)
     root_s = r_s[order]
@@ -411,7 +419,8 @@ def _locate_newton(c: Curve, point: np.ndarray, t: float) -> float:
     """intersect._locate_newton: nan where it leaves the domain."""
     dim = point.shape[0]
     pts = c[0]
-    diff, x, d1, d2 = np.empty(dim), np.empty(dim), np.empty(dim), np.empty(dim)
+    work = np.empty((4, dim))  # one allocation, not four
+    diff, x, d1, d2 = work[0], work[1], work[2], work[3]
     for phase in range(2):
         exact = phase == 1
         prev = np.inf
@@ -460,13 +469,15 @@ def _rounding_at(c: Curve, t: float, root_residual: float) -> float:
     """intersect._rounding_at: root_residual (n sum |b_i| B_i(t) + |c'(t)|)."""
     pts = c[0]
     n = pts.shape[0] - 1
-    work = np.empty(n + 1)
+    work = c[4][4][:, 0]  # the curve's scratch (row 4, for one helper at a time; row 3's
+    slope = c[4][3][0]  # first vector is written by others and read by none), no allocation
     for i in range(n + 1):
         work[i] = _norm(pts[i])
     for level in range(n):
         for i in range(n - level):
             work[i] = work[i] + t * (work[i + 1] - work[i])
-    return float(root_residual * (n * work[0] + _norm(_d(c, t, 1))))
+    _d_into(c, t, 1, slope)
+    return float(root_residual * (n * work[0] + _norm(slope)))
 
 
 @numba.njit(**_JIT)
@@ -589,6 +600,9 @@ def _locate_all(
 
 
 # ---------------------------------------------------------------------------- the pair
+_collinear = numba.njit(**_JIT)(_ends.collinear)  # one source with the certificate's
+
+
 @numba.njit(**_JIT)
 def _after(s: float, t: float, kind: int, s2: float, t2: float, kind2: int) -> bool:
     """(s, t, kind) > (s2, t2, kind2) as tuples compare."""
@@ -620,38 +634,6 @@ def _in_stretch(s: float, t: float, skip: np.ndarray, skips: int, start: bool) -
         if not start and skip[r, 0] < s < skip[r, 1]:
             return True
     return False
-
-
-@numba.njit(**_JIT)
-def _collinear(a: np.ndarray, b: np.ndarray, tol: float) -> bool:
-    """intersect._common_line is not None: every control point of both within tol of one line
-    (the points of a, then of b; no array made per point)."""
-    n, dim = a.shape[0], a.shape[1]
-    base = a[0]
-    far, length = 0, -1.0
-    for i in range(n + b.shape[0]):
-        x = a[i] if i < n else b[i - n]
-        total = 0.0
-        for j in range(dim):
-            total += (x[j] - base[j]) * (x[j] - base[j])
-        d = math.sqrt(total)
-        if d > length:
-            far, length = i, d
-    if length == 0.0:
-        return False
-    unit = ((a[far] if far < n else b[far - n]) - base) / length
-    for i in range(n + b.shape[0]):
-        x = a[i] if i < n else b[i - n]
-        along = 0.0
-        for j in range(dim):
-            along += (x[j] - base[j]) * unit[j]
-        total = 0.0
-        for j in range(dim):
-            off = (x[j] - base[j]) - along * unit[j]
-            total += off * off
-        if math.sqrt(total) > tol:
-            return False
-    return True
 
 
 @numba.njit(**_JIT)

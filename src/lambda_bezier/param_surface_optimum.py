@@ -31,7 +31,10 @@ most minima on an edge or at a corner (``boundary`` then names the ends, as for 
 Both decide a quadratic's positivity on an interval by its least value there (at_cubic's
 E is only weakly convex across its box, and the quadratic's Bernstein coefficients, used
 before, declined 1,533 of the 10,000 benchmark nets, not 372: see surface_certify's doc).
-What they decline takes the vectorised careful path below (_careful_batch), and what that
+What both decline takes their retries, at a fixed cost too (surface_certify.retry_minimum:
+a searched start, the sides cleared piece by piece or from a face; retry_edges: narrower
+bands), which certify all 306 of at_cubic's benchmark nets the first two declined. What
+they all decline takes the vectorised careful path below (_careful_batch), and what that
 declines the one-net path.
 
 The careful path, and the whole batch with two or more parameters in a direction (or none in

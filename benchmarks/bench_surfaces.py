@@ -157,11 +157,13 @@ def bench_param_surfaces(nets: int) -> None:
         "faster",
         calls["ours"] < each * nets,
     )
-    one = batch[declined[0]] if declined.size else batch[0]
+    one_index = int(declined[0]) if declined.size else 0  # none declined since round 21
+    one = batch[one_index]
     per_net = best_of(lambda: lb.optimal_parameters(one, "thin_plate", family=fam), repeat=3)
     exact = best_of(lambda: lb.optimal_parameters(one, "thin_plate", "bernstein_like"), repeat=3)
     record(
-        "the same: one declined net, certified path (Bernstein branch and bound)",
+        f"the same: one {'declined ' if declined.size else ''}net (net {one_index}), certified "
+        "path (Bernstein branch and bound)",
         per_net,
         "one bernstein_like net, exact optimum",
         exact,

@@ -1,7 +1,9 @@
-"""The nets of a batch of atom-family nets (one parameter a direction) that the compiled
-fixed-cost stage declines, whose minima lie inside the box, within r of a face, on an edge or
-at a corner: certified without the one-net path, by the vectorised careful path
-(param_surface_optimum._careful_batch, hazmat.box_batch) (issue #31).
+"""The nets of a batch of atom-family nets (one parameter a direction) that the fixed-cost
+stage's first two certificates decline, whose minima lie inside the box, within r of a face,
+on an edge or at a corner: certified without the one-net path, by the stage's retries
+(hazmat.surface_certify.retry_minimum, retry_edges; round 21) and by the vectorised careful
+path (param_surface_optimum._careful_batch, hazmat.box_batch), which took them all before
+(issue #31).
 
 References, independent of the batch's float coefficients and certificate: each net's
 one-net certified minimum (the exact energy polynomial in ℚ[π, 1/π], Bernstein branch and
@@ -21,6 +23,7 @@ import pytest
 
 import lambda_bezier as lb
 from lambda_bezier import param_surface_optimum as po
+from lambda_bezier.hazmat import surface_certify as sc
 from lambda_bezier.param_surface_energy import _direction, energy_polynomial
 
 AT = lb.load_family("tests/data/families/at_cubic.toml")  # trigonometric, lam in [-1, 1]
@@ -36,6 +39,31 @@ def _nets(count: int) -> np.ndarray:
     nets[..., 0] += np.arange(4)[:, None]
     nets[..., 1] += np.arange(4)[None, :]
     return nets
+
+
+def _first_two_decline(nets: np.ndarray, energy: str) -> np.ndarray:
+    """Which nets the fixed-cost stage's interior and edge certificates both decline (numpy,
+    on the nets' float coefficients): the nets its retries, or the careful path, take."""
+    coeffs = po.energy_coefficients(nets, D, D, energy)
+    c = [coeffs.get((a, b), np.zeros(len(nets))) for a in range(3) for b in range(3)]
+    with np.errstate(all="ignore"):
+        *_, first = sc.certified_minimum(*c, -1.0, 1.0, -1.0, 1.0, 1e-12)
+        *_, edge = sc.edge_minimum(*c, -1.0, 1.0, -1.0, 1.0, 1e-12)
+    declined: np.ndarray = ~(np.asarray(first) | np.asarray(edge))
+    return declined
+
+
+def _without_retries(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The public call as before round 21: the nets the first two certificates decline go
+    to the careful path (the compiled kernel's retries cannot be switched off inside it)."""
+    real = po._fixed_cost
+
+    def first_two(nets, du, dv, energy):
+        bx, by, bval, ok, on_edge, valid = real(nets, du, dv, energy)
+        declined = _first_two_decline(nets, energy)
+        return bx, by, bval, ok & ~declined, on_edge & ~declined, valid
+
+    monkeypatch.setattr(po, "_fixed_cost", first_two)
 
 
 def _classes(x: np.ndarray) -> dict[str, np.ndarray]:
@@ -89,10 +117,16 @@ def _exact_critical_point(net: np.ndarray, energy: str, x: np.ndarray) -> np.nda
 @pytest.mark.parametrize("energy", ["thin_plate", "membrane"])
 def test_the_nets_both_fixed_cost_certificates_decline_are_certified_vectorised(energy):
     nets = _nets(400)
-    _, _, _, ok, _ = po.fixed_cost(nets, D, D, energy)
-    declined = np.flatnonzero(~ok)
+    declined = np.flatnonzero(_first_two_decline(nets, energy))
     got = lb.optimal_parameters(nets, energy, family=AT)
     x = np.stack([got["lam_u"], got["lam_v"]], axis=1)
+    # the careful path on the same nets (it took them all before the retries): the same
+    # boundary notes, energies within 1e-12 and points within twice the certified 1e-12
+    careful = po._careful_batch(nets[declined], energy, (AT, AT), D, D)
+    assert careful.fallbacks <= 1
+    assert np.all(careful.boundary == got.boundary[declined])
+    assert np.allclose(careful.energy, got.energy[declined], rtol=1e-12, atol=0)
+    assert np.abs(careful.values - x[declined]).max() <= 2e-12
     classes = _classes(x[declined])
     # the benchmark's nets hold declined interior and edge minima; the fixed-cost stage
     # certifies every corner minimum among them (thin plate has none; membrane's take the
@@ -109,8 +143,8 @@ def test_the_nets_both_fixed_cost_certificates_decline_are_certified_vectorised(
         "edge": declined[classes["edge"][:2]],
         "near a face": near[:2],
     }
-    # the one-net path takes only a few of them (counted: one membrane net of the 400, of
-    # the 9 declined), the careful path the rest
+    # the one-net path takes only a few of them (counted before the retries: one membrane
+    # net of the 400, of the 9 declined); the retries and the careful path the rest
     assert got.careful_fallbacks <= 1 < declined.size
     for kind, rows in checked.items():
         for i in rows:
@@ -164,10 +198,10 @@ def test_careful_fallbacks_counts_every_net_solved_one_by_one(monkeypatch):
         return one_net(*args, **kwargs)
 
     monkeypatch.setattr(po, "certified_parameters", counted)
+    _without_retries(monkeypatch)  # so that the careful path has nets to decline
     got = lb.optimal_parameters(nets, "thin_plate", family=AT)
     assert got.careful_fallbacks == len(calls)
-    _, _, _, ok, _ = po.fixed_cost(nets, D, D, "thin_plate")
-    declined = np.flatnonzero(~ok)
+    declined = np.flatnonzero(_first_two_decline(nets, "thin_plate"))
     assert declined.size > 0
 
     def declines_all(coeffs, exponents, lo, hi, start, tol):

@@ -122,7 +122,8 @@ def test_the_compiled_early_stop_is_edge_minimum_bit_for_bit():
     seen = set()
     for k in range(acc.shape[1]):
         want = sbc._edge_minimum(*acc[:, k], *BOX, 1e-12)
-        got = sbc._edge_first_at(acc, k, *BOX, 1e-12)
+        radius = sbc.sc.RADIUS * max(BOX[1] - BOX[0], BOX[3] - BOX[2])  # edge_minimum's band
+        got = sbc._edge_first_at(acc, k, *BOX, 1e-12, radius)
         assert bool(got[4]) == bool(want[4])
         if want[4]:
             assert [float(v) for v in got[:4]] == [float(v) for v in want[:4]]

@@ -31,7 +31,10 @@ most minima on an edge or at a corner (``boundary`` then names the ends, as for 
 Both decide a quadratic's positivity on an interval by its least value there (at_cubic's
 E is only weakly convex across its box, and the quadratic's Bernstein coefficients, used
 before, declined 1,533 of the 10,000 benchmark nets, not 372: see surface_certify's doc).
-What they decline takes the vectorised careful path below (_careful_batch), and what that
+What both decline takes their retries, at a fixed cost too (surface_certify.retry_minimum:
+a searched start, the sides cleared piece by piece or from a face; retry_edges: narrower
+bands), which certify all 306 of at_cubic's benchmark nets the first two declined. What
+they all decline takes the vectorised careful path below (_careful_batch), and what that
 declines the one-net path.
 
 The careful path, and the whole batch with two or more parameters in a direction (or none in
@@ -102,23 +105,54 @@ def _builtin_named(family: Any) -> Any:
 def _end_labels(points: np.ndarray, du: Direction, dv: Direction) -> np.ndarray:
     """The boundary note of every row of `points` (every parameter, u's then v's), as the
     one-net result says it: a coordinate equal to the float of an end of its range is that
-    end exactly. The note depends only on which ends a row is at, so named_point runs once
-    per such pattern (at most 3^P of them), not once per row."""
+    end exactly. The note depends only on which ends a row is at (a code in base 3), so
+    named_point runs once per such pattern: for at most LABEL_TABLE patterns once per pair of
+    families and degrees (_label_table, then one gather: 561 edge nets of at_cubic's
+    benchmark batch, 0.12 ms before, when every call named its patterns again), else once
+    per pattern present."""
     ranges = [du.ranges[x] for x in du.names] + [dv.ranges[x] for x in dv.names]
     code = np.zeros(points.shape[0], dtype=np.int64)
     for j, r in enumerate(ranges):
         at = np.where(points[:, j] == float(r[0]), 1, np.where(points[:, j] == float(r[1]), 2, 0))
         code += at * 3**j
+    if 3 ** len(ranges) <= LABEL_TABLE:
+        table = _label_table(du.family, du.degree, dv.family, dv.degree)
+        labels: np.ndarray = table[code]
+        return labels
     out = np.empty(points.shape[0], dtype=object)
     out[:] = ""
     for key in np.unique(code[code > 0]):
-        digits = [(int(key) // 3**j) % 3 for j in range(len(ranges))]
-        point = tuple(
-            Fraction(r[0]) if k == 1 else Fraction(r[1]) if k == 2 else 0.0
-            for k, r in zip(digits, ranges, strict=True)
-        )
-        out[code == key] = named_point(du, dv, point, exact=False)[1]
+        out[code == key] = _pattern_label(du, dv, int(key))
     return out
+
+
+LABEL_TABLE = 81  # _end_labels: up to this many patterns (four parameters) named at once
+
+
+def _pattern_label(du: Direction, dv: Direction, key: int) -> str:
+    """The boundary note of the pattern `key` (base 3, parameter j's digit: 0 inside, 1 at
+    its lower end, 2 at its upper end)."""
+    ranges = [du.ranges[x] for x in du.names] + [dv.ranges[x] for x in dv.names]
+    digits = [(key // 3**j) % 3 for j in range(len(ranges))]
+    point = tuple(
+        Fraction(r[0]) if k == 1 else Fraction(r[1]) if k == 2 else 0.0
+        for k, r in zip(digits, ranges, strict=True)
+    )
+    label: str = named_point(du, dv, point, exact=False)[1]
+    return label
+
+
+@cache
+def _label_table(family_u: Any, m: int, family_v: Any, n: int) -> np.ndarray:
+    """Every pattern's boundary note (_pattern_label), indexed by its code; "" for 0."""
+    du, dv = _direction(family_u, m), _direction(family_v, n)
+    size = 3 ** (len(du.names) + len(dv.names))
+    table = np.empty(size, dtype=object)
+    table[0] = ""
+    for key in range(1, size):
+        table[key] = _pattern_label(du, dv, key)
+    table.setflags(write=False)
+    return table
 
 
 def _box(d: Direction) -> tuple[Fraction, Fraction]:
@@ -247,8 +281,18 @@ def fixed_cost(
     nets: np.ndarray, du: Direction, dv: Direction, energy: str
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """(x, y, energy, certified, on_edge) of every net by the fixed-cost certificate and, where
-    that declines, its edge_minimum (compiled with the coefficients when numba is there, else
-    numpy); certified False where both decline, on_edge True where the edge one certified."""
+    that declines, its edge_minimum and their retries (compiled with the coefficients when
+    numba is there, else numpy); certified False where all decline, on_edge True where an
+    edge one certified."""
+    return _fixed_cost(nets, du, dv, energy)[:5]
+
+
+def _fixed_cost(
+    nets: np.ndarray, du: Direction, dv: Direction, energy: str
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, bool | None]:
+    """fixed_cost's answers and whether every coordinate was finite and within
+    MAX_COORDINATE (the compiled kernel notes it as it reads the nets; None where nothing
+    read them: the caller checks)."""
     count = nets.shape[0]
     (xlo, xhi), (ylo, yhi) = _box(du), _box(dv)
     weights = energy_weights(du, dv, energy)
@@ -256,10 +300,10 @@ def fixed_cost(
     fast = _batch_compiled()
     if max(max(a, b) for a, b in weights) > 2:  # not affine: the certificate is for degree 2
         bx, by, bval, ok = np.zeros(count), np.zeros(count), np.zeros(count), np.zeros(count, bool)
-        return bx, by, bval, ok, np.zeros(count, bool)
+        return bx, by, bval, ok, np.zeros(count, bool), None
     if fast is not None:  # the one-parameter surfaces' compiled kernel, on these weights
         flat = np.ascontiguousarray(nets.reshape(count, -1), dtype=float)
-        bx, by, bval, _, status, _valid = fast.optimise_batch(
+        bx, by, bval, _, status, valid = fast.optimise_batch(
             flat,
             nets.shape[-1],
             _batch_weights(du.family, du.degree, dv.family, dv.degree, energy),
@@ -267,11 +311,11 @@ def fixed_cost(
             CERTIFIED_TOLERANCE,
             MAX_COORDINATE,
         )
-        return bx, by, bval, status > 0.5, status > 1.5
+        return bx, by, bval, status > 0.5, status > 1.5, bool(valid)
     coeffs = energy_coefficients(nets, du, dv, energy)
     zero = np.zeros(count)
     c = [coeffs.get((a, b), zero) for a in range(3) for b in range(3)]
-    return fixed_cost_minimum(c, box, CERTIFIED_TOLERANCE)
+    return (*fixed_cost_minimum(c, box, CERTIFIED_TOLERANCE), None)
 
 
 @cache
@@ -301,16 +345,22 @@ def optimal_parameters_batch(nets: np.ndarray, energy: str, family: Any) -> Surf
     fu, fv = _family_pair(family)
     if nets.ndim != 4 or nets.shape[0] == 0:
         raise ValueError(f"a batch of nets must have shape (k, m+1, n+1, d), got {nets.shape}")
-    check_net_values(nets)
     du, dv = _directions(nets.shape[1:], fu, fv)
     if len(du.names) != 1 or len(dv.names) != 1:
+        check_net_values(nets)
         if not du.names and not dv.names:
             raise ValueError("net: neither direction has a shape parameter: nothing to optimise")
         return _several_batch(nets, energy, (fu, fv), du, dv)
     count = nets.shape[0]
+    given, fast = nets, _batch_compiled()
+    if fast is None:
+        check_net_values(nets)
     if _differences_only(du.family, du.degree, dv.family, dv.degree, energy):
-        nets = moved_to_origin(nets, _batch_compiled())  # far nets: the floats cancel less
-    bx, by, bval, ok, on_edge = fixed_cost(nets, du, dv, energy)
+        nets = moved_to_origin(nets, fast)  # far nets: the floats cancel less
+    bx, by, bval, ok, on_edge, valid = _fixed_cost(nets, du, dv, energy)
+    if not valid:  # the compiled kernel's reading of the nets (0.17 ms saved), or no reading
+        check_net_values(given)  # raises the error that fits
+        check_net_values(nets)  # a moved net spanning more than MAX_COORDINATE
     boundary = np.empty(count, dtype=object)
     boundary[:] = ""
     edge = np.flatnonzero(on_edge)  # certified on an edge or at a corner: name the ends

@@ -45,7 +45,7 @@ from . import surface_coefficients_ir as emitted
 # editing this file too (tests/test_surfaces_certify.py checks the two agree). Where they
 # differ anyway (an edit without the tests), the kernels compile afresh, uncached, rather
 # than load code of the old certificate.
-CERTIFY_SHA256 = "ab9b255ec70b16eab97835e20155ebfa291189bf7c3f9048cb8f7201752a2765"
+CERTIFY_SHA256 = "7b4489ee7e0ef8c813b49e9241b0bebb08a3ea1888f7eca6656a182b582bf7f9"
 
 
 def certify_source_sha256() -> str:
@@ -91,13 +91,19 @@ def _none_scalar(c: bool) -> bool:
     return not c
 
 
+@numba.njit(inline="always", error_model="numpy")
+def _every_scalar(c: bool) -> bool:
+    return c
+
+
 def _recompiled(names: tuple[str, ...]) -> dict[str, Callable[..., Any]]:
     """surface_certify's functions compiled for scalars: the same code objects with `_where`
-    bound to a scalar selection and `_none` to a scalar `not` (and their calls to each other
-    bound to the compiled ones)."""
+    bound to a scalar selection, `_none` to a scalar `not` and `_every` to the scalar itself
+    (and their calls to each other bound to the compiled ones)."""
     space: dict[str, Any] = dict(vars(sc))
     space["_where"] = _select
     space["_none"] = _none_scalar
+    space["_every"] = _every_scalar
     out: dict[str, Callable[..., Any]] = {}
     for name in names:  # callees first
         fn = getattr(sc, name)
@@ -125,7 +131,12 @@ _CERTIFY = _recompiled(
         "_direction",
         "certified_minimum",
         "_edge",
+        "edge_band_minimum",
         "edge_minimum",
+        "_grows_from",
+        "_side_clear_pieces",
+        "_search_start",
+        "retry_minimum",
     )
 )
 
@@ -165,22 +176,30 @@ def _on_lane(target: Callable[..., Any], name: str) -> Callable[..., Any]:
 _certified_minimum, _edge_minimum = _CERTIFY["certified_minimum"], _CERTIFY["edge_minimum"]
 _certified_at = _on_lane(_certified_minimum, "_certified_at")
 _edge_at = _on_lane(_edge_minimum, "_edge_at")
+_retry_at = _on_lane(_CERTIFY["retry_minimum"], "_retry_at")
 _edge, _largest = _CERTIFY["_edge"], _CERTIFY["_largest"]
 
 
 @numba.njit(inline="always", error_model="numpy")
 def _edge_first_at(
-    acc: np.ndarray, k: int, xlo: float, xhi: float, ylo: float, yhi: float, tol: float
+    acc: np.ndarray,
+    k: int,
+    xlo: float,
+    xhi: float,
+    ylo: float,
+    yhi: float,
+    tol: float,
+    r: float,
 ) -> Any:
-    """edge_minimum on net k's coefficients (as _edge_at), its four edges tried in its order
-    and the rest skipped after the first it certifies: that one is its answer, so the result
-    is the same bit for bit (tests/test_surfaces_edge_certify.py checks it), at a third less
-    work on the declined nets of a typical batch (most certify on their first or third edge).
-    The edges' arguments are edge_minimum's."""
+    """edge_band_minimum (edge_minimum at r = RADIUS · box) on net k's coefficients (as
+    _edge_at), its four edges tried in its order and the rest skipped after the first it
+    certifies: that one is its answer, so the result is the same bit for bit
+    (tests/test_surfaces_edge_certify.py checks it), at a third less work on the declined
+    nets of a typical batch (most certify on their first or third edge). The edges'
+    arguments are edge_band_minimum's."""
     e00, e01, e02, e10, e11, e12 = acc[0, k], acc[1, k], acc[2, k], acc[3, k], acc[4, k], acc[5, k]
     e20, e21, e22 = acc[6, k], acc[7, k], acc[8, k]
     emax = _largest(e00, e01, e02, e10, e11, e12, e20, e21, e22)
-    r = sc.RADIUS * max(xhi - xlo, yhi - ylo)
     zero = 0.0 * e00
     t, v, d, ok = _edge(
         e20, e21, e22, e10, e11, e12, e00, e01, e02, xlo, 1.0, ylo, yhi, r, emax, tol
@@ -211,7 +230,8 @@ def _certify_chunk(acc: np.ndarray, n: int, box: np.ndarray, tol: float, out: np
     no branches, so the loop vectorises (measured: five output arrays, or an offset index,
     kept it scalar, 3-4x slower). Then edge_minimum for the declined nets alone (about 1 in
     60; scalar, so _edge_first_at's early stop), status 2.0 where it certifies an edge or
-    corner minimum."""
+    corner minimum, and on what that declines retry_minimum (status 1.0) and retry_edges
+    (its bands in turn, each by _edge_first_at; status 2.0), as surface_fixed_cost runs them."""
     xlo, xhi, ylo, yhi = box[0], box[1], box[2], box[3]
     for k in range(n):
         x, y, e, d, ok = _certified_at(acc, k, xlo, xhi, ylo, yhi, tol)
@@ -220,15 +240,27 @@ def _certify_chunk(acc: np.ndarray, n: int, box: np.ndarray, tol: float, out: np
         out[2, k] = e
         out[3, k] = d
         out[4, k] = 1.0 if ok else 0.0
+    radius = sc.RADIUS * max(xhi - xlo, yhi - ylo)
     for k in range(n):
         if out[4, k] == 0.0:
-            x, y, e, d, ok = _edge_first_at(acc, k, xlo, xhi, ylo, yhi, tol)
+            x, y, e, d, ok = _edge_first_at(acc, k, xlo, xhi, ylo, yhi, tol, radius)
+            status = 2.0
+            if not ok:  # the retries (surface_certify.retry_minimum, then retry_edges)
+                x, y, e, d, ok = _retry_at(acc, k, xlo, xhi, ylo, yhi, tol)
+                status = 1.0
+                r = radius
+                for _ in range(sc.EDGE_BANDS):
+                    if ok:
+                        break
+                    r = 0.5 * r
+                    x, y, e, d, ok = _edge_first_at(acc, k, xlo, xhi, ylo, yhi, tol, r)
+                    status = 2.0
             if ok:
                 out[0, k] = x
                 out[1, k] = y
                 out[2, k] = e
                 out[3, k] = d
-                out[4, k] = 2.0
+                out[4, k] = status
 
 
 @numba.njit(**_JIT)

@@ -37,6 +37,7 @@ import numpy as np
 
 from . import intersect_certify as cert
 from . import intersect_exact as _exact_iso
+from . import intersect_kind as _kind
 from . import intersect_refold as refold
 from . import intersect_subdivide as sub
 from .intersect_locate import (  # the point location half, and the tolerances both share
@@ -395,7 +396,13 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
 
 
 def _decided_exactly(p: Prepared, q: Prepared, hits: list[Intersection]) -> list[Intersection]:
-    """hits, or the exact answer where intersect_exact.decided gives one."""
+    """hits, or the exact answer where intersect_exact.decided gives one; where a curve
+    stops (zero speed), its kind from the one-sided tangent (intersect_kind)."""
+    size = max(p.scale, q.scale)
+    return _kind.one_sided(_decided(p, q, hits), p.pts, q.pts, size)
+
+
+def _decided(p: Prepared, q: Prepared, hits: list[Intersection]) -> list[Intersection]:
     if p._given_rows is None or q._given_rows is None:  # float input: decided gives none
         return hits
     kinds = [

@@ -461,7 +461,9 @@ def _merged_contacts(p: Any, q: Any, hits: list[Intersection]) -> list[Intersect
             tangent = np.asarray(q.derivative(old.t + u * (h.t - old.t), 1), float)
             r = ps - qt
             norms = np.einsum("ij,ij->i", tangent, tangent)
-            along = np.where(norms > 0, np.einsum("ij,ij->i", r, tangent) / np.where(norms > 0, norms, 1), 0)
+            along = np.where(
+                norms > 0, np.einsum("ij,ij->i", r, tangent) / np.where(norms > 0, norms, 1), 0
+            )
             gap = float(np.linalg.norm(r - along[:, None] * tangent, axis=1).max())
             if gap <= bound:
                 if h.s in (a, b) or h.t in (c, d):
@@ -494,7 +496,9 @@ def _one_sided(p: Any, q: Any, h: Intersection) -> Intersection:
         dirs.append(v)
     if not stopped or dirs[0] is None or dirs[1] is None:
         return h
-    return h._replace(kind="tangent" if _kind.sine(dirs[0], dirs[1]) <= ai.TANGENT_SINE else "transversal")
+    return h._replace(
+        kind="tangent" if _kind.sine(dirs[0], dirs[1]) <= ai.TANGENT_SINE else "transversal"
+    )
 
 
 def _any_size(c: Any) -> float:

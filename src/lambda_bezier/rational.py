@@ -46,8 +46,8 @@ from ._curve_base import _swapped_intersect
 from ._curve_shared import ROUNDING_FACTOR, ControlPointCurve, point_sizes
 from ._validate import ParamLike, PointsLike
 from .curves import BezierCurve, Curve
-from .hazmat import kernels as alg
 from .hazmat import intersect_kind as _kind
+from .hazmat import kernels as alg
 from .hazmat import rational_kernels as rk
 from .hazmat.intersect_prepared import NORMAL_EXPONENT
 

@@ -33,7 +33,9 @@ def _at(rows: np.ndarray, s: float) -> np.ndarray:
 
 def _stopped(rows: np.ndarray, s: float, size: float) -> bool:
     n = rows.shape[0] - 1
-    return n >= 1 and float(np.linalg.norm(_at(np.diff(rows, axis=0), s))) <= STOPPED * n * size
+    return (
+        bool(n >= 1) and float(np.linalg.norm(_at(np.diff(rows, axis=0), s))) <= STOPPED * n * size
+    )
 
 
 def direction(rows: np.ndarray, s: float, size: float) -> np.ndarray | None:

@@ -424,19 +424,24 @@ def _at_ends(p: Any, q: Any, hits: list[Intersection]) -> list[Intersection]:
     join at t = 1.1e-16, a curve against its reversal at 0.9999999999999999)."""
     (a, b), (c, d) = _dom(p), _dom(q)
     hits = [h._replace(s=_snapped(h.s, a, b), t=_snapped(h.t, c, d)) for h in hits]
-    size = max(_any_size(p), _any_size(q))
-    bound = 64 * EPS * max(_any_degree(p), _any_degree(q), 1) * size
+    # every length below at the size's power of two (exactly): curves at 2^1000 overflowed
+    shift = _size_exponent(p, q)
+    bound = 64 * EPS * max(_any_degree(p), _any_degree(q), 1) * _any_size(p, q, shift)
     hits = _kind.at_ends(
         hits,
-        lambda x: np.asarray(p.evaluate(x), float),
-        lambda x: np.asarray(q.evaluate(x), float),
+        lambda x: np.ldexp(np.asarray(p.evaluate(x), float), -shift),
+        lambda x: np.ldexp(np.asarray(q.evaluate(x), float), -shift),
         ((a, b), (c, d)),
         bound,
     )
-    return _merged_contacts(p, q, [_one_sided(p, q, h) for h in hits])
+    return _merged_contacts(p, q, [_one_sided(p, q, h, shift) for h in hits], shift)
 
 
-def _merged_contacts(p: Any, q: Any, hits: list[Intersection]) -> list[Intersection]:
+def _size_exponent(p: Any, q: Any) -> int:
+    return max(math.frexp(_any_size(c))[1] for c in (p, q))
+
+
+def _merged_contacts(p: Any, q: Any, hits: list[Intersection], shift: int) -> list[Intersection]:
     """hits, two closer than MERGE_RADIUS in both parameters taken as one when the curves stay
     within the meeting rounding (64 ε per degree of the size) of each other all the way
     between them: the polynomial classes' rule (intersect._add). A C-Bézier curve leaving a
@@ -444,8 +449,7 @@ def _merged_contacts(p: Any, q: Any, hits: list[Intersection]) -> list[Intersect
     its rounding crossed the line there, a second "transversal" hit (issue #29 round 21).
     The hit at a domain end, else the first, stays."""
     (a, b), (c, d) = _dom(p), _dom(q)
-    size = max(_any_size(p), _any_size(q))
-    bound = 64 * EPS * max(_any_degree(p), _any_degree(q), 1) * size
+    bound = 64 * EPS * max(_any_degree(p), _any_degree(q), 1) * _any_size(p, q, shift)
     out: list[Intersection] = []
     for h in hits:
         old = out[-1] if out else None
@@ -456,9 +460,11 @@ def _merged_contacts(p: Any, q: Any, hits: list[Intersection]) -> list[Intersect
             and abs(h.t - old.t) < MERGE_RADIUS * (d - c)
         ):
             u = np.linspace(0.0, 1.0, 9)
-            ps = np.asarray(p.evaluate(old.s + u * (h.s - old.s)), float)
-            qt = np.asarray(q.evaluate(old.t + u * (h.t - old.t)), float)
-            tangent = np.asarray(q.derivative(old.t + u * (h.t - old.t), 1), float)
+            ps = np.ldexp(np.asarray(p.evaluate(old.s + u * (h.s - old.s)), float), -shift)
+            qt = np.ldexp(np.asarray(q.evaluate(old.t + u * (h.t - old.t)), float), -shift)
+            tangent = np.ldexp(
+                np.asarray(q.derivative(old.t + u * (h.t - old.t), 1), float), -shift
+            )
             r = ps - qt
             norms = np.einsum("ij,ij->i", tangent, tangent)
             along = np.where(
@@ -473,7 +479,7 @@ def _merged_contacts(p: Any, q: Any, hits: list[Intersection]) -> list[Intersect
     return out
 
 
-def _one_sided(p: Any, q: Any, h: Intersection) -> Intersection:
+def _one_sided(p: Any, q: Any, h: Intersection, shift: int) -> Intersection:
     """h's kind where a curve stops (zero speed: a repeated end control point, a cusp) from
     the one-sided tangent, its first derivative that does not vanish (intersect_kind, the
     polynomial classes' rule); the search took the rounding of a zero derivative for a
@@ -485,10 +491,10 @@ def _one_sided(p: Any, q: Any, h: Intersection) -> Intersection:
     for c, x in ((p, h.s), (q, h.t)):
         lo, hi = _dom(c)
         n = max(_any_degree(c), 1)
-        small = 64 * EPS * n * _any_size(c)
+        small = 64 * EPS * n * _any_size(c, None, shift)
         v = None
         for k in range(1, n + 2):
-            d = np.asarray(c.derivative(x, k), float) * (hi - lo) ** k
+            d = np.ldexp(np.asarray(c.derivative(x, k), float), -shift) * (hi - lo) ** k
             if float(np.linalg.norm(d)) > small * 2**k:
                 v = d
                 break
@@ -501,9 +507,13 @@ def _one_sided(p: Any, q: Any, h: Intersection) -> Intersection:
     )
 
 
-def _any_size(c: Any) -> float:
-    pts = np.asarray(c.points, float)
-    return float(max(np.abs(pts).max(), np.ptp(pts, axis=0).max()))
+def _any_size(c: Any, other: Any = None, shift: int = 0) -> float:
+    """The larger of the curves' largest coordinate and extent, times 2^-shift."""
+    out = 0.0
+    for curve in (c,) if other is None else (c, other):
+        pts = np.ldexp(np.asarray(curve.points, float), -shift)
+        out = max(out, float(np.abs(pts).max()), float(np.ptp(pts, axis=0).max()))
+    return out
 
 
 def _any_degree(c: Any) -> int:

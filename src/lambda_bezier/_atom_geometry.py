@@ -379,8 +379,10 @@ def intersect(p: AtomCurve, q: Any) -> list[Intersection]:
         certified = ai.pairs(pp, qq)
         if certified is not None:
             hits = [Intersection(f.s + ps, f.t + qs, f.kind) for f in certified]
-            return _at_ends(p, q, _decided_exactly(p, q, hits))
-    return _at_ends(p, q, _pieces_intersect(p, q))
+            # float hits merged by the polynomial rule; not the exact answer, which parts
+            # crossings 3e-7 apart whose curves stay closer than that rule's gap
+            return _at_ends(p, q, _decided_exactly(p, q, _merged_contacts(p, q, hits)))
+    return _at_ends(p, q, _merged_contacts(p, q, _pieces_intersect(p, q)))
 
 
 def _exact_form(c: Any) -> tuple[RationalBezierCurve, Any, Any] | None:
@@ -434,21 +436,24 @@ def _at_ends(p: Any, q: Any, hits: list[Intersection]) -> list[Intersection]:
         ((a, b), (c, d)),
         bound,
     )
-    return _merged_contacts(p, q, [_one_sided(p, q, h, shift) for h in hits], shift)
+    return [_one_sided(p, q, h, shift) for h in hits]
 
 
 def _size_exponent(p: Any, q: Any) -> int:
     return max(math.frexp(_any_size(c))[1] for c in (p, q))
 
 
-def _merged_contacts(p: Any, q: Any, hits: list[Intersection], shift: int) -> list[Intersection]:
+def _merged_contacts(p: Any, q: Any, hits: list[Intersection]) -> list[Intersection]:
     """hits, two closer than MERGE_RADIUS in both parameters taken as one when the curves stay
     within the meeting rounding (64 ε per degree of the size) of each other all the way
     between them: the polynomial classes' rule (intersect._add). A C-Bézier curve leaving a
     line tangentially with zero speed stays within 1e-16 of it for 6e-6 of its domain, and
     its rounding crossed the line there, a second "transversal" hit (issue #29 round 21).
     The hit at a domain end, else the first, stays."""
+    if len(hits) < 2:
+        return hits
     (a, b), (c, d) = _dom(p), _dom(q)
+    shift = _size_exponent(p, q)  # lengths at the size's power of two (2^1000 overflowed)
     bound = 64 * EPS * max(_any_degree(p), _any_degree(q), 1) * _any_size(p, q, shift)
     out: list[Intersection] = []
     for h in hits:
@@ -472,11 +477,15 @@ def _merged_contacts(p: Any, q: Any, hits: list[Intersection], shift: int) -> li
             )
             gap = float(np.linalg.norm(r - along[:, None] * tangent, axis=1).max())
             if gap <= bound:
-                if h.s in (a, b) or h.t in (c, d):
+                if _near_end(h.s, a, b) or _near_end(h.t, c, d):
                     out[-1] = h
                 continue
         out.append(h)
     return out
+
+
+def _near_end(x: float, lo: float, hi: float) -> bool:
+    return min(abs(x - lo), abs(x - hi)) <= _kind.STOPPED_END * (hi - lo)
 
 
 def _one_sided(p: Any, q: Any, h: Intersection, shift: int) -> Intersection:

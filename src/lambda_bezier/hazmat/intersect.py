@@ -398,8 +398,10 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
 def _decided_exactly(p: Prepared, q: Prepared, hits: list[Intersection]) -> list[Intersection]:
     """hits, or the exact answer where intersect_exact.decided gives one; where a curve
     stops (zero speed), its kind from the one-sided tangent (intersect_kind)."""
-    size = max(p.scale, q.scale)
-    return _kind.one_sided(_decided(p, q, hits), p.pts, q.pts, size)
+    got = _decided(p, q, hits)
+    if all(h.kind != "tangent" for h in got):  # a stop is classified "tangent" first
+        return got
+    return _kind.one_sided(got, p.pts, q.pts, max(p.scale, q.scale))
 
 
 def _decided(p: Prepared, q: Prepared, hits: list[Intersection]) -> list[Intersection]:

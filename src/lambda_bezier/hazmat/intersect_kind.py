@@ -32,10 +32,22 @@ def _at(rows: np.ndarray, s: float) -> np.ndarray:
 
 
 def _stopped(rows: np.ndarray, s: float, size: float) -> bool:
-    n = rows.shape[0] - 1
-    return (
-        bool(n >= 1) and float(np.linalg.norm(_at(np.diff(rows, axis=0), s))) <= STOPPED * n * size
-    )
+    """The first difference rows at s within STOPPED per degree of the size (on Python
+    floats: a few rows, for which numpy's per-call cost is most of the time)."""
+    pts: list[list[float]] = rows.tolist()
+    n = len(pts) - 1
+    if n < 1:
+        return False
+    work = [
+        [b - a for a, b in zip(r0, r1, strict=True)] for r0, r1 in zip(pts, pts[1:], strict=False)
+    ]
+    while len(work) > 1:
+        work = [
+            [a + s * (b - a) for a, b in zip(r0, r1, strict=True)]
+            for r0, r1 in zip(work, work[1:], strict=False)
+        ]
+    bound = STOPPED * n * size
+    return sum(x * x for x in work[0]) <= bound * bound
 
 
 def direction(rows: np.ndarray, s: float, size: float) -> np.ndarray | None:
@@ -81,14 +93,16 @@ def one_sided(
     weights: tuple[np.ndarray | None, np.ndarray | None] = (None, None),
     tangent_sine: float = TANGENT_SINE,
 ) -> list[H]:
-    """hits (Intersection-like: s, t, kind, _replace), each "tangent" or "transversal" hit
-    where either curve stops (p_rows at s, q_rows at t: float Bernstein rows, parameters in
+    """hits (Intersection-like: s, t, kind, _replace), each "tangent" hit where either
+    curve stops (p_rows at s, q_rows at t: float Bernstein rows, parameters in
     [0, 1]; rational with `weights`) classified again by the tangent directions of
     `direction`."""
     out: list[H] = []
     for h in hits:
         hit: Any = h
-        if hit.kind in ("tangent", "transversal"):
+        # a zero derivative is taken for parallel to anything (the sine is 0), so a stop is
+        # always classified "tangent" first: only those hits are looked at again (cheap)
+        if hit.kind == "tangent":
             a = _moving(p_rows, weights[0], hit.s)
             b = _moving(q_rows, weights[1], hit.t)
             sa = size * (1.0 if weights[0] is None else float(np.abs(weights[0]).max()))

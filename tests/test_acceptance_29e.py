@@ -211,3 +211,19 @@ def test_a_curve_that_is_one_point_is_refused_alike_on_every_class(point):
         point.locate((1, 2))
     assert point.self_intersections() == []
     assert line.locate((1, 2)) == 0.5
+
+
+@pytest.mark.parametrize(
+    ("line", "kind"),
+    [([(0, 0, -1), (0, 0, 1)], "transversal"), ([(-1, 0, 0), (1, 0, 0)], "tangent")],
+)
+@pytest.mark.parametrize("rational", [False, True])
+def test_a_space_curve_stopping_on_a_line_meets_it_as_its_one_sided_tangent_says(
+    line, kind, rational
+):
+    """(0,0,0), (0,0,0), (1,0,0), (1,1,1) leaves the origin along (1, 0, 0) (p(h) − p(0) =
+    (3h² − 2h³, h³, h³)): it touches the x-axis there and crosses the z-axis (was "tangent"
+    on both)."""
+    rows = [(0, 0, 0), (0, 0, 0), (1, 0, 0), (1, 1, 1)]
+    curve = lb.RationalBezierCurve(rows, [1, 2, 2, 1]) if rational else lb.BezierCurve(rows)
+    assert [tuple(h) for h in curve.intersect(lb.BezierCurve(line))] == [(0.0, 0.5, kind)]

@@ -37,6 +37,8 @@ from .curves import BezierCurve, Curve
 from .geometry import ClosestPoint, length_queries
 from .hazmat import atom_bounds as ab
 from .hazmat import atom_intersect as ai
+from .hazmat import intersect_kind as _kind
+from .hazmat import intersect_locate as _intersect
 from .hazmat.intersect import Intersection
 from .hazmat.intersect_prepared import NORMAL_EXPONENT
 from .rational import RationalBezierCurve
@@ -53,6 +55,8 @@ APPROX_TOL = 1e-13  # relative to the curve's size
 MAX_PIECES = 512
 SAME = 1e-9  # parameters closer than this (relative to the domain) are one intersection
 END_ULPS = 4  # a parameter this many ulps (of the domain) from an end is at the end
+MERGE_RADIUS = 1e-3  # intersect.MERGE_RADIUS, relative to the domain: _merged_contacts
+EPS = float(np.finfo(float).eps)
 
 
 def _size(curve: AtomCurve) -> float:
@@ -246,9 +250,31 @@ def closest_point(curve: AtomCurve, q: npt.ArrayLike) -> ClosestPoint:
 
 
 def locate(curve: AtomCurve, point: object) -> float | None:
+    """The closest point's t when within 1e-10 of the size; a ValueError when the point is
+    on the curve at several t (a self-crossing) or the curve is a single point, as on the
+    polynomial classes: the other t are those located on the polynomial pieces (each
+    within APPROX_TOL of the curve) whose curve point is within the tolerance too."""
     arr = val.as_point(point, curve.dimension)
+    if not np.ptp(np.asarray(curve.points, float), axis=0).any():
+        raise ValueError("the curve is a single point: every t gives it")
     found = closest_point(curve, arr)
-    return float(found.t) if float(found.distance) <= 1e-10 * _size(curve) else None
+    tol = 1e-10 * _size(curve)
+    if not float(found.distance) <= tol:
+        return None
+    best = float(found.t)
+    others: list[float] = []
+    for a, b, piece in pieces(curve):
+        for u in _intersect.locate_point(piece._prepared, arr, None):
+            t = a + (b - a) * u
+            near = [best, *others]
+            if min(abs(t - x) for x in near) >= 1e-9 and (
+                float(np.linalg.norm(curve.evaluate(t) - arr)) <= tol
+            ):
+                others.append(t)
+    if others:
+        several = sorted([best, *others])
+        raise ValueError(f"the point is on the curve at several parameters: {several}")
+    return best
 
 
 # ---------------------------------------------------------------------- intersections
@@ -353,8 +379,10 @@ def intersect(p: AtomCurve, q: Any) -> list[Intersection]:
         certified = ai.pairs(pp, qq)
         if certified is not None:
             hits = [Intersection(f.s + ps, f.t + qs, f.kind) for f in certified]
-            return _at_ends(p, q, _decided_exactly(p, q, hits))
-    return _at_ends(p, q, _pieces_intersect(p, q))
+            # float hits merged by the polynomial rule; not the exact answer, which parts
+            # crossings 3e-7 apart whose curves stay closer than that rule's gap
+            return _at_ends(p, q, _decided_exactly(p, q, _merged_contacts(p, q, hits)))
+    return _at_ends(p, q, _merged_contacts(p, q, _pieces_intersect(p, q)))
 
 
 def _exact_form(c: Any) -> tuple[RationalBezierCurve, Any, Any] | None:
@@ -397,7 +425,108 @@ def _at_ends(p: Any, q: Any, hits: list[Intersection]) -> list[Intersection]:
     search and the shift from its parameter to t round (two pieces of a spline met at their
     join at t = 1.1e-16, a curve against its reversal at 0.9999999999999999)."""
     (a, b), (c, d) = _dom(p), _dom(q)
-    return [h._replace(s=_snapped(h.s, a, b), t=_snapped(h.t, c, d)) for h in hits]
+    hits = [h._replace(s=_snapped(h.s, a, b), t=_snapped(h.t, c, d)) for h in hits]
+    # every length below at the size's power of two (exactly): curves at 2^1000 overflowed
+    shift = _size_exponent(p, q)
+    bound = 64 * EPS * max(_any_degree(p), _any_degree(q), 1) * _any_size(p, q, shift)
+    hits = _kind.at_ends(
+        hits,
+        lambda x: np.ldexp(np.asarray(p.evaluate(x), float), -shift),
+        lambda x: np.ldexp(np.asarray(q.evaluate(x), float), -shift),
+        ((a, b), (c, d)),
+        bound,
+    )
+    return [_one_sided(p, q, h, shift) for h in hits]
+
+
+def _size_exponent(p: Any, q: Any) -> int:
+    return max(math.frexp(_any_size(c))[1] for c in (p, q))
+
+
+def _merged_contacts(p: Any, q: Any, hits: list[Intersection]) -> list[Intersection]:
+    """hits, two closer than MERGE_RADIUS in both parameters taken as one when the curves stay
+    within the meeting rounding (64 ε per degree of the size) of each other all the way
+    between them: the polynomial classes' rule (intersect._add). A C-Bézier curve leaving a
+    line tangentially with zero speed stays within 1e-16 of it for 6e-6 of its domain, and
+    its rounding crossed the line there, a second "transversal" hit (issue #29 round 21).
+    The hit at a domain end, else the first, stays."""
+    if len(hits) < 2:
+        return hits
+    (a, b), (c, d) = _dom(p), _dom(q)
+    shift = _size_exponent(p, q)  # lengths at the size's power of two (2^1000 overflowed)
+    bound = 64 * EPS * max(_any_degree(p), _any_degree(q), 1) * _any_size(p, q, shift)
+    out: list[Intersection] = []
+    for h in hits:
+        old = out[-1] if out else None
+        if (
+            old is not None
+            and "coincident" not in (old.kind, h.kind)
+            and abs(h.s - old.s) < MERGE_RADIUS * (b - a)
+            and abs(h.t - old.t) < MERGE_RADIUS * (d - c)
+        ):
+            u = np.linspace(0.0, 1.0, 9)
+            ps = np.ldexp(np.asarray(p.evaluate(old.s + u * (h.s - old.s)), float), -shift)
+            qt = np.ldexp(np.asarray(q.evaluate(old.t + u * (h.t - old.t)), float), -shift)
+            tangent = np.ldexp(
+                np.asarray(q.derivative(old.t + u * (h.t - old.t), 1), float), -shift
+            )
+            r = ps - qt
+            norms = np.einsum("ij,ij->i", tangent, tangent)
+            along = np.where(
+                norms > 0, np.einsum("ij,ij->i", r, tangent) / np.where(norms > 0, norms, 1), 0
+            )
+            gap = float(np.linalg.norm(r - along[:, None] * tangent, axis=1).max())
+            if gap <= bound:
+                if _near_end(h.s, a, b) or _near_end(h.t, c, d):
+                    out[-1] = h
+                continue
+        out.append(h)
+    return out
+
+
+def _near_end(x: float, lo: float, hi: float) -> bool:
+    return min(abs(x - lo), abs(x - hi)) <= _kind.STOPPED_END * (hi - lo)
+
+
+def _one_sided(p: Any, q: Any, h: Intersection, shift: int) -> Intersection:
+    """h's kind where a curve stops (zero speed: a repeated end control point, a cusp) from
+    the one-sided tangent, its first derivative that does not vanish (intersect_kind, the
+    polynomial classes' rule); the search took the rounding of a zero derivative for a
+    direction."""
+    if h.kind == "coincident":
+        return h
+    dirs = []
+    stopped = False
+    for c, x in ((p, h.s), (q, h.t)):
+        lo, hi = _dom(c)
+        n = max(_any_degree(c), 1)
+        small = 64 * EPS * n * _any_size(c, None, shift)
+        v = None
+        for k in range(1, n + 2):
+            d = np.ldexp(np.asarray(c.derivative(x, k), float), -shift) * (hi - lo) ** k
+            if float(np.linalg.norm(d)) > small * 2**k:
+                v = d
+                break
+            stopped = True
+        dirs.append(v)
+    if not stopped or dirs[0] is None or dirs[1] is None:
+        return h
+    return h._replace(
+        kind="tangent" if _kind.sine(dirs[0], dirs[1]) <= ai.TANGENT_SINE else "transversal"
+    )
+
+
+def _any_size(c: Any, other: Any = None, shift: int = 0) -> float:
+    """The larger of the curves' largest coordinate and extent, times 2^-shift."""
+    out = 0.0
+    for curve in (c,) if other is None else (c, other):
+        pts = np.ldexp(np.asarray(curve.points, float), -shift)
+        out = max(out, float(np.abs(pts).max()), float(np.ptp(pts, axis=0).max()))
+    return out
+
+
+def _any_degree(c: Any) -> int:
+    return int(np.asarray(c.points).shape[0]) - 1
 
 
 def _snapped(x: float, lo: float, hi: float) -> float:

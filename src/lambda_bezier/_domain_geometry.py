@@ -98,8 +98,10 @@ class DomainGeometry(ControlPointCurve):
         """The t with C(t) = point (within 1e-10 of the curve's size), or None."""
         rat = self._rational_or_none()
         if rat is not None:
-            s = rat.locate(point)
-            return None if s is None else float(self.t_of_s(s))
+            found = [float(self.t_of_s(s)) for s in rat._locate_all(point)]
+            if len(found) > 1:
+                raise ValueError(f"the point is on the curve at several parameters: {found}")
+            return found[0] if found else None
         from . import _atom_geometry as ag
 
         return ag.locate(self, point)  # type: ignore[arg-type]

@@ -290,6 +290,36 @@ def closest_point(curve: RationalBezierCurve, q: npt.ArrayLike) -> ClosestPoint:
     return ClosestPoint(best_t, points, dist)
 
 
+def on_curve_parameters(curve: RationalBezierCurve, q: np.ndarray, tol: float) -> list[float]:
+    """Every t with |C(t) − q| <= tol, one per root (locate): the ends and the critical
+    points of |C − q|² (where C passes through q, d/dt |C − q|² = 0, a simple root wherever
+    C' does not vanish), each within tol, parameters closer than 1e-9 taken as one (the
+    closest of them). A self-crossing's point is reached at two t, as on the polynomial
+    classes (issue #29 round 21: closest_point's one t came back)."""
+    if not curve.degree:
+        return [0.0] if float(np.linalg.norm(curve.points[0] - q)) <= tol else []
+    unit, factor, rho = _unit(curve, max(float(np.abs(curve.points).max()), float(np.abs(q).max())))
+    qs = q / factor
+    rows = _float_rows(unit)
+    a, w = rows[:, :-1], rows[:, -1:]
+    diff = a - qs[None, :] * w
+    g = rk.product(diff[:, None, :], rk.derivative_numerator(rows)[:, None, :]).sum(axis=-1)
+    roots = rk.roots_in_unit(rk.bernstein_to_centred(g)[:, 0])
+    t = _polish(unit, qs, np.concatenate([[0.0, 1.0], roots]))
+    d = np.linalg.norm(unit.evaluate(t) - qs, axis=-1) * factor
+    keep = np.argsort(t)
+    out: list[tuple[float, float]] = []  # (t, distance)
+    for k in keep:
+        if not d[k] <= tol:
+            continue
+        if out and t[k] - out[-1][0] < 1e-9:
+            if d[k] < out[-1][1]:
+                out[-1] = (float(t[k]), float(d[k]))
+            continue
+        out.append((float(t[k]), float(d[k])))
+    return [float(_from_unit(rho, np.array([u]))[0]) for u, _ in out]
+
+
 def _best(
     curve: RationalBezierCurve,
     queries: np.ndarray,

@@ -46,6 +46,7 @@ from ._curve_base import _swapped_intersect
 from ._curve_shared import ROUNDING_FACTOR, ControlPointCurve, point_sizes
 from ._validate import ParamLike, PointsLike
 from .curves import BezierCurve, Curve
+from .hazmat import intersect_kind as _kind
 from .hazmat import kernels as alg
 from .hazmat import rational_kernels as rk
 from .hazmat.intersect_prepared import NORMAL_EXPONENT
@@ -474,11 +475,30 @@ class RationalBezierCurve(ControlPointCurve):
         return rg.closest_point(self, q)
 
     def locate(self, point: PointsLike) -> float | None:
-        """The t with C(t) = point (within 1e-10 of the curve's size), or None."""
+        """The t with C(t) = point (within 1e-10 of the curve's size), or None when the point
+        is not on the curve. A ValueError when several t give the point (a self-crossing) or
+        the curve is a single point, as on the polynomial classes."""
+        found = self._locate_all(point)
+        if len(found) > 1:
+            raise ValueError(f"the point is on the curve at several parameters: {found}")
+        return found[0] if found else None
+
+    def _locate_all(self, point: PointsLike) -> list[float]:
+        """Every t with C(t) = point (within 1e-10 of the curve's size), the closest point's
+        t first: [] off the curve."""
+        from . import _rational_geometry as rg
+
         arr = val.as_point(point, self.dimension)
+        if not np.ptp(self.points, axis=0).any():
+            raise ValueError("the curve is a single point: every t gives it")
         found = self.closest_point(arr)
         size = max(float(np.abs(self.points).max()), float(np.ptp(self.points, axis=0).max()))
-        return float(found.t) if float(found.distance) <= ON_CURVE * max(size, 1e-300) else None
+        tol = ON_CURVE * max(size, 1e-300)
+        if not float(found.distance) <= tol:
+            return []
+        best = float(found.t)
+        others = [t for t in rg.on_curve_parameters(self, arr, tol) if abs(t - best) >= 1e-9]
+        return sorted([best, *others])
 
     def intersect(self, other: RationalBezierCurve | Curve) -> list[Intersection]:
         """Every isolated intersection with another rational or polynomial curve, as
@@ -497,12 +517,23 @@ class RationalBezierCurve(ControlPointCurve):
             raise ValueError(
                 f"the curves have different dimensions ({self.dimension} and {other.dimension})"
             )
-        return rg.intersect(*_normalised(self, other))
+        for name, c in (("the first", self), ("the second", other)):
+            if not np.ptp(c.points, axis=0).any():  # as the polynomial classes refuse it
+                raise ValueError(f"{name} curve is a single point: use locate() on the other")
+        p, q = _normalised(self, other)
+        size = max(float(np.abs(c.points).max()) for c in (p, q))
+        bound = 64 * float(np.finfo(float).eps) * max(p.degree, q.degree, 1) * size
+        hits = _kind.at_ends(
+            rg.intersect(p, q), p.evaluate, q.evaluate, ((0.0, 1.0), (0.0, 1.0)), bound
+        )
+        return _kind.one_sided(hits, p.points, q.points, size, (p.weights, q.weights), TANGENT_SINE)
 
     def self_intersections(self) -> list[Intersection]:
         """Every pair s < t with C(s) = C(t), as Intersection(s, t, kind), sorted by s."""
         from . import _rational_geometry as rg
 
+        if not np.ptp(self.points, axis=0).any():
+            return []  # a single point, as on the polynomial classes (it never leaves it)
         return rg.self_intersections(_normalised(self, self)[0])
 
     def _divided(self, shift: int) -> RationalBezierCurve:

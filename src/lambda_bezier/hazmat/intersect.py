@@ -38,6 +38,7 @@ import numpy as np
 from . import intersect_certify as cert
 from . import intersect_exact as _exact_iso
 from . import intersect_pairs as _pairs_engine
+from . import intersect_kind as _kind
 from . import intersect_refold as refold
 from . import intersect_subdivide as sub
 from .intersect_locate import (  # the point location half, and the tolerances both share
@@ -396,7 +397,15 @@ def intersect(p: Prepared, q: Prepared) -> list[Intersection]:
 
 
 def _decided_exactly(p: Prepared, q: Prepared, hits: list[Intersection]) -> list[Intersection]:
-    """hits, or the exact answer where intersect_exact.decided gives one."""
+    """hits, or the exact answer where intersect_exact.decided gives one; where a curve
+    stops (zero speed), its kind from the one-sided tangent (intersect_kind)."""
+    got = _decided(p, q, hits)
+    if all(h.kind != "tangent" for h in got):  # a stop is classified "tangent" first
+        return got
+    return _kind.one_sided(got, p.pts, q.pts, max(p.scale, q.scale))
+
+
+def _decided(p: Prepared, q: Prepared, hits: list[Intersection]) -> list[Intersection]:
     if p._given_rows is None or q._given_rows is None:  # float input: decided gives none
         return hits
     kinds = [

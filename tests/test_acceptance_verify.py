@@ -1,0 +1,224 @@
+"""An independent acceptance audit of `lambda-bezier verify` (issues 5, 17 and 20): what a
+researcher who brings a records file of their own finds.
+
+Each test is a defect the audit found, with its exact expected answer computed here
+independently (SymPy from 000's eq. (1), never derive's code):
+
+- a property claim about one degree (`n = 3`) was decided over every degree of the family's
+  range, so a true claim got `mismatch` (with counterexamples from other degrees);
+- a formula with a symbolic exponent tower (`t**n**n**n`) hung verify for hours: the
+  symbolic comparison evaluated it at its sample point n = 17 before any limit applied;
+- a formula that adds a number to a control point failed with an internal type name.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import pytest
+import sympy as sp
+from conftest import ROOT
+
+from lambda_bezier import _verify_runner
+
+pytestmark = pytest.mark.skipif(
+    not (ROOT / "derive" / "verify" / "report.py").is_file(),
+    reason="needs the source checkout (derive/)",
+)
+
+T, LAM = sp.symbols("t lam")
+
+
+def paper_binomial(n: int, k: int) -> int:
+    return int(sp.binomial(n, k)) if 0 <= k <= n else 0
+
+
+def same_degree_basis(n: int) -> list[sp.Expr]:
+    """000's eq. (1), typed from the paper's definition (the axiom), nothing else."""
+    out = []
+    for i in range(n + 1):
+        bracket = (
+            paper_binomial(n - 3, i - 3) * (1 - T) ** 2
+            - paper_binomial(n - 2, i - 1) * (1 - T) * T
+            + paper_binomial(n - 3, i) * T**2
+        )
+        e = (
+            paper_binomial(n, i) * (1 - T) ** (n - i) * T**i
+            + (1 - LAM) * (1 - T) ** (n - i - 1) * T ** (i - 1) * bracket
+        )
+        out.append(sp.expand(sp.cancel(e)))
+    return out
+
+
+def determinant(n: int) -> sp.Expr:
+    """det of the power-basis coefficients of the degree-n basis, a polynomial in λ."""
+    basis = same_degree_basis(n)
+    rows = [[sp.Poly(f, T).coeff_monomial(T**j) for j in range(n + 1)] for f in basis]
+    return sp.factor(sp.Matrix(rows).det())
+
+
+def run_json(tmp_path: Path, text: str) -> tuple[int, dict]:
+    path = tmp_path / "mine.toml"
+    path.write_text(textwrap.dedent(text), encoding="utf-8")
+    out = io.StringIO()
+    code = _verify_runner.run(fmt="json", root=ROOT, paths=[path], out=out, progress=False)
+    return code, {r["id"]: r for r in json.loads(out.getvalue())["records"]}
+
+
+# --------------------------------------------------------------------------- `n` fixes the degree
+
+
+def test_a_property_claim_about_one_degree_is_decided_at_that_degree(tmp_path):
+    # independently: at n = 3 the determinant is c·(λ + 2)² (root -2 only, outside (-2, 1]);
+    # at n = 5 it vanishes at λ = -3/2, where b_2 = b_3
+    d3 = determinant(3)
+    assert sp.Poly(d3, LAM).real_roots() == [-2, -2]
+    assert sp.Poly(determinant(5), LAM).eval(sp.Rational(-3, 2)) == 0
+    b5 = same_degree_basis(5)
+    assert sp.expand((b5[2] - b5[3]).subs(LAM, sp.Rational(-3, 2))) == 0
+
+    code, by_id = run_json(
+        tmp_path,
+        """
+        schema_version = 2
+        family = "same_degree"
+
+        [[record]]
+        id = "mine.n3.open"
+        claim = "basis_linearly_independent"
+        parameter_range = "(-2, 1]"
+        n = 3
+
+        [[record]]
+        id = "mine.n3.closed"
+        claim = "basis_linearly_independent"
+        parameter_range = "[-2, 1]"
+        n = 3
+        expect = "mismatch"
+        [record.erratum]
+        origin = "paper"
+        explanation = "at lam = -2 the function b_1^3 = (2 + lam) t (1 - t)^2 vanishes"
+        parameter_range = "(-2, 1]"
+
+        [[record]]
+        id = "mine.n4.nonneg"
+        claim = "basis_nonnegative"
+        parameter_range = "(-2, 1]"
+        n = 4
+
+        [[record]]
+        id = "mine.n5.at_root"
+        claim = "basis_linearly_independent"
+        parameter_range = "[-3/2, -3/2]"
+        n = 5
+        expect = "mismatch"
+        [record.erratum]
+        origin = "paper"
+        explanation = "b_2^5 = b_3^5 at lam = -3/2"
+        parameter_range = "[-1, 1]"
+        """,
+    )
+    assert code == 0
+    assert by_id["mine.n3.open"]["verdict"] == "match"
+    assert by_id["mine.n3.open"]["checked"] == ["degrees 3..3, every λ in (-2, 1] (exact)"]
+    # the counterexample is the one at degree 3, and no other degree is looked at
+    assert by_id["mine.n3.closed"]["verdict"] == "mismatch"
+    assert by_id["mine.n3.closed"]["diff"] == [
+        "degree 3: the basis is linearly dependent at λ = -2 (det = (lam + 2)**2/9): (1)·b_1 = 0"
+    ]
+    assert by_id["mine.n4.nonneg"]["verdict"] == "match"
+    assert by_id["mine.n5.at_root"]["verdict"] == "mismatch"
+    (line,) = by_id["mine.n5.at_root"]["diff"]
+    assert line.startswith("degree 5: the basis is linearly dependent at λ = -3/2")
+    assert line.endswith("(-1)·b_2 + (1)·b_3 = 0")
+
+
+def test_a_degree_outside_the_range_or_below_min_degree_is_a_clear_error(tmp_path):
+    code, by_id = run_json(
+        tmp_path,
+        """
+        schema_version = 2
+        family = "same_degree"
+
+        [[record]]
+        id = "mine.below"
+        claim = "basis_nonnegative"
+        n = 3
+        min_degree = 5
+        """,
+    )
+    assert code == 1
+    assert by_id["mine.below"]["verdict"] == "error"
+    assert by_id["mine.below"]["problems"] == [
+        "checker error: ValueError: n = 3 is not a degree of the same_degree range from "
+        "min_degree 5 on"
+    ]
+
+
+# --------------------------------------------------------------------------- limits, symbolically
+
+
+def test_an_exponent_tower_in_the_degree_ends_in_a_limit_error_not_a_hang(tmp_path):
+    # t**n**n**n: at n = 3 the exponent is 3**27 = 7625597484987, past the limit of 1000; the
+    # symbolic comparison used to compute 17**(17**17) at its sample point first (hours)
+    path = tmp_path / "tower.toml"
+    path.write_text(
+        textwrap.dedent(
+            """
+            schema_version = 2
+            family = "same_degree"
+
+            [[record]]
+            id = "mine.tower"
+            claim = "endpoint_curve"
+            equations = [ { lhs = "p(0)", rhs = "V(0)*t**n**n**n" } ]
+
+            [[record]]
+            id = "mine.factorial_tower"
+            claim = "endpoint_curve"
+            equations = [ { lhs = "p(0)", rhs = "V(0)*(1 + t*factorial(n**n))" } ]
+            """
+        ),
+        encoding="utf-8",
+    )
+    proc = subprocess.run(
+        [sys.executable, "-m", "lambda_bezier", "verify", "--format", "json", str(path)],
+        capture_output=True,
+        text=True,
+        timeout=90,
+        cwd=ROOT,
+    )
+    assert proc.returncode == 1, proc.stderr
+    by_id = {r["id"]: r for r in json.loads(proc.stdout)["records"]}
+    assert by_id["mine.tower"]["problems"] == [
+        "checker error: LimitError: an exponent 7625597484987 larger than 1000"
+    ]
+    assert by_id["mine.factorial_tower"]["problems"] == [
+        # n = 3 first: 3**3 = 27 is fine, and the first degree past the limit is named
+        "checker error: LimitError: factorial(3125) (at most 1000)"
+    ]
+
+
+def test_adding_a_number_to_a_point_is_named_in_words(tmp_path):
+    code, by_id = run_json(
+        tmp_path,
+        """
+        schema_version = 2
+        family = "same_degree"
+
+        [[record]]
+        id = "mine.mixed"
+        claim = "endpoint_curve"
+        equations = [ { lhs = "p(0)", rhs = "V(0) + 1" } ]
+        """,
+    )
+    assert code == 1
+    (problem,) = by_id["mine.mixed"]["problems"]
+    assert problem.startswith("checker error: TypeError: a formula adds ")
+    assert "a number" in problem and "a combination of control points" in problem
+    assert problem.endswith("which cannot be added")

@@ -222,3 +222,36 @@ def test_adding_a_number_to_a_point_is_named_in_words(tmp_path):
     assert problem.startswith("checker error: TypeError: a formula adds ")
     assert "a number" in problem and "a combination of control points" in problem
     assert problem.endswith("which cannot be added")
+
+
+def test_the_json_report_names_the_record_of_every_problem(tmp_path):
+    # the text report says "FAIL mine.false: ..."; the JSON summary list said only the problem
+    path = tmp_path / "mine.toml"
+    path.write_text(
+        textwrap.dedent(
+            """
+            schema_version = 2
+            family = "same_degree"
+
+            [[record]]
+            id = "mine.false"
+            claim = "basis_nonnegative"
+            parameter_range = "(-2, 101/100]"
+            n = 3
+            """
+        ),
+        encoding="utf-8",
+    )
+    out = io.StringIO()
+    code = _verify_runner.run(fmt="json", root=ROOT, paths=[path], out=out, progress=False)
+    data = json.loads(out.getvalue())
+    assert code == 1
+    assert data["problems"] == [
+        "mine.false: NEW DISCREPANCY: expected match, the derivation disagrees"
+    ]
+    # and the counterexample is exact: b_0^3 = (1 - λt)(1 - t)^2 at λ = 101/100, t = 201/202
+    b0 = same_degree_basis(3)[0]
+    value = b0.subs({LAM: sp.Rational(101, 100), T: sp.Rational(201, 202)})
+    assert value == sp.Rational(-1, 8160800)
+    (record,) = data["records"]
+    assert record["diff"] == ["degree 3: b_0(t = 201/202) = -1/8160800 < 0 at λ = 101/100"]

@@ -255,3 +255,62 @@ def test_the_json_report_names_the_record_of_every_problem(tmp_path):
     assert value == sp.Rational(-1, 8160800)
     (record,) = data["records"]
     assert record["diff"] == ["degree 3: b_0(t = 201/202) = -1/8160800 < 0 at λ = 101/100"]
+
+
+# --------------------------------------------------------------------------- join records
+
+
+def c1_join(n: str, lam1: str) -> str:
+    """A same_degree C1 join record, the first curve's degree and shape as given."""
+    rhs = (
+        f"(1 + ({n} - 1 + {lam1})/(m - 1 + lam2))*P1({n})"
+        f" - ({n} - 1 + {lam1})/(m - 1 + lam2)*P1({n} - 1)"
+    )
+    return C1_JOIN.format(n=n, lam1=lam1, rhs=rhs)
+
+
+C1_JOIN = """
+schema_version = 2
+
+[[record]]
+id = "mine.c1"
+claim = "same_degree.c1_join"
+first = {{ curve = "p1", degree = "{n}", shape = "{lam1}", points = "P1" }}
+second = {{ curve = "p2", degree = "m", shape = "lam2", points = "P2" }}
+convention = [
+  {{ lhs = "p1(1)", rhs = "p2(0)" }},
+  {{ lhs = "Subs(Derivative(p1(t), t), t, 1)", rhs = "Subs(Derivative(p2(t), t), t, 0)" }},
+]
+equations = [
+  {{ lhs = "P2(0)", rhs = "P1({n})" }},
+  {{ lhs = "P2(1)", rhs = "{rhs}" }},
+]
+"""
+
+
+def test_a_join_of_same_degree_curves_is_checked_like_001s(tmp_path):
+    # p'(1) = (n - 1 + λ)(V_n - V_{n-1}) and p'(0) = (n - 1 + λ)(V_1 - V_0) (000's eq. (9),
+    # re-derived from eq. (1) here): C1 gives P2(1) as below for every n, m, λ1, λ2
+    for n in (3, 4, 5):
+        b = same_degree_basis(n)
+        assert sp.expand(sp.diff(b[n], T).subs(T, 1) - (n - 1 + LAM)) == 0
+        assert sp.expand(sp.diff(b[n - 1], T).subs(T, 1) + (n - 1 + LAM)) == 0
+    code, by_id = run_json(tmp_path, c1_join("n", "lam1"))
+    assert code == 0
+    assert by_id["mine.c1"]["verdict"] == "match"
+
+
+@pytest.mark.parametrize(
+    ("n", "lam1", "key", "text"),
+    [("3", "lam1", "first.degree", "'3'"), ("n", "1/2", "first.shape", "'1/2'")],
+)
+def test_a_join_curve_with_a_number_for_its_degree_or_shape_is_refused_by_name(
+    tmp_path, capsys, n, lam1, key, text
+):
+    # it ended in "SyntaxError: invalid syntax (<lambdifygenerated-1>, line 1)"
+    path = tmp_path / "mine.toml"
+    path.write_text(c1_join(n, lam1), encoding="utf-8")
+    out = io.StringIO()
+    code = _verify_runner.run(fmt="json", root=ROOT, paths=[path], out=out, progress=False)
+    assert code == 2
+    assert f"record 'mine.c1', key {key}: {text} must be a symbol" in capsys.readouterr().err

@@ -412,8 +412,38 @@ def load_file(path: Path, data: dict | None = None) -> list[dict]:
         parameter = getattr(fam, "parameter", "lam")
         _parse_formulas(path, rec, parameter)
         _check_point_names(path, rec, parameter)
+        _check_join_curves(path, rec, parameter)
         out.append(rec)
     return out
+
+
+def _check_join_curves(path: Path, rec: dict, parameter: str = "lam") -> None:
+    """A join record's `degree` and `shape` of each curve are symbols (n, m; lam1, lam2): the
+    vertex formulas are checked symbolically in them and at every degree pair and parameter
+    sample, which a number in their place cannot be (a degree "3" or shape "1/2" ended in an
+    internal error of the compiled weights)."""
+    seen: dict = {}
+    for piece in ("first", "second"):
+        spec = rec.get(piece)
+        if not isinstance(spec, dict):
+            continue
+        for key in ("degree", "shape"):
+            text = spec.get(key)
+            if not isinstance(text, str):
+                continue
+            value = parse_formula(rename_parameter(text, parameter, lam_too=True))
+            if not value.is_Symbol:
+                raise RecordsError(
+                    f"{_where(path, rec, f'{piece}.{key}')}: {text!r} must be a symbol "
+                    f"({'n or m' if key == 'degree' else 'lam1 or lam2'}), not a number or a "
+                    "formula: a join is checked for every degree and parameter"
+                )
+            if value in seen:
+                raise RecordsError(
+                    f"{_where(path, rec, f'{piece}.{key}')}: {text!r} is also "
+                    f"{seen[value]}: the two curves need symbols of their own"
+                )
+            seen[value] = f"{'first' if piece == 'second' else 'second'}.{key}"
 
 
 def _define_family(path: Path, table: dict, points: str | None) -> str:

@@ -314,3 +314,32 @@ def test_a_join_curve_with_a_number_for_its_degree_or_shape_is_refused_by_name(
     code = _verify_runner.run(fmt="json", root=ROOT, paths=[path], out=out, progress=False)
     assert code == 2
     assert f"record 'mine.c1', key {key}: {text} must be a symbol" in capsys.readouterr().err
+
+
+# --------------------------------------------------------------------------- messages
+
+
+@pytest.mark.parametrize(
+    ("key", "value", "wanted"),
+    [
+        # a minus sign pasted from a paper (U+2212), and an infinite end
+        ("parameter_range", "(−2, 1]", "an interval with exact ends in brackets"),
+        ("parameter_range", "(-oo, 1]", "an interval with exact ends in brackets"),
+        ("claim", "Basis Symmetric", "a claim kind, such as"),
+    ],
+)
+def test_a_value_of_the_wrong_form_is_told_the_form_wanted_not_a_regex(
+    tmp_path, capsys, key, value, wanted
+):
+    path = tmp_path / "mine.toml"
+    claim = "" if key == "claim" else 'claim = "basis_nonnegative"\n'
+    path.write_text(
+        'schema_version = 2\nfamily = "same_degree"\n[[record]]\nid = "mine.x"\n'
+        f"{claim}{key} = {json.dumps(value, ensure_ascii=False)}\n",
+        encoding="utf-8",
+    )
+    code = _verify_runner.run(fmt="json", root=ROOT, paths=[path], out=io.StringIO())
+    err = capsys.readouterr().err
+    assert code == 2
+    assert f"record 'mine.x', key {key}: {value!r} is not {wanted}" in err
+    assert "\\\\s" not in err and "^" not in err

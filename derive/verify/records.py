@@ -156,6 +156,9 @@ PAYLOAD = {
     "parameter_range": {
         "type": "string",
         "pattern": rf"^\s*[\(\[]{_BOUND},{_BOUND}[\)\]]\s*$",
+        # what a user is told instead of the pattern (grammar/messages.py)
+        "description": 'an interval with exact ends in brackets, such as "(-2, 1]" or '
+        '"[-1, 1/2)" (ASCII digits: integers or fractions p/q)',
     },
     "min_degree": {"type": "integer", "minimum": 0, "maximum": 64},
     "shape": _STR,
@@ -205,12 +208,22 @@ PAYLOAD = {
 _RECORD = _table(
     {
         "id": {"type": "string", "minLength": 1, "maxLength": 200},
-        "claim": {"type": "string", "pattern": r"^([a-z][a-z0-9_]*\.)?[a-z][a-z0-9_]*$"},
+        "claim": {
+            "type": "string",
+            "pattern": r"^([a-z][a-z0-9_]*\.)?[a-z][a-z0-9_]*$",
+            "description": 'a claim kind, such as "endpoint_curve" or '
+            '"same_degree.endpoint_curve" (lower-case letters, digits and _)',
+        },
         "source": _STR,
         "location": _STR,
         "note": _STR,
         "variable": _STR,
-        "family": {"type": "string", "pattern": r"^[a-z][a-z0-9_]*$"},
+        "family": {
+            "type": "string",
+            "pattern": r"^[a-z][a-z0-9_]*$",
+            "description": 'a family name, such as "same_degree" (lower-case letters, digits '
+            "and _)",
+        },
         "point_function": _STR,
         "domain": _STR,
         "ambiguous": _STR,

@@ -343,3 +343,19 @@ def test_a_value_of_the_wrong_form_is_told_the_form_wanted_not_a_regex(
     assert code == 2
     assert f"record 'mine.x', key {key}: {value!r} is not {wanted}" in err
     assert "\\\\s" not in err and "^" not in err
+
+
+def test_a_min_degree_past_the_family_range_is_a_validation_error(tmp_path, capsys):
+    # exit 2 and the key, like `n` outside the range (it was a checker error, exit 1)
+    path = tmp_path / "mine.toml"
+    path.write_text(
+        'schema_version = 2\nfamily = "same_degree"\n[[record]]\nid = "mine.x"\n'
+        'claim = "basis_symmetric"\nmin_degree = 40\n',
+        encoding="utf-8",
+    )
+    code = _verify_runner.run(fmt="json", root=ROOT, paths=[path], out=io.StringIO())
+    assert code == 2
+    assert (
+        "record 'mine.x', key min_degree: no degree of the same_degree range 3..12 is >= 40"
+        in capsys.readouterr().err
+    )

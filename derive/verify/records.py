@@ -416,6 +416,12 @@ def load_file(path: Path, data: dict | None = None) -> list[dict]:
                 f"{_where(path, rec, 'n')}: degree {rec['n']} is outside the {family} range "
                 f"{FAMILIES[family].degrees.start}..{FAMILIES[family].degrees.stop - 1}"
             )
+        degrees = FAMILIES[family].degrees if family in FAMILIES else range(0)
+        if "min_degree" in rec and family != REFERENCE and rec["min_degree"] >= degrees.stop > 0:
+            raise RecordsError(
+                f"{_where(path, rec, 'min_degree')}: no degree of the {family} range "
+                f"{degrees.start}..{degrees.stop - 1} is >= {rec['min_degree']}"
+            )
         if "parameter_range" in rec:
             try:
                 Interval.parse(rec["parameter_range"])

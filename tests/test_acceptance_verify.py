@@ -359,3 +359,30 @@ def test_a_min_degree_past_the_family_range_is_a_validation_error(tmp_path, caps
         "record 'mine.x', key min_degree: no degree of the same_degree range 3..12 is >= 40"
         in capsys.readouterr().err
     )
+
+
+def test_an_equation_that_no_degree_of_the_range_can_evaluate_says_why(tmp_path):
+    # b(i, n + 20, t) exists at no degree of 3..12: nothing is compared, so no verdict; the
+    # message was an internal "AssertionError: ... was checked for no instance"
+    code, by_id = run_json(
+        tmp_path,
+        """
+        schema_version = 2
+        family = "same_degree"
+
+        [[record]]
+        id = "mine.recursion"
+        claim = "recursion"
+        equations = [
+          { lhs = "b(i, n, t)", rhs = "(1 - t)*b(i, n + 20, t) + t*b(i - 1, n - 1, t)" },
+        ]
+        """,
+    )
+    assert code == 1
+    assert by_id["mine.recursion"]["verdict"] == "error"
+    (problem,) = by_id["mine.recursion"]["problems"]
+    assert problem.startswith(
+        "checker error: ValueError: equation 1 could be checked at no degree or index: every "
+        "case left a term undefined (e.g. same_degree degree "
+    )
+    assert problem.endswith(" outside 3..12)")

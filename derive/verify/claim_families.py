@@ -116,7 +116,8 @@ def family_basis(family: str, degree: int, index: int, x=None, shape=None) -> Sc
             return _bernstein_sc(degree, index)
         return Sc.of(comb(degree, index)) * x**index * (1 - x) ** (degree - index)
     if degree not in FAMILIES[family].degrees:
-        raise Undefined(f"{family} degree {degree} outside {FAMILIES[family].degrees}")
+        degrees = FAMILIES[family].degrees
+        raise Undefined(f"{family} degree {degree} outside {degrees.start}..{degrees.stop - 1}")
     if not 0 <= index <= degree:
         return Sc.of(0)
     e = _basis_sc(family, degree, index)

@@ -386,3 +386,18 @@ def test_an_equation_that_no_degree_of_the_range_can_evaluate_says_why(tmp_path)
         "case left a term undefined (e.g. same_degree degree "
     )
     assert problem.endswith(" outside 3..12)")
+
+
+def test_the_coverage_in_json_is_json():
+    # `--coverage --format json` printed the text report
+    out = io.StringIO()
+    code = _verify_runner.run(coverage=True, root=ROOT, fmt="json", out=out, progress=False)
+    assert code == 0
+    data = json.loads(out.getvalue())
+    items = data["items"]
+    assert data["summary"]["items"] == len(items)
+    assert data["summary"]["with_records"] == sum(1 for it in items if it["records"])
+    assert all(bool(it["records"]) != bool(it["reason"]) for it in items)
+    (prop5,) = [it for it in items if any(r["id"] == "000.prop5" for r in it["records"])]
+    assert prop5["records"] == [{"id": "000.prop5", "verdict": "mismatch"}]
+    assert prop5["document"] == "000_10ca634d356c575d.txt"

@@ -19,5 +19,12 @@ def clip(text: str, limit: int = MAX_MESSAGE) -> str:
 
 
 def schema_message(error: object) -> str:
-    """A jsonschema ValidationError's message, clipped (the value it quotes may be huge)."""
+    """A jsonschema ValidationError's message, clipped (the value it quotes may be huge). A
+    string that misses its pattern is told the schema's `description` of the form wanted,
+    never the regular expression."""
+    schema = getattr(error, "schema", None)
+    if getattr(error, "validator", None) == "pattern" and isinstance(schema, dict):
+        wanted = schema.get("description")
+        if wanted:
+            return clip(f"{getattr(error, 'instance', '')!r} is not {wanted}")
     return clip(str(getattr(error, "message", error)))

@@ -77,7 +77,8 @@ def quad_form(matrix, points="P") -> Form:
 
 def _energy_degree(family: str, n: int) -> int:
     if n not in FAMILIES[family].degrees:
-        raise Undefined(f"{family} degree {n} outside {FAMILIES[family].degrees}")
+        degrees = FAMILIES[family].degrees
+        raise Undefined(f"{family} degree {n} outside {degrees.start}..{degrees.stop - 1}")
     return n
 
 

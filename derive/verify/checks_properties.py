@@ -53,6 +53,13 @@ def _interval(record: dict) -> pr.Interval | None:
 
 def _degrees(record: dict, ctx: Context) -> list[int]:
     lo = int(record.get("min_degree", 0))
+    if "n" in record:  # a claim about one degree (as `n` fixes it for every other kind)
+        n = int(record["n"])
+        if n not in ctx.family.degrees or n < lo:
+            raise ValueError(
+                f"n = {n} is not a degree of the {ctx.family.name} range from min_degree {lo} on"
+            )
+        return [n]
     degrees = [d for d in ctx.family.degrees if d >= lo]
     if not degrees:
         raise ValueError(f"no degree of the {ctx.family.name} range is >= min_degree {lo}")

@@ -15,6 +15,7 @@ from .. import algebra as _algebra
 from ..algebra import bernstein as bz
 from ..families.cbezier import CDefinition
 from ..families.registry import REFERENCE, builtin_families, reference_degrees
+from ..grammar import MAX_EXPONENT, MAX_FACTORIAL
 from .checks_core import (
     CHECKERS,
     KIND_FAMILIES,
@@ -115,7 +116,8 @@ def family_basis(family: str, degree: int, index: int, x=None, shape=None) -> Sc
             return _bernstein_sc(degree, index)
         return Sc.of(comb(degree, index)) * x**index * (1 - x) ** (degree - index)
     if degree not in FAMILIES[family].degrees:
-        raise Undefined(f"{family} degree {degree} outside {FAMILIES[family].degrees}")
+        degrees = FAMILIES[family].degrees
+        raise Undefined(f"{family} degree {degree} outside {degrees.start}..{degrees.stop - 1}")
     if not 0 <= index <= degree:
         return Sc.of(0)
     e = _basis_sc(family, degree, index)
@@ -236,8 +238,33 @@ def _nonzero_at_sample(e) -> bool:
             values[sym] = sp.Integer(2)
         else:
             return False
-    value = e.xreplace(values)
-    return bool(value.is_Rational) and value != 0
+    value = _bounded_xreplace(e, values)
+    return value is not None and bool(value.is_Rational) and value != 0
+
+
+def _bounded_xreplace(e, values):
+    """e.xreplace(values), or None where that would compute a power, factorial or binomial of
+    numbers past the evaluator's limits: a user's `t**n**n**n` becomes 17**(17**17) at the
+    sample point, which SymPy would compute (for hours) before anything else is looked at."""
+    if e in values:
+        return values[e]
+    if not e.args:
+        return e
+    args = []
+    for a in e.args:
+        v = _bounded_xreplace(a, values)
+        if v is None:
+            return None
+        args.append(v)
+    if e.is_Pow:
+        base, ex = args
+        if base.is_number and ex.is_Integer and abs(int(ex)) > MAX_EXPONENT:
+            return None
+    elif isinstance(e, (sp.factorial, sp.binomial)) and any(
+        a.is_Integer and abs(int(a)) > MAX_FACTORIAL for a in args
+    ):
+        return None
+    return e.func(*args)
 
 
 _SEVERAL = ("(families in several parameters)",)

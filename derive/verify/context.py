@@ -481,12 +481,14 @@ def check_equation(record, ctx, eq, real: Realiser, label: str, tally_out: list)
         else f"{label} `{eq['lhs']} = …`"
     )
     names = ("derived", "printed") if atomic(lhs) else ("left", "right")
+    why = ""  # the last reason an instance could not be evaluated
     for env in instances(record, ctx, (lhs, rhs), eq):
         try:
             left = real(lhs, env)
             right = real(rhs, env)
-        except Undefined:
+        except Undefined as exc:
             tally.skipped += 1
+            why = str(exc)
             continue
         # the degree a record fixes (`n = 3`) locates an instance whose env is otherwise empty
         where = env or ({S["n"]: sp.Integer(record["n"])} if "n" in record else {})
@@ -496,8 +498,11 @@ def check_equation(record, ctx, eq, real: Realiser, label: str, tally_out: list)
         diffs = compare(right, left)
         diffs = [d.replace("printed", names[1]).replace("derived", names[0]) for d in diffs]
         tally.add(where, diffs)
-    if tally.total == 0:
-        raise AssertionError(f"{record['id']}: {label} was checked for no instance")
+    if tally.total == 0:  # nothing compared: never a verdict
+        raise ValueError(
+            f"{label} could be checked at no degree or index: every case left a term undefined"
+            + (f" (e.g. {why})" if why else "")
+        )
     tally_out.append(tally)
 
 

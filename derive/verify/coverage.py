@@ -11,6 +11,7 @@ so the inventory and the records cannot drift apart.
 
 from __future__ import annotations
 
+import json
 import sys
 from dataclasses import dataclass
 from pathlib import Path
@@ -101,3 +102,26 @@ def render(items: list[Item], verdicts: dict[str, str], markdown: bool = False) 
         f"{total - with_records} without"
     )
     return "\n".join(lines) + "\n"
+
+
+def render_json(items: list[Item], verdicts: dict[str, str]) -> str:
+    """The coverage as data (`verify --coverage --format json`): every item with its document,
+    section, records and their verdicts, or the reason it has none."""
+    data = {
+        "items": [
+            {
+                "document": it.source,
+                "section": it.section,
+                "item": it.item,
+                "records": [{"id": rid, "verdict": verdicts.get(rid)} for rid in it.records],
+                "reason": it.reason or None,
+            }
+            for it in items
+        ],
+        "summary": {
+            "items": len(items),
+            "documents": len({it.source for it in items}),
+            "with_records": sum(1 for it in items if it.records),
+        },
+    }
+    return json.dumps(data, indent=2, ensure_ascii=False) + "\n"

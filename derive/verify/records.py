@@ -156,6 +156,9 @@ PAYLOAD = {
     "parameter_range": {
         "type": "string",
         "pattern": rf"^\s*[\(\[]{_BOUND},{_BOUND}[\)\]]\s*$",
+        # what a user is told instead of the pattern (grammar/messages.py)
+        "description": 'an interval with exact ends in brackets, such as "(-2, 1]" or '
+        '"[-1, 1/2)" (ASCII digits: integers or fractions p/q)',
     },
     "min_degree": {"type": "integer", "minimum": 0, "maximum": 64},
     "shape": _STR,
@@ -205,12 +208,22 @@ PAYLOAD = {
 _RECORD = _table(
     {
         "id": {"type": "string", "minLength": 1, "maxLength": 200},
-        "claim": {"type": "string", "pattern": r"^([a-z][a-z0-9_]*\.)?[a-z][a-z0-9_]*$"},
+        "claim": {
+            "type": "string",
+            "pattern": r"^([a-z][a-z0-9_]*\.)?[a-z][a-z0-9_]*$",
+            "description": 'a claim kind, such as "endpoint_curve" or '
+            '"same_degree.endpoint_curve" (lower-case letters, digits and _)',
+        },
         "source": _STR,
         "location": _STR,
         "note": _STR,
         "variable": _STR,
-        "family": {"type": "string", "pattern": r"^[a-z][a-z0-9_]*$"},
+        "family": {
+            "type": "string",
+            "pattern": r"^[a-z][a-z0-9_]*$",
+            "description": 'a family name, such as "same_degree" (lower-case letters, digits '
+            "and _)",
+        },
         "point_function": _STR,
         "domain": _STR,
         "ambiguous": _STR,
@@ -403,6 +416,12 @@ def load_file(path: Path, data: dict | None = None) -> list[dict]:
                 f"{_where(path, rec, 'n')}: degree {rec['n']} is outside the {family} range "
                 f"{FAMILIES[family].degrees.start}..{FAMILIES[family].degrees.stop - 1}"
             )
+        degrees = FAMILIES[family].degrees if family in FAMILIES else range(0)
+        if "min_degree" in rec and family != REFERENCE and rec["min_degree"] >= degrees.stop > 0:
+            raise RecordsError(
+                f"{_where(path, rec, 'min_degree')}: no degree of the {family} range "
+                f"{degrees.start}..{degrees.stop - 1} is >= {rec['min_degree']}"
+            )
         if "parameter_range" in rec:
             try:
                 Interval.parse(rec["parameter_range"])
@@ -412,8 +431,38 @@ def load_file(path: Path, data: dict | None = None) -> list[dict]:
         parameter = getattr(fam, "parameter", "lam")
         _parse_formulas(path, rec, parameter)
         _check_point_names(path, rec, parameter)
+        _check_join_curves(path, rec, parameter)
         out.append(rec)
     return out
+
+
+def _check_join_curves(path: Path, rec: dict, parameter: str = "lam") -> None:
+    """A join record's `degree` and `shape` of each curve are symbols (n, m; lam1, lam2): the
+    vertex formulas are checked symbolically in them and at every degree pair and parameter
+    sample, which a number in their place cannot be (a degree "3" or shape "1/2" ended in an
+    internal error of the compiled weights)."""
+    seen: dict = {}
+    for piece in ("first", "second"):
+        spec = rec.get(piece)
+        if not isinstance(spec, dict):
+            continue
+        for key in ("degree", "shape"):
+            text = spec.get(key)
+            if not isinstance(text, str):
+                continue
+            value = parse_formula(rename_parameter(text, parameter, lam_too=True))
+            if not value.is_Symbol:
+                raise RecordsError(
+                    f"{_where(path, rec, f'{piece}.{key}')}: {text!r} must be a symbol "
+                    f"({'n or m' if key == 'degree' else 'lam1 or lam2'}), not a number or a "
+                    "formula: a join is checked for every degree and parameter"
+                )
+            if value in seen:
+                raise RecordsError(
+                    f"{_where(path, rec, f'{piece}.{key}')}: {text!r} is also "
+                    f"{seen[value]}: the two curves need symbols of their own"
+                )
+            seen[value] = f"{'first' if piece == 'second' else 'second'}.{key}"
 
 
 def _define_family(path: Path, table: dict, points: str | None) -> str:

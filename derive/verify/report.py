@@ -377,7 +377,8 @@ def render_json(report: Report) -> str:
             }
             for r in report.results
         ],
-        "problems": [p for _, p in report.problems()],
+        # each names its record, as the text report's FAIL lines do
+        "problems": [f"{rid}: {p}" if rid else p for rid, p in report.problems()],
     }
     return json.dumps(data, indent=2, ensure_ascii=False) + "\n"
 

@@ -115,7 +115,22 @@ def v_add(a, b):
         ra = a if isinstance(a, Ratio) else Ratio(a, Sc.of(1))
         rb = b if isinstance(b, Ratio) else Ratio(b, Sc.of(1))
         return Ratio(v_add(v_mul(ra.num, rb.den), v_mul(rb.num, ra.den)), v_mul(ra.den, rb.den))
-    raise TypeError(f"cannot add {type(a).__name__} and {type(b).__name__}")
+    raise TypeError(f"a formula adds {_kind(a)} and {_kind(b)}, which cannot be added")
+
+
+# what a value is, in a user's words (an error names the terms a records formula mixes)
+_KINDS = {
+    "Sc": "a number",
+    "Form": "a combination of control points",
+    "Wedge": "a cross product of points",
+    "DotSum": "a dot product of points",
+    "Rad": "a square root",
+    "Ratio": "a quotient",
+}
+
+
+def _kind(value) -> str:
+    return _KINDS.get(type(value).__name__, type(value).__name__)
 
 
 def v_neg(a):

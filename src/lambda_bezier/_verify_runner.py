@@ -216,7 +216,10 @@ def run(
         items = cov.load()
         verdicts = {r.id: r.verdict for r in report.results}
         report.extra_problems += cov.problems(items, verdicts)
-        out.write(cov.render(items, verdicts, markdown=fmt == "markdown"))
+        if fmt == "json":
+            out.write(cov.render_json(items, verdicts))
+        else:
+            out.write(cov.render(items, verdicts, markdown=fmt == "markdown"))
     else:
         out.write(verify.RENDERERS[fmt](report))
     out.flush()

@@ -52,6 +52,8 @@ ours (the name follows the `bezier` package's `hazmat`).
 - `intersect_fold`: the self-intersections of a curve on a line that turns back along it
   (the end pairs of the stretches its monotone pieces share); `intersect_refold` the same
   for a curve off a line (P = Q(g), g not monotone), cut at its exact turning points;
+- `intersect_kind`: the kind of a meeting where a curve stops (zero speed at an end, a
+  cusp): from its first derivative that does not vanish there;
 - `intersect_prepared`: a curve as the intersection solvers use it (floats, exact rows);
 - `intersect_pairs`: the compiled kernels' entry for one pair (certificate, then the careful
   path compiled, in one call) or many pairs in one call; `intersect_pairs_compiled` its
@@ -138,6 +140,7 @@ __all__ = [
     "intersect_contact",
     "intersect_exact",
     "intersect_fold",
+    "intersect_kind",
     "intersect_locate",
     "intersect_pairs",
     "intersect_pairs_compiled",

@@ -37,8 +37,8 @@ import numpy as np
 
 from . import intersect_certify as cert
 from . import intersect_exact as _exact_iso
-from . import intersect_pairs as _pairs_engine
 from . import intersect_kind as _kind
+from . import intersect_pairs as _pairs_engine
 from . import intersect_refold as refold
 from . import intersect_subdivide as sub
 from .intersect_locate import (  # the point location half, and the tolerances both share

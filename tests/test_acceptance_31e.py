@@ -209,3 +209,20 @@ def test_a_bicubic_mesh_is_not_far_finer_than_its_tolerance(tol):
     dev = _measured_deviation(s, m, k=6)
     assert dev <= m.deviation_bound <= tol
     assert dev >= tol / 5, (dev, len(m.faces))
+
+
+# ------------------------------------------------------------------------- an empty batch
+@pytest.mark.parametrize("family", ["same_degree", ("bernstein_like", "same_degree")])
+def test_an_empty_batch_names_net(family):
+    """Before: "a batch of nets must have shape (k, m+1, n+1, d), got (0, 4, 4, 3)", a shape
+    of that very form."""
+    with pytest.raises(ValueError, match=r"net: an empty batch of nets \(shape \(0, 4, 4, 3\)\)"):
+        lb.optimal_parameters(np.zeros((0, 4, 4, 3)), "membrane", family)
+
+
+def test_an_empty_batch_of_an_own_family_names_net():
+    from lambda_bezier import examples
+
+    two = lb.load_family(examples.path("two_shape_cubic.toml"))
+    with pytest.raises(ValueError, match="net: an empty batch of nets"):
+        lb.optimal_parameters(np.zeros((0, 4, 4, 3)), "membrane", two)

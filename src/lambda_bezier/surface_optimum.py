@@ -467,6 +467,11 @@ def optimal_parameters(
             f"E_k as an int, got {energy!r}; a surface's net takes 'thin_plate' or 'membrane'"
         )
     energy = val.choice(energy, "energy", tuple(ENERGIES))
+    if np.ndim(net) == 4 and np.shape(net)[0] == 0:  # a batch's shape, but no net in it
+        raise ValueError(
+            f"net: an empty batch of nets (shape {np.shape(net)}) has no optimum; "
+            "pass at least one net"
+        )
     if _param_families(family):  # several/indexed parameters, trigonometric...: certified
         # the certified engine (box_bernstein, _optimal_box) loads on first use
         from .param_surface_optimum import optimal_parameters as param_optimal_parameters

@@ -226,3 +226,26 @@ def test_an_empty_batch_of_an_own_family_names_net():
     two = lb.load_family(examples.path("two_shape_cubic.toml"))
     with pytest.raises(ValueError, match="net: an empty batch of nets"):
         lb.optimal_parameters(np.zeros((0, 4, 4, 3)), "membrane", two)
+
+
+def test_a_leaning_g1_boundary_between_trigonometric_patches():
+    """Two han_trig_cubic patches (compared in their own parameters, at sample points): A's
+    boundary u = π/2 is its last row, (3, j, 0), on the line x = 3, z = 0, so A_v there is
+    along e_y. Moving B's second row by e_y / 2 adds a constant multiple of e_y to B_u (the
+    basis sums to one), which stays in A's tangent plane: G1 (before: C0). Moving it in z
+    leaves the plane: C0."""
+    from lambda_bezier import examples
+
+    trig = lb.load_family(examples.path("han_trig_cubic.toml"))
+    net = [[(F(i), F(j), F((i * j) % 3, 2)) for j in range(4)] for i in range(4)]
+    assert all(p[0] == 3 and p[2] == 0 for p in net[3])  # the boundary lies on a line along y
+    pu, pv = {"lam": F(1, 2), "mu": -1}, {"lam": 0, "mu": F(1, 3)}
+    a = trig.surface(net, params_u=pu, params_v=pv)
+    rest = [[(6 + k, j, 0) for j in range(4)] for k in range(2)]
+    b = lb.join_surface(a, "u", "C1", 3, rest=rest, params=pu)
+    rows = [list(r) for r in b.control_net()]
+    leaning = [rows[0], [(p[0], p[1] + F(1, 2), p[2]) for p in rows[1]], *rows[2:]]
+    lifted = [rows[0], [(p[0], p[1], p[2] + F(1, 100)) for p in rows[1]], *rows[2:]]
+    for moved, want in ((leaning, "G1"), (lifted, "C0")):
+        other = trig.surface(moved, params_u=pu, params_v=pv)
+        assert [r.continuity for r in lb.CompositeSurface([[a], [other]]).report()] == [want]

@@ -216,7 +216,9 @@ def continuity(a: Any, b: Any, axis: int, tol: float) -> str:
     if not _close(da[0], db[0], eps[0]):
         return "none"
     if not _close(da[1], db[1], eps[1]):
-        if proportional(da[1], db[1], eps[1]) or g1_sampled(a, b, axis, eps[1]):
+        # the tangent planes are compared at sample points, in floats also for exact
+        # patches: the float tolerance on a first derivative
+        if proportional(da[1], db[1], eps[1]) or g1_sampled(a, b, axis, 10 * tol * scale[1]):
             return "G1"
         return "C0"
     return "C2" if _close(da[2], db[2], eps[2]) else "C1"

@@ -249,3 +249,30 @@ def test_a_leaning_g1_boundary_between_trigonometric_patches():
     for moved, want in ((leaning, "G1"), (lifted, "C0")):
         other = trig.surface(moved, params_u=pu, params_v=pv)
         assert [r.continuity for r in lb.CompositeSurface([[a], [other]]).report()] == [want]
+
+
+# ------------------------------------------------------- an empty batch of closest points
+def _surfaces_of_every_kind():
+    from lambda_bezier import examples
+
+    trig = lb.load_family(examples.path("han_trig_cubic.toml"))
+    pu, pv = {"lam": F(1, 2), "mu": -1}, {"lam": 0, "mu": F(1, 3)}
+    return [
+        lb.SameDegreeSurface(A_NET, F(1, 2), F(-1, 2)),
+        lb.BezierSurface(np.zeros((2, 3, 4))),
+        trig.surface(A_NET, params_u=pu, params_v=pv),
+        trig.surface(A_NET, params_u=pu, lam_v=F(1, 3), family_v="same_degree"),
+    ]
+
+
+@pytest.mark.parametrize("index", range(4))
+def test_an_empty_batch_of_queries_gives_points_of_shape_0_d(index):
+    """A batch of k queries gives points (k, d); k = 0 gave (0,), and a (0, 2) batch for a
+    3-D surface was taken (the curves give (0, d) and name the width)."""
+    surf = _surfaces_of_every_kind()[index]
+    d = surf.dimension
+    r = surf.closest_point(np.zeros((0, d)))
+    assert r.point.shape == (0, d)
+    assert r.u.shape == r.v.shape == r.distance.shape == r.lower_bound.shape == (0,)
+    with pytest.raises(ValueError, match=rf"q: a batch of queries must have shape \(k, {d}\)"):
+        surf.closest_point(np.zeros((0, d - 1)))

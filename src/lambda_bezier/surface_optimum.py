@@ -467,9 +467,9 @@ def optimal_parameters(
             f"E_k as an int, got {energy!r}; a surface's net takes 'thin_plate' or 'membrane'"
         )
     energy = val.choice(energy, "energy", tuple(ENERGIES))
-    if np.ndim(net) == 4 and np.shape(net)[0] == 0:  # a batch's shape, but no net in it
+    if isinstance(net, np.ndarray) and net.ndim == 4 and not len(net):  # a batch, no net
         raise ValueError(
-            f"net: an empty batch of nets (shape {np.shape(net)}) has no optimum; "
+            f"net: an empty batch of nets (shape {net.shape}) has no optimum; "
             "pass at least one net"
         )
     if _param_families(family):  # several/indexed parameters, trigonometric...: certified

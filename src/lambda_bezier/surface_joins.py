@@ -22,7 +22,9 @@ own basis); ``join_surface(..., conditions="derived")`` applies those instead of
 the tests check that the two agree.
 
 `CompositeSurface` holds a grid of patches and reports, for every interior boundary, the
-continuity achieved, found exactly on the Bézier forms (Fractions for exact patches); where a
+continuity achieved, found exactly on the Bézier forms (Fractions for exact patches); its G1
+is the general one, tangent planes that agree along the boundary (B_u = μ A_u + ν A_v with
+μ > 0, _tangent_planes), of which join_surface's constant and linear factors are cases; where a
 patch of trigonometric, hyperbolic or mixed families takes part, in the families' own
 parameters (param_surface_report). Each patch lives on its own domain (the unit square, or
 its families' domains), and `evaluate` maps the global parameters onto it.

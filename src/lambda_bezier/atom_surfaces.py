@@ -53,6 +53,7 @@ from .surfaces import (
     _as_net,
     _distance_gap,
     _exact_net,
+    no_queries,
     paired,
 )
 
@@ -500,6 +501,8 @@ class AtomSurface(Surface):
             return super().closest_point(q, tol)
         tol = val.tolerance(tol)
         arr = np.asarray(val.real_array(q, "q"), dtype=float)
+        if arr.ndim == 2 and arr.shape[0] == 0:
+            return no_queries(arr, self.dimension)
         if arr.ndim == 2:
             return self._certified_closest(
                 np.array([val.as_point(r, self.dimension, "q") for r in arr]), tol

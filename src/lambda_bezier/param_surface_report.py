@@ -21,7 +21,9 @@ derivative on the boundary is Σ_j c^r_j b_j(v), c^r_j = Σ_i P_ij b_i^(r)(end).
   over it as Chebyshev points, in floats with the same tolerances: a sampled verdict, enough
   to tell continuity from its absence for the small bases here, not a proof.
 
-G1 is A_u = α B_u with one constant α > 0 along the boundary (join_surface's G1).
+G1 is A_u = α B_u with one constant α > 0 along the boundary (join_surface's G1), or in
+general tangent planes that agree along it, B_u = μ A_u + ν A_v with μ(v) > 0 (`g1_sampled`,
+_tangent_planes: at the 33 points, a sampled verdict).
 """
 
 from __future__ import annotations
@@ -155,6 +157,24 @@ def _sampled(surf: Any, axis: int, at_end: bool, order: int) -> list[list[Any]]:
     return out
 
 
+def g1_sampled(a: Any, b: Any, axis: int, eps: float) -> bool:
+    """Whether the tangent planes of `a` (at the end of direction `axis`) and `b` (at its
+    start) agree at the SAMPLES points along the boundary, B's side continuing A's (see
+    _tangent_planes.span_sampled; `eps` the tolerance on a first derivative)."""
+    from ._tangent_planes import span_sampled
+
+    lo, hi = _domain(a, 1 - axis)
+    k = np.arange(SAMPLES)
+    along = lo + (hi - lo) * 0.5 * (1 - np.cos(np.pi * k / (SAMPLES - 1)))
+    across = np.full(SAMPLES, _domain(a, axis)[1])
+    uv = (across, along) if axis == 0 else (along, across)
+    cross, tangent = ((1, 0), (0, 1)) if axis == 0 else ((0, 1), (1, 0))
+    first = np.asarray(a.derivative(*uv, *cross), dtype=float)
+    along_a = np.asarray(a.derivative(*uv, *tangent), dtype=float)
+    other = np.array(_sampled(b, axis, False, 1)[1], dtype=float)
+    return span_sampled(first, along_a, other, eps)
+
+
 def _close(a: list[Any], b: list[Any], tol: float) -> bool:
     return all(
         abs(x - y) <= tol for p, q in zip(a, b, strict=True) for x, y in zip(p, q, strict=True)
@@ -196,7 +216,11 @@ def continuity(a: Any, b: Any, axis: int, tol: float) -> str:
     if not _close(da[0], db[0], eps[0]):
         return "none"
     if not _close(da[1], db[1], eps[1]):
-        return "G1" if proportional(da[1], db[1], eps[1]) else "C0"
+        # the tangent planes are compared at sample points, in floats also for exact
+        # patches: the float tolerance on a first derivative
+        if proportional(da[1], db[1], eps[1]) or g1_sampled(a, b, axis, 10 * tol * scale[1]):
+            return "G1"
+        return "C0"
     return "C2" if _close(da[2], db[2], eps[2]) else "C1"
 
 

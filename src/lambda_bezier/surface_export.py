@@ -156,9 +156,9 @@ def _derivative_net(net: np.ndarray, du: int, dv: int) -> np.ndarray:
 
 def mesh(surf: Surface, tolerance: float) -> SurfaceMesh:
     """A uniform triangulation whose triangles deviate from the surface by at most
-    `tolerance`: on a triangle of legs h_u, h_v linear interpolation errs by at most
-    (M_uu h_u² + 2 M_uv h_u h_v + M_vv h_v²) / 2, with M the bounds of the second derivatives
-    from their Bézier nets."""
+    `tolerance`: on a right triangle of legs h_u, h_v linear interpolation errs by at most
+    (M_uu h_u² + 2 M_uv h_u h_v + M_vv h_v²) / 8, with M the bounds of the second derivatives
+    from their Bézier nets (see `_cell_size`)."""
     tol = val.tolerance(tolerance, "tolerance")
     if not isinstance(surf, Surface):
         raise TypeError(f"surf must be a lambda_bezier surface, got {type(surf).__name__}")
@@ -180,11 +180,7 @@ def mesh(surf: Surface, tolerance: float) -> SurfaceMesh:
         raise ValueError(
             "tolerance must be > 0 for a curved surface (only a flat one meshes exactly)"
         )
-    hu = math.sqrt(2 * tol / (3 * muu)) if muu else span_u
-    hv = math.sqrt(2 * tol / (3 * mvv)) if mvv else span_v
-    if muv and muv * hu * hv > tol / 3:
-        shrink = math.sqrt(tol / (3 * muv * hu * hv))
-        hu, hv = hu * shrink, hv * shrink
+    hu, hv = _cell_size(muu, muv, mvv, tol, span_u, span_v)
     if span_u / hu * (span_v / hv) > 25_000_000:
         raise ValueError(
             f"tolerance {tol} needs about {span_u / hu:.3g} x {span_v / hv:.3g} cells (at most "
@@ -200,9 +196,54 @@ def mesh(surf: Surface, tolerance: float) -> SurfaceMesh:
     c, d = idx[1:, 1:].ravel(), idx[:-1, 1:].ravel()
     faces = np.concatenate([np.stack([a, b, c], 1), np.stack([a, c, d], 1)])
     h1, h2 = span_u / nu, span_v / nv
-    bound = (muu * h1 * h1 + 2 * muv * h1 * h2 + mvv * h2 * h2) / 2
+    bound = (muu * h1 * h1 + 2 * muv * h1 * h2 + mvv * h2 * h2) / 8
     params = np.stack(np.meshgrid(us, vs, indexing="ij"), axis=-1).reshape(-1, 2)
     return SurfaceMesh(pts, params, faces, bound)
+
+
+def _cell_size(
+    muu: float, muv: float, mvv: float, tol: float, span_u: float, span_v: float
+) -> tuple[float, float]:
+    """The legs (h_u, h_v) of the largest cells whose triangles stay within `tol`.
+
+    At a point x of a triangle with vertices x_i and barycentric weights λ_i (Σ λ_i x_i = x),
+    Taylor's theorem from x to each vertex gives S(x) − Σ λ_i S(x_i) = −½ Σ λ_i D²S(ξ_i)[w_i, w_i],
+    w_i = x_i − x, so the error is at most ½ Σ λ_i (M_uu w_iu² + 2 M_uv |w_iu w_iv| + M_vv w_iv²).
+    Σ λ_i w_iu² is the variance of the vertices' u under the weights λ, at most h_u²/4 on a
+    triangle whose vertices' u span h_u (likewise v), and Σ λ_i |w_iu w_iv| is at most the
+    root of the two variances' product (Cauchy-Schwarz): the error is at most
+    (M_uu h_u² + 2 M_uv h_u h_v + M_vv h_v²) / 8, as for linear interpolation on a segment.
+    The fewest cells for that bound = tol have M_uu h_u² = M_vv h_v² (the product h_u h_v
+    fixed, the sum of the two squares least)."""
+    budget = 8 * tol * (1 - 1e-9)  # the bound stays below tol after its own rounding
+    if muu and mvv:
+        k2 = budget / (2 + 2 * muv / math.sqrt(muu * mvv))
+        hu, hv = math.sqrt(k2 / muu), math.sqrt(k2 / mvv)
+        if hu > span_u:  # one direction needs no cut: give the other all the budget
+            hu = span_u
+            hv = _leg(mvv, 2 * muv * hu, budget - muu * hu * hu)
+        elif hv > span_v:
+            hv = span_v
+            hu = _leg(muu, 2 * muv * hv, budget - mvv * hv * hv)
+    elif muu:  # straight in v: v needs cuts only for the twist
+        hv = span_v
+        hu = _leg(muu, 2 * muv * hv, budget)
+    elif mvv:
+        hu = span_u
+        hv = _leg(mvv, 2 * muv * hu, budget)
+    elif muv:  # a bilinear twist: h_u h_v = 4 tol / M_uv, square cells of the domain's shape
+        scale = math.sqrt(budget / (2 * muv * span_u * span_v))
+        hu, hv = span_u * scale, span_v * scale
+    else:
+        return span_u, span_v
+    return min(hu, span_u), min(hv, span_v)
+
+
+def _leg(square: float, linear: float, budget: float) -> float:
+    """The positive h with square·h² + linear·h = budget (budget > 0)."""
+    if not square:
+        return budget / linear if linear else math.inf
+    return 2 * budget / (linear + math.sqrt(linear * linear + 4 * square * budget))
 
 
 def to_mesh_file(surf: Surface, path: str | Path, tolerance: float) -> Path:

@@ -22,7 +22,9 @@ own basis); ``join_surface(..., conditions="derived")`` applies those instead of
 the tests check that the two agree.
 
 `CompositeSurface` holds a grid of patches and reports, for every interior boundary, the
-continuity achieved, found exactly on the Bézier forms (Fractions for exact patches); where a
+continuity achieved, found exactly on the Bézier forms (Fractions for exact patches); its G1
+is the general one, tangent planes that agree along the boundary (B_u = μ A_u + ν A_v with
+μ > 0, _tangent_planes), of which join_surface's constant and linear factors are cases; where a
 patch of trigonometric, hyperbolic or mixed families takes part, in the families' own
 parameters (param_surface_report). Each patch lives on its own domain (the unit square, or
 its families' domains), and `evaluate` maps the global parameters onto it.
@@ -611,10 +613,26 @@ class CompositeSurface:
                 _proportional(da[1], db[1], tol * 10)
                 or _linear_factor(da[1], db[1], tol * 10)  # B_u = μ A_u, B after A
                 or _linear_factor(db[1], da[1], tol * 10)  # A_u = μ B_u, B before A (u0, v0)
+                or self._tangent_planes_agree(a, b, axis, da, db, tol * 10)
             ):
                 return "G1"
             return "C0"
         return "C2" if _same(da[2], db[2], tol * 100) else "C1"
+
+    @staticmethod
+    def _tangent_planes_agree(
+        a: Surface, b: Surface, axis: int, da: list[Any], db: list[Any], eps: float
+    ) -> bool:
+        """G1 in general: B_u = μ A_u + ν A_v with μ(v) > 0 along the boundary (the tangent
+        planes agree, B on the far side), μ and ν any functions of v; exact for exact
+        patches (_tangent_planes.span_exact), else at sample points."""
+        from ._tangent_planes import span_exact  # on call: import time (#29)
+
+        if eps == 0:
+            n = len(da[0]) - 1
+            tangent = _apply(hodograph_matrix(n), da[0]) if n else [tuple(0 * x for x in da[0][0])]
+            return span_exact(da[1], tangent, db[1])
+        return bool(param_surface_report.g1_sampled(a, b, axis, eps))
 
     def evaluate(self, u: float, v: float) -> np.ndarray:
         """S at global parameters u in [0, rows], v in [0, cols]."""

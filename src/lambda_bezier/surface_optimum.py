@@ -467,6 +467,10 @@ def optimal_parameters(
             f"E_k as an int, got {energy!r}; a surface's net takes 'thin_plate' or 'membrane'"
         )
     energy = val.choice(energy, "energy", tuple(ENERGIES))
+    if isinstance(net, np.ndarray) and net.ndim == 4 and not len(net):  # a batch, no net
+        raise ValueError(
+            f"net: an empty batch of nets (shape {net.shape}) has no optimum; pass at least one net"
+        )
     if _param_families(family):  # several/indexed parameters, trigonometric...: certified
         # the certified engine (box_bernstein, _optimal_box) loads on first use
         from .param_surface_optimum import optimal_parameters as param_optimal_parameters

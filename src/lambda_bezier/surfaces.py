@@ -178,6 +178,21 @@ def paired(
     return uu, vv, su and sv
 
 
+def no_queries(q: np.ndarray, dimension: int) -> SurfaceClosestPoint:
+    """The answer to an empty batch of queries (0, d): empty arrays, the points (0, d), as
+    numpy and the curves give; a batch of another width is named."""
+    from ._surface_results import SurfaceClosestPoint
+
+    if q.shape[1] != dimension:
+        raise ValueError(
+            f"q: a batch of queries must have shape (k, {dimension}), got shape {q.shape}"
+        )
+    empty = np.empty(0)
+    return SurfaceClosestPoint(
+        empty, empty.copy(), np.empty((0, dimension)), empty.copy(), empty.copy()
+    )
+
+
 class Surface:
     """A tensor-product surface of any family (one, or one per direction).
 
@@ -534,6 +549,8 @@ class Surface:
         tol = val.tolerance(tol)
         arr = np.asarray(val.real_array(q, "q"), dtype=float)
         if arr.ndim == 2:
+            if arr.shape[0] == 0:
+                return no_queries(arr, self.dimension)
             rows = [val.as_point(row, self.dimension, "q") for row in arr]
             found = [self._closest(row, tol) for row in rows]
             return SurfaceClosestPoint(

@@ -25,13 +25,15 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Callable
+from dataclasses import dataclass
 from fractions import Fraction
 from functools import cache
 from math import gcd, lcm
 
+import flint
 import sympy as sp
 
-from ..algebra.ratfunc import RationalFunction, from_expr
+from ..algebra.ratfunc import RationalFunction, context, from_expr
 from ..grammar import FUNCTIONS, OPERATORS, SYMBOLS, ParseError, parse_formula
 from . import cbezier as cb
 from .cbezier import COS, POW, SIN, A, Atom, C, CDefinition, Elem, S, T
@@ -47,6 +49,15 @@ Nonvanishing = Callable[[CDefinition, sp.Expr], dict]
 
 def is_recursion_table(table: dict) -> bool:
     return "seed" in table or "recursion" in table
+
+
+@dataclass(frozen=True)
+class COrders:
+    """A C-Bezier family of several degrees: one CDefinition per degree."""
+
+    name: str
+    digest: str
+    orders: tuple[CDefinition, ...]
 
 
 def read_orders(
@@ -179,27 +190,78 @@ def _from_sympy(e: sp.Expr, hyperbolic: bool) -> Coef:
     return from_expr(sp.sympify(e).xreplace(sub), _VARS)
 
 
-def _back(terms: dict, degree: int, hyperbolic: bool) -> sp.Poly:
+def _circle(p: flint.fmpq_mpoly, hyperbolic: bool) -> flint.fmpq_mpoly:
+    """p(A, S, C) with S^2 -> 1 - C^2 (C^2 - 1 for the hyperbola): degree <= 1 in S."""
+    if p.degrees()[1] < 2:
+        return p
+    ctx = p.context()
+    a, s, c = ctx.gens()
+    square = c**2 - 1 if hyperbolic else 1 - c**2
+    out = ctx.from_dict({})
+    for (i, j, k), coef in zip(p.monoms(), p.coeffs(), strict=True):
+        out += coef * a**i * c**k * square ** (j // 2) * s ** (j % 2)
+    return out
+
+
+def _back(terms: dict, degree: int, hyperbolic: bool) -> flint.fmpq_mpoly:
     """sum c A^i w^j times (1 + C)^degree with w = S/(1 + C), reduced modulo the circle."""
-    poly = sp.Integer(0)
-    for (i, j), c in terms.items():
-        poly += sp.Rational(c.numerator, c.denominator) * A**i * S**j * (1 + C) ** (degree - j)
-    return cb._reduce_poly(poly, C**2 - 1 if hyperbolic else 1 - C**2)
+    ctx = context(3)
+    a, s, c = ctx.gens()
+    out = ctx.from_dict({})
+    for (i, j), v in terms.items():
+        out += flint.fmpq(v.numerator, v.denominator) * a**i * s**j * (1 + c) ** (degree - j)
+    return _circle(out, hyperbolic)
 
 
 def _to_sympy(x: Coef, hyperbolic: bool) -> sp.Expr:
-    """The value in (A, S, C): numerator and denominator over (1 + C)^d (d their degree in
-    w) reduced modulo the circle, with integer coefficients and no common integer factor."""
+    """The value in (A, S, C) with a denominator free of S: numerator and denominator over
+    (1 + C)^d (d their degree in w), times the conjugate D0 - S D1 of the denominator
+    D0 + S D1, reduced modulo the circle and cancelled (FLINT). In Q(A, C)(S) = Q(A, C) +
+    S Q(A, C) that is one form per value (up to a number, fixed below): S/(1 - C) rather than
+    (1 + C)/S, which would put a spurious zero of sin at alpha = pi into the denominator."""
     num, den = x.as_pair()
     if not num:
         return sp.Integer(0)
     degree = max(m[1] for m in (*num, *den))
-    top, bottom = (sp.Poly(_back(t, degree, hyperbolic), A, S, C) for t in (num, den))
-    scale = lcm(*(int(c.q) for c in (*top.coeffs(), *bottom.coeffs())))
-    common = gcd(*(int(c * scale) for c in (*top.coeffs(), *bottom.coeffs())))
-    sign = -1 if bottom.coeffs()[0] < 0 else 1
-    factor = sp.Rational(sign * scale, common)
-    return (top * factor).as_expr() / (bottom * factor).as_expr()
+    top, bottom = (_back(t, degree, hyperbolic) for t in (num, den))
+    s = context(3).gens()[1]
+    conj = bottom.subs({"x1": 0}) - s * bottom.derivative(1)  # D0 - S D1 (D has S^<=1)
+    value = RationalFunction(_circle(top * conj, hyperbolic), _circle(bottom * conj, hyperbolic))
+    n_terms, d_terms = value.as_pair()
+    scale = lcm(*(c.denominator for c in (*n_terms.values(), *d_terms.values())))
+    common = gcd(*(int(c * scale) for c in (*n_terms.values(), *d_terms.values())))
+
+    def of(terms: dict) -> sp.Expr:
+        return sp.Add(
+            *(
+                sp.Integer(int(v * scale) // common) * A**i * S**j * C**k
+                for (i, j, k), v in sorted(terms.items())
+            )
+        )
+
+    return of(n_terms) / of(d_terms)
+
+
+def _passes_pi(defn: CDefinition) -> bool:
+    return bool(defn.lo < sp.pi < defn.hi or (defn.hi == sp.pi and defn.hi_closed))
+
+
+def _numerator(x: Coef, hyperbolic: bool) -> sp.Expr:
+    """The numerator N(A, w) of a value (coprime to its denominator: FLINT cancelled it in
+    Q(A, w)) as a function of (A, S, C) with the same zeros for alpha in (0, 2 pi): w =
+    (1 - C)/S times S^d (d = its degree in w), whose value at alpha = pi is N's leading
+    coefficient in w (the value there of N/w^d: w is infinite at pi); w = S/(1 + C) times
+    (1 + C)^d for tanh(alpha/2)."""
+    terms, _ = x.as_pair()
+    d = max(m[1] for m in terms)
+    out = sp.Integer(0)
+    for (i, j), v in terms.items():
+        coef = sp.Rational(v.numerator, v.denominator) * A**i
+        if hyperbolic:
+            out += coef * S**j * (1 + C) ** (d - j)
+        else:
+            out += coef * (1 - C) ** j * S ** (d - j)
+    return cb._reduce_poly(out, C**2 - 1 if hyperbolic else 1 - C**2)
 
 
 def _fconst(value: int | Fraction) -> Coef:
@@ -370,8 +432,13 @@ def _evaluate(
         where = f"{_show(call)} at n = {env[_N]}"
         if tot.is_zero():
             raise fail("recursion", f"{where}: the total (the integral over the domain) is 0")
-        num = sp.numer(sp.together(_to_sympy(tot, hyp)))
-        key = sp.factor(num)
+        if not hyp and _passes_pi(below) and tot.num.degrees()[1] < tot.den.degrees()[1]:
+            raise fail(
+                "recursion",
+                f"{where}: the total {_show(sp.factor(_to_sympy(tot, hyp)))} tends to 0 at "
+                f"{below.parameter} = pi, inside the range {below.range_text}",
+            )
+        key = sp.factor(_numerator(tot, hyp))
         if nonvanishing is None or key in checked:
             return
         verdict = nonvanishing(below, key)

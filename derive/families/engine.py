@@ -162,13 +162,14 @@ def _instantiate(
     raise DefinitionError(f"cannot evaluate {e} in a basis definition")
 
 
-def _integral(value: RationalFunction, ring: _Field, call: sp.Basic) -> RationalFunction:
+def _integral(value: RationalFunction, ring: _Field, call: sp.Basic, env: dict) -> RationalFunction:
     """The integral from 0 to t of a polynomial in t (coefficients rational functions of the
     parameters): anything else leaves the space of polynomials."""
     if value.den.degrees()[0] != 0:
         raise DefinitionError(
-            f"[family] recursion: {call}: the integrand {sp.factor(ring.expr(value))} is not a "
-            "polynomial in t, so its integral is not in the family's space (polynomials in t)"
+            f"[family] recursion: {call.subs(env)}: the integrand "
+            f"{sp.factor(ring.expr(value))} is not a polynomial in t, so its integral is not "
+            "in the family's space (polynomials in t)"
         )
     return RationalFunction(value.num.integral(0), value.den)
 
@@ -183,12 +184,12 @@ def _operator(e: sp.Basic, env: dict, ring: _Field, lookup, totals) -> RationalF
     name = e.func.__name__
     if name == "normalized" and inner.is_zero():
         return inner  # b outside 0..n: delta * b is 0 by the recursion's convention
-    primitive = _integral(inner, ring, e)
+    primitive = _integral(inner, ring, e, env)
     if name == "integral":
         return primitive
     total = _at_one(primitive, ring)
     if totals is not None:
-        totals(total, e)
+        totals(total, e.subs(env))
     return total if name == "total" else inner / total
 
 

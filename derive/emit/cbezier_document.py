@@ -17,6 +17,7 @@ from pathlib import Path
 
 from ..families.cbezier import CDefinition, read_table
 from ..families.cbezier_recursion import COrders, is_recursion_table, read_orders
+from ..families.definition import DefinitionError
 from ..formulas import cbezier as F
 from ..formulas.cbezier_nonnegative import nonvanishing
 from ..formulas.cbezier_series import small_alpha
@@ -104,8 +105,20 @@ def derive_orders(family: COrders) -> dict:
         "kind": "frequency-orders",
         "parameter": first.parameter,
         "degrees": [o.degree for o in family.orders],
-        "orders": {str(o.degree): derive(o) for o in family.orders},
+        "orders": {str(o.degree): _derive_order(o) for o in family.orders},
     }
+
+
+def _derive_order(defn: CDefinition) -> dict:
+    try:
+        return derive(defn)
+    except ValueError as exc:  # formulas/cbezier.py's refusal, as the definition's error
+        if isinstance(exc, DefinitionError):
+            raise
+        raise DefinitionError(
+            f"[family], key degrees: at degree {defn.degree}: {exc} (the recursion itself "
+            "evaluates; the document is derived for the degrees below this one)"
+        ) from None
 
 
 def render(defn: CDefinition | COrders) -> str:

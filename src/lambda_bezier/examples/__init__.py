@@ -21,8 +21,8 @@ the installed package).
 >>> from lambda_bezier import examples
 >>> examples.names()
 ('c_bezier_cubic.derived.json', 'c_bezier_cubic.toml', 'c_bezier_orders.derived.json',
- 'c_bezier_orders.toml', 'han_trig_cubic.derived.json', 'han_trig_cubic.toml', 'nouri_saeidian.derived.json',
- 'nouri_saeidian.toml', 'two_shape_cubic.derived.json',
+ 'c_bezier_orders.toml', 'han_trig_cubic.derived.json', 'han_trig_cubic.toml',
+ 'nouri_saeidian.derived.json', 'nouri_saeidian.toml', 'two_shape_cubic.derived.json',
  'two_shape_cubic.toml', 'user_paper.toml')
 >>> examples.path("nouri_saeidian.toml").name
 'nouri_saeidian.toml'

@@ -16,7 +16,10 @@ import json
 from pathlib import Path
 
 from ..families.cbezier import CDefinition, read_table
+from ..families.cbezier_recursion import COrders, is_recursion_table, read_orders
+from ..families.definition import DefinitionError
 from ..formulas import cbezier as F
+from ..formulas.cbezier_nonnegative import nonvanishing
 from ..formulas.cbezier_series import small_alpha
 
 FORMAT = 5
@@ -90,16 +93,54 @@ def _derive(defn: CDefinition) -> dict:
     }
 
 
-def render(defn: CDefinition) -> str:
-    return json.dumps(derive(defn), indent=1, ensure_ascii=False) + "\n"
+def derive_orders(family: COrders) -> dict:
+    """A family of several degrees (a seed and an integral recursion): one document per
+    degree under "orders", each what `derive` gives for that degree alone."""
+    first = family.orders[0]
+    return {
+        "format": FORMAT,
+        "family": family.name,
+        "definition_sha256": family.digest,
+        "title": first.title,
+        "kind": "frequency-orders",
+        "parameter": first.parameter,
+        "degrees": [o.degree for o in family.orders],
+        "orders": {str(o.degree): _derive_order(o) for o in family.orders},
+    }
 
 
-def read(table: dict, where: str) -> CDefinition:
+def _derive_order(defn: CDefinition) -> dict:
+    try:
+        return derive(defn)
+    except ValueError as exc:  # formulas/cbezier.py's refusal, as the definition's error
+        if isinstance(exc, DefinitionError):
+            raise
+        raise DefinitionError(
+            f"[family], key degrees: at degree {defn.degree}: {exc} (the recursion itself "
+            "evaluates; the document is derived for the degrees below this one)"
+        ) from None
+
+
+def render(defn: CDefinition | COrders) -> str:
+    doc = derive_orders(defn) if isinstance(defn, COrders) else derive(defn)
+    return json.dumps(doc, indent=1, ensure_ascii=False) + "\n"
+
+
+def read(table: dict, where: str) -> CDefinition | COrders:
+    if is_recursion_table(table):
+        orders = read_orders(table, where, nonvanishing)
+        return COrders(orders[0].name, orders[0].digest, orders)
     return read_table(table, where)
 
 
 def summary(doc: dict) -> str:
-    """The verdicts as `derive --family` prints them."""
+    """The verdicts as `derive --family` prints them (each degree's in turn)."""
+    if "orders" in doc:
+        return "\n".join(_summary(doc["orders"][str(n)]) for n in doc["degrees"])
+    return _summary(doc)
+
+
+def _summary(doc: dict) -> str:
     v = doc["verdicts"]
     ind = v["independent"]
     non = v["nonnegative"]

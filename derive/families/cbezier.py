@@ -67,6 +67,9 @@ class CDefinition:
     functions: tuple[tuple[tuple[Atom, sp.Expr], ...], ...]  # exact, in t on [0, alpha]
     digest: str
     domain_text: str
+    # a degree derived by an integral recursion (cbezier_recursion.py): its functions written
+    # out as SymPy expressions in t and A (the texts would be parsed again otherwise)
+    written_exprs: tuple[sp.Expr, ...] | None = None
 
     @property
     def degree(self) -> int:
@@ -82,6 +85,8 @@ class CDefinition:
     def written(self) -> list[sp.Expr]:
         """The functions as written (parsed again by the grammar), in t on [0, alpha] with
         alpha as A: the natural form for ball enclosures (it cancels less than the atoms)."""
+        if self.written_exprs is not None:
+            return list(self.written_exprs)
         alpha = sp.Symbol(self.parameter)
         out = []
         for text in self.functions_texts:
@@ -237,7 +242,7 @@ def is_frequency_family(table: object) -> bool:
     domain = table.get("domain")
     if isinstance(domain, str) and any(re.search(rf"\b{re.escape(p)}\b", domain) for p in names):
         return True
-    functions = table.get("functions")
+    functions = table.get("functions", table.get("seed"))
     if not isinstance(functions, list):
         return False
     calls = re.compile(r"\b(sin|cos|sinh|cosh|exp)\s*\(([^()]*)\)")

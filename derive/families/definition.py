@@ -20,6 +20,7 @@ from ..grammar import (
     BUILTINS,
     ELEMENTARY,
     FUNCTIONS,
+    OPERATORS,
     SYMBOLS,
     Interval,
     ParseError,
@@ -244,7 +245,12 @@ def _parse_basis(text: str, parameters: tuple[str, ...], recursive: bool = False
     else:
         symbols.update({name: sp.Symbol(name) for name in parameters})
     functions = {"b": FUNCTIONS["b"]} if recursive else {}
-    return parse_formula(text, symbols, functions, elementary=True)
+    return parse_formula(text, symbols, functions, elementary=True, operators=recursive)
+
+
+def is_operator(call: sp.Basic) -> bool:
+    """integral(f), total(f), normalized(f) of a recursion (derive/grammar, OPERATORS)."""
+    return isinstance(call, sp.core.function.AppliedUndef) and call.func in OPERATORS.values()
 
 
 def _is_elementary(expr: sp.Basic) -> bool:
@@ -559,6 +565,8 @@ def _check_formula(fail, key: str, text: str, names: tuple[str, ...], recursive:
     if not recursive and expr.atoms(sp.core.function.AppliedUndef):
         raise fail(key, "a closed formula calls no functions (b(...) belongs in `recursion`)")
     for call in expr.atoms(sp.core.function.AppliedUndef):
+        if is_operator(call):
+            continue
         if len(call.args) != 3 or call.args[2] != _T:
             raise fail(key, f"{call} must be b(index, degree, t)")
 

@@ -45,6 +45,7 @@ from .definition import (
     ENDPOINT_ORDERS,
     Definition,
     DefinitionError,
+    is_operator,
 )
 
 
@@ -106,9 +107,18 @@ class _Field:
         return of(num) / of(den)
 
 
-def _instantiate(e: sp.Basic, env: dict, ring: _Field, lookup=None) -> RationalFunction:
+def _instantiate(
+    e: sp.Basic, env: dict, ring: _Field, lookup=None, totals=None
+) -> RationalFunction:
     """e with n and i replaced by integers, evaluated in the field Q(t, lam): binomials with
-    the papers' convention, powers bounded; b(i', n', t) of a recursion through lookup."""
+    the papers' convention, powers bounded; b(i', n', t) of a recursion through lookup; the
+    integral operators of a recursion (integral, total, normalized) on [0, 1], each total
+    passed to `totals` (which refuses one that vanishes somewhere in the range)."""
+    if is_operator(e):
+        return _operator(e, env, ring, lookup, totals)
+    if isinstance(e, sp.KroneckerDelta):
+        a, b = (_integer(_instantiate(x, env, ring), "argument of kronecker", ring) for x in e.args)
+        return ring(int(a == b))
     if isinstance(e, sp.core.function.AppliedUndef):
         if lookup is None:
             raise DefinitionError(f"cannot evaluate {e} in a closed formula")
@@ -134,15 +144,15 @@ def _instantiate(e: sp.Basic, env: dict, ring: _Field, lookup=None) -> RationalF
     if e.is_Add:
         out = ring(0)
         for a in e.args:
-            out += _instantiate(a, env, ring, lookup)
+            out += _instantiate(a, env, ring, lookup, totals)
         return out
     if e.is_Mul:
         out = ring(1)
         for a in e.args:
-            out *= _instantiate(a, env, ring, lookup)
+            out *= _instantiate(a, env, ring, lookup, totals)
         return out
     if e.is_Pow:
-        base = _instantiate(e.base, env, ring, lookup)
+        base = _instantiate(e.base, env, ring, lookup, totals)
         ex = _integer(_instantiate(e.exp, env, ring), "exponent", ring)
         if abs(ex) > MAX_EXPONENT:
             raise DefinitionError(f"an exponent {ex} in the basis")
@@ -150,6 +160,37 @@ def _instantiate(e: sp.Basic, env: dict, ring: _Field, lookup=None) -> RationalF
             raise DefinitionError("the basis divides by zero")
         return base**ex
     raise DefinitionError(f"cannot evaluate {e} in a basis definition")
+
+
+def _integral(value: RationalFunction, ring: _Field, call: sp.Basic, env: dict) -> RationalFunction:
+    """The integral from 0 to t of a polynomial in t (coefficients rational functions of the
+    parameters): anything else leaves the space of polynomials."""
+    if value.den.degrees()[0] != 0:
+        raise DefinitionError(
+            f"[family] recursion: {call.subs(env)}: the integrand "
+            f"{sp.factor(ring.expr(value))} is not a polynomial in t, so its integral is not "
+            "in the family's space (polynomials in t)"
+        )
+    return RationalFunction(value.num.integral(0), value.den)
+
+
+def _at_one(value: RationalFunction, ring: _Field) -> RationalFunction:
+    one = flint.fmpq(1)
+    return RationalFunction(value.num.subs({"x0": one}), value.den)
+
+
+def _operator(e: sp.Basic, env: dict, ring: _Field, lookup, totals) -> RationalFunction:
+    inner = _instantiate(e.args[0], env, ring, lookup, totals)
+    name = e.func.__name__
+    if name == "normalized" and inner.is_zero():
+        return inner  # b outside 0..n: delta * b is 0 by the recursion's convention
+    primitive = _integral(inner, ring, e, env)
+    if name == "integral":
+        return primitive
+    total = _at_one(primitive, ring)
+    if totals is not None:
+        totals(total, e.subs(env))
+    return total if name == "total" else inner / total
 
 
 def _integer(x: RationalFunction, what: str, ring: _Field) -> int:
@@ -206,9 +247,45 @@ def _basis_values_lam(defn: Definition, degree: int) -> tuple:
         return below[idx] if 0 <= idx <= deg else field(0)
 
     rec = defn.recursion
+
+    def totals(total: RationalFunction, call: sp.Basic) -> None:
+        _check_total(defn, field, total, call, degree)
+
     return tuple(
-        _instantiate(rec, {_N: degree, _I: idx}, field, lookup) for idx in range(degree + 1)
+        _instantiate(rec, {_N: degree, _I: idx}, field, lookup, totals) for idx in range(degree + 1)
     )
+
+
+def _check_total(
+    defn: Definition, field: _Field, total: RationalFunction, call: sp.Basic, degree: int
+) -> None:
+    """A total (an integral over [0, 1]) the recursion divides by or uses: a function of the
+    parameters that must not vanish anywhere in their range (decided exactly: the real
+    roots of its numerator in the closed range, then the ends that are open)."""
+    where = f"[family] recursion: {call} at n = {degree}"
+    if total.is_zero():
+        raise DefinitionError(f"{where}: the total is 0 (the integral over [0, 1] vanishes)")
+    value = field.expr(total)
+    if value.has(_T):  # pragma: no cover - a total is evaluated at t = 1
+        raise AssertionError(value)
+    if total.constant_value() is not None:
+        return
+    if defn.several:
+        raise DefinitionError(
+            f"{where}: the total {value} depends on the parameters; whether it vanishes "
+            "somewhere in a box of several parameters is not decided (one parameter only)"
+        )
+    num = sp.Poly(sp.numer(sp.together(value)), _LAM)
+    lo, hi = (sp.Rational(x.numerator, x.denominator) for x in (defn.lo, defn.hi))
+    for root in num.real_roots():
+        inside = (lo < root or (defn.lo_closed and root == lo)) and (
+            root < hi or (defn.hi_closed and root == hi)
+        )
+        if inside:
+            raise DefinitionError(
+                f"{where}: the total {defn.show(sp.factor(value))} is 0 at "
+                f"{defn.parameter} = {root}, inside the range {defn.range_text}"
+            )
 
 
 @cache

@@ -38,7 +38,13 @@ from .formula import (
     MAX_FREQUENCY as MAX_FREQUENCY,
 )
 from .formula import (
+    MAX_OPERATOR_NESTING as MAX_OPERATOR_NESTING,
+)
+from .formula import (
     MAX_TEXT as MAX_TEXT,
+)
+from .formula import (
+    OPERATORS as OPERATORS,
 )
 from .formula import (
     SYMBOL_NAMES as SYMBOL_NAMES,

@@ -82,6 +82,18 @@ ELEMENTARY: dict[str, sp.FunctionClass] = {
     "exp": sp.exp,
 }
 MAX_FREQUENCY = 1_000  # numerator and denominator of the rate w in sin(w*t)
+# the integral operators of a family's `recursion` (bases defined by integral recursions,
+# Chen and Wang 2003), only with `operators=True`; each takes one function of t:
+#   integral(f)   = the integral of f from the domain's start to t (f's t is the variable)
+#   total(f)      = the integral of f over the whole domain (a number: a function of the
+#                   parameters only)
+#   normalized(f) = f / total(f), and 0 when f is the zero function (b(i, n, t) outside
+#                   0..n: the convention that makes delta * b vanish there)
+#   kronecker(a, b) = 1 when the integers a and b are equal, else 0 (the [i = 0] term)
+OPERATORS: dict[str, sp.FunctionClass] = {
+    name: sp.Function(name) for name in ("integral", "total", "normalized")
+}
+MAX_OPERATOR_NESTING = 4  # integral(integral(...)) nested deeper than this is refused
 
 
 # --------------------------------------------------------------------------- tokens
@@ -173,7 +185,10 @@ class _Parser:
         functions: Mapping,
         elementary: bool = False,
         frequency: frozenset[sp.Symbol] = frozenset(),
+        operators: bool = False,
     ):
+        self.operators = operators
+        self.operator_depth = 0
         self.elementary = elementary
         self.frequency = frequency
         self.text = text
@@ -351,6 +366,23 @@ class _Parser:
             args = self.arguments()
             self.depth -= 1
             return self.elementary_call(name, args, tok)
+        if self.operators and (name in OPERATORS or name == "kronecker"):
+            if not called:
+                raise self.error(f"{name!r} is an operator and must be called", tok)
+            self.pos += 1
+            self.enter()
+            nested = name in OPERATORS
+            if nested:
+                self.operator_depth += 1
+                if self.operator_depth > MAX_OPERATOR_NESTING:
+                    raise self.error(
+                        f"integral operators nested deeper than {MAX_OPERATOR_NESTING} levels",
+                        tok,
+                    )
+            args = self.arguments()
+            self.operator_depth -= nested
+            self.depth -= 1
+            return self.operator_call(name, args, tok)
         if name in self.functions or name in BUILTINS:
             if not called:
                 raise self.error(f"{name!r} is a function and must be called", tok)
@@ -433,6 +465,25 @@ class _Parser:
                     tok,
                 )
         return ELEMENTARY[name](arg)
+
+    def operator_call(self, name: str, args: list, tok: Token):
+        """integral(f), total(f), normalized(f): one function of t; kronecker(a, b): two
+        integer expressions (in i, n)."""
+        count = 2 if name == "kronecker" else 1
+        if len(args) != count or any(isinstance(a, _Tuple) or _is_bool(a) for a in args):
+            what = "two integer expressions" if count == 2 else "one function of t"
+            raise self.error(f"{name} takes {what}, got {len(args)} argument(s)", tok)
+        if name == "kronecker":
+            t = self.symbols.get("t")
+            for a in args:
+                if t is not None and a.has(t):
+                    raise self.error(
+                        f"kronecker({args[0]}, {args[1]}): its arguments are "
+                        "integers (in i and n), not functions of t",
+                        tok,
+                    )
+            return sp.KroneckerDelta(*args)
+        return OPERATORS[name](args[0])
 
     # ---- the built-in forms
     def builtin(self, name: str, args: list, tok: Token):
@@ -532,6 +583,7 @@ def parse_formula(
     *,
     elementary: bool = False,
     frequency: tuple[str, ...] = (),
+    operators: bool = False,
 ) -> sp.Basic:
     """A formula of the records grammar as a SymPy object; ParseError for anything else.
 
@@ -539,7 +591,9 @@ def parse_formula(
     parameter symbol, for instance). `elementary`: also `pi` and sin, cos, sinh, cosh, exp
     of a rational multiple of t or of pi*t (family definitions, issue #30). `frequency`: the
     names (in `symbols`) of parameters that may also stand in those arguments, as
-    a*t + b*alpha + c*alpha*t with rationals a, b, c (C-Bezier families)."""
+    a*t + b*alpha + c*alpha*t with rationals a, b, c (C-Bezier families). `operators`: also
+    integral(f), total(f), normalized(f) and kronecker(a, b) (a family's `recursion`, see
+    OPERATORS), nested at most MAX_OPERATOR_NESTING deep."""
     if not isinstance(text, str):
         raise ParseError(f"a formula must be a string, got {type(text).__name__}")
     if len(text) > MAX_TEXT:
@@ -553,6 +607,7 @@ def parse_formula(
         FUNCTIONS if functions is None else functions,
         elementary,
         frozenset(table[name] for name in frequency),
+        operators,
     )
     try:
         return parser.parse()

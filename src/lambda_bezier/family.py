@@ -648,6 +648,10 @@ def _derived_family(
     title = title if isinstance(title, str) else ""
     if "indexed" in doc:
         return IndexedFamily(doc, definition, title, table, str(doc_path))
+    if doc.get("format") == 5 and "orders" in doc:  # C-Bezier of several degrees
+        from .cbezier_orders import CBezierOrders
+
+        return CBezierOrders(doc, str(doc_path), title, table)  # type: ignore[return-value]
     if doc.get("format") == 5:  # C-Bezier on [0, alpha] (lambda_bezier.cbezier_family)
         from .cbezier_family import CBezierFamily
 

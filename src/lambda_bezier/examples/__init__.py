@@ -8,6 +8,8 @@
   parameters), each with its ``.derived.json``: families as issue #30 writes them.
 - ``c_bezier_cubic.toml`` (Zhang's C-Bezier cubic on [0, alpha]: the parameter is the length
   of the domain and sits inside sin and cos), with its ``.derived.json``.
+- ``c_bezier_orders.toml`` (Chen and Wang's C-Bezier bases of degrees 2 and 3 from the
+  order-2 trigonometric basis by an integral recursion), with its ``.derived.json``.
 - ``user_paper.toml``: a records file about the built-in families, with true and
   deliberately misprinted records.
 
@@ -18,9 +20,9 @@ the installed package).
 
 >>> from lambda_bezier import examples
 >>> examples.names()
-('c_bezier_cubic.derived.json', 'c_bezier_cubic.toml', 'han_trig_cubic.derived.json',
- 'han_trig_cubic.toml', 'nouri_saeidian.derived.json',
- 'nouri_saeidian.toml', 'two_shape_cubic.derived.json',
+('c_bezier_cubic.derived.json', 'c_bezier_cubic.toml', 'c_bezier_orders.derived.json',
+ 'c_bezier_orders.toml', 'han_trig_cubic.derived.json', 'han_trig_cubic.toml',
+ 'nouri_saeidian.derived.json', 'nouri_saeidian.toml', 'two_shape_cubic.derived.json',
  'two_shape_cubic.toml', 'user_paper.toml')
 >>> examples.path("nouri_saeidian.toml").name
 'nouri_saeidian.toml'

@@ -34,6 +34,7 @@ if TYPE_CHECKING:
     from types import ModuleType
 
     from . import geometry as _geometry
+    from .hazmat.intersect import Intersection
 else:
 
     def _load_geometry() -> ModuleType:
@@ -581,6 +582,53 @@ class CompositeCurve:
     def torsion(self, u: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
         """Signed torsion in u of a 3D composite (see Curve.torsion)."""
         return _geometry.torsion(self, u, extrapolate=extrapolate)
+
+    # ------------------------------------------------------------------ intersections
+    intersects_curves = True  # a curve's intersect hands a composite here, s and t swapped
+
+    def _global_u(self, index: int, t: float) -> float:
+        """Segment `index`'s own t as the composite's u."""
+        return float(self._starts[index] + (t - self._own[index, 0]))
+
+    def intersect(self, other: object) -> list[Intersection]:
+        """Every intersection with a curve of any class or another composite, as
+        Intersection(s, t, kind) sorted by s: self(s) = other(t), s in this composite's u
+        (t in the other's own parameter, its u when it is a composite). Through each pair of
+        segments' own intersect; a hit at a joint, found as the end of one segment and the
+        start of the next, is reported once (hits within 1e-9 of the domains' lengths in
+        both parameters are one). A stretch shared across a joint is reported per pair of
+        segments, so its end pairs at that joint are listed too."""
+        from .hazmat.intersect import Intersection
+
+        if isinstance(other, CompositeCurve):
+            theirs = [(seg, other, j) for j, seg in enumerate(other.segments)]
+            span_b = float(other._starts[-1])
+        elif (
+            isinstance(other, Curve | AtomCurve)
+            or _own_domain(other)
+            or (getattr(type(other), "intersects_curves", False))
+        ):
+            theirs = [(other, None, 0)]
+            span_b = float(other.domain[1]) - float(other.domain[0])  # type: ignore[attr-defined]
+        else:
+            raise TypeError(f"other must be a curve or a composite, got {type(other).__name__}")
+        if other.dimension != self.dimension:  # type: ignore[attr-defined]
+            raise ValueError(
+                f"the curves have different dimensions ({self.dimension} and {other.dimension})"  # type: ignore[attr-defined]
+            )
+        hits: list[Intersection] = []
+        for i, seg in enumerate(self.segments):
+            for piece, owner, j in theirs:
+                for h in seg.intersect(piece):  # type: ignore[arg-type]
+                    t = float(h.t) if owner is None else owner._global_u(j, float(h.t))
+                    hits.append(Intersection(self._global_u(i, float(h.s)), t, h.kind))
+        hits.sort(key=lambda h: (h.s, h.t))
+        near_a, near_b = 1e-9 * float(self._starts[-1]), 1e-9 * span_b
+        kept: list[Intersection] = []
+        for h in hits:
+            if not any(abs(h.s - k.s) <= near_a and abs(h.t - k.t) <= near_b for k in kept):
+                kept.append(h)
+        return kept
 
     def _u(self, value: object, name: str) -> float:
         x = float(val.real_number(value, name))

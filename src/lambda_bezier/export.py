@@ -523,7 +523,10 @@ def to_dxf(obj: Shape, path: str | Path, *, tolerance: float | None = None) -> P
         weights = [float(w) for w in spline.weights]
         doc.modelspace().add_rational_spline(points, weights, degree=spline.degree, knots=knots)
     target = Path(path)
-    doc.saveas(target)
+    try:  # as to_step: the path named, not ezdxf's own traceback
+        doc.saveas(target)
+    except OSError as exc:
+        raise OSError(f"could not write the DXF file {target}: {exc.strerror or exc}") from exc
     return target
 
 

@@ -213,8 +213,18 @@ def _energy_1(curve, alpha: float) -> float:
     return float(mpmath.quad(lambda t: float(np.sum(curve.derivative(float(t)) ** 2)), [0, alpha]))
 
 
-def test_cli_prints_a_c_bezier_optimum_at_pi_as_pi(capsys):
-    from lambda_bezier import cli
+def test_cli_prints_a_c_bezier_optimum_at_pi_as_pi(capsys, monkeypatch):
+    from lambda_bezier import cli, energy
+
+    # the certified search (~1.5 s of CPU) once for the two outputs
+    search, found = energy.optimal_parameters, []
+
+    def once(*args, **kwargs):
+        if not found:
+            found.append(search(*args, **kwargs))
+        return found[0]
+
+    monkeypatch.setattr(energy, "optimal_parameters", once)
 
     path = str(examples.path("c_bezier_cubic.toml"))
     points = ["0,0", "1,2", "3,2", "4,0"]

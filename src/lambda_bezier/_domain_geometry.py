@@ -10,7 +10,7 @@ pattern of mypy's documentation).
 from __future__ import annotations
 
 from fractions import Fraction
-from typing import TYPE_CHECKING, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 import numpy.typing as npt
@@ -130,8 +130,8 @@ class DomainGeometry(ControlPointCurve):
         rat = self._rational_or_none()
         if rat is not None:
             return rat.segment(float(on.s_of_t(a)), float(on.s_of_t(b)))
-        split = self.split  # type: ignore[attr-defined]
-        piece = self if b >= hi else split(b)[0]
+        split: Any = self.split  # type: ignore[attr-defined]  # the class's own split
+        piece: Any = self if b >= hi else split(b)[0]
         if a <= lo:
             return piece
         p_lo, p_hi = piece.domain  # [lo, b] of this curve, in the piece's own parameter

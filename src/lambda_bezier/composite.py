@@ -18,7 +18,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
@@ -600,6 +600,7 @@ class CompositeCurve:
         segments, so its end pairs at that joint are listed too."""
         from .hazmat.intersect import Intersection
 
+        theirs: list[tuple[Any, CompositeCurve | None, int]]
         if isinstance(other, CompositeCurve):
             theirs = [(seg, other, j) for j, seg in enumerate(other.segments)]
             span_b = float(other._starts[-1])
@@ -619,7 +620,7 @@ class CompositeCurve:
         hits: list[Intersection] = []
         for i, seg in enumerate(self.segments):
             for piece, owner, j in theirs:
-                for h in seg.intersect(piece):  # type: ignore[arg-type]
+                for h in seg.intersect(piece):
                     t = float(h.t) if owner is None else owner._global_u(j, float(h.t))
                     hits.append(Intersection(self._global_u(i, float(h.s)), t, h.kind))
         hits.sort(key=lambda h: (h.s, h.t))

@@ -182,6 +182,28 @@ def test_a_composite_intersects_any_curve_and_a_joint_is_reported_once():
     assert bent.intersect(down) == [Intersection(1.0, 1.0, "transversal")]
 
 
+def test_a_composite_crosses_itself_and_locates_a_point_in_its_u():
+    def polyline(*corners):
+        return lb.CompositeCurve(
+            [lb.BezierCurve([a, b]) for a, b in zip(corners, corners[1:], strict=False)]
+        )
+
+    # a Z: the first and last segments cross at (1, 1), halfway along each; the joints
+    # (where a segment ends and the next begins) are no crossings
+    zed = polyline((0, 0), (2, 2), (2, 0), (0, 2))
+    assert zed.self_intersections() == [Intersection(0.5, 2.5, "transversal")]
+    with pytest.raises(ValueError, match="several parameters"):
+        zed.locate((1, 1))
+    assert zed.locate((2, 1)) == 1.5 and zed.locate((2, 2)) == 1.0 and zed.locate((3, 3)) is None
+    # a closed square: its start meets its end, as a closed curve's (0, 1)
+    square = polyline((0, 0), (1, 0), (1, 1), (0, 1), (0, 0))
+    assert square.self_intersections() == [Intersection(0.0, 4.0, "transversal")]
+    # a C1 composite (a smooth joint, tangent there) with a loop in its first segment
+    loop = lb.BezierCurve([(0, 0), (3, 3), (-3, 3), (1, -1)])
+    comp = lb.CompositeCurve([loop]).join("C1", 3, rest=[(5, 0), (6, 0)])
+    assert comp.self_intersections() == loop.self_intersections()
+
+
 def test_a_composite_of_trigonometric_segments_reports_its_own_u():
     trig = lb.load_family(examples.path("han_trig_cubic.toml"))
     first = trig.curve(ARCH, lam=F(1, 2), mu=-1)

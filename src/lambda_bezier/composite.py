@@ -281,6 +281,16 @@ def _rejoin(
     )
 
 
+def _once(hits: list[Intersection], near_s: float, near_t: float) -> list[Intersection]:
+    """The hits sorted by (s, t), those within near_s in s and near_t in t of one already
+    kept dropped (a hit at a joint, found by the segments on both sides of it)."""
+    kept: list[Intersection] = []
+    for h in sorted(hits, key=lambda h: (h.s, h.t)):
+        if not any(abs(h.s - k.s) <= near_s and abs(h.t - k.t) <= near_t for k in kept):
+            kept.append(h)
+    return kept
+
+
 class CompositeCurve:
     """Segments joined end to end on the global parameter u ∈ [0, N] (segment i on
     [i, i + 1], local t = u − i; see the module docstring).
@@ -623,13 +633,42 @@ class CompositeCurve:
                 for h in seg.intersect(piece):
                     t = float(h.t) if owner is None else owner._global_u(j, float(h.t))
                     hits.append(Intersection(self._global_u(i, float(h.s)), t, h.kind))
-        hits.sort(key=lambda h: (h.s, h.t))
-        near_a, near_b = 1e-9 * float(self._starts[-1]), 1e-9 * span_b
-        kept: list[Intersection] = []
-        for h in hits:
-            if not any(abs(h.s - k.s) <= near_a and abs(h.t - k.t) <= near_b for k in kept):
-                kept.append(h)
-        return kept
+        return _once(hits, 1e-9 * float(self._starts[-1]), 1e-9 * span_b)
+
+    def self_intersections(self) -> list[Intersection]:
+        """Every pair s < t of u with C(s) = C(t), as Intersection(s, t, kind) sorted by s:
+        each segment's own, and those of every pair of segments (by their intersect), the
+        joint where one segment ends and the next begins excepted (a closed composite's
+        start and end meet: that pair is reported, as a closed curve's (0, 1) is)."""
+        from .hazmat.intersect import Intersection
+
+        hits: list[Intersection] = []
+        near = 1e-9 * float(self._starts[-1])
+        for i, seg in enumerate(self.segments):
+            for h in seg.self_intersections():
+                hits.append(Intersection(self._global_u(i, h.s), self._global_u(i, h.t), h.kind))
+            for j in range(i + 1, len(self.segments)):
+                joint = float(self._starts[j]) if j == i + 1 else None
+                for h in seg.intersect(self.segments[j]):  # type: ignore[arg-type]
+                    s, t = self._global_u(i, float(h.s)), self._global_u(j, float(h.t))
+                    if joint is not None and abs(s - joint) <= near and abs(t - joint) <= near:
+                        continue  # the joint itself
+                    hits.append(Intersection(s, t, h.kind))
+        return _once(hits, near, near)
+
+    def locate(self, point: PointsLike) -> float | None:
+        """The u with C(u) = point (within 1e-10 of the segment's size), or None; a point
+        at a joint is located once. A ValueError when several u give the point."""
+        found: list[float] = []
+        for i, seg in enumerate(self.segments):
+            t = seg.locate(point)
+            if t is not None:
+                u = self._global_u(i, float(t))
+                if not any(abs(u - v) <= 1e-9 * float(self._starts[-1]) for v in found):
+                    found.append(u)
+        if len(found) > 1:
+            raise ValueError(f"the point is on the composite at several parameters: {found}")
+        return found[0] if found else None
 
     def _u(self, value: object, name: str) -> float:
         x = float(val.real_number(value, name))

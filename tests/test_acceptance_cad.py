@@ -271,3 +271,19 @@ def test_dxf_into_a_missing_directory_names_the_file(tmp_path):
     target = tmp_path / "missing" / "curve.dxf"
     with pytest.raises(OSError, match="could not write the DXF file .*curve.dxf"):
         export.to_dxf(lb.BezierCurve(ARCH), target)
+
+
+@pytest.mark.parametrize("dim", [1, 4])
+def test_step_and_dxf_refuse_a_curve_outside_the_plane_and_space(tmp_path, dim):
+    # a 4D curve was written to STEP without its fourth coordinate; a 1D one, and DXF of
+    # either, ended in an unpacking error or ezdxf's "invalid argument count"
+    pytest.importorskip("OCP")
+    pytest.importorskip("ezdxf")
+    from lambda_bezier import export
+
+    curve = lb.BezierCurve([[i + j for j in range(dim)] for i in range(4)])
+    for write, suffix, what in ((export.to_step, "step", "STEP"), (export.to_dxf, "dxf", "DXF")):
+        target = tmp_path / f"curve.{suffix}"
+        with pytest.raises(ValueError, match=f"a {what} .* this curve is {dim}D"):
+            write(curve, target)
+        assert not target.exists()

@@ -425,6 +425,17 @@ def to_bspline(obj: Shape, *, tol: float = 1e-9, tolerance: float | None = None)
 
 
 # ---------------------------------------------------------------------- STEP (OCCT)
+def _in_space(spline: BSpline, what: str) -> None:
+    """STEP and DXF hold points in space: a 2D curve is written in the plane z = 0, a 3D one
+    as it is; any other dimension refused by name (a 4D curve lost its fourth coordinate, a
+    1D one failed unpacking a point)."""
+    dim = len(spline.control_points[0])
+    if dim not in (2, 3):
+        raise ValueError(
+            f"{what} holds curves in the plane (written at z = 0) or in space; this curve is {dim}D"
+        )
+
+
 def _quiet_occt(message_module: ModuleType) -> None:
     """OCCT's default messenger prints every transfer to stdout; keep only failures."""
     gravity = message_module.Message_Gravity.Message_Fail
@@ -458,7 +469,8 @@ def _write_step(writer: Any, target: Path) -> Path:
 
 def to_step(obj: Shape, path: str | Path, *, tolerance: float | None = None) -> Path:
     """Write the curve or composite as one B-spline edge (B_SPLINE_CURVE_WITH_KNOTS) to a
-    STEP file through OCCT (OCP); 2D curves lie in the plane z = 0. Every number is written
+    STEP file through OCCT (OCP); 2D curves lie in the plane z = 0 (other dimensions than 2
+    and 3 are refused). Every number is written
     with 17 significant digits: the file holds the B-spline's floats (`to_bspline`, exact
     Fractions rounded once) exactly, and OCCT reads back the same doubles. A curve of a
     mixed family (no rational form) is written as polynomial pieces within `tolerance` of it
@@ -474,6 +486,7 @@ def to_step(obj: Shape, path: str | Path, *, tolerance: float | None = None) -> 
     from OCP.STEPControl import STEPControl_StepModelType, STEPControl_Writer
 
     spline = to_bspline(obj, tolerance=tolerance)
+    _in_space(spline, "a STEP file")
     _quiet_occt(Message)
     values, mults = spline.breakpoints()
     poles = Array1_gp_Pnt(1, len(spline.control_points))
@@ -503,11 +516,13 @@ def to_step(obj: Shape, path: str | Path, *, tolerance: float | None = None) -> 
 # ---------------------------------------------------------------------- DXF (ezdxf)
 def to_dxf(obj: Shape, path: str | Path, *, tolerance: float | None = None) -> Path:
     """Write the curve or composite as one DXF SPLINE entity (DXF R2010) through ezdxf;
-    2D curves lie in the plane z = 0. Degrees up to 10: ezdxf's own construction_tool()
+    2D curves lie in the plane z = 0 (other dimensions than 2 and 3 are refused). Degrees up
+    to 10: ezdxf's own construction_tool()
     evaluates no higher (order 12 and above is refused by its B-spline basis). `tolerance`:
     as for to_step."""
     ezdxf = _optional("ezdxf", "ezdxf", "to_dxf")
     spline = to_bspline(obj, tolerance=tolerance)
+    _in_space(spline, "a DXF SPLINE")
     if spline.degree > DXF_MAX_DEGREE:
         raise ValueError(
             f"a DXF SPLINE is written for degrees up to {DXF_MAX_DEGREE} (the highest ezdxf reads "

@@ -287,3 +287,25 @@ def test_step_and_dxf_refuse_a_curve_outside_the_plane_and_space(tmp_path, dim):
         with pytest.raises(ValueError, match=f"a {what} .* this curve is {dim}D"):
             write(curve, target)
         assert not target.exists()
+
+
+def test_cli_output_into_a_closed_pipe_ends_without_a_traceback():
+    # `lambda-bezier optimal-lambda ... | head -1` printed a BrokenPipeError traceback: here
+    # the reader is gone before the command writes
+    import os
+    import subprocess
+    import sys
+
+    read_end, write_end = os.pipe()
+    os.close(read_end)
+    try:
+        run = subprocess.run(
+            [sys.executable, "-m", "lambda_bezier", "optimal-lambda", "0,0", "1,2", "3,2", "4,0"],
+            stdout=write_end,
+            stderr=subprocess.PIPE,
+            text=True,
+            check=False,
+        )
+    finally:
+        os.close(write_end)
+    assert run.returncode == 1 and "Traceback" not in run.stderr, run.stderr

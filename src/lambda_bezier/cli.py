@@ -184,8 +184,12 @@ def console_main() -> None:
     verify workers are joined. mypy ends its command the same way. An exception, SystemExit
     included (argparse errors), takes the ordinary exit path.
     """
-    code = main()
-    sys.stdout.flush()
+    try:
+        code = main()
+        sys.stdout.flush()
+    except BrokenPipeError:  # the reader left (`... | head`): no traceback, as a shell tool
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        os._exit(1)
     sys.stderr.flush()
     os._exit(code)
 

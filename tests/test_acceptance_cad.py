@@ -172,6 +172,16 @@ def test_a_composite_intersects_any_curve_and_a_joint_is_reported_once():
     swapped = [Intersection(h.t, h.s, h.kind) for h in hits]
     assert line.intersect(comp) == swapped
     assert lb.intersect_many([line], [comp]) == [swapped]
+    # a rational curve (a quarter circle of radius 4) on either side, meeting the composite
+    # where both curves are
+    arc = lb.RationalBezierCurve([(4, 0), (4, 4), (0, 4)], [1, 1, 2])
+    round_hits = comp.intersect(arc)
+    assert round_hits and arc.intersect(comp) == [
+        Intersection(h.t, h.s, h.kind) for h in round_hits
+    ]
+    for h in round_hits:
+        np.testing.assert_allclose(comp.evaluate(h.s), arc.evaluate(h.t), atol=1e-12)
+        assert abs(np.hypot(*comp.evaluate(h.s)) - 4) < 1e-12
     # a vertical line through the joint u = 1 at (1, 1) of a folded polyline: one hit, there
     bent = lb.CompositeCurve([lb.BezierCurve([(0, 0), (1, 1)]), lb.BezierCurve([(1, 1), (2, 0)])])
     assert bent.intersect(lb.BezierCurve([(1, 0), (1, 2)])) == [

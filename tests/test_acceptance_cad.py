@@ -153,6 +153,13 @@ def test_segment_of_a_c_bezier_curve_is_the_shifted_curve_of_its_family():
     np.testing.assert_allclose(piece.evaluate(x), curve.evaluate(0.4 + x), atol=1e-13)
     whole = curve.segment(0.0, 2.0)
     np.testing.assert_allclose(whole.evaluate(x), curve.evaluate(x), atol=1e-13)
+    # the family written on u in [0, 1]: the piece's own u runs over [0, 1] too
+    unit = lb.load_family(family_file("c_bezier_cubic_unit"))
+    curve = unit.curve([[0, 0], [1, 2], [3, 2.5], [4, 0.5]], alpha=2.0)
+    piece = curve.segment(0.2, 0.7)
+    assert piece.alpha == pytest.approx(1.0, abs=1e-15) and piece.domain == (0.0, 1.0)
+    u = np.linspace(0, 1, 9)
+    np.testing.assert_allclose(piece.evaluate(u), curve.evaluate(0.2 + 0.5 * u), atol=1e-13)
 
 
 # ---------------------------------------------------------------- composites take intersect

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from fractions import Fraction as F
 
 import mpmath
@@ -326,3 +327,22 @@ def test_cli_output_into_a_closed_pipe_ends_without_a_traceback():
     finally:
         os.close(write_end)
     assert run.returncode == 1 and "Traceback" not in run.stderr, run.stderr
+
+
+@pytest.mark.parametrize(
+    "bad, says",
+    [
+        (True, "got the boolean True"),  # was taken as a tolerance of 1
+        ("a", "got the text 'a'"),  # was "could not convert string to float: 'a'"
+        (1j, "got the complex number 1j"),
+        (-1, "positive distance, got -1"),  # a mixed curve's message said -0.5, its half
+    ],
+)
+def test_export_tolerance_is_checked_as_given(bad, says):
+    from lambda_bezier import export
+
+    mixed = lb.load_family(family_file("at_cubic")).curve(ARCH, lam=F(1, 2))
+    for curve in (mixed, lb.BezierCurve([(0, 0), (1, 2), (2, 0), (3, 1), (4, 0)])):
+        for write in (export.to_svg, export.to_bspline):
+            with pytest.raises(ValueError, match=f"tolerance must be a .*{re.escape(says)}"):
+                write(curve, tolerance=bad)

@@ -63,6 +63,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import numpy.typing as npt
 
+from . import _validate as val
+
 # JSON lives in _json_io (below this module); its public functions are this module's
 from ._json_io import FORMAT_VERSION as FORMAT_VERSION
 from ._json_io import _number_in as _number_in
@@ -395,7 +397,7 @@ def to_bspline(obj: Shape, *, tol: float = 1e-9, tolerance: float | None = None)
     weights; a curve of a trigonometric family is its exact rational form, of a family
     without one its approximation by polynomial pieces within `tolerance` (a distance;
     default 1e-10 of its size), certified (`_exportable`)."""
-    obj = _exportable(obj, tolerance)
+    obj = _exportable(obj, _tolerance(tolerance))
     rational = _rational(obj)
     if rational is not None:
         n = rational.degree
@@ -585,6 +587,18 @@ def _num(x: float) -> str:
     return repr(float(x)) if x != 0 else "0"
 
 
+def _tolerance(tolerance: object) -> float | None:
+    """None, or the caller's tolerance as a positive finite distance; a ValueError naming
+    the argument otherwise (a bool, a text, NaN, or a negative number as given, before any
+    share of it is taken)."""
+    if tolerance is None:
+        return None
+    value = float(val.real_number(tolerance, "tolerance", keep_exact=False))
+    if value <= 0:
+        raise ValueError(f"tolerance must be a positive distance, got {tolerance!r}")
+    return value
+
+
 def to_svg(obj: Shape, *, tolerance: float | None = None, stroke_width: float | None = None) -> str:
     """An SVG document with one path for a 2D curve or composite, in the curve's own
     coordinates (the group flips y so that y points up on screen). Pieces of degree <= 3 are
@@ -592,6 +606,7 @@ def to_svg(obj: Shape, *, tolerance: float | None = None, stroke_width: float | 
     `tolerance`: they become cubics within that distance of the curve at every parameter
     (checked on the Bernstein form of the difference), else ValueError. A rational curve
     whose weights differ always needs `tolerance` (SVG has no rational segments)."""
+    tolerance = _tolerance(tolerance)
     if tolerance is not None and _has_mixed(obj):
         # half the tolerance to the polynomial pieces (certified), half to their cubics
         tolerance = float(tolerance) / 2

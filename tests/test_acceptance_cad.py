@@ -346,3 +346,29 @@ def test_export_tolerance_is_checked_as_given(bad, says):
         for write in (export.to_svg, export.to_bspline):
             with pytest.raises(ValueError, match=f"tolerance must be a .*{re.escape(says)}"):
                 write(curve, tolerance=bad)
+
+
+@pytest.mark.parametrize("exponent", [600, -600, 1000, -1000])
+def test_arc_length_of_curves_without_a_polynomial_form_at_huge_and_tiny_sizes(exponent):
+    # the numeric route (C-Bézier, mixed and hyperbolic curves) squared the speed past the
+    # float range: 2^600 never returned (inf speeds halved to depth 40 on every branch),
+    # 2^-600 gave the length 0. Scaling by a power of two scales the length exactly.
+    scale = 2.0**exponent
+    made = [
+        (lb.load_family(examples.path("c_bezier_cubic.toml")), {"alpha": 2.0}),
+        (lb.load_family(family_file("at_cubic")), {"lam": F(1, 2)}),
+        (lb.load_family(family_file("hyp_cubic")), {"lam": F(1, 2), "mu": F(1, 3)}),
+    ]
+    for fam, params in made:
+        unit = fam.curve(ARCH, **params)
+        lo, hi = unit.domain
+        want = float(
+            mpmath.quad(
+                lambda t, c=unit: float(np.linalg.norm(c.derivative(float(t)))),
+                np.linspace(lo, hi, 9).tolist(),
+            )
+        )
+        big = fam.curve([(x * scale, y * scale) for x, y in ARCH], **params)
+        assert big.arc_length() / scale == pytest.approx(want, rel=1e-12)
+        half = big.parameter_at_length(big.arc_length() / 2)
+        assert big.arc_length(lo, half) / scale == pytest.approx(want / 2, rel=1e-12)

@@ -372,3 +372,23 @@ def test_arc_length_of_curves_without_a_polynomial_form_at_huge_and_tiny_sizes(e
         assert big.arc_length() / scale == pytest.approx(want, rel=1e-12)
         half = big.parameter_at_length(big.arc_length() / 2)
         assert big.arc_length(lo, half) / scale == pytest.approx(want / 2, rel=1e-12)
+
+
+@pytest.mark.parametrize("exponent", [600, -600])
+def test_svg_of_a_rational_curve_at_huge_and_tiny_sizes_is_the_scaled_path(exponent):
+    # the cubics' error bound squared coordinates near 2^600 past the float range: "cannot
+    # approximate within tolerance=4.1e+174 (too small)" for a tolerance 1e-6 of the size
+    from lambda_bezier import export
+
+    scale = 2.0**exponent
+    weights = [1, 2, 3, 1]
+    small = export.to_svg(lb.RationalBezierCurve(ARCH, weights), tolerance=1e-6)
+    big = export.to_svg(
+        lb.RationalBezierCurve([(x * scale, y * scale) for x, y in ARCH], weights),
+        tolerance=1e-6 * scale,
+    )
+
+    def numbers(svg):
+        return [float(v) for v in re.findall(r"-?\d[\d.e+-]*", re.search(r' d="([^"]+)"', svg)[1])]
+
+    assert [v * scale for v in numbers(small)] == numbers(big)

@@ -684,7 +684,13 @@ def _rational_svg(
     if not math.isfinite(tolerance) or tolerance <= 0:
         raise ValueError(f"tolerance must be a positive distance, got {tolerance}")
     rows = np.array(curve.to_homogeneous().points, dtype=float)
-    pieces = rk.cubics(rows / rows[:, -1].max(), tolerance)
+    # the error bounds square coordinates: near 2^600 they overflowed and no tolerance was
+    # met; the cubics are found for the curve divided by a power of two (exact), then scaled
+    top = float(np.abs(rows[:, :-1]).max())
+    shift = math.frexp(top)[1] if top > 0 else 0
+    rows[:, :-1] = np.ldexp(rows[:, :-1], -shift)
+    found = rk.cubics(rows / rows[:, -1].max(), math.ldexp(tolerance, -shift))
+    pieces = [np.ldexp(piece, shift) for piece in found]
     commands = [f"M {_num(pieces[0][0][0])} {_num(pieces[0][0][1])}"]
     for piece in pieces:
         commands.append("C " + " ".join(f"{_num(x)} {_num(y)}" for x, y in piece[1:]))

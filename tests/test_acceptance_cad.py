@@ -392,3 +392,21 @@ def test_svg_of_a_rational_curve_at_huge_and_tiny_sizes_is_the_scaled_path(expon
         return [float(v) for v in re.findall(r"-?\d[\d.e+-]*", re.search(r' d="([^"]+)"', svg)[1])]
 
     assert [v * scale for v in numbers(small)] == numbers(big)
+
+
+@pytest.mark.parametrize("exponent", [-600, -40])
+def test_a_small_curve_is_joined_not_refused_as_degenerate(exponent):
+    # the degenerate-end test compared the end tangent with 1e-12 of max(1, size): every
+    # curve below size 1e-12 "had no tangent to continue". The C1 join of the arch is
+    # P_0 = (4, 0), P_1 = 2 P_3 - P_2 = (5, -2), scaled
+    scale = 2.0**exponent
+    small = [(x * scale, y * scale) for x, y in ARCH]
+    rest = [(9 * scale, scale), (10 * scale, 0.0)]
+    for curve, kw in (
+        (lb.BezierCurve(small), {}),
+        (lb.SameDegreeCurve(small, lam=0.5), {"lam": 0.5}),
+    ):
+        nxt = lb.join(curve, "C1", 3, rest=rest, **kw)
+        assert nxt.control_points()[:2] == ((4 * scale, 0.0), (5 * scale, -2 * scale))
+    comp = lb.CompositeCurve([lb.BezierCurve(small)]).join("C1", 3, rest=rest)
+    assert comp.report()[0].holds("C1")

@@ -174,13 +174,20 @@ def test_a_curve_against_its_reversal_shares_it_end_to_end_exactly(name):
 
 # ------------------------------------------------------------- bad input, the same on every class
 @pytest.mark.parametrize("name", ATOMS)
-def test_intersect_refuses_a_composite_curve_by_name_on_every_class(name):
-    """CompositeCurve has no intersect; every class refused it with "other must be a curve"
-    but the trigonometric/mixed/C-Bézier ones, which raised a bare AttributeError."""
+def test_intersect_takes_a_composite_and_refuses_other_objects_by_name_on_every_class(name):
+    """CompositeCurve had no intersect; every class refused it with "other must be a curve"
+    but the trigonometric/mixed/C-Bézier ones, which raised a bare AttributeError. Since
+    round 21 a composite intersects (through its segments): every class hands it there, s and
+    t exchanged; anything else is refused by name."""
+    from lambda_bezier.hazmat.intersect import Intersection
+
     comp = lb.CompositeCurve([lb.BezierCurve([(0, 0), (1, 1)])])
     for curve in (_atom(name, [(0, 0), (1, 2), (2, 2), (3, 0)]), lb.BezierCurve([(0, 1), (1, 0)])):
-        with pytest.raises(TypeError, match="other must be a curve, got CompositeCurve"):
-            curve.intersect(comp)
+        assert curve.intersect(comp) == [
+            Intersection(h.t, h.s, h.kind) for h in comp.intersect(curve)
+        ]
+        with pytest.raises(TypeError, match="other must be a curve, got object"):
+            curve.intersect(object())
 
 
 # ------------------------------------------------------ locate where the curve turns or stops

@@ -153,7 +153,7 @@ def test_cli_optimal_lambda_says_certified(capsys):
     pts = ["0,0", "1,2", "3,2.5", "4,0.5"]
     assert main([*args, *pts]) == 0
     out = capsys.readouterr().out
-    assert "optimal alpha   3.141592653589793" in out
+    assert "optimal alpha   pi  ≈ 3.141592653589793" in out  # the range's end, exactly
     assert "on the boundary alpha = pi (upper end)" in out and "method          certified" in out
     assert main([*args, "--json", *pts]) == 0
     report = json.loads(capsys.readouterr().out)

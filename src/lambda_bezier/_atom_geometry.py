@@ -122,10 +122,22 @@ _GL = np.polynomial.legendre.leggauss(20)
 _GL2 = np.polynomial.legendre.leggauss(30)
 
 
+def _speed(d: np.ndarray) -> np.ndarray:
+    """‖d‖ along the last axis, the squares taken after dividing by a power of two near the
+    largest entry (exact): coordinates near 2^±600 squared past the float range, so the
+    speed was inf (the adaptive rule then halved to depth 40 on every branch) or 0 (a
+    curve of size 2^-600 had length 0)."""
+    top = float(np.max(np.abs(d))) if d.size else 0.0
+    if top == 0 or not math.isfinite(top):
+        return np.asarray(np.linalg.norm(d, axis=-1))
+    shift = math.frexp(top)[1]
+    return np.asarray(np.ldexp(np.linalg.norm(np.ldexp(d, -shift), axis=-1), shift))
+
+
 def _gauss(curve: AtomCurve, a: float, b: float, rule: tuple[np.ndarray, np.ndarray]) -> float:
     x, w = rule
     t = a + (b - a) * (x + 1) / 2
-    speed = np.linalg.norm(curve.derivative(t, 1, extrapolate=True), axis=1)
+    speed = _speed(curve.derivative(t, 1, extrapolate=True))
     return float((b - a) / 2 * (w @ speed))
 
 
@@ -172,7 +184,7 @@ def parameter_at_length(curve: AtomCurve, s: npt.ArrayLike) -> np.ndarray | floa
         x = a + (b - a) * (target - base) / max(cum[k + 1] - base, 1e-300)
         for _ in range(60):  # safeguarded Newton on L(x) = target
             f = base + arc_length(curve, a, x) - target
-            speed = float(np.linalg.norm(curve.derivative(x, 1, extrapolate=True)))
+            speed = float(_speed(curve.derivative(x, 1, extrapolate=True)))
             step = f / speed if speed > 0 else 0.0
             new = min(max(x - step, edges[k]), edges[k + 1])
             if abs(new - x) <= 1e-15 * max(1.0, abs(x)):

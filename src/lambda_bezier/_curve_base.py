@@ -513,6 +513,27 @@ class Curve(ControlPointCurve):
         assert rows is not None  # checked above: the curve is exact
         return implicitize(rows)
 
+    # ------------------------------------------------------------------ pieces (issue #23)
+    # By way of the exact Bézier form, which keeps the parameter: a piece of a curve of a
+    # shape-parameter family is a polynomial curve, in general not one of the family at the
+    # same parameter, so these return classical Bézier curves (BezierCurve overrides them).
+    def split(self, t: Fraction | float) -> tuple[BezierCurve, BezierCurve]:
+        """The pieces over [0, t] and [t, 1] as classical Bézier curves (``to_bezier()``
+        split at t; exact for exact points and t)."""
+        return self.to_bezier().split(t)
+
+    def segment(
+        self, t1: Fraction | float, t2: Fraction | float, *, extrapolate: bool = False
+    ) -> BezierCurve:
+        """The piece between p(t1) and p(t2) as a classical Bézier curve on [0, 1]
+        (``to_bezier().segment``: 0 <= t1 < t2 <= 1, or any t1 < t2 with extrapolate=True)."""
+        return self.to_bezier().segment(t1, t2, extrapolate=extrapolate)
+
+    def hodograph(self) -> BezierCurve:
+        """The derivative curve p'(t) as a classical Bézier curve (``to_bezier().hodograph()``,
+        of degree N - 1 for the Bézier form's degree N)."""
+        return self.to_bezier().hodograph()
+
 
 class BezierCurve(Curve):
     r"""A classical Bézier curve :math:`p(t) = \sum_{i=0}^n P_i B_{i,n}(t)` with the

@@ -10,7 +10,7 @@ pattern of mypy's documentation).
 from __future__ import annotations
 
 from fractions import Fraction
-from typing import TYPE_CHECKING, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 import numpy.typing as npt
@@ -110,8 +110,34 @@ class DomainGeometry(ControlPointCurve):
         """Every isolated intersection with another curve, Intersection(s, t, kind) sorted by
         s: self(s) = other(t), each parameter in its own curve's t."""
         from . import _atom_geometry as ag
+        from ._curve_base import Curve, _swapped_intersect
+        from .rational import RationalBezierCurve
 
+        if not isinstance(other, Curve | RationalBezierCurve | DomainGeometry):
+            swapped = _swapped_intersect(other, self)  # a composite: its answer, s and t swapped
+            if swapped is not None:
+                return swapped
         return ag.intersect(self, other)  # type: ignore[arg-type]
+
+    def segment(self, t1: Fraction | float, t2: Fraction | float) -> object:
+        """The piece between C(t1) and C(t2), t1 < t2 in the domain, in the form `split`
+        gives: the rational form's segment between s(t1) and s(t2) (a RationalBezierCurve on
+        [0, 1]) where the curve has one; otherwise `split` twice (a C-Bézier family: a curve
+        of the family again, the space being invariant under shifts of t)."""
+        on: _OnDomain = self  # type: ignore[assignment]
+        lo, hi = on.domain
+        a, b = on._domain_point(t1, "t1"), on._domain_point(t2, "t2")
+        if not a < b:
+            raise ValueError(f"segment needs t1 < t2, got t1={t1}, t2={t2}")
+        rat = self._rational_or_none()
+        if rat is not None:
+            return rat.segment(float(on.s_of_t(a)), float(on.s_of_t(b)))
+        split: Any = self.split  # type: ignore[attr-defined]  # the class's own split
+        piece: Any = self if b >= hi else split(b)[0]
+        if a <= lo:
+            return piece
+        p_lo, p_hi = piece.domain  # [lo, b] of this curve, in the piece's own parameter
+        return piece.split(p_lo + (a - lo) * (p_hi - p_lo) / (b - lo))[1]
 
     def self_intersections(self: _OnDomain) -> list[Intersection]:
         """Every pair s < t with C(s) = C(t), both in the curve's own t."""

@@ -184,8 +184,12 @@ def console_main() -> None:
     verify workers are joined. mypy ends its command the same way. An exception, SystemExit
     included (argparse errors), takes the ordinary exit path.
     """
-    code = main()
-    sys.stdout.flush()
+    try:
+        code = main()
+        sys.stdout.flush()
+    except BrokenPipeError:  # the reader left (`... | head`): no traceback, as a shell tool
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        os._exit(1)
     sys.stderr.flush()
     os._exit(code)
 
@@ -414,7 +418,11 @@ def _optimal_parameters(args: argparse.Namespace, points: list[Any], family: Any
     r = optimal_parameters(points, args.energy, family=family)
     k = args.energy
 
-    def text(v: Any) -> Any:
+    at_end = _attained_end(family, r)
+
+    def text(v: Any, name: str = "") -> Any:
+        if name in at_end:  # the range's end as written ("pi"), not its float
+            return at_end[name]
         return [str(x) for x in v] if isinstance(v, tuple) else str(v)
 
     def decimal(v: Any) -> Any:
@@ -426,7 +434,7 @@ def _optimal_parameters(args: argparse.Namespace, points: list[Any], family: Any
         "range": range_text,
         "energy_order": k,
         "energy_name": ENERGY_NAMES[k],
-        "parameters": {name: text(v) for name, v in r.values.items()},
+        "parameters": {name: text(v, name) for name, v in r.values.items()},
         "parameters_decimal": {name: decimal(v) for name, v in r.values.items()},
         "energy": str(r.energy),
         "energy_decimal": _float_or_none(r.energy),
@@ -443,7 +451,7 @@ def _optimal_parameters(args: argparse.Namespace, points: list[Any], family: Any
         f"energy          E_{k} ({ENERGY_NAMES[k]})",
     ]
     for name, value in r.values.items():
-        lines.append(f"optimal {name:<8}{text(value)}  ≈ {decimal(value)}")
+        lines.append(f"optimal {name:<8}{text(value, name)}  ≈ {decimal(value)}")
     lines.append(f"E_{k} there      {r.energy}  ≈ {float(r.energy):.12g}")
     lines.append(
         "where           "
@@ -461,6 +469,21 @@ def _optimal_parameters(args: argparse.Namespace, points: list[Any], family: Any
         lines.append(f"method          {r.method}: the least E_{k} is within 1e-12 of E_{k} there")
     print("\n".join(lines))
     return 0
+
+
+def _attained_end(family: Any, r: Any) -> dict[str, str]:
+    """{name: the end as the family writes it} when a certified optimum over a C-Bézier
+    family's range lies on a closed end ("alpha = pi (upper end)"): its exact value, where
+    `values` holds the float (a curve of the family takes a float alpha)."""
+    ends = getattr(family, "range_ends", None)
+    if ends is None or r.method != "certified" or len(r.values) != 1:
+        return {}
+    name = next(iter(r.values))
+    closed = (getattr(family, "lo_closed", False), getattr(family, "hi_closed", False))
+    for end, is_closed, side in zip(ends, closed, ("lower", "upper"), strict=True):
+        if is_closed and r.boundary == f"{name} = {end} ({side} end)":
+            return {name: str(end)}
+    return {}
 
 
 def _float_or_none(q: SupportsFloat) -> float | None:

@@ -18,7 +18,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
@@ -34,6 +34,7 @@ if TYPE_CHECKING:
     from types import ModuleType
 
     from . import geometry as _geometry
+    from .hazmat.intersect import Intersection
 else:
 
     def _load_geometry() -> ModuleType:
@@ -278,6 +279,16 @@ def _rejoin(
         family=type(right),  # its class: a built-in family or one from load_family
         check_range=check_range,
     )
+
+
+def _once(hits: list[Intersection], near_s: float, near_t: float) -> list[Intersection]:
+    """The hits sorted by (s, t), those within near_s in s and near_t in t of one already
+    kept dropped (a hit at a joint, found by the segments on both sides of it)."""
+    kept: list[Intersection] = []
+    for h in sorted(hits, key=lambda h: (h.s, h.t)):
+        if not any(abs(h.s - k.s) <= near_s and abs(h.t - k.t) <= near_t for k in kept):
+            kept.append(h)
+    return kept
 
 
 class CompositeCurve:
@@ -581,6 +592,83 @@ class CompositeCurve:
     def torsion(self, u: ParamLike, *, extrapolate: bool = False) -> np.ndarray | float:
         """Signed torsion in u of a 3D composite (see Curve.torsion)."""
         return _geometry.torsion(self, u, extrapolate=extrapolate)
+
+    # ------------------------------------------------------------------ intersections
+    intersects_curves = True  # a curve's intersect hands a composite here, s and t swapped
+
+    def _global_u(self, index: int, t: float) -> float:
+        """Segment `index`'s own t as the composite's u."""
+        return float(self._starts[index] + (t - self._own[index, 0]))
+
+    def intersect(self, other: object) -> list[Intersection]:
+        """Every intersection with a curve of any class or another composite, as
+        Intersection(s, t, kind) sorted by s: self(s) = other(t), s in this composite's u
+        (t in the other's own parameter, its u when it is a composite). Through each pair of
+        segments' own intersect; a hit at a joint, found as the end of one segment and the
+        start of the next, is reported once (hits within 1e-9 of the domains' lengths in
+        both parameters are one). A stretch shared across a joint is reported per pair of
+        segments, so its end pairs at that joint are listed too."""
+        from .hazmat.intersect import Intersection
+
+        theirs: list[tuple[Any, CompositeCurve | None, int]]
+        if isinstance(other, CompositeCurve):
+            theirs = [(seg, other, j) for j, seg in enumerate(other.segments)]
+            span_b = float(other._starts[-1])
+        elif (
+            isinstance(other, Curve | AtomCurve)
+            or _own_domain(other)
+            or (getattr(type(other), "intersects_curves", False))
+        ):
+            theirs = [(other, None, 0)]
+            span_b = float(other.domain[1]) - float(other.domain[0])  # type: ignore[attr-defined]
+        else:
+            raise TypeError(f"other must be a curve or a composite, got {type(other).__name__}")
+        if other.dimension != self.dimension:  # type: ignore[attr-defined]
+            raise ValueError(
+                f"the curves have different dimensions ({self.dimension} and {other.dimension})"  # type: ignore[attr-defined]
+            )
+        hits: list[Intersection] = []
+        for i, seg in enumerate(self.segments):
+            for piece, owner, j in theirs:
+                for h in seg.intersect(piece):
+                    t = float(h.t) if owner is None else owner._global_u(j, float(h.t))
+                    hits.append(Intersection(self._global_u(i, float(h.s)), t, h.kind))
+        return _once(hits, 1e-9 * float(self._starts[-1]), 1e-9 * span_b)
+
+    def self_intersections(self) -> list[Intersection]:
+        """Every pair s < t of u with C(s) = C(t), as Intersection(s, t, kind) sorted by s:
+        each segment's own, and those of every pair of segments (by their intersect), the
+        joint where one segment ends and the next begins excepted (a closed composite's
+        start and end meet: that pair is reported, as a closed curve's (0, 1) is)."""
+        from .hazmat.intersect import Intersection
+
+        hits: list[Intersection] = []
+        near = 1e-9 * float(self._starts[-1])
+        for i, seg in enumerate(self.segments):
+            for h in seg.self_intersections():
+                hits.append(Intersection(self._global_u(i, h.s), self._global_u(i, h.t), h.kind))
+            for j in range(i + 1, len(self.segments)):
+                joint = float(self._starts[j]) if j == i + 1 else None
+                for h in seg.intersect(self.segments[j]):  # type: ignore[arg-type]
+                    s, t = self._global_u(i, float(h.s)), self._global_u(j, float(h.t))
+                    if joint is not None and abs(s - joint) <= near and abs(t - joint) <= near:
+                        continue  # the joint itself
+                    hits.append(Intersection(s, t, h.kind))
+        return _once(hits, near, near)
+
+    def locate(self, point: PointsLike) -> float | None:
+        """The u with C(u) = point (within 1e-10 of the segment's size), or None; a point
+        at a joint is located once. A ValueError when several u give the point."""
+        found: list[float] = []
+        for i, seg in enumerate(self.segments):
+            t = seg.locate(point)
+            if t is not None:
+                u = self._global_u(i, float(t))
+                if not any(abs(u - v) <= 1e-9 * float(self._starts[-1]) for v in found):
+                    found.append(u)
+        if len(found) > 1:
+            raise ValueError(f"the point is on the composite at several parameters: {found}")
+        return found[0] if found else None
 
     def _u(self, value: object, name: str) -> float:
         x = float(val.real_number(value, name))

@@ -63,6 +63,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import numpy.typing as npt
 
+from . import _validate as val
+
 # JSON lives in _json_io (below this module); its public functions are this module's
 from ._json_io import FORMAT_VERSION as FORMAT_VERSION
 from ._json_io import _number_in as _number_in
@@ -395,7 +397,7 @@ def to_bspline(obj: Shape, *, tol: float = 1e-9, tolerance: float | None = None)
     weights; a curve of a trigonometric family is its exact rational form, of a family
     without one its approximation by polynomial pieces within `tolerance` (a distance;
     default 1e-10 of its size), certified (`_exportable`)."""
-    obj = _exportable(obj, tolerance)
+    obj = _exportable(obj, _tolerance(tolerance))
     rational = _rational(obj)
     if rational is not None:
         n = rational.degree
@@ -425,6 +427,17 @@ def to_bspline(obj: Shape, *, tol: float = 1e-9, tolerance: float | None = None)
 
 
 # ---------------------------------------------------------------------- STEP (OCCT)
+def _in_space(spline: BSpline, what: str) -> None:
+    """STEP and DXF hold points in space: a 2D curve is written in the plane z = 0, a 3D one
+    as it is; any other dimension refused by name (a 4D curve lost its fourth coordinate, a
+    1D one failed unpacking a point)."""
+    dim = len(spline.control_points[0])
+    if dim not in (2, 3):
+        raise ValueError(
+            f"{what} holds curves in the plane (written at z = 0) or in space; this curve is {dim}D"
+        )
+
+
 def _quiet_occt(message_module: ModuleType) -> None:
     """OCCT's default messenger prints every transfer to stdout; keep only failures."""
     gravity = message_module.Message_Gravity.Message_Fail
@@ -458,7 +471,8 @@ def _write_step(writer: Any, target: Path) -> Path:
 
 def to_step(obj: Shape, path: str | Path, *, tolerance: float | None = None) -> Path:
     """Write the curve or composite as one B-spline edge (B_SPLINE_CURVE_WITH_KNOTS) to a
-    STEP file through OCCT (OCP); 2D curves lie in the plane z = 0. Every number is written
+    STEP file through OCCT (OCP); 2D curves lie in the plane z = 0 (other dimensions than 2
+    and 3 are refused). Every number is written
     with 17 significant digits: the file holds the B-spline's floats (`to_bspline`, exact
     Fractions rounded once) exactly, and OCCT reads back the same doubles. A curve of a
     mixed family (no rational form) is written as polynomial pieces within `tolerance` of it
@@ -474,6 +488,7 @@ def to_step(obj: Shape, path: str | Path, *, tolerance: float | None = None) -> 
     from OCP.STEPControl import STEPControl_StepModelType, STEPControl_Writer
 
     spline = to_bspline(obj, tolerance=tolerance)
+    _in_space(spline, "a STEP file")
     _quiet_occt(Message)
     values, mults = spline.breakpoints()
     poles = Array1_gp_Pnt(1, len(spline.control_points))
@@ -503,11 +518,13 @@ def to_step(obj: Shape, path: str | Path, *, tolerance: float | None = None) -> 
 # ---------------------------------------------------------------------- DXF (ezdxf)
 def to_dxf(obj: Shape, path: str | Path, *, tolerance: float | None = None) -> Path:
     """Write the curve or composite as one DXF SPLINE entity (DXF R2010) through ezdxf;
-    2D curves lie in the plane z = 0. Degrees up to 10: ezdxf's own construction_tool()
+    2D curves lie in the plane z = 0 (other dimensions than 2 and 3 are refused). Degrees up
+    to 10: ezdxf's own construction_tool()
     evaluates no higher (order 12 and above is refused by its B-spline basis). `tolerance`:
     as for to_step."""
     ezdxf = _optional("ezdxf", "ezdxf", "to_dxf")
     spline = to_bspline(obj, tolerance=tolerance)
+    _in_space(spline, "a DXF SPLINE")
     if spline.degree > DXF_MAX_DEGREE:
         raise ValueError(
             f"a DXF SPLINE is written for degrees up to {DXF_MAX_DEGREE} (the highest ezdxf reads "
@@ -523,7 +540,10 @@ def to_dxf(obj: Shape, path: str | Path, *, tolerance: float | None = None) -> P
         weights = [float(w) for w in spline.weights]
         doc.modelspace().add_rational_spline(points, weights, degree=spline.degree, knots=knots)
     target = Path(path)
-    doc.saveas(target)
+    try:  # as to_step: the path named, not ezdxf's own traceback
+        doc.saveas(target)
+    except OSError as exc:
+        raise OSError(f"could not write the DXF file {target}: {exc.strerror or exc}") from exc
     return target
 
 
@@ -567,6 +587,18 @@ def _num(x: float) -> str:
     return repr(float(x)) if x != 0 else "0"
 
 
+def _tolerance(tolerance: object) -> float | None:
+    """None, or the caller's tolerance as a positive finite distance; a ValueError naming
+    the argument otherwise (a bool, a text, NaN, or a negative number as given, before any
+    share of it is taken)."""
+    if tolerance is None:
+        return None
+    value = float(val.real_number(tolerance, "tolerance", keep_exact=False))
+    if value <= 0:
+        raise ValueError(f"tolerance must be a positive distance, got {tolerance!r}")
+    return value
+
+
 def to_svg(obj: Shape, *, tolerance: float | None = None, stroke_width: float | None = None) -> str:
     """An SVG document with one path for a 2D curve or composite, in the curve's own
     coordinates (the group flips y so that y points up on screen). Pieces of degree <= 3 are
@@ -574,6 +606,7 @@ def to_svg(obj: Shape, *, tolerance: float | None = None, stroke_width: float | 
     `tolerance`: they become cubics within that distance of the curve at every parameter
     (checked on the Bernstein form of the difference), else ValueError. A rational curve
     whose weights differ always needs `tolerance` (SVG has no rational segments)."""
+    tolerance = _tolerance(tolerance)
     if tolerance is not None and _has_mixed(obj):
         # half the tolerance to the polynomial pieces (certified), half to their cubics
         tolerance = float(tolerance) / 2
@@ -651,7 +684,13 @@ def _rational_svg(
     if not math.isfinite(tolerance) or tolerance <= 0:
         raise ValueError(f"tolerance must be a positive distance, got {tolerance}")
     rows = np.array(curve.to_homogeneous().points, dtype=float)
-    pieces = rk.cubics(rows / rows[:, -1].max(), tolerance)
+    # the error bounds square coordinates: near 2^600 they overflowed and no tolerance was
+    # met; the cubics are found for the curve divided by a power of two (exact), then scaled
+    top = float(np.abs(rows[:, :-1]).max())
+    shift = math.frexp(top)[1] if top > 0 else 0
+    rows[:, :-1] = np.ldexp(rows[:, :-1], -shift)
+    found = rk.cubics(rows / rows[:, -1].max(), math.ldexp(tolerance, -shift))
+    pieces = [np.ldexp(piece, shift) for piece in found]
     commands = [f"M {_num(pieces[0][0][0])} {_num(pieces[0][0][1])}"]
     for piece in pieces:
         commands.append("C " + " ".join(f"{_num(x)} {_num(y)}" for x, y in piece[1:]))

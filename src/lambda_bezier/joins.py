@@ -148,7 +148,9 @@ def leading_weights(
     n, m = curve.degree, degree
     order = joint.order
     pts = curve.points
-    scale = max(1.0, float(np.abs(pts).max()))
+    # relative to the curve's size (it was at least 1: every tangent of a curve of size
+    # 2^-600 counted as zero, and its join was refused as degenerate)
+    scale = float(np.abs(pts).max()) or 1.0
     tail = np.asarray(curve.control_points()[-1], dtype=object) - np.asarray(
         curve.control_points()[-2], dtype=object
     )
@@ -191,7 +193,7 @@ def _generic_weights(
         sum(e1[j] * pts[curve.degree - j][c] for j in range(len(e1)))
         for c in range(curve.dimension)
     ]
-    scale = max(1.0, float(np.abs(curve.points).max()))
+    scale = float(np.abs(curve.points).max()) or 1.0  # relative to the size, as above
     if all(_is_zero(v, scale * curve.degree**2) for v in tangent):
         raise ValueError(
             f"the first curve's end is degenerate: C1'(1) = 0 for this {curve.family} curve "

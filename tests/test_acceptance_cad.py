@@ -235,7 +235,8 @@ def test_a_composite_of_trigonometric_segments_reports_its_own_u():
         for start, seg in zip((0.0, math.pi / 2), comp.segments, strict=True)
         for h in seg.intersect(line)
     ]
-    assert [(h.s, h.t) for h in hits] == pytest.approx(pieces, abs=1e-15)
+    got = [x for h in hits for x in (h.s, h.t)]  # flat: approx takes no nested tuples
+    assert got == pytest.approx([x for pair in pieces for x in pair], abs=1e-15)
     for h in hits:  # each hit is where the composite meets the line
         np.testing.assert_allclose(comp.evaluate(h.s), line.evaluate(h.t), atol=1e-13)
     # the first segment against the composite: the stretch they share, by its end pairs (the

@@ -212,7 +212,7 @@ _RECORD = _table(
             "type": "string",
             "pattern": r"^([a-z][a-z0-9_]*\.)?[a-z][a-z0-9_]*$",
             "description": 'a claim kind, such as "endpoint_curve" or '
-            '"same_degree.endpoint_curve" (lower-case letters, digits and _)',
+            '"my_family.endpoint_curve" (lower-case letters, digits and _)',
         },
         "source": _STR,
         "location": _STR,
@@ -221,8 +221,7 @@ _RECORD = _table(
         "family": {
             "type": "string",
             "pattern": r"^[a-z][a-z0-9_]*$",
-            "description": 'a family name, such as "same_degree" (lower-case letters, digits '
-            "and _)",
+            "description": 'a family name, such as "my_family" (lower-case letters, digits and _)',
         },
         "point_function": _STR,
         "domain": _STR,

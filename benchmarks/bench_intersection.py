@@ -76,7 +76,7 @@ def bench_intersection() -> None:
             record(
                 f"intersect ({path}): {len(kept)} bezier fixture cases, {pairs} pairs, all "
                 f"(per pair {ours_total / pairs * 1e6:.0f} µs vs {per_ref * 1e6:.0f} µs; "
-                f"geometric mean of per-case ratios {geomean:.1f}x; bezier fails on cases "
+                f"geometric mean of per-case ratios {geomean:.2f}x; bezier fails on cases "
                 f"{', '.join(map(str, skipped))})",
                 ours_total,
                 "bezier.Curve.intersect",

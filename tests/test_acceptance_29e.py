@@ -203,7 +203,7 @@ def test_a_curve_that_is_one_point_is_refused_alike_on_every_class(point):
     line = lb.BezierCurve([(0, 0), (2, 4)])
     with pytest.raises(ValueError, match="first curve is a single point"):
         point.intersect(line)
-    with pytest.raises(ValueError, match="curve is a single point"):
+    with pytest.raises(ValueError, match="second curve is a single point"):  # named in order
         line.intersect(point)
     with pytest.raises(ValueError, match="single point"):
         lb.intersect_many([point], [line])

@@ -14,6 +14,7 @@ lists; `FAMILIES` gives their classes (see builtin_curves for the ones with code
 
 from __future__ import annotations
 
+import re
 import sys
 from fractions import Fraction
 from functools import cache
@@ -115,6 +116,21 @@ def _tables(data: object, kind: str) -> dict[int, tuple[Matrix, ...]]:
     return tables
 
 
+def _swapped_words(text: str) -> str:
+    """A refusal of other.intersect(curve) said of curve.intersect(other): "the first" and
+    "the second" curve exchanged, and the two dimensions of a mismatch."""
+    for said, meant in (
+        ("the first curve", "the second curve"),
+        ("the second curve", "the first curve"),
+    ):
+        if text.startswith(said):
+            return meant + text[len(said) :]
+    dims = re.fullmatch(r"the curves have different dimensions \((\d+) and (\d+)\)", text)
+    if dims:
+        return f"the curves have different dimensions ({dims[2]} and {dims[1]})"
+    return text
+
+
 def _swapped_intersect(other: object, curve: object) -> list[_intersect.Intersection] | None:
     """curve(s) = other(t) when `other` is a curve class of a higher layer whose own
     intersect takes polynomial curves (rational Bézier, trigonometric/hyperbolic/mixed: they
@@ -122,7 +138,10 @@ def _swapped_intersect(other: object, curve: object) -> list[_intersect.Intersec
     exchanged. None for anything else."""
     if not getattr(type(other), "intersects_curves", False):
         return None
-    found = other.intersect(curve)  # type: ignore[attr-defined]
+    try:
+        found = other.intersect(curve)  # type: ignore[attr-defined]
+    except ValueError as err:  # its words are about the pair the other way round
+        raise ValueError(_swapped_words(str(err))) from None
     return sorted(
         (_intersect.Intersection(h.t, h.s, h.kind) for h in found), key=lambda h: (h.s, h.t)
     )

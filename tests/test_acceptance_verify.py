@@ -401,3 +401,24 @@ def test_the_coverage_in_json_is_json():
     (prop5,) = [it for it in items if any(r["id"] == "000.prop5" for r in it["records"])]
     assert prop5["records"] == [{"id": "000.prop5", "verdict": "mismatch"}]
     assert prop5["document"] == "000_10ca634d356c575d.txt"
+
+
+def test_a_surface_degree_outside_the_family_names_its_degrees_as_the_definition_does(tmp_path):
+    """The message gave Python's range(3, 13) for the degrees 3..12."""
+    code, by_id = run_json(
+        tmp_path,
+        """
+        schema_version = 2
+        family = "same_degree"
+
+        [[record]]
+        id = "mine.surface"
+        claim = "surface_boundary"
+        degrees = [2, 3]
+        side = "u=1"
+        line = "row m"
+        """,
+    )
+    text = json.dumps(by_id["mine.surface"])
+    assert "degree 2 is outside the same_degree degrees 3..12" in text
+    assert "range(" not in text

@@ -555,6 +555,11 @@ def _approximate(elem: A.Elem, real: Realiser, digits: int = 60) -> sp.Poly:
     return sp.Poly(expr, *syms)
 
 
+def degrees_text(degrees: range) -> str:
+    """A family's degrees as its definition writes them ("2..8"), for messages."""
+    return f"{degrees.start}..{degrees.stop - 1}"
+
+
 def claimed_flag(record: dict, key: str) -> bool:
     """A record's printed true/false claim under `key` (refused if it is anything else)."""
     claimed = record.get(key)

@@ -234,7 +234,9 @@ def check_several_energy_matrix(record: dict, _context: object) -> Outcome:
     if degree is None or k is None or gram is None:
         raise RecordError("keys n, k and gram are required")
     if degree not in defn.degrees:
-        raise RecordError(f"key n: degree {degree} is outside {defn.degrees}")
+        raise RecordError(
+            f"key n: degree {degree} is outside {elementary.degrees_text(defn.degrees)}"
+        )
     want = _gram(defn.at_degree(degree), degree, k)
     if len(gram) != degree + 1 or any(len(row) != degree + 1 for row in gram):
         raise RecordError(f"key gram: a {degree + 1} x {degree + 1} matrix")
@@ -255,7 +257,10 @@ def _energy_setup(record: dict):
         raise RecordError("keys k and control_points are required")
     degree = len(pts) - 1
     if degree not in defn.degrees:
-        raise RecordError(f"key control_points: degree {degree} is outside {defn.degrees}")
+        raise RecordError(
+            f"key control_points: degree {degree} is outside "
+            f"{elementary.degrees_text(defn.degrees)}"
+        )
     rows = [[Fraction(_number(v, "control_points")) for v in row] for row in pts]
     at = defn.at_degree(degree)
     gram = _gram(at, degree, k)

@@ -25,7 +25,7 @@ import sympy as sp
 
 from ..grammar import SYMBOLS
 from .checks_core import Outcome, checker, derive_module
-from .checks_elementary import RecordError
+from .checks_elementary import RecordError, degrees_text
 from .checks_examples import _frac
 from .claim_families import FAMILIES, SEVERAL_FAMILIES
 from .context import Context
@@ -58,7 +58,9 @@ def _degrees(record: dict, fams: tuple[str, str]) -> tuple[int, int]:
     m, n = (int(d) for d in record["degrees"])
     for fam, deg in zip(fams, (m, n), strict=True):
         if deg not in FAMILIES[fam].degrees:
-            raise ValueError(f"degree {deg} is outside the {fam} range {FAMILIES[fam].degrees}")
+            raise ValueError(
+                f"degree {deg} is outside the {fam} degrees {degrees_text(FAMILIES[fam].degrees)}"
+            )
     return m, n
 
 

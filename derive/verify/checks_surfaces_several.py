@@ -85,7 +85,10 @@ class _Direction:
 
     def __init__(self, defn: Definition, degree: int, side: str) -> None:
         if degree not in defn.degrees:
-            raise RecordError(f"key degrees: {degree} is outside {defn.name}'s {defn.degrees}")
+            raise RecordError(
+                f"key degrees: {degree} is outside {defn.name}'s degrees "
+                f"{elementary.degrees_text(defn.degrees)}"
+            )
         self.defn, self.n, self.side = defn, degree, side
         self.at = defn.at_degree(degree)  # an indexed family's degree-n family
         self.names = _renamed(self.at, side)

@@ -24,6 +24,15 @@ def _intersections() -> None:
     b = lb.BezierCurve([(0, 1), (1, -1), (2, 2), (3, 0)])
     a.intersect(b)  # the certificate (certify_compiled) and the subdivision
     lb.intersect_many([a], [b])
+    # the certificate on its own, as the certificate tests call it (writable arrays: a type
+    # of their own, compiled apart from the one-call pair kernel's read-only rows)
+    import numpy as np
+
+    from lambda_bezier.hazmat import intersect as engine
+    from lambda_bezier.hazmat import intersect_certify as cert
+
+    rows = [np.array(c.points, dtype=float) for c in (a, b)]
+    cert.certify_one(*rows, engine.BOX_SLACK, engine.ROOT_RESIDUAL, engine.SETTLE)
 
 
 def _careful_path() -> None:

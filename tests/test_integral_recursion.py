@@ -205,7 +205,6 @@ def _sympy_orders(top: int) -> list[list[sp.Expr]]:
 def test_degrees_2_and_3_against_sympy_integrate(orders):
     a = sp.Symbol("alpha", positive=True)
     ref = _sympy_orders(3)
-    mp.mp.dps = 40
     for defn, want in zip(orders[:2], ref, strict=True):
         assert defn.degree == len(want) - 1
         for elem, w in zip(defn.elems(), want, strict=True):
@@ -235,22 +234,22 @@ def test_degrees_5_and_6_derive_and_keep_the_identities():
         ("cos", 1),
         ("sin", 1),
     }  # span{1, t, .., t^4, sin t, cos t}
-    mp.mp.dps = 80
-    for defn in (five, six):
-        funcs = [
-            sp.lambdify((cb.T, cb.A), cb.as_function(e, False), modules="mpmath")
-            for e in defn.elems()
-        ]
-        for alpha in (mp.mpf(1) / 3, mp.mpf(2), mp.mpf(3)):
-            for tv in (mp.mpf(0), alpha / 7, alpha / 2, alpha):
-                assert abs(sum(f(tv, alpha) for f in funcs) - 1) < mp.mpf(10) ** -25
-            ends = [(f(0, alpha), f(alpha, alpha)) for f in funcs]
-            n = defn.degree
-            want = [(int(i == 0), int(i == n)) for i in range(n + 1)]
-            assert all(
-                abs(x - wx) < mp.mpf(10) ** -25 and abs(y - wy) < mp.mpf(10) ** -25
-                for (x, y), (wx, wy) in zip(ends, want, strict=True)
-            )
+    with mp.workdps(80):  # mpmath's global precision is the other tests' too
+        for defn in (five, six):
+            funcs = [
+                sp.lambdify((cb.T, cb.A), cb.as_function(e, False), modules="mpmath")
+                for e in defn.elems()
+            ]
+            for alpha in (mp.mpf(1) / 3, mp.mpf(2), mp.mpf(3)):
+                for tv in (mp.mpf(0), alpha / 7, alpha / 2, alpha):
+                    assert abs(sum(f(tv, alpha) for f in funcs) - 1) < mp.mpf(10) ** -25
+                ends = [(f(0, alpha), f(alpha, alpha)) for f in funcs]
+                n = defn.degree
+                want = [(int(i == 0), int(i == n)) for i in range(n + 1)]
+                assert all(
+                    abs(x - wx) < mp.mpf(10) ** -25 and abs(y - wy) < mp.mpf(10) ** -25
+                    for (x, y), (wx, wy) in zip(ends, want, strict=True)
+                )
 
 
 @pytest.mark.parametrize(
@@ -327,26 +326,28 @@ def test_curves_of_every_degree_against_mpmath(family_dir):
     fam = load_family(family_dir / "c_bezier_orders.toml")
     a = sp.Symbol("alpha", positive=True)
     ref = _sympy_orders(3)
-    mp.mp.dps = 30
-    alpha = 2.0
-    for n, basis in zip((2, 3), ref, strict=True):
-        pts = np.arange(2 * (n + 1), dtype=float).reshape(n + 1, 2) ** 1.5
-        c = fam.curve(pts, alpha=alpha)
-        funcs = [sp.lambdify((t, a), f, modules="mpmath") for f in basis]
-        dfuncs = [sp.lambdify((t, a), sp.diff(f, t), modules="mpmath") for f in basis]
-        for tv in (0.0, 0.3, 1.1, alpha):
-            want = sum(
-                float(f(mp.mpf(tv), mp.mpf(alpha))) * p for f, p in zip(funcs, pts, strict=True)
-            )
-            dwant = sum(
-                float(f(mp.mpf(tv), mp.mpf(alpha))) * p for f, p in zip(dfuncs, pts, strict=True)
-            )
-            np.testing.assert_allclose(c.evaluate(tv), want, rtol=1e-10, atol=1e-10)
-            np.testing.assert_allclose(c.derivative(tv), dwant, rtol=1e-9, atol=1e-9)
-        left, right = c.split(0.7)
-        np.testing.assert_allclose(left.evaluate(0.7), c.evaluate(0.7), atol=1e-9)
-        np.testing.assert_allclose(right.evaluate(right.domain[1]), c.evaluate(alpha), atol=1e-9)
-        back = from_json(to_json(c), family=family_dir / "c_bezier_orders.toml")
-        np.testing.assert_allclose(back.evaluate(1.0), c.evaluate(1.0), atol=1e-12)
-    with pytest.raises(ValueError, match="degrees 2..3"):
-        fam.curve(np.zeros((7, 2)), alpha=1.0)
+    with mp.workdps(30):  # mpmath's global precision is the other tests' too
+        alpha = 2.0
+        for n, basis in zip((2, 3), ref, strict=True):
+            pts = np.arange(2 * (n + 1), dtype=float).reshape(n + 1, 2) ** 1.5
+            c = fam.curve(pts, alpha=alpha)
+            funcs = [sp.lambdify((t, a), f, modules="mpmath") for f in basis]
+            dfuncs = [sp.lambdify((t, a), sp.diff(f, t), modules="mpmath") for f in basis]
+            for tv in (0.0, 0.3, 1.1, alpha):
+                want = sum(
+                    float(f(mp.mpf(tv), mp.mpf(alpha))) * p for f, p in zip(funcs, pts, strict=True)
+                )
+                dwant = sum(
+                    float(f(mp.mpf(tv), mp.mpf(alpha))) * p
+                    for f, p in zip(dfuncs, pts, strict=True)
+                )
+                np.testing.assert_allclose(c.evaluate(tv), want, rtol=1e-10, atol=1e-10)
+                np.testing.assert_allclose(c.derivative(tv), dwant, rtol=1e-9, atol=1e-9)
+            left, right = c.split(0.7)
+            np.testing.assert_allclose(left.evaluate(0.7), c.evaluate(0.7), atol=1e-9)
+            end = right.evaluate(right.domain[1])
+            np.testing.assert_allclose(end, c.evaluate(alpha), atol=1e-9)
+            back = from_json(to_json(c), family=family_dir / "c_bezier_orders.toml")
+            np.testing.assert_allclose(back.evaluate(1.0), c.evaluate(1.0), atol=1e-12)
+        with pytest.raises(ValueError, match="degrees 2..3"):
+            fam.curve(np.zeros((7, 2)), alpha=1.0)

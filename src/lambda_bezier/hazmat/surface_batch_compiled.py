@@ -45,7 +45,7 @@ from . import surface_coefficients_ir as emitted
 # editing this file too (tests/test_surfaces_certify.py checks the two agree). Where they
 # differ anyway (an edit without the tests), the kernels compile afresh, uncached, rather
 # than load code of the old certificate.
-CERTIFY_SHA256 = "7b4489ee7e0ef8c813b49e9241b0bebb08a3ea1888f7eca6656a182b582bf7f9"
+CERTIFY_SHA256 = "57b1e97cf88bc2e99ede8bcb2a8efc3c61578c81ca22986adbdbf0b3e4deada6"
 
 
 def certify_source_sha256() -> str:
@@ -129,6 +129,7 @@ _CERTIFY = _recompiled(
         "_side_clear",
         "_largest",
         "_direction",
+        "_local_bounds",
         "certified_minimum",
         "_edge",
         "edge_band_minimum",

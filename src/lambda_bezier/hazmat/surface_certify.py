@@ -342,7 +342,7 @@ def _direction(
     return lower, gradient, clear
 
 
-def certified_minimum(
+def _local_bounds(
     e00: F,
     e01: F,
     e02: F,
@@ -352,28 +352,17 @@ def certified_minimum(
     e20: F,
     e21: F,
     e22: F,
+    x: F,
+    y: F,
     xlo: float,
     xhi: float,
     ylo: float,
     yhi: float,
-    tol: float,
-) -> tuple[F, F, F, F, F]:
-    """(x, y, E(x, y), δ, certified) for E = Σ e_ab x^a y^b over [xlo, xhi] x [ylo, yhi]:
-    where `certified`, the minimiser over the box is unique and within δ <= tol of (x, y)."""
-    xm, ym = 0.5 * (xlo + xhi), 0.5 * (ylo + yhi)
-    x = xm + 0.0 * e00  # the shape of the coefficients (an array for the numpy engine)
-    y = ym + 0.0 * e00
-    # written out rather than looped: the compiled engine vectorises its loop over nets only
-    # when the body is straight-line code. Two sweeps and four Newton steps: on the 10,000
-    # benchmark nets three more sweeps and steps certify 3 more nets (161 declined, not 164),
-    # at a fifth of the certificate's cost
-    e, box = (e01, e02, e10, e11, e12, e20, e21, e22), (xlo, xhi, ylo, yhi)
-    x, y = _sweep(e, x, y, box)
-    x, y = _sweep(e, x, y, box)
-    x, y = _newton(e, x, y, box)
-    x, y = _newton(e, x, y, box)
-    x, y = _newton(e, x, y, box)
-    x, y = _newton(e, x, y, box)
+) -> tuple[F, F, F, F, F, F, F, F]:
+    """The local part of certified_minimum's argument at the point (x, y), one source for it
+    and retry_minimum: (r, emax, E(x, y), level, clear_x, clear_y, convex, δ), r the half-width
+    of the square R, emax the coefficients' size, level E(x, y) + the rounding slack, the sides
+    beyond R cleared in one piece each, and whether E is convex over R with δ = |∇E| / μ."""
     # R's half-width: RADIUS of the box, or NEAR_FACE of the point's distance to the nearest
     # face where that is less (a minimum near a face; module doc: any r > 0 is sound)
     r0 = RADIUS * max(xhi - xlo, yhi - ylo)
@@ -406,6 +395,44 @@ def certified_minimum(
     convex = (lo_xx > 0) & (lo_yy > 0) & (mu > 0)
     grad = np.sqrt(ex * ex + ey * ey)
     delta = grad / _where(convex, mu, 1.0)
+    return r, emax, energy, level, clear_x, clear_y, convex, delta
+
+
+def certified_minimum(
+    e00: F,
+    e01: F,
+    e02: F,
+    e10: F,
+    e11: F,
+    e12: F,
+    e20: F,
+    e21: F,
+    e22: F,
+    xlo: float,
+    xhi: float,
+    ylo: float,
+    yhi: float,
+    tol: float,
+) -> tuple[F, F, F, F, F]:
+    """(x, y, E(x, y), δ, certified) for E = Σ e_ab x^a y^b over [xlo, xhi] x [ylo, yhi]:
+    where `certified`, the minimiser over the box is unique and within δ <= tol of (x, y)."""
+    xm, ym = 0.5 * (xlo + xhi), 0.5 * (ylo + yhi)
+    x = xm + 0.0 * e00  # the shape of the coefficients (an array for the numpy engine)
+    y = ym + 0.0 * e00
+    # written out rather than looped: the compiled engine vectorises its loop over nets only
+    # when the body is straight-line code. Two sweeps and four Newton steps: on the 10,000
+    # benchmark nets three more sweeps and steps certify 3 more nets (161 declined, not 164),
+    # at a fifth of the certificate's cost
+    e, box = (e01, e02, e10, e11, e12, e20, e21, e22), (xlo, xhi, ylo, yhi)
+    x, y = _sweep(e, x, y, box)
+    x, y = _sweep(e, x, y, box)
+    x, y = _newton(e, x, y, box)
+    x, y = _newton(e, x, y, box)
+    x, y = _newton(e, x, y, box)
+    x, y = _newton(e, x, y, box)
+    r, emax, energy, level, clear_x, clear_y, convex, delta = _local_bounds(
+        e00, e01, e02, e10, e11, e12, e20, e21, e22, x, y, xlo, xhi, ylo, yhi
+    )
     # 2δ < r: E on R's boundary exceeds E(x, y) (E >= E(x, y) − |∇E| r + μ r² / 2), so the
     # minimum over R is interior, the critical point
     local = convex & (delta <= tol) & (2 * delta < r)
@@ -557,35 +584,10 @@ def retry_minimum(
     x, y = _sweep(e, x, y, box)
     for _ in range(RETRY_NEWTON):
         x, y = _newton(e, x, y, box)
-    r0 = RADIUS * max(xhi - xlo, yhi - ylo)
-    room = np.minimum(np.minimum(x - xlo, xhi - x), np.minimum(y - ylo, yhi - y))
-    r = _where(room > r0, r0, NEAR_FACE * room)
-    emax = _largest(e00, e01, e02, e10, e11, e12, e20, e21, e22)
-    ax, ay = np.abs(x) + r, np.abs(y) + r
-    slack = ROUND * emax * (1 + ax + ax * ax) * (1 + ay + ay * ay)
-    a = _at(e20, e21, e22, y)
-    b = _at(e10, e11, e12, y)
-    c = _at(e00, e01, e02, y)
-    energy = _at(c, b, a, x)
-    level = energy + slack
-    # _direction's local bounds (its one-piece clearing is not used here)
-    lo_xx, ex, _ = _direction(
-        e20, e21, e22, e10, e11, e12, e00, e01, e02, x, y, r, ylo, yhi, level, emax, slack
+    # its local bounds (_local_bounds' one-piece clearing of the sides is not used here)
+    r, emax, energy, level, _, _, convex, delta = _local_bounds(
+        e00, e01, e02, e10, e11, e12, e20, e21, e22, x, y, xlo, xhi, ylo, yhi
     )
-    lo_yy, ey, _ = _direction(
-        e02, e12, e22, e01, e11, e21, e00, e10, e20, y, x, r, xlo, xhi, level, emax, slack
-    )
-    hxy = e11 + 2 * e12 * y + 2 * x * (e21 + 2 * e22 * y)
-    hi_xy = (
-        np.abs(hxy)
-        + (np.abs(2 * e21 + 4 * e22 * y) + np.abs(2 * e12 + 4 * e22 * x)) * r
-        + 4 * np.abs(e22) * r * r
-        + slack
-    )
-    half = 0.5 * (lo_xx - lo_yy)
-    mu = 0.5 * (lo_xx + lo_yy) - np.sqrt(half * half + hi_xy * hi_xy)
-    convex = (lo_xx > 0) & (lo_yy > 0) & (mu > 0)
-    delta = np.sqrt(ex * ex + ey * ey) / _where(convex, mu, 1.0)
     local = convex & (delta <= tol) & (2 * delta < r)
     inside = (x - r > xlo) & (x + r < xhi) & (y - r > ylo) & (y + r < yhi)
     ok = local & inside
